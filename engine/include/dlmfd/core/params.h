@@ -1,0 +1,125 @@
+// The validated parameter tree of a scene (design.md 3.1). Built only by scene/scene_file.h, which
+// checks every value; the engine may assume what the comments state. Units are the user's.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace dlmfd {
+
+using Vec2 = Eigen::Vector2d;
+
+enum class SideType { kWall, kVelocity, kOutflow, kPeriodic };
+enum class Profile { kUniform, kPoiseuille };
+
+// One side of the rectangle. A wall is a velocity side with value 0.
+struct BoundarySide {
+  SideType type = SideType::kWall;
+  Profile profile = Profile::kUniform;
+  Vec2 value = Vec2::Zero();  // uniform profile: the velocity on the side
+  Vec2 max = Vec2::Zero();    // poiseuille profile: the velocity at mid-side (zero at the corners)
+};
+
+enum class Side { kLeft = 0, kRight = 1, kBottom = 2, kTop = 3 };
+
+struct DomainParams {
+  Vec2 size = Vec2(1.0, 1.0);  // width, height; size / h even integers
+  double h = 1.0 / 32;         // velocity mesh size
+  BoundarySide sides[4];       // indexed by Side
+  const BoundarySide& side(Side s) const { return sides[static_cast<int>(s)]; }
+  bool PeriodicX() const { return side(Side::kLeft).type == SideType::kPeriodic; }
+  bool PeriodicY() const { return side(Side::kBottom).type == SideType::kPeriodic; }
+};
+
+struct FluidParams {
+  double density = 1.0;          // rho_L > 0
+  double viscosity = 0.01;       // zero-shear eta = eta_s + eta_p > 0
+  double relaxation_time = 0.0;  // lambda_r >= 0; 0 = Newtonian
+  double solvent_ratio = 1.0;    // beta = eta_s / eta in (0, 1]
+  Vec2 body_force = Vec2::Zero();  // force per unit volume on the liquid (e.g. a mean pressure gradient)
+  double SolventViscosity() const { return solvent_ratio * viscosity; }
+  double PolymerViscosity() const { return (1.0 - solvent_ratio) * viscosity; }
+  bool IsNewtonian() const { return relaxation_time == 0.0 || solvent_ratio == 1.0; }
+};
+
+struct TimeParams {
+  double dt = 1e-3;  // > 0
+  double end = 1.0;  // >= 0
+};
+
+enum class AdvectionScheme { kLeastSquares, kWave };
+
+// Marchuk-Yanenko weights of the viscous term: alpha in (33), beta in (34), gamma = 1 - alpha - beta
+// in (37). The engine supports gamma = 0 only (the paper's choice), which validation enforces.
+struct SplittingParams {
+  double alpha = 0.5;
+  double beta = 0.5;
+  AdvectionScheme advection = AdvectionScheme::kLeastSquares;
+};
+
+// Stopping rules and limits of the iterative solvers.
+struct SolverParams {
+  double stokes_tolerance = 1e-6;      // Uzawa/PCG, relative to a fixed reference residual
+  int stokes_max_iterations = 200;
+  double advection_tolerance = 1e-3;   // LS-CG, ratio of gradient norms
+  int advection_max_iterations = 50;
+  double wave_max_courant = 0.5;       // wave-like scheme: sub-steps so that |u| tau / h <= this
+  double multiplier_tolerance = 1e-6;  // DLM CG (37), relative
+  int multiplier_max_iterations = 500;
+};
+
+enum class Motion { kFree, kFixed, kPrescribed };
+
+struct ParticleParams {
+  Vec2 center = Vec2::Zero();
+  double diameter = 0.2;  // > 0
+  double density = 1.0;   // > 0 (free particles: != fluid density)
+  Vec2 velocity = Vec2::Zero();
+  double angular_velocity = 0.0;
+  Motion motion = Motion::kFree;
+  double Radius() const { return 0.5 * diameter; }
+};
+
+struct ParticleMeshParams {
+  double h = 1.0 / 70;  // multiplier mesh size > 0
+};
+
+struct CollisionParams {
+  double range = 1.5;                // rho, in units of the velocity mesh size h
+  double wall_stiffness = 1e-5;      // epsilon_w > 0
+  double particle_stiffness = 2e-5;  // epsilon_p > 0
+  int substeps = 10;                 // K of (36) and (38), >= 1
+};
+
+enum class ConformationForm { kA };
+
+struct ConformationParams {
+  ConformationForm form = ConformationForm::kA;
+  double max_courant = 0.4;    // advection sub-cycling: |u| tau / h <= this
+  double blend_kappa = 0.5;    // SPD blend: lambda_min(A) >= kappa lambda_min(A_low)
+};
+
+struct OutputParams {
+  double fields_every = 0.1;       // simulated time between field snapshots; 0 = none
+  double particles_every = 0.01;   // between particle records; 0 = every step
+  double checkpoint_every = 1.0;   // between checkpoints; 0 = none
+};
+
+struct Params {
+  std::string title;
+  DomainParams domain;
+  FluidParams fluid;
+  Vec2 gravity = Vec2::Zero();
+  TimeParams time;
+  SplittingParams splitting;
+  SolverParams solvers;
+  std::vector<ParticleParams> particles;
+  ParticleMeshParams particle_mesh;
+  CollisionParams collisions;
+  ConformationParams conformation;
+  OutputParams output;
+  int threads = 0;  // not a scene key: set by the program (0 = OpenMP default)
+};
+
+}  // namespace dlmfd

@@ -1,0 +1,59 @@
+// The state of a run at the end of a time step: everything a checkpoint must hold to resume
+// bit-for-bit, and everything an observer may read.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "dlmfd/core/params.h"
+
+namespace dlmfd {
+
+struct ParticleState {
+  int id = 0;
+  Vec2 position = Vec2::Zero();
+  Vec2 velocity = Vec2::Zero();
+  double angular_velocity = 0.0;
+  Vec2 force = Vec2::Zero();  // hydrodynamic force on the particle over the last step
+  double torque = 0.0;        // hydrodynamic torque on the particle over the last step
+  double radius = 0.0;
+  double density = 0.0;
+  Motion motion = Motion::kFree;
+  std::vector<double> multiplier;  // DLM nodal forces of the last step (warm start); may be empty
+};
+
+struct FlowState {
+  long step = 0;
+  double time = 0.0;
+  std::vector<double> u, v;           // velocity on the h-grid nodes
+  std::vector<double> p;              // pressure on the 2h-grid nodes
+  std::vector<double> a11, a12, a22;  // configuration tensor on the h-grid; empty when Newtonian
+  std::vector<ParticleState> particles;
+};
+
+// Per-step diagnostics: named columns, the same names in the same order at every step of a run
+// (iterations and residual of each solver, divergence, CFL, min eigenvalue of A, max trA, substep
+// milliseconds). diagnostics.csv prints them as they come.
+struct StepReport {
+  long step = 0;
+  double time = 0.0;
+  double wall_seconds = 0.0;  // of this step
+  std::vector<std::pair<std::string, double>> columns;
+
+  void Set(const std::string& name, double value) {
+    for (auto& c : columns) {
+      if (c.first == name) { c.second = value; return; }
+    }
+    columns.emplace_back(name, value);
+  }
+  // The value of a column, or `fallback` when the run has no such column.
+  double Get(const std::string& name, double fallback = 0.0) const {
+    for (const auto& c : columns) {
+      if (c.first == name) return c.second;
+    }
+    return fallback;
+  }
+};
+
+}  // namespace dlmfd
