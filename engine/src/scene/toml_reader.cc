@@ -1,0 +1,139 @@
+#include "toml_reader.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+#include "dlmfd/core/errors.h"
+
+namespace dlmfd {
+namespace scene {
+
+std::string NodeText(const toml::node& node) {
+  std::ostringstream out;
+  node.visit([&out](const auto& n) { out << n; });
+  return out.str();
+}
+
+std::string ExactText(double x) {
+  char buffer[40];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
+    if (std::strtod(buffer, nullptr) == x) break;
+  }
+  std::string text = buffer;
+  // TOML needs a '.' or an exponent to read a float.
+  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
+  return text;
+}
+
+TableReader::TableReader(const toml::table* table, std::string prefix)
+    : table_(table), prefix_(std::move(prefix)) {}
+
+bool TableReader::Has(const std::string& name) const {
+  return table_ != nullptr && table_->contains(name);
+}
+
+const toml::node* TableReader::Find(const std::string& name) {
+  known_.insert(name);
+  if (table_ == nullptr) return nullptr;
+  return table_->get(name);
+}
+
+void TableReader::Missing(const std::string& name, const std::string& what) const {
+  throw InvalidParameter(Key(name), "(missing)", what);
+}
+
+double TableReader::Real(const std::string& name, std::optional<double> fallback) {
+  const toml::node* node = Find(name);
+  if (node == nullptr) {
+    if (!fallback) Missing(name, "a number");
+    return *fallback;
+  }
+  if (const auto* f = node->as_floating_point()) {
+    if (!std::isfinite(f->get())) throw InvalidParameter(Key(name), NodeText(*node), "a finite number");
+    return f->get();
+  }
+  if (const auto* i = node->as_integer()) return static_cast<double>(i->get());
+  throw InvalidParameter(Key(name), NodeText(*node), "a number");
+}
+
+int TableReader::Integer(const std::string& name, std::optional<int> fallback) {
+  const toml::node* node = Find(name);
+  if (node == nullptr) {
+    if (!fallback) Missing(name, "an integer");
+    return *fallback;
+  }
+  const auto* i = node->as_integer();
+  if (i == nullptr) throw InvalidParameter(Key(name), NodeText(*node), "an integer");
+  if (i->get() > 2147483647LL || i->get() < -2147483647LL) {
+    throw InvalidParameter(Key(name), NodeText(*node), "an integer of magnitude < 2^31");
+  }
+  return static_cast<int>(i->get());
+}
+
+std::string TableReader::String(const std::string& name, std::optional<std::string> fallback) {
+  const toml::node* node = Find(name);
+  if (node == nullptr) {
+    if (!fallback) Missing(name, "a string");
+    return *fallback;
+  }
+  const auto* s = node->as_string();
+  if (s == nullptr) throw InvalidParameter(Key(name), NodeText(*node), "a string");
+  return s->get();
+}
+
+Vec2 TableReader::Vector(const std::string& name, std::optional<Vec2> fallback) {
+  const toml::node* node = Find(name);
+  if (node == nullptr) {
+    if (!fallback) Missing(name, "an array of two numbers");
+    return *fallback;
+  }
+  const auto* a = node->as_array();
+  if (a == nullptr || a->size() != 2) {
+    throw InvalidParameter(Key(name), NodeText(*node), "an array of two numbers");
+  }
+  Vec2 out;
+  for (int k = 0; k < 2; ++k) {
+    const toml::node& e = *a->get(static_cast<std::size_t>(k));
+    if (const auto* f = e.as_floating_point()) {
+      out[k] = f->get();
+    } else if (const auto* i = e.as_integer()) {
+      out[k] = static_cast<double>(i->get());
+    } else {
+      throw InvalidParameter(Key(name), NodeText(*node), "an array of two numbers");
+    }
+    if (!std::isfinite(out[k])) throw InvalidParameter(Key(name), NodeText(*node), "two finite numbers");
+  }
+  return out;
+}
+
+const toml::table* TableReader::Table(const std::string& name) {
+  const toml::node* node = Find(name);
+  if (node == nullptr) return nullptr;
+  const auto* t = node->as_table();
+  if (t == nullptr) throw InvalidParameter(Key(name), NodeText(*node), "a table");
+  return t;
+}
+
+const toml::array* TableReader::Array(const std::string& name) {
+  const toml::node* node = Find(name);
+  if (node == nullptr) return nullptr;
+  const auto* a = node->as_array();
+  if (a == nullptr) throw InvalidParameter(Key(name), NodeText(*node), "an array");
+  return a;
+}
+
+void TableReader::RejectUnknown(const std::string& allowed_keys) const {
+  if (table_ == nullptr) return;
+  for (const auto& [key, node] : *table_) {
+    const std::string name(key.str());
+    if (known_.count(name) == 0) {
+      throw InvalidParameter(Key(name), NodeText(node), "no such key here (known keys: " + allowed_keys + ")");
+    }
+  }
+}
+
+}  // namespace scene
+}  // namespace dlmfd
