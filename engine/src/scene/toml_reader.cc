@@ -11,9 +11,51 @@ namespace dlmfd {
 namespace scene {
 
 std::string NodeText(const toml::node& node) {
-  std::ostringstream out;
+  if (const auto* f = node.as_floating_point()) return ExactText(f->get());
+  if (const auto* i = node.as_integer()) return std::to_string(i->get());
+  if (const auto* s = node.as_string()) return QuotedText(s->get());
+  if (const auto* b = node.as_boolean()) return b->get() ? "true" : "false";
+  if (const auto* a = node.as_array()) {
+    std::string out = "[";
+    for (std::size_t k = 0; k < a->size(); ++k) out += (k ? ", " : "") + NodeText(*a->get(k));
+    return out + "]";
+  }
+  if (const auto* t = node.as_table()) {
+    std::string out = "{";
+    bool first = true;
+    for (const auto& [key, value] : *t) {
+      out += std::string(first ? " " : ", ") + std::string(key.str()) + " = " + NodeText(value);
+      first = false;
+    }
+    return out + (first ? "}" : " }");
+  }
+  std::ostringstream out;  // dates and times
   node.visit([&out](const auto& n) { out << n; });
   return out.str();
+}
+
+std::string QuotedText(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (u < 0x20 || u == 0x7f) {
+      char buffer[8];
+      std::snprintf(buffer, sizeof buffer, "\\u%04x", u);
+      out += buffer;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string ShortText(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", x);
+  return buffer;
 }
 
 std::string ExactText(double x) {

@@ -19,6 +19,10 @@ namespace scene {
 
 // The TOML text of a node, for messages ("1.5", "\"wave\"", "[1.0, 2.0]").
 std::string NodeText(const toml::node& node);
+// A string as a TOML basic string, quoted and escaped.
+std::string QuotedText(const std::string& s);
+// Four significant digits, for derived numbers in messages.
+std::string ShortText(double x);
 // The shortest decimal text that reads back as exactly x.
 std::string ExactText(double x);
 

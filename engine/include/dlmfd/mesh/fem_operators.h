@@ -20,7 +20,8 @@ namespace dlmfd {
 
 // out = M_l f.
 void ApplyLumpedMass(const Grid& grid, const BoundaryTopology& topo, const double* f, double* out);
-// The diagonal of M_l as a node array.
+// The diagonal of M_l as a node array (periodic duplicates carry their first node's value, so the
+// array can divide; ApplyLumpedMass, like every Apply*, gives their rows zero).
 void LumpedMassDiagonal(const Grid& grid, const BoundaryTopology& topo, double* out);
 // out = K u, K_ij = int grad phi_i . grad phi_j (5-point Laplacian in the interior).
 void ApplyStiffness(const Grid& grid, const BoundaryTopology& topo, const double* u, double* out);

@@ -1,0 +1,116 @@
+// Fast solver and operator costs on the paper's grid (2 x 8, h = 1/96: 193 x 769 velocity nodes,
+// 97 x 385 pressure nodes). Method notes 1, section 5 budgets about 1 ms per velocity solve and
+// 0.3 ms per pressure solve. Run: build/bench/fast_solver_bench
+//   velocity solve: (a M_l + b K) u = f, walls all round, a = 1/dt (dt = 4e-4), b = 0.005
+//   pressure solve: Neumann all round, a = 0, b = 1 (the singular case, mean-free result)
+//   operators: B, B^T, K, with 1 and 2 OpenMP threads (the Arg)
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <cmath>
+#include <vector>
+
+#include "dlmfd/mesh/boundary_topology.h"
+#include "dlmfd/mesh/fem_operators.h"
+#include "dlmfd/solvers/separable_helmholtz.h"
+
+namespace dlmfd {
+namespace {
+
+const Grid kGrid{192, 768, 1.0 / 96.0, 0.0, 0.0};
+
+BoundaryTopology Walls() { return BoundaryTopology{}; }
+
+BoundaryTopology NeumannAllRound() {
+  BoundaryTopology t;
+  t.x = {EndKind::kNeumann, EndKind::kNeumann};
+  t.y = {EndKind::kNeumann, EndKind::kNeumann};
+  return t;
+}
+
+std::vector<double> Smooth(const Grid& g, double phase) {
+  std::vector<double> f(g.NodeCount());
+  for (int j = 0; j <= g.ny; ++j) {
+    for (int i = 0; i <= g.nx; ++i) f[g.Index(i, j)] = std::sin(3.0 * g.X(i) + phase) * std::cos(1.7 * g.Y(j));
+  }
+  return f;
+}
+
+void BM_VelocitySolve(benchmark::State& state) {
+  const SeparableHelmholtz solver(kGrid, Walls(), 1.0 / 4e-4, 0.005, 1);
+  const std::vector<double> f = Smooth(kGrid, 0.0);
+  std::vector<double> u(kGrid.NodeCount(), 0.0);
+  for (auto _ : state) {
+    solver.Solve(f.data(), u.data(), 0);
+    benchmark::DoNotOptimize(u.data());
+  }
+}
+BENCHMARK(BM_VelocitySolve)->Unit(benchmark::kMillisecond);
+
+void BM_PressureSolve(benchmark::State& state) {
+  const Grid coarse = kGrid.Coarse();
+  const SeparableHelmholtz solver(coarse, NeumannAllRound(), 0.0, 1.0, 1);
+  const std::vector<double> f = Smooth(coarse, 0.3);
+  std::vector<double> p(coarse.NodeCount(), 0.0);
+  for (auto _ : state) {
+    solver.Solve(f.data(), p.data(), 0);
+    benchmark::DoNotOptimize(p.data());
+  }
+}
+BENCHMARK(BM_PressureSolve)->Unit(benchmark::kMillisecond);
+
+// u and v solved side by side, one per thread, each with its own workspace.
+void BM_TwoVelocitySolvesOnTwoThreads(benchmark::State& state) {
+  const SeparableHelmholtz solver(kGrid, Walls(), 1.0 / 4e-4, 0.005, 2);
+  const std::vector<double> fu = Smooth(kGrid, 0.0), fv = Smooth(kGrid, 1.0);
+  std::vector<double> u(kGrid.NodeCount(), 0.0), v(kGrid.NodeCount(), 0.0);
+  for (auto _ : state) {
+#pragma omp parallel num_threads(2)
+    {
+      if (omp_get_thread_num() == 0) solver.Solve(fu.data(), u.data(), 0);
+      if (omp_get_thread_num() == 1 || omp_get_num_threads() == 1) solver.Solve(fv.data(), v.data(), 1);
+    }
+    benchmark::DoNotOptimize(u.data());
+    benchmark::DoNotOptimize(v.data());
+  }
+}
+BENCHMARK(BM_TwoVelocitySolvesOnTwoThreads)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_Divergence(benchmark::State& state) {
+  omp_set_num_threads(int(state.range(0)));
+  const std::vector<double> u = Smooth(kGrid, 0.0), v = Smooth(kGrid, 1.0);
+  std::vector<double> out(kGrid.Coarse().NodeCount());
+  for (auto _ : state) {
+    ApplyDivergence(kGrid, NeumannAllRound(), u.data(), v.data(), out.data());
+    benchmark::DoNotOptimize(out.data());
+  }
+}
+BENCHMARK(BM_Divergence)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_DivergenceTranspose(benchmark::State& state) {
+  omp_set_num_threads(int(state.range(0)));
+  const std::vector<double> p = Smooth(kGrid.Coarse(), 0.0);
+  std::vector<double> ou(kGrid.NodeCount()), ov(kGrid.NodeCount());
+  for (auto _ : state) {
+    ApplyDivergenceTranspose(kGrid, NeumannAllRound(), p.data(), ou.data(), ov.data());
+    benchmark::DoNotOptimize(ou.data());
+    benchmark::DoNotOptimize(ov.data());
+  }
+}
+BENCHMARK(BM_DivergenceTranspose)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_Stiffness(benchmark::State& state) {
+  omp_set_num_threads(int(state.range(0)));
+  const std::vector<double> u = Smooth(kGrid, 0.0);
+  std::vector<double> out(kGrid.NodeCount());
+  for (auto _ : state) {
+    ApplyStiffness(kGrid, Walls(), u.data(), out.data());
+    benchmark::DoNotOptimize(out.data());
+  }
+}
+BENCHMARK(BM_Stiffness)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace dlmfd
+
+BENCHMARK_MAIN();

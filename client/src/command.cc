@@ -1,0 +1,60 @@
+// Shared plumbing of the subcommands: flag parsing and the last-resort error report.
+#include "command.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <exception>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "connection.h"
+#include "exit_codes.h"
+#include "progress_printer.h"
+#include "rpc_status.h"
+
+namespace dlmfd::cli {
+
+std::optional<int> ParseArgs(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitUsage;
+  }
+  return std::nullopt;
+}
+
+int Guarded(const std::string& command, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const UsageError& e) {
+    return ReportError(command, e.what(), kExitUsage);
+  } catch (const std::exception& e) {
+    return ReportError(command, e.what(), kExitServerError);
+  }
+}
+
+std::string ReadInputFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UsageError("cannot read " + path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw UsageError("cannot read " + path);
+  return text.str();
+}
+
+std::string NewRequestId() {
+  std::random_device device;
+  char text[33];
+  for (int k = 0; k < 4; ++k) std::snprintf(text + 8 * k, 9, "%08x", unsigned(device()));
+  return text;
+}
+
+PrintMode ChoosePrintMode(bool json) {
+  if (json) return PrintMode::kJson;
+  return ::isatty(STDOUT_FILENO) ? PrintMode::kLive : PrintMode::kPlain;
+}
+
+}  // namespace dlmfd::cli

@@ -1,0 +1,48 @@
+// The subcommand table of dlmfd (as in ninja's src/ninja.cc): each subcommand is one function in
+// its own file, parses its own flags with CLI11, and returns a documented exit code (exit_codes.h).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "CLI/CLI.hpp"
+
+namespace dlmfd::cli {
+
+struct Command {
+  const char* name;
+  const char* summary;
+  int (*run)(int argc, char** argv);  // argv[0] is "dlmfd <name>"
+};
+
+int RunSubmit(int argc, char** argv);
+int RunSweep(int argc, char** argv);
+int RunList(int argc, char** argv);
+int RunShow(int argc, char** argv);
+int RunWatch(int argc, char** argv);
+int RunCancel(int argc, char** argv);
+int RunFetch(int argc, char** argv);
+int RunLogs(int argc, char** argv);
+int RunPlot(int argc, char** argv);
+int RunHealth(int argc, char** argv);
+
+// Parses argv into `app`; returns an exit code when the command must stop (help: 0, error: 2).
+std::optional<int> ParseArgs(CLI::App& app, int argc, char** argv);
+// Runs `body`, turning UsageError into exit 2 and any other exception into exit 8, each reported
+// as one line naming the command.
+int Guarded(const std::string& command, const std::function<int()>& body);
+
+}  // namespace dlmfd::cli
+
+namespace dlmfd::cli {
+
+// The whole file; throws UsageError naming the path when it cannot be read.
+std::string ReadInputFile(const std::string& path);
+// A random 128-bit hex id that makes a retried Submit or SubmitSweep idempotent.
+std::string NewRequestId();
+// How `watch` prints on this stdout: live line on a terminal, plain otherwise, or JSON.
+enum class PrintMode;
+PrintMode ChoosePrintMode(bool json);
+
+}  // namespace dlmfd::cli

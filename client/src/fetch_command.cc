@@ -1,0 +1,124 @@
+// dlmfd fetch JOB [--out DIR] [--path FILE]...
+// Writes each file to DIR/<its path in the results directory> through a temporary name, renamed when
+// its last chunk has arrived, so an interrupted fetch never leaves a truncated file under the
+// final name. Paths from the server are checked: absolute ones or ones with ".." are refused.
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "command.h"
+#include "connection.h"
+#include "exit_codes.h"
+#include "rpc_status.h"
+
+namespace dlmfd::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool SafeRelative(const std::string& path) {
+  const fs::path p(path);
+  if (path.empty() || p.is_absolute()) return false;
+  for (const auto& part : p) {
+    if (part == "..") return false;
+  }
+  return true;
+}
+
+// Receives one Fetch stream into `out_dir`; counts files and bytes.
+int Receive(Connection& connection, const std::string& job_id, const std::string& path, const fs::path& out_dir,
+            int& files, long long& bytes) {
+  v1::FetchRequest request;
+  request.set_job_id(job_id);
+  request.set_path(path);
+  auto context = connection.StreamContext();
+  auto reader = connection.jobs().Fetch(context.get(), request);
+  v1::FileChunk chunk;
+  std::ofstream file;
+  std::string current;
+  fs::path temporary;
+  long long written = 0;
+  while (reader->Read(&chunk)) {
+    if (chunk.path() != current) {
+      if (file.is_open()) {
+        file.close();
+        fs::remove(temporary);
+        return ReportError("fetch", "the transfer of " + current + " ended early", kExitServerError);
+      }
+      if (!SafeRelative(chunk.path())) {
+        context->TryCancel();
+        reader->Finish();
+        return ReportError("fetch", "refusing the unsafe path '" + chunk.path() + "' sent by the server",
+                           kExitServerError);
+      }
+      current = chunk.path();
+      const fs::path target = out_dir / current;
+      fs::create_directories(target.parent_path());
+      temporary = target.string() + ".part";
+      file.open(temporary, std::ios::binary | std::ios::trunc);
+      if (!file) return ReportError("fetch", "cannot write " + temporary.string(), kExitLocalIo);
+      written = 0;
+    }
+    if (chunk.offset() != written) {
+      return ReportError("fetch", current + ": chunk at offset " + std::to_string(chunk.offset()) +
+                                      ", expected " + std::to_string(written), kExitServerError);
+    }
+    file.write(chunk.data().data(), std::streamsize(chunk.data().size()));
+    written += static_cast<long long>(chunk.data().size());
+    if (!file) return ReportError("fetch", "cannot write " + temporary.string(), kExitLocalIo);
+    if (chunk.last()) {
+      file.close();
+      if (!file) return ReportError("fetch", "cannot write " + temporary.string(), kExitLocalIo);
+      fs::rename(temporary, out_dir / current);
+      ++files;
+      bytes += written;
+      current.clear();
+    }
+  }
+  const grpc::Status status = reader->Finish();
+  if (file.is_open()) {
+    file.close();
+    fs::remove(temporary);
+    if (status.ok()) return ReportError("fetch", "the transfer of " + current + " ended early", kExitServerError);
+  }
+  if (!status.ok()) return ReportRpcError("fetch", status);
+  return kExitOk;
+}
+
+}  // namespace
+
+int RunFetch(int argc, char** argv) {
+  CLI::App app{"Download a job's result files."};
+  ConnectionFlags connection_flags;
+  AddConnectionFlags(app, connection_flags);
+  std::string job_id;
+  std::string out_dir;
+  std::vector<std::string> paths;
+  app.add_option("job", job_id, "job id")->required();
+  app.add_option("--out,-o", out_dir, "directory to write into (default: ./<job id>)");
+  app.add_option("--path", paths, "one file, relative to the results directory (repeatable; default: all)");
+  if (auto code = ParseArgs(app, argc, argv)) return *code;
+
+  return Guarded("fetch", [&] {
+    const fs::path dir = out_dir.empty() ? fs::path(job_id) : fs::path(out_dir);
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) return ReportError("fetch", "cannot create " + dir.string() + ": " + ec.message(), kExitLocalIo);
+    for (const std::string& p : paths) {
+      if (!SafeRelative(p)) throw UsageError("--path " + p + ": expected a path relative to the results directory");
+    }
+    Connection connection(connection_flags);
+    int files = 0;
+    long long bytes = 0;
+    if (paths.empty()) paths.emplace_back();
+    for (const std::string& p : paths) {
+      const int code = Receive(connection, job_id, p, dir, files, bytes);
+      if (code != kExitOk) return code;
+    }
+    std::cerr << "fetched " << files << (files == 1 ? " file" : " files") << ", " << bytes << " bytes, into "
+              << dir.string() << "\n";
+    return kExitOk;
+  });
+}
+
+}  // namespace dlmfd::cli

@@ -1,0 +1,60 @@
+// dlmfd list [--state S]... [--tag T] [--sweep ID] [--page-size N] [--page-token T | --all] [--json]
+#include <iostream>
+
+#include "command.h"
+#include "connection.h"
+#include "exit_codes.h"
+#include "job_text.h"
+#include "rpc_status.h"
+
+namespace dlmfd::cli {
+
+int RunList(int argc, char** argv) {
+  CLI::App app{"List your jobs, newest first."};
+  ConnectionFlags connection_flags;
+  AddConnectionFlags(app, connection_flags);
+  std::vector<std::string> states;
+  std::string tag, sweep, page_token;
+  int page_size = 50;
+  bool all = false, json = false;
+  app.add_option("--state", states, "queued|running|completed|failed|cancelled (repeatable or comma list)")
+      ->delimiter(',');
+  app.add_option("--tag", tag, "only jobs with this tag");
+  app.add_option("--sweep", sweep, "only jobs of this sweep");
+  app.add_option("--page-size", page_size, "jobs per page, 1..1000")->check(CLI::Range(1, 1000));
+  app.add_option("--page-token", page_token, "continue from a previous page");
+  app.add_flag("--all", all, "fetch every page");
+  app.add_flag("--json", json, "one JSON line per job");
+  if (auto code = ParseArgs(app, argc, argv)) return *code;
+
+  return Guarded("list", [&] {
+    v1::ListRequest request;
+    for (const std::string& s : states) request.add_states(ParseState(s));
+    request.set_tag(tag);
+    request.set_sweep_id(sweep);
+    request.set_page_size(page_size);
+    request.set_page_token(page_token);
+    Connection connection(connection_flags);
+    std::vector<v1::Job> jobs;
+    std::string next;
+    for (;;) {
+      auto context = connection.UnaryContext();
+      v1::ListResponse response;
+      const grpc::Status status = connection.jobs().List(context.get(), request, &response);
+      if (!status.ok()) return ReportRpcError("list", status);
+      jobs.insert(jobs.end(), response.jobs().begin(), response.jobs().end());
+      next = response.next_page_token();
+      if (!all || next.empty()) break;
+      request.set_page_token(next);
+    }
+    if (json) {
+      for (const v1::Job& job : jobs) std::cout << ToJsonLine(job) << "\n";
+    } else {
+      std::cout << JobTable(jobs);
+    }
+    if (!next.empty()) std::cerr << "more jobs: dlmfd list --page-token " << next << " (or --all)\n";
+    return kExitOk;
+  });
+}
+
+}  // namespace dlmfd::cli

@@ -1,0 +1,249 @@
+// dlmfd-solve: one scene in, one results directory out (design.md 3.1-3.2).
+//
+//   dlmfd-solve SCENE --out DIR [--set key=value]... [--resume] [--threads N] [--events FD] [--quiet]
+//
+// Exit status: 0 completed; 1 failed while running (reason in summary.json, results so far kept
+// and closed); 2 invalid scene or arguments (message on stderr naming key, value and what is
+// allowed; nothing run); 130 cancelled by SIGINT/SIGTERM (checkpoint written, every file closed,
+// summary.json status cancelled). The handler only sets an atomic flag, checked between steps.
+// --resume goes on from DIR/checkpoint.h5 when the scene (after defaults and --set) is the one in
+// DIR/scene.toml; the resumed run's results equal an uninterrupted run's bit for bit.
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dlmfd/core/errors.h"
+#include "dlmfd/core/simulation.h"
+#include "dlmfd/io/atomic_file.h"
+#include "dlmfd/io/checkpoint.h"
+#include "dlmfd/io/results_writer.h"
+#include "dlmfd/scene/scene_file.h"
+#include "event_stream.h"
+
+namespace {
+
+constexpr int kExitCompleted = 0;
+constexpr int kExitFailed = 1;
+constexpr int kExitInvalid = 2;
+constexpr int kExitCancelled = 130;
+
+std::atomic<bool> g_stop{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
+
+extern "C" void OnStopSignal(int) { g_stop.store(true); }
+
+void InstallSignalHandlers() {
+  struct sigaction action {};
+  action.sa_handler = OnStopSignal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+  std::signal(SIGPIPE, SIG_IGN);  // a reader of --events that goes away must not kill the run
+}
+
+struct Options {
+  std::string scene;
+  std::string out;
+  std::vector<std::string> sets;
+  bool resume = false;
+  int threads = 0;
+  int events_fd = -1;
+  bool quiet = false;
+};
+
+// One progress line on stderr about every second: step, t / end, steps/s, ETA.
+class ProgressLine {
+ public:
+  ProgressLine(bool quiet, long first_step, long total_steps, double end_time)
+      : quiet_(quiet), first_step_(first_step), total_steps_(total_steps), end_time_(end_time),
+        start_(std::chrono::steady_clock::now()), last_(start_) {}
+
+  void Update(long step, double time, bool force) {
+    const auto now = std::chrono::steady_clock::now();
+    if (quiet_ || (!force && now - last_ < std::chrono::seconds(1))) return;
+    last_ = now;
+    const double wall = std::chrono::duration<double>(now - start_).count();
+    const double rate = wall > 0.0 ? static_cast<double>(step - first_step_) / wall : 0.0;
+    const double eta = rate > 0.0 ? static_cast<double>(total_steps_ - step) / rate : 0.0;
+    std::fprintf(stderr, "step %ld/%ld  t = %.6g / %.6g  %.1f steps/s  ETA %.0f s\n", step, total_steps_, time,
+                 end_time_, rate, eta);
+    std::fflush(stderr);
+  }
+
+ private:
+  bool quiet_;
+  long first_step_, total_steps_;
+  double end_time_;
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+int Invalid(dlmfd::EventStream& events, const std::string& message) {
+  spdlog::error("invalid scene or arguments: {}", message);
+  events.Log("error", message);
+  events.Finished("failed", message, 0, 0.0, kExitInvalid);
+  return kExitInvalid;
+}
+
+int Run(const Options& opt, dlmfd::EventStream& events) {
+  using namespace dlmfd;
+  // Everything that can be wrong with the scene or the arguments is found before anything runs.
+  Params params;
+  std::unique_ptr<Simulation> sim;
+  Checkpoint checkpoint;
+  try {
+    std::vector<SceneOverride> overrides;
+    for (const std::string& s : opt.sets) overrides.push_back(ParseOverride(s));
+    params = LoadSceneFile(opt.scene, overrides);
+    if (opt.threads < 0) throw InvalidParameter("--threads", std::to_string(opt.threads), "an integer >= 0");
+    params.threads = opt.threads;
+    sim = std::make_unique<Simulation>(params);
+    if (opt.resume) {
+      const std::string ckpt_path = opt.out + "/" + ResultsWriter::kCheckpoint;
+      try {
+        checkpoint = ReadCheckpoint(ckpt_path);
+      } catch (const Error& e) {
+        throw InvalidParameter("--resume", ckpt_path, std::string("a readable checkpoint (") + e.what() + ")");
+      }
+      const std::string scene_text = WriteScene(params);
+      std::string stored;
+      try {
+        stored = ReadTextFile(opt.out + "/" + ResultsWriter::kScene);
+      } catch (const Error&) {
+      }
+      if (stored != scene_text || checkpoint.scene_text != scene_text) {
+        throw InvalidParameter("--resume", opt.scene,
+                               "the scene of " + opt.out + "/scene.toml and of its checkpoint (after defaults "
+                               "and --set); run without --resume to start over");
+      }
+      sim->Restore(checkpoint.state);
+    }
+  } catch (const InvalidParameter& e) {
+    return Invalid(events, e.what());
+  }
+
+  std::unique_ptr<ResultsWriter> results;
+  try {
+    results = opt.resume ? ResultsWriter::Resume(opt.out, params, sim->grid(), checkpoint.state.step)
+                         : ResultsWriter::Start(opt.out, params, sim->grid(), sim->state());
+  } catch (const Error& e) {
+    spdlog::error("cannot prepare the results directory: {}", e.what());
+    events.Log("error", e.what());
+    events.Finished("failed", e.what(), sim->state().step, sim->state().time, kExitFailed);
+    return kExitFailed;
+  }
+  results->SetCheckpointCallback([&events](long step, double time, const std::string& file) {
+    v1::SolverEvent e;
+    e.mutable_checkpointed()->set_step(step);
+    e.mutable_checkpointed()->set_time(time);
+    e.mutable_checkpointed()->set_file(file);
+    events.Send(e);
+  });
+  EventObserver event_observer(&events, params, sim->grid());
+  sim->AddObserver(results.get());
+  sim->AddObserver(&event_observer);
+
+  const long first_step = sim->state().step;
+  {
+    v1::SolverEvent e;
+    v1::Started* s = e.mutable_started();
+    s->set_step(first_step);
+    s->set_time(sim->state().time);
+    s->set_end_time(params.time.end);
+    s->set_dt(params.time.dt);
+    s->set_particle_count(static_cast<int>(params.particles.size()));
+    s->set_nx(sim->grid().nx);
+    s->set_ny(sim->grid().ny);
+    s->set_h(sim->grid().h);
+    s->set_resumed(opt.resume);
+    events.Send(e);
+  }
+  if (opt.resume) {
+    spdlog::info("resuming {} from step {} (t = {})", opt.scene, first_step, sim->state().time);
+  } else {
+    spdlog::info("running {} into {}: {} steps on a {} x {} mesh", opt.scene, opt.out, sim->TotalSteps(),
+                 sim->grid().nx, sim->grid().ny);
+  }
+
+  RunSummary summary;
+  summary.resumed_from_step = opt.resume ? first_step : -1;
+  ProgressLine progress(opt.quiet, first_step, sim->TotalSteps(), params.time.end);
+  event_observer.Begin(first_step);
+  const auto start = std::chrono::steady_clock::now();
+  int code = kExitCompleted;
+  try {
+    if (!opt.resume) sim->EmitInitial();
+    while (!sim->Done() && !g_stop.load()) {
+      sim->Step();
+      results->AfterStep(sim->state());
+      progress.Update(sim->state().step, sim->state().time, false);
+    }
+    if (!sim->Done()) {
+      results->WriteCheckpointNow(sim->state());
+      summary.status = "cancelled";
+      summary.reason = "stopped by a signal; resume with --resume";
+      code = kExitCancelled;
+    } else {
+      summary.status = "completed";
+    }
+  } catch (const Error& e) {  // RunFailure and I/O errors: the run ends FAILED, results so far kept
+    summary.status = "failed";
+    summary.reason = e.what();
+    code = kExitFailed;
+    spdlog::error("run failed at step {}: {}", sim->state().step, e.what());
+    events.Log("error", e.what());
+  }
+  progress.Update(sim->state().step, sim->state().time, true);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const long steps_here = sim->state().step - first_step;
+  summary.exit_code = code;
+  summary.steps = sim->state().step;
+  summary.time = sim->state().time;
+  summary.wall_seconds = wall;
+  summary.ms_per_step = steps_here > 0 ? 1e3 * wall / static_cast<double>(steps_here) : 0.0;
+  summary.particles = sim->state().particles;
+  try {
+    results->Finish(summary);
+  } catch (const Error& e) {
+    spdlog::error("cannot write the summary: {}", e.what());
+    if (code == kExitCompleted) code = kExitFailed;
+  }
+  results.reset();
+  spdlog::info("{} after {} steps (t = {}); results in {}", summary.status, summary.steps, summary.time, opt.out);
+  events.Finished(summary.status, summary.reason, summary.steps, summary.time, code);
+  return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  spdlog::set_default_logger(spdlog::stderr_color_st("dlmfd-solve"));
+  Options opt;
+  CLI::App app{"dlmfd-solve: DLM/FD particulate flow in an Oldroyd-B or Newtonian liquid; one scene in, one "
+               "results directory out"};
+  app.add_option("scene", opt.scene, "scene file (TOML, docs/scenes.md)")->required();
+  app.add_option("--out", opt.out, "results directory (docs/results.md)")->required();
+  app.add_option("--set", opt.sets, "override a scene key: key=value (dotted, e.g. fluid.relaxation_time=2)");
+  app.add_flag("--resume", opt.resume, "go on from DIR/checkpoint.h5");
+  app.add_option("--threads", opt.threads, "OpenMP threads (0: the default)");
+  app.add_option("--events", opt.events_fd, "write the SolverEvent stream to this file descriptor");
+  app.add_flag("--quiet", opt.quiet, "no progress lines on stderr");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int cli_code = app.exit(e);
+    return cli_code == 0 ? 0 : kExitInvalid;
+  }
+  if (opt.quiet) spdlog::set_level(spdlog::level::warn);
+  InstallSignalHandlers();
+  dlmfd::EventStream events(opt.events_fd);
+  return Run(opt, events);
+}

@@ -1,0 +1,79 @@
+// Step (35) of the paper: the Oldroyd-B configuration tensor A from t_n to t_{n+1} with the velocity
+// u = u^{n+2/4} frozen (construction A of method notes 2, section 2.1).
+//
+// Equation (5): dA/dt + u . grad A = L A + A L^T - (A - I)/lambda, L_ij = du_i/dx_j; A = I inside
+//   the particles, A = A_L on the upstream boundary. A is P1 on the h-mesh (values at the velocity nodes).
+// Discrete method (a first-order Lie splitting of (35) into advection and a pointwise ODE):
+//   1. advection dA/dt + u . grad A = 0 over dt: SSP-RK3 of third-order upwind-biased differences,
+//      blended per node with first-order upwind to keep A SPD (conformation_advection.h), in n_sub
+//      sub-steps, n_sub = ceil(dt max(|u| + |v|) / (h conformation.max_courant));
+//   2. the pointwise ODE dA/dt = L A + A L^T - (A - I)/lambda over dt with L frozen at each node
+//      (average of the 6 P1 triangle gradients, velocity_gradient.h), solved exactly by the
+//      exponential integrator (pointwise_update.h);
+//   3. A = I at nodes inside particles; A = A_L at the nodes of velocity sides where u . n < 0
+//      (inflow_state.h: the fully developed Oldroyd-B state of a poiseuille profile, I for a uniform
+//      one), also held during step 1; walls and outflow sides get nothing (constant extrapolation).
+// Consistency with (35): (35) is a backward-Euler step of (5) with u^{n+2/4} frozen; the paper
+//   (remark 3 of section 4) solves it by a third-order upwind, positive-only scheme. Splitting the
+//   frozen-coefficient operator into its convective and pointwise parts is first-order accurate in
+//   dt, the same order as (35) and as the Marchuk-Yanenko scheme around it; each part is solved to
+//   higher order (third in space, exact in time for the pointwise part).
+// Positive definiteness (method notes 2, 2.1): step 1 keeps A SPD (convexity of the SPD cone and
+//   concavity of lambda_min, see conformation_advection.h) under the sub-cycled Courant bound; step 2
+//   is a positive combination of congruences F A F^T, det F = e^{s tr L} > 0, so SPD for any dt;
+//   step 3 assigns SPD values. Hence SPD in, SPD out, unconditionally in dt.
+// Checks: A^n is checked before the step and A^{n+1} after it; a non-finite value throws
+//   NumericalBlowUp, lambda_min <= 0 throws ConformationNotPositiveDefinite, each naming the time,
+//   the node and its position and the quantity (which can only happen with corrupt input).
+// Report columns: min_eig_A, max_trA, elastic_courant = lambda dt max |L|_F, blended_nodes (summed
+//   over sub-steps), conformation_substeps.
+// Not supported: the log-conformation form; time-dependent inflow data.
+// References: paper section 4 (35) and remark 3; method notes 2, part 2; Shu & Osher (1988).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "dlmfd/conformation/conformation_advection.h"
+#include "dlmfd/conformation/sym_tensor.h"
+#include "dlmfd/core/grid.h"
+#include "dlmfd/core/params.h"
+#include "dlmfd/core/state.h"
+
+namespace dlmfd {
+
+class ConformationStep {
+ public:
+  // Throws InvalidParameter for a Newtonian liquid (no conformation step) or when an inflow side
+  // has no steady Oldroyd-B state.
+  ConformationStep(const Params& params, const Grid& grid);
+
+  // Step (35) with u = u^{n+2/4} frozen: A^n at t_n = time -> A^{n+1} at time + dt (header block).
+  void Advance(double time, double dt, const double* u, const double* v,
+               const unsigned char* inside_particle, double* a11, double* a12, double* a22,
+               StepReport& report);
+
+  // Comparison option for tests only: the unlimited advection (no SPD blend).
+  void DisableBlendForComparison() { advection_.DisableBlendForComparison(); }
+
+ private:
+  struct BoundaryNode {
+    int i, j;
+    double nx, ny;   // outward normal
+    SymTensor inflow;  // A_L
+  };
+  void CollectInflow(const double* u, const double* v);
+  // Throws when a node of (a11, a12, a22) is not finite or not SPD. `when` is "before" or "after".
+  void CheckField(double time, const char* when, const double* a11, const double* a12,
+                  const double* a22, double& min_eig, double& max_trace) const;
+
+  Grid grid_;
+  double lambda_;
+  double max_courant_;
+  bool periodic_x_, periodic_y_;
+  ConformationAdvection advection_;
+  std::vector<BoundaryNode> boundary_;  // nodes of velocity sides
+  std::vector<double> l11_, l12_, l21_, l22_;
+};
+
+}  // namespace dlmfd

@@ -1,0 +1,88 @@
+// Step (33) of the paper: the generalized Stokes problem of the Marchuk-Yanenko scheme,
+//   rho (u^{n+1/4} - u^n)/dt - div(nu grad u^{n+1/4}) + grad p^{n+1/4} = f,  div u^{n+1/4} = 0,
+// u^{n+1/4} = u_Gamma on the Dirichlet sides, nu du/dn - p n = 0 on outflow sides (do-nothing).
+//
+// Discrete method (method notes 1, sections 1-3): P1-iso-P2 velocity, P1 pressure on the 2h mesh.
+// The viscous term alpha 2 eta_s D:D is replaced by nu grad u : grad v, nu = alpha eta_s (equal
+// for solenoidal fields with Dirichlet data; it decouples u and v for the fast solver). With
+// A = (rho/dt) M_l + nu K per component the system is A u - B^T p = F, B u = 0, where
+// F = (rho/dt) M_l u^n + M_l f_body + (fx, fy) (the extra dual forcing: polymer stress, DLM terms).
+// Gravity does not enter: the split scheme absorbs rho_L g into the pressure.
+//
+// Solver: Uzawa / preconditioned CG on the pressure (Glowinski), Cahouet-Chabard preconditioner
+// P^-1 = nu M_p^-1 + (rho/dt) K_p^-1; each iteration 2 velocity fast solves (u and v side by side on
+// two OpenMP sections), 1 pressure fast solve. Warm start from the given pressure.
+// Stopping rule: sqrt(r.P^-1 r) <= tol * ref with the fixed reference
+//   ref = sqrt((rho/dt) max(|u^n|^2_M, |u^0|^2_M))    (u^0 the first velocity iterate),
+// so sqrt(r.P^-1 r)/ref measures the non-solenoidal part of the velocity relative to the velocity
+// itself; it does not depend on how good the warm start is (method notes 1, pitfall 5).
+// Pressure: mean-free (M_p-weighted) when every side is Dirichlet or periodic; p = 0 on outflow sides.
+// Throws SolverNotConverged after stokes_max_iterations.
+//
+// Not supported: the symmetric-gradient form 2 eta_s D:D (it couples the components).
+// References: Glowinski, Finite element methods for incompressible viscous flow (2003), sections
+// 21-22; Cahouet & Chabard, Int. J. Numer. Methods Fluids 8 (1988) 869-895.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "dlmfd/core/grid.h"
+#include "dlmfd/core/params.h"
+#include "dlmfd/fluid/boundary_data.h"
+#include "dlmfd/fluid/node_set.h"
+#include "dlmfd/mesh/boundary_topology.h"
+#include "dlmfd/solvers/separable_helmholtz.h"
+
+namespace dlmfd {
+
+struct StokesReport {
+  int iterations = 0;
+  double residual = 0.0;    // final sqrt(r.P^-1 r) / ref
+  double reference = 0.0;   // ref of the stopping rule
+  double divergence = 0.0;  // sqrt(sum_Q (B u)_Q^2 / M_p,Q): the L2 norm of the discrete divergence
+};
+
+class StokesSolver {
+ public:
+  StokesSolver(const Grid& grid, const DomainParams& domain, const FluidParams& fluid, double dt,
+               double alpha, const SolverParams& solvers, const BoundaryData& boundary_data);
+  ~StokesSolver();
+  StokesSolver(const StokesSolver&) = delete;
+  StokesSolver& operator=(const StokesSolver&) = delete;
+
+  // In: u, v = u^n, p = the warm start (pressure grid). fx, fy: extra dual forcing at velocity nodes
+  // (already integrated against the test functions), or nullptr. Out: u, v = u^{n+1/4} (boundary
+  // data written), p = p^{n+1/4}.
+  StokesReport Solve(const double* fx, const double* fy, double* u, double* v, double* p);
+
+  // sqrt(r.P^-1 r) for r = B(u, v): the residual measure of the stopping rule (for tests).
+  double ResidualNorm(const double* u, const double* v);
+  // The discrete divergence norm sqrt(sum (B u)^2 / M_p) of (u, v).
+  double DivergenceNorm(const double* u, const double* v);
+
+  const BoundaryTopology& velocity_topology() const { return vtopo_; }
+  const BoundaryTopology& pressure_topology() const { return ptopo_; }
+  const NodeSet& velocity_nodes() const { return vnodes_; }
+  const NodeSet& pressure_nodes() const { return pnodes_; }
+
+ private:
+  void ApplyPreconditioner(const double* r, double* g);
+  void SolveVelocityPair(const double* fu, const double* fv, double* u, double* v);
+
+  Grid grid_, pgrid_;
+  BoundaryTopology vtopo_, ptopo_;
+  NodeSet vnodes_, pnodes_;
+  double rho_over_dt_, nu_;
+  Vec2 body_force_;
+  double tolerance_;
+  int max_iterations_;
+  const BoundaryData& boundary_data_;
+  SeparableHelmholtz velocity_solver_;  // (rho/dt) M_l + nu K
+  SeparableHelmholtz pressure_solver_;  // K_p (Neumann: mean-free; Dirichlet on outflow)
+  std::vector<double> mass_, pmass_, pmass_inv_;  // pmass_: 0 at known nodes
+  std::vector<double> fu_, fv_, ubar_, vbar_, tu_, tv_;  // velocity work
+  std::vector<double> r_, g_, w_, sw_, z_;               // pressure work
+};
+
+}  // namespace dlmfd

@@ -1,0 +1,81 @@
+// The results directory of one run (design.md 3.2), written by an Observer of Simulation:
+//   scene.toml (the scene as run, every default filled in), diagnostics.csv (OnStep),
+//   particles.h5 (OnParticles; np = 0 when the scene has none), fields/snap_NNNNNN.h5 and
+//   fields.xmf (OnSnapshot), checkpoint.h5 (AfterStep, every output.checkpoint_every of simulated
+//   time, and on request), summary.json (Finish).
+//
+// Checkpoints are written by AfterStep, after every observer has seen the step, so that every record
+// of a step at or before the checkpoint is on disk before the checkpoint exists. Resume() cuts
+// particles.h5 and diagnostics.csv back to the records at or before the checkpoint step, drops the
+// snapshots after it and rebuilds fields.xmf: the resumed run then appends exactly what an
+// uninterrupted run would have written.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dlmfd/core/grid.h"
+#include "dlmfd/core/observer.h"
+#include "dlmfd/core/params.h"
+#include "dlmfd/io/diagnostics_csv.h"
+#include "dlmfd/io/fields_xdmf.h"
+#include "dlmfd/io/particle_history.h"
+#include "dlmfd/io/run_summary.h"
+
+namespace dlmfd {
+
+class ResultsWriter : public Observer {
+ public:
+  // A fresh run: creates DIR and DIR/fields, removes the results of an earlier run there (snapshots,
+  // fields.xmf, checkpoint.h5, summary.json), writes scene.toml.
+  static std::unique_ptr<ResultsWriter> Start(const std::string& dir, const Params& params, const Grid& grid,
+                                              const FlowState& initial);
+  // Goes on from the checkpoint at `checkpoint_step` in DIR (see the header comment).
+  static std::unique_ptr<ResultsWriter> Resume(const std::string& dir, const Params& params, const Grid& grid,
+                                               long checkpoint_step);
+
+  void OnStep(const FlowState& state, const StepReport& report) override;
+  void OnParticles(const FlowState& state) override;
+  void OnSnapshot(const FlowState& state) override;
+
+  // Call after each Simulation::Step: writes the checkpoint when one falls due.
+  void AfterStep(const FlowState& state);
+  // Writes checkpoint.h5 now (a cancelled run).
+  void WriteCheckpointNow(const FlowState& state);
+  // Writes summary.json (filling in the last diagnostics) and closes every file.
+  void Finish(RunSummary summary);
+
+  // Called with (step, time, file relative to DIR) after each checkpoint.
+  void SetCheckpointCallback(std::function<void(long, double, const std::string&)> callback) {
+    on_checkpoint_ = std::move(callback);
+  }
+  const std::string& dir() const { return dir_; }
+  const StepReport& last_report() const { return last_report_; }
+
+  static constexpr const char* kScene = "scene.toml";
+  static constexpr const char* kSummary = "summary.json";
+  static constexpr const char* kParticles = "particles.h5";
+  static constexpr const char* kDiagnostics = "diagnostics.csv";
+  static constexpr const char* kCheckpoint = "checkpoint.h5";
+  static constexpr const char* kXdmf = "fields.xmf";
+  static constexpr const char* kFields = "fields";
+
+ private:
+  ResultsWriter(const std::string& dir, const Params& params, const Grid& grid);
+  std::string Path(const std::string& name) const { return dir_ + "/" + name; }
+
+  std::string dir_;
+  Params params_;
+  std::string scene_text_;
+  Grid grid_;
+  std::unique_ptr<DiagnosticsWriter> diagnostics_;
+  std::unique_ptr<ParticleHistoryWriter> particles_;
+  std::vector<XdmfEntry> snapshots_;
+  StepReport last_report_;
+  bool checkpoint_due_ = false;
+  std::function<void(long, double, const std::string&)> on_checkpoint_;
+};
+
+}  // namespace dlmfd

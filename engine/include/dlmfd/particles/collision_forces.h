@@ -1,0 +1,86 @@
+// The repulsive collision forces F' of the paper, (14)-(15), with a cell-list neighbour search.
+//
+// Equations (14)-(15), read as in method notes 2, section 1.7: for d_ij < R_i + R_j + rho,
+//   F_ij = (1/eps_p) (X_i - X_j) (R_i + R_j + rho - d_ij)^2      (X_i - X_j not normalised),
+// and for every non-periodic side with the mirror image X_i' of X_i across it, d_i = |X_i - X_i'|:
+//   F_iw = (1/eps_w) (X_i - X_i') (2 R_i + rho - d_i)^2          for d_i < 2 R_i + rho.
+// rho = collisions.range * h; eps_p, eps_w from the scene. Periodic sides wrap (minimum image).
+// Discrete method: cell lists with cells of side >= 2 R_max + rho, so only the 3 x 3 neighbouring
+// cells can interact: building and sweeping cost O(N). Storage is allocated at construction.
+// Not supported: a periodic length shorter than 2 (2 R_max + rho) (a pair would interact through two
+// images; only the nearest image is seen).
+// References: Glowinski et al., J. Comput. Phys. 169 (2001) 363-426, section 4; method notes 2,
+// section 1.7; Allen & Tildesley, Computer Simulation of Liquids, cell lists.
+#pragma once
+
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+#include "dlmfd/core/grid.h"
+#include "dlmfd/core/params.h"
+
+namespace dlmfd {
+
+class CollisionForces {
+ public:
+  // radii: one per particle, fixed for the run.
+  CollisionForces(const Params& params, const Grid& grid, std::vector<double> radii);
+
+  // forces[i] = F'_i (pairs plus walls) at the given centres; returns the number of active contacts.
+  int Compute(const std::vector<Vec2>& positions, std::vector<Vec2>& forces);
+
+  // Smallest surface gap d - R_i - R_j over neighbour pairs and R-to-wall distance over particles;
+  // pairs farther apart than the cell size are not examined, so the result is capped at CellSize().
+  // Sets *first and *second to the particle indices (second = -1 - side index for a wall, -10 if
+  // nothing was closer than the cap).
+  double MinGap(const std::vector<Vec2>& positions, int* first = nullptr, int* second = nullptr);
+
+  // Visits every unordered pair (i < j) whose centres lie in neighbouring cells (a superset of the
+  // pairs closer than CellSize()); visit(i, j, delta) with delta = X_i - X_j (minimum image).
+  template <class Visit>
+  void ForEachNearPair(const std::vector<Vec2>& positions, Visit&& visit);
+
+  // X_i - X_j with periodic sides wrapped to the nearest image.
+  Vec2 MinimumImage(Vec2 delta) const;
+  double CellSize() const { return cell_size_; }
+  double Range() const { return range_; }
+
+ private:
+  int CellOf(const Vec2& x) const;
+  void BuildCells(const std::vector<Vec2>& positions);
+  // Indices of the distinct neighbouring cells of cell (cx, cy), itself included; returns the count.
+  int NeighbourCells(int cx, int cy, int* cells) const;
+
+  Grid grid_;
+  bool periodic_x_, periodic_y_;
+  bool wall_[4];  // indexed by Side: the non-periodic sides repel
+  double range_, inv_eps_p_, inv_eps_w_;
+  std::vector<double> radii_;
+  double cell_size_;
+  int cells_x_, cells_y_;
+  double cell_w_, cell_h_;
+  std::vector<int> head_, next_;  // linked cell lists
+};
+
+template <class Visit>
+void CollisionForces::ForEachNearPair(const std::vector<Vec2>& positions, Visit&& visit) {
+  BuildCells(positions);
+  int cells[9];
+  for (int cy = 0; cy < cells_y_; ++cy) {
+    for (int cx = 0; cx < cells_x_; ++cx) {
+      const int own = cy * cells_x_ + cx;
+      if (head_[own] < 0) continue;
+      const int count = NeighbourCells(cx, cy, cells);
+      for (int i = head_[own]; i >= 0; i = next_[i]) {
+        for (int c = 0; c < count; ++c) {
+          for (int j = head_[cells[c]]; j >= 0; j = next_[j]) {
+            if (j > i) visit(i, j, MinimumImage(positions[i] - positions[j]));
+          }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace dlmfd

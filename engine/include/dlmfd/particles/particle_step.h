@@ -1,0 +1,79 @@
+// Step 4 of the Marchuk-Yanenko scheme: the particle predictor (36), the rigid-body (DLM) step (37)
+// and the corrector (38), with the collision forces (14)-(15), and the hydrodynamic force and torque.
+//
+// Equations, in the corrected form of method notes 2, section 1.7 (typos of (36) and (38) fixed):
+//   (36) for k = 1..K, free particles:
+//          U*^k = U^{k-1} + (g + F'(X^{k-1}) / m_e) dt/K,  X*^k = X^{k-1} + (U^{k-1} + U*^k)/2 dt/K,
+//          U^k  = U^{k-1} + (g + (F'(X^{k-1}) + F'(X*^k)) / (2 m_e)) dt/K,
+//          X^k  = X^{k-1} + (U^{k-1} + U^k)/2 dt/K;   U^{n+2/4} = U^K, X^{n+2/4} = X^K;
+//        omega is not predicted (central forces).
+//   (37) particles/rigid_body_constraint.h at X^{n+2/4}.
+//   (38) X^{n+1,0} = X^n; for k = 1..K:
+//          X*^k = X^{k-1} + (U^n + U^{n+1})/2 dt/K,
+//          X^k  = X*^k + (F'(X^{k-1}) + F'(X*^k)) / (2 m_e) dt^2/(2K)     (dt^2/(2K), not (dt/K)^2/2).
+//   m_e = (1 - rho_L/rho_d) M, M = rho_d pi R^2, I = M R^2/2. Fixed particles stay; prescribed ones
+//   move at their given velocity; neither feels F'.
+//   Force exerted by the fluid (notes 1.6): F_h = -sum nu + rho_L pi R^2 ((U^{n+1} - U^n)/dt - g),
+//   T_h = -sum r_perp . nu + (rho_L/rho_d) I (omega^{n+1} - omega^n)/dt. F_h includes the hydrostatic
+//   buoyancy -rho_L pi R^2 g, because the fluid steps carry no gravity.
+// Solver: see RigidBodyConstraint (CG in the H1 product). After (38): overlap check (d < R_i + R_j,
+// or distance to a non-periodic side < R) throws ParticlesOverlap with ids, time and gap.
+// Positions are wrapped into the domain across periodic sides after (38).
+// Report columns: multiplier_iterations, multiplier_residual (max |E u - U - omega r_perp| at the
+// multiplier nodes), multiplier_warm_start, collision_contacts (max over the predictor sub-steps),
+// particle_min_gap (capped at 2 R_max + rho).
+// Not supported: free particles with rho_d <= rho_L; gamma != 0; non-circular particles.
+// References: Glowinski et al., J. Comput. Phys. 169 (2001) 363-426; Singh, Joseph, Hesla, Glowinski,
+// Pan, J. Non-Newtonian Fluid Mech. 91 (2000) 165-188 (the paper); method notes 2, part 1.
+#pragma once
+
+#include <vector>
+
+#include "dlmfd/core/grid.h"
+#include "dlmfd/core/params.h"
+#include "dlmfd/core/state.h"
+#include "dlmfd/particles/collision_forces.h"
+#include "dlmfd/particles/rigid_body_constraint.h"
+
+namespace dlmfd {
+
+class ParticleStep {
+ public:
+  // Throws InvalidParameter (see RigidBodyConstraint).
+  ParticleStep(const Params& params, const Grid& grid);
+
+  // Steps (36)-(38) for one time step: u, v hold u^{n+2/4} on entry and u^{n+1} on return;
+  // particles hold (X^n, U^n, omega^n) on entry and (X^{n+1}, U^{n+1}, omega^{n+1}, F, T) on return.
+  // time is t_n. Throws SolverNotConverged, ParticlesOverlap.
+  void Advance(double time, double dt, std::vector<ParticleState>& particles, double* u, double* v,
+               StepReport& report);
+
+  // The particles of params at t = 0, with zero multipliers of the right size. Throws
+  // InvalidParameter when two particles overlap or one crosses a non-periodic side.
+  static std::vector<ParticleState> InitialStates(const Params& params);
+
+  // The sub-step average F'_avg of the collision force in the last predictor (36).
+  const std::vector<Vec2>& CollisionForceAverage() const { return collision_average_; }
+  const RigidBodyConstraint& constraint() const { return constraint_; }
+  CollisionForces& collisions() { return collisions_; }
+
+ private:
+  void Predict(double dt, std::vector<ParticleState>& particles);
+  void Correct(double dt, std::vector<ParticleState>& particles);
+  void CheckSeparated(double time, const std::vector<ParticleState>& particles);
+
+  Grid grid_;
+  Vec2 gravity_;
+  double fluid_density_;
+  int substeps_;
+  bool periodic_x_, periodic_y_;
+  RigidBodyConstraint constraint_;
+  CollisionForces collisions_;
+  std::vector<double> inv_excess_mass_;  // 0 for fixed and prescribed particles
+  // Work arrays, sized once.
+  std::vector<Vec2> x_old_, u_old_, x_, x_star_, u_, u_star_, f0_, f1_, collision_average_;
+  std::vector<double> omega_old_;
+  int max_contacts_ = 0;
+};
+
+}  // namespace dlmfd

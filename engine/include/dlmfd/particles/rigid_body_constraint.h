@@ -1,0 +1,108 @@
+// The rigid-body (DLM) step (37) with gamma = 0: the distributed Lagrange multiplier that makes the
+// fluid velocity rigid at the multiplier nodes of every particle.
+//
+// Equations (37), gamma = 0, for every particle P at X^{n+2/4} (method notes 2, section 1.2):
+//   rho_L h^2 (u - u*)/dt = E^T nu,   m_e (U - U*)/dt = -sum_k nu_k,
+//   j_e (omega - omega*)/dt = -sum_k r_perp_k . nu_k,   E u = U + omega r_perp_k at every node k,
+// with nu = G lambda the nodal forces, G = M_p + R^2 K_p the H1 Gram matrix of (24), m_e = (rho_d -
+// rho_L) pi R^2, j_e = m_e R^2 / 2. Fixed and prescribed particles keep U and omega.
+// Discrete method: E is the P1 interpolation from the fluid h-grid (SW-NE diagonals) at the particle
+// nodes, rebuilt each step; E^T only reaches fluid nodes that are unknowns (Dirichlet nodes keep
+// their data); the lumped mass is rho_L h^2 times the trapezoid edge factors.
+// Solver: the conjugate gradient of method notes 1.3 in the H1 product <a, b>_G = a^T G b, all
+// particles stacked in one CG (their supports share fluid nodes when they are close, so the
+// per-particle problems are coupled then; the spectrum of the stacked operator is the union of the
+// per-particle spectra, so the iteration count does not grow with N). The iterate is tracked as nu
+// (lambda is never formed). Warm start from the stored nu when it leaves a smaller residual than the
+// cold start. Stop when <g, g>_G <= max(tol^2 <g0, g0>_G, floor), g0 = E u* - U* - omega* r_perp the
+// cold-start mismatch (an absolute reference, so warm starts pay) and floor a round-off level
+// (1e-11 times the velocity scale, in the G norm). Throws SolverNotConverged after
+// solvers.multiplier_max_iterations.
+// Not supported: free particles lighter than the liquid or neutrally buoyant (m_e <= 0 makes the
+// operator indefinite; notes 1.3 suggest MINRES) - rejected with InvalidParameter; gamma != 0.
+// References: Glowinski, Pan, Hesla, Joseph, Periaux, J. Comput. Phys. 169 (2001) 363-426;
+// method notes 2, sections 1.1-1.6.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "dlmfd/core/grid.h"
+#include "dlmfd/core/params.h"
+#include "dlmfd/core/state.h"
+#include "dlmfd/particles/particle_mesh.h"
+
+namespace dlmfd {
+
+class RigidBodyConstraint {
+ public:
+  struct Outcome {
+    int iterations = 0;
+    double residual = 0.0;  // max over multiplier nodes of |E u - U - omega r_perp| after the solve
+    double cold_residual = 0.0;  // the same before the solve
+    bool warm_start = false;     // the stored multiplier was used
+  };
+
+  // Meshes for every particle of params.particles (one per distinct radius). Throws InvalidParameter.
+  RigidBodyConstraint(const Params& params, const Grid& grid);
+
+  // Solves (37). On entry particles hold X^{n+2/4}, U* and omega*, u and v hold u^{n+2/4}; on return
+  // particles hold U^{n+1}, omega^{n+1} and multiplier = nu, u and v hold u^{n+1}. time names the
+  // step in errors. Throws ParticlesOverlap when a particle mesh leaves a non-periodic domain,
+  // SolverNotConverged.
+  Outcome Enforce(double time, double dt, std::vector<ParticleState>& particles, double* u,
+                  double* v);
+
+  const ParticleMesh& MeshOf(std::size_t particle) const { return meshes_[mesh_of_[particle]]; }
+  // The nodal multiplier count (2 per node) of a particle.
+  std::size_t MultiplierSize(std::size_t particle) const { return 2 * MeshOf(particle).NodeCount(); }
+  // sum_k nu_k and sum_k r_perp_k . nu_k of the last Enforce (the force and torque the particle
+  // exerts on the fluid nodes).
+  Vec2 NodalForceSum(std::size_t particle) const { return force_sum_[particle]; }
+  double NodalTorqueSum(std::size_t particle) const { return torque_sum_[particle]; }
+
+ private:
+  struct StencilEntry {
+    std::size_t node = 0;
+    double weight = 0.0;   // of the P1 interpolation
+    double scatter = 0.0;  // weight / lumped node mass (0 at Dirichlet nodes)
+  };
+
+  void BuildInterpolation(double time, const std::vector<ParticleState>& particles);
+  // g = E u - U - omega r_perp at every node of every particle.
+  void Mismatch(const double* u, const double* v, const Vec2* velocity, const double* omega,
+                double* g) const;
+  // The response to nodal forces dir: (ub, vb) = dt E^T M^-1 dir on the touched nodes, Ub, omegab,
+  // gb = E ub - Ub - omegab r_perp.
+  void Respond(double dt, const double* dir);
+  double GramDot(const double* a, const double* b);  // <a, b>_G, stacked
+  void ApplyGram(const double* a, double* out) const;
+  double InverseNodeMass(int i, int j) const;
+
+  Grid grid_;
+  bool periodic_x_, periodic_y_;
+  bool dirichlet_[4];  // by Side
+  bool neumann_[4];
+  double fluid_density_;
+  double tolerance_;
+  int max_iterations_;
+
+  std::vector<ParticleMesh> meshes_;
+  std::vector<int> mesh_of_;
+  std::vector<std::size_t> offset_;  // first stacked node of each particle
+  std::size_t total_nodes_ = 0;
+  std::vector<double> inv_excess_mass_, inv_excess_inertia_;  // 0 for fixed and prescribed
+
+  std::vector<StencilEntry> stencil_;  // 3 per stacked node
+  std::vector<std::size_t> touched_;   // distinct fluid nodes that E^T reaches
+  std::vector<long> stamp_;            // per fluid node: last step that listed it in touched_
+  long stamp_counter_ = 0;
+
+  // Stacked node arrays, 2 per node.
+  std::vector<double> nu_, g_, w_, nub_, gb_, scratch_;
+  std::vector<double> ub_, vb_;  // fluid-sized response, valid on touched_
+  std::vector<Vec2> velocity_, velocity_b_, force_sum_;
+  std::vector<double> omega_, omega_b_, torque_sum_;
+};
+
+}  // namespace dlmfd

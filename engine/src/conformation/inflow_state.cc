@@ -1,0 +1,72 @@
+#include "dlmfd/conformation/inflow_state.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "dlmfd/core/errors.h"
+
+namespace dlmfd {
+
+SymTensor SteadyConformation(const Mat2& l, double lambda) {
+  const double c = 1.0 / lambda;
+  // Rows of the 3x3 system M (A11, A12, A22) = (c, 0, c).
+  const double m[3][3] = {{c - 2.0 * l.m11, -2.0 * l.m12, 0.0},
+                          {-l.m21, c - l.m11 - l.m22, -l.m12},
+                          {0.0, -2.0 * l.m21, c - 2.0 * l.m22}};
+  const double rhs[3] = {c, 0.0, c};
+  auto det3 = [](const double a[3][3]) {
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+           a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  };
+  const double det = det3(m);
+  double x[3];
+  for (int col = 0; col < 3; ++col) {
+    double mc[3][3];
+    for (int r = 0; r < 3; ++r) {
+      for (int s = 0; s < 3; ++s) mc[r][s] = (s == col) ? rhs[r] : m[r][s];
+    }
+    x[col] = det3(mc) / det;
+  }
+  const SymTensor a{x[0], x[1], x[2]};
+  // The steady state exists (and attracts) iff every eigenvalue of L - I/(2 lambda) has a negative
+  // real part; then it is SPD. Otherwise no fully developed state exists.
+  const double half_trace = 0.5 * (l.m11 + l.m22);
+  const double d = l.m11 - half_trace;
+  const double q2 = d * d + l.m12 * l.m21;
+  const double max_real_eig = half_trace + (q2 > 0.0 ? std::sqrt(q2) : 0.0);
+  if (!(2.0 * lambda * max_real_eig < 1.0) || !IsFinite(a) || !(MinEigenvalue(a) > 0.0)) {
+    std::ostringstream value;
+    value << "lambda max Re eig(L) = " << lambda * max_real_eig;
+    throw InvalidParameter("fluid.relaxation_time", value.str(),
+                           "2 lambda max Re eig(L) < 1 at an inflow boundary (no steady Oldroyd-B state)");
+  }
+  return a;
+}
+
+SymTensor SimpleShearConformation(double lambda, double shear_rate) {
+  const double wi = lambda * shear_rate;
+  return SymTensor{1.0 + 2.0 * wi * wi, wi, 1.0};
+}
+
+SymTensor InflowConformation(const Grid& grid, const DomainParams& domain, Side side, int k,
+                             double lambda) {
+  const BoundarySide& b = domain.side(side);
+  if (b.type != SideType::kVelocity || b.profile != Profile::kPoiseuille) return SymTensor{};
+  const bool vertical = (side == Side::kLeft || side == Side::kRight);
+  const double length = vertical ? grid.Height() : grid.Width();
+  const double s = k * grid.h;
+  const double dphi_ds = 4.0 * (length - 2.0 * s) / (length * length);
+  // L = max (dphi/ds) e_s^T: the velocity varies along the side only.
+  Mat2 l;
+  if (vertical) {
+    l.m12 = b.max.x() * dphi_ds;
+    l.m22 = b.max.y() * dphi_ds;
+  } else {
+    l.m11 = b.max.x() * dphi_ds;
+    l.m21 = b.max.y() * dphi_ds;
+  }
+  return SteadyConformation(l, lambda);
+}
+
+}  // namespace dlmfd

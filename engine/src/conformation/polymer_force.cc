@@ -1,0 +1,84 @@
+#include "dlmfd/conformation/polymer_force.h"
+
+namespace dlmfd {
+namespace {
+
+// Mean of tau_p = G (A - I) over a triangle with vertices k0, k1, k2.
+struct MeanStress {
+  double t11, t12, t22;
+};
+
+inline MeanStress Mean(double modulus, const double* a11, const double* a12, const double* a22,
+                       std::size_t k0, std::size_t k1, std::size_t k2) {
+  const double third = modulus / 3.0;
+  return MeanStress{third * (a11[k0] + a11[k1] + a11[k2] - 3.0),
+                    third * (a12[k0] + a12[k1] + a12[k2]),
+                    third * (a22[k0] + a22[k1] + a22[k2] - 3.0)};
+}
+
+}  // namespace
+
+void AddPolymerForce(const Grid& grid, const DomainParams& domain, double polymer_modulus,
+                     const double* a11, const double* a12, const double* a22, double* fx, double* fy) {
+  const int nx = grid.nx, ny = grid.ny;
+  const bool px = domain.PeriodicX(), py = domain.PeriodicY();
+  // |T| grad phi = (h^2/2)(gx, gy)/h: the h cancels to h/2 times the unit-mesh gradients (+-1, 0).
+  const double half_h = 0.5 * grid.h;
+  // Gather form: node (i, j) sums over its 6 triangles, so rows are written by one thread each.
+  // Lower triangle of square (si, sj): SW, SE, NE with unit gradients (-1, 0), (1, -1), (0, 1).
+  // Upper triangle: SW, NE, NW with unit gradients (0, -1), (1, 0), (-1, 1).
+  auto wrap = [](int s, int n, bool periodic, bool& inside) {
+    inside = true;
+    if (s >= 0 && s < n) return s;
+    if (!periodic) {
+      inside = false;
+      return s;
+    }
+    return (s + n) % n;
+  };
+  const int last_i = px ? nx - 1 : nx;
+  const int last_j = py ? ny - 1 : ny;
+#pragma omp parallel for schedule(static)
+  for (int j = 0; j <= last_j; ++j) {
+    for (int i = 0; i <= last_i; ++i) {
+      double sx = 0.0, sy = 0.0;  // sum of (grad phi_i . mean tau) per unit h/2
+      // Squares around the node: (i, j) [node is SW], (i-1, j) [SE], (i-1, j-1) [NE], (i, j-1) [NW].
+      struct Corner {
+        int di, dj;
+        // unit gradient of phi_i in the lower / upper triangle (absent when has_* is false)
+        bool has_lower;
+        double lgx, lgy;
+        bool has_upper;
+        double ugx, ugy;
+      };
+      static constexpr Corner kCorners[4] = {
+          {0, 0, true, -1.0, 0.0, true, 0.0, -1.0},     // SW of square (i, j)
+          {-1, 0, true, 1.0, -1.0, false, 0.0, 0.0},    // SE of square (i-1, j): lower only
+          {-1, -1, true, 0.0, 1.0, true, 1.0, 0.0},     // NE of square (i-1, j-1)
+          {0, -1, false, 0.0, 0.0, true, -1.0, 1.0}};   // NW of square (i, j-1): upper only
+      for (const Corner& c : kCorners) {
+        bool in_x = true, in_y = true;
+        const int si = wrap(i + c.di, nx, px, in_x);
+        const int sj = wrap(j + c.dj, ny, py, in_y);
+        if (!in_x || !in_y) continue;
+        const std::size_t sw = grid.Index(si, sj), se = grid.Index(si + 1, sj);
+        const std::size_t ne = grid.Index(si + 1, sj + 1), nw = grid.Index(si, sj + 1);
+        if (c.has_lower) {
+          const MeanStress t = Mean(polymer_modulus, a11, a12, a22, sw, se, ne);
+          sx += c.lgx * t.t11 + c.lgy * t.t12;
+          sy += c.lgx * t.t12 + c.lgy * t.t22;
+        }
+        if (c.has_upper) {
+          const MeanStress t = Mean(polymer_modulus, a11, a12, a22, sw, ne, nw);
+          sx += c.ugx * t.t11 + c.ugy * t.t12;
+          sy += c.ugx * t.t12 + c.ugy * t.t22;
+        }
+      }
+      const std::size_t k = grid.Index(i, j);
+      fx[k] -= half_h * sx;
+      fy[k] -= half_h * sy;
+    }
+  }
+}
+
+}  // namespace dlmfd

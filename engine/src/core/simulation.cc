@@ -1,0 +1,232 @@
+// Simulation: the Marchuk-Yanenko loop (paper section 4). This file owns the state and the substep
+// solvers (built once); Step() runs the substeps as separate members:
+//   SolveStokes (33) -> AdvectVelocity (34) -> [UpdateConformation (35)] -> [particles (36)-(38)].
+// The bracketed steps belong to other modules and are not wired in yet: scenes that need them are
+// rejected by ValidateSupported() with InvalidParameter. Their coupling point into (33) is the dual
+// forcing stokes_fx_/stokes_fy_ (polymer stress, already integrated against the test functions).
+#include "dlmfd/core/simulation.h"
+
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "dlmfd/core/errors.h"
+#include "dlmfd/fluid/advection_least_squares.h"
+#include "dlmfd/fluid/advection_wave.h"
+#include "dlmfd/fluid/boundary_data.h"
+#include "dlmfd/fluid/stokes_solver.h"
+
+namespace dlmfd {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Milliseconds(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+std::string Text(double x) {
+  std::ostringstream s;
+  s.precision(17);
+  s << x;
+  return s.str();
+}
+
+void ValidateSupported(const Params& p) {
+  const double gamma = 1.0 - p.splitting.alpha - p.splitting.beta;
+  if (std::abs(gamma) > 1e-12) {
+    throw InvalidParameter("splitting.beta", Text(p.splitting.beta),
+                           "alpha + beta = 1 (gamma = 0: the engine puts no viscosity into (37))");
+  }
+  if (!(p.splitting.alpha > 0.0)) {
+    throw InvalidParameter("splitting.alpha", Text(p.splitting.alpha),
+                           "> 0 (the Stokes step (33) carries viscosity for its fast solver)");
+  }
+  if (!p.fluid.IsNewtonian()) {
+    throw InvalidParameter("fluid.relaxation_time", Text(p.fluid.relaxation_time),
+                           "0 or solvent_ratio = 1 (the conformation step (35) is not wired into "
+                           "Simulation yet)");
+  }
+  if (!p.particles.empty()) {
+    throw InvalidParameter("particles", std::to_string(p.particles.size()) + " particles",
+                           "none (the particle step (36)-(38) is not wired into Simulation yet)");
+  }
+  if (!(p.time.dt > 0.0)) throw InvalidParameter("time.dt", Text(p.time.dt), "> 0");
+}
+
+Grid MakeGrid(const DomainParams& d) {
+  Grid g;
+  g.nx = static_cast<int>(std::lround(d.size.x() / d.h));
+  g.ny = static_cast<int>(std::lround(d.size.y() / d.h));
+  g.h = d.h;
+  return g;
+}
+
+// Index of the output period that t_n = n dt falls in; deterministic in n.
+long Period(long n, double dt, double every) {
+  return static_cast<long>(std::floor(static_cast<double>(n) * dt / every + 1e-9));
+}
+
+}  // namespace
+
+struct Simulation::Impl {
+  explicit Impl(const Params& p)
+      : params(p),
+        grid(MakeGrid(p.domain)),
+        pgrid(grid.Coarse()),
+        boundary_data(grid, p.domain),
+        stokes(grid, p.domain, p.fluid, p.time.dt, p.splitting.alpha, p.solvers, boundary_data) {
+    if (p.splitting.advection == AdvectionScheme::kLeastSquares) {
+      least_squares = std::make_unique<AdvectionLeastSquares>(grid, p.domain, p.fluid, p.time.dt,
+                                                              p.splitting.beta, p.solvers, boundary_data);
+    } else {
+      wave = std::make_unique<AdvectionWave>(grid, p.domain, p.fluid, p.time.dt, p.splitting.beta,
+                                             p.solvers, boundary_data);
+    }
+    state.u.assign(grid.NodeCount(), 0.0);
+    state.v.assign(grid.NodeCount(), 0.0);
+    state.p.assign(pgrid.NodeCount(), 0.0);
+    boundary_data.Apply(state.u.data(), state.v.data());
+    stokes_fx.assign(grid.NodeCount(), 0.0);
+    stokes_fy.assign(grid.NodeCount(), 0.0);
+  }
+
+  // Step (33): u^n -> u^{n+1/4}, p^{n+1/4}.
+  void SolveStokes(StepReport& report) {
+    const auto t0 = Clock::now();
+    const StokesReport r =
+        stokes.Solve(stokes_fx.data(), stokes_fy.data(), state.u.data(), state.v.data(), state.p.data());
+    report.Set("stokes_iterations", r.iterations);
+    report.Set("stokes_residual", r.residual);
+    report.Set("divergence", r.divergence);
+    report.Set("ms_stokes", Milliseconds(t0, Clock::now()));
+  }
+
+  // Step (34): u^{n+1/4} -> u^{n+2/4}.
+  void AdvectVelocity(StepReport& report) {
+    const auto t0 = Clock::now();
+    if (least_squares) {
+      const AdvectionReport r = least_squares->Solve(state.u.data(), state.v.data());
+      report.Set("advection_iterations", r.iterations);
+      report.Set("advection_residual", r.residual);
+    } else {
+      const AdvectionReport r = wave->Solve(state.u.data(), state.v.data());
+      report.Set("wave_substeps", r.iterations);
+    }
+    report.Set("ms_advection", Milliseconds(t0, Clock::now()));
+  }
+
+  // NaN/Inf anywhere ends the run with the quantity, the time and a node position.
+  void CheckFinite() const {
+    auto check = [&](const std::vector<double>& f, const Grid& g, const char* name) {
+      for (std::size_t k = 0; k < f.size(); ++k) {
+        if (std::isfinite(f[k])) continue;
+        const int i = static_cast<int>(k % std::size_t(g.nx + 1));
+        const int j = static_cast<int>(k / std::size_t(g.nx + 1));
+        std::ostringstream msg;
+        msg << "numerical blow-up: " << name << " = " << f[k] << " at t = " << state.time
+            << " (step " << state.step << "), node (" << i << ", " << j << ") at x = " << g.X(i)
+            << ", y = " << g.Y(j) << "; reduce time.dt or refine domain.h";
+        throw NumericalBlowUp(msg.str());
+      }
+    };
+    check(state.u, grid, "velocity u");
+    check(state.v, grid, "velocity v");
+    check(state.p, pgrid, "pressure p");
+  }
+
+  double MaxSpeed() const {
+    double m = 0.0;
+    for (std::size_t k = 0; k < state.u.size(); ++k) {
+      m = std::max(m, state.u[k] * state.u[k] + state.v[k] * state.v[k]);
+    }
+    return std::sqrt(m);
+  }
+
+  Params params;
+  Grid grid, pgrid;
+  BoundaryData boundary_data;
+  StokesSolver stokes;
+  std::unique_ptr<AdvectionLeastSquares> least_squares;
+  std::unique_ptr<AdvectionWave> wave;
+  std::vector<double> stokes_fx, stokes_fy;  // extra dual forcing of (33): polymer stress (35)
+  FlowState state;
+  std::vector<Observer*> observers;
+};
+
+Simulation::Simulation(const Params& params) {
+  ValidateSupported(params);
+  if (params.threads > 0) omp_set_num_threads(params.threads);
+  impl_ = std::make_unique<Impl>(params);
+}
+
+Simulation::~Simulation() = default;
+
+void Simulation::AddObserver(Observer* observer) { impl_->observers.push_back(observer); }
+
+void Simulation::EmitInitial() {
+  for (Observer* o : impl_->observers) {
+    o->OnParticles(impl_->state);
+    o->OnSnapshot(impl_->state);
+  }
+}
+
+void Simulation::Step() {
+  Impl& s = *impl_;
+  const auto t0 = Clock::now();
+  StepReport report;
+  s.SolveStokes(report);
+  s.AdvectVelocity(report);
+  // UpdateConformation (35) and the particle step (36)-(38) go here, in this order.
+  s.state.step += 1;
+  s.state.time = static_cast<double>(s.state.step) * s.params.time.dt;
+  s.CheckFinite();
+  report.Set("cfl", s.MaxSpeed() * s.params.time.dt / s.grid.h);
+  report.step = s.state.step;
+  report.time = s.state.time;
+  report.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+
+  const OutputParams& out = s.params.output;
+  const long n = s.state.step;
+  const double dt = s.params.time.dt;
+  const bool particles_due =
+      out.particles_every <= 0.0 || Period(n, dt, out.particles_every) > Period(n - 1, dt, out.particles_every);
+  const bool fields_due =
+      out.fields_every > 0.0 && Period(n, dt, out.fields_every) > Period(n - 1, dt, out.fields_every);
+  for (Observer* o : s.observers) {
+    o->OnStep(s.state, report);
+    if (particles_due) o->OnParticles(s.state);
+    if (fields_due) o->OnSnapshot(s.state);
+  }
+}
+
+void Simulation::Run(const std::atomic<bool>* stop) {
+  while (!Done() && !(stop && stop->load())) Step();
+}
+
+bool Simulation::Done() const { return impl_->state.step >= TotalSteps(); }
+
+long Simulation::TotalSteps() const {
+  return static_cast<long>(std::llround(impl_->params.time.end / impl_->params.time.dt));
+}
+
+void Simulation::Restore(const FlowState& state) {
+  const Impl& s = *impl_;
+  if (state.u.size() != s.grid.NodeCount() || state.v.size() != s.grid.NodeCount() ||
+      state.p.size() != s.pgrid.NodeCount()) {
+    throw InvalidParameter("checkpoint", "fields of " + std::to_string(state.u.size()) + " nodes",
+                           std::to_string(s.grid.NodeCount()) + " velocity and " +
+                               std::to_string(s.pgrid.NodeCount()) + " pressure nodes (the same scene)");
+  }
+  impl_->state = state;
+}
+
+const Params& Simulation::params() const { return impl_->params; }
+const Grid& Simulation::grid() const { return impl_->grid; }
+const Grid& Simulation::pressure_grid() const { return impl_->pgrid; }
+const FlowState& Simulation::state() const { return impl_->state; }
+FlowState& Simulation::mutable_state() { return impl_->state; }
+
+}  // namespace dlmfd

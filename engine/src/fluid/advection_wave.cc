@@ -1,0 +1,224 @@
+#include "dlmfd/fluid/advection_wave.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dlmfd/mesh/fem_operators.h"
+
+namespace dlmfd {
+
+AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const FluidParams& fluid,
+                             double dt, double beta, const SolverParams& solvers,
+                             const BoundaryData& boundary_data)
+    : grid_(grid),
+      topo_(BoundaryTopology::ForVelocity(domain)),
+      nodes_(grid_, topo_),
+      dt_(dt),
+      rho_over_dt_(fluid.density / dt),
+      nu_b_(beta * fluid.SolventViscosity()),
+      max_courant_(solvers.wave_max_courant),
+      boundary_data_(boundary_data) {
+  if (nu_b_ > 0.0) {
+    helmholtz_ = std::make_unique<SeparableHelmholtz>(grid_, topo_, rho_over_dt_, nu_b_, 2);
+  }
+  for (int s = 0; s < 4; ++s) outflow_[s] = domain.sides[s].type == SideType::kOutflow;
+  const std::size_t n = grid_.NodeCount();
+  const std::size_t cells = std::size_t(grid_.nx) * grid_.ny;
+  const std::size_t padded = std::size_t(grid_.nx + 2) * (grid_.ny + 2);
+  mass_.assign(n, 0.0);
+  LumpedMassDiagonal(grid_, topo_, mass_.data());
+  for (auto* a : {&out_mass_, &vx_, &vy_, &u0_, &v0_, &u1_, &v1_, &ku_, &kv_, &gx_, &gy_}) a->assign(n, 0.0);
+  for (auto* a : {&w11a_, &w12a_, &w22a_, &w11b_, &w12b_, &w22b_}) a->assign(cells, 0.0);
+  for (auto* a : {&f1xu_, &f1yu_, &f2xu_, &f2yu_, &f1xv_, &f1yv_, &f2xv_, &f2yv_}) a->assign(padded, 0.0);
+}
+
+AdvectionWave::~AdvectionWave() = default;
+
+void AdvectionWave::FreezeVelocity(const double* u, const double* v) {
+  const int nx = grid_.nx, ny = grid_.ny;
+  std::copy(u, u + vx_.size(), vx_.begin());
+  std::copy(v, v + vy_.size(), vy_.begin());
+  const double* vx = vx_.data();
+  const double* vy = vy_.data();
+  // W_T / h^2 = (1/24)(sum_k V_k V_k^T + S S^T) for |T| = h^2 / 2 and unscaled gradients.
+  constexpr double kOneOver24 = 1.0 / 24.0;
+#pragma omp parallel for schedule(static)
+  for (int cj = 0; cj < ny; ++cj) {
+    for (int ci = 0; ci < nx; ++ci) {
+      const std::size_t a = grid_.Index(ci, cj), b = grid_.Index(ci + 1, cj),
+                        c = grid_.Index(ci + 1, cj + 1), d = grid_.Index(ci, cj + 1);
+      const std::size_t cell = std::size_t(cj) * nx + ci;
+      {
+        const double sx = vx[a] + vx[b] + vx[c], sy = vy[a] + vy[b] + vy[c];
+        w11a_[cell] = kOneOver24 * (vx[a] * vx[a] + vx[b] * vx[b] + vx[c] * vx[c] + sx * sx);
+        w12a_[cell] = kOneOver24 * (vx[a] * vy[a] + vx[b] * vy[b] + vx[c] * vy[c] + sx * sy);
+        w22a_[cell] = kOneOver24 * (vy[a] * vy[a] + vy[b] * vy[b] + vy[c] * vy[c] + sy * sy);
+      }
+      {
+        const double sx = vx[a] + vx[c] + vx[d], sy = vy[a] + vy[c] + vy[d];
+        w11b_[cell] = kOneOver24 * (vx[a] * vx[a] + vx[c] * vx[c] + vx[d] * vx[d] + sx * sx);
+        w12b_[cell] = kOneOver24 * (vx[a] * vy[a] + vx[c] * vy[c] + vx[d] * vy[d] + sx * sy);
+        w22b_[cell] = kOneOver24 * (vy[a] * vy[a] + vy[c] * vy[c] + vy[d] * vy[d] + sy * sy);
+      }
+    }
+  }
+  // (V.n)^+ times the lumped boundary mass on outflow sides.
+  std::fill(out_mass_.begin(), out_mass_.end(), 0.0);
+  for (int s = 0; s < 4; ++s) {
+    if (!outflow_[s]) continue;
+    const Side side = static_cast<Side>(s);
+    const bool vertical = (side == Side::kLeft || side == Side::kRight);
+    const int count = vertical ? ny : nx;
+    const bool wraps = vertical ? topo_.y.low == EndKind::kPeriodic : topo_.x.low == EndKind::kPeriodic;
+    for (int k = 0; k <= count; ++k) {
+      const int i = vertical ? (side == Side::kLeft ? 0 : nx) : k;
+      const int j = vertical ? k : (side == Side::kBottom ? 0 : ny);
+      const std::size_t id = grid_.Index(i, j);
+      if (!nodes_.IsUnknown(id)) continue;
+      const double length = (!wraps && (k == 0 || k == count)) ? 0.5 * grid_.h : grid_.h;
+      const double vn = vx[id] * outflow_normal_[s][0] + vy[id] * outflow_normal_[s][1];
+      out_mass_[id] += std::max(vn, 0.0) * length;
+    }
+  }
+}
+
+void AdvectionWave::ApplyWaveStiffness(const double* u, const double* v, double* ku, double* kv) {
+  const int nx = grid_.nx, ny = grid_.ny;
+  // Per-triangle fluxes F_T = W_T grad u_T (unscaled differences), both components.
+#pragma omp parallel for schedule(static)
+  for (int cj = 0; cj < ny; ++cj) {
+    for (int ci = 0; ci < nx; ++ci) {
+      const std::size_t a = grid_.Index(ci, cj), b = grid_.Index(ci + 1, cj),
+                        c = grid_.Index(ci + 1, cj + 1), d = grid_.Index(ci, cj + 1);
+      const std::size_t cell = std::size_t(cj) * nx + ci, pc = Cell(ci, cj);
+      const double w11 = w11a_[cell], w12 = w12a_[cell], w22 = w22a_[cell];
+      const double z11 = w11b_[cell], z12 = w12b_[cell], z22 = w22b_[cell];
+      double gx = u[b] - u[a], gy = u[c] - u[b];
+      f1xu_[pc] = w11 * gx + w12 * gy;
+      f1yu_[pc] = w12 * gx + w22 * gy;
+      gx = u[c] - u[d];
+      gy = u[d] - u[a];
+      f2xu_[pc] = z11 * gx + z12 * gy;
+      f2yu_[pc] = z12 * gx + z22 * gy;
+      gx = v[b] - v[a];
+      gy = v[c] - v[b];
+      f1xv_[pc] = w11 * gx + w12 * gy;
+      f1yv_[pc] = w12 * gx + w22 * gy;
+      gx = v[c] - v[d];
+      gy = v[d] - v[a];
+      f2xv_[pc] = z11 * gx + z12 * gy;
+      f2yv_[pc] = z12 * gx + z22 * gy;
+    }
+  }
+  std::vector<double>* fluxes[8] = {&f1xu_, &f1yu_, &f2xu_, &f2yu_, &f1xv_, &f1yv_, &f2xv_, &f2yv_};
+  if (topo_.x.low == EndKind::kPeriodic) {
+    for (auto* f : fluxes) {
+      for (int cj = 0; cj < ny; ++cj) (*f)[Cell(-1, cj)] = (*f)[Cell(nx - 1, cj)];
+    }
+  }
+  if (topo_.y.low == EndKind::kPeriodic) {
+    for (auto* f : fluxes) {
+      for (int ci = -1; ci < nx; ++ci) (*f)[Cell(ci, -1)] = (*f)[Cell(ci, ny - 1)];
+    }
+  }
+  // Gather: node (i, j) is a of cell (i, j), b of T1 in (i-1, j), c of (i-1, j-1), d of T2 in (i, j-1).
+#pragma omp parallel for schedule(static)
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i) {
+      const std::size_t own = Cell(i, j), w = Cell(i - 1, j), sw = Cell(i - 1, j - 1), s = Cell(i, j - 1);
+      const std::size_t id = grid_.Index(i, j);
+      ku[id] = -f1xu_[own] - f2yu_[own] + f1xu_[w] - f1yu_[w] + f1yu_[sw] + f2xu_[sw] - f2xu_[s] + f2yu_[s];
+      kv[id] = -f1xv_[own] - f2yv_[own] + f1xv_[w] - f1yv_[w] + f1yv_[sw] + f2xv_[sw] - f2xv_[s] + f2yv_[s];
+    }
+  }
+}
+
+AdvectionReport AdvectionWave::Solve(double* u, double* v) {
+  AdvectionReport report;
+  const long n = static_cast<long>(mass_.size());
+  FreezeVelocity(u, v);
+  const double vmax = nodes_.MaxNorm(vx_.data(), vy_.data());
+  const int substeps = std::max(1, static_cast<int>(std::ceil(vmax * dt_ / (grid_.h * max_courant_) - 1e-12)));
+  const double tau = dt_ / substeps;
+  report.iterations = substeps;
+
+  const double* m = mass_.data();
+  const double* mo = out_mass_.data();
+  const double* unknown = nodes_.unknown().data();
+  const double* vx = vx_.data();
+  const double* vy = vy_.data();
+  std::copy(u, u + n, u0_.begin());
+  std::copy(v, v + n, v0_.begin());
+  // Start: u^1 = u^0 + tau u_t + tau^2/2 u_tt, u_t = -M^-1 N(V, u^0), u_tt = -M^-1 (K_V u^0 + M_out u_t).
+  ApplyWaveStiffness(u0_.data(), v0_.data(), ku_.data(), kv_.data());
+  for (int c = 0; c < 2; ++c) {
+    const double* x0 = c == 0 ? u0_.data() : v0_.data();
+    double* x1 = c == 0 ? u1_.data() : v1_.data();
+    const double* kx = c == 0 ? ku_.data() : kv_.data();
+    ApplyIntegratedGradient(grid_, topo_, x0, gx_.data(), gy_.data());
+    const double* gx = gx_.data();
+    const double* gy = gy_.data();
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      if (unknown[k] == 0.0) {
+        x1[k] = x0[k];
+        continue;
+      }
+      const double ut = -(vx[k] * gx[k] + vy[k] * gy[k]) / m[k];
+      const double utt = -(kx[k] + mo[k] * ut) / m[k];
+      x1[k] = x0[k] + tau * ut + 0.5 * tau * tau * utt;
+    }
+  }
+  nodes_.SyncPeriodic(u1_.data());
+  nodes_.SyncPeriodic(v1_.data());
+  // Centred steps: (M/tau^2 + M_out/(2 tau)) u^{q+1} = M/tau^2 (2u^q - u^{q-1}) + M_out/(2 tau) u^{q-1} - K_V u^q.
+  for (int q = 1; q < substeps; ++q) {
+    ApplyWaveStiffness(u1_.data(), v1_.data(), ku_.data(), kv_.data());
+    const double it2 = 1.0 / (tau * tau), i2t = 0.5 / tau;
+    double *u0 = u0_.data(), *v0 = v0_.data();
+    const double *u1 = u1_.data(), *v1 = v1_.data(), *ku = ku_.data(), *kv = kv_.data();
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      if (unknown[k] == 0.0) {
+        u0[k] = u1[k];
+        v0[k] = v1[k];
+        continue;
+      }
+      const double lhs = m[k] * it2 + mo[k] * i2t;
+      u0[k] = (m[k] * it2 * (2.0 * u1[k] - u0[k]) + mo[k] * i2t * u0[k] - ku[k]) / lhs;
+      v0[k] = (m[k] * it2 * (2.0 * v1[k] - v0[k]) + mo[k] * i2t * v0[k] - kv[k]) / lhs;
+    }
+    nodes_.SyncPeriodic(u0);
+    nodes_.SyncPeriodic(v0);
+    std::swap(u0_, u1_);
+    std::swap(v0_, v1_);
+  }
+  // Diffusion: (rho/dt) M u + nu_b K u = (rho/dt) M u_adv, Dirichlet data of t^{n+1}.
+  if (helmholtz_) {
+    double *fu = u0_.data(), *fv = v0_.data();
+    const double *ua = u1_.data(), *va = v1_.data();
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      fu[k] = rho_over_dt_ * m[k] * ua[k];
+      fv[k] = rho_over_dt_ * m[k] * va[k];
+    }
+    std::copy(ua, ua + n, u);
+    std::copy(va, va + n, v);
+    boundary_data_.Apply(u, v);
+#pragma omp parallel sections num_threads(2)
+    {
+#pragma omp section
+      helmholtz_->Solve(fu, u, 0);
+#pragma omp section
+      helmholtz_->Solve(fv, v, 1);
+    }
+    report.fast_solves = 2;
+  } else {
+    std::copy(u1_.begin(), u1_.end(), u);
+    std::copy(v1_.begin(), v1_.end(), v);
+    boundary_data_.Apply(u, v);
+  }
+  return report;
+}
+
+}  // namespace dlmfd

@@ -1,0 +1,202 @@
+#include "dlmfd/fluid/stokes_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "dlmfd/core/errors.h"
+#include "dlmfd/mesh/fem_operators.h"
+
+namespace dlmfd {
+
+StokesSolver::StokesSolver(const Grid& grid, const DomainParams& domain, const FluidParams& fluid,
+                           double dt, double alpha, const SolverParams& solvers,
+                           const BoundaryData& boundary_data)
+    : grid_(grid),
+      pgrid_(grid.Coarse()),
+      vtopo_(BoundaryTopology::ForVelocity(domain)),
+      ptopo_(BoundaryTopology::ForPressure(domain)),
+      vnodes_(grid_, vtopo_),
+      pnodes_(pgrid_, ptopo_),
+      rho_over_dt_(fluid.density / dt),
+      nu_(alpha * fluid.SolventViscosity()),
+      body_force_(fluid.body_force),
+      tolerance_(solvers.stokes_tolerance),
+      max_iterations_(solvers.stokes_max_iterations),
+      boundary_data_(boundary_data),
+      velocity_solver_(grid_, vtopo_, rho_over_dt_, nu_, 2),
+      pressure_solver_(pgrid_, ptopo_, 0.0, 1.0, 1) {
+  const std::size_t n = grid_.NodeCount(), np = pgrid_.NodeCount();
+  mass_.assign(n, 0.0);
+  LumpedMassDiagonal(grid_, vtopo_, mass_.data());
+  pmass_inv_.assign(np, 0.0);
+  LumpedMassDiagonal(pgrid_, ptopo_, pmass_inv_.data());
+  pmass_.assign(np, 0.0);
+  for (std::size_t k = 0; k < np; ++k) {
+    pmass_[k] = pnodes_.IsUnknown(k) ? pmass_inv_[k] : 0.0;
+    pmass_inv_[k] = pnodes_.IsUnknown(k) ? 1.0 / pmass_inv_[k] : 0.0;
+  }
+  for (auto* a : {&fu_, &fv_, &ubar_, &vbar_, &tu_, &tv_}) a->assign(n, 0.0);
+  for (auto* a : {&r_, &g_, &w_, &sw_, &z_}) a->assign(np, 0.0);
+}
+
+StokesSolver::~StokesSolver() = default;
+
+void StokesSolver::SolveVelocityPair(const double* fu, const double* fv, double* u, double* v) {
+#pragma omp parallel sections num_threads(2)
+  {
+#pragma omp section
+    velocity_solver_.Solve(fu, u, 0);
+#pragma omp section
+    velocity_solver_.Solve(fv, v, 1);
+  }
+}
+
+// g = nu M_p^-1 r + (rho/dt) K_p^-1 r; g is zero on pressure Dirichlet nodes.
+void StokesSolver::ApplyPreconditioner(const double* r, double* g) {
+  std::fill(z_.begin(), z_.end(), 0.0);  // Dirichlet data p = 0 for the solve
+  pressure_solver_.Solve(r, z_.data(), 0);
+  const long np = static_cast<long>(z_.size());
+  const double* minv = pmass_inv_.data();
+  const double* z = z_.data();
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < np; ++k) g[k] = nu_ * minv[k] * r[k] + rho_over_dt_ * z[k];
+  pnodes_.ZeroKnown(g);
+  pnodes_.SyncPeriodic(g);
+}
+
+double StokesSolver::ResidualNorm(const double* u, const double* v) {
+  ApplyDivergence(grid_, ptopo_, u, v, r_.data());
+  pnodes_.ZeroKnown(r_.data());
+  ApplyPreconditioner(r_.data(), g_.data());
+  return std::sqrt(std::max(0.0, pnodes_.Dot(r_.data(), g_.data())));
+}
+
+double StokesSolver::DivergenceNorm(const double* u, const double* v) {
+  ApplyDivergence(grid_, ptopo_, u, v, r_.data());
+  double s = 0.0;
+  for (std::size_t k = 0; k < r_.size(); ++k) s += pmass_inv_[k] * r_[k] * r_[k];
+  return std::sqrt(s);
+}
+
+StokesReport StokesSolver::Solve(const double* fx, const double* fy, double* u, double* v, double* p) {
+  const long n = static_cast<long>(grid_.NodeCount());
+  const double* m = mass_.data();
+  const double* dist = vnodes_.distinct().data();
+  StokesReport report;
+
+  // |u^n|_M^2 for the reference, and F = (rho/dt) M u^n + M f_body + (fx, fy).
+  double energy_old = 0.0;
+  {
+    double* fu = fu_.data();
+    double* fv = fv_.data();
+    const double bx = body_force_.x(), by = body_force_.y();
+#pragma omp parallel for reduction(+ : energy_old) schedule(static)
+    for (long k = 0; k < n; ++k) {
+      energy_old += dist[k] * m[k] * (u[k] * u[k] + v[k] * v[k]);
+      fu[k] = m[k] * (rho_over_dt_ * u[k] + bx) + (fx ? fx[k] : 0.0);
+      fv[k] = m[k] * (rho_over_dt_ * v[k] + by) + (fy ? fy[k] : 0.0);
+    }
+  }
+
+  // Step 1: A u^0 = F + B^T p^0 with the Dirichlet data of t^{n+1}.
+  pnodes_.ZeroKnown(p);
+  if (ptopo_.HasNullSpace()) {  // p in L2_0: remove the round-off drift of the warm start
+    double mean = 0.0, area = 0.0;
+    for (std::size_t k = 0; k < pmass_.size(); ++k) {
+      mean += pmass_[k] * p[k];
+      area += pmass_[k];
+    }
+    mean /= area;
+    for (std::size_t k = 0; k < pmass_.size(); ++k) p[k] -= pnodes_.IsUnknown(k) ? mean : 0.0;
+  }
+  pnodes_.SyncPeriodic(p);
+  ApplyDivergenceTranspose(grid_, ptopo_, p, tu_.data(), tv_.data());
+  {
+    double* fu = fu_.data();
+    double* fv = fv_.data();
+    const double* tu = tu_.data();
+    const double* tv = tv_.data();
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      fu[k] += tu[k];
+      fv[k] += tv[k];
+    }
+  }
+  boundary_data_.Apply(u, v);
+  SolveVelocityPair(fu_.data(), fv_.data(), u, v);
+
+  double energy_new = 0.0;
+#pragma omp parallel for reduction(+ : energy_new) schedule(static)
+  for (long k = 0; k < n; ++k) energy_new += dist[k] * m[k] * (u[k] * u[k] + v[k] * v[k]);
+  const double ref = std::sqrt(rho_over_dt_ * std::max(energy_old, energy_new));
+  report.reference = ref;
+
+  // Step 2: r = B u^0, g = P^-1 r, w = g.
+  ApplyDivergence(grid_, ptopo_, u, v, r_.data());
+  pnodes_.ZeroKnown(r_.data());
+  ApplyPreconditioner(r_.data(), g_.data());
+  double rg = pnodes_.Dot(r_.data(), g_.data());
+  std::copy(g_.begin(), g_.end(), w_.begin());
+  const double target = tolerance_ * ref;
+  std::fill(ubar_.begin(), ubar_.end(), 0.0);
+  std::fill(vbar_.begin(), vbar_.end(), 0.0);
+
+  const long np = static_cast<long>(r_.size());
+  int it = 0;
+  while (std::sqrt(std::max(rg, 0.0)) > target) {
+    if (it == max_iterations_) {
+      std::ostringstream msg;
+      msg << "Stokes step (33), Uzawa/PCG: not converged after " << it
+          << " iterations; residual sqrt(r.P^-1 r)/ref = " << std::sqrt(std::max(rg, 0.0)) / ref
+          << " > tolerance " << tolerance_ << " (solvers.stokes_max_iterations, solvers.stokes_tolerance)";
+      throw SolverNotConverged(msg.str());
+    }
+    ++it;
+    // A ubar = B^T w (zero Dirichlet data), Sw = B ubar.
+    ApplyDivergenceTranspose(grid_, ptopo_, w_.data(), tu_.data(), tv_.data());
+    SolveVelocityPair(tu_.data(), tv_.data(), ubar_.data(), vbar_.data());
+    ApplyDivergence(grid_, ptopo_, ubar_.data(), vbar_.data(), sw_.data());
+    pnodes_.ZeroKnown(sw_.data());
+    const double wsw = pnodes_.Dot(sw_.data(), w_.data());
+    if (!(wsw > 0.0)) {
+      std::ostringstream msg;
+      msg << "Stokes step (33), Uzawa/PCG: breakdown at iteration " << it << " (w.Sw = " << wsw
+          << "); residual sqrt(r.P^-1 r)/ref = " << std::sqrt(std::max(rg, 0.0)) / ref;
+      throw SolverNotConverged(msg.str());
+    }
+    const double step = rg / wsw;
+    {
+      const double* wv = w_.data();
+      const double* swv = sw_.data();
+      double* rv = r_.data();
+#pragma omp parallel for schedule(static)
+      for (long k = 0; k < np; ++k) {
+        p[k] -= step * wv[k];
+        rv[k] -= step * swv[k];
+      }
+      const double* ub = ubar_.data();
+      const double* vb = vbar_.data();
+#pragma omp parallel for schedule(static)
+      for (long k = 0; k < n; ++k) {
+        u[k] -= step * ub[k];
+        v[k] -= step * vb[k];
+      }
+    }
+    ApplyPreconditioner(r_.data(), g_.data());
+    const double rg_new = pnodes_.Dot(r_.data(), g_.data());
+    const double ratio = rg_new / rg;
+    rg = rg_new;
+    if (std::sqrt(std::max(rg, 0.0)) <= target) break;
+    const double* gv = g_.data();
+    double* wv = w_.data();
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < np; ++k) wv[k] = gv[k] + ratio * wv[k];
+  }
+  report.iterations = it;
+  report.residual = ref > 0.0 ? std::sqrt(std::max(rg, 0.0)) / ref : 0.0;
+  report.divergence = DivergenceNorm(u, v);
+  return report;
+}
+
+}  // namespace dlmfd

@@ -1,0 +1,67 @@
+#include "dlmfd/io/field_snapshot.h"
+
+#include <cstdio>
+
+#include "dlmfd/core/errors.h"
+#include "dlmfd/io/atomic_file.h"
+#include "hdf5_file.h"
+
+namespace dlmfd {
+
+std::string SnapshotFileName(long step) {
+  char name[40];
+  std::snprintf(name, sizeof name, "snap_%06ld.h5", step);
+  return name;
+}
+
+void WriteFieldSnapshot(const std::string& path, const Grid& grid, const FlowState& state) {
+  const std::vector<hsize_t> nodes = {hsize_t(grid.NodesY()), hsize_t(grid.NodesX())};
+  const Grid coarse = grid.Coarse();
+  const std::vector<hsize_t> pressure_nodes = {hsize_t(coarse.NodesY()), hsize_t(coarse.NodesX())};
+  if (state.u.size() != grid.NodeCount() || state.v.size() != grid.NodeCount() ||
+      state.p.size() != coarse.NodeCount()) {
+    throw Error("field snapshot: the state's arrays do not match the grid");
+  }
+  const std::string temporary = TemporaryPath(path);
+  {
+    h5::Handle file = h5::CreateFile(temporary);
+    h5::WriteAttribute(file.get(), "time", state.time);
+    h5::WriteAttribute(file.get(), "step", static_cast<std::int64_t>(state.step));
+    h5::WriteAttribute(file.get(), "h", grid.h);
+    h5::WriteAttribute(file.get(), "x0", grid.x0);
+    h5::WriteAttribute(file.get(), "y0", grid.y0);
+    h5::WriteDoubles(file.get(), "u", nodes, state.u.data());
+    h5::WriteDoubles(file.get(), "v", nodes, state.v.data());
+    h5::WriteDoubles(file.get(), "p", pressure_nodes, state.p.data());
+    if (!state.a11.empty()) {
+      std::vector<double> trace(grid.NodeCount());
+      for (std::size_t k = 0; k < trace.size(); ++k) trace[k] = state.a11[k] + state.a22[k];
+      h5::WriteDoubles(file.get(), "trA", nodes, trace.data());
+      h5::WriteDoubles(file.get(), "A11", nodes, state.a11.data());
+      h5::WriteDoubles(file.get(), "A12", nodes, state.a12.data());
+      h5::WriteDoubles(file.get(), "A22", nodes, state.a22.data());
+    }
+  }
+  CommitTemporary(temporary, path);
+}
+
+FieldSnapshot ReadFieldSnapshot(const std::string& path) {
+  h5::Handle file = h5::OpenFile(path, false);
+  FieldSnapshot s;
+  s.time = h5::ReadDoubleAttribute(file.get(), "time");
+  s.step = h5::ReadIntAttribute(file.get(), "step");
+  s.h = h5::ReadDoubleAttribute(file.get(), "h");
+  s.x0 = h5::ReadDoubleAttribute(file.get(), "x0");
+  s.y0 = h5::ReadDoubleAttribute(file.get(), "y0");
+  for (const char* name : {"u", "v", "p", "trA", "A11", "A12", "A22"}) {
+    if (!h5::Exists(file.get(), name)) continue;
+    std::vector<hsize_t> dims;
+    FieldArray a;
+    a.values = h5::ReadDoubles(file.get(), name, &dims);
+    a.shape.assign(dims.begin(), dims.end());
+    s.fields[name] = std::move(a);
+  }
+  return s;
+}
+
+}  // namespace dlmfd

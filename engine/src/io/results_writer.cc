@@ -1,0 +1,130 @@
+#include "dlmfd/io/results_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <system_error>
+
+#include "dlmfd/core/errors.h"
+#include "dlmfd/io/atomic_file.h"
+#include "dlmfd/io/checkpoint.h"
+#include "dlmfd/io/field_snapshot.h"
+#include "dlmfd/scene/scene_file.h"
+
+namespace fs = std::filesystem;
+
+namespace dlmfd {
+namespace {
+
+// Index of the output period that t_n = n dt falls in (the rule of Simulation's output cadence).
+long Period(long n, double dt, double every) {
+  return static_cast<long>(std::floor(static_cast<double>(n) * dt / every + 1e-9));
+}
+
+// The step of "snap_NNNNNN.h5", or -1 for any other name.
+long SnapshotStep(const std::string& name) {
+  if (name.size() < 9 || name.compare(0, 5, "snap_") != 0 || name.compare(name.size() - 3, 3, ".h5") != 0) return -1;
+  const std::string digits = name.substr(5, name.size() - 8);
+  if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) return -1;
+  return std::strtol(digits.c_str(), nullptr, 10);
+}
+
+void MakeDirectory(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) throw Error("cannot create the results directory " + dir + ": " + ec.message());
+}
+
+}  // namespace
+
+ResultsWriter::ResultsWriter(const std::string& dir, const Params& params, const Grid& grid)
+    : dir_(dir), params_(params), scene_text_(WriteScene(params)), grid_(grid) {}
+
+std::unique_ptr<ResultsWriter> ResultsWriter::Start(const std::string& dir, const Params& params, const Grid& grid,
+                                                    const FlowState& initial) {
+  std::unique_ptr<ResultsWriter> w(new ResultsWriter(dir, params, grid));
+  MakeDirectory(dir);
+  MakeDirectory(w->Path(kFields));
+  for (const auto& entry : fs::directory_iterator(w->Path(kFields))) {
+    if (SnapshotStep(entry.path().filename().string()) >= 0) fs::remove(entry.path());
+  }
+  for (const char* stale : {kXdmf, kCheckpoint, kSummary, kParticles}) fs::remove(w->Path(stale));
+  WriteTextAtomically(w->Path(kScene), w->scene_text_);
+  w->diagnostics_ = std::make_unique<DiagnosticsWriter>(w->Path(kDiagnostics));
+  w->particles_ = ParticleHistoryWriter::Create(w->Path(kParticles), initial);
+  return w;
+}
+
+std::unique_ptr<ResultsWriter> ResultsWriter::Resume(const std::string& dir, const Params& params, const Grid& grid,
+                                                     long checkpoint_step) {
+  std::unique_ptr<ResultsWriter> w(new ResultsWriter(dir, params, grid));
+  MakeDirectory(w->Path(kFields));
+  fs::remove(w->Path(kSummary));
+  std::vector<std::pair<long, std::string>> kept;
+  for (const auto& entry : fs::directory_iterator(w->Path(kFields))) {
+    const std::string name = entry.path().filename().string();
+    const long step = SnapshotStep(name);
+    if (step < 0) continue;
+    if (step > checkpoint_step) {
+      fs::remove(entry.path());
+    } else {
+      kept.emplace_back(step, name);
+    }
+  }
+  std::sort(kept.begin(), kept.end());
+  for (const auto& [step, name] : kept) {
+    w->snapshots_.push_back({std::string(kFields) + "/" + name, ReadFieldSnapshot(w->Path(kFields) + "/" + name).time});
+  }
+  WriteFieldsXdmf(w->Path(kXdmf), grid, w->snapshots_, !params.fluid.IsNewtonian());
+  if (fs::exists(w->Path(kDiagnostics))) {
+    w->diagnostics_ = std::make_unique<DiagnosticsWriter>(w->Path(kDiagnostics), checkpoint_step);
+  } else {
+    w->diagnostics_ = std::make_unique<DiagnosticsWriter>(w->Path(kDiagnostics));
+  }
+  w->particles_ = ParticleHistoryWriter::Resume(w->Path(kParticles), checkpoint_step);
+  return w;
+}
+
+void ResultsWriter::OnStep(const FlowState& state, const StepReport& report) {
+  diagnostics_->Append(report);
+  last_report_ = report;
+  const double every = params_.output.checkpoint_every;
+  if (every > 0.0 && Period(state.step, params_.time.dt, every) > Period(state.step - 1, params_.time.dt, every)) {
+    checkpoint_due_ = true;
+  }
+}
+
+void ResultsWriter::OnParticles(const FlowState& state) {
+  if (particles_) particles_->Append(state);
+}
+
+void ResultsWriter::OnSnapshot(const FlowState& state) {
+  if (params_.output.fields_every <= 0.0) return;  // no snapshots asked for (not even the initial one)
+  const std::string relative = std::string(kFields) + "/" + SnapshotFileName(state.step);
+  WriteFieldSnapshot(Path(relative), grid_, state);
+  snapshots_.push_back({relative, state.time});
+  WriteFieldsXdmf(Path(kXdmf), grid_, snapshots_, !state.a11.empty());
+}
+
+void ResultsWriter::AfterStep(const FlowState& state) {
+  if (!checkpoint_due_) return;
+  checkpoint_due_ = false;
+  WriteCheckpointNow(state);
+}
+
+void ResultsWriter::WriteCheckpointNow(const FlowState& state) {
+  WriteCheckpoint(Path(kCheckpoint), state, scene_text_);
+  if (on_checkpoint_) on_checkpoint_(state.step, state.time, kCheckpoint);
+}
+
+void ResultsWriter::Finish(RunSummary summary) {
+  diagnostics_.reset();
+  particles_.reset();
+  summary.diagnostics = last_report_.columns;
+  summary.end_time = params_.time.end;
+  summary.title = params_.title;
+  WriteRunSummary(Path(kSummary), summary);
+}
+
+}  // namespace dlmfd

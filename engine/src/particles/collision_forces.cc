@@ -1,0 +1,144 @@
+// Collision forces (14)-(15) with cell lists; see particles/collision_forces.h.
+#include "dlmfd/particles/collision_forces.h"
+
+#include <cmath>
+#include <utility>
+
+namespace dlmfd {
+
+CollisionForces::CollisionForces(const Params& params, const Grid& grid, std::vector<double> radii)
+    : grid_(grid),
+      periodic_x_(params.domain.PeriodicX()),
+      periodic_y_(params.domain.PeriodicY()),
+      range_(params.collisions.range * grid.h),
+      inv_eps_p_(1.0 / params.collisions.particle_stiffness),
+      inv_eps_w_(1.0 / params.collisions.wall_stiffness),
+      radii_(std::move(radii)) {
+  wall_[static_cast<int>(Side::kLeft)] = wall_[static_cast<int>(Side::kRight)] = !periodic_x_;
+  wall_[static_cast<int>(Side::kBottom)] = wall_[static_cast<int>(Side::kTop)] = !periodic_y_;
+  double r_max = 0.0;
+  for (double r : radii_) r_max = std::max(r_max, r);
+  cell_size_ = 2.0 * r_max + range_;
+  cells_x_ = std::max(1, static_cast<int>(std::floor(grid.Width() / cell_size_)));
+  cells_y_ = std::max(1, static_cast<int>(std::floor(grid.Height() / cell_size_)));
+  cell_w_ = grid.Width() / cells_x_;
+  cell_h_ = grid.Height() / cells_y_;
+  head_.assign(std::size_t(cells_x_) * std::size_t(cells_y_), -1);
+  next_.assign(radii_.size(), -1);
+}
+
+Vec2 CollisionForces::MinimumImage(Vec2 delta) const {
+  if (periodic_x_) delta.x() -= grid_.Width() * std::round(delta.x() / grid_.Width());
+  if (periodic_y_) delta.y() -= grid_.Height() * std::round(delta.y() / grid_.Height());
+  return delta;
+}
+
+int CollisionForces::CellOf(const Vec2& x) const {
+  auto index = [](double s, double width, int count, bool periodic) {
+    int c = static_cast<int>(std::floor(s / width));
+    if (periodic) return ((c % count) + count) % count;
+    return std::min(std::max(c, 0), count - 1);
+  };
+  const int cx = index(x.x() - grid_.x0, cell_w_, cells_x_, periodic_x_);
+  const int cy = index(x.y() - grid_.y0, cell_h_, cells_y_, periodic_y_);
+  return cy * cells_x_ + cx;
+}
+
+void CollisionForces::BuildCells(const std::vector<Vec2>& positions) {
+  std::fill(head_.begin(), head_.end(), -1);
+  // Insert in reverse so each list runs in increasing particle index.
+  for (int i = static_cast<int>(positions.size()) - 1; i >= 0; --i) {
+    const int c = CellOf(positions[i]);
+    next_[i] = head_[c];
+    head_[c] = i;
+  }
+}
+
+int CollisionForces::NeighbourCells(int cx, int cy, int* cells) const {
+  int count = 0;
+  for (int dy = -1; dy <= 1; ++dy) {
+    int ny = cy + dy;
+    if (periodic_y_) {
+      ny = (ny + cells_y_) % cells_y_;
+    } else if (ny < 0 || ny >= cells_y_) {
+      continue;
+    }
+    for (int dx = -1; dx <= 1; ++dx) {
+      int nx = cx + dx;
+      if (periodic_x_) {
+        nx = (nx + cells_x_) % cells_x_;
+      } else if (nx < 0 || nx >= cells_x_) {
+        continue;
+      }
+      const int c = ny * cells_x_ + nx;
+      // With fewer than 3 periodic cells the same cell appears twice: keep it once.
+      if (std::find(cells, cells + count, c) == cells + count) cells[count++] = c;
+    }
+  }
+  return count;
+}
+
+int CollisionForces::Compute(const std::vector<Vec2>& positions, std::vector<Vec2>& forces) {
+  const std::size_t n = positions.size();
+  for (std::size_t i = 0; i < n; ++i) forces[i].setZero();
+  int contacts = 0;
+  ForEachNearPair(positions, [&](int i, int j, const Vec2& delta) {
+    const double reach = radii_[i] + radii_[j] + range_;
+    const double d = delta.norm();
+    if (d < reach) {
+      const Vec2 f = inv_eps_p_ * (reach - d) * (reach - d) * delta;
+      forces[i] += f;
+      forces[j] -= f;
+      ++contacts;
+    }
+  });
+  for (std::size_t i = 0; i < n; ++i) {
+    const double reach = 2.0 * radii_[i] + range_;
+    const Vec2& x = positions[i];
+    // Distances to the sides and the outward direction of each image.
+    const double dist[4] = {x.x() - grid_.x0, grid_.x0 + grid_.Width() - x.x(), x.y() - grid_.y0,
+                            grid_.y0 + grid_.Height() - x.y()};
+    const Vec2 away[4] = {Vec2(1, 0), Vec2(-1, 0), Vec2(0, 1), Vec2(0, -1)};
+    for (int s = 0; s < 4; ++s) {
+      if (!wall_[s]) continue;
+      const double d = 2.0 * dist[s];  // centre to mirror image
+      if (d < reach) {
+        forces[i] += inv_eps_w_ * (reach - d) * (reach - d) * d * away[s];
+        ++contacts;
+      }
+    }
+  }
+  return contacts;
+}
+
+double CollisionForces::MinGap(const std::vector<Vec2>& positions, int* first, int* second) {
+  double gap = cell_size_;
+  int a = -10, b = -10;
+  ForEachNearPair(positions, [&](int i, int j, const Vec2& delta) {
+    const double g = delta.norm() - radii_[i] - radii_[j];
+    if (g < gap) {
+      gap = g;
+      a = i;
+      b = j;
+    }
+  });
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const Vec2& x = positions[i];
+    const double dist[4] = {x.x() - grid_.x0, grid_.x0 + grid_.Width() - x.x(), x.y() - grid_.y0,
+                            grid_.y0 + grid_.Height() - x.y()};
+    for (int s = 0; s < 4; ++s) {
+      if (!wall_[s]) continue;
+      const double g = dist[s] - radii_[i];
+      if (g < gap) {
+        gap = g;
+        a = static_cast<int>(i);
+        b = -1 - s;
+      }
+    }
+  }
+  if (first) *first = a;
+  if (second) *second = b;
+  return gap;
+}
+
+}  // namespace dlmfd

@@ -1,0 +1,223 @@
+// Predictor (36), DLM step (37), corrector (38) and the hydrodynamic force; see
+// particles/particle_step.h.
+#include "dlmfd/particles/particle_step.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "dlmfd/core/errors.h"
+#include "dlmfd/particles/particle_mesh.h"
+
+namespace dlmfd {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::vector<double> Radii(const Params& params) {
+  std::vector<double> radii;
+  for (const auto& p : params.particles) radii.push_back(p.Radius());
+  return radii;
+}
+
+Grid GridOf(const Params& params) {
+  const double h = params.domain.h;
+  return Grid{static_cast<int>(std::lround(params.domain.size.x() / h)),
+              static_cast<int>(std::lround(params.domain.size.y() / h)), h, 0.0, 0.0};
+}
+
+const char* SideName(int s) {
+  static const char* const kNames[4] = {"left", "right", "bottom", "top"};
+  return kNames[s];
+}
+
+}  // namespace
+
+ParticleStep::ParticleStep(const Params& params, const Grid& grid)
+    : grid_(grid),
+      gravity_(params.gravity),
+      fluid_density_(params.fluid.density),
+      substeps_(std::max(1, params.collisions.substeps)),
+      periodic_x_(params.domain.PeriodicX()),
+      periodic_y_(params.domain.PeriodicY()),
+      constraint_(params, grid),
+      collisions_(params, grid, Radii(params)) {
+  const std::size_t n = params.particles.size();
+  for (const auto& p : params.particles) {
+    const double excess = (p.density - fluid_density_) * kPi * p.Radius() * p.Radius();
+    inv_excess_mass_.push_back(p.motion == Motion::kFree ? 1.0 / excess : 0.0);
+  }
+  for (auto* a : {&x_old_, &u_old_, &x_, &x_star_, &u_, &u_star_, &f0_, &f1_, &collision_average_}) {
+    a->assign(n, Vec2::Zero());
+  }
+  omega_old_.assign(n, 0.0);
+}
+
+void ParticleStep::Predict(double dt, std::vector<ParticleState>& particles) {
+  const std::size_t n = particles.size();
+  const double tau = dt / substeps_;
+  for (std::size_t p = 0; p < n; ++p) {
+    x_[p] = particles[p].position;
+    u_[p] = particles[p].velocity;
+    collision_average_[p].setZero();
+  }
+  max_contacts_ = 0;
+  for (int k = 1; k <= substeps_; ++k) {
+    max_contacts_ = std::max(max_contacts_, collisions_.Compute(x_, f0_));
+    for (std::size_t p = 0; p < n; ++p) {
+      const bool free = particles[p].motion == Motion::kFree;
+      u_star_[p] = free ? Vec2(u_[p] + (gravity_ + inv_excess_mass_[p] * f0_[p]) * tau) : u_[p];
+      x_star_[p] = x_[p] + 0.5 * (u_[p] + u_star_[p]) * tau;
+    }
+    collisions_.Compute(x_star_, f1_);
+    for (std::size_t p = 0; p < n; ++p) {
+      const Vec2 average = 0.5 * (f0_[p] + f1_[p]);
+      collision_average_[p] += average / substeps_;
+      const Vec2 previous = u_[p];
+      if (particles[p].motion == Motion::kFree) {
+        u_[p] += (gravity_ + inv_excess_mass_[p] * average) * tau;
+      }
+      x_[p] += 0.5 * (previous + u_[p]) * tau;
+    }
+  }
+  for (std::size_t p = 0; p < n; ++p) {
+    particles[p].position = x_[p];
+    particles[p].velocity = u_[p];
+  }
+}
+
+void ParticleStep::Correct(double dt, std::vector<ParticleState>& particles) {
+  const std::size_t n = particles.size();
+  const double tau = dt / substeps_;
+  const double push = dt * dt / (2.0 * substeps_);
+  for (std::size_t p = 0; p < n; ++p) x_[p] = x_old_[p];
+  for (int k = 1; k <= substeps_; ++k) {
+    collisions_.Compute(x_, f0_);
+    for (std::size_t p = 0; p < n; ++p) {
+      x_star_[p] = x_[p] + 0.5 * (u_old_[p] + particles[p].velocity) * tau;
+    }
+    collisions_.Compute(x_star_, f1_);
+    for (std::size_t p = 0; p < n; ++p) {
+      x_[p] = x_star_[p] + inv_excess_mass_[p] * 0.5 * (f0_[p] + f1_[p]) * push;
+    }
+  }
+  for (std::size_t p = 0; p < n; ++p) {
+    Vec2 x = x_[p];
+    if (periodic_x_) x.x() -= grid_.Width() * std::floor((x.x() - grid_.x0) / grid_.Width());
+    if (periodic_y_) x.y() -= grid_.Height() * std::floor((x.y() - grid_.y0) / grid_.Height());
+    particles[p].position = x;
+  }
+}
+
+void ParticleStep::CheckSeparated(double time, const std::vector<ParticleState>& particles) {
+  int first = -10, second = -10;
+  for (std::size_t p = 0; p < particles.size(); ++p) x_[p] = particles[p].position;
+  const double gap = collisions_.MinGap(x_, &first, &second);
+  if (gap >= 0.0) return;
+  std::ostringstream what;
+  what.precision(10);
+  if (second >= 0) {
+    what << "particles " << particles[first].id << " and " << particles[second].id
+         << " overlap at t = " << time << " (gap = " << gap << ")";
+  } else {
+    what << "particle " << particles[first].id << " overlaps the " << SideName(-1 - second)
+         << " side at t = " << time << " (gap = " << gap << ")";
+  }
+  throw ParticlesOverlap(what.str());
+}
+
+void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& particles, double* u,
+                           double* v, StepReport& report) {
+  const std::size_t n = particles.size();
+  for (std::size_t p = 0; p < n; ++p) {
+    x_old_[p] = particles[p].position;
+    u_old_[p] = particles[p].velocity;
+    omega_old_[p] = particles[p].angular_velocity;
+  }
+  Predict(dt, particles);
+  const RigidBodyConstraint::Outcome outcome = constraint_.Enforce(time + dt, dt, particles, u, v);
+  Correct(dt, particles);
+
+  for (std::size_t p = 0; p < n; ++p) {
+    ParticleState& particle = particles[p];
+    const double displaced_mass = fluid_density_ * kPi * particle.radius * particle.radius;
+    const double inertia = 0.5 * particle.density * kPi * std::pow(particle.radius, 4);
+    particle.force = -constraint_.NodalForceSum(p) +
+                     displaced_mass * ((particle.velocity - u_old_[p]) / dt - gravity_);
+    particle.torque = -constraint_.NodalTorqueSum(p) + (fluid_density_ / particle.density) * inertia *
+                                                           (particle.angular_velocity - omega_old_[p]) / dt;
+  }
+
+  for (std::size_t p = 0; p < n; ++p) x_[p] = particles[p].position;
+  report.Set("multiplier_iterations", outcome.iterations);
+  report.Set("multiplier_residual", outcome.residual);
+  report.Set("multiplier_warm_start", outcome.warm_start ? 1.0 : 0.0);
+  report.Set("collision_contacts", max_contacts_);
+  report.Set("particle_min_gap", n > 0 ? collisions_.MinGap(x_) : 0.0);
+  CheckSeparated(time + dt, particles);
+}
+
+std::vector<ParticleState> ParticleStep::InitialStates(const Params& params) {
+  std::vector<ParticleState> states;
+  const Grid grid = GridOf(params);
+  std::vector<ParticleMesh> meshes;
+  for (std::size_t p = 0; p < params.particles.size(); ++p) {
+    const ParticleParams& pp = params.particles[p];
+    ParticleState s;
+    s.id = static_cast<int>(p);
+    s.position = pp.center;
+    s.velocity = pp.velocity;
+    s.angular_velocity = pp.angular_velocity;
+    s.radius = pp.Radius();
+    s.density = pp.density;
+    s.motion = pp.motion;
+    const ParticleMesh* mesh = nullptr;
+    for (const auto& m : meshes) {
+      if (m.radius() == s.radius) mesh = &m;
+    }
+    if (!mesh) {
+      meshes.emplace_back(s.radius, params.particle_mesh.h);
+      mesh = &meshes.back();
+    }
+    s.multiplier.assign(2 * mesh->NodeCount(), 0.0);
+    states.push_back(std::move(s));
+  }
+  // Overlaps at t = 0: all pairs once (not in the time loop), then the non-periodic sides.
+  CollisionForces geometry(params, grid, Radii(params));
+  auto center_text = [&](std::size_t p) {
+    std::ostringstream text;
+    text << "[" << states[p].position.x() << ", " << states[p].position.y() << "]";
+    return text.str();
+  };
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    for (std::size_t j = i + 1; j < states.size(); ++j) {
+      const double gap = geometry.MinimumImage(states[j].position - states[i].position).norm() -
+                         states[i].radius - states[j].radius;
+      if (gap < 0.0) {
+        std::ostringstream allowed;
+        allowed << "a disk that does not overlap particle " << i << " (gap = " << gap << ")";
+        throw InvalidParameter("particles." + std::to_string(j) + ".center", center_text(j),
+                               allowed.str());
+      }
+    }
+    const Vec2& x = states[i].position;
+    const double r = states[i].radius;
+    const double dist[4] = {x.x() - grid.x0, grid.x0 + grid.Width() - x.x(), x.y() - grid.y0,
+                            grid.y0 + grid.Height() - x.y()};
+    for (int s = 0; s < 4; ++s) {
+      const bool periodic = s < 2 ? params.domain.PeriodicX() : params.domain.PeriodicY();
+      if (!periodic && dist[s] - r < 0.0) {
+        std::ostringstream allowed;
+        allowed << "a disk inside the domain (it crosses the " << SideName(s)
+                << " side, gap = " << dist[s] - r << ")";
+        throw InvalidParameter("particles." + std::to_string(i) + ".center", center_text(i),
+                               allowed.str());
+      }
+    }
+  }
+  return states;
+}
+
+}  // namespace dlmfd

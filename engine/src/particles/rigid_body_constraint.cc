@@ -1,0 +1,366 @@
+// The DLM step (37) by conjugate gradients in the H1 product; see particles/rigid_body_constraint.h.
+#include "dlmfd/particles/rigid_body_constraint.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "dlmfd/core/errors.h"
+
+namespace dlmfd {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Relative round-off level of a converged mismatch, in units of the velocity scale.
+constexpr double kRoundOffFloor = 1e-11;
+
+Vec2 Perp(const Vec2& r) { return Vec2(-r.y(), r.x()); }
+
+const char* SideName(int s) {
+  static const char* const kNames[4] = {"left", "right", "bottom", "top"};
+  return kNames[s];
+}
+
+}  // namespace
+
+RigidBodyConstraint::RigidBodyConstraint(const Params& params, const Grid& grid)
+    : grid_(grid),
+      periodic_x_(params.domain.PeriodicX()),
+      periodic_y_(params.domain.PeriodicY()),
+      fluid_density_(params.fluid.density),
+      tolerance_(params.solvers.multiplier_tolerance),
+      max_iterations_(params.solvers.multiplier_max_iterations) {
+  for (int s = 0; s < 4; ++s) {
+    const SideType type = params.domain.sides[s].type;
+    dirichlet_[s] = type == SideType::kWall || type == SideType::kVelocity;
+    neumann_[s] = type == SideType::kOutflow;
+  }
+  const std::size_t n = params.particles.size();
+  for (std::size_t p = 0; p < n; ++p) {
+    const ParticleParams& pp = params.particles[p];
+    const double radius = pp.Radius();
+    int found = -1;
+    for (std::size_t m = 0; m < meshes_.size(); ++m) {
+      if (meshes_[m].radius() == radius) found = static_cast<int>(m);
+    }
+    if (found < 0) {
+      meshes_.emplace_back(radius, params.particle_mesh.h);
+      found = static_cast<int>(meshes_.size()) - 1;
+    }
+    mesh_of_.push_back(found);
+    offset_.push_back(total_nodes_);
+    total_nodes_ += meshes_[found].NodeCount();
+    const double excess_mass = (pp.density - fluid_density_) * kPi * radius * radius;
+    if (pp.motion == Motion::kFree) {
+      if (!(excess_mass > 0.0)) {
+        throw InvalidParameter("particles." + std::to_string(p) + ".density",
+                               std::to_string(pp.density),
+                               "> fluid.density for a free particle (lighter or neutrally buoyant "
+                               "free particles are not supported by the DLM solver)");
+      }
+      inv_excess_mass_.push_back(1.0 / excess_mass);
+      inv_excess_inertia_.push_back(2.0 / (excess_mass * radius * radius));
+    } else {
+      inv_excess_mass_.push_back(0.0);
+      inv_excess_inertia_.push_back(0.0);
+    }
+  }
+  stencil_.resize(3 * total_nodes_);
+  touched_.reserve(3 * total_nodes_);
+  stamp_.assign(grid.NodeCount(), -1);
+  for (auto* a : {&nu_, &g_, &w_, &nub_, &gb_, &scratch_}) a->assign(2 * total_nodes_, 0.0);
+  ub_.assign(grid.NodeCount(), 0.0);
+  vb_.assign(grid.NodeCount(), 0.0);
+  velocity_.assign(n, Vec2::Zero());
+  velocity_b_.assign(n, Vec2::Zero());
+  force_sum_.assign(n, Vec2::Zero());
+  omega_.assign(n, 0.0);
+  omega_b_.assign(n, 0.0);
+  torque_sum_.assign(n, 0.0);
+}
+
+double RigidBodyConstraint::InverseNodeMass(int i, int j) const {
+  const int left = static_cast<int>(Side::kLeft), right = static_cast<int>(Side::kRight);
+  const int bottom = static_cast<int>(Side::kBottom), top = static_cast<int>(Side::kTop);
+  double factor = 1.0;
+  if (!periodic_x_) {
+    const int s = i == 0 ? left : (i == grid_.nx ? right : -1);
+    if (s >= 0 && dirichlet_[s]) return 0.0;
+    if (s >= 0 && neumann_[s]) factor *= 0.5;
+  }
+  if (!periodic_y_) {
+    const int s = j == 0 ? bottom : (j == grid_.ny ? top : -1);
+    if (s >= 0 && dirichlet_[s]) return 0.0;
+    if (s >= 0 && neumann_[s]) factor *= 0.5;
+  }
+  return 1.0 / (fluid_density_ * grid_.h * grid_.h * factor);
+}
+
+void RigidBodyConstraint::BuildInterpolation(double time, const std::vector<ParticleState>& particles) {
+  ++stamp_counter_;
+  touched_.clear();
+  const double h = grid_.h;
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    const ParticleMesh& mesh = MeshOf(p);
+    const Vec2& centre = particles[p].position;
+    for (int k = 0; k < mesh.NodeCount(); ++k) {
+      const Vec2 y = centre + mesh.nodes()[k];
+      int cell[2];
+      double local[2];
+      const double s[2] = {(y.x() - grid_.x0) / h, (y.y() - grid_.y0) / h};
+      const int cells[2] = {grid_.nx, grid_.ny};
+      const bool periodic[2] = {periodic_x_, periodic_y_};
+      for (int a = 0; a < 2; ++a) {
+        int c = static_cast<int>(std::floor(s[a]));
+        double t = s[a] - c;
+        if (periodic[a]) {
+          c = ((c % cells[a]) + cells[a]) % cells[a];
+        } else if (c == cells[a] && t == 0.0) {
+          c = cells[a] - 1;
+          t = 1.0;
+        } else if (c < 0 || c >= cells[a]) {
+          const int side = 2 * a + (c < 0 ? 0 : 1);
+          const double extent = a == 0 ? grid_.Width() : grid_.Height();
+          const double origin = a == 0 ? grid_.x0 : grid_.y0;
+          const double coordinate = a == 0 ? centre.x() : centre.y();
+          const double distance = c < 0 ? coordinate - origin : origin + extent - coordinate;
+          std::ostringstream what;
+          what << "particle " << particles[p].id << " crosses the " << SideName(side)
+               << " side at t = " << time << " (gap = " << distance - mesh.radius() << ")";
+          throw ParticlesOverlap(what.str());
+        }
+        cell[a] = c;
+        local[a] = t;
+      }
+      const int i0 = cell[0], j0 = cell[1];
+      const int i1 = (periodic_x_ && i0 + 1 == grid_.nx) ? 0 : i0 + 1;
+      const int j1 = (periodic_y_ && j0 + 1 == grid_.ny) ? 0 : j0 + 1;
+      const double xi = local[0], eta = local[1];
+      int ii[3], jj[3];
+      double wt[3];
+      if (xi >= eta) {
+        ii[0] = i0; jj[0] = j0; wt[0] = 1.0 - xi;
+        ii[1] = i1; jj[1] = j0; wt[1] = xi - eta;
+        ii[2] = i1; jj[2] = j1; wt[2] = eta;
+      } else {
+        ii[0] = i0; jj[0] = j0; wt[0] = 1.0 - eta;
+        ii[1] = i1; jj[1] = j1; wt[1] = xi;
+        ii[2] = i0; jj[2] = j1; wt[2] = eta - xi;
+      }
+      for (int q = 0; q < 3; ++q) {
+        StencilEntry& e = stencil_[3 * (offset_[p] + k) + q];
+        e.node = grid_.Index(ii[q], jj[q]);
+        e.weight = wt[q];
+        e.scatter = wt[q] * InverseNodeMass(ii[q], jj[q]);
+        if (e.scatter != 0.0 && stamp_[e.node] != stamp_counter_) {
+          stamp_[e.node] = stamp_counter_;
+          touched_.push_back(e.node);
+        }
+      }
+    }
+  }
+}
+
+void RigidBodyConstraint::Mismatch(const double* u, const double* v, const Vec2* velocity,
+                                   const double* omega, double* g) const {
+  for (std::size_t p = 0; p < mesh_of_.size(); ++p) {
+    const ParticleMesh& mesh = MeshOf(p);
+    for (int k = 0; k < mesh.NodeCount(); ++k) {
+      const std::size_t node = offset_[p] + k;
+      const StencilEntry* e = &stencil_[3 * node];
+      double eu = 0.0, ev = 0.0;
+      for (int q = 0; q < 3; ++q) {
+        eu += e[q].weight * u[e[q].node];
+        ev += e[q].weight * v[e[q].node];
+      }
+      const Vec2 rigid = velocity[p] + omega[p] * Perp(mesh.nodes()[k]);
+      g[2 * node] = eu - rigid.x();
+      g[2 * node + 1] = ev - rigid.y();
+    }
+  }
+}
+
+void RigidBodyConstraint::Respond(double dt, const double* dir) {
+  for (std::size_t node : touched_) ub_[node] = vb_[node] = 0.0;
+  for (std::size_t p = 0; p < mesh_of_.size(); ++p) {
+    const ParticleMesh& mesh = MeshOf(p);
+    Vec2 sum = Vec2::Zero();
+    double torque = 0.0;
+    for (int k = 0; k < mesh.NodeCount(); ++k) {
+      const std::size_t node = offset_[p] + k;
+      const Vec2 f(dir[2 * node], dir[2 * node + 1]);
+      const StencilEntry* e = &stencil_[3 * node];
+      for (int q = 0; q < 3; ++q) {
+        ub_[e[q].node] += dt * e[q].scatter * f.x();
+        vb_[e[q].node] += dt * e[q].scatter * f.y();
+      }
+      sum += f;
+      torque += Perp(mesh.nodes()[k]).dot(f);
+    }
+    velocity_b_[p] = -dt * inv_excess_mass_[p] * sum;
+    omega_b_[p] = -dt * inv_excess_inertia_[p] * torque;
+  }
+  Mismatch(ub_.data(), vb_.data(), velocity_b_.data(), omega_b_.data(), gb_.data());
+}
+
+void RigidBodyConstraint::ApplyGram(const double* a, double* out) const {
+  for (std::size_t p = 0; p < mesh_of_.size(); ++p) {
+    MeshOf(p).ApplyGram2(a + 2 * offset_[p], out + 2 * offset_[p]);
+  }
+}
+
+double RigidBodyConstraint::GramDot(const double* a, const double* b) {
+  ApplyGram(b, scratch_.data());
+  double sum = 0.0;
+  for (std::size_t q = 0; q < 2 * total_nodes_; ++q) sum += a[q] * scratch_[q];
+  return sum;
+}
+
+RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt,
+                                                          std::vector<ParticleState>& particles,
+                                                          double* u, double* v) {
+  Outcome outcome;
+  const std::size_t n = particles.size();
+  if (n == 0) return outcome;
+  BuildInterpolation(time, particles);
+  for (std::size_t p = 0; p < n; ++p) {
+    velocity_[p] = particles[p].velocity;
+    omega_[p] = particles[p].angular_velocity;
+  }
+
+  // Cold-start mismatch: the absolute reference of the stopping rule.
+  Mismatch(u, v, velocity_.data(), omega_.data(), g_.data());
+  const double cold = GramDot(g_.data(), g_.data());
+  double scale = 0.0, floor_weight = 0.0;
+  for (std::size_t p = 0; p < n; ++p) {
+    const ParticleMesh& mesh = MeshOf(p);
+    scale = std::max(scale, velocity_[p].norm() + std::abs(omega_[p]) * mesh.radius());
+    const double ratio = mesh.radius() / (mesh.nodes()[mesh.NodeCount() - 1] -
+                                          mesh.nodes()[mesh.NodeCount() - 2]).norm();
+    floor_weight += 2.0 * mesh.Area() * (1.0 + ratio * ratio);
+  }
+  for (std::size_t q = 0; q < total_nodes_; ++q) {
+    outcome.cold_residual = std::max(outcome.cold_residual, std::hypot(g_[2 * q], g_[2 * q + 1]));
+    scale = std::max(scale, outcome.cold_residual);
+  }
+  const double threshold =
+      std::max(tolerance_ * tolerance_ * cold, kRoundOffFloor * kRoundOffFloor * scale * scale * floor_weight);
+
+  // Warm start from the stored nodal forces when they reduce the mismatch.
+  std::fill(nu_.begin(), nu_.end(), 0.0);
+  bool have_warm = false;
+  for (std::size_t p = 0; p < n; ++p) {
+    const auto& stored = particles[p].multiplier;
+    if (stored.size() != MultiplierSize(p)) continue;
+    std::copy(stored.begin(), stored.end(), nu_.begin() + 2 * offset_[p]);
+    have_warm = true;
+  }
+  double gg = cold;
+  if (have_warm && cold > threshold) {
+    Respond(dt, nu_.data());
+    for (std::size_t q = 0; q < 2 * total_nodes_; ++q) w_[q] = g_[q] + gb_[q];
+    const double warm = GramDot(w_.data(), w_.data());
+    if (warm < cold) {
+      outcome.warm_start = true;
+      gg = warm;
+      std::swap(g_, w_);
+      for (std::size_t node : touched_) {
+        u[node] += ub_[node];
+        v[node] += vb_[node];
+      }
+      for (std::size_t p = 0; p < n; ++p) {
+        velocity_[p] += velocity_b_[p];
+        omega_[p] += omega_b_[p];
+      }
+    }
+  }
+  if (!outcome.warm_start) std::fill(nu_.begin(), nu_.end(), 0.0);
+
+  // Conjugate gradients in <., .>_G (method notes 1.3, steps 2-7), iterate tracked as nu = G lambda.
+  w_ = g_;
+  int it = 0;
+  while (gg > threshold) {
+    if (it == max_iterations_) {
+      std::ostringstream what;
+      what << "DLM multiplier CG (37) did not converge at t = " << time << " after " << it
+           << " iterations: residual " << std::sqrt(gg) << " > " << std::sqrt(threshold)
+           << " (raise solvers.multiplier_max_iterations or solvers.multiplier_tolerance)";
+      throw SolverNotConverged(what.str());
+    }
+    ApplyGram(w_.data(), nub_.data());
+    Respond(dt, nub_.data());
+    double curvature = 0.0;  // <gb, w>_G = gb . G w
+    for (std::size_t q = 0; q < 2 * total_nodes_; ++q) curvature += gb_[q] * nub_[q];
+    if (!(curvature > 0.0)) {
+      std::ostringstream what;
+      what << "DLM multiplier CG (37) broke down at t = " << time << " (curvature " << curvature
+           << " after " << it << " iterations)";
+      throw SolverNotConverged(what.str());
+    }
+    const double step = gg / curvature;
+    for (std::size_t q = 0; q < 2 * total_nodes_; ++q) {
+      nu_[q] -= step * nub_[q];
+      g_[q] -= step * gb_[q];
+    }
+    for (std::size_t node : touched_) {
+      u[node] -= step * ub_[node];
+      v[node] -= step * vb_[node];
+    }
+    for (std::size_t p = 0; p < n; ++p) {
+      velocity_[p] -= step * velocity_b_[p];
+      omega_[p] -= step * omega_b_[p];
+    }
+    const double gg_new = GramDot(g_.data(), g_.data());
+    const double beta = gg_new / gg;
+    gg = gg_new;
+    for (std::size_t q = 0; q < 2 * total_nodes_; ++q) w_[q] = g_[q] + beta * w_[q];
+    ++it;
+  }
+  outcome.iterations = it;
+
+  // Periodic duplicates follow their first node.
+  if (periodic_x_) {
+    for (int j = 0; j <= grid_.ny; ++j) {
+      u[grid_.Index(grid_.nx, j)] = u[grid_.Index(0, j)];
+      v[grid_.Index(grid_.nx, j)] = v[grid_.Index(0, j)];
+    }
+  }
+  if (periodic_y_) {
+    for (int i = 0; i <= grid_.nx; ++i) {
+      u[grid_.Index(i, grid_.ny)] = u[grid_.Index(i, 0)];
+      v[grid_.Index(i, grid_.ny)] = v[grid_.Index(i, 0)];
+    }
+  }
+
+  // The true residual, the new particle velocities, and the nodal force sums.
+  Mismatch(u, v, velocity_.data(), omega_.data(), g_.data());
+  for (std::size_t q = 0; q < total_nodes_; ++q) {
+    outcome.residual = std::max(outcome.residual, std::hypot(g_[2 * q], g_[2 * q + 1]));
+  }
+  for (std::size_t p = 0; p < n; ++p) {
+    ParticleState& particle = particles[p];
+    if (particle.motion == Motion::kFree) {
+      particle.velocity = velocity_[p];
+      particle.angular_velocity = omega_[p];
+    }
+    const ParticleMesh& mesh = MeshOf(p);
+    particle.multiplier.resize(MultiplierSize(p));  // allocates only on the first step
+    Vec2 sum = Vec2::Zero();
+    double torque = 0.0;
+    for (int k = 0; k < mesh.NodeCount(); ++k) {
+      const std::size_t node = offset_[p] + k;
+      const Vec2 f(nu_[2 * node], nu_[2 * node + 1]);
+      particle.multiplier[2 * k] = f.x();
+      particle.multiplier[2 * k + 1] = f.y();
+      sum += f;
+      torque += Perp(mesh.nodes()[k]).dot(f);
+    }
+    force_sum_[p] = sum;
+    torque_sum_[p] = torque;
+  }
+  return outcome;
+}
+
+}  // namespace dlmfd

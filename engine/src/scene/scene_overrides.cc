@@ -1,0 +1,103 @@
+#include "scene_overrides.h"
+
+#include <cctype>
+#include <string>
+
+#include "dlmfd/core/errors.h"
+#include "toml_reader.h"
+
+namespace dlmfd {
+namespace scene {
+namespace {
+
+std::vector<std::string> SplitKey(const std::string& key) {
+  std::vector<std::string> parts;
+  std::string current;
+  for (char c : key) {
+    if (c == '.') {
+      parts.push_back(current);
+      current.clear();
+    } else {
+      current += c;
+    }
+  }
+  parts.push_back(current);
+  return parts;
+}
+
+bool IsIndex(const std::string& s) {
+  if (s.empty() || s.size() > 9) return false;
+  for (char c : s) {
+    if (!std::isdigit(static_cast<unsigned char>(c))) return false;
+  }
+  return true;
+}
+
+// The override's value as a TOML node: a TOML value when the text is one, else a string.
+toml::table ParseValue(const std::string& text) {
+  try {
+    toml::table wrapper = toml::parse("value = " + text);
+    if (wrapper.size() == 1 && wrapper.contains("value")) return wrapper;
+  } catch (const toml::parse_error&) {
+  }
+  toml::table wrapper;
+  wrapper.insert_or_assign("value", text);
+  return wrapper;
+}
+
+bool IsSideTypeKey(const std::vector<std::string>& parts) {
+  return parts.size() == 4 && parts[0] == "domain" && parts[1] == "boundary" && parts[3] == "type";
+}
+
+void ApplyOne(toml::table& root, const SceneOverride& o) {
+  const std::vector<std::string> parts = SplitKey(o.key);
+  for (const auto& p : parts) {
+    if (p.empty()) throw InvalidParameter(o.key, o.value, "a dotted key of non-empty names (e.g. fluid.viscosity)");
+  }
+  toml::table value_holder = ParseValue(o.value);
+  toml::node& value = *value_holder.get("value");
+
+  toml::node* node = &root;
+  std::string walked;
+  for (std::size_t k = 0; k + 1 < parts.size(); ++k) {
+    const std::string& part = parts[k];
+    walked += (walked.empty() ? "" : ".") + part;
+    if (auto* table = node->as_table()) {
+      toml::node* next = table->get(part);
+      if (next == nullptr) {
+        table->insert_or_assign(part, toml::table{});
+        next = table->get(part);
+      }
+      node = next;
+    } else if (auto* array = node->as_array()) {
+      if (!IsIndex(part) || std::stoul(part) >= array->size()) {
+        throw InvalidParameter(walked, part, "an index below " + std::to_string(array->size()) +
+                                                 " (the number of entries in the scene)");
+      }
+      node = array->get(std::stoul(part));
+    } else {
+      throw InvalidParameter(walked, NodeText(*node), "a table or an array to set " + o.key + " in");
+    }
+  }
+  const std::string& leaf = parts.back();
+  if (auto* table = node->as_table()) {
+    if (IsSideTypeKey(parts)) table->clear();
+    value.visit([&](auto& v) { table->insert_or_assign(leaf, std::move(v)); });
+  } else if (auto* array = node->as_array()) {
+    if (!IsIndex(leaf) || std::stoul(leaf) >= array->size()) {
+      throw InvalidParameter(o.key, o.value, "an existing index below " + std::to_string(array->size()));
+    }
+    value.visit([&](auto& v) { array->replace(array->begin() + static_cast<long>(std::stoul(leaf)), std::move(v)); });
+  } else {
+    throw InvalidParameter(walked, NodeText(*node), "a table or an array to set " + o.key + " in");
+  }
+}
+
+}  // namespace
+
+void ApplyOverrides(toml::table& root, const std::vector<SceneOverride>& overrides) {
+  for (const auto& o : overrides) ApplyOne(root, o);
+}
+
+}  // namespace scene
+}  // namespace dlmfd

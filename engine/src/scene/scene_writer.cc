@@ -1,0 +1,122 @@
+// WriteScene: Params back to TOML, every key written (defaults filled in), reals in the shortest
+// text that reads back exactly, so that ParseScene(WriteScene(p)) gives p again.
+#include <sstream>
+
+#include "dlmfd/scene/scene_file.h"
+#include "toml_reader.h"
+
+namespace dlmfd {
+namespace {
+
+using scene::ExactText;
+
+std::string Vec(const Vec2& v) { return "[" + ExactText(v.x()) + ", " + ExactText(v.y()) + "]"; }
+
+std::string Quoted(const std::string& s) { return scene::QuotedText(s); }
+
+const char* SideTypeName(SideType t) {
+  switch (t) {
+    case SideType::kWall: return "wall";
+    case SideType::kVelocity: return "velocity";
+    case SideType::kOutflow: return "outflow";
+    case SideType::kPeriodic: return "periodic";
+  }
+  return "wall";
+}
+
+std::string SideText(const BoundarySide& s) {
+  std::string out = std::string("{ type = \"") + SideTypeName(s.type) + "\"";
+  if (s.type == SideType::kVelocity) {
+    if (s.profile == Profile::kUniform) {
+      out += ", profile = \"uniform\", value = " + Vec(s.value);
+    } else {
+      out += ", profile = \"poiseuille\", max = " + Vec(s.max);
+    }
+  }
+  return out + " }";
+}
+
+const char* MotionName(Motion m) {
+  switch (m) {
+    case Motion::kFree: return "free";
+    case Motion::kFixed: return "fixed";
+    case Motion::kPrescribed: return "prescribed";
+  }
+  return "free";
+}
+
+}  // namespace
+
+std::string WriteScene(const Params& p) {
+  std::ostringstream o;
+  o << "# Written by dlmfd-solve: the scene as run, every default filled in (docs/scenes.md).\n";
+  o << "title = " << Quoted(p.title) << "\n";
+  o << "gravity = " << Vec(p.gravity) << "\n";
+
+  o << "\n[domain]\n";
+  o << "size = " << Vec(p.domain.size) << "\n";
+  o << "h = " << ExactText(p.domain.h) << "\n";
+  o << "\n[domain.boundary]\n";
+  o << "left = " << SideText(p.domain.side(Side::kLeft)) << "\n";
+  o << "right = " << SideText(p.domain.side(Side::kRight)) << "\n";
+  o << "bottom = " << SideText(p.domain.side(Side::kBottom)) << "\n";
+  o << "top = " << SideText(p.domain.side(Side::kTop)) << "\n";
+
+  o << "\n[fluid]\n";
+  o << "density = " << ExactText(p.fluid.density) << "\n";
+  o << "viscosity = " << ExactText(p.fluid.viscosity) << "\n";
+  o << "relaxation_time = " << ExactText(p.fluid.relaxation_time) << "\n";
+  o << "solvent_ratio = " << ExactText(p.fluid.solvent_ratio) << "\n";
+  o << "body_force = " << Vec(p.fluid.body_force) << "\n";
+
+  o << "\n[time]\n";
+  o << "dt = " << ExactText(p.time.dt) << "\n";
+  o << "end = " << ExactText(p.time.end) << "\n";
+
+  o << "\n[splitting]\n";
+  o << "alpha = " << ExactText(p.splitting.alpha) << "\n";
+  o << "beta = " << ExactText(p.splitting.beta) << "\n";
+  o << "advection = \"" << (p.splitting.advection == AdvectionScheme::kWave ? "wave" : "least_squares") << "\"\n";
+
+  const SolverParams& s = p.solvers;
+  o << "\n[solvers]\n";
+  o << "stokes_tolerance = " << ExactText(s.stokes_tolerance) << "\n";
+  o << "stokes_max_iterations = " << s.stokes_max_iterations << "\n";
+  o << "advection_tolerance = " << ExactText(s.advection_tolerance) << "\n";
+  o << "advection_max_iterations = " << s.advection_max_iterations << "\n";
+  o << "wave_max_courant = " << ExactText(s.wave_max_courant) << "\n";
+  o << "multiplier_tolerance = " << ExactText(s.multiplier_tolerance) << "\n";
+  o << "multiplier_max_iterations = " << s.multiplier_max_iterations << "\n";
+
+  o << "\n[particle_mesh]\n";
+  o << "h = " << ExactText(p.particle_mesh.h) << "\n";
+
+  o << "\n[collisions]\n";
+  o << "range = " << ExactText(p.collisions.range) << "\n";
+  o << "wall_stiffness = " << ExactText(p.collisions.wall_stiffness) << "\n";
+  o << "particle_stiffness = " << ExactText(p.collisions.particle_stiffness) << "\n";
+  o << "substeps = " << p.collisions.substeps << "\n";
+
+  o << "\n[conformation]\n";
+  o << "form = \"A\"\n";
+  o << "max_courant = " << ExactText(p.conformation.max_courant) << "\n";
+  o << "blend_kappa = " << ExactText(p.conformation.blend_kappa) << "\n";
+
+  o << "\n[output]\n";
+  o << "fields_every = " << ExactText(p.output.fields_every) << "\n";
+  o << "particles_every = " << ExactText(p.output.particles_every) << "\n";
+  o << "checkpoint_every = " << ExactText(p.output.checkpoint_every) << "\n";
+
+  for (const ParticleParams& q : p.particles) {
+    o << "\n[[particles]]\n";
+    o << "center = " << Vec(q.center) << "\n";
+    o << "diameter = " << ExactText(q.diameter) << "\n";
+    o << "density = " << ExactText(q.density) << "\n";
+    o << "velocity = " << Vec(q.velocity) << "\n";
+    o << "angular_velocity = " << ExactText(q.angular_velocity) << "\n";
+    o << "motion = \"" << MotionName(q.motion) << "\"\n";
+  }
+  return o.str();
+}
+
+}  // namespace dlmfd

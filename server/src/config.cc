@@ -1,0 +1,242 @@
+#include "config.h"
+
+#include <CLI/CLI.hpp>
+#include <toml++/toml.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <regex>
+#include <sstream>
+
+namespace dlmfd::server {
+namespace fs = std::filesystem;
+namespace {
+
+int64_t ParseInteger(const std::string& key, const std::string& text) {
+  try {
+    size_t used = 0;
+    long long value = std::stoll(text, &used);
+    if (used != text.size()) throw std::invalid_argument(text);
+    return value;
+  } catch (const std::exception&) {
+    throw ConfigError(key + " = \"" + text + "\" is not an integer");
+  }
+}
+
+// One setting: its TOML key, flag name, environment variable and where it goes.
+struct Setting {
+  const char* key;
+  std::function<void(Config&, const std::string&)> set;
+};
+
+std::vector<Setting> Settings() {
+  auto text = [](std::string Config::*member) {
+    return [member](Config& c, const std::string& v) { c.*member = v; };
+  };
+  auto integer = [](const char* key, int64_t Config::*member) {
+    return [key, member](Config& c, const std::string& v) { c.*member = ParseInteger(key, v); };
+  };
+  auto small = [](const char* key, int Config::*member) {
+    return [key, member](Config& c, const std::string& v) {
+      c.*member = static_cast<int>(ParseInteger(key, v));
+    };
+  };
+  return {
+      {"listen", text(&Config::listen)},
+      {"data_dir", text(&Config::data_dir)},
+      {"max_concurrent", small("max_concurrent", &Config::max_concurrent)},
+      {"solver", text(&Config::solver)},
+      {"tokens_file", text(&Config::tokens_file)},
+      {"max_scene_bytes", integer("max_scene_bytes", &Config::max_scene_bytes)},
+      {"max_grid_nodes", integer("max_grid_nodes", &Config::max_grid_nodes)},
+      {"max_memory_mb", integer("max_memory_mb", &Config::max_memory_mb)},
+      {"max_queued", integer("max_queued", &Config::max_queued)},
+      {"watcher_buffer", small("watcher_buffer", &Config::watcher_buffer)},
+      {"event_ring", small("event_ring", &Config::event_ring)},
+      {"log_level", text(&Config::log_level)},
+      {"port_file", text(&Config::port_file)},
+  };
+}
+
+std::string FlagName(const std::string& key) {
+  std::string flag = "--" + key;
+  for (auto& c : flag) c = c == '_' ? '-' : c;
+  return flag;
+}
+
+std::string EnvName(const std::string& key) {
+  std::string name = "DLMFD_" + key;
+  for (auto& c : name) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return name;
+}
+
+std::string TomlValueText(const toml::node& node, const std::string& key) {
+  if (auto s = node.value<std::string>()) return *s;
+  if (node.is_integer()) return std::to_string(*node.value<int64_t>());
+  throw ConfigError("config file: " + key + " must be a string or an integer");
+}
+
+void ApplyFile(const std::string& path, const std::vector<Setting>& settings, Config& config) {
+  toml::table table;
+  try {
+    table = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream message;
+    message << "config file " << path << ": " << e.description() << " at line "
+            << e.source().begin.line;
+    throw ConfigError(message.str());
+  }
+  for (const auto& [key, node] : table) {
+    std::string name(key.str());
+    bool known = false;
+    for (const auto& setting : settings) {
+      if (name == setting.key) {
+        setting.set(config, TomlValueText(node, name));
+        known = true;
+      }
+    }
+    if (!known) throw ConfigError("config file " + path + ": unknown key " + name);
+  }
+}
+
+std::string DefaultDataDir(const EnvLookup& env) {
+  if (const char* xdg = env("XDG_DATA_HOME"); xdg && *xdg) return std::string(xdg) + "/dlmfd";
+  if (const char* home = env("HOME"); home && *home) return std::string(home) + "/.local/share/dlmfd";
+  return "dlmfd-data";
+}
+
+std::string DefaultSolver(const char* argv0) {
+  std::error_code error;
+  fs::path self = fs::read_symlink("/proc/self/exe", error);
+  if (error) self = fs::absolute(argv0 ? argv0 : "dlmfdd");
+  fs::path sibling = self.parent_path() / "dlmfd-solve";
+  if (fs::exists(sibling)) return sibling.string();
+  // A build tree keeps the solver in engine/ next to server/.
+  fs::path build_tree = self.parent_path().parent_path() / "engine" / "dlmfd-solve";
+  if (fs::exists(build_tree)) return build_tree.string();
+  return sibling.string();
+}
+
+}  // namespace
+
+bool IsLoopbackAddress(const std::string& listen) {
+  if (listen.rfind("unix:", 0) == 0) return true;
+  std::string host = listen;
+  if (!host.empty() && host.front() == '[') {
+    auto close = host.find(']');
+    host = close == std::string::npos ? host : host.substr(1, close - 1);
+  } else if (auto colon = host.rfind(':'); colon != std::string::npos &&
+                                            host.find(':') == colon) {
+    host = host.substr(0, colon);
+  }
+  if (host == "localhost" || host == "::1") return true;
+  static const std::regex kLoopbackV4(R"(127\.\d{1,3}\.\d{1,3}\.\d{1,3})");
+  return std::regex_match(host, kLoopbackV4);
+}
+
+std::map<std::string, std::string> LoadTokens(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError("tokens file " + path + " cannot be read");
+  std::map<std::string, std::string> tokens;
+  static const std::regex kUser(R"([A-Za-z0-9_.@-]{1,64})");
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    std::istringstream fields(line);
+    std::string token, user, extra;
+    if (!(fields >> token) || token[0] == '#') continue;
+    if (!(fields >> user) || (fields >> extra)) {
+      throw ConfigError("tokens file " + path + " line " + std::to_string(number) +
+                        ": expected \"token user\"");
+    }
+    if (token.size() < 16) {
+      throw ConfigError("tokens file " + path + " line " + std::to_string(number) +
+                        ": a token must have at least 16 characters");
+    }
+    if (!std::regex_match(user, kUser)) {
+      throw ConfigError("tokens file " + path + " line " + std::to_string(number) +
+                        ": user names use letters, digits and _.@- only");
+    }
+    if (!tokens.emplace(token, user).second) {
+      throw ConfigError("tokens file " + path + " line " + std::to_string(number) +
+                        ": the token is listed twice");
+    }
+  }
+  return tokens;
+}
+
+void ValidateConfig(Config& config) {
+  if (config.listen.empty()) throw ConfigError("listen must not be empty");
+  if (config.data_dir.empty()) throw ConfigError("data_dir must not be empty");
+  if (config.max_concurrent < 1 || config.max_concurrent > 1024) {
+    throw ConfigError("max_concurrent = " + std::to_string(config.max_concurrent) +
+                      " is not allowed: expected 1 to 1024");
+  }
+  auto positive = [](const char* key, int64_t value) {
+    if (value < 1) throw ConfigError(std::string(key) + " must be >= 1");
+  };
+  positive("max_scene_bytes", config.max_scene_bytes);
+  positive("max_grid_nodes", config.max_grid_nodes);
+  positive("max_memory_mb", config.max_memory_mb);
+  positive("max_queued", config.max_queued);
+  if (config.watcher_buffer < 8) throw ConfigError("watcher_buffer must be >= 8");
+  if (config.event_ring < 8) throw ConfigError("event_ring must be >= 8");
+  static const char* const kLevels[] = {"trace", "debug", "info", "warn", "error", "off"};
+  if (std::find(std::begin(kLevels), std::end(kLevels), config.log_level) == std::end(kLevels)) {
+    throw ConfigError("log_level = " + config.log_level +
+                      " is not allowed: expected trace, debug, info, warn, error or off");
+  }
+  config.tokens.clear();
+  if (!config.tokens_file.empty()) config.tokens = LoadTokens(config.tokens_file);
+  if (!IsLoopbackAddress(config.listen) && config.tokens.empty()) {
+    throw ConfigError("refusing to listen on " + config.listen +
+                      ": it is not a loopback address and no tokens are configured "
+                      "(set tokens_file to a file of \"token user\" lines, or listen on 127.0.0.1)");
+  }
+  if (config.solver.empty()) throw ConfigError("solver must not be empty");
+}
+
+bool LoadConfig(int argc, const char* const* argv, const EnvLookup& env, Config& config) {
+  const auto settings = Settings();
+  CLI::App app{"dlmfdd: the dlmfd job daemon (gRPC API dlmfd.v1.Jobs)"};
+  std::string config_file;
+  app.add_option("--config", config_file, "TOML config file (also DLMFD_CONFIG)");
+  std::map<std::string, std::string> flag_values;
+  std::vector<CLI::Option*> options;
+  for (const auto& setting : settings) {
+    options.push_back(app.add_option(FlagName(setting.key), flag_values[setting.key],
+                                     std::string("see docs/api.md (") + EnvName(setting.key) + ")"));
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return false;
+  } catch (const CLI::ParseError& e) {
+    throw ConfigError(e.what());
+  }
+
+  config = Config{};
+  config.data_dir = DefaultDataDir(env);
+  config.solver = DefaultSolver(argc > 0 ? argv[0] : nullptr);
+  if (config_file.empty()) {
+    if (const char* from_env = env("DLMFD_CONFIG"); from_env && *from_env) config_file = from_env;
+  }
+  if (!config_file.empty()) ApplyFile(config_file, settings, config);
+  for (const auto& setting : settings) {
+    if (const char* value = env(EnvName(setting.key).c_str()); value && *value) {
+      setting.set(config, value);
+    }
+  }
+  for (size_t i = 0; i < settings.size(); ++i) {
+    if (options[i]->count() > 0) settings[i].set(config, flag_values[settings[i].key]);
+  }
+  ValidateConfig(config);
+  return true;
+}
+
+}  // namespace dlmfd::server

@@ -1,0 +1,68 @@
+// Config: dlmfdd's one validated configuration.
+//
+// Precedence, highest first: command-line flag > environment (DLMFD_*) > TOML config file (--config or
+// DLMFD_CONFIG) > defaults. Keys (TOML key / flag / environment):
+//   listen / --listen / DLMFD_LISTEN                       "127.0.0.1:7443" (loopback)
+//   data_dir / --data-dir / DLMFD_DATA_DIR                 "$XDG_DATA_HOME/dlmfd" or "~/.local/share/dlmfd"
+//   max_concurrent / --max-concurrent / DLMFD_MAX_CONCURRENT          2
+//   solver / --solver / DLMFD_SOLVER                       dlmfd-solve next to the dlmfdd executable
+//   tokens_file / --tokens-file / DLMFD_TOKENS_FILE        none (lines "token user")
+//   max_scene_bytes / --max-scene-bytes / DLMFD_MAX_SCENE_BYTES       1 MiB
+//   max_grid_nodes / --max-grid-nodes / DLMFD_MAX_GRID_NODES          4,000,000
+//   max_memory_mb / --max-memory-mb / DLMFD_MAX_MEMORY_MB             4096 (estimated per job)
+//   max_queued / --max-queued / DLMFD_MAX_QUEUED           10000 unfinished jobs
+//   watcher_buffer / --watcher-buffer / DLMFD_WATCHER_BUFFER          256 events per watcher
+//   event_ring / --event-ring / DLMFD_EVENT_RING           1024 recent events kept per job
+//   log_level / --log-level / DLMFD_LOG_LEVEL              "info"
+//   port_file / --port-file / DLMFD_PORT_FILE              none: write the bound port here once serving
+// Validation: a listen address that is not loopback requires a tokens file with at least one token.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace dlmfd::server {
+
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Config {
+  std::string listen = "127.0.0.1:7443";
+  std::string data_dir;
+  int max_concurrent = 2;
+  std::string solver;
+  std::string tokens_file;
+  int64_t max_scene_bytes = 1 << 20;
+  int64_t max_grid_nodes = 4'000'000;
+  int64_t max_memory_mb = 4096;
+  int64_t max_queued = 10000;
+  int watcher_buffer = 256;
+  int event_ring = 1024;
+  std::string log_level = "info";
+  std::string port_file;
+  std::map<std::string, std::string> tokens;  // token -> user, loaded from tokens_file
+};
+
+using EnvLookup = std::function<const char*(const char*)>;
+
+// Builds the configuration from argv (argv[0] locates the default solver), the environment and the
+// config file; validates it and loads the tokens. Throws ConfigError with a message for the user.
+// Returns false (and prints help) when --help was given.
+bool LoadConfig(int argc, const char* const* argv, const EnvLookup& env, Config& config);
+
+// Throws ConfigError when the configuration is unusable.
+void ValidateConfig(Config& config);
+
+// True for 127.0.0.0/8, ::1, localhost and unix: addresses.
+bool IsLoopbackAddress(const std::string& listen);
+
+// Parses a tokens file: lines "token user"; blank lines and lines starting with '#' are skipped.
+std::map<std::string, std::string> LoadTokens(const std::string& path);
+
+}  // namespace dlmfd::server

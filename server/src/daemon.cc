@@ -1,0 +1,86 @@
+#include "daemon.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/server_builder.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include "job_proto.h"
+
+namespace dlmfd::server {
+namespace fs = std::filesystem;
+
+Daemon::Daemon(Config config) : config_(std::move(config)) {}
+
+Daemon::~Daemon() {
+  Shutdown();
+  if (lock_fd_ >= 0) close(lock_fd_);
+}
+
+void Daemon::Start() {
+  std::error_code error;
+  fs::create_directories(fs::path(config_.data_dir) / "jobs", error);
+  if (error) {
+    throw ConfigError("data_dir " + config_.data_dir + " cannot be created: " + error.message());
+  }
+  const std::string lock_path = (fs::path(config_.data_dir) / "daemon.lock").string();
+  lock_fd_ = open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
+  if (lock_fd_ < 0 || flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    throw ConfigError("data_dir " + config_.data_dir + " is in use by another dlmfdd (" +
+                      lock_path + " is locked)");
+  }
+  store_ = std::make_unique<JobStore>((fs::path(config_.data_dir) / "jobs.db").string());
+  for (const auto& id : store_->RequeueRunning(NowSeconds())) {
+    spdlog::info("job {}: was RUNNING when the daemon stopped; QUEUED to resume", id);
+  }
+  hub_ = std::make_unique<EventHub>(*store_, static_cast<size_t>(config_.event_ring));
+  scheduler_ = std::make_unique<Scheduler>(config_, *store_, *hub_);
+  service_ = std::make_unique<JobsService>(config_, *store_, *hub_, *scheduler_);
+
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  builder.AddListeningPort(config_.listen, grpc::InsecureServerCredentials(), &port_);
+  builder.RegisterService(service_.get());
+  builder.SetMaxReceiveMessageSize(static_cast<int>(
+      std::min<int64_t>(config_.max_scene_bytes * 2 + (1 << 20), INT32_MAX)));
+  server_ = builder.BuildAndStart();
+  if (!server_ || port_ == 0) {
+    throw ConfigError("cannot listen on " + config_.listen);
+  }
+  scheduler_->Start();
+  spdlog::info("dlmfdd listening on {} (port {}), data in {}, {} concurrent jobs, solver {}",
+               config_.listen, port_, config_.data_dir, config_.max_concurrent, config_.solver);
+  if (config_.tokens.empty()) {
+    spdlog::info("no tokens configured: every caller is the user \"local\" (loopback only)");
+  }
+  if (!config_.port_file.empty()) {
+    const std::string tmp = config_.port_file + ".tmp";
+    {
+      std::ofstream out(tmp, std::ios::trunc);
+      out << port_ << "\n";
+    }
+    fs::rename(tmp, config_.port_file);
+  }
+}
+
+void Daemon::Shutdown() {
+  if (stopped_) return;
+  stopped_ = true;
+  if (server_) {
+    spdlog::info("dlmfdd shutting down");
+    server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
+  }
+  if (scheduler_) scheduler_->Stop();
+  if (server_) server_->Wait();
+}
+
+}  // namespace dlmfd::server

@@ -1,0 +1,12 @@
+// Conversions between the store's JobRecord and the API's dlmfd.v1.Job.
+#pragma once
+
+#include "dlmfd/v1/jobs.pb.h"
+#include "job_store.h"
+
+namespace dlmfd::server {
+
+v1::Job ToProto(const JobRecord& job);
+double NowSeconds();
+
+}  // namespace dlmfd::server

@@ -1,0 +1,64 @@
+// JobsService: the dlmfd.v1.Jobs rpcs (proto/dlmfd/v1/jobs.proto documents each one's error codes).
+//
+// Callback API: unary rpcs answer on the gRPC callback thread (scene validation and one SQLite
+// transaction); Watch and Fetch are ServerWriteReactors, so 100 watchers cost no thread each. A Watch
+// reactor sends from a WatcherQueue: the solver's reader thread only enqueues and, when the stream is
+// idle, starts a write; it never waits for a client. Every handler runs inside Guarded(), so every
+// exception becomes a status through ToStatus and none escapes into gRPC.
+// Ownership: a job of another user is NOT_FOUND, never PERMISSION_DENIED.
+#pragma once
+
+#include <string>
+
+#include "auth.h"
+#include "config.h"
+#include "dlmfd/v1/jobs.grpc.pb.h"
+#include "event_hub.h"
+#include "job_store.h"
+#include "scheduler.h"
+
+namespace dlmfd::server {
+
+class JobsService final : public v1::Jobs::CallbackService {
+ public:
+  JobsService(const Config& config, JobStore& store, EventHub& hub, Scheduler& scheduler);
+
+  grpc::ServerUnaryReactor* Submit(grpc::CallbackServerContext* context,
+                                   const v1::SubmitRequest* request, v1::Job* reply) override;
+  grpc::ServerUnaryReactor* Get(grpc::CallbackServerContext* context, const v1::GetRequest* request,
+                                v1::Job* reply) override;
+  grpc::ServerUnaryReactor* List(grpc::CallbackServerContext* context,
+                                 const v1::ListRequest* request, v1::ListResponse* reply) override;
+  grpc::ServerUnaryReactor* Cancel(grpc::CallbackServerContext* context,
+                                   const v1::CancelRequest* request, v1::Job* reply) override;
+  grpc::ServerWriteReactor<v1::WatchEvent>* Watch(grpc::CallbackServerContext* context,
+                                                  const v1::WatchRequest* request) override;
+  grpc::ServerUnaryReactor* SubmitSweep(grpc::CallbackServerContext* context,
+                                        const v1::SubmitSweepRequest* request,
+                                        v1::SubmitSweepResponse* reply) override;
+  grpc::ServerUnaryReactor* CancelSweep(grpc::CallbackServerContext* context,
+                                        const v1::CancelSweepRequest* request,
+                                        v1::CancelSweepResponse* reply) override;
+  grpc::ServerWriteReactor<v1::FileChunk>* Fetch(grpc::CallbackServerContext* context,
+                                                 const v1::FetchRequest* request) override;
+  grpc::ServerUnaryReactor* ListFiles(grpc::CallbackServerContext* context,
+                                      const v1::ListFilesRequest* request,
+                                      v1::ListFilesResponse* reply) override;
+
+ private:
+  // The caller's job, or NOT_FOUND (also for another user's job).
+  JobRecord OwnJob(const std::string& user, const std::string& job_id);
+  // Validates and builds the record of one job to queue.
+  JobRecord NewJob(const std::string& user, const std::string& scene,
+                   const std::vector<std::string>& overrides, const std::string& name,
+                   const std::vector<std::string>& tags, int priority);
+  void CheckQueueRoom(int64_t adding);
+
+  const Config& config_;
+  JobStore& store_;
+  EventHub& hub_;
+  Scheduler& scheduler_;
+  Authenticator auth_;
+};
+
+}  // namespace dlmfd::server

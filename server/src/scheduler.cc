@@ -1,0 +1,366 @@
+#include "scheduler.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <regex>
+#include <sstream>
+
+#include "job_proto.h"
+#include "service_error.h"
+#include "solver_process.h"
+
+namespace dlmfd::server {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kProgressStoreInterval = 1.0;  // seconds between progress writes to the store
+
+void WriteFileAtomically(const fs::path& path, const std::string& text) {
+  fs::path tmp = path;
+  tmp += ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+  }
+  fs::rename(tmp, path);
+}
+
+// The "reason" of results/summary.json, or empty.
+std::string SummaryReason(const fs::path& summary) {
+  std::ifstream in(summary);
+  if (!in) return {};
+  std::stringstream text;
+  text << in.rdbuf();
+  static const std::regex kReason(R"re("reason"\s*:\s*"((?:[^"\\]|\\.)*)")re");
+  std::smatch match;
+  std::string body = text.str();
+  if (!std::regex_search(body, match, kReason)) return {};
+  return match[1].str();
+}
+
+// The last non-empty line of a log file (at most its last 4 KiB are read).
+std::string LastLogLine(const fs::path& log) {
+  std::ifstream in(log, std::ios::binary);
+  if (!in) return {};
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  const std::streamoff start = size > 4096 ? size - 4096 : 0;
+  in.seekg(start);
+  std::string tail((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::istringstream lines(tail);
+  std::string line, last;
+  while (std::getline(lines, line)) {
+    if (!line.empty()) last = line;
+  }
+  return last;
+}
+
+v1::WatchEvent LogEvent(const std::string& level, const std::string& text) {
+  v1::WatchEvent event;
+  event.mutable_log()->set_level(level);
+  event.mutable_log()->set_text(text);
+  return event;
+}
+
+}  // namespace
+
+Scheduler::Scheduler(const Config& config, JobStore& store, EventHub& hub)
+    : config_(config), store_(store), hub_(hub) {}
+
+Scheduler::~Scheduler() { Stop(std::chrono::seconds(5)); }
+
+std::string Scheduler::JobDir(const std::string& job_id) const {
+  return (fs::path(config_.data_dir) / "jobs" / job_id).string();
+}
+
+std::string Scheduler::ResultsDir(const std::string& job_id) const {
+  return (fs::path(JobDir(job_id)) / "results").string();
+}
+
+void Scheduler::Start() { loop_ = std::thread([this] { Loop(); }); }
+
+void Scheduler::Wake() {
+  std::lock_guard lock(mutex_);
+  dirty_ = true;
+  changed_.notify_all();
+}
+
+void Scheduler::Loop() {
+  std::unique_lock lock(mutex_);
+  while (!Stopping()) {
+    changed_.wait(lock, [this] { return dirty_ || Stopping(); });
+    if (Stopping()) break;
+    dirty_ = false;
+    for (auto it = running_.begin(); it != running_.end();) {
+      if (it->second.done) {
+        it->second.thread.join();
+        it = running_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    while (static_cast<int>(running_.size()) < config_.max_concurrent && !Stopping()) {
+      std::optional<JobRecord> next;
+      try {
+        next = store_.NextQueued();
+        if (!next) break;
+        store_.MarkRunning(next->id, NowSeconds());
+        next = store_.Get(next->id);
+      } catch (const std::exception& e) {
+        spdlog::error("scheduler: {}", e.what());
+        break;
+      }
+      spdlog::info("job {}: RUNNING (attempt {}, priority {})", next->id, next->attempts,
+                   next->priority);
+      hub_.PublishState(*next);
+      auto& entry = running_[next->id];
+      entry.process = std::make_shared<SolverProcess>();
+      entry.thread = std::thread([this, job = *next] { RunJob(job); });
+    }
+  }
+}
+
+void Scheduler::FinishJob(const std::string& job_id, JobState state, const std::string& reason) {
+  if (!store_.MarkFinished(job_id, state, reason, NowSeconds())) return;
+  auto job = store_.Get(job_id);
+  if (!job) return;
+  if (state == JobState::kCompleted) {
+    spdlog::info("job {}: {} after {} steps, t = {}", job_id, JobStateName(state), job->step,
+                 job->time);
+  } else {
+    spdlog::warn("job {}: {}: {}", job_id, JobStateName(state), reason);
+  }
+  hub_.PublishState(*job);
+}
+
+void Scheduler::RunJob(JobRecord job) {
+  std::shared_ptr<SolverProcess> process;
+  {
+    std::lock_guard lock(mutex_);
+    process = running_[job.id].process;
+  }
+  auto cancel_requested = [&] {
+    std::lock_guard lock(mutex_);
+    return running_[job.id].cancel;
+  };
+  int lock_fd = -1;
+  std::optional<std::pair<JobState, std::string>> outcome;
+  try {
+    const fs::path dir = JobDir(job.id);
+    const fs::path results = ResultsDir(job.id);
+    fs::create_directories(dir);
+    lock_fd = LockDirectory(dir.string(), [&] { return Stopping() || cancel_requested(); });
+    if (lock_fd < 0) {
+      if (!Stopping()) outcome.emplace(JobState::kCancelled, "cancelled before the solver started");
+    } else {
+      const bool resume = fs::exists(results / "checkpoint.h5");
+      if (!resume) fs::remove_all(results);
+      fs::create_directories(results);
+      WriteFileAtomically(dir / "scene.in.toml", job.scene);
+      LaunchSpec spec;
+      spec.solver = config_.solver;
+      spec.scene_path = (dir / "scene.in.toml").string();
+      spec.results_dir = results.string();
+      spec.log_path = (dir / "solver.log").string();
+      spec.overrides = job.overrides;
+      spec.resume = resume;
+      spec.lock_fd = lock_fd;
+      if (access(spec.solver.c_str(), X_OK) != 0) {
+        throw std::runtime_error("cannot execute the solver " + spec.solver);
+      }
+      process->Start(spec);
+      spdlog::info("job {}: solver pid {} started{}", job.id, process->pid(),
+                   resume ? " with --resume" : "");
+      hub_.Publish(job.id, LogEvent("info", resume ? "solver resumed from results/checkpoint.h5"
+                                                    : "solver started"));
+      if (cancel_requested()) process->Signal(SIGTERM);
+
+      std::optional<v1::Finished> finished;
+      double last_store = 0;
+      process->ReadEvents([&](const v1::SolverEvent& in) {
+        v1::WatchEvent out;
+        out.set_wall_time(in.wall_time());
+        bool store_progress = false;
+        int64_t step = 0;
+        double time = 0, end_time = 0;
+        switch (in.event_case()) {
+          case v1::SolverEvent::kStarted: {
+            auto* p = out.mutable_progress();
+            step = in.started().step();
+            time = in.started().time();
+            end_time = in.started().end_time();
+            p->set_step(step);
+            p->set_time(time);
+            p->set_end_time(end_time);
+            store_progress = true;
+            break;
+          }
+          case v1::SolverEvent::kProgress: {
+            const auto& src = in.progress();
+            auto* p = out.mutable_progress();
+            p->set_step(src.step());
+            p->set_time(src.time());
+            p->set_end_time(src.end_time());
+            p->set_steps_per_second(src.steps_per_second());
+            p->set_eta_seconds(src.eta_seconds());
+            p->set_max_tra(src.max_tra());
+            p->set_min_eig_a(src.min_eig_a());
+            step = src.step();
+            time = src.time();
+            end_time = src.end_time();
+            store_progress = NowSeconds() - last_store >= kProgressStoreInterval;
+            break;
+          }
+          case v1::SolverEvent::kParticles:
+            *out.mutable_particles() = in.particles();
+            break;
+          case v1::SolverEvent::kSnapshot: {
+            const auto& src = in.snapshot();
+            auto* s = out.mutable_snapshot();
+            s->set_nx(src.nx());
+            s->set_ny(src.ny());
+            *s->mutable_values() = src.values();
+            s->set_time(src.time());
+            s->set_step(src.step());
+            s->set_quantity(src.quantity());
+            s->set_width(src.nx() * src.h());
+            s->set_height(src.ny() * src.h());
+            break;
+          }
+          case v1::SolverEvent::kLog:
+            *out.mutable_log() = in.log();
+            break;
+          case v1::SolverEvent::kCheckpointed: {
+            std::ostringstream text;
+            text << "checkpoint at step " << in.checkpointed().step() << ", t = "
+                 << in.checkpointed().time();
+            out = LogEvent("info", text.str());
+            break;
+          }
+          case v1::SolverEvent::kFinished:
+            finished = in.finished();
+            step = in.finished().steps();
+            time = in.finished().time();
+            end_time = job.end_time;
+            store_progress = true;
+            out = LogEvent("info", "solver finished: " + in.finished().status());
+            break;
+          default:
+            return;
+        }
+        if (store_progress) {
+          if (end_time > 0) job.end_time = end_time;
+          store_.UpdateProgress(job.id, step, time, job.end_time);
+          last_store = NowSeconds();
+        }
+        hub_.Publish(job.id, std::move(out));
+      });
+      const SolverExit exit = process->Wait();
+      const bool cancelled = cancel_requested();
+      const std::string reported = finished ? finished->reason() : std::string();
+      if (Stopping() && (exit.code == 130 || exit.signalled)) {
+        spdlog::info("job {}: solver stopped for the daemon's shutdown; stays RUNNING to resume",
+                     job.id);
+      } else if (!exit.signalled && exit.code == 0) {
+        outcome.emplace(JobState::kCompleted, "");
+      } else if (!exit.signalled && exit.code == 1) {
+        std::string reason = !reported.empty() ? reported : SummaryReason(results / "summary.json");
+        outcome.emplace(JobState::kFailed, reason.empty() ? "solver failed" : reason);
+      } else if (!exit.signalled && exit.code == 2) {
+        std::string reason = !reported.empty() ? reported : LastLogLine(dir / "solver.log");
+        outcome.emplace(JobState::kFailed, "invalid scene or arguments: " + reason);
+      } else if ((!exit.signalled && exit.code == 130) ||
+                 (cancelled && exit.signalled && exit.code == SIGTERM)) {
+        outcome.emplace(JobState::kCancelled, cancelled ? "cancelled" : "solver interrupted");
+      } else if (exit.signalled) {
+        outcome.emplace(JobState::kFailed, "solver killed by signal " + std::to_string(exit.code));
+      } else {
+        outcome.emplace(JobState::kFailed, "solver exited with status " + std::to_string(exit.code));
+      }
+    }
+  } catch (const std::exception& e) {
+    outcome.emplace(JobState::kFailed, e.what());
+  }
+  if (lock_fd >= 0) close(lock_fd);
+  if (outcome) {
+    try {
+      FinishJob(job.id, outcome->first, outcome->second);
+    } catch (const std::exception& e) {
+      spdlog::error("job {}: cannot record the end: {}", job.id, e.what());
+    }
+  }
+  std::lock_guard lock(mutex_);
+  running_[job.id].done = true;
+  dirty_ = true;
+  changed_.notify_all();
+}
+
+JobRecord Scheduler::Cancel(const std::string& job_id) {
+  auto job = store_.Get(job_id);
+  if (!job) throw ServiceError(grpc::StatusCode::NOT_FOUND, "job " + job_id + " not found");
+  if (IsFinished(job->state)) {
+    throw ServiceError(grpc::StatusCode::FAILED_PRECONDITION,
+                       "job " + job_id + " has already finished (" + JobStateName(job->state) + ")");
+  }
+  if (job->state == JobState::kQueued && store_.CancelQueued(job_id, "cancelled", NowSeconds())) {
+    job = store_.Get(job_id);
+    spdlog::info("job {}: CANCELLED while queued", job_id);
+    hub_.PublishState(*job);
+    return *job;
+  }
+  // Running (or started since it was read).
+  store_.SetCancelRequested(job_id);
+  {
+    std::lock_guard lock(mutex_);
+    auto it = running_.find(job_id);
+    if (it != running_.end() && !it->second.done) {
+      it->second.cancel = true;
+      it->second.process->Signal(SIGTERM);
+      spdlog::info("job {}: cancel requested, SIGTERM sent to the solver", job_id);
+    }
+  }
+  job = store_.Get(job_id);
+  if (job->state == JobState::kRunning) job->reason = "cancel requested";
+  return *job;
+}
+
+void Scheduler::Stop(std::chrono::seconds grace) {
+  {
+    std::lock_guard lock(mutex_);
+    if (stopping_.exchange(true)) {
+      if (!loop_.joinable() && running_.empty()) return;
+    }
+    changed_.notify_all();
+  }
+  if (loop_.joinable()) loop_.join();
+  std::unique_lock lock(mutex_);
+  for (auto& [id, entry] : running_) entry.process->Signal(SIGTERM);
+  auto all_done = [this] {
+    for (auto& [id, entry] : running_) {
+      if (!entry.done) return false;
+    }
+    return true;
+  };
+  if (!changed_.wait_for(lock, grace, all_done)) {
+    for (auto& [id, entry] : running_) {
+      if (!entry.done) {
+        spdlog::warn("job {}: solver did not stop within {} s, SIGKILL", id, grace.count());
+        entry.process->Signal(SIGKILL);
+      }
+    }
+    changed_.wait(lock, all_done);
+  }
+  auto entries = std::move(running_);
+  running_.clear();
+  lock.unlock();
+  for (auto& [id, entry] : entries) entry.thread.join();
+}
+
+}  // namespace dlmfd::server

@@ -1,0 +1,77 @@
+// Scheduler: runs queued jobs, highest priority first, then oldest, at most max_concurrent at once.
+//
+// A scheduler thread takes the next QUEUED job from the store, marks it RUNNING (one transaction,
+// attempts + 1) and gives it a runner thread. The runner writes DIR/scene.in.toml, resumes from
+// results/checkpoint.h5 when one exists (else clears results/), takes the job directory's flock (so a
+// job never runs twice at once), runs dlmfd-solve (SolverProcess), turns its events into Watch events
+// for the EventHub, records progress in the store at most once a second, and maps the exit:
+//   0 COMPLETED; 1 FAILED (the reason from the finished event or results/summary.json); 2 FAILED
+//   (invalid scene); 130 CANCELLED; killed by signal N: FAILED "solver killed by signal N".
+// Cancel: a QUEUED job is cancelled in the store at once; a RUNNING one gets SIGTERM (the solver
+// checkpoints and exits 130 at a step boundary). Stop (daemon shutdown) sends SIGTERM too but leaves
+// the jobs RUNNING in the store, so that the next start resumes them; a solver still alive after the
+// grace period gets SIGKILL.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "config.h"
+#include "event_hub.h"
+#include "job_store.h"
+
+namespace dlmfd::server {
+
+class SolverProcess;
+
+class Scheduler {
+ public:
+  Scheduler(const Config& config, JobStore& store, EventHub& hub);
+  ~Scheduler();
+  Scheduler(const Scheduler&) = delete;
+  Scheduler& operator=(const Scheduler&) = delete;
+
+  void Start();
+  // Stops starting jobs, terminates the running solvers (jobs stay RUNNING for the next start) and
+  // joins every thread.
+  void Stop(std::chrono::seconds grace = std::chrono::seconds(30));
+  // Something was queued.
+  void Wake();
+  // Cancels a job of the store; returns its record afterwards. Throws ServiceError
+  // FAILED_PRECONDITION when it has already finished.
+  JobRecord Cancel(const std::string& job_id);
+
+  std::string JobDir(const std::string& job_id) const;
+  std::string ResultsDir(const std::string& job_id) const;
+
+ private:
+  struct Running {
+    std::thread thread;
+    std::shared_ptr<SolverProcess> process;
+    bool cancel = false;
+    bool done = false;
+  };
+  void Loop();
+  void RunJob(JobRecord job);
+  void FinishJob(const std::string& job_id, JobState state, const std::string& reason);
+  bool Stopping() const { return stopping_.load(); }
+
+  const Config& config_;
+  JobStore& store_;
+  EventHub& hub_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::map<std::string, Running> running_;
+  bool dirty_ = true;
+  std::atomic<bool> stopping_{false};
+  std::thread loop_;
+};
+
+}  // namespace dlmfd::server

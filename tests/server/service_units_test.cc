@@ -1,0 +1,302 @@
+// Unit tests of the daemon's parts without a process: the SQLite store, the configuration, the
+// authenticator, the watcher queue's gap rules and snapshot downsampling.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "auth.h"
+#include "config.h"
+#include "job_store.h"
+#include "service_error.h"
+#include "support/daemon_process.h"
+#include "watcher_queue.h"
+
+namespace dlmfd::server {
+namespace {
+
+JobRecord MakeJob(const std::string& id, int priority, const std::string& owner = "local") {
+  JobRecord job;
+  job.id = id;
+  job.name = id;
+  job.owner = owner;
+  job.priority = priority;
+  job.tags = {"t1", "t2"};
+  job.results_dir = "/tmp/" + id;
+  job.scene = "scene text";
+  job.overrides = {"fluid.viscosity=0.1", "time.end=1"};
+  return job;
+}
+
+TEST(JobStore, MigratesOnceAndReopens) {
+  dlmfd::testing::TempDir dir;
+  const std::string path = dir.path() + "/jobs.db";
+  {
+    JobStore store(path);
+    store.InsertJobs({MakeJob("a", 0)}, "local", "");
+  }
+  JobStore store(path);  // a second open applies no migration twice
+  auto job = store.Get("a");
+  ASSERT_TRUE(job);
+  EXPECT_EQ(job->overrides, (std::vector<std::string>{"fluid.viscosity=0.1", "time.end=1"}));
+  EXPECT_EQ(job->tags, (std::vector<std::string>{"t1", "t2"}));
+  EXPECT_EQ(job->state, JobState::kQueued);
+}
+
+TEST(JobStore, QueueOrderIsPriorityThenAge) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  store.InsertJobs({MakeJob("low", -5)}, "local", "");
+  store.InsertJobs({MakeJob("high-old", 3)}, "local", "");
+  store.InsertJobs({MakeJob("high-new", 3)}, "local", "");
+  std::vector<std::string> order;
+  while (auto next = store.NextQueued()) {
+    order.push_back(next->id);
+    store.MarkRunning(next->id, 1.0);
+  }
+  EXPECT_EQ(order, (std::vector<std::string>{"high-old", "high-new", "low"}));
+  EXPECT_EQ(store.CountRunning(), 3);
+  EXPECT_EQ(store.Get("low")->attempts, 1);
+}
+
+TEST(JobStore, RequestKeyMakesInsertIdempotentPerOwner) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  auto first = store.InsertJobs({MakeJob("a", 0)}, "local", "k1");
+  auto retry = store.InsertJobs({MakeJob("b", 0)}, "local", "k1");
+  EXPECT_FALSE(first.existed);
+  EXPECT_TRUE(retry.existed);
+  ASSERT_EQ(retry.jobs.size(), 1u);
+  EXPECT_EQ(retry.jobs[0].id, "a");
+  EXPECT_FALSE(store.Get("b"));
+  auto other_user = store.InsertJobs({MakeJob("c", 0, "bob")}, "bob", "k1");
+  EXPECT_FALSE(other_user.existed);
+}
+
+TEST(JobStore, FinishedStateIsFinal) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  store.InsertJobs({MakeJob("a", 0)}, "local", "");
+  EXPECT_TRUE(store.CancelQueued("a", "cancelled", 2.0));
+  EXPECT_FALSE(store.CancelQueued("a", "cancelled", 3.0));
+  EXPECT_FALSE(store.MarkFinished("a", JobState::kCompleted, "", 4.0));
+  EXPECT_EQ(store.Get("a")->state, JobState::kCancelled);
+  EXPECT_THROW(store.MarkRunning("a", 5.0), StoreError);
+}
+
+TEST(JobStore, RestartRequeuesRunningAndHonoursRequestedCancels) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  store.InsertJobs({MakeJob("run", 0), MakeJob("cancel-me", 0), MakeJob("queued", 0)}, "local", "");
+  store.MarkRunning("run", 1.0);
+  store.MarkRunning("cancel-me", 1.0);
+  store.SetCancelRequested("cancel-me");
+  EXPECT_EQ(store.RequeueRunning(2.0), (std::vector<std::string>{"run"}));
+  EXPECT_EQ(store.Get("run")->state, JobState::kQueued);
+  EXPECT_EQ(store.Get("cancel-me")->state, JobState::kCancelled);
+  EXPECT_EQ(store.Get("queued")->state, JobState::kQueued);
+}
+
+TEST(JobStore, ListFiltersAndPages) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  for (int i = 0; i < 5; ++i) store.InsertJobs({MakeJob("j" + std::to_string(i), 0)}, "local", "");
+  auto other = MakeJob("x", 0, "bob");
+  other.tags = {"special"};
+  store.InsertJobs({other}, "bob", "");
+  ListFilter filter;
+  filter.owner = "local";
+  filter.limit = 2;
+  auto page = store.List(filter);
+  ASSERT_EQ(page.size(), 2u);
+  EXPECT_EQ(page[0].id, "j4");
+  filter.before_ordinal = page[1].ordinal;
+  page = store.List(filter);
+  ASSERT_EQ(page.size(), 2u);
+  EXPECT_EQ(page[0].id, "j2");
+  filter = ListFilter{};
+  filter.owner = "local";
+  filter.tag = "special";
+  EXPECT_TRUE(store.List(filter).empty());
+  filter.owner = "bob";
+  EXPECT_EQ(store.List(filter).size(), 1u);
+}
+
+std::map<std::string, std::string> gEnv;
+const char* FakeEnv(const char* name) {
+  auto it = gEnv.find(name);
+  return it == gEnv.end() ? nullptr : it->second.c_str();
+}
+
+TEST(Config, FlagBeatsEnvironmentBeatsFileBeatsDefault) {
+  dlmfd::testing::TempDir dir;
+  const std::string file = dir.path() + "/dlmfdd.toml";
+  std::ofstream(file) << "max_concurrent = 3\nwatcher_buffer = 99\nmax_queued = 7\n";
+  gEnv = {{"DLMFD_WATCHER_BUFFER", "77"}, {"DLMFD_MAX_QUEUED", "8"}, {"HOME", dir.path()}};
+  const char* argv[] = {"dlmfdd", "--config", file.c_str(), "--max-queued", "9", "--solver", "/bin/true"};
+  Config config;
+  ASSERT_TRUE(LoadConfig(7, argv, FakeEnv, config));
+  EXPECT_EQ(config.max_concurrent, 3);   // file
+  EXPECT_EQ(config.watcher_buffer, 77);  // environment over file
+  EXPECT_EQ(config.max_queued, 9);       // flag over environment
+  EXPECT_EQ(config.listen, "127.0.0.1:7443");  // default
+  EXPECT_EQ(config.data_dir, dir.path() + "/.local/share/dlmfd");
+}
+
+TEST(Config, RejectsUnknownKeysAndBadValues) {
+  dlmfd::testing::TempDir dir;
+  const std::string file = dir.path() + "/dlmfdd.toml";
+  std::ofstream(file) << "max_concurent = 3\n";
+  gEnv = {};
+  const char* argv[] = {"dlmfdd", "--config", file.c_str()};
+  Config config;
+  EXPECT_THROW(LoadConfig(3, argv, FakeEnv, config), ConfigError);
+  const char* argv2[] = {"dlmfdd", "--max-concurrent", "0"};
+  EXPECT_THROW(LoadConfig(3, argv2, FakeEnv, config), ConfigError);
+  const char* argv3[] = {"dlmfdd", "--max-concurrent", "two"};
+  EXPECT_THROW(LoadConfig(3, argv3, FakeEnv, config), ConfigError);
+}
+
+TEST(Config, NonLoopbackNeedsTokens) {
+  gEnv = {};
+  const char* argv[] = {"dlmfdd", "--listen", "0.0.0.0:7443"};
+  Config config;
+  EXPECT_THROW(LoadConfig(3, argv, FakeEnv, config), ConfigError);
+  EXPECT_TRUE(IsLoopbackAddress("127.0.0.1:7443"));
+  EXPECT_TRUE(IsLoopbackAddress("[::1]:7443"));
+  EXPECT_TRUE(IsLoopbackAddress("localhost:1"));
+  EXPECT_TRUE(IsLoopbackAddress("unix:/tmp/s"));
+  EXPECT_FALSE(IsLoopbackAddress("[::]:7443"));
+  EXPECT_FALSE(IsLoopbackAddress("10.0.0.1:7443"));
+  EXPECT_FALSE(IsLoopbackAddress("128.0.0.1:7443"));
+}
+
+TEST(Auth, BearerTokensNameUsers) {
+  Authenticator open(std::map<std::string, std::string>{});
+  EXPECT_EQ(open.UserOfHeader(nullptr), "local");
+  Authenticator auth(std::map<std::string, std::string>{{"0123456789abcdef-alice", "alice"}});
+  const std::string good = "Bearer 0123456789abcdef-alice";
+  const std::string wrong = "Bearer 0123456789abcdef-alicf";
+  const std::string basic = "Basic 0123456789abcdef-alice";
+  EXPECT_EQ(auth.UserOfHeader(&good), "alice");
+  for (const std::string* header : {static_cast<const std::string*>(nullptr), &wrong, &basic}) {
+    try {
+      auth.UserOfHeader(header);
+      ADD_FAILURE() << "accepted";
+    } catch (const ServiceError& e) {
+      EXPECT_EQ(e.code(), grpc::StatusCode::UNAUTHENTICATED);
+    }
+  }
+}
+
+v1::WatchEvent Progress(int64_t seq) {
+  v1::WatchEvent event;
+  event.set_seq(seq);
+  event.mutable_progress()->set_step(seq);
+  return event;
+}
+
+v1::WatchEvent Snapshot(int64_t seq) {
+  v1::WatchEvent event;
+  event.set_seq(seq);
+  auto* s = event.mutable_snapshot();
+  s->set_nx(2);
+  s->set_ny(2);
+  for (int i = 0; i < 9; ++i) s->add_values(static_cast<float>(i));
+  return event;
+}
+
+TEST(WatcherQueue, SlowWatcherGetsGapAndNewestEvents) {
+  WatchOptions options;
+  options.capacity = 4;
+  WatcherQueue queue(options);
+  EXPECT_TRUE(queue.Push(Progress(1)));  // takes the send token
+  for (int64_t seq = 2; seq <= 10; ++seq) EXPECT_FALSE(queue.Push(Progress(seq)));
+  v1::WatchEvent out;
+  ASSERT_EQ(queue.Pop(&out), WatcherQueue::Next::kEvent);
+  ASSERT_TRUE(out.has_gap());
+  EXPECT_EQ(out.gap().from_seq(), 1);
+  EXPECT_EQ(out.gap().to_seq(), 6);
+  std::vector<int64_t> seqs;
+  while (queue.Pop(&out) == WatcherQueue::Next::kEvent) seqs.push_back(out.seq());
+  EXPECT_EQ(seqs, (std::vector<int64_t>{7, 8, 9, 10}));
+  EXPECT_EQ(queue.dropped(), 6);
+}
+
+TEST(WatcherQueue, StateChangesAreNeverDropped) {
+  WatchOptions options;
+  options.capacity = 2;
+  WatcherQueue queue(options);
+  v1::WatchEvent state;
+  state.set_seq(1);
+  state.mutable_state()->set_state(v1::RUNNING);
+  queue.Push(state);
+  state.set_seq(2);
+  queue.Push(state);
+  queue.Push(Progress(3));
+  EXPECT_TRUE(queue.PushEnd() == false);  // token already held
+  v1::WatchEvent out;
+  std::vector<int64_t> seqs;
+  WatcherQueue::Next next;
+  while ((next = queue.Pop(&out)) == WatcherQueue::Next::kEvent) {
+    if (!out.has_gap()) seqs.push_back(out.seq());
+  }
+  EXPECT_EQ(next, WatcherQueue::Next::kEnd);
+  EXPECT_EQ(seqs, (std::vector<int64_t>{1, 2}));
+}
+
+TEST(WatcherQueue, NewerSnapshotReplacesUnsentOne) {
+  WatchOptions options;
+  options.include_snapshots = true;
+  WatcherQueue queue(options);
+  queue.Push(Snapshot(1));
+  queue.Push(Progress(2));
+  queue.Push(Snapshot(3));
+  v1::WatchEvent out;
+  std::vector<int64_t> seqs;
+  bool gap = false;
+  while (queue.Pop(&out) == WatcherQueue::Next::kEvent) {
+    if (out.has_gap()) {
+      gap = true;
+      EXPECT_EQ(out.gap().from_seq(), 1);
+    } else {
+      seqs.push_back(out.seq());
+    }
+  }
+  EXPECT_TRUE(gap);
+  EXPECT_EQ(seqs, (std::vector<int64_t>{2, 3}));
+}
+
+TEST(WatcherQueue, SnapshotsOnlyWhenAskedAndCancelTakesToken) {
+  WatcherQueue queue(WatchOptions{});
+  EXPECT_FALSE(queue.Push(Snapshot(1)));
+  v1::WatchEvent out;
+  EXPECT_EQ(queue.Pop(&out), WatcherQueue::Next::kEmpty);  // gives the token back
+  EXPECT_TRUE(queue.Cancel());
+  EXPECT_EQ(queue.Pop(&out), WatcherQueue::Next::kClosed);
+  EXPECT_FALSE(queue.Push(Progress(2)));
+}
+
+TEST(Downsample, KeepsCornersAndLimits) {
+  v1::Snapshot full;
+  full.set_nx(8);
+  full.set_ny(4);
+  for (int j = 0; j <= 4; ++j) {
+    for (int i = 0; i <= 8; ++i) full.add_values(static_cast<float>(10 * j + i));
+  }
+  auto small = DownsampleSnapshot(full, 3, 2);
+  EXPECT_EQ(small.nx(), 2);
+  EXPECT_EQ(small.ny(), 1);
+  ASSERT_EQ(small.values_size(), 6);
+  EXPECT_EQ(small.values(0), 0.0f);
+  EXPECT_EQ(small.values(1), 4.0f);
+  EXPECT_EQ(small.values(2), 8.0f);
+  EXPECT_EQ(small.values(5), 48.0f);
+  auto same = DownsampleSnapshot(full, 0, 0);
+  EXPECT_EQ(same.values_size(), full.values_size());
+}
+
+}  // namespace
+}  // namespace dlmfd::server

@@ -1,0 +1,175 @@
+#include "daemon_process.h"
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <grpcpp/generic/generic_stub.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+namespace dlmfd::testing {
+namespace fs = std::filesystem;
+
+bool SolverAvailable() { return access(kSolverPath, X_OK) == 0; }
+
+TempDir::TempDir() {
+  std::string pattern = (fs::temp_directory_path() / "dlmfdd-test-XXXXXX").string();
+  path_ = mkdtemp(pattern.data());
+}
+
+TempDir::~TempDir() {
+  std::error_code error;
+  fs::remove_all(path_, error);
+}
+
+DaemonProcess::DaemonProcess(std::string data_dir, std::vector<std::string> extra)
+    : data_dir_(std::move(data_dir)), extra_(std::move(extra)) {
+  log_path_ = data_dir_ + ".daemon.log";
+  port_file_ = data_dir_ + ".port";
+}
+
+DaemonProcess::~DaemonProcess() {
+  if (pid_ > 0) {
+    Kill(SIGTERM);
+    Wait();
+  }
+}
+
+bool DaemonProcess::Start() {
+  std::error_code error;
+  fs::remove(port_file_, error);
+  std::vector<std::string> args = {kDaemonPath,  "--listen",     "127.0.0.1:0", "--data-dir",
+                                   data_dir_,    "--port-file",  port_file_,    "--solver",
+                                   kSolverPath,  "--log-level",  "debug"};
+  args.insert(args.end(), extra_.begin(), extra_.end());
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_ = fork();
+  if (pid_ == 0) {
+    FILE* log = std::freopen(log_path_.c_str(), "a", stderr);
+    if (log) dup2(fileno(stderr), 1);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  // Wait until it serves or exits; no limit on the time it may take.
+  while (true) {
+    int status = 0;
+    if (waitpid(pid_, &status, WNOHANG) == pid_) {
+      pid_ = -1;
+      return false;
+    }
+    std::ifstream in(port_file_);
+    if (in >> port_ && port_ > 0) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+void DaemonProcess::Kill(int signal_number) {
+  if (pid_ > 0) kill(pid_, signal_number);
+}
+
+int DaemonProcess::Wait() {
+  if (pid_ <= 0) return -1;
+  int status = 0;
+  waitpid(pid_, &status, 0);
+  pid_ = -1;
+  return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status);
+}
+
+std::string DaemonProcess::Log() const {
+  std::ifstream in(log_path_);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::shared_ptr<grpc::Channel> DaemonProcess::Channel() const {
+  return grpc::CreateChannel(address(), grpc::InsecureChannelCredentials());
+}
+
+std::unique_ptr<v1::Jobs::Stub> DaemonProcess::Stub() const { return v1::Jobs::NewStub(Channel()); }
+
+bool DaemonProcess::Healthy() const {
+  auto channel = Channel();
+  grpc::ClientContext context;
+  grpc::ByteBuffer request_buffer, reply_buffer;
+  // grpc.health.v1.HealthCheckRequest with an empty service name is an empty message.
+  grpc::GenericStub generic(channel);
+  grpc::Status status;
+  std::mutex mutex;
+  std::condition_variable done;
+  bool finished = false;
+  generic.UnaryCall(&context, "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request_buffer,
+                    &reply_buffer, [&](grpc::Status s) {
+                      std::lock_guard lock(mutex);
+                      status = s;
+                      finished = true;
+                      done.notify_all();
+                    });
+  std::unique_lock lock(mutex);
+  done.wait(lock, [&] { return finished; });
+  if (!status.ok()) return false;
+  std::vector<grpc::Slice> slices;
+  if (!reply_buffer.Dump(&slices).ok()) return false;
+  std::string bytes;
+  for (const auto& slice : slices) bytes.append(reinterpret_cast<const char*>(slice.begin()), slice.size());
+  // HealthCheckResponse { status = 1 (SERVING) }: field 1, varint 1 -> bytes 0x08 0x01.
+  return bytes == std::string("\x08\x01", 2);
+}
+
+std::unique_ptr<grpc::ClientContext> Context(const std::string& token) {
+  auto context = std::make_unique<grpc::ClientContext>();
+  if (!token.empty()) context->AddMetadata("authorization", "Bearer " + token);
+  return context;
+}
+
+std::string CavityScene(double end_time) {
+  std::ostringstream scene;
+  scene << "title = \"lid-driven cavity 16x16\"\n"
+           "[domain]\nsize = [1.0, 1.0]\nh = 0.0625\n"
+           "[domain.boundary]\n"
+           "left = { type = \"wall\" }\nright = { type = \"wall\" }\nbottom = { type = \"wall\" }\n"
+           "top = { type = \"velocity\", profile = \"uniform\", value = [1.0, 0.0] }\n"
+           "[fluid]\nviscosity = 0.01\n"
+           "[time]\ndt = 0.01\nend = "
+        << end_time << "\n";
+  return scene.str();
+}
+
+std::vector<v1::WatchEvent> WatchAll(v1::Jobs::Stub& stub, const std::string& job_id,
+                                     const std::string& token, int64_t from_seq) {
+  auto context = Context(token);
+  v1::WatchRequest request;
+  request.set_job_id(job_id);
+  request.set_from_seq(from_seq);
+  auto reader = stub.Watch(context.get(), request);
+  std::vector<v1::WatchEvent> events;
+  v1::WatchEvent event;
+  while (reader->Read(&event)) events.push_back(event);
+  reader->Finish();
+  return events;
+}
+
+v1::Job WaitFinished(v1::Jobs::Stub& stub, const std::string& job_id, const std::string& token) {
+  while (true) {
+    auto context = Context(token);
+    v1::GetRequest request;
+    request.set_job_id(job_id);
+    v1::Job job;
+    auto status = stub.Get(context.get(), request, &job);
+    if (!status.ok()) return job;
+    if (job.state() >= v1::COMPLETED) return job;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+}
+
+}  // namespace dlmfd::testing

@@ -1,0 +1,74 @@
+// Test support: a real dlmfdd process on a free loopback port with a temporary data directory, and
+// helpers to talk to it through the generated dlmfd.v1.Jobs stub.
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+#include <sys/types.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dlmfd/v1/jobs.grpc.pb.h"
+
+namespace dlmfd::testing {
+
+inline const char kDaemonPath[] = DLMFD_BINARY_DIR "/server/dlmfdd";
+inline const char kSolverPath[] = DLMFD_BINARY_DIR "/engine/dlmfd-solve";
+
+bool SolverAvailable();
+
+// A fresh temporary directory, removed by the destructor.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+class DaemonProcess {
+ public:
+  // data_dir: reused across restarts; extra: more flags ("--max-concurrent", "3", ...).
+  DaemonProcess(std::string data_dir, std::vector<std::string> extra = {});
+  ~DaemonProcess();
+
+  // Starts and waits until it serves (port file written); false if it exited first.
+  bool Start();
+  void Kill(int signal_number);
+  // Waits for the process to exit; returns its exit status (128 + signal when killed).
+  int Wait();
+  int port() const { return port_; }
+  std::string address() const { return "127.0.0.1:" + std::to_string(port_); }
+  const std::string& log_path() const { return log_path_; }
+  std::string Log() const;
+
+  std::shared_ptr<grpc::Channel> Channel() const;
+  std::unique_ptr<v1::Jobs::Stub> Stub() const;
+  // True when the standard health service answers SERVING.
+  bool Healthy() const;
+
+ private:
+  std::string data_dir_;
+  std::vector<std::string> extra_;
+  std::string log_path_;
+  std::string port_file_;
+  pid_t pid_ = -1;
+  int port_ = 0;
+};
+
+// A client context with an optional bearer token.
+std::unique_ptr<grpc::ClientContext> Context(const std::string& token = "");
+
+// A tiny lid-driven cavity: 16 x 16 cells, Newtonian.
+std::string CavityScene(double end_time = 0.5);
+
+// Reads a Watch stream to its end; returns the events.
+std::vector<v1::WatchEvent> WatchAll(v1::Jobs::Stub& stub, const std::string& job_id,
+                                     const std::string& token = "", int64_t from_seq = 0);
+// Polls Get until the job is finished; returns it.
+v1::Job WaitFinished(v1::Jobs::Stub& stub, const std::string& job_id, const std::string& token = "");
+
+}  // namespace dlmfd::testing

@@ -1,0 +1,228 @@
+// Step (34): the least-squares CG and the wave-like scheme leave a uniform flow unchanged; the LS
+// gradient is the adjoint of the linearised residual; LS-CG reaches its tolerance; the wave scheme
+// is stable (no energy growth) at Courant number 0.9.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "dlmfd/core/errors.h"
+#include "dlmfd/core/simulation.h"
+#include "dlmfd/fluid/advection_least_squares.h"
+#include "dlmfd/fluid/advection_wave.h"
+#include "dlmfd/fluid/boundary_data.h"
+
+namespace dlmfd {
+namespace {
+
+BoundarySide Side(SideType type, double ux = 0.0, double uy = 0.0) {
+  BoundarySide s;
+  s.type = type;
+  s.value = Vec2(ux, uy);
+  return s;
+}
+
+Params MakeParams(double h, BoundarySide left, BoundarySide right, BoundarySide bottom, BoundarySide top) {
+  Params p;
+  p.domain.size = Vec2(1.0, 1.0);
+  p.domain.h = h;
+  p.domain.sides[0] = left;
+  p.domain.sides[1] = right;
+  p.domain.sides[2] = bottom;
+  p.domain.sides[3] = top;
+  p.fluid.viscosity = 0.02;
+  p.fluid.solvent_ratio = 1.0;
+  p.time.dt = 0.02;
+  p.output.fields_every = 0.0;
+  return p;
+}
+
+Grid GridOf(const Params& p) {
+  return Grid{static_cast<int>(std::lround(1.0 / p.domain.h)), static_cast<int>(std::lround(1.0 / p.domain.h)),
+              p.domain.h, 0.0, 0.0};
+}
+
+std::vector<Params> UniformFlowCases() {
+  const Vec2 w(0.7, 0.4);
+  return {MakeParams(1.0 / 16, Side(SideType::kVelocity, w.x(), w.y()), Side(SideType::kVelocity, w.x(), w.y()),
+                     Side(SideType::kVelocity, w.x(), w.y()), Side(SideType::kVelocity, w.x(), w.y())),
+          MakeParams(1.0 / 16, Side(SideType::kPeriodic), Side(SideType::kPeriodic),
+                     Side(SideType::kVelocity, w.x(), w.y()), Side(SideType::kOutflow)),
+          MakeParams(1.0 / 16, Side(SideType::kVelocity, w.x(), w.y()), Side(SideType::kOutflow),
+                     Side(SideType::kPeriodic), Side(SideType::kPeriodic))};
+}
+
+TEST(Advection, UniformFlowIsUnchangedByBothSchemes) {
+  for (const Params& p : UniformFlowCases()) {
+    const Grid g = GridOf(p);
+    BoundaryData data(g, p.domain);
+    AdvectionLeastSquares ls(g, p.domain, p.fluid, p.time.dt, 0.5, p.solvers, data);
+    AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.5, p.solvers, data);
+    for (int scheme = 0; scheme < 2; ++scheme) {
+      std::vector<double> u(g.NodeCount(), 0.7), v(g.NodeCount(), 0.4);
+      const AdvectionReport r = scheme == 0 ? ls.Solve(u.data(), v.data()) : wave.Solve(u.data(), v.data());
+      if (scheme == 0) {
+        EXPECT_EQ(r.iterations, 0);  // T(u*) = 0 exactly: nothing to minimise
+      }
+      double change = 0.0;
+      for (std::size_t k = 0; k < u.size(); ++k) {
+        change = std::max({change, std::abs(u[k] - 0.7), std::abs(v[k] - 0.4)});
+      }
+      EXPECT_LE(change, 1e-13) << "scheme " << scheme;
+    }
+  }
+}
+
+// A smooth field plus data on the Dirichlet nodes, duplicates synced.
+void FillSmooth(const Grid& g, const NodeSet& nodes, const BoundaryData& data, std::vector<double>& u,
+                std::vector<double>& v, double phase) {
+  u.assign(g.NodeCount(), 0.0);
+  v.assign(g.NodeCount(), 0.0);
+  for (int j = 0; j <= g.ny; ++j) {
+    for (int i = 0; i <= g.nx; ++i) {
+      const double x = g.X(i), y = g.Y(j);
+      u[g.Index(i, j)] = std::sin(6.0 * x + phase) * std::cos(4.0 * y) + 0.5;
+      v[g.Index(i, j)] = std::cos(5.0 * x - 3.0 * y + phase) * 0.8;
+    }
+  }
+  nodes.SyncPeriodic(u.data());
+  nodes.SyncPeriodic(v.data());
+  data.Apply(u.data(), v.data());
+}
+
+// <T'(u) w, y> = <w, T'(u)^T y> on unknowns, with outflow and periodic sides (where G^T = -G needs
+// its boundary term), and T'(u) w = (T(u + e w) - T(u - e w)) / 2e exactly since T is quadratic.
+TEST(AdvectionLeastSquares, GradientIsTheAdjointOfTheLinearisedResidual) {
+  const std::vector<Params> cases = {
+      MakeParams(1.0 / 8, Side(SideType::kPeriodic), Side(SideType::kPeriodic), Side(SideType::kWall),
+                 Side(SideType::kOutflow)),
+      MakeParams(1.0 / 8, Side(SideType::kOutflow), Side(SideType::kOutflow), Side(SideType::kVelocity, 0.1, 1.0),
+                 Side(SideType::kOutflow)),
+      MakeParams(1.0 / 8, Side(SideType::kWall), Side(SideType::kWall), Side(SideType::kWall),
+                 Side(SideType::kVelocity, 1.0, 0.0))};
+  for (const Params& p : cases) {
+    const Grid g = GridOf(p);
+    BoundaryData data(g, p.domain);
+    AdvectionLeastSquares ls(g, p.domain, p.fluid, p.time.dt, 0.5, p.solvers, data);
+    const NodeSet& nodes = ls.nodes();
+    std::vector<double> u, v, wu, wv, yu, yv, su, sv;
+    FillSmooth(g, nodes, data, u, v, 0.0);
+    FillSmooth(g, nodes, data, su, sv, 0.4);
+    FillSmooth(g, nodes, data, wu, wv, 1.1);
+    FillSmooth(g, nodes, data, yu, yv, 2.3);
+    for (auto* a : {&wu, &wv, &yu, &yv}) nodes.ZeroKnown(a->data());
+    for (auto* a : {&wu, &wv}) nodes.SyncPeriodic(a->data());
+    ls.SetReference(su.data(), sv.data());
+    const std::size_t n = g.NodeCount();
+    std::vector<double> jwu(n), jwv(n), jtu(n), jtv(n);
+    ls.Jacobian(u.data(), v.data(), wu.data(), wv.data(), jwu.data(), jwv.data());
+    ls.JacobianTranspose(u.data(), v.data(), yu.data(), yv.data(), jtu.data(), jtv.data());
+    const double lhs = nodes.Dot2(jwu.data(), yu.data(), jwv.data(), yv.data());
+    const double rhs = nodes.Dot2(wu.data(), jtu.data(), wv.data(), jtv.data());
+    EXPECT_NEAR(lhs, rhs, 1e-12 * std::abs(lhs));
+
+    const double e = 1e-3;
+    std::vector<double> up(n), vp(n), um(n), vm(n), tpu(n), tpv(n), tmu(n), tmv(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      up[k] = u[k] + e * wu[k];
+      vp[k] = v[k] + e * wv[k];
+      um[k] = u[k] - e * wu[k];
+      vm[k] = v[k] - e * wv[k];
+    }
+    ls.Residual(up.data(), vp.data(), tpu.data(), tpv.data());
+    ls.Residual(um.data(), vm.data(), tmu.data(), tmv.data());
+    double diff = 0.0, scale = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      diff = std::max({diff, std::abs((tpu[k] - tmu[k]) / (2 * e) - jwu[k]), std::abs((tpv[k] - tmv[k]) / (2 * e) - jwv[k])});
+      scale = std::max({scale, std::abs(jwu[k]), std::abs(jwv[k])});
+    }
+    EXPECT_LE(diff, 1e-9 * scale);  // round-off of a difference quotient with e = 1e-3
+  }
+}
+
+// sqrt(g.r / g0.r0), recomputed from scratch after the solve, is below the tolerance, and the
+// residual norm <P^-1 T, T> has fallen accordingly.
+TEST(AdvectionLeastSquares, GradientRatioIsBelowToleranceAfterSolve) {
+  Params p = MakeParams(1.0 / 16, Side(SideType::kPeriodic), Side(SideType::kPeriodic), Side(SideType::kWall),
+                        Side(SideType::kOutflow));
+  p.solvers.advection_tolerance = 1e-6;
+  p.time.dt = 0.05;
+  const Grid g = GridOf(p);
+  BoundaryData data(g, p.domain);
+  AdvectionLeastSquares ls(g, p.domain, p.fluid, p.time.dt, 0.5, p.solvers, data);
+  const NodeSet& nodes = ls.nodes();
+  std::vector<double> u, v;
+  FillSmooth(g, nodes, data, u, v, 0.0);
+  const std::vector<double> su = u, sv = v;
+  const std::size_t n = g.NodeCount();
+  std::vector<double> tu(n), tv(n), yu(n), yv(n), ru(n), rv(n), gu(n), gv(n);
+  auto measure = [&](const std::vector<double>& a, const std::vector<double>& b, double* jval) {
+    ls.Residual(a.data(), b.data(), tu.data(), tv.data());
+    ls.ApplyPreconditioner(tu.data(), tv.data(), yu.data(), yv.data());
+    *jval = nodes.Dot2(tu.data(), yu.data(), tv.data(), yv.data());
+    ls.JacobianTranspose(a.data(), b.data(), yu.data(), yv.data(), ru.data(), rv.data());
+    ls.ApplyPreconditioner(ru.data(), rv.data(), gu.data(), gv.data());
+    return nodes.Dot2(gu.data(), ru.data(), gv.data(), rv.data());
+  };
+  ls.SetReference(su.data(), sv.data());
+  double j0 = 0.0, j1 = 0.0;
+  const double gr0 = measure(su, sv, &j0);
+  const AdvectionReport r = ls.Solve(u.data(), v.data());
+  ls.SetReference(su.data(), sv.data());
+  const double gr1 = measure(u, v, &j1);
+  EXPECT_GT(r.iterations, 1);
+  EXPECT_LE(r.residual, 1e-6);
+  EXPECT_LE(std::sqrt(gr1 / gr0), 1e-6 * (1.0 + 1e-6));
+  EXPECT_LE(j1, 1e-8 * j0);
+}
+
+// Doubly periodic Taylor-Green cells plus a grid-scale checkerboard, run with the wave scheme at
+// Courant number 0.9 (one sub-step per step): the kinetic energy never grows. At 1.6, beyond the
+// stability limit of about 1 (method notes 1, section 4), the same run grows: the check can fail.
+double EnergyGrowth(double courant) {
+  Params p = MakeParams(1.0 / 32, Side(SideType::kPeriodic), Side(SideType::kPeriodic), Side(SideType::kPeriodic),
+                        Side(SideType::kPeriodic));
+  p.fluid.viscosity = 1e-4;
+  p.splitting.advection = AdvectionScheme::kWave;
+  p.solvers.wave_max_courant = 2.0;  // one sub-step: the step's own Courant number is the test's
+  const double umax = 1.0;
+  p.time.dt = courant * p.domain.h / umax;
+  Simulation sim(p);
+  const Grid& g = sim.grid();
+  FlowState& s = sim.mutable_state();
+  const double k = 2.0 * M_PI;
+  for (int j = 0; j <= g.ny; ++j) {
+    for (int i = 0; i <= g.nx; ++i) {
+      const double x = g.X(i), y = g.Y(j), sign = ((i + j) % 2 == 0) ? 1.0 : -1.0;
+      s.u[g.Index(i, j)] = 0.95 * -std::cos(k * x) * std::sin(k * y) + 0.01 * sign;
+      s.v[g.Index(i, j)] = 0.95 * std::sin(k * x) * std::cos(k * y) - 0.01 * sign;
+    }
+  }
+  auto energy = [&] {
+    double e = 0.0;
+    for (int j = 0; j < g.ny; ++j) {
+      for (int i = 0; i < g.nx; ++i) e += s.u[g.Index(i, j)] * s.u[g.Index(i, j)] + s.v[g.Index(i, j)] * s.v[g.Index(i, j)];
+    }
+    return e;
+  };
+  double worst = 0.0, previous = energy();
+  for (int n = 0; n < 200; ++n) {
+    try {
+      sim.Step();
+    } catch (const RunFailure&) {
+      return 1e300;
+    }
+    const double e = energy();
+    worst = std::max(worst, e / previous - 1.0);
+    previous = e;
+  }
+  return worst;
+}
+
+TEST(AdvectionWave, StableAtCourantNineTenths) {
+  EXPECT_LE(EnergyGrowth(0.9), 1e-12);
+  EXPECT_GT(EnergyGrowth(1.6), 1e-3);
+}
+
+}  // namespace
+}  // namespace dlmfd

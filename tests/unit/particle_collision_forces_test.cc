@@ -1,0 +1,111 @@
+// Collision forces (14)-(15) and the cell-list neighbour search.
+#include "dlmfd/particles/collision_forces.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+#include <utility>
+
+namespace dlmfd {
+namespace {
+
+Params Box(double width, double height, double h, bool periodic_x, bool periodic_y) {
+  Params params;
+  params.domain.size = Vec2(width, height);
+  params.domain.h = h;
+  for (int s = 0; s < 4; ++s) {
+    const bool periodic = s < 2 ? periodic_x : periodic_y;
+    params.domain.sides[s].type = periodic ? SideType::kPeriodic : SideType::kWall;
+  }
+  return params;
+}
+
+Grid GridOf(const Params& p) {
+  return Grid{static_cast<int>(std::lround(p.domain.size.x() / p.domain.h)),
+              static_cast<int>(std::lround(p.domain.size.y() / p.domain.h)), p.domain.h, 0.0, 0.0};
+}
+
+// Cell lists must find exactly the pairs that all-pairs finds within the cell size.
+void ExpectCellListEqualsAllPairs(bool periodic_x, bool periodic_y) {
+  const Params params = Box(2.0, 3.0, 1.0 / 32, periodic_x, periodic_y);
+  const Grid grid = GridOf(params);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> ux(0.0, 2.0), uy(0.0, 3.0), ur(0.02, 0.1);
+  const int n = 400;
+  std::vector<double> radii(n);
+  std::vector<Vec2> x(n);
+  for (int i = 0; i < n; ++i) {
+    radii[i] = ur(rng);
+    x[i] = Vec2(ux(rng), uy(rng));
+  }
+  CollisionForces forces(params, grid, radii);
+  const double cutoff = forces.CellSize();
+  std::set<std::pair<int, int>> cell_pairs, all_pairs;
+  forces.ForEachNearPair(x, [&](int i, int j, const Vec2& delta) {
+    EXPECT_LT(i, j);
+    if (delta.norm() < cutoff) {
+      EXPECT_TRUE(cell_pairs.emplace(i, j).second) << "pair twice";
+    }
+  });
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      if (forces.MinimumImage(x[i] - x[j]).norm() < cutoff) all_pairs.emplace(i, j);
+    }
+  }
+  EXPECT_GT(all_pairs.size(), 100u);
+  EXPECT_EQ(cell_pairs, all_pairs);
+}
+
+TEST(CollisionForces, CellListFindsTheAllPairsNeighboursWithWalls) { ExpectCellListEqualsAllPairs(false, false); }
+TEST(CollisionForces, CellListFindsTheAllPairsNeighboursPeriodic) { ExpectCellListEqualsAllPairs(true, true); }
+TEST(CollisionForces, CellListFindsTheAllPairsNeighboursMixed) { ExpectCellListEqualsAllPairs(true, false); }
+
+TEST(CollisionForces, PairForceIsEquation14) {
+  Params params = Box(2.0, 2.0, 1.0 / 96, false, false);
+  const Grid grid = GridOf(params);
+  CollisionForces forces(params, grid, {0.1, 0.1});
+  const double rho = 1.5 / 96;
+  const double d = 0.2 + 0.4 * rho;  // inside the range
+  std::vector<Vec2> x = {Vec2(1.0, 1.0), Vec2(1.0 + 0.6 * d, 1.0 + 0.8 * d)}, f(2);
+  EXPECT_EQ(forces.Compute(x, f), 1);
+  const Vec2 expected = (x[0] - x[1]) * (0.2 + rho - d) * (0.2 + rho - d) / 2e-5;  // not normalised
+  EXPECT_NEAR((f[0] - expected).norm(), 0.0, 1e-12 * expected.norm());
+  EXPECT_NEAR((f[0] + f[1]).norm(), 0.0, 1e-15);
+  // Out of range: no force.
+  x[1] = Vec2(1.0, 1.0 + 0.2 + 1.01 * rho);
+  EXPECT_EQ(forces.Compute(x, f), 0);
+  EXPECT_EQ(f[0].norm(), 0.0);
+}
+
+TEST(CollisionForces, WallForceUsesTheMirrorImage) {
+  Params params = Box(2.0, 2.0, 1.0 / 96, false, true);  // walls left and right only
+  const Grid grid = GridOf(params);
+  CollisionForces forces(params, grid, {0.1});
+  const double rho = 1.5 / 96;
+  const double distance = 0.1 + 0.3 * rho;  // centre to the left wall
+  std::vector<Vec2> x = {Vec2(distance, 0.01)}, f(1);  // near the periodic bottom: no force from it
+  EXPECT_EQ(forces.Compute(x, f), 1);
+  const double d = 2 * distance;
+  EXPECT_NEAR(f[0].x(), d * (0.2 + rho - d) * (0.2 + rho - d) / 1e-5, 1e-12);
+  EXPECT_EQ(f[0].y(), 0.0);
+  x[0] = Vec2(2.0 - distance, 1.0);  // right wall pushes to -x
+  forces.Compute(x, f);
+  EXPECT_LT(f[0].x(), 0.0);
+}
+
+TEST(CollisionForces, PeriodicPairInteractsAcrossTheSide) {
+  Params params = Box(1.0, 1.0, 1.0 / 48, true, true);
+  const Grid grid = GridOf(params);
+  CollisionForces forces(params, grid, {0.1, 0.1});
+  std::vector<Vec2> x = {Vec2(0.05, 0.5), Vec2(0.99 - 0.15, 0.5)}, f(2);
+  // Image distance 0.05 + 0.01 + 0.15 = 0.21 < 0.2 + 1.5/48.
+  EXPECT_EQ(forces.Compute(x, f), 1);
+  EXPECT_GT(f[0].x(), 0.0);  // pushed to +x, away from the image at x = -0.16
+  EXPECT_NEAR(forces.MinGap(x), 0.01, 1e-12);
+}
+
+}  // namespace
+}  // namespace dlmfd

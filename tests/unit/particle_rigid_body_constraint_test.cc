@@ -1,0 +1,225 @@
+// The DLM step (37) with gamma = 0: rigid at the multiplier nodes, momentum conserved, rigid fluid
+// motion untouched. Synthetic velocity fields on a small grid; no fluid solver.
+#include "dlmfd/particles/rigid_body_constraint.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "dlmfd/core/errors.h"
+
+namespace dlmfd {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Unit box of walls, h = 1/48, h_p = 1/35 (the paper's ratio 96/70), one disk D = 0.2.
+struct DiskScene {
+  Params params;
+  Grid grid;
+  std::vector<ParticleState> particles;
+  std::vector<double> u, v;
+
+  explicit DiskScene(double density, Motion motion = Motion::kFree) {
+    params.domain.size = Vec2(1.0, 1.0);
+    params.domain.h = 1.0 / 48;
+    params.particle_mesh.h = 1.0 / 35;
+    params.fluid.density = 1.0;
+    ParticleParams pp;
+    pp.center = Vec2(0.5137, 0.4871);  // off the grid lines
+    pp.diameter = 0.2;
+    pp.density = density;
+    pp.motion = motion;
+    params.particles.push_back(pp);
+    grid = Grid{48, 48, 1.0 / 48, 0.0, 0.0};
+    ParticleState s;
+    s.id = 0;
+    s.position = pp.center;
+    s.radius = 0.1;
+    s.density = density;
+    s.motion = motion;
+    s.velocity = Vec2(0.1, -0.2);
+    s.angular_velocity = 0.5;
+    particles.push_back(s);
+    u.assign(grid.NodeCount(), 0.0);
+    v.assign(grid.NodeCount(), 0.0);
+  }
+  // A non-rigid field, zero on the walls.
+  void Vortical() {
+    for (int j = 1; j < grid.ny; ++j) {
+      for (int i = 1; i < grid.nx; ++i) {
+        const double x = grid.X(i), y = grid.Y(j);
+        u[grid.Index(i, j)] = std::sin(2 * kPi * x) * std::cos(2 * kPi * y) + 0.3;
+        v[grid.Index(i, j)] = -std::cos(2 * kPi * x) * std::sin(2 * kPi * y) + 0.2 * x;
+      }
+    }
+  }
+};
+
+// P1 interpolation on the SW-NE triangles, written independently of the library: barycentric
+// coordinates of the containing triangle from a 2x2 solve.
+Vec2 Interpolate(const Grid& grid, const std::vector<double>& u, const std::vector<double>& v, Vec2 y) {
+  const int i = static_cast<int>(std::floor((y.x() - grid.x0) / grid.h));
+  const int j = static_cast<int>(std::floor((y.y() - grid.y0) / grid.h));
+  const Vec2 sw(grid.X(i), grid.Y(j)), ne(grid.X(i + 1), grid.Y(j + 1));
+  const bool lower = (y - sw).x() >= (y - sw).y();
+  const int ci = lower ? i + 1 : i, cj = lower ? j : j + 1;
+  const Vec2 c(grid.X(ci), grid.Y(cj));
+  Eigen::Matrix2d m;
+  m.col(0) = ne - sw;
+  m.col(1) = c - sw;
+  const Vec2 b = m.partialPivLu().solve(y - sw);
+  const double w[3] = {1 - b[0] - b[1], b[0], b[1]};
+  const std::size_t n[3] = {grid.Index(i, j), grid.Index(i + 1, j + 1), grid.Index(ci, cj)};
+  Vec2 out = Vec2::Zero();
+  for (int q = 0; q < 3; ++q) out += w[q] * Vec2(u[n[q]], v[n[q]]);
+  return out;
+}
+
+double MaxMismatch(const DiskScene& s, const RigidBodyConstraint& dlm) {
+  double worst = 0.0;
+  const ParticleState& p = s.particles[0];
+  for (const Vec2& r : dlm.MeshOf(0).nodes()) {
+    const Vec2 rigid = p.velocity + p.angular_velocity * Vec2(-r.y(), r.x());
+    worst = std::max(worst, (Interpolate(s.grid, s.u, s.v, p.position + r) - rigid).norm());
+  }
+  return worst;
+}
+
+TEST(RigidBodyConstraint, VelocityIsRigidAtTheMultiplierNodesToTheCgTolerance) {
+  for (double tol : {1e-6, 1e-10}) {
+    DiskScene s(1.5);
+    s.params.solvers.multiplier_tolerance = tol;
+    s.Vortical();
+    RigidBodyConstraint dlm(s.params, s.grid);
+    const double before = MaxMismatch(s, dlm);
+    // Bound from the stopping rule <g,g>_G <= tol^2 <g0,g0>_G and |g|_2^2 <= <g,g>_G / lambda_min(G).
+    const ParticleMesh& mesh = dlm.MeshOf(0);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig{Eigen::MatrixXd(mesh.Gram())};
+    const double lambda_min = eig.eigenvalues().minCoeff();
+    double g0 = 0.0;
+    {
+      const ParticleState& p = s.particles[0];
+      std::vector<double> g(2 * mesh.NodeCount()), gg(g.size());
+      for (int k = 0; k < mesh.NodeCount(); ++k) {
+        const Vec2 r = mesh.nodes()[k];
+        const Vec2 d = Interpolate(s.grid, s.u, s.v, p.position + r) - p.velocity -
+                       p.angular_velocity * Vec2(-r.y(), r.x());
+        g[2 * k] = d.x();
+        g[2 * k + 1] = d.y();
+      }
+      g0 = mesh.GramDot2(g.data(), g.data(), gg.data());
+    }
+    const RigidBodyConstraint::Outcome out = dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
+    const double after = MaxMismatch(s, dlm);
+    const double bound = tol * std::sqrt(g0 / lambda_min) + 1e-13;
+    std::printf("tol %.0e: %d iterations, mismatch %.3e -> %.3e (bound %.3e, reported %.3e)\n", tol,
+                out.iterations, before, after, bound, out.residual);
+    EXPECT_GT(before, 0.1);
+    EXPECT_LE(after, bound);
+    EXPECT_NEAR(out.residual, after, 1e-12);
+  }
+}
+
+TEST(RigidBodyConstraint, ConservesLinearAndAngularMomentumToRoundOff) {
+  DiskScene s(1.01);
+  s.Vortical();
+  const double m = s.params.fluid.density * s.grid.h * s.grid.h;
+  const double me = (1.01 - 1.0) * kPi * 0.01, je = me * 0.01 / 2;
+  auto momentum = [&](Vec2* linear, double* angular) {
+    const ParticleState& p = s.particles[0];
+    *linear = me * p.velocity;
+    *angular = je * p.angular_velocity;
+    for (int j = 0; j <= s.grid.ny; ++j) {
+      for (int i = 0; i <= s.grid.nx; ++i) {
+        const Vec2 r = Vec2(s.grid.X(i), s.grid.Y(j)) - p.position;
+        const Vec2 w(s.u[s.grid.Index(i, j)], s.v[s.grid.Index(i, j)]);
+        *linear += m * w;
+        *angular += m * (r.x() * w.y() - r.y() * w.x());
+      }
+    }
+  };
+  Vec2 p0, p1;
+  double l0, l1;
+  momentum(&p0, &l0);
+  RigidBodyConstraint dlm(s.params, s.grid);
+  dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
+  momentum(&p1, &l1);
+  std::printf("linear momentum change %.3e, angular %.3e (of %.3e, %.3e)\n", (p1 - p0).norm(),
+              std::abs(l1 - l0), p0.norm(), std::abs(l0));
+  // Round-off: ~2400 nodes of O(1e-4) momentum summed in double precision.
+  EXPECT_LT((p1 - p0).norm(), 1e-15);
+  EXPECT_LT(std::abs(l1 - l0), 1e-15);
+  EXPECT_GT(dlm.NodalForceSum(0).norm(), 1e-3);  // the step did move momentum
+}
+
+TEST(RigidBodyConstraint, RigidFluidMotionIsLeftUnchanged) {
+  DiskScene s(1.5);
+  const Vec2 velocity(0.3, -0.1);
+  const double omega = 2.0;
+  const ParticleState& p = s.particles[0];
+  for (int j = 1; j < s.grid.ny; ++j) {
+    for (int i = 1; i < s.grid.nx; ++i) {
+      const Vec2 r = Vec2(s.grid.X(i), s.grid.Y(j)) - p.position;
+      s.u[s.grid.Index(i, j)] = velocity.x() - omega * r.y();
+      s.v[s.grid.Index(i, j)] = velocity.y() + omega * r.x();
+    }
+  }
+  s.particles[0].velocity = velocity;
+  s.particles[0].angular_velocity = omega;
+  const std::vector<double> u0 = s.u, v0 = s.v;
+  RigidBodyConstraint dlm(s.params, s.grid);
+  const auto out = dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
+  EXPECT_EQ(out.iterations, 0);
+  for (std::size_t q = 0; q < u0.size(); ++q) {
+    ASSERT_NEAR(s.u[q], u0[q], 1e-15);
+    ASSERT_NEAR(s.v[q], v0[q], 1e-15);
+  }
+  EXPECT_NEAR((s.particles[0].velocity - velocity).norm(), 0.0, 1e-15);
+  EXPECT_NEAR(s.particles[0].angular_velocity, omega, 1e-14);
+}
+
+TEST(RigidBodyConstraint, FixedParticleKeepsItsVelocityAndStillMakesTheFluidRigid) {
+  DiskScene s(1.5, Motion::kFixed);
+  s.particles[0].velocity = Vec2::Zero();
+  s.particles[0].angular_velocity = 0.0;
+  s.Vortical();
+  RigidBodyConstraint dlm(s.params, s.grid);
+  dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
+  EXPECT_EQ(s.particles[0].velocity.norm(), 0.0);
+  EXPECT_EQ(s.particles[0].angular_velocity, 0.0);
+  EXPECT_LT(MaxMismatch(s, dlm), 1e-5);
+}
+
+TEST(RigidBodyConstraint, WarmStartFromTheStoredMultiplierSavesIterations) {
+  // Two identical steps: the second starts from the first's nodal forces and the same u*.
+  DiskScene s(1.5);
+  s.Vortical();
+  const std::vector<double> u0 = s.u, v0 = s.v;
+  const ParticleState p0 = s.particles[0];
+  RigidBodyConstraint dlm(s.params, s.grid);
+  const auto cold = dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
+  const Vec2 cold_velocity = s.particles[0].velocity;
+  const std::vector<double> stored = s.particles[0].multiplier;
+  s.u = u0;
+  s.v = v0;
+  s.particles[0] = p0;
+  s.particles[0].multiplier = stored;
+  const auto warm = dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
+  std::printf("cold %d iterations, warm %d\n", cold.iterations, warm.iterations);
+  EXPECT_TRUE(warm.warm_start);
+  EXPECT_LT(warm.iterations, cold.iterations);
+  // Both satisfy the same stopping rule, so they agree to about tol times the velocity scale.
+  EXPECT_NEAR((s.particles[0].velocity - cold_velocity).norm(), 0.0, 1e-5);
+}
+
+TEST(RigidBodyConstraint, RejectsFreeParticlesNotHeavierThanTheLiquid) {
+  DiskScene s(1.0);
+  EXPECT_THROW(RigidBodyConstraint dlm(s.params, s.grid), InvalidParameter);
+}
+
+}  // namespace
+}  // namespace dlmfd
