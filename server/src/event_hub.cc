@@ -1,5 +1,6 @@
 #include "event_hub.h"
 
+#include <algorithm>
 #include <deque>
 #include <optional>
 #include <vector>
@@ -141,8 +142,10 @@ bool EventHub::Attach(const JobRecord& job, int64_t from_seq,
     return token;
   }
   std::lock_guard lock(channel->mutex);
+  // The current state is a summary, not a new event: it carries the watcher's own position so that
+  // the sequence numbers a watcher sees never decrease.
   v1::WatchEvent current;
-  current.set_seq(channel->last_seq);
+  current.set_seq(std::min(from_seq, channel->last_seq));
   current.set_wall_time(NowSeconds());
   auto* state = current.mutable_state();
   state->set_state(channel->job.state());

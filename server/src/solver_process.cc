@@ -102,7 +102,9 @@ void SolverProcess::ReadEvents(const std::function<void(const v1::SolverEvent&)>
   google::protobuf::io::FileInputStream input(events_fd_);
   v1::SolverEvent event;
   bool clean_eof = false;
-  while (google::protobuf::util::ParseDelimitedFromZeroCopyStream(&event, &input, &clean_eof)) {
+  while (true) {
+    event.Clear();  // parsing merges into the message
+    if (!google::protobuf::util::ParseDelimitedFromZeroCopyStream(&event, &input, &clean_eof)) break;
     on_event(event);
   }
   close(events_fd_);

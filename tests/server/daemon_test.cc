@@ -387,8 +387,8 @@ TEST(Daemon, HundredWatchersOfOneJobAllSeeItFinish) {
   DaemonProcess daemon(dir.path() + "/data");
   ASSERT_TRUE(daemon.Start()) << daemon.Log();
   auto stub = daemon.Stub();
-  auto request = CavityRequest(1.0);
-  request.add_overrides("output.fields_every=0.05");
+  auto request = CavityRequest(0.3);
+  request.add_overrides("output.fields_every=0.02");
   const v1::Job job = Submit(*stub, request);
   constexpr int kWatchers = 100;
   std::atomic<int> completed{0};

@@ -55,6 +55,7 @@ ConformationStep::ConformationStep(const Params& params, const Grid& grid)
     }
   }
   const std::size_t n = grid.NodeCount();
+  inflow_.assign(n, 0);
   l11_.assign(n, 0.0);
   l12_.assign(n, 0.0);
   l21_.assign(n, 0.0);
@@ -63,34 +64,32 @@ ConformationStep::ConformationStep(const Params& params, const Grid& grid)
 
 void ConformationStep::CollectInflow(const double* u, const double* v) {
   advection_.ClearFixed();
+  for (const BoundaryNode& b : boundary_) inflow_[grid_.Index(b.i, b.j)] = 0;
   for (const BoundaryNode& b : boundary_) {
     const std::size_t k = grid_.Index(b.i, b.j);
-    if (u[k] * b.nx + v[k] * b.ny < 0.0) advection_.AddFixed(b.i, b.j, b.inflow);
+    if (u[k] * b.nx + v[k] * b.ny < 0.0) {
+      advection_.AddFixed(b.i, b.j, b.inflow);
+      inflow_[k] = 1;
+    }
   }
 }
 
 void ConformationStep::CheckField(double time, const char* when, const double* a11,
-                                  const double* a12, const double* a22, double& min_eig,
-                                  double& max_trace) const {
+                                  const double* a12, const double* a22) const {
   const long n = static_cast<long>(grid_.NodeCount());
   long first_bad = n;
-  double lo = std::numeric_limits<double>::infinity();
-  double hi = -std::numeric_limits<double>::infinity();
-#pragma omp parallel for schedule(static) reduction(min : first_bad, lo) reduction(max : hi)
+#pragma omp parallel for schedule(static) reduction(min : first_bad)
   for (long k = 0; k < n; ++k) {
     const SymTensor a{a11[k], a12[k], a22[k]};
-    const double m = MinEigenvalue(a);
-    if (!IsFinite(a) || !(m > 0.0)) first_bad = std::min(first_bad, k);
-    lo = std::min(lo, m);
-    hi = std::max(hi, Trace(a));
+    if (GershgorinLowerBound(a) > 0.0 && IsFinite(a)) continue;  // SPD without the eigenvalues
+    if (!IsFinite(a) || !(MinEigenvalue(a) > 0.0)) first_bad = std::min(first_bad, k);
   }
-  min_eig = lo;
-  max_trace = hi;
-  if (first_bad == n) return;
+  if (first_bad < n) ThrowBadNode(time, when, first_bad, SymTensor{a11[first_bad], a12[first_bad], a22[first_bad]});
+}
 
-  const int i = static_cast<int>(first_bad % (grid_.nx + 1));
-  const int j = static_cast<int>(first_bad / (grid_.nx + 1));
-  const SymTensor a{a11[first_bad], a12[first_bad], a22[first_bad]};
+void ConformationStep::ThrowBadNode(double time, const char* when, long k, const SymTensor& a) const {
+  const int i = static_cast<int>(k % (grid_.nx + 1));
+  const int j = static_cast<int>(k / (grid_.nx + 1));
   std::ostringstream msg;
   msg.precision(6);
   const bool finite = IsFinite(a);
@@ -106,8 +105,7 @@ void ConformationStep::CheckField(double time, const char* when, const double* a
 void ConformationStep::Advance(double time, double dt, const double* u, const double* v,
                                const unsigned char* inside_particle, double* a11, double* a12,
                                double* a22, StepReport& report) {
-  double min_eig = 0.0, max_trace = 0.0;
-  CheckField(time, "before", a11, a12, a22, min_eig, max_trace);
+  CheckField(time, "before", a11, a12, a22);
 
   NodeVelocityGradient(grid_, periodic_x_, periodic_y_, u, v, l11_.data(), l12_.data(), l21_.data(),
                        l22_.data());
@@ -150,13 +148,17 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
   long blended = 0;
   for (int s = 0; s < substeps; ++s) blended += advection_.SubStep(tau, u, v);
 
-  // 2. The exact pointwise update; 3. A = I inside particles.
+  // 2. The exact pointwise update; 3. A = I inside particles. The result is checked on the way.
   const int nx = grid_.nx, ny = grid_.ny;
   const ExponentialIntegrator integrator(dt, lambda_);
-#pragma omp parallel for schedule(static)
+  long first_bad = n;
+  double min_eig = std::numeric_limits<double>::infinity();
+  double max_trace = -std::numeric_limits<double>::infinity();
+#pragma omp parallel for schedule(static) reduction(min : first_bad, min_eig) reduction(max : max_trace)
   for (int j = 0; j <= ny; ++j) {
     for (int i = 0; i <= nx; ++i) {
       const std::size_t k = grid_.Index(i, j);
+      if (inflow_[k]) continue;  // A_L, set below
       SymTensor a;  // identity
       if (inside_particle == nullptr || inside_particle[k] == 0) {
         a = integrator.Apply(advection_.At(i, j), Mat2{l11_[k], l12_[k], l21_[k], l22_[k]});
@@ -164,16 +166,24 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
       a11[k] = a.a11;
       a12[k] = a.a12;
       a22[k] = a.a22;
+      const double m = MinEigenvalue(a);
+      if (!IsFinite(a) || !(m > 0.0)) first_bad = std::min(first_bad, static_cast<long>(k));
+      min_eig = std::min(min_eig, m);
+      max_trace = std::max(max_trace, Trace(a));
     }
   }
-  // 3. A = A_L on inflow nodes; periodic duplicates equal to the first node.
+  if (first_bad < n) {
+    ThrowBadNode(time + dt, "after", first_bad, SymTensor{a11[first_bad], a12[first_bad], a22[first_bad]});
+  }
+  // 3. A = A_L on inflow nodes (SPD by construction); periodic duplicates equal to the first node.
   for (const BoundaryNode& b : boundary_) {
     const std::size_t k = grid_.Index(b.i, b.j);
-    if (u[k] * b.nx + v[k] * b.ny < 0.0) {
-      a11[k] = b.inflow.a11;
-      a12[k] = b.inflow.a12;
-      a22[k] = b.inflow.a22;
-    }
+    if (!inflow_[k]) continue;
+    a11[k] = b.inflow.a11;
+    a12[k] = b.inflow.a12;
+    a22[k] = b.inflow.a22;
+    min_eig = std::min(min_eig, MinEigenvalue(b.inflow));
+    max_trace = std::max(max_trace, Trace(b.inflow));
   }
   if (periodic_x_) {
     for (int j = 0; j <= ny; ++j) {
@@ -189,7 +199,6 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
     std::copy_n(a22 + grid_.Index(0, 0), nx + 1, a22 + grid_.Index(0, ny));
   }
 
-  CheckField(time + dt, "after", a11, a12, a22, min_eig, max_trace);
   report.Set("min_eig_A", min_eig);
   report.Set("max_trA", max_trace);
   report.Set("elastic_courant", lambda_ * max_gradient * dt);

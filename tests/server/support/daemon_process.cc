@@ -48,7 +48,7 @@ bool DaemonProcess::Start() {
   fs::remove(port_file_, error);
   std::vector<std::string> args = {kDaemonPath,  "--listen",     "127.0.0.1:0", "--data-dir",
                                    data_dir_,    "--port-file",  port_file_,    "--solver",
-                                   kSolverPath,  "--log-level",  "debug"};
+                                   kSolverPath};
   args.insert(args.end(), extra_.begin(), extra_.end());
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -101,7 +101,8 @@ std::unique_ptr<v1::Jobs::Stub> DaemonProcess::Stub() const { return v1::Jobs::N
 bool DaemonProcess::Healthy() const {
   auto channel = Channel();
   grpc::ClientContext context;
-  grpc::ByteBuffer request_buffer, reply_buffer;
+  grpc::Slice empty(std::string{});
+  grpc::ByteBuffer request_buffer(&empty, 1), reply_buffer;
   // grpc.health.v1.HealthCheckRequest with an empty service name is an empty message.
   grpc::GenericStub generic(channel);
   grpc::Status status;

@@ -17,14 +17,17 @@
 //   (remark 3 of section 4) solves it by a third-order upwind, positive-only scheme. Splitting the
 //   frozen-coefficient operator into its convective and pointwise parts is first-order accurate in
 //   dt, the same order as (35) and as the Marchuk-Yanenko scheme around it; each part is solved to
-//   higher order (third in space, exact in time for the pointwise part).
+//   higher order (third in space and time for the advection; the pointwise part exact up to a
+//   sixth-order quadrature, exact for steady states up to it and for pure relaxation).
 // Positive definiteness (method notes 2, 2.1): step 1 keeps A SPD (convexity of the SPD cone and
 //   concavity of lambda_min, see conformation_advection.h) under the sub-cycled Courant bound; step 2
 //   is a positive combination of congruences F A F^T, det F = e^{s tr L} > 0, so SPD for any dt;
 //   step 3 assigns SPD values. Hence SPD in, SPD out, unconditionally in dt.
 // Checks: A^n is checked before the step and A^{n+1} after it; a non-finite value throws
 //   NumericalBlowUp, lambda_min <= 0 throws ConformationNotPositiveDefinite, each naming the time,
-//   the node and its position and the quantity (which can only happen with corrupt input).
+//   the node and its position and the quantity. From SPD, finite input this happens only through
+//   overflow (e^{2 dt max eig L} beyond 1e308) or a condition number of A beyond 1/eps. A non-finite
+//   velocity, or one that would need more than 1000 advection sub-steps, throws NumericalBlowUp.
 // Report columns: min_eig_A, max_trA, elastic_courant = lambda dt max |L|_F, blended_nodes (summed
 //   over sub-steps), conformation_substeps.
 // Not supported: the log-conformation form; time-dependent inflow data.
@@ -65,7 +68,9 @@ class ConformationStep {
   void CollectInflow(const double* u, const double* v);
   // Throws when a node of (a11, a12, a22) is not finite or not SPD. `when` is "before" or "after".
   void CheckField(double time, const char* when, const double* a11, const double* a12,
-                  const double* a22, double& min_eig, double& max_trace) const;
+                  const double* a22) const;
+  // Throws NumericalBlowUp (a not finite) or ConformationNotPositiveDefinite for node k.
+  [[noreturn]] void ThrowBadNode(double time, const char* when, long k, const SymTensor& a) const;
 
   Grid grid_;
   double lambda_;
@@ -73,6 +78,7 @@ class ConformationStep {
   bool periodic_x_, periodic_y_;
   ConformationAdvection advection_;
   std::vector<BoundaryNode> boundary_;  // nodes of velocity sides
+  std::vector<unsigned char> inflow_;   // per node: 1 where A = A_L this step
   std::vector<double> l11_, l12_, l21_, l22_;
 };
 

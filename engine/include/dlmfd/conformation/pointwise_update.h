@@ -40,12 +40,9 @@ struct ExponentialParts {
   double scale, c, sigma, d;
 };
 
-inline ExponentialParts ExponentialPartsOf(const Mat2& l, double s) {
-  const double half_trace = 0.5 * (l.m11 + l.m22);
-  const double d = l.m11 - half_trace;
-  const double q2 = d * d + l.m12 * l.m21;
+// c = cosh(q s) and sigma = sinh(q s)/q (or their cos/sin forms) from q^2 and s.
+inline void HyperbolicPair(double q2, double s, double& c, double& sigma) {
   const double x = q2 * s * s;
-  double c = 1.0, sigma = s;
   if (std::abs(x) < 1e-2) {
     // cosh(sqrt x) and sinh(sqrt x)/sqrt x as power series in x (valid for either sign of x).
     constexpr double k12 = 1.0 / 12.0, k30 = 1.0 / 30.0, k56 = 1.0 / 56.0, k90 = 1.0 / 90.0;
@@ -61,6 +58,13 @@ inline ExponentialParts ExponentialPartsOf(const Mat2& l, double s) {
     c = std::cos(q * s);
     sigma = std::sin(q * s) / q;
   }
+}
+
+inline ExponentialParts ExponentialPartsOf(const Mat2& l, double s) {
+  const double half_trace = 0.5 * (l.m11 + l.m22);
+  const double d = l.m11 - half_trace;
+  double c = 1.0, sigma = s;
+  HyperbolicPair(d * d + l.m12 * l.m21, s, c, sigma);
   return ExponentialParts{ExpOf(s * half_trace), c, sigma, d};
 }
 
@@ -90,16 +94,16 @@ constexpr double kGaussOffset = 0.3872983346207417;  // sqrt(3/5)/2
 constexpr double kGaussNode[3] = {0.5 - kGaussOffset, 0.5, 0.5 + kGaussOffset};
 constexpr double kGaussWeight[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
 
-inline double PanelRate(const Mat2& l, double lambda) {
+inline double PanelRate(const Mat2& l, double inv_lambda) {
   const double half_trace = 0.5 * (l.m11 + l.m22);
   const double d = l.m11 - half_trace;
   const double q = std::sqrt(std::abs(d * d + l.m12 * l.m21));
-  return 1.0 / lambda + 2.0 * std::abs(half_trace) + 2.0 * q;
+  return inv_lambda + 2.0 * std::abs(half_trace) + 2.0 * q;
 }
 
 inline SymTensor StretchAndRelax(const SymTensor& a, const Mat2& l, double dt, double lambda) {
 
-  const double rate = PanelRate(l, lambda);
+  const double rate = PanelRate(l, 1.0 / lambda);
   // At most kMaxPanels: beyond dt rate = 32 the growth e^{2 dt rate} puts A past what doubles
   // resolve (cond(A) > 1e16), so more panels buy no accuracy; SPD holds for any panel count.
   const double wanted = std::ceil(std::min(dt * rate / kMaxPanelRate, double(kMaxPanels)));
@@ -128,19 +132,16 @@ inline SymTensor StretchAndRelax(const SymTensor& a, const Mat2& l, double dt, d
                    decay * stretched.a22 + rescale * integral.a22};
 }
 
-}  // namespace dlmfd
-
-namespace dlmfd {
-
 // StretchAndRelax for many nodes with the same dt and lambda: the one-panel weights are made once,
-// and a node whose rate allows one panel needs two closed-form exponentials, using
-// F(dt/2 -+ delta) = F(dt/2) F(-+delta), F(-delta) = F(delta)^{-1} (the same c and sigma), and
-// F(dt) = F(dt/2)^2. Other nodes take the general composite rule. Equal to StretchAndRelax up to
-// round-off.
+// and a node whose rate allows one panel needs two closed-form exponentials: with E = F(dt/2) and
+// G = F(delta), F(dt/2 -+ delta) = E G^{-+1} (G^{-1} from the same c and sigma) and F(dt) = E^2, so
+//   A(dt) = E [decay E A E^T + w1 G^{-1} G^{-T} + w2 I + w3 G G^T] E^T (about 120 flops a node).
+// Other nodes take the general composite rule. Equal to StretchAndRelax up to round-off.
 class ExponentialIntegrator {
  public:
   ExponentialIntegrator(double dt, double lambda)
-      : dt_(dt), lambda_(lambda), decay_(std::exp(-dt / lambda)), max_rate_(kMaxPanelRate / dt) {
+      : dt_(dt), lambda_(lambda), inv_lambda_(1.0 / lambda), decay_(std::exp(-dt / lambda)),
+        max_rate_(kMaxPanelRate / dt) {
     double sum = 0.0;
     for (int k = 0; k < 3; ++k) {
       weight_[k] = kGaussWeight[k] * dt * std::exp(-kGaussNode[k] * dt / lambda) / lambda;
@@ -151,21 +152,33 @@ class ExponentialIntegrator {
   }
 
   SymTensor Apply(const SymTensor& a, const Mat2& l) const {
-    if (PanelRate(l, lambda_) > max_rate_) return StretchAndRelax(a, l, dt_, lambda_);
-    const Mat2 half = MatrixExponential(l, 0.5 * dt_);
-    const ExponentialParts delta = ExponentialPartsOf(l, kGaussOffset * dt_);
-    const Mat2 f1 = Product(half, Assemble(delta, l, -1.0));
-    const Mat2 f3 = Product(half, Assemble(delta, l, 1.0));
-    const SymTensor g1 = GramOf(f1), g2 = GramOf(half), g3 = GramOf(f3);
-    const SymTensor stretched = Congruence(Product(half, half), a);
-    return SymTensor{
-        decay_ * stretched.a11 + weight_[0] * g1.a11 + weight_[1] * g2.a11 + weight_[2] * g3.a11,
-        decay_ * stretched.a12 + weight_[0] * g1.a12 + weight_[1] * g2.a12 + weight_[2] * g3.a12,
-        decay_ * stretched.a22 + weight_[0] * g1.a22 + weight_[1] * g2.a22 + weight_[2] * g3.a22};
+    if (PanelRate(l, inv_lambda_) > max_rate_) return StretchAndRelax(a, l, dt_, lambda_);
+    const double half_trace = 0.5 * (l.m11 + l.m22);
+    const double d = l.m11 - half_trace;
+    const double q2 = d * d + l.m12 * l.m21;
+    // E = F(dt/2) = e_h (c_h I + sigma_h L0).
+    const double half_dt = 0.5 * dt_, delta = kGaussOffset * dt_;
+    double c_h = 1.0, sigma_h = half_dt, c_d = 1.0, sigma_d = delta;
+    HyperbolicPair(q2, half_dt, c_h, sigma_h);
+    HyperbolicPair(q2, delta, c_d, sigma_d);
+    const double e_h = ExpOf(half_dt * half_trace);
+    const Mat2 e{e_h * (c_h + sigma_h * d), e_h * sigma_h * l.m12, e_h * sigma_h * l.m21, e_h * (c_h - sigma_h * d)};
+    // G^{-+1} = g^{-+1} (c I -+ sigma L0): G G^T and G^{-1} G^{-T} share c^2 I + sigma^2 L0 L0^T and
+    // differ in the sign of c sigma (L0 + L0^T), so
+    // M = w1 G^{-1} G^{-T} + w2 I + w3 G G^T = p (c^2 I + sigma^2 S) + m c sigma P + w2 I.
+    const double g2 = ExpOf(2.0 * delta * half_trace), g2_inv = ExpOf(-2.0 * delta * half_trace);
+    const double plus = weight_[0] * g2_inv + weight_[2] * g2, minus = weight_[2] * g2 - weight_[0] * g2_inv;
+    const double cc = c_d * c_d, ss = sigma_d * sigma_d, cs = minus * c_d * sigma_d;
+    const SymTensor inner = Congruence(e, a);
+    const SymTensor middle{
+        decay_ * inner.a11 + plus * (cc + ss * (d * d + l.m12 * l.m12)) + cs * 2.0 * d + weight_[1],
+        decay_ * inner.a12 + plus * ss * d * (l.m21 - l.m12) + cs * (l.m12 + l.m21),
+        decay_ * inner.a22 + plus * (cc + ss * (d * d + l.m21 * l.m21)) - cs * 2.0 * d + weight_[1]};
+    return Congruence(e, middle);
   }
 
  private:
-  double dt_, lambda_, decay_, max_rate_;
+  double dt_, lambda_, inv_lambda_, decay_, max_rate_;
   double weight_[3];
 };
 

@@ -6,6 +6,7 @@
 // relative accuracy for an SPD tensor.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace dlmfd {
@@ -39,6 +40,11 @@ inline double MinEigenvalue(const SymTensor& a) {
   if (lambda_max > 0.0) return Determinant(a) / lambda_max;
   const double half_diff = 0.5 * (a.a11 - a.a22);
   return 0.5 * (a.a11 + a.a22) - std::sqrt(half_diff * half_diff + a.a12 * a.a12);
+}
+
+// A lower bound of lambda_min (Gershgorin discs): cheap screens before the exact value.
+inline double GershgorinLowerBound(const SymTensor& a) {
+  return std::min(a.a11, a.a22) - std::abs(a.a12);
 }
 
 // theta a + (1 - theta) b.

@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# The README's main job: start dlmfdd on a free loopback port, submit a real case at a modest
+# resolution, watch it to the end, fetch its results into runs/main-job/, draw a PNG, print the
+# summary, stop the daemon. Needs a build in build/ (scripts/build.sh).
+#
+#   CASE=cases/paper/...toml SETS="--set domain.h=0.02 --set time.end=1" scripts/main-job.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+BUILD=${BUILD:-build}
+CASE=${CASE:-cases/lid_driven_cavity.toml}
+SETS=${SETS:---set domain.h=0.03125 --set time.end=0.5}
+RUNS=${RUNS:-runs}
+DLMFD="$BUILD/client/dlmfd"
+DLMFDD="$BUILD/server/dlmfdd"
+SOLVER="$BUILD/engine/dlmfd-solve"
+
+for binary in "$DLMFD" "$DLMFDD" "$SOLVER"; do
+  if [ ! -x "$binary" ]; then
+    echo "main-job: $binary is missing; build first: scripts/build.sh" >&2
+    exit 2
+  fi
+done
+if [ ! -f "$CASE" ]; then
+  echo "main-job: no scene file $CASE (set CASE=...)" >&2
+  exit 2
+fi
+
+DATA="$RUNS/daemon"
+OUT="$RUNS/main-job"
+mkdir -p "$DATA"
+rm -f "$DATA/port"
+
+echo "== starting dlmfdd (data in $DATA, log in $RUNS/dlmfdd.log)"
+"$DLMFDD" --listen 127.0.0.1:0 --port-file "$DATA/port" --data-dir "$DATA" --solver "$SOLVER" \
+  >"$RUNS/dlmfdd.log" 2>&1 &
+DAEMON=$!
+stop_daemon() {
+  if kill -0 "$DAEMON" 2>/dev/null; then
+    kill -TERM "$DAEMON" 2>/dev/null || true
+    wait "$DAEMON" 2>/dev/null || true
+  fi
+}
+trap stop_daemon EXIT
+
+for _ in $(seq 1 150); do
+  [ -s "$DATA/port" ] && break
+  if ! kill -0 "$DAEMON" 2>/dev/null; then
+    echo "main-job: dlmfdd exited; its log:" >&2
+    cat "$RUNS/dlmfdd.log" >&2
+    exit 5
+  fi
+  sleep 0.2
+done
+if [ ! -s "$DATA/port" ]; then
+  echo "main-job: dlmfdd wrote no port file within 30 s" >&2
+  exit 5
+fi
+export DLMFD_SERVER="127.0.0.1:$(tr -d '[:space:]' <"$DATA/port")"
+unset DLMFD_TOKEN
+"$DLMFD" health --wait 30
+
+echo "== submitting $CASE $SETS"
+# shellcheck disable=SC2086  # SETS is a list of flags
+JOB=$("$DLMFD" submit "$CASE" $SETS --name main-job --tag main-job)
+echo "job $JOB"
+
+echo "== watching"
+outcome=0
+"$DLMFD" watch "$JOB" || outcome=$?
+
+echo "== fetching results to $OUT"
+rm -rf "$OUT"
+"$DLMFD" fetch "$JOB" --out "$OUT"
+
+PICTURE=""
+if ls "$OUT"/fields/snap_*.h5 >/dev/null 2>&1; then
+  PICTURE=$("$DLMFD" plot "$OUT" --out "$OUT/trA.png" 2>/dev/null || "$DLMFD" plot "$OUT" --quantity speed --out "$OUT/speed.png")
+fi
+
+echo "== summary"
+if command -v python3 >/dev/null 2>&1 && [ -f "$OUT/summary.json" ]; then
+  python3 - "$OUT/summary.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+particles = s.get("particles", [])
+count = len(particles) if isinstance(particles, list) else len(particles.get("position", []))
+print(f"status      {s.get('status')}" + (f" ({s['reason']})" if s.get("reason") else ""))
+print(f"steps       {s.get('steps')}")
+print(f"time        {s.get('time')}")
+print(f"ms/step     {s.get('ms_per_step')}")
+print(f"wall        {s.get('wall_seconds')} s")
+print(f"particles   {count}")
+PY
+elif [ -f "$OUT/summary.json" ]; then
+  cat "$OUT/summary.json"
+else
+  "$DLMFD" show "$JOB"
+fi
+echo "results     $OUT/"
+[ -n "$PICTURE" ] && echo "picture     $PICTURE"
+echo "daemon log  $RUNS/dlmfdd.log"
+exit "$outcome"

@@ -1,0 +1,331 @@
+// The dlmfd CLI end to end: the real dlmfdd (loopback, a temporary data directory with its SQLite
+// store, a tokens file), the real dlmfd-solve and the real dlmfd binary, driven as a user would.
+// Scenes are a 16 x 16 lid-driven cavity of 10 steps, so each job takes a fraction of a second.
+// No wall-clock limits: the waits below poll until a state is reached and fail only through
+// ctest's own timeout.
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+const std::string kClient = DLMFD_BINARY_DIR "/client/dlmfd";
+const std::string kDaemon = DLMFD_BINARY_DIR "/server/dlmfdd";
+const std::string kSolver = DLMFD_BINARY_DIR "/engine/dlmfd-solve";
+
+const char* kCavity = R"toml(title = "lid-driven cavity (cli e2e)"
+[domain]
+size = [1.0, 1.0]
+h = 0.0625
+[domain.boundary]
+left = { type = "wall" }
+right = { type = "wall" }
+bottom = { type = "wall" }
+top = { type = "velocity", profile = "uniform", value = [1.0, 0.0] }
+[fluid]
+density = 1.0
+viscosity = 0.01
+relaxation_time = 0.0
+[time]
+dt = 0.01
+end = 0.1
+[output]
+fields_every = 0.05
+particles_every = 0.05
+checkpoint_every = 0.05
+)toml";
+
+struct CliRun {
+  int code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs `argv` with exactly the environment `env`, capturing stdout and stderr.
+CliRun Execute(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env) {
+  int out_pipe[2], err_pipe[2];
+  if (pipe(out_pipe) != 0 || pipe(err_pipe) != 0) return {};
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(out_pipe[1], STDOUT_FILENO);
+    dup2(err_pipe[1], STDERR_FILENO);
+    close(out_pipe[0]);
+    close(err_pipe[0]);
+    std::vector<std::string> env_text;
+    for (const auto& [k, v] : env) env_text.push_back(k + "=" + v);
+    std::vector<char*> args, envp;
+    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    for (auto& e : env_text) envp.push_back(e.data());
+    args.push_back(nullptr);
+    envp.push_back(nullptr);
+    execve(args[0], args.data(), envp.data());
+    _exit(127);
+  }
+  close(out_pipe[1]);
+  close(err_pipe[1]);
+  CliRun run;
+  pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
+  int open_fds = 2;
+  char buffer[4096];
+  while (open_fds > 0) {
+    if (poll(fds, 2, -1) < 0) break;
+    for (int k = 0; k < 2; ++k) {
+      if (fds[k].fd < 0 || fds[k].revents == 0) continue;
+      const ssize_t n = read(fds[k].fd, buffer, sizeof(buffer));
+      if (n <= 0) {
+        close(fds[k].fd);
+        fds[k].fd = -1;
+        --open_fds;
+      } else {
+        (k == 0 ? run.out : run.err).append(buffer, std::size_t(n));
+      }
+    }
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return run;
+}
+
+std::string Slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string FirstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+class CliTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    const std::string* binaries[] = {&kClient, &kDaemon, &kSolver};
+    for (const std::string* binary : binaries) ASSERT_TRUE(fs::exists(*binary)) << *binary << " is not built";
+    root_ = fs::path(::testing::TempDir()) / ("dlmfd_cli_e2e_" + std::to_string(getpid()));
+    fs::remove_all(root_);
+    fs::create_directories(root_ / "data");
+    fs::create_directories(root_ / "home");
+    std::ofstream(root_ / "tokens") << "alice-token-0123456789 alice\nbob-token-0123456789 bob\n";
+    std::ofstream(root_ / "cavity.toml") << kCavity;
+    const fs::path port_file = root_ / "port";
+    daemon_ = fork();
+    if (daemon_ == 0) {
+      const int log = open((root_ / "dlmfdd.log").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      dup2(log, STDOUT_FILENO);
+      dup2(log, STDERR_FILENO);
+      execl(kDaemon.c_str(), kDaemon.c_str(), "--listen", "127.0.0.1:0", "--port-file", port_file.c_str(),
+            "--data-dir", (root_ / "data").c_str(), "--solver", kSolver.c_str(), "--tokens-file",
+            (root_ / "tokens").c_str(), "--max-concurrent", "2", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    while (!fs::exists(port_file) || fs::file_size(port_file) == 0) {
+      int status = 0;
+      ASSERT_EQ(waitpid(daemon_, &status, WNOHANG), 0) << "dlmfdd exited: " << Slurp(root_ / "dlmfdd.log");
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    std::string port = Slurp(port_file);
+    port.erase(port.find_last_not_of(" \n\r\t") + 1);
+    server_ = "127.0.0.1:" + port;
+  }
+
+  static void TearDownTestSuite() {
+    if (daemon_ > 0) {
+      kill(daemon_, SIGTERM);
+      int status = 0;
+      waitpid(daemon_, &status, 0);
+      daemon_ = -1;
+    }
+    fs::remove_all(root_);
+  }
+
+  // The environment of a user with no config file, unless a test writes one into home/.
+  static std::map<std::string, std::string> Env(bool with_server = true, bool with_token = true) {
+    std::map<std::string, std::string> env = {{"HOME", (root_ / "home").string()},
+                                              {"PATH", "/usr/bin:/bin"}};
+    if (with_server) env["DLMFD_SERVER"] = server_;
+    if (with_token) env["DLMFD_TOKEN"] = "alice-token-0123456789";
+    return env;
+  }
+
+  static CliRun Cli(const std::vector<std::string>& args, const std::map<std::string, std::string>& env = Env()) {
+    std::vector<std::string> argv(1, kClient);
+    for (const std::string& a : args) argv.push_back(a);
+    return Execute(argv, env);
+  }
+
+  // Polls `show --json` until the job's state appears in it.
+  static void AwaitState(const std::string& job, const std::string& state) {
+    for (;;) {
+      const CliRun show = Cli({"show", job, "--json"});
+      ASSERT_EQ(show.code, 0) << show.err;
+      if (show.out.find("\"state\":\"" + state + "\"") != std::string::npos) return;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  }
+
+  static fs::path root_;
+  static pid_t daemon_;
+  static std::string server_;
+};
+
+fs::path CliTest::root_;
+pid_t CliTest::daemon_ = -1;
+std::string CliTest::server_;
+
+TEST_F(CliTest, HealthServesAndAClosedPortIsUnavailable) {
+  const CliRun ok = Cli({"health"});
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_THAT(ok.out, HasSubstr("SERVING"));
+  const CliRun closed = Cli({"health", "--server", "127.0.0.1:1"});
+  EXPECT_EQ(closed.code, 5);
+  EXPECT_THAT(closed.err, HasSubstr("dlmfd health: server unavailable"));
+}
+
+TEST_F(CliTest, SubmitWaitListShowFetchAndPlot) {
+  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--tag", "e2e", "--name", "cavity", "--wait"});
+  ASSERT_EQ(submit.code, 0) << submit.out << submit.err;
+  const std::string job = FirstLine(submit.out);
+  ASSERT_FALSE(job.empty());
+  EXPECT_THAT(submit.out, HasSubstr(job + " completed: 10 steps"));
+
+  const CliRun list = Cli({"list", "--tag", "e2e"});
+  ASSERT_EQ(list.code, 0) << list.err;
+  EXPECT_THAT(list.out, HasSubstr(job));
+  EXPECT_THAT(list.out, HasSubstr("completed"));
+  const CliRun show = Cli({"show", job});
+  ASSERT_EQ(show.code, 0) << show.err;
+  EXPECT_THAT(show.out, HasSubstr("state:       completed"));
+  EXPECT_THAT(show.out, HasSubstr("tags:        e2e"));
+
+  const fs::path out = root_ / "fetched";
+  const CliRun fetch = Cli({"fetch", job, "--out", out.string()});
+  ASSERT_EQ(fetch.code, 0) << fetch.err;
+  ASSERT_TRUE(fs::exists(out / "summary.json"));
+  EXPECT_THAT(Slurp(out / "summary.json"), HasSubstr("\"completed\""));
+  const CliRun one = Cli({"fetch", job, "--out", (root_ / "one").string(), "--path", "summary.json"});
+  ASSERT_EQ(one.code, 0) << one.err;
+  EXPECT_EQ(Slurp(root_ / "one" / "summary.json"), Slurp(out / "summary.json"));
+
+  const fs::path png = root_ / "cavity.png";
+  const CliRun plot = Cli({"plot", out.string(), "--out", png.string(), "--width", "500", "--height", "400"});
+  ASSERT_EQ(plot.code, 0) << plot.err;
+  EXPECT_EQ(FirstLine(plot.out), png.string());
+  const std::string bytes = Slurp(png);
+  ASSERT_GT(bytes.size(), 24u);
+  EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  // IHDR: width and height, big-endian, within the requested box.
+  auto be32 = [&](std::size_t at) {
+    return (unsigned(uint8_t(bytes[at])) << 24) | (unsigned(uint8_t(bytes[at + 1])) << 16) |
+           (unsigned(uint8_t(bytes[at + 2])) << 8) | unsigned(uint8_t(bytes[at + 3]));
+  };
+  EXPECT_LE(be32(16), 500u);
+  EXPECT_LE(be32(20), 400u);
+  EXPECT_GT(be32(16), 100u);
+
+  const CliRun missing = Cli({"plot", out.string(), "--snapshot", "999999"});
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_THAT(missing.err, HasSubstr("snapshot"));
+}
+
+TEST_F(CliTest, WatchJsonYieldsProgressAndTheFinalState) {
+  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=1.0"});
+  ASSERT_EQ(submit.code, 0) << submit.err;
+  const std::string job = FirstLine(submit.out);
+  const CliRun watch = Cli({"watch", job, "--json"});
+  ASSERT_EQ(watch.code, 0) << watch.err;
+  EXPECT_THAT(watch.out, HasSubstr("\"progress\":{"));
+  std::istringstream lines(watch.out);
+  std::string line, last;
+  int count = 0;
+  while (std::getline(lines, line)) {
+    ASSERT_EQ(line.front(), '{') << line;
+    ASSERT_EQ(line.back(), '}') << line;
+    last = line;
+    ++count;
+  }
+  EXPECT_GT(count, 2);
+  EXPECT_THAT(last, HasSubstr("\"state\":\"COMPLETED\""));
+}
+
+TEST_F(CliTest, CancelStopsALongJob) {
+  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=100000"});
+  ASSERT_EQ(submit.code, 0) << submit.err;
+  const std::string job = FirstLine(submit.out);
+  AwaitState(job, "RUNNING");
+  const CliRun cancel = Cli({"cancel", job});
+  ASSERT_EQ(cancel.code, 0) << cancel.err;
+  EXPECT_THAT(cancel.out, HasSubstr(job));
+  const CliRun watch = Cli({"watch", job});
+  EXPECT_EQ(watch.code, 1) << watch.out << watch.err;
+  EXPECT_THAT(watch.out, HasSubstr("cancelled"));
+  const CliRun again = Cli({"cancel", job});
+  EXPECT_EQ(again.code, 6) << again.err;  // already finished: FAILED_PRECONDITION
+}
+
+TEST_F(CliTest, InvalidSceneExitsTwoNamingTheKey) {
+  const CliRun bad = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "fluid.viscosity=-1"});
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("fluid.viscosity"));
+  EXPECT_THAT(bad.err, HasSubstr("invalid argument"));
+  const CliRun no_file = Cli({"submit", (root_ / "absent.toml").string()});
+  EXPECT_EQ(no_file.code, 2);
+  const CliRun no_job = Cli({"show", "no-such-job"});
+  EXPECT_EQ(no_job.code, 3);
+}
+
+TEST_F(CliTest, WrongTokenExitsFourAndOtherUsersSeeNothing) {
+  const CliRun wrong = Cli({"list", "--token", "not-a-token"});
+  EXPECT_EQ(wrong.code, 4);
+  EXPECT_THAT(wrong.err, HasSubstr("unauthenticated"));
+  const CliRun none = Cli({"list"}, Env(true, false));
+  EXPECT_EQ(none.code, 4);
+
+  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string()});
+  ASSERT_EQ(submit.code, 0) << submit.err;
+  const std::string job = FirstLine(submit.out);
+  const CliRun bob = Cli({"show", job, "--token", "bob-token-0123456789"});
+  EXPECT_EQ(bob.code, 3);
+}
+
+TEST_F(CliTest, ConfigPrecedenceIsFlagThenEnvironmentThenFile) {
+  const fs::path xdg = root_ / "xdg";
+  fs::create_directories(xdg / "dlmfd");
+  std::ofstream(xdg / "dlmfd" / "config.toml") << "server = \"" << server_ << "\"\ntoken = \"alice-token-0123456789\"\n";
+  auto env = Env(false, false);
+  env["XDG_CONFIG_HOME"] = xdg.string();
+  EXPECT_EQ(Cli({"list"}, env).code, 0);  // file alone
+  env["DLMFD_SERVER"] = "127.0.0.1:1";
+  EXPECT_EQ(Cli({"list"}, env).code, 5);  // environment beats file
+  EXPECT_EQ(Cli({"list", "--server", server_}, env).code, 0);  // flag beats environment
+  EXPECT_EQ(Cli({"--server", server_, "list"}, env).code, 0);  // also before the command
+  env.erase("DLMFD_SERVER");
+  env["DLMFD_TOKEN"] = "not-a-token";
+  EXPECT_EQ(Cli({"list"}, env).code, 4);  // environment token beats the file's
+  EXPECT_EQ(Cli({"list", "--token", "alice-token-0123456789"}, env).code, 0);
+
+  std::ofstream(xdg / "dlmfd" / "config.toml") << "servr = \"x\"\n";
+  const CliRun typo = Cli({"list"}, env);
+  EXPECT_EQ(typo.code, 2);
+  EXPECT_THAT(typo.err, HasSubstr("servr"));
+}
+
+}  // namespace
