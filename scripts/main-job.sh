@@ -75,7 +75,8 @@ rm -rf "$OUT"
 
 PICTURE=""
 if ls "$OUT"/fields/snap_*.h5 >/dev/null 2>&1; then
-  PICTURE=$("$DLMFD" plot "$OUT" --out "$OUT/trA.png" 2>/dev/null || "$DLMFD" plot "$OUT" --quantity speed --out "$OUT/speed.png")
+  # trA for an Oldroyd-B run, the speed for a Newtonian one: $OUT/<quantity>_<step>.png
+  PICTURE=$("$DLMFD" plot "$OUT")
 fi
 
 echo "== summary"
@@ -88,8 +89,8 @@ count = len(particles) if isinstance(particles, list) else len(particles.get("po
 print(f"status      {s.get('status')}" + (f" ({s['reason']})" if s.get("reason") else ""))
 print(f"steps       {s.get('steps')}")
 print(f"time        {s.get('time')}")
-print(f"ms/step     {s.get('ms_per_step')}")
-print(f"wall        {s.get('wall_seconds')} s")
+print(f"ms/step     {float(s.get('ms_per_step', 'nan')):.4g}")
+print(f"wall        {float(s.get('wall_seconds', 'nan')):.4g} s")
 print(f"particles   {count}")
 PY
 elif [ -f "$OUT/summary.json" ]; then

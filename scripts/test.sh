@@ -5,6 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 jobs=$(nproc)
+# ctest runs the tests side by side on every core: one OpenMP thread each, and no spin-waiting.
+export OMP_NUM_THREADS=1 OMP_WAIT_POLICY=passive
 
 echo "== release build and tests"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDLMFD_WERROR=ON > /dev/null

@@ -45,13 +45,14 @@ bool ProgressPrinter::OnEvent(const v1::WatchEvent& event) {
   const auto now = std::chrono::steady_clock::now();
   if (event.has_state()) {
     const v1::StateChange& s = event.state();
+    const bool repeated = state_ == StateName(s.state());  // a reconnect replays the current state
     state_ = StateName(s.state());
     if (s.has_job()) {
       step_ = s.job().step();
       time_ = s.job().time();
       end_time_ = s.job().end_time();
     }
-    PrintAbove(job_id_ + " " + state_ + (s.reason().empty() ? "" : ": " + s.reason()));
+    if (!repeated) PrintAbove(job_id_ + " " + state_ + (s.reason().empty() ? "" : ": " + s.reason()));
   } else if (event.has_progress()) {
     const v1::JobProgress& p = event.progress();
     step_ = p.step();
@@ -90,7 +91,7 @@ void ProgressPrinter::OnReconnect(const grpc::Status& status, double delay) {
 
 int ProgressPrinter::Finish(const WatchOutcome& outcome, const std::string& command) {
   if (mode_ == PrintMode::kLive && line_shown_) {
-    out_ << "\r\033[K" << StatusLine() << "\n" << std::flush;
+    out_ << "\n" << std::flush;  // keep the last live line
     line_shown_ = false;
   }
   if (outcome.interrupted) {

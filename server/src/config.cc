@@ -56,6 +56,7 @@ std::vector<Setting> Settings() {
       {"max_queued", integer("max_queued", &Config::max_queued)},
       {"watcher_buffer", small("watcher_buffer", &Config::watcher_buffer)},
       {"event_ring", small("event_ring", &Config::event_ring)},
+      {"solver_threads", small("solver_threads", &Config::solver_threads)},
       {"log_level", text(&Config::log_level)},
       {"port_file", text(&Config::port_file)},
   };
@@ -185,6 +186,7 @@ void ValidateConfig(Config& config) {
   positive("max_queued", config.max_queued);
   if (config.watcher_buffer < 8) throw ConfigError("watcher_buffer must be >= 8");
   if (config.event_ring < 8) throw ConfigError("event_ring must be >= 8");
+  if (config.solver_threads < 0) throw ConfigError("solver_threads must be >= 0");
   static const char* const kLevels[] = {"trace", "debug", "info", "warn", "error", "off"};
   if (std::find(std::begin(kLevels), std::end(kLevels), config.log_level) == std::end(kLevels)) {
     throw ConfigError("log_level = " + config.log_level +

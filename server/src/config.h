@@ -13,6 +13,9 @@
 //   max_queued / --max-queued / DLMFD_MAX_QUEUED           10000 unfinished jobs
 //   watcher_buffer / --watcher-buffer / DLMFD_WATCHER_BUFFER          256 events per watcher
 //   event_ring / --event-ring / DLMFD_EVENT_RING           1024 recent events kept per job
+//   solver_threads / --solver-threads / DLMFD_SOLVER_THREADS          0: OMP_NUM_THREADS of each solver is
+//                                                          max(1, cores / max_concurrent) unless the
+//                                                          daemon's own environment sets it
 //   log_level / --log-level / DLMFD_LOG_LEVEL              "info"
 //   port_file / --port-file / DLMFD_PORT_FILE              none: write the bound port here once serving
 // Validation: a listen address that is not loopback requires a tokens file with at least one token.
@@ -44,6 +47,7 @@ struct Config {
   int64_t max_queued = 10000;
   int watcher_buffer = 256;
   int event_ring = 1024;
+  int solver_threads = 0;
   std::string log_level = "info";
   std::string port_file;
   std::map<std::string, std::string> tokens;  // token -> user, loaded from tokens_file

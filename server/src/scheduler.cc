@@ -5,6 +5,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -111,11 +113,26 @@ void Scheduler::Loop() {
       try {
         next = store_.NextQueued();
         if (!next) break;
-        store_.MarkRunning(next->id, NowSeconds());
-        next = store_.Get(next->id);
       } catch (const std::exception& e) {
         spdlog::error("scheduler: {}", e.what());
         break;
+      }
+      try {
+        store_.MarkRunning(next->id, NowSeconds());
+        next = store_.Get(next->id);
+      } catch (const std::exception& e) {
+        // Cancelled between the two statements: take the next one. Still queued: the store
+        // failed; wait for the next change rather than spin.
+        std::optional<JobRecord> again;
+        try {
+          again = store_.Get(next->id);
+        } catch (const std::exception&) {
+        }
+        if (!again || again->state == JobState::kQueued) {
+          spdlog::error("job {}: cannot start: {}", next->id, e.what());
+          break;
+        }
+        continue;
       }
       spdlog::info("job {}: RUNNING (attempt {}, priority {})", next->id, next->attempts,
                    next->priority);
@@ -172,6 +189,14 @@ void Scheduler::RunJob(JobRecord job) {
       spec.overrides = job.overrides;
       spec.resume = resume;
       spec.lock_fd = lock_fd;
+      if (config_.solver_threads > 0) {
+        spec.environment.push_back("OMP_NUM_THREADS=" + std::to_string(config_.solver_threads));
+      } else if (!std::getenv("OMP_NUM_THREADS")) {
+        // Concurrent solvers share the cores; oversubscribed OpenMP teams spin and crawl.
+        const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+        spec.environment.push_back("OMP_NUM_THREADS=" +
+                                   std::to_string(std::max(1, cores / config_.max_concurrent)));
+      }
       if (access(spec.solver.c_str(), X_OK) != 0) {
         throw std::runtime_error("cannot execute the solver " + spec.solver);
       }

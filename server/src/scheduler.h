@@ -3,7 +3,8 @@
 // A scheduler thread takes the next QUEUED job from the store, marks it RUNNING (one transaction,
 // attempts + 1) and gives it a runner thread. The runner writes DIR/scene.in.toml, resumes from
 // results/checkpoint.h5 when one exists (else clears results/), takes the job directory's flock (so a
-// job never runs twice at once), runs dlmfd-solve (SolverProcess), turns its events into Watch events
+// job never runs twice at once), runs dlmfd-solve (SolverProcess; OMP_NUM_THREADS = cores /
+// max_concurrent unless configured, since oversubscribed OpenMP teams crawl), turns its events into Watch events
 // for the EventHub, records progress in the store at most once a second, and maps the exit:
 //   0 COMPLETED; 1 FAILED (the reason from the finished event or results/summary.json); 2 FAILED
 //   (invalid scene); 130 CANCELLED; killed by signal N: FAILED "solver killed by signal N".

@@ -48,6 +48,21 @@ void SolverProcess::Start(const LaunchSpec& spec) {
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  // The child's environment, built before fork (setenv is not async-signal-safe).
+  std::vector<std::string> env_text;
+  for (char** e = environ; *e; ++e) {
+    const std::string entry(*e);
+    bool replaced = false;
+    for (const auto& extra : spec.environment) {
+      const auto name = extra.substr(0, extra.find('=') + 1);
+      replaced = replaced || entry.compare(0, name.size(), name) == 0;
+    }
+    if (!replaced) env_text.push_back(entry);
+  }
+  env_text.insert(env_text.end(), spec.environment.begin(), spec.environment.end());
+  std::vector<char*> envp;
+  for (auto& e : env_text) envp.push_back(e.data());
+  envp.push_back(nullptr);
 
   int log_fd = open(spec.log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
   if (log_fd < 0) throw SystemError("cannot open " + spec.log_path);
@@ -85,7 +100,7 @@ void SolverProcess::Start(const LaunchSpec& spec) {
     sigset_t none;
     sigemptyset(&none);
     sigprocmask(SIG_SETMASK, &none, nullptr);
-    execv(argv[0], argv.data());
+    execve(argv[0], argv.data(), envp.data());
     static const char kMessage[] = "dlmfdd: cannot execute the solver\n";
     ssize_t ignored = write(2, kMessage, sizeof(kMessage) - 1);
     (void)ignored;

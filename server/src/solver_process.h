@@ -30,6 +30,7 @@ struct LaunchSpec {
   std::vector<std::string> overrides;
   bool resume = false;
   int lock_fd = -1;  // the held flock of the job directory, passed to the child as fd 4
+  std::vector<std::string> environment;  // "NAME=value" set in the child over the daemon's
 };
 
 struct SolverExit {

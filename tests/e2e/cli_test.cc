@@ -247,7 +247,7 @@ TEST_F(CliTest, SubmitWaitListShowFetchAndPlot) {
 }
 
 TEST_F(CliTest, WatchJsonYieldsProgressAndTheFinalState) {
-  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=1.0"});
+  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=0.3"});
   ASSERT_EQ(submit.code, 0) << submit.err;
   const std::string job = FirstLine(submit.out);
   const CliRun watch = Cli({"watch", job, "--json"});

@@ -120,6 +120,40 @@ TEST(ExponentialIntegrator, EqualsTheGeneralRuleToRoundOff) {
   }
 }
 
+TEST(OnePanelRow, EqualsTheGeneralRuleWhereItApplies) {
+  // The vectorised row kernel of ConformationStep against StretchAndRelax, node by node.
+  const double lambda = 0.8;
+  for (double dt : {1e-4, 4e-3, 0.02, 0.09}) {
+    const ExponentialIntegrator integrator(dt, lambda);
+    const OnePanelConstants constants = integrator.Constants();
+    std::vector<double> a11, a12, a22, l11, l12, l21, l22;
+    for (const Mat2& l : kGradients) {
+      for (double scale : {0.0, 0.1, 1.0, 5.0}) {
+        a11.push_back(3.0 + scale);
+        a12.push_back(1.0 - 0.1 * scale);
+        a22.push_back(2.0);
+        l11.push_back(scale * l.m11);
+        l12.push_back(scale * l.m12);
+        l21.push_back(scale * l.m21);
+        l22.push_back(scale * l.m22);
+      }
+    }
+    const int count = static_cast<int>(a11.size());
+    std::vector<double> o11(count), o12(count), o22(count);
+    OnePanelRow(count, constants, a11.data(), a12.data(), a22.data(), l11.data(), l12.data(), l21.data(),
+                l22.data(), o11.data(), o12.data(), o22.data());
+    int applied = 0;
+    for (int i = 0; i < count; ++i) {
+      const Mat2 l{l11[i], l12[i], l21[i], l22[i]};
+      if (!OnePanelApplies(constants, l)) continue;
+      ++applied;
+      const SymTensor general = StretchAndRelax(SymTensor{a11[i], a12[i], a22[i]}, l, dt, lambda);
+      EXPECT_LT(MaxDiff(SymTensor{o11[i], o12[i], o22[i]}, general), 1e-14 * Trace(general)) << "dt " << dt;
+    }
+    EXPECT_GT(applied, 0);
+  }
+}
+
 TEST(StretchAndRelax, HomogeneousRelaxationIsExactToRoundOff) {
   // L = 0: A(t) = I + (A0 - I) e^{-t/lambda}; the rescaled weights make this exact (no quadrature
   // error), so after 37 steps only round-off remains (about steps * ulp).

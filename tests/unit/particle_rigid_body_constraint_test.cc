@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -216,9 +217,128 @@ TEST(RigidBodyConstraint, WarmStartFromTheStoredMultiplierSavesIterations) {
   EXPECT_NEAR((s.particles[0].velocity - cold_velocity).norm(), 0.0, 1e-5);
 }
 
-TEST(RigidBodyConstraint, RejectsFreeParticlesNotHeavierThanTheLiquid) {
-  DiskScene s(1.0);
+TEST(RigidBodyConstraint, RejectsFreeParticlesLighterThanTheLiquid) {
+  DiskScene s(0.9);
   EXPECT_THROW(RigidBodyConstraint dlm(s.params, s.grid), InvalidParameter);
+}
+
+// Fluid momentum (a neutral disk carries no excess momentum) and angular momentum about the centre.
+void FluidMomentum(const DiskScene& s, Vec2* linear, double* angular) {
+  const double m = s.params.fluid.density * s.grid.h * s.grid.h;
+  const ParticleState& p = s.particles[0];
+  *linear = Vec2::Zero();
+  *angular = 0.0;
+  for (int j = 0; j <= s.grid.ny; ++j) {
+    for (int i = 0; i <= s.grid.nx; ++i) {
+      const Vec2 r = Vec2(s.grid.X(i), s.grid.Y(j)) - p.position;
+      const Vec2 w(s.u[s.grid.Index(i, j)], s.v[s.grid.Index(i, j)]);
+      *linear += m * w;
+      *angular += m * (r.x() * w.y() - r.y() * w.x());
+    }
+  }
+}
+
+TEST(RigidBodyConstraint, NeutrallyBuoyantDiskInRigidFluidMotionTakesThatMotion) {
+  DiskScene s(1.0);  // starts with U = (0.1, -0.2), omega = 0.5: not the fluid's motion
+  const Vec2 velocity(0.3, -0.1);
+  const double omega = 2.0;
+  const ParticleState& p = s.particles[0];
+  for (int j = 1; j < s.grid.ny; ++j) {
+    for (int i = 1; i < s.grid.nx; ++i) {
+      const Vec2 r = Vec2(s.grid.X(i), s.grid.Y(j)) - p.position;
+      s.u[s.grid.Index(i, j)] = velocity.x() - omega * r.y();
+      s.v[s.grid.Index(i, j)] = velocity.y() + omega * r.x();
+    }
+  }
+  const std::vector<double> u0 = s.u, v0 = s.v;
+  RigidBodyConstraint dlm(s.params, s.grid);
+  EXPECT_TRUE(dlm.IsNeutral(0));
+  const auto out = dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
+  // E reproduces linear fields exactly, so the projected mismatch is round-off: no iteration, no change.
+  EXPECT_EQ(out.iterations, 0);
+  for (std::size_t q = 0; q < u0.size(); ++q) {
+    ASSERT_EQ(s.u[q], u0[q]);
+    ASSERT_EQ(s.v[q], v0[q]);
+  }
+  EXPECT_NEAR((s.particles[0].velocity - velocity).norm(), 0.0, 1e-13);
+  EXPECT_NEAR(s.particles[0].angular_velocity, omega, 1e-12);
+}
+
+TEST(RigidBodyConstraint, NeutrallyBuoyantDiskIsRigidAtTheNodesAndConservesFluidMomentum) {
+  DiskScene s(1.0);
+  s.Vortical();
+  Vec2 p0, p1;
+  double l0, l1;
+  FluidMomentum(s, &p0, &l0);
+  RigidBodyConstraint dlm(s.params, s.grid);
+  const double before = MaxMismatch(s, dlm);
+  const auto out = dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
+  FluidMomentum(s, &p1, &l1);
+  const double after = MaxMismatch(s, dlm);
+  std::printf("neutral: %d iterations, mismatch %.3e -> %.3e, momentum change %.3e / %.3e, "
+              "net nodal force %.3e, torque %.3e\n",
+              out.iterations, before, after, (p1 - p0).norm(), std::abs(l1 - l0),
+              dlm.NodalForceSum(0).norm(), std::abs(dlm.NodalTorqueSum(0)));
+  EXPECT_GT(before, 0.1);
+  // Same stopping rule as the heavy case: tol 1e-6 of an O(1) mismatch in the G norm, and
+  // |g|_inf <= |g|_G / sqrt(lambda_min(G)) ~ 10 |g|_G on this mesh (first test above).
+  EXPECT_LT(after, 1e-4);
+  EXPECT_NEAR(out.residual, after, 1e-12);
+  // No net force or torque on the fluid: momentum (~1e-1) conserved to round-off.
+  EXPECT_LT((p1 - p0).norm(), 1e-15);
+  EXPECT_LT(std::abs(l1 - l0), 1e-15);
+  EXPECT_LT(dlm.NodalForceSum(0).norm(), 1e-13);
+  EXPECT_LT(std::abs(dlm.NodalTorqueSum(0)), 1e-14);
+  // ... while the multiplier did move momentum inside the disk.
+  double largest = 0.0;
+  for (double f : s.particles[0].multiplier) largest = std::max(largest, std::abs(f));
+  EXPECT_GT(largest, 1e-3);
+}
+
+TEST(RigidBodyConstraint, NeutrallyBuoyantDiskIsTheLimitOfSlightlyHeavyOnes) {
+  // (37) is continuous in 1/m_e: the heavy solution tends to the neutral one as rho_d -> rho_L,
+  // with a difference O(m_e) (the rigid-mode responses dt/m_e dominate the operator).
+  auto solve = [](double density, Vec2* velocity, double* omega) {
+    DiskScene s(density);
+    s.params.solvers.multiplier_tolerance = 1e-12;
+    s.Vortical();
+    RigidBodyConstraint dlm(s.params, s.grid);
+    dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
+    *velocity = s.particles[0].velocity;
+    *omega = s.particles[0].angular_velocity;
+  };
+  Vec2 u0, u1, u2;
+  double w0, w1, w2;
+  solve(1.0, &u0, &w0);
+  solve(1.0 + 1e-2, &u1, &w1);
+  solve(1.0 + 1e-3, &u2, &w2);
+  const double d1 = (u1 - u0).norm() + 0.1 * std::abs(w1 - w0);
+  const double d2 = (u2 - u0).norm() + 0.1 * std::abs(w2 - w0);
+  std::printf("neutral U = (%.6f, %.6f), omega = %.6f; |diff| at 1e-2: %.3e, at 1e-3: %.3e\n", u0.x(),
+              u0.y(), w0, d1, d2);
+  EXPECT_GT(d1, 0.0);
+  // First order in (rho_d - rho_L): the ratio is 10 up to O(m_e) and the CG tolerance.
+  EXPECT_NEAR(d1 / d2, 10.0, 1.0);
+}
+
+TEST(RigidBodyConstraint, NeutrallyBuoyantDiskPassesItsNetForceToTheFluid) {
+  DiskScene s(1.0);
+  s.Vortical();
+  Vec2 p0, p1;
+  double l0, l1;
+  FluidMomentum(s, &p0, &l0);
+  const double dt = 4e-4;
+  const Vec2 force(0.7, -0.3);
+  RigidBodyConstraint dlm(s.params, s.grid);
+  dlm.Enforce(0.0, dt, s.particles, s.u.data(), s.v.data(), &force);
+  FluidMomentum(s, &p1, &l1);
+  std::printf("net force (%.3e, %.3e), momentum change / dt (%.3e, %.3e)\n", dlm.NodalForceSum(0).x(),
+              dlm.NodalForceSum(0).y(), (p1 - p0).x() / dt, (p1 - p0).y() / dt);
+  EXPECT_NEAR((dlm.NodalForceSum(0) - force).norm(), 0.0, 1e-13);
+  EXPECT_NEAR(dlm.NodalTorqueSum(0), 0.0, 1e-14);
+  EXPECT_NEAR(((p1 - p0) / dt - force).norm(), 0.0, 1e-11);  // round-off of 1e-1 sums over dt
+  EXPECT_NEAR((l1 - l0) / dt, 0.0, 1e-11);
+  EXPECT_LT(MaxMismatch(s, dlm), 1e-4);
 }
 
 }  // namespace

@@ -133,6 +133,66 @@ TEST(ParticleStep, HydrodynamicForceSatisfiesTheMomentumIdentity) {
   }
 }
 
+TEST(ParticleStep, NeutrallyBuoyantDiskFloatsWithAUniformFlowUnderGravity) {
+  // rho_d = rho_L: gravity is balanced by buoyancy, the disk is carried by the flow, and the
+  // hydrodynamic force is the buoyancy -rho_L Vp g = -M g.
+  Params params = Scene(1.0, 1.0 / 48, true);
+  params.gravity = Vec2(0.0, -981.0);
+  const Vec2 velocity(0.3, -0.1);
+  params.particles.push_back(Disk(Vec2(0.5137, 0.4871), 1.0, velocity));
+  SceneRun run(params);
+  std::fill(run.u.begin(), run.u.end(), velocity.x());
+  std::fill(run.v.begin(), run.v.end(), velocity.y());
+  const int steps = 500;
+  for (int k = 0; k < steps; ++k) run.Advance();
+  const ParticleState& p = run.particles[0];
+  const double mass = kPi * 0.01;
+  EXPECT_NEAR((p.velocity - velocity).norm(), 0.0, 1e-13);
+  EXPECT_NEAR(p.angular_velocity, 0.0, 1e-12);
+  for (std::size_t q = 0; q < run.u.size(); ++q) {
+    ASSERT_NEAR(run.u[q], velocity.x(), 1e-14);
+    ASSERT_NEAR(run.v[q], velocity.y(), 1e-14);
+  }
+  // |F_h + M g| is round-off of M (U^{n+1} - U^n)/dt: 1e-16 velocity over dt = 4e-4, times M.
+  EXPECT_NEAR((p.force + mass * params.gravity).norm(), 0.0, 1e-10);
+  const Vec2 expected = Vec2(0.5137, 0.4871) + steps * 4e-4 * velocity;
+  EXPECT_NEAR((p.position - expected).norm(), 0.0, 1e-12);
+}
+
+TEST(ParticleStep, NeutrallyBuoyantDiskSatisfiesTheMomentumIdentityInContact) {
+  // A neutral disk (its collision force goes to the fluid through (37)) next to a heavy one.
+  Params params = Scene(1.0, 1.0 / 48, false);
+  params.gravity = Vec2(0.0, -981.0);
+  params.particles.push_back(Disk(Vec2(0.4, 0.45), 1.0, Vec2(0.2, 0.0)));
+  params.particles.push_back(Disk(Vec2(0.4 + 0.2 + 0.02, 0.47), 1.5, Vec2(-0.1, 0.1)));
+  SceneRun run(params);
+  for (int j = 1; j < run.grid.ny; ++j) {
+    for (int i = 1; i < run.grid.nx; ++i) {
+      const double x = run.grid.X(i), y = run.grid.Y(j);
+      run.u[run.grid.Index(i, j)] = std::sin(2 * kPi * x) * std::sin(2 * kPi * y);
+      run.v[run.grid.Index(i, j)] = std::cos(3 * x) * std::sin(2 * kPi * y);
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    std::vector<ParticleState> before = run.particles;
+    run.Advance();
+    const double dt = params.time.dt;
+    const Vec2 collision = run.step.CollisionForceAverage()[0];
+    EXPECT_GT(collision.norm(), 0.0);
+    // The neutral disk hands F' to the fluid: sum nu = F'_avg exactly.
+    EXPECT_NEAR((run.step.constraint().NodalForceSum(0) - collision).norm(), 0.0, 1e-12 * collision.norm());
+    for (std::size_t p = 0; p < 2; ++p) {
+      const ParticleState& a = before[p];
+      const ParticleState& b = run.particles[p];
+      const double mass = b.density * kPi * b.radius * b.radius;
+      const Vec2 f = run.step.CollisionForceAverage()[p];
+      const Vec2 expected = mass * (b.velocity - a.velocity) / dt - mass * params.gravity - f;
+      const double scale = mass * params.gravity.norm() + f.norm() + mass * b.velocity.norm() / dt;
+      EXPECT_NEAR((b.force - expected).norm(), 0.0, 1e-12 * scale);
+    }
+  }
+}
+
 TEST(ParticleStep, FixedDiskFeelsMinusTheNodalForceSum) {
   Params params = Scene(1.0, 1.0 / 48, false);
   params.particles.push_back(Disk(Vec2(0.5137, 0.4871), 1.5));

@@ -148,27 +148,40 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
   long blended = 0;
   for (int s = 0; s < substeps; ++s) blended += advection_.SubStep(tau, u, v);
 
-  // 2. The exact pointwise update; 3. A = I inside particles. The result is checked on the way.
+  // 2. The exact pointwise update (a vectorised one-panel row kernel, the general rule where it
+  // does not apply); 3. A = I inside particles. Then the result is checked row by row.
   const int nx = grid_.nx, ny = grid_.ny;
   const ExponentialIntegrator integrator(dt, lambda_);
+  const OnePanelConstants constants = integrator.Constants();
   long first_bad = n;
   double min_eig = std::numeric_limits<double>::infinity();
   double max_trace = -std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static) reduction(min : first_bad, min_eig) reduction(max : max_trace)
   for (int j = 0; j <= ny; ++j) {
+    const std::size_t row = grid_.Index(0, j);
+    OnePanelRow(nx + 1, constants, advection_.Row(0, j), advection_.Row(1, j), advection_.Row(2, j),
+                l11_.data() + row, l12_.data() + row, l21_.data() + row, l22_.data() + row, a11 + row,
+                a12 + row, a22 + row);
     for (int i = 0; i <= nx; ++i) {
-      const std::size_t k = grid_.Index(i, j);
+      const std::size_t k = row + i;
       if (inflow_[k]) continue;  // A_L, set below
-      SymTensor a;  // identity
-      if (inside_particle == nullptr || inside_particle[k] == 0) {
-        a = integrator.Apply(advection_.At(i, j), Mat2{l11_[k], l12_[k], l21_[k], l22_[k]});
+      SymTensor a{a11[k], a12[k], a22[k]};
+      const Mat2 l{l11_[k], l12_[k], l21_[k], l22_[k]};
+      if (inside_particle != nullptr && inside_particle[k] != 0) {
+        a = SymTensor{};
+      } else if (!OnePanelApplies(constants, l)) {
+        a = integrator.Apply(advection_.At(i, j), l);
       }
       a11[k] = a.a11;
       a12[k] = a.a12;
       a22[k] = a.a22;
-      const double m = MinEigenvalue(a);
-      if (!IsFinite(a) || !(m > 0.0)) first_bad = std::min(first_bad, static_cast<long>(k));
-      min_eig = std::min(min_eig, m);
+      // min over nodes of lambda_min: min(A11, A22) >= lambda_min bounds what a node can lower.
+      const bool spd = GershgorinLowerBound(a) > 0.0 && IsFinite(a);
+      if (!spd || std::min(a.a11, a.a22) < min_eig) {
+        const double m = MinEigenvalue(a);
+        if (!IsFinite(a) || !(m > 0.0)) first_bad = std::min(first_bad, static_cast<long>(k));
+        min_eig = std::min(min_eig, m);
+      }
       max_trace = std::max(max_trace, Trace(a));
     }
   }

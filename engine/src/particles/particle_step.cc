@@ -45,9 +45,12 @@ ParticleStep::ParticleStep(const Params& params, const Grid& grid)
       constraint_(params, grid),
       collisions_(params, grid, Radii(params)) {
   const std::size_t n = params.particles.size();
-  for (const auto& p : params.particles) {
-    const double excess = (p.density - fluid_density_) * kPi * p.Radius() * p.Radius();
-    inv_excess_mass_.push_back(p.motion == Motion::kFree ? 1.0 / excess : 0.0);
+  for (std::size_t p = 0; p < n; ++p) {
+    const ParticleParams& pp = params.particles[p];
+    const double excess = (pp.density - fluid_density_) * kPi * pp.Radius() * pp.Radius();
+    const bool heavy_free = pp.motion == Motion::kFree && !constraint_.IsNeutral(p);
+    inv_excess_mass_.push_back(heavy_free ? 1.0 / excess : 0.0);
+    predicted_.push_back(heavy_free ? 1 : 0);
   }
   for (auto* a : {&x_old_, &u_old_, &x_, &x_star_, &u_, &u_star_, &f0_, &f1_, &collision_average_}) {
     a->assign(n, Vec2::Zero());
@@ -67,8 +70,7 @@ void ParticleStep::Predict(double dt, std::vector<ParticleState>& particles) {
   for (int k = 1; k <= substeps_; ++k) {
     max_contacts_ = std::max(max_contacts_, collisions_.Compute(x_, f0_));
     for (std::size_t p = 0; p < n; ++p) {
-      const bool free = particles[p].motion == Motion::kFree;
-      u_star_[p] = free ? Vec2(u_[p] + (gravity_ + inv_excess_mass_[p] * f0_[p]) * tau) : u_[p];
+      u_star_[p] = predicted_[p] ? Vec2(u_[p] + (gravity_ + inv_excess_mass_[p] * f0_[p]) * tau) : u_[p];
       x_star_[p] = x_[p] + 0.5 * (u_[p] + u_star_[p]) * tau;
     }
     collisions_.Compute(x_star_, f1_);
@@ -76,9 +78,7 @@ void ParticleStep::Predict(double dt, std::vector<ParticleState>& particles) {
       const Vec2 average = 0.5 * (f0_[p] + f1_[p]);
       collision_average_[p] += average / substeps_;
       const Vec2 previous = u_[p];
-      if (particles[p].motion == Motion::kFree) {
-        u_[p] += (gravity_ + inv_excess_mass_[p] * average) * tau;
-      }
+      if (predicted_[p]) u_[p] += (gravity_ + inv_excess_mass_[p] * average) * tau;
       x_[p] += 0.5 * (previous + u_[p]) * tau;
     }
   }
@@ -137,7 +137,7 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
     omega_old_[p] = particles[p].angular_velocity;
   }
   Predict(dt, particles);
-  const RigidBodyConstraint::Outcome outcome = constraint_.Enforce(time + dt, dt, particles, u, v);
+  const RigidBodyConstraint::Outcome outcome = constraint_.Enforce(time + dt, dt, particles, u, v, collision_average_.data());
   Correct(dt, particles);
 
   for (std::size_t p = 0; p < n; ++p) {

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <string>
 
+#include <Eigen/LU>
+
 #include "dlmfd/core/errors.h"
 
 namespace dlmfd {
@@ -53,12 +55,16 @@ RigidBodyConstraint::RigidBodyConstraint(const Params& params, const Grid& grid)
     offset_.push_back(total_nodes_);
     total_nodes_ += meshes_[found].NodeCount();
     const double excess_mass = (pp.density - fluid_density_) * kPi * radius * radius;
-    if (pp.motion == Motion::kFree) {
+    const bool free = pp.motion == Motion::kFree;
+    const bool neutral = free && pp.density == fluid_density_;
+    neutral_.push_back(neutral ? 1 : 0);
+    any_neutral_ = any_neutral_ || neutral;
+    if (free && !neutral) {
       if (!(excess_mass > 0.0)) {
         throw InvalidParameter("particles." + std::to_string(p) + ".density",
                                std::to_string(pp.density),
-                               "> fluid.density for a free particle (lighter or neutrally buoyant "
-                               "free particles are not supported by the DLM solver)");
+                               ">= fluid.density for a free particle (a free particle lighter than the "
+                               "liquid makes the DLM problem (37) indefinite; the solver is CG)");
       }
       inv_excess_mass_.push_back(1.0 / excess_mass);
       inv_excess_inertia_.push_back(2.0 / (excess_mass * radius * radius));
@@ -79,6 +85,86 @@ RigidBodyConstraint::RigidBodyConstraint(const Params& params, const Grid& grid)
   omega_.assign(n, 0.0);
   omega_b_.assign(n, 0.0);
   torque_sum_.assign(n, 0.0);
+  BuildRigidModes();
+}
+
+void RigidBodyConstraint::BuildRigidModes() {
+  gram_rigid_.resize(meshes_.size());
+  rigid_gram_inverse_.resize(meshes_.size());
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    const ParticleMesh& mesh = meshes_[m];
+    const std::size_t size = 2 * static_cast<std::size_t>(mesh.NodeCount());
+    std::vector<double> mode(size);
+    std::vector<double>& gc = gram_rigid_[m];
+    gc.assign(3 * size, 0.0);
+    for (int c = 0; c < 3; ++c) {
+      for (int k = 0; k < mesh.NodeCount(); ++k) {
+        const Vec2 r = mesh.nodes()[k];
+        const Vec2 e = c == 0 ? Vec2(1.0, 0.0) : (c == 1 ? Vec2(0.0, 1.0) : Perp(r));
+        mode[2 * k] = e.x();
+        mode[2 * k + 1] = e.y();
+      }
+      mesh.ApplyGram2(mode.data(), gc.data() + c * size);
+    }
+    Eigen::Matrix3d s = Eigen::Matrix3d::Zero();  // C^T G C, column a = C^T (G C)_a
+    for (int a = 0; a < 3; ++a) {
+      for (int k = 0; k < mesh.NodeCount(); ++k) {
+        const Vec2 gc_k(gc[a * size + 2 * k], gc[a * size + 2 * k + 1]);
+        s(0, a) += gc_k.x();
+        s(1, a) += gc_k.y();
+        s(2, a) += Perp(mesh.nodes()[k]).dot(gc_k);
+      }
+    }
+    rigid_gram_inverse_[m] = (0.5 * (s + s.transpose())).inverse();
+  }
+}
+
+Eigen::Vector3d RigidBodyConstraint::RigidPart(std::size_t p, const double* a) const {
+  const ParticleMesh& mesh = MeshOf(p);
+  const std::size_t size = 2 * static_cast<std::size_t>(mesh.NodeCount());
+  const double* gc = gram_rigid_[mesh_of_[p]].data();
+  Eigen::Vector3d moments;
+  for (int c = 0; c < 3; ++c) {
+    double sum = 0.0;
+    for (std::size_t q = 0; q < size; ++q) sum += gc[c * size + q] * a[q];
+    moments[c] = sum;
+  }
+  return rigid_gram_inverse_[mesh_of_[p]] * moments;
+}
+
+void RigidBodyConstraint::ProjectMismatch(double* a) const {
+  if (!any_neutral_) return;
+  for (std::size_t p = 0; p < mesh_of_.size(); ++p) {
+    if (!neutral_[p]) continue;
+    double* ap = a + 2 * offset_[p];
+    const Eigen::Vector3d rigid = RigidPart(p, ap);
+    const ParticleMesh& mesh = MeshOf(p);
+    for (int k = 0; k < mesh.NodeCount(); ++k) {
+      const Vec2 motion = Vec2(rigid[0], rigid[1]) + rigid[2] * Perp(mesh.nodes()[k]);
+      ap[2 * k] -= motion.x();
+      ap[2 * k + 1] -= motion.y();
+    }
+  }
+}
+
+void RigidBodyConstraint::ProjectForces(double* f) const {
+  if (!any_neutral_) return;
+  for (std::size_t p = 0; p < mesh_of_.size(); ++p) {
+    if (!neutral_[p]) continue;
+    const ParticleMesh& mesh = MeshOf(p);
+    const std::size_t size = 2 * static_cast<std::size_t>(mesh.NodeCount());
+    double* fp = f + 2 * offset_[p];
+    Eigen::Vector3d moments = Eigen::Vector3d::Zero();  // C^T f
+    for (int k = 0; k < mesh.NodeCount(); ++k) {
+      const Vec2 force(fp[2 * k], fp[2 * k + 1]);
+      moments += Eigen::Vector3d(force.x(), force.y(), Perp(mesh.nodes()[k]).dot(force));
+    }
+    const Eigen::Vector3d t = rigid_gram_inverse_[mesh_of_[p]] * moments;
+    const double* gc = gram_rigid_[mesh_of_[p]].data();
+    for (std::size_t q = 0; q < size; ++q) {
+      fp[q] -= gc[q] * t[0] + gc[size + q] * t[1] + gc[2 * size + q] * t[2];
+    }
+  }
 }
 
 double RigidBodyConstraint::InverseNodeMass(int i, int j) const {
@@ -221,6 +307,12 @@ double RigidBodyConstraint::GramDot(const double* a, const double* b) {
 RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt,
                                                           std::vector<ParticleState>& particles,
                                                           double* u, double* v) {
+  return Enforce(time, dt, particles, u, v, nullptr);
+}
+
+RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt,
+                                                          std::vector<ParticleState>& particles,
+                                                          double* u, double* v, const Vec2* net_force) {
   Outcome outcome;
   const std::size_t n = particles.size();
   if (n == 0) return outcome;
@@ -230,9 +322,9 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
     omega_[p] = particles[p].angular_velocity;
   }
 
-  // Cold-start mismatch: the absolute reference of the stopping rule.
+  // Cold-start mismatch (unprojected for the report); its projection is the absolute reference of
+  // the stopping rule.
   Mismatch(u, v, velocity_.data(), omega_.data(), g_.data());
-  const double cold = GramDot(g_.data(), g_.data());
   double scale = 0.0, floor_weight = 0.0;
   for (std::size_t p = 0; p < n; ++p) {
     const ParticleMesh& mesh = MeshOf(p);
@@ -245,27 +337,68 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
     outcome.cold_residual = std::max(outcome.cold_residual, std::hypot(g_[2 * q], g_[2 * q + 1]));
     scale = std::max(scale, outcome.cold_residual);
   }
+  ProjectMismatch(g_.data());
+
+  // The particular nodal forces of the neutral particles: nu_f = G C S^-1 (F', 0), C^T nu_f = F'.
+  std::fill(nu_.begin(), nu_.end(), 0.0);
+  bool have_net_force = false;
+  if (any_neutral_ && net_force != nullptr) {
+    for (std::size_t p = 0; p < n; ++p) {
+      if (!neutral_[p] || net_force[p].isZero()) continue;
+      have_net_force = true;
+      const Eigen::Vector3d t = rigid_gram_inverse_[mesh_of_[p]] *
+                                Eigen::Vector3d(net_force[p].x(), net_force[p].y(), 0.0);
+      const std::size_t size = MultiplierSize(p);
+      const double* gc = gram_rigid_[mesh_of_[p]].data();
+      double* f = nu_.data() + 2 * offset_[p];
+      for (std::size_t q = 0; q < size; ++q) {
+        f[q] = gc[q] * t[0] + gc[size + q] * t[1] + gc[2 * size + q] * t[2];
+      }
+    }
+  }
+  if (have_net_force) {
+    Respond(dt, nu_.data());
+    ProjectMismatch(gb_.data());
+    for (std::size_t q = 0; q < 2 * total_nodes_; ++q) g_[q] += gb_[q];
+    for (std::size_t node : touched_) {
+      u[node] += ub_[node];
+      v[node] += vb_[node];
+    }
+    for (std::size_t p = 0; p < n; ++p) {
+      velocity_[p] += velocity_b_[p];
+      omega_[p] += omega_b_[p];
+    }
+  }
+  const double cold = GramDot(g_.data(), g_.data());
   const double threshold =
       std::max(tolerance_ * tolerance_ * cold, kRoundOffFloor * kRoundOffFloor * scale * scale * floor_weight);
 
-  // Warm start from the stored nodal forces when they reduce the mismatch.
-  std::fill(nu_.begin(), nu_.end(), 0.0);
+  // Warm start from the stored nodal forces when they reduce the mismatch (for a neutral particle,
+  // the stored forces less their net force and torque, on top of nu_f).
   bool have_warm = false;
   for (std::size_t p = 0; p < n; ++p) {
     const auto& stored = particles[p].multiplier;
     if (stored.size() != MultiplierSize(p)) continue;
-    std::copy(stored.begin(), stored.end(), nu_.begin() + 2 * offset_[p]);
+    std::copy(stored.begin(), stored.end(), nub_.begin() + 2 * offset_[p]);
     have_warm = true;
   }
   double gg = cold;
   if (have_warm && cold > threshold) {
-    Respond(dt, nu_.data());
+    for (std::size_t p = 0; p < n; ++p) {
+      if (particles[p].multiplier.size() != MultiplierSize(p)) {
+        std::fill(nub_.begin() + 2 * offset_[p], nub_.begin() + 2 * offset_[p] + MultiplierSize(p), 0.0);
+      }
+    }
+    ProjectForces(nub_.data());
+    Respond(dt, nub_.data());
+    ProjectMismatch(gb_.data());
     for (std::size_t q = 0; q < 2 * total_nodes_; ++q) w_[q] = g_[q] + gb_[q];
     const double warm = GramDot(w_.data(), w_.data());
     if (warm < cold) {
       outcome.warm_start = true;
       gg = warm;
       std::swap(g_, w_);
+      for (std::size_t q = 0; q < 2 * total_nodes_; ++q) nu_[q] += nub_[q];
       for (std::size_t node : touched_) {
         u[node] += ub_[node];
         v[node] += vb_[node];
@@ -276,7 +409,6 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
       }
     }
   }
-  if (!outcome.warm_start) std::fill(nu_.begin(), nu_.end(), 0.0);
 
   // Conjugate gradients in <., .>_G (method notes 1.3, steps 2-7), iterate tracked as nu = G lambda.
   w_ = g_;
@@ -290,7 +422,9 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
       throw SolverNotConverged(what.str());
     }
     ApplyGram(w_.data(), nub_.data());
+    ProjectForces(nub_.data());  // exact already (w is G-orthogonal to C); keeps round-off out
     Respond(dt, nub_.data());
+    ProjectMismatch(gb_.data());
     double curvature = 0.0;  // <gb, w>_G = gb . G w
     for (std::size_t q = 0; q < 2 * total_nodes_; ++q) curvature += gb_[q] * nub_[q];
     if (!(curvature > 0.0)) {
@@ -331,6 +465,22 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
     for (int i = 0; i <= grid_.nx; ++i) {
       u[grid_.Index(i, grid_.ny)] = u[grid_.Index(i, 0)];
       v[grid_.Index(i, grid_.ny)] = v[grid_.Index(i, 0)];
+    }
+  }
+
+  // Neutral particles: (U, omega) = the G-weighted rigid part of E u.
+  if (any_neutral_) {
+    for (std::size_t p = 0; p < n; ++p) {
+      if (!neutral_[p]) continue;
+      velocity_[p].setZero();
+      omega_[p] = 0.0;
+    }
+    Mismatch(u, v, velocity_.data(), omega_.data(), g_.data());
+    for (std::size_t p = 0; p < n; ++p) {
+      if (!neutral_[p]) continue;
+      const Eigen::Vector3d rigid = RigidPart(p, g_.data() + 2 * offset_[p]);
+      velocity_[p] = Vec2(rigid[0], rigid[1]);
+      omega_[p] = rigid[2];
     }
   }
 

@@ -41,6 +41,8 @@ class ConformationAdvection {
   void Load(const double* a11, const double* a12, const double* a22);
   // One sub-step of length tau with node velocities (u, v). Returns the number of blended nodes.
   long SubStep(double tau, const double* u, const double* v);
+  // Component c (0: A11, 1: A12, 2: A22) of the current state from node (0, j) on.
+  const double* Row(int c, int j) const { return a_[c] + Padded(0, j); }
   // The current node value.
   SymTensor At(int i, int j) const {
     const std::size_t p = Padded(i, j);

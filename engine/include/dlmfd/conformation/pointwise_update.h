@@ -26,14 +26,16 @@
 
 namespace dlmfd {
 
-// e^y; a 9-term Taylor polynomial for |y| < 1e-2 (truncation < 1e-20 relative), the library otherwise.
-inline double ExpOf(double y) {
-  if (std::abs(y) >= 1e-2) return std::exp(y);
+// e^y by its 9-term Taylor polynomial (truncation |y|^9/9! < 6e-18 relative for |y| <= 0.05).
+inline double ExpPolynomial(double y) {
   // Multiplications by reciprocals: divisions would form a long-latency chain in the hot loop.
   constexpr double k3 = 1.0 / 3.0, k5 = 1.0 / 5.0, k6 = 1.0 / 6.0, k7 = 1.0 / 7.0;
   return 1.0 + y * (1.0 + y * 0.5 * (1.0 + y * k3 * (1.0 + y * 0.25 * (1.0 + y * k5 * (1.0 + y * k6 *
                                                                                    (1.0 + y * k7 * (1.0 + y * 0.125)))))));
 }
+
+// e^y: the polynomial for |y| <= 0.05, the library otherwise.
+inline double ExpOf(double y) { return std::abs(y) <= 0.05 ? ExpPolynomial(y) : std::exp(y); }
 
 // exp(s L) = scale (c I + sigma L0), L0 = L - (tr L/2) I = [[d, l12], [l21, -d]].
 struct ExponentialParts {
@@ -132,6 +134,20 @@ inline SymTensor StretchAndRelax(const SymTensor& a, const Mat2& l, double dt, d
                    decay * stretched.a22 + rescale * integral.a22};
 }
 
+// The per-step constants of the one-panel rule (ExponentialIntegrator, OnePanelRow).
+struct OnePanelConstants {
+  double dt, inv_lambda, decay, max_rate, w1, w2, w3;
+};
+
+// dt (1/lambda + |tr L| + 2|q|) <= kMaxPanelRate, without a square root.
+inline bool OnePanelApplies(const OnePanelConstants& k, const Mat2& l) {
+  const double ht = 0.5 * (l.m11 + l.m22);
+  const double d = l.m11 - ht;
+  const double q2 = d * d + l.m12 * l.m21;
+  const double room = k.max_rate - k.inv_lambda - 2.0 * std::abs(ht);  // >= 2 |q| wanted
+  return room >= 0.0 && 4.0 * std::abs(q2) <= room * room;
+}
+
 // StretchAndRelax for many nodes with the same dt and lambda: the one-panel weights are made once,
 // and a node whose rate allows one panel needs two closed-form exponentials: with E = F(dt/2) and
 // G = F(delta), F(dt/2 -+ delta) = E G^{-+1} (G^{-1} from the same c and sigma) and F(dt) = E^2, so
@@ -177,9 +193,24 @@ class ExponentialIntegrator {
     return Congruence(e, middle);
   }
 
+  OnePanelConstants Constants() const {
+    return OnePanelConstants{dt_, inv_lambda_, decay_, max_rate_, weight_[0], weight_[1], weight_[2]};
+  }
+
  private:
   double dt_, lambda_, inv_lambda_, decay_, max_rate_;
   double weight_[3];
 };
+
+// The one-panel update of ExponentialIntegrator::Apply for a row of nodes, without branches so that
+// the compiler vectorises it. Valid where dt (1/lambda + |tr L| + 2|q|) <= kMaxPanelRate: then
+// |q^2 (dt/2)^2| <= 1e-3 (the cosh/sinh series apply) and |2 delta tr L/2| <= 0.05 (the exponential
+// polynomial applies). Elsewhere (OnePanelApplies false) the outputs are meaningless; the caller
+// redoes those nodes with ExponentialIntegrator::Apply. Compiled for AVX2 and for the baseline
+// (chosen at load time); both do the same IEEE operations in the same order.
+void OnePanelRow(int count, const OnePanelConstants& k, const double* __restrict a11,
+                 const double* __restrict a12, const double* __restrict a22, const double* __restrict l11,
+                 const double* __restrict l12, const double* __restrict l21, const double* __restrict l22,
+                 double* __restrict o11, double* __restrict o12, double* __restrict o22);
 
 }  // namespace dlmfd

@@ -22,7 +22,11 @@
 // Report columns: multiplier_iterations, multiplier_residual (max |E u - U - omega r_perp| at the
 // multiplier nodes), multiplier_warm_start, collision_contacts (max over the predictor sub-steps),
 // particle_min_gap (capped at 2 R_max + rho).
-// Not supported: free particles with rho_d <= rho_L; gamma != 0; non-circular particles.
+// Neutrally buoyant free particles (rho_d = rho_L, m_e = 0): gravity and buoyancy cancel, so (36)
+//   keeps U^{n+2/4} = U^n (X^{n+2/4} = X^n + U^n dt), (38) has no push term, and the collision force
+//   F'_avg of the predictor goes to the fluid through the constraint sum_k nu_k = F'_avg of (37)
+//   (m_e (U - U^n)/dt = m_e g + F'_avg - sum nu with m_e = 0); the force identity below still holds.
+// Not supported: free particles with rho_d < rho_L; gamma != 0; non-circular particles.
 // References: Glowinski et al., J. Comput. Phys. 169 (2001) 363-426; Singh, Joseph, Hesla, Glowinski,
 // Pan, J. Non-Newtonian Fluid Mech. 91 (2000) 165-188 (the paper); method notes 2, part 1.
 #pragma once
@@ -69,7 +73,8 @@ class ParticleStep {
   bool periodic_x_, periodic_y_;
   RigidBodyConstraint constraint_;
   CollisionForces collisions_;
-  std::vector<double> inv_excess_mass_;  // 0 for fixed and prescribed particles
+  std::vector<double> inv_excess_mass_;  // 0 for fixed, prescribed and neutrally buoyant particles
+  std::vector<char> predicted_;          // heavy free particles: (36) and (38) carry g and F'/m_e
   // Work arrays, sized once.
   std::vector<Vec2> x_old_, u_old_, x_, x_star_, u_, u_star_, f0_, f1_, collision_average_;
   std::vector<double> omega_old_;

@@ -18,14 +18,32 @@
 // cold-start mismatch (an absolute reference, so warm starts pay) and floor a round-off level
 // (1e-11 times the velocity scale, in the G norm). Throws SolverNotConverged after
 // solvers.multiplier_max_iterations.
-// Not supported: free particles lighter than the liquid or neutrally buoyant (m_e <= 0 makes the
-// operator indefinite; notes 1.3 suggest MINRES) - rejected with InvalidParameter; gamma != 0.
+// Neutrally buoyant free particles (rho_d = rho_L, m_e = j_e = 0): the momentum equations of (37)
+// become the constraints C^T nu = f, with C = [e_x, e_y, r_perp] the rigid modes at the nodes and
+// f = (F'_avg, 0) the collision force of the predictor (the particle, having no excess mass, passes
+// it straight to the fluid); (U, omega) becomes their multiplier:
+//   rho_L h^2 (u - u*)/dt = E^T nu,   C^T nu = f,   E u = C (U, omega).
+// Exact elimination, with nu = G lambda and the G-orthogonal projector P = I - C S^-1 C^T G
+// (S = C^T G C, 3x3 per mesh, constant because the mesh translates without rotating):
+//   lambda = lambda_f + P mu with lambda_f = C S^-1 f (so C^T G lambda_f = f, C^T G P = 0), and
+//   P (E u* + dt E M^-1 E^T G lambda) = 0 for mu: the operator P E M^-1 E^T G is self-adjoint and
+//   positive on range(P) in <., .>_G, so the same CG runs on it with the residual and the response
+//   projected by P (the G-weighted rigid part is taken out) and the nodal directions G w free of net
+//   force and torque. Then E u - C (U, omega) = P E u, hence (U, omega) = S^-1 C^T G E u, the rigid
+//   part of E u in the G metric, recovered after the CG. Heavy, neutral, fixed and prescribed
+//   particles mix in one stacked CG (the projector acts per neutral particle).
+// Not supported: free particles lighter than the liquid (m_e < 0: the elimination above leaves
+// E M^-1 E^T + C D^-1 C^T with D = diag(m_e, m_e, j_e) < 0, negative on the rigid modes because the
+// fluid mass inside the support exceeds |m_e| = (rho_L - rho_d) pi R^2 whenever rho_d > 0; it needs
+// MINRES) - rejected with InvalidParameter; gamma != 0.
 // References: Glowinski, Pan, Hesla, Joseph, Periaux, J. Comput. Phys. 169 (2001) 363-426;
 // method notes 2, sections 1.1-1.6.
 #pragma once
 
 #include <cstddef>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/params.h"
@@ -52,6 +70,13 @@ class RigidBodyConstraint {
   // SolverNotConverged.
   Outcome Enforce(double time, double dt, std::vector<ParticleState>& particles, double* u,
                   double* v);
+  // The same, with net_force[p] the force a neutrally buoyant free particle p passes to the fluid
+  // (its predictor collision force F'_avg); ignored for the other particles. nullptr means zero.
+  Outcome Enforce(double time, double dt, std::vector<ParticleState>& particles, double* u, double* v,
+                  const Vec2* net_force);
+
+  // True for a free particle with rho_d = rho_L (solved by the projected CG).
+  bool IsNeutral(std::size_t particle) const { return neutral_[particle] != 0; }
 
   const ParticleMesh& MeshOf(std::size_t particle) const { return meshes_[mesh_of_[particle]]; }
   // The nodal multiplier count (2 per node) of a particle.
@@ -78,6 +103,14 @@ class RigidBodyConstraint {
   double GramDot(const double* a, const double* b);  // <a, b>_G, stacked
   void ApplyGram(const double* a, double* out) const;
   double InverseNodeMass(int i, int j) const;
+  // The rigid modes of every mesh: G C (3 columns of 2 N) and S^-1 = (C^T G C)^-1.
+  void BuildRigidModes();
+  // (U, omega) = S^-1 (G C)^T a: the G-weighted rigid part of a nodal field of particle p.
+  Eigen::Vector3d RigidPart(std::size_t p, const double* a) const;
+  // a -= C RigidPart(a) on every neutral particle (P a: residuals and responses).
+  void ProjectMismatch(double* a) const;
+  // f -= G C S^-1 C^T f on every neutral particle (nodal forces without net force and torque).
+  void ProjectForces(double* f) const;
 
   Grid grid_;
   bool periodic_x_, periodic_y_;
@@ -91,7 +124,11 @@ class RigidBodyConstraint {
   std::vector<int> mesh_of_;
   std::vector<std::size_t> offset_;  // first stacked node of each particle
   std::size_t total_nodes_ = 0;
-  std::vector<double> inv_excess_mass_, inv_excess_inertia_;  // 0 for fixed and prescribed
+  std::vector<double> inv_excess_mass_, inv_excess_inertia_;  // 0 for fixed, prescribed, neutral
+  std::vector<char> neutral_;
+  bool any_neutral_ = false;
+  std::vector<std::vector<double>> gram_rigid_;  // per mesh: G C, column c at [c * 2 N + q]
+  std::vector<Eigen::Matrix3d> rigid_gram_inverse_;  // per mesh: S^-1
 
   std::vector<StencilEntry> stencil_;  // 3 per stacked node
   std::vector<std::size_t> touched_;   // distinct fluid nodes that E^T reaches
