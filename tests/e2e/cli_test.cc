@@ -62,6 +62,14 @@ struct CliRun {
 
 // Runs `argv` with exactly the environment `env`, capturing stdout and stderr.
 CliRun Execute(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env) {
+  // Everything the child needs is built before fork: a test may run this from a second thread.
+  std::vector<std::string> env_text;
+  for (const auto& [k, v] : env) env_text.push_back(k + "=" + v);
+  std::vector<char*> args, envp;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  for (auto& e : env_text) envp.push_back(e.data());
+  args.push_back(nullptr);
+  envp.push_back(nullptr);
   int out_pipe[2], err_pipe[2];
   if (pipe(out_pipe) != 0 || pipe(err_pipe) != 0) return {};
   const pid_t pid = fork();
@@ -70,13 +78,6 @@ CliRun Execute(const std::vector<std::string>& argv, const std::map<std::string,
     dup2(err_pipe[1], STDERR_FILENO);
     close(out_pipe[0]);
     close(err_pipe[0]);
-    std::vector<std::string> env_text;
-    for (const auto& [k, v] : env) env_text.push_back(k + "=" + v);
-    std::vector<char*> args, envp;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    for (auto& e : env_text) envp.push_back(e.data());
-    args.push_back(nullptr);
-    envp.push_back(nullptr);
     execve(args[0], args.data(), envp.data());
     _exit(127);
   }
@@ -126,15 +127,24 @@ class CliTest : public ::testing::Test {
     fs::create_directories(root_ / "home");
     std::ofstream(root_ / "tokens") << "alice-token-0123456789 alice\nbob-token-0123456789 bob\n";
     std::ofstream(root_ / "cavity.toml") << kCavity;
+    StartDaemon("127.0.0.1:0");
+  }
+
+  // Starts dlmfdd on `listen` with the suite's data directory; waits until it has written its port.
+  static void StartDaemon(const std::string& listen) {
     const fs::path port_file = root_ / "port";
+    fs::remove(port_file);
+    const std::string log_path = (root_ / "dlmfdd.log").string();
+    const std::string data = (root_ / "data").string();
+    const std::string tokens = (root_ / "tokens").string();
     daemon_ = fork();
     if (daemon_ == 0) {
-      const int log = open((root_ / "dlmfdd.log").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      const int log = open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
       dup2(log, STDOUT_FILENO);
       dup2(log, STDERR_FILENO);
-      execl(kDaemon.c_str(), kDaemon.c_str(), "--listen", "127.0.0.1:0", "--port-file", port_file.c_str(),
-            "--data-dir", (root_ / "data").c_str(), "--solver", kSolver.c_str(), "--tokens-file",
-            (root_ / "tokens").c_str(), "--max-concurrent", "2", static_cast<char*>(nullptr));
+      execl(kDaemon.c_str(), kDaemon.c_str(), "--listen", listen.c_str(), "--port-file", port_file.c_str(),
+            "--data-dir", data.c_str(), "--solver", kSolver.c_str(), "--tokens-file", tokens.c_str(),
+            "--max-concurrent", "2", static_cast<char*>(nullptr));
       _exit(127);
     }
     while (!fs::exists(port_file) || fs::file_size(port_file) == 0) {
@@ -279,6 +289,24 @@ TEST_F(CliTest, CancelStopsALongJob) {
   EXPECT_THAT(watch.out, HasSubstr("cancelled"));
   const CliRun again = Cli({"cancel", job});
   EXPECT_EQ(again.code, 6) << again.err;  // already finished: FAILED_PRECONDITION
+}
+
+TEST_F(CliTest, WatchResumesAcrossADaemonRestart) {
+  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=0.6"});
+  ASSERT_EQ(submit.code, 0) << submit.err;
+  const std::string job = FirstLine(submit.out);
+  AwaitState(job, "RUNNING");
+  CliRun watch;
+  std::thread watcher([&] { watch = Cli({"watch", job, "--json", "--reconnect-seconds", "600"}); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  kill(daemon_, SIGKILL);
+  int status = 0;
+  waitpid(daemon_, &status, 0);
+  StartDaemon(server_);  // the same port, the same store
+  watcher.join();
+  EXPECT_EQ(watch.code, 0) << watch.err;
+  EXPECT_THAT(watch.err, HasSubstr("reconnecting"));
+  EXPECT_THAT(watch.out, HasSubstr("\"state\":\"COMPLETED\""));
 }
 
 TEST_F(CliTest, InvalidSceneExitsTwoNamingTheKey) {

@@ -456,14 +456,15 @@ TEST(Daemon, KillNineAndRestartResumesRunningAndKeepsQueued) {
   REQUIRE_SOLVER();
   TempDir dir;
   const std::string data = dir.path() + "/data";
-  auto request = CavityRequest(3.0);
+  auto request = CavityRequest(1.5);
   request.add_overrides("output.checkpoint_every=0.2");
-  request.add_overrides("output.fields_every=1.0");
+  request.add_overrides("output.fields_every=0.5");
   std::string reference_dir, resumed_dir, queued_id, running_id;
   {
     // The reference: the same scene without interruption, in its own data directory.
     TempDir ref;
-    DaemonProcess daemon(ref.path() + "/data");
+    // Same OpenMP team size in every run: reductions in another order round differently.
+    DaemonProcess daemon(ref.path() + "/data", {"--solver-threads", "2"});
     ASSERT_TRUE(daemon.Start()) << daemon.Log();
     auto stub = daemon.Stub();
     const v1::Job job = Submit(*stub, request);
@@ -472,7 +473,7 @@ TEST(Daemon, KillNineAndRestartResumesRunningAndKeepsQueued) {
     fs::copy(job.results_dir(), reference_dir, fs::copy_options::recursive);
   }
   {
-    DaemonProcess daemon(data, {"--max-concurrent", "1"});
+    DaemonProcess daemon(data, {"--max-concurrent", "1", "--solver-threads", "2"});
     ASSERT_TRUE(daemon.Start()) << daemon.Log();
     auto stub = daemon.Stub();
     const v1::Job running = Submit(*stub, request);
@@ -488,12 +489,14 @@ TEST(Daemon, KillNineAndRestartResumesRunningAndKeepsQueued) {
     EXPECT_EQ(daemon.Wait(), 128 + SIGKILL);
   }
   {
-    DaemonProcess daemon(data, {"--max-concurrent", "1"});
+    DaemonProcess daemon(data, {"--max-concurrent", "1", "--solver-threads", "2"});
     ASSERT_TRUE(daemon.Start()) << daemon.Log();
     auto stub = daemon.Stub();
     const v1::Job resumed = WaitFinished(*stub, running_id);
     EXPECT_EQ(resumed.state(), v1::COMPLETED) << resumed.reason();
     EXPECT_EQ(resumed.attempts(), 2);
+    EXPECT_NE(daemon.Log().find("job " + running_id + ": solver pid"), std::string::npos);
+    EXPECT_NE(daemon.Log().find("started with --resume"), std::string::npos) << daemon.Log();
     const v1::Job later = WaitFinished(*stub, queued_id);
     EXPECT_EQ(later.state(), v1::COMPLETED);
     EXPECT_EQ(later.attempts(), 1);

@@ -23,8 +23,8 @@ namespace {
 
 constexpr int kCells = 96;  // h = 1/48 on [-1, 1]
 constexpr double kLambda = 1.0;
-constexpr double kRate = 2.0;  // lambda e = 2
-constexpr double kDt = 0.003;  // e dt = 0.006
+constexpr double kRate = 2.0;     // lambda e = 2
+constexpr double kDt = 0.003;     // e dt = 0.006
 constexpr double kEndTime = 3.0;  // past the naive scheme's failure (t = 2.37 in the notes)
 
 struct Flow {
@@ -101,7 +101,8 @@ NaiveResult RunNaive(const Flow& flow) {
         for (int c = 0; c < 3; ++c) {
           const double* q = in[c].data() + p;
           const std::ptrdiff_t sy = pad;
-          const double dx = uk >= 0 ? q[-2] - 6 * q[-1] + 3 * q[0] + 2 * q[1] : -2 * q[-1] - 3 * q[0] + 6 * q[1] - q[2];
+          const double dx =
+              uk >= 0 ? q[-2] - 6 * q[-1] + 3 * q[0] + 2 * q[1] : -2 * q[-1] - 3 * q[0] + 6 * q[1] - q[2];
           const double dy = vk >= 0 ? q[-2 * sy] - 6 * q[-sy] + 3 * q[0] + 2 * q[sy]
                                     : -2 * q[-sy] - 3 * q[0] + 6 * q[sy] - q[2 * sy];
           adv[c] = -c6 * (uk * dx + vk * dy);
@@ -169,9 +170,10 @@ TEST(ConformationExtension, ConstructionAStaysPositiveDefiniteWhereTheNaiveSchem
     max_trace = std::max(max_trace, report.Get("max_trA"));
     blended += report.Get("blended_nodes");
   }
-  std::printf("construction A: min lambda_min %.3e, max trA %.3e, blended node updates %.0f, elastic "
-              "Courant %.4f\n",
-              min_eig, max_trace, blended, report.Get("elastic_courant"));
+  std::printf(
+      "construction A: min lambda_min %.3e, max trA %.3e, blended node updates %.0f, elastic "
+      "Courant %.4f\n",
+      min_eig, max_trace, blended, report.Get("elastic_courant"));
   EXPECT_GT(min_eig, 0.0);
 
   const NaiveResult naive = RunNaive(flow);

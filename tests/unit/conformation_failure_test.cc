@@ -57,7 +57,7 @@ std::string ErrorOfStep(Case& c, double time, double dt = 0.01) {
 TEST(ConformationFailure, IndefiniteFieldThrowsWithTimePlaceAndEigenvalue) {
   Case c;
   const std::size_t k = c.grid.Index(3, 5);  // (x, y) = (0.375, 0.625)
-  c.a12[k] = 2.0;                             // [[1, 2], [2, 1]]: eigenvalues 3 and -1
+  c.a12[k] = 2.0;                            // [[1, 2], [2, 1]]: eigenvalues 3 and -1
   const std::string msg = ErrorOfStep<ConformationNotPositiveDefinite>(c, 1.25);
   EXPECT_THAT(msg, HasSubstr("not positive definite"));
   EXPECT_THAT(msg, HasSubstr("t = 1.25"));

@@ -69,12 +69,12 @@ Mat2 RotatedExtension(double rate, double angle) {
 }
 
 const std::vector<Mat2> kGradients = {
-    Mat2{0.0, 1.0, 0.0, 0.0},          // simple shear (q = 0)
-    Mat2{0.7, 0.0, 0.0, -0.7},         // planar extension (q^2 > 0)
-    Mat2{0.0, -1.3, 1.3, 0.0},         // rotation (q^2 < 0)
-    Mat2{0.3, 0.9, -0.2, -0.1},        // general, with a trace
-    Mat2{0.04, 0.02, 0.03, -0.05},     // x = q^2 s^2 just below the series switch 1e-2
-    Mat2{0.06, 0.03, 0.03, -0.05},     // just above it
+    Mat2{0.0, 1.0, 0.0, 0.0},       // simple shear (q = 0)
+    Mat2{0.7, 0.0, 0.0, -0.7},      // planar extension (q^2 > 0)
+    Mat2{0.0, -1.3, 1.3, 0.0},      // rotation (q^2 < 0)
+    Mat2{0.3, 0.9, -0.2, -0.1},     // general, with a trace
+    Mat2{0.04, 0.02, 0.03, -0.05},  // x = q^2 s^2 just below the series switch 1e-2
+    Mat2{0.06, 0.03, 0.03, -0.05},  // just above it
     RotatedExtension(1.5, M_PI / 6.0),
 };
 
@@ -200,7 +200,8 @@ TEST(StretchAndRelax, SteadyShearIsAFixedPointUpToQuadrature) {
     double previous = 0.0;
     for (double dt : {0.125, 0.0625, 0.03125}) {
       SymTensor a{};
-      for (int n = 0; n < static_cast<int>(60.0 / dt); ++n) a = StretchAndRelax(a, Mat2{0, g, 0, 0}, dt, lambda);
+      for (int n = 0; n < static_cast<int>(60.0 / dt); ++n)
+        a = StretchAndRelax(a, Mat2{0, g, 0, 0}, dt, lambda);
       const double error = MaxDiff(a, exact) / Trace(exact);
       std::printf("lambda g = %5.1f  dt/lambda = %6.4f  relative error %.3e\n", wi, dt, error);
       EXPECT_LT(error, 5e-11);

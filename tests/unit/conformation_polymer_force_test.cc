@@ -97,8 +97,9 @@ void ExpectEqualsAssembled(const Grid& g, bool px, bool py) {
   const Field a = SmoothField(g);
   const int n = int(g.NodeCount());
   std::vector<double> fx(n, 0.25), fy(n, -0.5);  // AddPolymerForce adds into what is there
-  AddPolymerForce(g, Domain(g, px ? SideType::kPeriodic : SideType::kWall, py ? SideType::kPeriodic : SideType::kOutflow),
-                  modulus, a.a11.data(), a.a12.data(), a.a22.data(), fx.data(), fy.data());
+  AddPolymerForce(
+      g, Domain(g, px ? SideType::kPeriodic : SideType::kWall, py ? SideType::kPeriodic : SideType::kOutflow),
+      modulus, a.a11.data(), a.a12.data(), a.a22.data(), fx.data(), fy.data());
   const AssembledDerivative d = Assemble(g, px, py);
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(n);
   const Eigen::VectorXd t11 = modulus * (a.a11 - ones), t12 = modulus * a.a12, t22 = modulus * (a.a22 - ones);
@@ -130,9 +131,9 @@ TEST(AddPolymerForce, LinearStressGivesHSquaredDivergenceAtInteriorNodes) {
     for (int i = 0; i <= g.nx; ++i) {
       const double x = g.X(i), y = g.Y(j);
       const std::size_t k = g.Index(i, j);
-      a11[k] = 1.0 + (0.5 + 1.2 * x - 0.3 * y) / modulus;  // tau11 = 0.5 + 1.2 x - 0.3 y
-      a12[k] = (0.1 - 0.8 * x + 2.0 * y) / modulus;        // tau12 = 0.1 - 0.8 x + 2.0 y
-      a22[k] = 1.0 + (-0.2 + 0.4 * x + 0.9 * y) / modulus; // tau22 = -0.2 + 0.4 x + 0.9 y
+      a11[k] = 1.0 + (0.5 + 1.2 * x - 0.3 * y) / modulus;   // tau11 = 0.5 + 1.2 x - 0.3 y
+      a12[k] = (0.1 - 0.8 * x + 2.0 * y) / modulus;         // tau12 = 0.1 - 0.8 x + 2.0 y
+      a22[k] = 1.0 + (-0.2 + 0.4 * x + 0.9 * y) / modulus;  // tau22 = -0.2 + 0.4 x + 0.9 y
     }
   }
   AddPolymerForce(g, Domain(g, SideType::kWall, SideType::kWall), modulus, a11.data(), a12.data(), a22.data(),

@@ -1,11 +1,12 @@
 // ConformationStep (step (35)) on simple flows with known answers: homogeneous relaxation, steady
 // simple shear, A = I inside particles, inflow data, the report columns, and the velocity gradient.
+#include "dlmfd/conformation/conformation_step.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "dlmfd/conformation/conformation_step.h"
 #include "dlmfd/conformation/inflow_state.h"
 #include "dlmfd/conformation/velocity_gradient.h"
 #include "dlmfd/core/errors.h"
@@ -73,8 +74,8 @@ TEST(ConformationStep, HomogeneousRelaxationIsExactToRoundOff) {
     const int steps = 20;
     StepReport report;
     for (int n = 0; n < steps; ++n) {
-      step.Advance(n * dt, dt, f.u.data(), f.v.data(), nullptr, f.a11.data(), f.a12.data(),
-                   f.a22.data(), report);
+      step.Advance(n * dt, dt, f.u.data(), f.v.data(), nullptr, f.a11.data(), f.a12.data(), f.a22.data(),
+                   report);
     }
     const double decay = std::exp(-steps * dt / lambda);
     double error = 0.0;
@@ -111,8 +112,8 @@ TEST(ConformationStep, SteadySimpleShearReachesTheAnalyticState) {
     }
     StepReport report;
     for (int s = 0; s < 60 * 16; ++s) {
-      step.Advance(s * dt, dt, f.u.data(), f.v.data(), nullptr, f.a11.data(), f.a12.data(),
-                   f.a22.data(), report);
+      step.Advance(s * dt, dt, f.u.data(), f.v.data(), nullptr, f.a11.data(), f.a12.data(), f.a22.data(),
+                   report);
     }
     const SymTensor exact = SimpleShearConformation(lambda, g);
     double error = 0.0;
@@ -120,8 +121,10 @@ TEST(ConformationStep, SteadySimpleShearReachesTheAnalyticState) {
       error = std::max({error, std::abs(f.a11[k] - exact.a11), std::abs(f.a12[k] - exact.a12),
                         std::abs(f.a22[k] - exact.a22)});
     }
-    std::printf("lambda g = %4.1f: max |A - A_exact| / trA = %.2e, trA on the wall %.6f (2 + 2 (lambda g)^2 = %.6f)\n",
-                wi, error / Trace(exact), f.a11[0] + f.a22[0], 2.0 + 2.0 * wi * wi);
+    std::printf(
+        "lambda g = %4.1f: max |A - A_exact| / trA = %.2e, trA on the wall %.6f (2 + 2 (lambda g)^2 = "
+        "%.6f)\n",
+        wi, error / Trace(exact), f.a11[0] + f.a22[0], 2.0 + 2.0 * wi * wi);
     EXPECT_LT(error / Trace(exact), 1e-12);
     EXPECT_NEAR(report.Get("elastic_courant"), lambda * g * dt, 1e-14 * g);
     EXPECT_EQ(report.Get("blended_nodes", -1), 0.0);
@@ -190,7 +193,8 @@ TEST(NodeVelocityGradient, ExactForLinearFieldsAtEveryNode) {
       v[grid.Index(i, j)] = -1.0 + 0.4 * grid.X(i) + 2.5 * grid.Y(j);
     }
   }
-  NodeVelocityGradient(grid, false, false, u.data(), v.data(), l11.data(), l12.data(), l21.data(), l22.data());
+  NodeVelocityGradient(grid, false, false, u.data(), v.data(), l11.data(), l12.data(), l21.data(),
+                       l22.data());
   for (std::size_t k = 0; k < count; ++k) {
     EXPECT_NEAR(l11[k], 1.5, 1e-13);
     EXPECT_NEAR(l12[k], -0.7, 1e-13);
@@ -215,7 +219,8 @@ TEST(NodeVelocityGradient, SecondOrderOnAPeriodicBox) {
         v[grid.Index(i, j)] = std::cos(tp * x + 1.0) * std::sin(2.0 * tp * y);
       }
     }
-    NodeVelocityGradient(grid, true, true, u.data(), v.data(), l11.data(), l12.data(), l21.data(), l22.data());
+    NodeVelocityGradient(grid, true, true, u.data(), v.data(), l11.data(), l12.data(), l21.data(),
+                         l22.data());
     double error = 0.0;
     for (int j = 0; j <= n; ++j) {
       for (int i = 0; i <= n; ++i) {

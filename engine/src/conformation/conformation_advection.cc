@@ -95,9 +95,10 @@ namespace {
 // two biased stencils) and Q = (A_{i-2} - 4 A_{i-1} + 6 A_i - 4 A_{i+1} + A_{i+2}) / 12 (half their
 // difference); for u > 0 this is (A_{i-2} - 6 A_{i-1} + 3 A_i + 2 A_{i+1}) / 6, for u < 0 its mirror.
 // Compiled for AVX2 and for the baseline, chosen at load time (GCC function multi-versioning).
-__attribute__((target_clones("avx2", "default"))) void AdvectRow(int count, const double* __restrict u, const double* __restrict v,
-                      const double* __restrict a, std::ptrdiff_t sy, const double* __restrict base,
-                      double w_base, double w_in, double tau_over_12h, double* __restrict out) {
+__attribute__((target_clones("avx2", "default"))) void AdvectRow(
+    int count, const double* __restrict u, const double* __restrict v, const double* __restrict a,
+    std::ptrdiff_t sy, const double* __restrict base, double w_base, double w_in, double tau_over_12h,
+    double* __restrict out) {
   for (int i = 0; i < count; ++i) {
     const double* p = a + i;
     const double cx = p[-2] - 8.0 * (p[-1] - p[1]) - p[2];

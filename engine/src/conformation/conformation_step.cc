@@ -42,11 +42,10 @@ ConformationStep::ConformationStep(const Params& params, const Grid& grid)
     int i0, j0, di, dj, count;
     double nx, ny;
   };
-  const SideWalk walks[4] = {
-      {Side::kLeft, 0, 0, 0, 1, grid.ny + 1, -1.0, 0.0},
-      {Side::kRight, grid.nx, 0, 0, 1, grid.ny + 1, 1.0, 0.0},
-      {Side::kBottom, 0, 0, 1, 0, grid.nx + 1, 0.0, -1.0},
-      {Side::kTop, 0, grid.ny, 1, 0, grid.nx + 1, 0.0, 1.0}};
+  const SideWalk walks[4] = {{Side::kLeft, 0, 0, 0, 1, grid.ny + 1, -1.0, 0.0},
+                             {Side::kRight, grid.nx, 0, 0, 1, grid.ny + 1, 1.0, 0.0},
+                             {Side::kBottom, 0, 0, 1, 0, grid.nx + 1, 0.0, -1.0},
+                             {Side::kTop, 0, grid.ny, 1, 0, grid.nx + 1, 0.0, 1.0}};
   for (const SideWalk& w : walks) {
     if (domain.side(w.side).type != SideType::kVelocity) continue;
     for (int k = 0; k < w.count; ++k) {
@@ -74,8 +73,8 @@ void ConformationStep::CollectInflow(const double* u, const double* v) {
   }
 }
 
-void ConformationStep::CheckField(double time, const char* when, const double* a11,
-                                  const double* a12, const double* a22) const {
+void ConformationStep::CheckField(double time, const char* when, const double* a11, const double* a12,
+                                  const double* a22) const {
   const long n = static_cast<long>(grid_.NodeCount());
   long first_bad = n;
 #pragma omp parallel for schedule(static) reduction(min : first_bad)
@@ -84,7 +83,8 @@ void ConformationStep::CheckField(double time, const char* when, const double* a
     if (GershgorinLowerBound(a) > 0.0 && IsFinite(a)) continue;  // SPD without the eigenvalues
     if (!IsFinite(a) || !(MinEigenvalue(a) > 0.0)) first_bad = std::min(first_bad, k);
   }
-  if (first_bad < n) ThrowBadNode(time, when, first_bad, SymTensor{a11[first_bad], a12[first_bad], a22[first_bad]});
+  if (first_bad < n)
+    ThrowBadNode(time, when, first_bad, SymTensor{a11[first_bad], a12[first_bad], a22[first_bad]});
 }
 
 void ConformationStep::ThrowBadNode(double time, const char* when, long k, const SymTensor& a) const {
@@ -93,8 +93,8 @@ void ConformationStep::ThrowBadNode(double time, const char* when, long k, const
   std::ostringstream msg;
   msg.precision(6);
   const bool finite = IsFinite(a);
-  msg << (finite ? "conformation tensor A not positive definite" : "conformation tensor A not finite")
-      << " " << when << " step (35) at t = " << time << ": node (" << i << ", " << j << ") at (x, y) = ("
+  msg << (finite ? "conformation tensor A not positive definite" : "conformation tensor A not finite") << " "
+      << when << " step (35) at t = " << time << ": node (" << i << ", " << j << ") at (x, y) = ("
       << grid_.X(i) << ", " << grid_.Y(j) << "): ";
   if (finite) msg << "lambda_min(A) = " << MinEigenvalue(a) << ", ";
   msg << "A11 = " << a.a11 << ", A12 = " << a.a12 << ", A22 = " << a.a22;
@@ -103,8 +103,8 @@ void ConformationStep::ThrowBadNode(double time, const char* when, long k, const
 }
 
 void ConformationStep::Advance(double time, double dt, const double* u, const double* v,
-                               const unsigned char* inside_particle, double* a11, double* a12,
-                               double* a22, StepReport& report) {
+                               const unsigned char* inside_particle, double* a11, double* a12, double* a22,
+                               StepReport& report) {
   CheckField(time, "before", a11, a12, a22);
 
   NodeVelocityGradient(grid_, periodic_x_, periodic_y_, u, v, l11_.data(), l12_.data(), l21_.data(),
@@ -112,12 +112,15 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
   const long n = static_cast<long>(grid_.NodeCount());
   double max_speed = 0.0, max_gradient = 0.0;
   long first_bad_velocity = n;
-#pragma omp parallel for schedule(static) reduction(max : max_speed, max_gradient) \
-    reduction(min : first_bad_velocity)
+#pragma omp parallel for schedule(static) reduction(max                        \
+                                                    : max_speed, max_gradient) \
+    reduction(min                                                              \
+              : first_bad_velocity)
   for (long k = 0; k < n; ++k) {
     const double speed = std::abs(u[k]) + std::abs(v[k]);
     const double gradient = FrobeniusNorm(Mat2{l11_[k], l12_[k], l21_[k], l22_[k]});
-    if (!std::isfinite(speed) || !std::isfinite(gradient)) first_bad_velocity = std::min(first_bad_velocity, k);
+    if (!std::isfinite(speed) || !std::isfinite(gradient))
+      first_bad_velocity = std::min(first_bad_velocity, k);
     max_speed = std::max(max_speed, speed);
     max_gradient = std::max(max_gradient, gradient);
   }
@@ -125,8 +128,8 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
     const int i = static_cast<int>(first_bad_velocity % (grid_.nx + 1));
     const int j = static_cast<int>(first_bad_velocity / (grid_.nx + 1));
     std::ostringstream msg;
-    msg << "velocity or its gradient not finite in step (35) at t = " << time << ": node (" << i << ", "
-        << j << ") at (x, y) = (" << grid_.X(i) << ", " << grid_.Y(j) << "): u = " << u[first_bad_velocity]
+    msg << "velocity or its gradient not finite in step (35) at t = " << time << ": node (" << i << ", " << j
+        << ") at (x, y) = (" << grid_.X(i) << ", " << grid_.Y(j) << "): u = " << u[first_bad_velocity]
         << ", v = " << v[first_bad_velocity];
     throw NumericalBlowUp(msg.str());
   }

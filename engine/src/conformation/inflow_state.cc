@@ -49,8 +49,7 @@ SymTensor SimpleShearConformation(double lambda, double shear_rate) {
   return SymTensor{1.0 + 2.0 * wi * wi, wi, 1.0};
 }
 
-SymTensor InflowConformation(const Grid& grid, const DomainParams& domain, Side side, int k,
-                             double lambda) {
+SymTensor InflowConformation(const Grid& grid, const DomainParams& domain, Side side, int k, double lambda) {
   const BoundarySide& b = domain.side(side);
   if (b.type != SideType::kVelocity || b.profile != Profile::kPoiseuille) return SymTensor{};
   const bool vertical = (side == Side::kLeft || side == Side::kRight);

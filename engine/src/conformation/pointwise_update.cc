@@ -15,10 +15,13 @@ __attribute__((target_clones("avx2", "default"))) void OnePanelRow(
     const double d = l11[i] - ht;
     const double q2 = d * d + l12[i] * l21[i];
     const double xh = q2 * half_dt * half_dt, xd = q2 * delta * delta;
-    const double c_h = 1.0 + xh * 0.5 * (1.0 + xh * k12 * (1.0 + xh * k30 * (1.0 + xh * k56 * (1.0 + xh * k90))));
+    const double c_h =
+        1.0 + xh * 0.5 * (1.0 + xh * k12 * (1.0 + xh * k30 * (1.0 + xh * k56 * (1.0 + xh * k90))));
     const double s_h =
-        half_dt * (1.0 + xh * k6 * (1.0 + xh * k20 * (1.0 + xh * k42 * (1.0 + xh * k72 * (1.0 + xh * k110)))));
-    const double c_d = 1.0 + xd * 0.5 * (1.0 + xd * k12 * (1.0 + xd * k30 * (1.0 + xd * k56 * (1.0 + xd * k90))));
+        half_dt *
+        (1.0 + xh * k6 * (1.0 + xh * k20 * (1.0 + xh * k42 * (1.0 + xh * k72 * (1.0 + xh * k110)))));
+    const double c_d =
+        1.0 + xd * 0.5 * (1.0 + xd * k12 * (1.0 + xd * k30 * (1.0 + xd * k56 * (1.0 + xd * k90))));
     const double s_d =
         delta * (1.0 + xd * k6 * (1.0 + xd * k20 * (1.0 + xd * k42 * (1.0 + xd * k72 * (1.0 + xd * k110)))));
     const double e_h = ExpPolynomial(half_dt * ht);

@@ -11,15 +11,14 @@ struct MeanStress {
 inline MeanStress Mean(double modulus, const double* a11, const double* a12, const double* a22,
                        std::size_t k0, std::size_t k1, std::size_t k2) {
   const double third = modulus / 3.0;
-  return MeanStress{third * (a11[k0] + a11[k1] + a11[k2] - 3.0),
-                    third * (a12[k0] + a12[k1] + a12[k2]),
+  return MeanStress{third * (a11[k0] + a11[k1] + a11[k2] - 3.0), third * (a12[k0] + a12[k1] + a12[k2]),
                     third * (a22[k0] + a22[k1] + a22[k2] - 3.0)};
 }
 
 }  // namespace
 
-void AddPolymerForce(const Grid& grid, const DomainParams& domain, double polymer_modulus,
-                     const double* a11, const double* a12, const double* a22, double* fx, double* fy) {
+void AddPolymerForce(const Grid& grid, const DomainParams& domain, double polymer_modulus, const double* a11,
+                     const double* a12, const double* a22, double* fx, double* fy) {
   const int nx = grid.nx, ny = grid.ny;
   const bool px = domain.PeriodicX(), py = domain.PeriodicY();
   // |T| grad phi = (h^2/2)(gx, gy)/h: the h cancels to h/2 times the unit-mesh gradients (+-1, 0).
@@ -52,10 +51,10 @@ void AddPolymerForce(const Grid& grid, const DomainParams& domain, double polyme
         double ugx, ugy;
       };
       static constexpr Corner kCorners[4] = {
-          {0, 0, true, -1.0, 0.0, true, 0.0, -1.0},     // SW of square (i, j)
-          {-1, 0, true, 1.0, -1.0, false, 0.0, 0.0},    // SE of square (i-1, j): lower only
-          {-1, -1, true, 0.0, 1.0, true, 1.0, 0.0},     // NE of square (i-1, j-1)
-          {0, -1, false, 0.0, 0.0, true, -1.0, 1.0}};   // NW of square (i, j-1): upper only
+          {0, 0, true, -1.0, 0.0, true, 0.0, -1.0},    // SW of square (i, j)
+          {-1, 0, true, 1.0, -1.0, false, 0.0, 0.0},   // SE of square (i-1, j): lower only
+          {-1, -1, true, 0.0, 1.0, true, 1.0, 0.0},    // NE of square (i-1, j-1)
+          {0, -1, false, 0.0, 0.0, true, -1.0, 1.0}};  // NW of square (i, j-1): upper only
       for (const Corner& c : kCorners) {
         bool in_x = true, in_y = true;
         const int si = wrap(i + c.di, nx, px, in_x);

@@ -60,8 +60,8 @@ class ConformationAdvection {
   void FillGhosts(double* f) const;
   void RestoreFixedAndGhosts(double* const f[3]) const;
   // out = w_base * base + w_in * (in + tau R(in)), R the third-order advection operator.
-  void Stage(double tau, const double* u, const double* v, double w_base, double* const base[3],
-             double w_in, double* const in[3], double* const out[3]) const;
+  void Stage(double tau, const double* u, const double* v, double w_base, double* const base[3], double w_in,
+             double* const in[3], double* const out[3]) const;
 
   static constexpr int kGhost = 2;
   Grid grid_;

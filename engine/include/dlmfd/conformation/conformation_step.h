@@ -52,9 +52,8 @@ class ConformationStep {
   ConformationStep(const Params& params, const Grid& grid);
 
   // Step (35) with u = u^{n+2/4} frozen: A^n at t_n = time -> A^{n+1} at time + dt (header block).
-  void Advance(double time, double dt, const double* u, const double* v,
-               const unsigned char* inside_particle, double* a11, double* a12, double* a22,
-               StepReport& report);
+  void Advance(double time, double dt, const double* u, const double* v, const unsigned char* inside_particle,
+               double* a11, double* a12, double* a22, StepReport& report);
 
   // Comparison option for tests only: the unlimited advection (no SPD blend).
   void DisableBlendForComparison() { advection_.DisableBlendForComparison(); }
@@ -62,7 +61,7 @@ class ConformationStep {
  private:
   struct BoundaryNode {
     int i, j;
-    double nx, ny;   // outward normal
+    double nx, ny;     // outward normal
     SymTensor inflow;  // A_L
   };
   void CollectInflow(const double* u, const double* v);

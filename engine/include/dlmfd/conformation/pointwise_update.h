@@ -7,12 +7,14 @@
 //   F(s) in closed form: L0 = L - (tr L / 2) I, q^2 = -det L0, F = e^{s tr L/2} (c I + sigma L0) with
 //   c = cosh(q s), sigma = sinh(q s)/q (q^2 > 0), the cos/sin forms (q^2 < 0), and the even power
 //   series in x = q^2 s^2 when |x| < 1e-2 (5 terms: truncation below 1e-16).
-//   The integral: composite 3-point Gauss-Legendre on n panels, n = ceil(dt (1/lambda + |tr L| + 2|q|)
-//   / 0.125) capped at 256 (relative error of one panel about (0.125)^6 / 2016000 ~ 2e-12, far less when the rate
-//   is small: 2e-15 for the paper's dt/lambda = 0.04; measured on steady shear: 1.7e-11 at the panel
-//   limit, order 6 in the panel width), the weights w_k e^{-s_k/lambda}/lambda rescaled
-//   so that they integrate e^{-s/lambda}/lambda exactly. The rescaled weights stay positive, and
-//   homogeneous relaxation (L = 0) becomes exact to round-off: A <- e^{-dt/lambda} A + (1 - e^{-dt/lambda}) I.
+//   The integral: composite 3-point Gauss-Legendre on n panels, n = ceil(dt (1/lambda + |tr L|
+//   + 2|q|) / 0.125), at most 256. Relative error of one panel about 0.125^6 / 2016000 ~ 2e-12, far
+//   less when the rate is small (2e-15 at the paper's dt/lambda = 0.04); measured on steady shear:
+//   1.7e-11 at the panel limit, order 6 in the panel width. The weights w_k e^{-s_k/lambda}/lambda are
+//   rescaled so that they integrate e^{-s/lambda}/lambda exactly: they stay positive, and homogeneous
+//   relaxation (L = 0) is exact to round-off: A <- e^{-dt/lambda} A + (1 - e^{-dt/lambda}) I.
+//   Per node of a step: ExponentialIntegrator (one panel: two closed-form exponentials) and its
+//   vectorised row form OnePanelRow; the general rule StretchAndRelax where one panel is not enough.
 // Positive definiteness, for any dt: det F = e^{s tr L} > 0, so F A F^T is SPD when A is, and the
 //   update is a positive combination of SPD matrices (F(s) F(s)^T is SPD).
 // Not supported: lambda <= 0 (a Newtonian liquid has no conformation step).
@@ -30,8 +32,13 @@ namespace dlmfd {
 inline double ExpPolynomial(double y) {
   // Multiplications by reciprocals: divisions would form a long-latency chain in the hot loop.
   constexpr double k3 = 1.0 / 3.0, k5 = 1.0 / 5.0, k6 = 1.0 / 6.0, k7 = 1.0 / 7.0;
-  return 1.0 + y * (1.0 + y * 0.5 * (1.0 + y * k3 * (1.0 + y * 0.25 * (1.0 + y * k5 * (1.0 + y * k6 *
-                                                                                   (1.0 + y * k7 * (1.0 + y * 0.125)))))));
+  return 1.0 +
+         y * (1.0 +
+              y * 0.5 *
+                  (1.0 +
+                   y * k3 *
+                       (1.0 +
+                        y * 0.25 * (1.0 + y * k5 * (1.0 + y * k6 * (1.0 + y * k7 * (1.0 + y * 0.125)))))));
 }
 
 // e^y: the polynomial for |y| <= 0.05, the library otherwise.
@@ -78,13 +85,11 @@ inline Mat2 Assemble(const ExponentialParts& e, const Mat2& l, double sign) {
 }
 
 // exp(s L) for a 2x2 L, in closed form.
-inline Mat2 MatrixExponential(const Mat2& l, double s) {
-  return Assemble(ExponentialPartsOf(l, s), l, 1.0);
-}
+inline Mat2 MatrixExponential(const Mat2& l, double s) { return Assemble(ExponentialPartsOf(l, s), l, 1.0); }
 
 inline Mat2 Product(const Mat2& a, const Mat2& b) {
-  return Mat2{a.m11 * b.m11 + a.m12 * b.m21, a.m11 * b.m12 + a.m12 * b.m22,
-              a.m21 * b.m11 + a.m22 * b.m21, a.m21 * b.m12 + a.m22 * b.m22};
+  return Mat2{a.m11 * b.m11 + a.m12 * b.m21, a.m11 * b.m12 + a.m12 * b.m22, a.m21 * b.m11 + a.m22 * b.m21,
+              a.m21 * b.m12 + a.m22 * b.m22};
 }
 
 // A(dt) of the frozen-L Oldroyd-B ODE from A(0) = a (see the header block).
@@ -104,7 +109,6 @@ inline double PanelRate(const Mat2& l, double inv_lambda) {
 }
 
 inline SymTensor StretchAndRelax(const SymTensor& a, const Mat2& l, double dt, double lambda) {
-
   const double rate = PanelRate(l, 1.0 / lambda);
   // At most kMaxPanels: beyond dt rate = 32 the growth e^{2 dt rate} puts A past what doubles
   // resolve (cond(A) > 1e16), so more panels buy no accuracy; SPD holds for any panel count.
@@ -156,7 +160,10 @@ inline bool OnePanelApplies(const OnePanelConstants& k, const Mat2& l) {
 class ExponentialIntegrator {
  public:
   ExponentialIntegrator(double dt, double lambda)
-      : dt_(dt), lambda_(lambda), inv_lambda_(1.0 / lambda), decay_(std::exp(-dt / lambda)),
+      : dt_(dt),
+        lambda_(lambda),
+        inv_lambda_(1.0 / lambda),
+        decay_(std::exp(-dt / lambda)),
         max_rate_(kMaxPanelRate / dt) {
     double sum = 0.0;
     for (int k = 0; k < 3; ++k) {
@@ -178,7 +185,8 @@ class ExponentialIntegrator {
     HyperbolicPair(q2, half_dt, c_h, sigma_h);
     HyperbolicPair(q2, delta, c_d, sigma_d);
     const double e_h = ExpOf(half_dt * half_trace);
-    const Mat2 e{e_h * (c_h + sigma_h * d), e_h * sigma_h * l.m12, e_h * sigma_h * l.m21, e_h * (c_h - sigma_h * d)};
+    const Mat2 e{e_h * (c_h + sigma_h * d), e_h * sigma_h * l.m12, e_h * sigma_h * l.m21,
+                 e_h * (c_h - sigma_h * d)};
     // G^{-+1} = g^{-+1} (c I -+ sigma L0): G G^T and G^{-1} G^{-T} share c^2 I + sigma^2 L0 L0^T and
     // differ in the sign of c sigma (L0 + L0^T), so
     // M = w1 G^{-1} G^{-T} + w2 I + w3 G G^T = p (c^2 I + sigma^2 S) + m c sigma P + w2 I.

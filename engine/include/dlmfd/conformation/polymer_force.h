@@ -19,7 +19,7 @@
 namespace dlmfd {
 
 // fx, fy += -int grad phi_i : tau_p, tau_p = polymer_modulus (A - I), polymer_modulus = eta_p / lambda.
-void AddPolymerForce(const Grid& grid, const DomainParams& domain, double polymer_modulus,
-                     const double* a11, const double* a12, const double* a22, double* fx, double* fy);
+void AddPolymerForce(const Grid& grid, const DomainParams& domain, double polymer_modulus, const double* a11,
+                     const double* a12, const double* a22, double* fx, double* fy);
 
 }  // namespace dlmfd

@@ -43,9 +43,7 @@ inline double MinEigenvalue(const SymTensor& a) {
 }
 
 // A lower bound of lambda_min (Gershgorin discs): cheap screens before the exact value.
-inline double GershgorinLowerBound(const SymTensor& a) {
-  return std::min(a.a11, a.a22) - std::abs(a.a12);
-}
+inline double GershgorinLowerBound(const SymTensor& a) { return std::min(a.a11, a.a22) - std::abs(a.a12); }
 
 // theta a + (1 - theta) b.
 inline SymTensor Mix(double theta, const SymTensor& a, const SymTensor& b) {
