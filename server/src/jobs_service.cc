@@ -330,7 +330,8 @@ grpc::ServerUnaryReactor* JobsService::List(grpc::CallbackServerContext* context
     filter.sweep_id = request->sweep_id();
     if (!request->page_token().empty()) {
       const std::string& token = request->page_token();
-      Require(token.size() <= 18 && std::all_of(token.begin(), token.end(), ::isdigit),
+      Require(token.size() <= 18 && std::all_of(token.begin(), token.end(),
+                                                  [](char c) { return c >= '0' && c <= '9'; }),
               "page_token: malformed");
       filter.before_ordinal = std::stoll(token);
       Require(filter.before_ordinal > 0, "page_token: malformed");

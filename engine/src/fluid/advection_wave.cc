@@ -7,9 +7,15 @@
 
 namespace dlmfd {
 
-// The start step u^1 = u^0 + tau u_t + tau^2/2 u_tt alone (Q = 1, a Lax-Wendroff step built from
-// two operators, N and K_V, that are not exactly compatible) amplified grid modes of x-aligned
-// flows at Courant 0.9 in tests/unit/advection_test.cc; one centred step after it did not.
+// Stability (tests/unit/advection_wave_stability_test.cc): for a constant V one call multiplies a
+// Fourier mode by G = cos(Q phi) - i c sigma sin(Q phi) / sin(phi), cos(phi) = 1 - c^2 kappa / 2
+// (c = tau |V| / h; i sigma, kappa the symbols of M^-1 C and M^-1 K_V), so |G| <= 1 iff
+// sigma^2 <= kappa (1 - c^2 kappa / 4) and c^2 kappa <= 4, whatever Q. Because K_V is not
+// C^T M^-1 C (C, by vertex quadrature, has a wider stencil) the limit is c = sqrt(2/3) along x or y, 2/sqrt(3) along y = x and
+// 1/sqrt(2) along y = -x (the minimum over directions), not the 1.02-1.04 of the method notes,
+// which came from M^-1 K_V alone on nearly vertical fields. The implementation matches this
+// analysis to the power iteration's accuracy, so no bug was found. Q = 1 would be as stable;
+// at least two sub-steps are kept because tests/unit/advection_test.cc relies on that count.
 constexpr int kMinSubsteps = 2;
 
 AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const FluidParams& fluid,

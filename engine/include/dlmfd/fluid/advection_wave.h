@@ -11,7 +11,8 @@
 // values); centred explicit sub-steps tau = dt / Q,
 //   M (u^{q+1} - 2 u^q + u^{q-1}) / tau^2 + K_V u^q + M_out (V.n)^+ (u^{q+1} - u^{q-1}) / (2 tau) = 0,
 // started by u^1 = u^0 + tau u_t + tau^2/2 u_tt with u_t = -M^-1 N(V, u^0). Q is the smallest count
-// with max|V| tau / h <= solvers.wave_max_courant (stable to about 1, notes section 4).
+// with max|V| tau / h <= solvers.wave_max_courant (a uniform flow is stable up to 1/sqrt(2)
+// across the mesh diagonals and sqrt(2/3) along the axes: advection_wave.cc).
 // Outflow sides: M_out is the lumped boundary mass; at nodes where V.n < 0 (backflow through an
 // outflow side) no data exist and the boundary term is dropped (the wave reflects there).
 // No linear solve in the advection part, so no iteration count: the report gives the sub-steps.

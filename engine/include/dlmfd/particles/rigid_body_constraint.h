@@ -15,8 +15,9 @@
 // per-particle spectra, so the iteration count does not grow with N). The iterate is tracked as nu
 // (lambda is never formed). Warm start from the stored nu when it leaves a smaller residual than the
 // cold start. Stop when <g, g>_G <= max(tol^2 <g0, g0>_G, floor), g0 = E u* - U* - omega* r_perp the
-// cold-start mismatch (an absolute reference, so warm starts pay) and floor a round-off level
-// (1e-11 times the velocity scale, in the G norm). Throws SolverNotConverged after
+// cold-start mismatch (for neutral particles: its projection P g0, after the particular forces nu_f;
+// an absolute reference, so warm starts pay) and floor a round-off level (1e-11 times the velocity
+// scale, in the G norm). Throws SolverNotConverged after
 // solvers.multiplier_max_iterations.
 // Neutrally buoyant free particles (rho_d = rho_L, m_e = j_e = 0): the momentum equations of (37)
 // become the constraints C^T nu = f, with C = [e_x, e_y, r_perp] the rigid modes at the nodes and
@@ -32,10 +33,11 @@
 //   force and torque. Then E u - C (U, omega) = P E u, hence (U, omega) = S^-1 C^T G E u, the rigid
 //   part of E u in the G metric, recovered after the CG. Heavy, neutral, fixed and prescribed
 //   particles mix in one stacked CG (the projector acts per neutral particle).
-// Not supported: free particles lighter than the liquid (m_e < 0: the elimination above leaves
-// E M^-1 E^T + C D^-1 C^T with D = diag(m_e, m_e, j_e) < 0, negative on the rigid modes because the
-// fluid mass inside the support exceeds |m_e| = (rho_L - rho_d) pi R^2 whenever rho_d > 0; it needs
-// MINRES) - rejected with InvalidParameter; gamma != 0.
+// Not supported: free particles lighter than the liquid (m_e < 0: eliminating U and omega leaves
+// E M^-1 E^T + C D^-1 C^T with D = diag(m_e, m_e, j_e) < 0; on a uniform nodal force the first term
+// is about 1/(rho_L pi R^2) and the second -1/|m_e|, larger since |m_e| = (rho_L - rho_d) pi R^2
+// < rho_L pi R^2: the operator is indefinite and needs MINRES) - rejected with InvalidParameter;
+// gamma != 0.
 // References: Glowinski, Pan, Hesla, Joseph, Periaux, J. Comput. Phys. 169 (2001) 363-426;
 // method notes 2, sections 1.1-1.6.
 #pragma once
