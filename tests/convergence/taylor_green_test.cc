@@ -119,10 +119,10 @@ void CheckOrders(AdvectionScheme scheme, const char* name) {
   for (int c : cells) e.push_back(RunTaylorGreen(c, scheme));
   std::printf("Taylor-Green, %s advection, nu = %.2f, t = %.1f, dt = 0.25 h^2 (rounded to divide t)\n", name,
               kViscosity, kEnd);
-  std::printf("%6s %9s %11s %11s %11s %11s | %6s %6s %6s %6s\n", "cells", "dt", "u L2", "u max", "p L2", "p max",
+  std::printf("%6s %9s %9s %11s %11s %11s %11s | %6s %6s %6s %6s\n", "cells", "h", "dt", "u L2", "u max", "p L2", "p max",
               "o uL2", "o umax", "o pL2", "o pmax");
   for (std::size_t k = 0; k < e.size(); ++k) {
-    std::printf("%6d %9.2e %11.4e %11.4e %11.4e %11.4e", cells[k], e[k].dt, e[k].u_l2, e[k].u_max, e[k].p_l2,
+    std::printf("%6d %9.3e %9.2e %11.4e %11.4e %11.4e %11.4e", cells[k], e[k].h, e[k].dt, e[k].u_l2, e[k].u_max, e[k].p_l2,
                 e[k].p_max);
     if (k == 0) {
       std::printf(" |\n");

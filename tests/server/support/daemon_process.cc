@@ -1,6 +1,7 @@
 #include "daemon_process.h"
 
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -55,6 +56,7 @@ bool DaemonProcess::Start() {
   argv.push_back(nullptr);
   pid_ = fork();
   if (pid_ == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGKILL);  // a crashed test leaves no daemon behind
     FILE* log = std::freopen(log_path_.c_str(), "a", stderr);
     if (log) dup2(fileno(stderr), 1);
     execv(argv[0], argv.data());
