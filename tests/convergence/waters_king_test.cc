@@ -86,7 +86,8 @@ History RunStartup(int ny, double dt) {
       {"domain.size", "[" + Text(4 * h) + ", 2.0]"},
       {"time.dt", Text(dt)},
       {"time.end", Text(kEndT)}};
-  const Params params = LoadSceneFile(DLMFD_SOURCE_DIR "/cases/verification/waters_king.toml", overrides);
+  Params params = LoadSceneFile(DLMFD_SOURCE_DIR "/cases/verification/waters_king.toml", overrides);
+  params.threads = 1;  // a 4 x ny grid: threads would only contend
   Simulation sim(params);
   const Grid& g = sim.grid();
   const std::size_t centre = g.Index(0, g.ny / 2);
@@ -122,9 +123,18 @@ TEST(WatersKingSeries, MatchesReferenceTable) {
   EXPECT_NEAR(Centreline(t_min), 1.2457, 5e-5);
 }
 
-// Grid and time-step study (run with --gtest_also_run_disabled_tests): max over T in (0, 6] of
-// |u_h(centre, t_n) - U(0, t_n)| per (ny, dt). Results and orders are recorded below, at the test
-// that uses them.
+// Grid and time-step study (run with --gtest_also_run_disabled_tests; 2 minutes on one core): max
+// over T in (0, 6] of |u_h(centre, t_n) - U(0, t_n)| per (ny, dt). Measured (Release build):
+//   ny \ dt    0.02      0.01      0.005     0.0025
+//    16      2.811e-2  2.660e-2  2.582e-2  2.543e-2
+//    32      1.285e-2  9.190e-3  7.273e-3  6.801e-3
+//    64      9.035e-3  5.308e-3  3.356e-3  2.357e-3
+//   128      1.544e-1  4.320e-3  2.358e-3  1.355e-3
+// Order in dt at ny = 128: 0.01 -> 0.005 -> 0.0025 gives ratios 1.83, 1.74 (first order, as the
+// Marchuk-Yanenko splitting and the explicit polymer force of (33) are). Taking the dt part as
+// e_t = 0.4 dt (the 1.0e-3 drop from 0.005 to 0.0025 at ny = 128), the h part at dt = 0.0025 is
+// 2.44e-2, 5.8e-3, 1.36e-3, 0.35e-3 for ny = 16..128: ratios 4.2, 4.3, 3.9, second order in h.
+// ny = 128 with dt = 0.02 is unstable (the explicit coupling of the polymer stress, docs/stability.md).
 TEST(WatersKingStartup, DISABLED_GridAndTimeStepStudy) {
   for (int ny : {16, 32, 64, 128}) {
     for (double dt : {0.02, 0.01, 0.005, 0.0025}) {
@@ -135,20 +145,35 @@ TEST(WatersKingStartup, DISABLED_GridAndTimeStepStudy) {
   }
 }
 
+// The test runs (ny, dt) = (32, 0.01) and (64, 0.005) (about 1 s and 3 s on one core).
+// Tolerances from the study above: the error model e = C_h h^2 + 0.4 dt predicts 1.4e-3 + 2.0e-3 =
+// 3.4e-3 at (64, 0.005) (measured 3.356e-3); the bound is that estimate plus 20%, 4e-3. Halving h and
+// dt together divides e_h by 4 and e_t by 2, so the error ratio between the two runs lies in [2, 4]
+// (measured 2.74); the test asks for at least 1.8, which a scheme of order below one would fail.
+// The extrema of the discrete history are sampled every dt and lag by the first-order phase error
+// (measured 3.7e-3 at the peak and 5.2e-3 at the dip, about one dt): their times must be within 2 dt,
+// their values within the max-error bound.
 TEST(WatersKingStartup, CentrelineVelocityFollowsSeries) {
-  const int ny = 64;
+  const History coarse = RunStartup(32, 0.01);
   const double dt = 0.005;
-  const History h = RunStartup(ny, dt);
+  const History h = RunStartup(64, dt);
   ASSERT_EQ(h.t.size(), 1200u);
-  EXPECT_LE(MaxError(h), 1.0) << "tolerance placeholder";
+  const double error = MaxError(h), error_coarse = MaxError(coarse);
+  EXPECT_LE(error, 4e-3);
+  EXPECT_GE(error_coarse / error, 1.8) << "errors " << error_coarse << " (32, 0.01), " << error << " (64, 0.005)";
 
   const auto peak = std::max_element(h.u.begin(), h.u.end());
   const std::size_t n_peak = static_cast<std::size_t>(peak - h.u.begin());
   const auto dip = std::min_element(h.u.begin() + static_cast<long>(n_peak), h.u.end());
   const std::size_t n_dip = static_cast<std::size_t>(dip - h.u.begin());
   const double t_max = Extremum(0.5, 2.5, 1.0), t_min = Extremum(2.5, 4.5, -1.0);
-  std::printf("peak %.5f at %.4f (series %.5f at %.4f); dip %.5f at %.4f (series %.5f at %.4f)\n", *peak,
-              h.t[n_peak], Centreline(t_max), t_max, *dip, h.t[n_dip], Centreline(t_min), t_min);
+  EXPECT_NEAR(*peak, Centreline(t_max), 4e-3);
+  EXPECT_NEAR(h.t[n_peak], t_max, 2 * dt);
+  EXPECT_NEAR(*dip, Centreline(t_min), 4e-3);
+  EXPECT_NEAR(h.t[n_dip], t_min, 2 * dt);
+  // The overshoot itself, against the README's figures (their rounding is far below 4e-3).
+  EXPECT_NEAR(*peak, 2.5513, 4e-3);
+  EXPECT_NEAR(*dip, 1.2457, 4e-3);
 }
 
 }  // namespace

@@ -172,8 +172,8 @@ const BadScene kBadScenes[] = {
      "particles.0.density", "-1.5"},
     {"ParticleMotionUnknown", "[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\nmotion = \"spinning\"\n",
      "particles.0.motion", "\"spinning\""},
-    {"ParticleNeutrallyBuoyant", "[fluid]\ndensity = 1.0\n[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.0\n",
-     "particles.0.density", "1.0"},
+    {"ParticleLighterThanFluid", "[fluid]\ndensity = 1.0\n[[particles]]\ncenter = [0.5, 0.5]\ndensity = 0.9\n",
+     "particles.0.density", "0.9"},
     {"ParticleOutsideDomain", "[[particles]]\ncenter = [1.5, 0.5]\ndensity = 1.5\n", "particles.0.center",
      "[1.5, 0.5]"},
     {"ParticleCrossesWall", "[[particles]]\ncenter = [0.5, 0.05]\ndiameter = 0.2\ndensity = 1.5\n",
@@ -281,6 +281,12 @@ TEST(SceneFile, PeriodicDiskMayCrossPeriodicSides) {
       "[[particles]]\ncenter = [0.02, 0.5]\ndensity = 1.5\n");
   EXPECT_TRUE(p.domain.PeriodicX());
   EXPECT_FALSE(p.domain.PeriodicY());
+}
+
+TEST(SceneFile, FreeParticleMayBeNeutrallyBuoyant) {
+  const Params p = ParseScene("[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.0\n");
+  EXPECT_EQ(p.particles[0].motion, Motion::kFree);
+  EXPECT_EQ(p.particles[0].density, 1.0);
 }
 
 TEST(SceneFile, FixedParticleMayBeNeutrallyBuoyant) {

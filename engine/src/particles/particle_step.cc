@@ -137,7 +137,8 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
     omega_old_[p] = particles[p].angular_velocity;
   }
   Predict(dt, particles);
-  const RigidBodyConstraint::Outcome outcome = constraint_.Enforce(time + dt, dt, particles, u, v, collision_average_.data());
+  const RigidBodyConstraint::Outcome outcome =
+      constraint_.Enforce(time + dt, dt, particles, u, v, collision_average_.data());
   Correct(dt, particles);
 
   for (std::size_t p = 0; p < n; ++p) {

@@ -371,7 +371,8 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
   }
   const double cold = GramDot(g_.data(), g_.data());
   const double threshold =
-      std::max(tolerance_ * tolerance_ * cold, kRoundOffFloor * kRoundOffFloor * scale * scale * floor_weight);
+      std::max(tolerance_ * tolerance_ * cold,
+               kRoundOffFloor * kRoundOffFloor * scale * scale * floor_weight);
 
   // Warm start from the stored nodal forces when they reduce the mismatch (for a neutral particle,
   // the stored forces less their net force and torque, on top of nu_f).

@@ -294,11 +294,11 @@ void ReadParticles(TableReader& top, Params& p) {
     q.motion = Choose<Motion>(r.Key("motion"), r.String("motion", "free"),
                               {{"free", Motion::kFree}, {"fixed", Motion::kFixed}, {"prescribed", Motion::kPrescribed}});
     r.RejectUnknown("center, diameter, density, velocity, angular_velocity, motion");
-    if (q.motion == Motion::kFree && q.density == p.fluid.density) {
+    if (q.motion == Motion::kFree && q.density < p.fluid.density) {
       throw InvalidParameter(r.Key("density"), ExactText(q.density),
-                             "a density != fluid.density = " + ExactText(p.fluid.density) +
-                                 " for a free particle (a neutrally buoyant disk makes the mass (rho_d - rho_L) V "
-                                 "of (36)-(38) zero)");
+                             ">= fluid.density = " + ExactText(p.fluid.density) +
+                                 " for a free particle (a light disk makes the excess mass (rho_d - rho_L) V "
+                                 "of (36)-(38) negative and the multiplier problem (37) indefinite)");
     }
     CheckInside(p.domain, r.Key("center"), q);
     p.particles.push_back(q);
