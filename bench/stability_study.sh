@@ -3,7 +3,8 @@
 # number (and in time step) each case gets, what fails first and how the run reports it.
 #   usage: bench/stability_study.sh [DLMFD_SOLVE] [WORK_DIR]
 #   DLMFD_SOLVE defaults to build/engine/dlmfd-solve; WORK_DIR to a fresh temporary directory.
-#   JOBS (default 2) runs at a time, each with one OpenMP thread.
+#   JOBS (default 2) runs at a time, each with one OpenMP thread; ONLY (a grep -E pattern on the run
+#   names, default all) picks a subset, e.g. ONLY='^wk_' .
 # Families (each run short: a few hundred steps on a coarse grid):
 #   disk   paper 5.1b sedimenting disk at h = 1/48, h_p = 1/35, dt = 1e-3, t <= 0.2, growing lambda;
 #          De = lambda |V| / D with the disk's final speed V.
@@ -38,22 +39,23 @@ NOOUT="--set output.fields_every=0 --set output.checkpoint_every=0"
   for dt in 0.005 0.01 0.02 0.04; do
     echo "wk_dt$dt|$WK|--set domain.h=0.015625 --set domain.size=[0.0625,2.0] --set time.dt=$dt --set time.end=10 $NOOUT"
   done
-} > "$WORK/runs.txt"
+} | grep -E -- "${ONLY:-.}" > "$WORK/runs.txt"
 
 run_one() {
   local line=$1 name scene sets rc
   name=${line%%|*}; line=${line#*|}; scene=${line%%|*}; sets=${line#*|}
-  rm -rf "$WORK/$name"
-  set +e
+  rm -rf "${WORK:?}/${name:?}"
+  set +e -f  # -f: the overrides hold brackets, which must not glob
   # shellcheck disable=SC2086
   "$SOLVE" "$scene" --out "$WORK/$name" --threads 1 --quiet $sets 2> "$WORK/$name.log"
   rc=$?
-  set -e
+  set -e +f
   echo "$rc" > "$WORK/$name.rc"
   echo "done $name (exit $rc)" >&2
 }
 export -f run_one
 export SOLVE WORK
+# shellcheck disable=SC2016  # $1 expands in the child bash
 tr '\n' '\0' < "$WORK/runs.txt" | xargs -0 -P "$JOBS" -I{} bash -c 'run_one "$1"' _ {}
 
 python3 - "$WORK" <<'PY'

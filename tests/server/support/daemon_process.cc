@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <grpcpp/generic/generic_stub.h>
+#include <gtest/gtest.h>
 
 #include <chrono>
 #include <condition_variable>
@@ -19,7 +20,13 @@
 namespace dlmfd::testing {
 namespace fs = std::filesystem;
 
-bool SolverAvailable() { return access(kSolverPath, X_OK) == 0; }
+std::string SolverPathFromEnvironment() {
+  const char* from_environment = std::getenv("DLMFD_SOLVER_BINARY");
+  if (from_environment && *from_environment) return from_environment;
+  return DLMFD_BINARY_DIR "/engine/dlmfd-solve";
+}
+
+bool SolverAvailable() { return access(kSolverPath.c_str(), X_OK) == 0; }
 
 TempDir::TempDir() {
   std::string pattern = (fs::temp_directory_path() / "dlmfdd-test-XXXXXX").string();
@@ -84,6 +91,17 @@ int DaemonProcess::Wait() {
   int status = 0;
   waitpid(pid_, &status, 0);
   pid_ = -1;
+  const std::string log = Log();
+  if (log.size() > log_checked_) {
+    const std::string fresh = log.substr(log_checked_);
+    log_checked_ = log.size();
+    for (const char* marker : {"WARNING: ThreadSanitizer", "ERROR: AddressSanitizer", "runtime error:"}) {
+      if (fresh.find(marker) != std::string::npos) {
+        ADD_FAILURE() << "the daemon reported \"" << marker << "\":\n" << fresh;
+        break;
+      }
+    }
+  }
   return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status);
 }
 

@@ -14,7 +14,12 @@
 namespace dlmfd::testing {
 
 inline const char kDaemonPath[] = DLMFD_BINARY_DIR "/server/dlmfdd";
-inline const char kSolverPath[] = DLMFD_BINARY_DIR "/engine/dlmfd-solve";
+
+// The dlmfd-solve the daemon runs (its --solver flag): $DLMFD_SOLVER_BINARY when set and not empty,
+// else the one of this build. The solver is a separate process, so a ThreadSanitizer run of the
+// daemon may use a solver built without TSan (scripts/tsan.sh does: libgomp is not instrumented).
+std::string SolverPathFromEnvironment();
+inline const std::string kSolverPath = SolverPathFromEnvironment();
 
 bool SolverAvailable();
 
@@ -38,7 +43,9 @@ class DaemonProcess {
   // Starts and waits until it serves (port file written); false if it exited first.
   bool Start();
   void Kill(int signal_number);
-  // Waits for the process to exit; returns its exit status (128 + signal when killed).
+  // Waits for the process to exit; returns its exit status (128 + signal when killed). A sanitizer
+  // report the daemon wrote to its log since the last Wait fails the current test (the daemon's
+  // exit status alone is not checked by every test).
   int Wait();
   int port() const { return port_; }
   std::string address() const { return "127.0.0.1:" + std::to_string(port_); }
@@ -57,6 +64,7 @@ class DaemonProcess {
   std::string port_file_;
   pid_t pid_ = -1;
   int port_ = 0;
+  std::size_t log_checked_ = 0;  // log bytes already searched for sanitizer reports
 };
 
 // A client context with an optional bearer token.
