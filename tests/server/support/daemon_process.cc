@@ -95,7 +95,9 @@ int DaemonProcess::Wait() {
   if (log.size() > log_checked_) {
     const std::string fresh = log.substr(log_checked_);
     log_checked_ = log.size();
-    for (const char* marker : {"WARNING: ThreadSanitizer", "ERROR: AddressSanitizer", "runtime error:"}) {
+    static const char* const kSanitizerMarkers[] = {"WARNING: ThreadSanitizer",
+                                                     "ERROR: AddressSanitizer", "runtime error:"};
+    for (const char* marker : kSanitizerMarkers) {
       if (fresh.find(marker) != std::string::npos) {
         ADD_FAILURE() << "the daemon reported \"" << marker << "\":\n" << fresh;
         break;
