@@ -8,8 +8,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 BUILD=${BUILD:-build}
-CASE=${CASE:-cases/lid_driven_cavity.toml}
-SETS=${SETS:---set domain.h=0.03125 --set time.end=0.5}
+# The paper's 5.2 Oldroyd-B pair (eta 0.12, lambda 1.4) at half the paper's resolution, to t = 2.
+CASE=${CASE:-cases/paper/5.2_pair_oldroyd_b.toml}
+SETS=${SETS:---set domain.h=0.020833333333333332 --set particle_mesh.h=0.02857142857142857 --set time.dt=0.002 --set time.end=2 --set output.fields_every=0.5 --set output.particles_every=0.02}
 RUNS=${RUNS:-runs}
 DLMFD="$BUILD/client/dlmfd"
 DLMFDD="$BUILD/server/dlmfdd"
