@@ -257,7 +257,9 @@ TEST_F(CliTest, SubmitWaitListShowFetchAndPlot) {
 }
 
 TEST_F(CliTest, WatchJsonYieldsProgressAndTheFinalState) {
-  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=0.3"});
+  // 2000 steps (a few seconds): the job is still running when the watch connects, so the watch sees
+  // progress events and not only the final state.
+  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=20"});
   ASSERT_EQ(submit.code, 0) << submit.err;
   const std::string job = FirstLine(submit.out);
   const CliRun watch = Cli({"watch", job, "--json"});
@@ -292,7 +294,9 @@ TEST_F(CliTest, CancelStopsALongJob) {
 }
 
 TEST_F(CliTest, WatchResumesAcrossADaemonRestart) {
-  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=0.6"});
+  // 1000 steps: long enough (about a second on a quiet machine) that the job is still running when
+  // the daemon is killed 0.3 s after the watch starts.
+  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=10"});
   ASSERT_EQ(submit.code, 0) << submit.err;
   const std::string job = FirstLine(submit.out);
   AwaitState(job, "RUNNING");
