@@ -25,6 +25,7 @@ const Command kCommands[] = {
     {"fetch", "download a job's result files", RunFetch},
     {"logs", "print a job's log lines", RunLogs},
     {"plot", "draw trA (or the speed) with the particles as a PNG", RunPlot},
+    {"chart", "line chart PNG of particle quantities of runs, or of CSV columns", RunChart},
     {"health", "ask the daemon whether it is serving", RunHealth},
 };
 

@@ -66,6 +66,30 @@ void RasterImage::DrawCircle(double cx, double cy, double radius, double width, 
   }
 }
 
+void RasterImage::DrawLine(double x0, double y0, double x1, double y1, double width, Rgb colour) {
+  if (!std::isfinite(x0) || !std::isfinite(y0) || !std::isfinite(x1) || !std::isfinite(y1)) return;
+  const double half = 0.5 * std::max(1.0, width);
+  // The bounding box, clamped in floating point first so that far-away ends never overflow an int.
+  const auto clamp_to = [](double v, int hi) { return int(std::clamp(std::floor(v), -1.0, double(hi))); };
+  const int x_lo = std::max(0, clamp_to(std::min(x0, x1) - half, width_));
+  const int x_hi = std::min(width_ - 1, clamp_to(std::max(x0, x1) + half, width_));
+  const int y_lo = std::max(0, clamp_to(std::min(y0, y1) - half, height_));
+  const int y_hi = std::min(height_ - 1, clamp_to(std::max(y0, y1) + half, height_));
+  const double dx = x1 - x0;
+  const double dy = y1 - y0;
+  const double length2 = dx * dx + dy * dy;
+  if (!std::isfinite(length2)) return;
+  for (int py = y_lo; py <= y_hi; ++py) {
+    for (int px = x_lo; px <= x_hi; ++px) {
+      const double cx = px + 0.5 - x0;
+      const double cy = py + 0.5 - y0;
+      // Distance from the pixel centre to the nearest point of the segment.
+      const double s = length2 > 0.0 ? std::clamp((cx * dx + cy * dy) / length2, 0.0, 1.0) : 0.0;
+      if (std::hypot(cx - s * dx, cy - s * dy) <= half) Set(px, py, colour);
+    }
+  }
+}
+
 void RasterImage::DrawText(int x, int y, const std::string& text, int scale, Rgb colour) {
   for (std::size_t n = 0; n < text.size(); ++n) {
     const Glyph& glyph = GlyphFor(text[n]);
