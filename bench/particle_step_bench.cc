@@ -1,8 +1,11 @@
 // Cost of the particle step (36)-(38) on the paper's grid: 2 x 8, h = 1/96, h_p = 1/70, D = 0.2,
 // dt = 4e-4, rho_d = 1.01, g = 981, in a non-rigid velocity field. Reports ms per Advance for 2, 11
-// and 102 particles in regular arrangements; the fluid field and particles are restored before each
-// step (untimed) so every step solves the same DLM problem from the same warm start.
+// and 102 particles in regular arrangements, with 1 and 2 OpenMP threads; the fluid field and
+// particles are restored before each step (untimed) so every step solves the same DLM problem from
+// the same warm start. Compare with ms_stokes of newtonian_step_bench (the Stokes step, same grid).
+//   OMP_WAIT_POLICY=active build/bench/particle_step_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
+#include <omp.h>
 
 #include <cmath>
 #include <vector>
@@ -38,6 +41,7 @@ Params PaperScene(int count) {
 
 void BM_ParticleStepAdvance(benchmark::State& state) {
   const Params params = PaperScene(static_cast<int>(state.range(0)));
+  omp_set_num_threads(static_cast<int>(state.range(1)));
   const Grid grid{192, 768, 1.0 / 96, 0.0, 0.0};
   ParticleStep step(params, grid);
   std::vector<double> u0(grid.NodeCount(), 0.0), v0(grid.NodeCount(), 0.0);
@@ -65,13 +69,17 @@ void BM_ParticleStepAdvance(benchmark::State& state) {
     step.Advance(0.0, params.time.dt, particles, u.data(), v.data(), report);
     iterations += report.Get("multiplier_iterations");
   }
-  state.counters["particles"] = static_cast<double>(params.particles.size());
   state.counters["cg_iterations"] = iterations / static_cast<double>(state.iterations());
   state.counters["us_per_particle"] = benchmark::Counter(
       static_cast<double>(params.particles.size()),
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  omp_set_num_threads(omp_get_num_procs());
 }
-BENCHMARK(BM_ParticleStepAdvance)->Arg(2)->Arg(11)->Arg(102)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ParticleStepAdvance)
+    ->ArgNames({"particles", "threads"})
+    ->ArgsProduct({{2, 11, 102}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace dlmfd

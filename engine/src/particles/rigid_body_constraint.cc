@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -17,8 +19,28 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 // Relative round-off level of a converged mismatch, in units of the velocity scale.
 constexpr double kRoundOffFloor = 1e-11;
+// The CG runs on the OpenMP threads from this many particles on. One CG iteration costs about
+// 3.5 us per particle (D = 0.2, h_p = 1/70) and has 4 barriers; with OMP_WAIT_POLICY=passive (the
+// setting for shared machines) a barrier is a futex wake-up of 5-50 us, so fewer particles than
+// this lose more at the barriers than they gain.
+constexpr std::size_t kParallelParticles = 32;
 
 Vec2 Perp(const Vec2& r) { return Vec2(-r.y(), r.x()); }
+
+// a . b over [begin, end) with four running sums (a fixed order: the same result every time, and
+// no single chain of dependent additions).
+double Dot(const double* a, const double* b, std::size_t begin, std::size_t end) {
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  std::size_t q = begin;
+  for (; q + 4 <= end; q += 4) {
+    s0 += a[q] * b[q];
+    s1 += a[q + 1] * b[q + 1];
+    s2 += a[q + 2] * b[q + 2];
+    s3 += a[q + 3] * b[q + 3];
+  }
+  for (; q < end; ++q) s0 += a[q] * b[q];
+  return (s0 + s1) + (s2 + s3);
+}
 
 const char* SideName(int s) {
   static const char* const kNames[4] = {"left", "right", "bottom", "top"};
@@ -34,6 +56,10 @@ RigidBodyConstraint::RigidBodyConstraint(const Params& params, const Grid& grid)
       fluid_density_(params.fluid.density),
       tolerance_(params.solvers.multiplier_tolerance),
       max_iterations_(params.solvers.multiplier_max_iterations) {
+  if (grid.NodeCount() > std::numeric_limits<std::uint32_t>::max()) {
+    throw InvalidParameter("domain.h", std::to_string(params.domain.h),
+                           "a grid of at most 2^32 - 1 velocity nodes (32-bit node indices of E)");
+  }
   for (int s = 0; s < 4; ++s) {
     const SideType type = params.domain.sides[s].type;
     dirichlet_[s] = type == SideType::kWall || type == SideType::kVelocity;
@@ -73,12 +99,24 @@ RigidBodyConstraint::RigidBodyConstraint(const Params& params, const Grid& grid)
       inv_excess_inertia_.push_back(0.0);
     }
   }
-  stencil_.resize(3 * total_nodes_);
-  touched_.reserve(3 * total_nodes_);
+  stencil_node_.assign(3 * total_nodes_, 0);
+  stencil_slot_.assign(3 * total_nodes_, 0);
+  stencil_weight_.assign(3 * total_nodes_, 0.0);
+  stencil_scatter_.assign(3 * total_nodes_, 0.0);
+  const std::size_t max_slots = 3 * total_nodes_;
+  touched_.assign(max_slots + 1, 0);
   stamp_.assign(grid.NodeCount(), -1);
+  slot_of_.assign(grid.NodeCount(), 0);
+  spread_start_.assign(max_slots + 2, 0);
+  spread_cursor_.assign(max_slots + 2, 0);
+  spread_source_.assign(max_slots, 0);
+  spread_weight_.assign(max_slots, 0.0);
   for (auto* a : {&nu_, &g_, &w_, &nub_, &gb_, &scratch_}) a->assign(2 * total_nodes_, 0.0);
-  ub_.assign(grid.NodeCount(), 0.0);
-  vb_.assign(grid.NodeCount(), 0.0);
+  for (auto* a : {&ub_, &vb_, &du_, &dv_}) a->assign(max_slots + 1, 0.0);
+  partial_.assign(n, 0.0);
+  partial_gg_.assign(n, 0.0);
+  parallel_ = n >= kParallelParticles;
+  offset_.push_back(total_nodes_);  // offset_[n]: the end of the last particle
   velocity_.assign(n, Vec2::Zero());
   velocity_b_.assign(n, Vec2::Zero());
   force_sum_.assign(n, Vec2::Zero());
@@ -132,38 +170,42 @@ Eigen::Vector3d RigidBodyConstraint::RigidPart(std::size_t p, const double* a) c
   return rigid_gram_inverse_[mesh_of_[p]] * moments;
 }
 
+void RigidBodyConstraint::ProjectMismatchOf(std::size_t p, double* a) const {
+  const Eigen::Vector3d rigid = RigidPart(p, a);
+  const ParticleMesh& mesh = MeshOf(p);
+  for (int k = 0; k < mesh.NodeCount(); ++k) {
+    const Vec2 motion = Vec2(rigid[0], rigid[1]) + rigid[2] * Perp(mesh.nodes()[k]);
+    a[2 * k] -= motion.x();
+    a[2 * k + 1] -= motion.y();
+  }
+}
+
 void RigidBodyConstraint::ProjectMismatch(double* a) const {
   if (!any_neutral_) return;
   for (std::size_t p = 0; p < mesh_of_.size(); ++p) {
-    if (!neutral_[p]) continue;
-    double* ap = a + 2 * offset_[p];
-    const Eigen::Vector3d rigid = RigidPart(p, ap);
-    const ParticleMesh& mesh = MeshOf(p);
-    for (int k = 0; k < mesh.NodeCount(); ++k) {
-      const Vec2 motion = Vec2(rigid[0], rigid[1]) + rigid[2] * Perp(mesh.nodes()[k]);
-      ap[2 * k] -= motion.x();
-      ap[2 * k + 1] -= motion.y();
-    }
+    if (neutral_[p]) ProjectMismatchOf(p, a + 2 * offset_[p]);
+  }
+}
+
+void RigidBodyConstraint::ProjectForcesOf(std::size_t p, double* f) const {
+  const ParticleMesh& mesh = MeshOf(p);
+  const std::size_t size = 2 * static_cast<std::size_t>(mesh.NodeCount());
+  Eigen::Vector3d moments = Eigen::Vector3d::Zero();  // C^T f
+  for (int k = 0; k < mesh.NodeCount(); ++k) {
+    const Vec2 force(f[2 * k], f[2 * k + 1]);
+    moments += Eigen::Vector3d(force.x(), force.y(), Perp(mesh.nodes()[k]).dot(force));
+  }
+  const Eigen::Vector3d t = rigid_gram_inverse_[mesh_of_[p]] * moments;
+  const double* gc = gram_rigid_[mesh_of_[p]].data();
+  for (std::size_t q = 0; q < size; ++q) {
+    f[q] -= gc[q] * t[0] + gc[size + q] * t[1] + gc[2 * size + q] * t[2];
   }
 }
 
 void RigidBodyConstraint::ProjectForces(double* f) const {
   if (!any_neutral_) return;
   for (std::size_t p = 0; p < mesh_of_.size(); ++p) {
-    if (!neutral_[p]) continue;
-    const ParticleMesh& mesh = MeshOf(p);
-    const std::size_t size = 2 * static_cast<std::size_t>(mesh.NodeCount());
-    double* fp = f + 2 * offset_[p];
-    Eigen::Vector3d moments = Eigen::Vector3d::Zero();  // C^T f
-    for (int k = 0; k < mesh.NodeCount(); ++k) {
-      const Vec2 force(fp[2 * k], fp[2 * k + 1]);
-      moments += Eigen::Vector3d(force.x(), force.y(), Perp(mesh.nodes()[k]).dot(force));
-    }
-    const Eigen::Vector3d t = rigid_gram_inverse_[mesh_of_[p]] * moments;
-    const double* gc = gram_rigid_[mesh_of_[p]].data();
-    for (std::size_t q = 0; q < size; ++q) {
-      fp[q] -= gc[q] * t[0] + gc[size + q] * t[1] + gc[2 * size + q] * t[2];
-    }
+    if (neutral_[p]) ProjectForcesOf(p, f + 2 * offset_[p]);
   }
 }
 
@@ -184,9 +226,10 @@ double RigidBodyConstraint::InverseNodeMass(int i, int j) const {
   return 1.0 / (fluid_density_ * grid_.h * grid_.h * factor);
 }
 
-void RigidBodyConstraint::BuildInterpolation(double time, const std::vector<ParticleState>& particles) {
+void RigidBodyConstraint::BuildInterpolation(double time, double dt,
+                                             const std::vector<ParticleState>& particles) {
   ++stamp_counter_;
-  touched_.clear();
+  slot_count_ = 0;
   const double h = grid_.h;
   for (std::size_t p = 0; p < particles.size(); ++p) {
     const ParticleMesh& mesh = MeshOf(p);
@@ -236,72 +279,240 @@ void RigidBodyConstraint::BuildInterpolation(double time, const std::vector<Part
         ii[2] = i0; jj[2] = j1; wt[2] = eta - xi;
       }
       for (int q = 0; q < 3; ++q) {
-        StencilEntry& e = stencil_[3 * (offset_[p] + k) + q];
-        e.node = grid_.Index(ii[q], jj[q]);
-        e.weight = wt[q];
-        e.scatter = wt[q] * InverseNodeMass(ii[q], jj[q]);
-        if (e.scatter != 0.0 && stamp_[e.node] != stamp_counter_) {
-          stamp_[e.node] = stamp_counter_;
-          touched_.push_back(e.node);
+        const std::size_t entry = 3 * (offset_[p] + k) + q;
+        const std::size_t node = grid_.Index(ii[q], jj[q]);
+        const double scatter = wt[q] * InverseNodeMass(ii[q], jj[q]);
+        stencil_node_[entry] = static_cast<std::uint32_t>(node);
+        stencil_weight_[entry] = wt[q];
+        stencil_scatter_[entry] = scatter;
+        stencil_slot_[entry] = 0;
+        if (scatter != 0.0) {
+          if (stamp_[node] != stamp_counter_) {
+            stamp_[node] = stamp_counter_;
+            slot_of_[node] = static_cast<std::uint32_t>(++slot_count_);
+            touched_[slot_count_] = static_cast<std::uint32_t>(node);
+          }
+          stencil_slot_[entry] = slot_of_[node];
         }
       }
     }
+  }
+  BuildSpreading(dt);
+}
+
+void RigidBodyConstraint::BuildSpreading(double dt) {
+  // Counting sort of the stencil entries by slot; entries stay in stacked node order per slot.
+  std::fill(spread_start_.begin(), spread_start_.begin() + slot_count_ + 2, 0);
+  for (std::size_t q = 0; q < 3 * total_nodes_; ++q) {
+    if (stencil_slot_[q] != 0) ++spread_start_[stencil_slot_[q] + 1];
+  }
+  spread_start_[1] = 0;
+  for (std::size_t slot = 1; slot <= slot_count_; ++slot) spread_start_[slot + 1] += spread_start_[slot];
+  std::copy(spread_start_.begin(), spread_start_.begin() + slot_count_ + 2, spread_cursor_.begin());
+  for (std::size_t q = 0; q < 3 * total_nodes_; ++q) {
+    if (stencil_slot_[q] == 0) continue;
+    const std::size_t at = spread_cursor_[stencil_slot_[q]]++;
+    spread_source_[at] = static_cast<std::uint32_t>(q / 3);
+    spread_weight_[at] = dt * stencil_scatter_[q];
+  }
+}
+
+void RigidBodyConstraint::MismatchOf(std::size_t p, const double* u, const double* v,
+                                     const Vec2* velocity, const double* omega, double* g) const {
+  const ParticleMesh& mesh = MeshOf(p);
+  for (int k = 0; k < mesh.NodeCount(); ++k) {
+    const std::size_t node = offset_[p] + k;
+    const std::uint32_t* at = &stencil_node_[3 * node];
+    const double* weight = &stencil_weight_[3 * node];
+    double eu = 0.0, ev = 0.0;
+    for (int q = 0; q < 3; ++q) {
+      eu += weight[q] * u[at[q]];
+      ev += weight[q] * v[at[q]];
+    }
+    const Vec2 rigid = velocity[p] + omega[p] * Perp(mesh.nodes()[k]);
+    g[2 * node] = eu - rigid.x();
+    g[2 * node + 1] = ev - rigid.y();
   }
 }
 
 void RigidBodyConstraint::Mismatch(const double* u, const double* v, const Vec2* velocity,
                                    const double* omega, double* g) const {
-  for (std::size_t p = 0; p < mesh_of_.size(); ++p) {
-    const ParticleMesh& mesh = MeshOf(p);
-    for (int k = 0; k < mesh.NodeCount(); ++k) {
-      const std::size_t node = offset_[p] + k;
-      const StencilEntry* e = &stencil_[3 * node];
-      double eu = 0.0, ev = 0.0;
-      for (int q = 0; q < 3; ++q) {
-        eu += e[q].weight * u[e[q].node];
-        ev += e[q].weight * v[e[q].node];
-      }
-      const Vec2 rigid = velocity[p] + omega[p] * Perp(mesh.nodes()[k]);
-      g[2 * node] = eu - rigid.x();
-      g[2 * node + 1] = ev - rigid.y();
-    }
+  const long particles = static_cast<long>(mesh_of_.size());
+#pragma omp parallel for schedule(static) if (parallel_)
+  for (long p = 0; p < particles; ++p) MismatchOf(p, u, v, velocity, omega, g);
+}
+
+void RigidBodyConstraint::RigidResponseOf(std::size_t p, double dt, const double* dir) {
+  const ParticleMesh& mesh = MeshOf(p);
+  const double* f = dir + 2 * offset_[p];
+  Vec2 sum = Vec2::Zero();
+  double torque = 0.0;
+  for (int k = 0; k < mesh.NodeCount(); ++k) {
+    const Vec2 force(f[2 * k], f[2 * k + 1]);
+    sum += force;
+    torque += Perp(mesh.nodes()[k]).dot(force);
   }
+  velocity_b_[p] = -dt * inv_excess_mass_[p] * sum;
+  omega_b_[p] = -dt * inv_excess_inertia_[p] * torque;
+}
+
+void RigidBodyConstraint::SpreadSlot(std::size_t slot, const double* dir) {
+  const std::size_t* start = spread_start_.data();
+  const std::uint32_t* source = spread_source_.data();
+  const double* weight = spread_weight_.data();
+  double su = 0.0, sv = 0.0;
+  for (std::size_t c = start[slot]; c < start[slot + 1]; ++c) {
+    su += weight[c] * dir[2 * source[c]];
+    sv += weight[c] * dir[2 * source[c] + 1];
+  }
+  ub_[slot] = su;
+  vb_[slot] = sv;
+}
+
+void RigidBodyConstraint::ResponseMismatchOf(std::size_t p) {
+  const ParticleMesh& mesh = MeshOf(p);
+  for (int k = 0; k < mesh.NodeCount(); ++k) {
+    const std::size_t node = offset_[p] + k;
+    const std::uint32_t* slot = &stencil_slot_[3 * node];
+    const double* weight = &stencil_weight_[3 * node];
+    double eu = 0.0, ev = 0.0;
+    for (int q = 0; q < 3; ++q) {
+      eu += weight[q] * ub_[slot[q]];
+      ev += weight[q] * vb_[slot[q]];
+    }
+    const Vec2 rigid = velocity_b_[p] + omega_b_[p] * Perp(mesh.nodes()[k]);
+    gb_[2 * node] = eu - rigid.x();
+    gb_[2 * node + 1] = ev - rigid.y();
+  }
+  if (neutral_[p]) ProjectMismatchOf(p, gb_.data() + 2 * offset_[p]);
 }
 
 void RigidBodyConstraint::Respond(double dt, const double* dir) {
-  for (std::size_t node : touched_) ub_[node] = vb_[node] = 0.0;
-  for (std::size_t p = 0; p < mesh_of_.size(); ++p) {
-    const ParticleMesh& mesh = MeshOf(p);
-    Vec2 sum = Vec2::Zero();
-    double torque = 0.0;
-    for (int k = 0; k < mesh.NodeCount(); ++k) {
-      const std::size_t node = offset_[p] + k;
-      const Vec2 f(dir[2 * node], dir[2 * node + 1]);
-      const StencilEntry* e = &stencil_[3 * node];
-      for (int q = 0; q < 3; ++q) {
-        ub_[e[q].node] += dt * e[q].scatter * f.x();
-        vb_[e[q].node] += dt * e[q].scatter * f.y();
-      }
-      sum += f;
-      torque += Perp(mesh.nodes()[k]).dot(f);
-    }
-    velocity_b_[p] = -dt * inv_excess_mass_[p] * sum;
-    omega_b_[p] = -dt * inv_excess_inertia_[p] * torque;
+  const long particles = static_cast<long>(mesh_of_.size());
+  const long slots = static_cast<long>(slot_count_);
+#pragma omp parallel if (parallel_)
+  {
+#pragma omp for schedule(static) nowait
+    for (long p = 0; p < particles; ++p) RigidResponseOf(p, dt, dir);
+#pragma omp for schedule(static)
+    for (long slot = 1; slot <= slots; ++slot) SpreadSlot(slot, dir);
+#pragma omp for schedule(static)
+    for (long p = 0; p < particles; ++p) ResponseMismatchOf(p);
   }
-  Mismatch(ub_.data(), vb_.data(), velocity_b_.data(), omega_b_.data(), gb_.data());
+}
+
+void RigidBodyConstraint::AddResponse(const double* ub, const double* vb, double* u, double* v) const {
+  for (std::size_t slot = 1; slot <= slot_count_; ++slot) {
+    u[touched_[slot]] += ub[slot];
+    v[touched_[slot]] += vb[slot];
+  }
 }
 
 void RigidBodyConstraint::ApplyGram(const double* a, double* out) const {
-  for (std::size_t p = 0; p < mesh_of_.size(); ++p) {
-    MeshOf(p).ApplyGram2(a + 2 * offset_[p], out + 2 * offset_[p]);
-  }
+  const long particles = static_cast<long>(mesh_of_.size());
+#pragma omp parallel for schedule(static) if (parallel_)
+  for (long p = 0; p < particles; ++p) MeshOf(p).ApplyGram2(a + 2 * offset_[p], out + 2 * offset_[p]);
 }
 
 double RigidBodyConstraint::GramDot(const double* a, const double* b) {
-  ApplyGram(b, scratch_.data());
-  double sum = 0.0;
-  for (std::size_t q = 0; q < 2 * total_nodes_; ++q) sum += a[q] * scratch_[q];
+  const long particles = static_cast<long>(mesh_of_.size());
+  double* gram_b = scratch_.data();
+#pragma omp parallel for schedule(static) if (parallel_)
+  for (long p = 0; p < particles; ++p) {
+    MeshOf(p).ApplyGram2(b + 2 * offset_[p], gram_b + 2 * offset_[p]);
+    partial_[p] = Dot(a, gram_b, 2 * offset_[p], 2 * offset_[p + 1]);
+  }
+  double sum = 0.0;  // by particle in order, as in the CG
+  for (long p = 0; p < particles; ++p) sum += partial_[p];
   return sum;
+}
+
+bool RigidBodyConstraint::ConjugateGradients(double dt, double threshold, double& gg, int& iterations,
+                                             double* curvature_out) {
+  // One parallel region for the whole CG: the loops below are work-shared, and sums are per
+  // particle, then over the particles in order (by every thread): the same result for every
+  // thread count.
+  const long particles = static_cast<long>(mesh_of_.size());
+  const long slots = static_cast<long>(slot_count_);
+  const std::size_t* offset = offset_.data();
+  double* nu = nu_.data();
+  double* g = g_.data();
+  double* w = w_.data();
+  double* gw = nub_.data();  // G w
+  double* gb = gb_.data();
+  double* gram_g = scratch_.data();  // G g
+  double* partial = partial_.data();
+  double* partial_gg = partial_gg_.data();
+  bool broke_down = false;
+#pragma omp parallel if (parallel_)
+  {
+    // Every thread keeps the CG scalars itself: each sums the per-particle parts in the same order
+    // and gets the same values, so the scalars need no extra barrier; the two sums alternate
+    // between partial_ and partial_gg_ so that a thread still summing one is never overwritten.
+    double local_gg = gg;
+    int local_iterations = iterations;
+    bool local_broke_down = false;
+#pragma omp for schedule(static)
+    for (long p = 0; p < particles; ++p) RigidResponseOf(p, dt, gw);
+    while (local_gg > threshold && local_iterations < max_iterations_) {
+#pragma omp for schedule(static)
+      for (long slot = 1; slot <= slots; ++slot) SpreadSlot(slot, gw);
+#pragma omp for schedule(static)
+      for (long p = 0; p < particles; ++p) {
+        ResponseMismatchOf(p);
+        partial[p] = Dot(gb, gw, 2 * offset[p], 2 * offset[p + 1]);  // <gb, w>_G = gb . G w
+      }
+      double curvature = 0.0;
+      for (long p = 0; p < particles; ++p) curvature += partial[p];
+      if (!(curvature > 0.0)) {
+        local_broke_down = true;
+#pragma omp master
+        *curvature_out = curvature;
+        break;
+      }
+      const double step = local_gg / curvature;
+#pragma omp for schedule(static) nowait
+      for (long p = 0; p < particles; ++p) {
+        const std::size_t begin = 2 * offset[p], end = 2 * offset[p + 1];
+        for (std::size_t q = begin; q < end; ++q) {
+          nu[q] -= step * gw[q];
+          g[q] -= step * gb[q];
+        }
+        MeshOf(p).ApplyGram2(g + begin, gram_g + begin);
+        partial_gg[p] = Dot(g, gram_g, begin, end);
+        velocity_[p] -= step * velocity_b_[p];
+        omega_[p] -= step * omega_b_[p];
+      }
+#pragma omp for schedule(static)
+      for (long slot = 1; slot <= slots; ++slot) {
+        du_[slot] -= step * ub_[slot];
+        dv_[slot] -= step * vb_[slot];
+      }
+      double gg_new = 0.0;
+      for (long p = 0; p < particles; ++p) gg_new += partial_gg[p];
+      const double beta = gg_new / local_gg;
+      local_gg = gg_new;
+      ++local_iterations;
+#pragma omp for schedule(static)
+      for (long p = 0; p < particles; ++p) {
+        const std::size_t begin = 2 * offset[p], end = 2 * offset[p + 1];
+        for (std::size_t q = begin; q < end; ++q) {
+          w[q] = g[q] + beta * w[q];
+          gw[q] = gram_g[q] + beta * gw[q];
+        }
+        // Exact already for a neutral particle (w is G-orthogonal to C); keeps round-off out.
+        if (neutral_[p]) ProjectForcesOf(p, gw + begin);
+        RigidResponseOf(p, dt, gw);
+      }
+    }
+#pragma omp master
+    {
+      gg = local_gg;
+      iterations = local_iterations;
+      broke_down = local_broke_down;
+    }
+  }
+  return !broke_down;
 }
 
 RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt,
@@ -316,7 +527,7 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
   Outcome outcome;
   const std::size_t n = particles.size();
   if (n == 0) return outcome;
-  BuildInterpolation(time, particles);
+  BuildInterpolation(time, dt, particles);
   for (std::size_t p = 0; p < n; ++p) {
     velocity_[p] = particles[p].velocity;
     omega_[p] = particles[p].angular_velocity;
@@ -334,7 +545,8 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
     floor_weight += 2.0 * mesh.Area() * (1.0 + ratio * ratio);
   }
   for (std::size_t q = 0; q < total_nodes_; ++q) {
-    outcome.cold_residual = std::max(outcome.cold_residual, std::hypot(g_[2 * q], g_[2 * q + 1]));
+    outcome.cold_residual =
+        std::max(outcome.cold_residual, std::sqrt(g_[2 * q] * g_[2 * q] + g_[2 * q + 1] * g_[2 * q + 1]));
     scale = std::max(scale, outcome.cold_residual);
   }
   ProjectMismatch(g_.data());
@@ -358,12 +570,8 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
   }
   if (have_net_force) {
     Respond(dt, nu_.data());
-    ProjectMismatch(gb_.data());
     for (std::size_t q = 0; q < 2 * total_nodes_; ++q) g_[q] += gb_[q];
-    for (std::size_t node : touched_) {
-      u[node] += ub_[node];
-      v[node] += vb_[node];
-    }
+    AddResponse(ub_.data(), vb_.data(), u, v);
     for (std::size_t p = 0; p < n; ++p) {
       velocity_[p] += velocity_b_[p];
       omega_[p] += omega_b_[p];
@@ -392,7 +600,6 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
     }
     ProjectForces(nub_.data());
     Respond(dt, nub_.data());
-    ProjectMismatch(gb_.data());
     for (std::size_t q = 0; q < 2 * total_nodes_; ++q) w_[q] = g_[q] + gb_[q];
     const double warm = GramDot(w_.data(), w_.data());
     if (warm < cold) {
@@ -400,10 +607,7 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
       gg = warm;
       std::swap(g_, w_);
       for (std::size_t q = 0; q < 2 * total_nodes_; ++q) nu_[q] += nub_[q];
-      for (std::size_t node : touched_) {
-        u[node] += ub_[node];
-        v[node] += vb_[node];
-      }
+      AddResponse(ub_.data(), vb_.data(), u, v);
       for (std::size_t p = 0; p < n; ++p) {
         velocity_[p] += velocity_b_[p];
         omega_[p] += omega_b_[p];
@@ -412,46 +616,27 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
   }
 
   // Conjugate gradients in <., .>_G (method notes 1.3, steps 2-7), iterate tracked as nu = G lambda.
-  w_ = g_;
+  std::copy(g_.begin(), g_.end(), w_.begin());
+  ApplyGram(w_.data(), nub_.data());
+  ProjectForces(nub_.data());  // exact already (w is G-orthogonal to C); keeps round-off out
+  std::fill(du_.begin(), du_.begin() + slot_count_ + 1, 0.0);
+  std::fill(dv_.begin(), dv_.begin() + slot_count_ + 1, 0.0);
   int it = 0;
-  while (gg > threshold) {
-    if (it == max_iterations_) {
-      std::ostringstream what;
-      what << "DLM multiplier CG (37) did not converge at t = " << time << " after " << it
-           << " iterations: residual " << std::sqrt(gg) << " > " << std::sqrt(threshold)
-           << " (raise solvers.multiplier_max_iterations or solvers.multiplier_tolerance)";
-      throw SolverNotConverged(what.str());
-    }
-    ApplyGram(w_.data(), nub_.data());
-    ProjectForces(nub_.data());  // exact already (w is G-orthogonal to C); keeps round-off out
-    Respond(dt, nub_.data());
-    ProjectMismatch(gb_.data());
-    double curvature = 0.0;  // <gb, w>_G = gb . G w
-    for (std::size_t q = 0; q < 2 * total_nodes_; ++q) curvature += gb_[q] * nub_[q];
-    if (!(curvature > 0.0)) {
-      std::ostringstream what;
-      what << "DLM multiplier CG (37) broke down at t = " << time << " (curvature " << curvature
-           << " after " << it << " iterations)";
-      throw SolverNotConverged(what.str());
-    }
-    const double step = gg / curvature;
-    for (std::size_t q = 0; q < 2 * total_nodes_; ++q) {
-      nu_[q] -= step * nub_[q];
-      g_[q] -= step * gb_[q];
-    }
-    for (std::size_t node : touched_) {
-      u[node] -= step * ub_[node];
-      v[node] -= step * vb_[node];
-    }
-    for (std::size_t p = 0; p < n; ++p) {
-      velocity_[p] -= step * velocity_b_[p];
-      omega_[p] -= step * omega_b_[p];
-    }
-    const double gg_new = GramDot(g_.data(), g_.data());
-    const double beta = gg_new / gg;
-    gg = gg_new;
-    for (std::size_t q = 0; q < 2 * total_nodes_; ++q) w_[q] = g_[q] + beta * w_[q];
-    ++it;
+  double curvature = 0.0;
+  const bool converged_or_stopped = ConjugateGradients(dt, threshold, gg, it, &curvature);
+  AddResponse(du_.data(), dv_.data(), u, v);
+  if (!converged_or_stopped) {
+    std::ostringstream what;
+    what << "DLM multiplier CG (37) broke down at t = " << time << " (curvature " << curvature
+         << " after " << it << " iterations)";
+    throw SolverNotConverged(what.str());
+  }
+  if (gg > threshold) {
+    std::ostringstream what;
+    what << "DLM multiplier CG (37) did not converge at t = " << time << " after " << it
+         << " iterations: residual " << std::sqrt(gg) << " > " << std::sqrt(threshold)
+         << " (raise solvers.multiplier_max_iterations or solvers.multiplier_tolerance)";
+    throw SolverNotConverged(what.str());
   }
   outcome.iterations = it;
 
@@ -488,7 +673,8 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
   // The true residual, the new particle velocities, and the nodal force sums.
   Mismatch(u, v, velocity_.data(), omega_.data(), g_.data());
   for (std::size_t q = 0; q < total_nodes_; ++q) {
-    outcome.residual = std::max(outcome.residual, std::hypot(g_[2 * q], g_[2 * q + 1]));
+    outcome.residual =
+        std::max(outcome.residual, std::sqrt(g_[2 * q] * g_[2 * q] + g_[2 * q + 1] * g_[2 * q + 1]));
   }
   for (std::size_t p = 0; p < n; ++p) {
     ParticleState& particle = particles[p];

@@ -19,6 +19,14 @@
 // an absolute reference, so warm starts pay) and floor a round-off level (1e-11 times the velocity
 // scale, in the G norm). Throws SolverNotConverged after
 // solvers.multiplier_max_iterations.
+// Cost: one G product per iteration (G w is updated by the CG recursion G w' = G g' + beta G w), and
+// E^T is applied by fluid node: the distinct fluid nodes that E^T reaches get compact slots, and
+// each slot gathers its contributions (stacked multiplier node, weight) from a transposed list built
+// once per step, so the work per iteration is proportional to the multiplier nodes (no fluid-sized
+// array is touched inside the CG) and the fluid velocity is updated once after it. OpenMP (from 32
+// particles on; below, the barriers cost more than the work): the per-particle loops and the
+// per-slot gathers are shared between the threads; every sum is taken per particle and then over
+// the particles in a fixed order, so the result does not depend on the thread count (no atomics).
 // Neutrally buoyant free particles (rho_d = rho_L, m_e = j_e = 0): the momentum equations of (37)
 // become the constraints C^T nu = f, with C = [e_x, e_y, r_perp] the rigid modes at the nodes and
 // f = (F'_avg, 0) the collision force of the predictor (the particle, having no excess mass, passes
@@ -43,6 +51,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
@@ -89,19 +98,23 @@ class RigidBodyConstraint {
   double NodalTorqueSum(std::size_t particle) const { return torque_sum_[particle]; }
 
  private:
-  struct StencilEntry {
-    std::size_t node = 0;
-    double weight = 0.0;   // of the P1 interpolation
-    double scatter = 0.0;  // weight / lumped node mass (0 at Dirichlet nodes)
-  };
-
-  void BuildInterpolation(double time, const std::vector<ParticleState>& particles);
-  // g = E u - U - omega r_perp at every node of every particle.
+  // E (stencil_*), the slots of the fluid nodes E^T reaches (touched_) and E^T by slot (spread_*).
+  void BuildInterpolation(double time, double dt, const std::vector<ParticleState>& particles);
+  void BuildSpreading(double dt);
+  // g = E u - U - omega r_perp at the nodes of particle p (g: the stacked array).
+  void MismatchOf(std::size_t p, const double* u, const double* v, const Vec2* velocity,
+                  const double* omega, double* g) const;
   void Mismatch(const double* u, const double* v, const Vec2* velocity, const double* omega,
                 double* g) const;
-  // The response to nodal forces dir: (ub, vb) = dt E^T M^-1 dir on the touched nodes, Ub, omegab,
-  // gb = E ub - Ub - omegab r_perp.
-  void Respond(double dt, const double* dir);
+  // The response to nodal forces dir, in three parts: the rigid response (velocity_b_, omega_b_) of
+  // particle p; the fluid response (ub, vb) = dt M^-1 E^T dir at slot s; gb = P (E ub - Ub - omegab
+  // r_perp) at the nodes of particle p (P: the projection of neutral particles).
+  void RigidResponseOf(std::size_t p, double dt, const double* dir);
+  void SpreadSlot(std::size_t slot, const double* dir);
+  void ResponseMismatchOf(std::size_t p);
+  void Respond(double dt, const double* dir);  // all three
+  // u += ub, v += vb at the fluid nodes of the slots.
+  void AddResponse(const double* ub, const double* vb, double* u, double* v) const;
   double GramDot(const double* a, const double* b);  // <a, b>_G, stacked
   void ApplyGram(const double* a, double* out) const;
   double InverseNodeMass(int i, int j) const;
@@ -109,10 +122,16 @@ class RigidBodyConstraint {
   void BuildRigidModes();
   // (U, omega) = S^-1 (G C)^T a: the G-weighted rigid part of a nodal field of particle p.
   Eigen::Vector3d RigidPart(std::size_t p, const double* a) const;
-  // a -= C RigidPart(a) on every neutral particle (P a: residuals and responses).
+  // a -= C RigidPart(a) for particle p (a: its block), and on every neutral particle (P a).
+  void ProjectMismatchOf(std::size_t p, double* a) const;
   void ProjectMismatch(double* a) const;
-  // f -= G C S^-1 C^T f on every neutral particle (nodal forces without net force and torque).
+  // f -= G C S^-1 C^T f for particle p (f: its block), and on every neutral particle.
+  void ProjectForcesOf(std::size_t p, double* f) const;
   void ProjectForces(double* f) const;
+  // The conjugate gradients on (g_, w_, nub_ = G w_); returns false on a breakdown (curvature <= 0)
+  // with the curvature in *curvature_out. Updates nu_, du_, dv_, velocity_, omega_, gg, iterations.
+  bool ConjugateGradients(double dt, double threshold, double& gg, int& iterations,
+                          double* curvature_out);
 
   Grid grid_;
   bool periodic_x_, periodic_y_;
@@ -124,7 +143,7 @@ class RigidBodyConstraint {
 
   std::vector<ParticleMesh> meshes_;
   std::vector<int> mesh_of_;
-  std::vector<std::size_t> offset_;  // first stacked node of each particle
+  std::vector<std::size_t> offset_;  // first stacked node of each particle, then the total
   std::size_t total_nodes_ = 0;
   std::vector<double> inv_excess_mass_, inv_excess_inertia_;  // 0 for fixed, prescribed, neutral
   std::vector<char> neutral_;
@@ -132,14 +151,27 @@ class RigidBodyConstraint {
   std::vector<std::vector<double>> gram_rigid_;  // per mesh: G C, column c at [c * 2 N + q]
   std::vector<Eigen::Matrix3d> rigid_gram_inverse_;  // per mesh: S^-1
 
-  std::vector<StencilEntry> stencil_;  // 3 per stacked node
-  std::vector<std::size_t> touched_;   // distinct fluid nodes that E^T reaches
-  std::vector<long> stamp_;            // per fluid node: last step that listed it in touched_
+  // E, 3 entries per stacked node: the fluid node, its compact response slot (0, a slot always zero,
+  // at Dirichlet nodes), the P1 weight and the weight / lumped node mass (0 at Dirichlet nodes).
+  std::vector<std::uint32_t> stencil_node_, stencil_slot_;
+  std::vector<double> stencil_weight_, stencil_scatter_;
+  std::size_t slot_count_ = 0;           // slots 1..slot_count_ are in use this step
+  std::vector<std::uint32_t> touched_;   // per slot: its fluid node (touched_[0] unused)
+  std::vector<long> stamp_;              // per fluid node: last step that gave it a slot
+  std::vector<std::uint32_t> slot_of_;   // per fluid node: its slot in that step
   long stamp_counter_ = 0;
+  // E^T by slot: contributions spread_start_[s] .. spread_start_[s + 1] - 1, each a stacked node
+  // and dt times its scatter weight, in increasing stacked node order.
+  std::vector<std::size_t> spread_start_, spread_cursor_;
+  std::vector<std::uint32_t> spread_source_;
+  std::vector<double> spread_weight_;
 
   // Stacked node arrays, 2 per node.
   std::vector<double> nu_, g_, w_, nub_, gb_, scratch_;
-  std::vector<double> ub_, vb_;  // fluid-sized response, valid on touched_
+  // Per slot: the fluid response and the accumulated CG update of the fluid velocity.
+  std::vector<double> ub_, vb_, du_, dv_;
+  std::vector<double> partial_, partial_gg_;  // per particle: its part of a stacked sum
+  bool parallel_ = false;  // the CG runs on the OpenMP threads (enough particles)
   std::vector<Vec2> velocity_, velocity_b_, force_sum_;
   std::vector<double> omega_, omega_b_, torque_sum_;
 };
