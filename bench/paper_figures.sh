@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# Draws the figures of docs/validation.md (paper, section 5) from the runs of bench/paper_cases.sh
+# (runs/paper/<case>[@advection]) into docs/figures/. A case that has not been run is skipped with
+# a message. Usage: bench/paper_figures.sh [DLMFD_BINARY]   (default build/client/dlmfd)
+set -uo pipefail
+cd "$(dirname "$0")/.."
+dlmfd=${1:-build/client/dlmfd}
+runs=runs/paper
+out=docs/figures
+mkdir -p "$out"
+
+have() {  # have RUN...: true when every run has particles.h5
+  local r
+  for r in "$@"; do
+    if [[ ! -f $runs/$r/particles.h5 ]]; then echo "skipped (not run): $r" >&2; return 1; fi
+  done
+}
+chart() { "$dlmfd" chart --width 800 --height 480 "$@" > /dev/null || echo "chart failed: $*" >&2; }
+picture() {  # picture RUN STEP FILE [QUANTITY]: the field snapshot of that step with the particles
+  local q=()
+  [[ -n ${4:-} ]] && q=(--quantity "$4")
+  if [[ -f $runs/$1/fields/snap_$(printf %06d "$2").h5 ]]; then
+    "$dlmfd" plot "$runs/$1" --snapshot "$2" --out "$out/$3" --width 400 --height 900 "${q[@]}" > /dev/null ||
+      echo "plot failed: $1 $2" >&2
+  else
+    echo "skipped (no snapshot at step $2): $1" >&2
+  fi
+}
+
+# 5.1a, figure 3: the three mesh / time-step runs, Newtonian and lambda = 0.01.
+labels=(--label "+ h=1/96 dt=0.001" --label "+++ h=1/96 dt=0.0004" --label "++ h=1/128 dt=0.0004")
+for kind in newtonian_disk disk; do
+  set3=(5.1a_${kind}_rho1.5_h96_dt1e-3 5.1a_${kind}_rho1.5_h96_dt4e-4 5.1a_${kind}_rho1.5_h128_dt4e-4)
+  name=${kind/_disk/}
+  [[ $kind == disk ]] && name=oldroyd_b
+  if have "${set3[@]}"; then
+    for q in u v omega; do
+      chart "${set3[@]/#/$runs/}" "${labels[@]}" --y "$q" --title "5.1a $name: $q (figure 3)" \
+        -o "$out/5.1a_${name}_$q.png"
+    done
+    chart "${set3[@]/#/$runs/}" "${labels[@]}" --x x --y y --title "5.1a $name: trajectory" \
+      -o "$out/5.1a_${name}_trajectory.png"
+  fi
+done
+# Figures 4-6: trA (the speed for the Newtonian runs) at t = 0.3.
+picture 5.1a_disk_rho1.5_h96_dt1e-3 300 5.1a_oldroyd_b_h96_dt1e-3_trA_t0.3.png
+picture 5.1a_disk_rho1.5_h128_dt4e-4 750 5.1a_oldroyd_b_h128_dt4e-4_trA_t0.3.png
+picture 5.1a_disk_rho1.5_h96_dt4e-4 750 5.1a_oldroyd_b_h96_dt4e-4_trA_t0.3.png
+
+# 5.1b, figure 7: rho_p = 1.02, lambda = 0.3, trA at t = 3.1.
+if have 5.1b_disk_rho1.02_lambda0.3; then
+  chart $runs/5.1b_disk_rho1.02_lambda0.3 --y v --title "5.1b: v" -o "$out/5.1b_v.png"
+  picture 5.1b_disk_rho1.02_lambda0.3 7750 5.1b_trA_t3.1.png
+fi
+
+# 5.2, figures 8 and 9: the Newtonian and the Oldroyd-B pair.
+for r in 5.2_pair_newtonian@wave 5.2_pair_oldroyd_b@wave; do
+  name=${r%@*}
+  if have "$r"; then
+    for q in y v gap; do chart "$runs/$r" --y "$q" --title "$name: $q" -o "$out/${name}_$q.png"; done
+    chart "$runs/$r" --x x --y y --title "$name: trajectories" -o "$out/${name}_trajectory.png"
+  fi
+done
+picture 5.2_pair_newtonian@wave 1250 5.2_pair_newtonian_speed_t0.5.png speed
+picture 5.2_pair_newtonian@wave 12500 5.2_pair_newtonian_speed_t5.png speed
+for t in 0.5 9.5 25; do
+  picture 5.2_pair_oldroyd_b@wave "$(awk -v t=$t 'BEGIN { printf "%d", t / 0.0004 + 0.5 }')" "5.2_pair_oldroyd_b_trA_t$t.png"
+done
+
+# 5.3 (figures 10, 11) and 5.4 (figure 12).
+picture 5.3a_eleven_disks@wave 2500 5.3a_trA_t1.png
+picture 5.3a_eleven_disks@wave 39000 5.3a_trA_t15.6.png
+picture 5.3b_eleven_disks_lambda3.5@wave 39000 5.3b_trA_t15.6.png
+picture 5.3c_eleven_disks_narrow@wave 52750 5.3c_trA_t21.1.png
+picture 5.4_fluidized_bed_102 5000 5.4_trA_t2.png
