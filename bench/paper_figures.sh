@@ -42,7 +42,8 @@ for kind in newtonian_disk disk; do
       -o "$out/5.1a_${name}_trajectory.png"
   fi
 done
-# Figures 4-6: trA (the speed for the Newtonian runs) at t = 0.3.
+# Figures 4-6: trA at t = 0.3 (the speed for the Newtonian run).
+picture 5.1a_newtonian_disk_rho1.5_h96_dt1e-3 300 5.1a_newtonian_h96_dt1e-3_speed_t0.3.png speed
 picture 5.1a_disk_rho1.5_h96_dt1e-3 300 5.1a_oldroyd_b_h96_dt1e-3_trA_t0.3.png
 picture 5.1a_disk_rho1.5_h128_dt4e-4 750 5.1a_oldroyd_b_h128_dt4e-4_trA_t0.3.png
 picture 5.1a_disk_rho1.5_h96_dt4e-4 750 5.1a_oldroyd_b_h96_dt4e-4_trA_t0.3.png
@@ -57,12 +58,15 @@ fi
 for r in 5.2_pair_newtonian@wave 5.2_pair_oldroyd_b@wave; do
   name=${r%@*}
   if have "$r"; then
-    for q in y v gap; do chart "$runs/$r" --y "$q" --title "$name: $q" -o "$out/${name}_$q.png"; done
-    chart "$runs/$r" --x x --y y --title "$name: trajectories" -o "$out/${name}_trajectory.png"
+    label=(--label "${name#5.2_pair_} (${r#*@} advection)")
+    for q in y v gap; do chart "$runs/$r" "${label[@]}" --y "$q" --title "$name: $q" -o "$out/${name}_$q.png"; done
+    chart "$runs/$r" "${label[@]}" --x x --y y --title "$name: trajectories" -o "$out/${name}_trajectory.png"
   fi
 done
-picture 5.2_pair_newtonian@wave 1250 5.2_pair_newtonian_speed_t0.5.png speed
-picture 5.2_pair_newtonian@wave 12500 5.2_pair_newtonian_speed_t5.png speed
+for t in 0.5 1.5 2.5 5; do
+  picture 5.2_pair_newtonian@wave "$(awk -v t=$t 'BEGIN { printf "%d", t / 0.0004 + 0.5 }')" \
+    "5.2_pair_newtonian_speed_t$t.png" speed
+done
 for t in 0.5 9.5 25; do
   picture 5.2_pair_oldroyd_b@wave "$(awk -v t=$t 'BEGIN { printf "%d", t / 0.0004 + 0.5 }')" "5.2_pair_oldroyd_b_trA_t$t.png"
 done
