@@ -16,14 +16,14 @@ have() {  # have RUN...: true when every run has particles.h5
   done
 }
 chart() { "$dlmfd" chart --width 800 --height 480 "$@" > /dev/null || echo "chart failed: $*" >&2; }
-picture() {  # picture RUN STEP FILE [QUANTITY]: the field snapshot of that step with the particles
-  local q=()
-  [[ -n ${4:-} ]] && q=(--quantity "$4")
-  if [[ -f $runs/$1/fields/snap_$(printf %06d "$2").h5 ]]; then
-    "$dlmfd" plot "$runs/$1" --snapshot "$2" --out "$out/$3" --width 400 --height 900 "${q[@]}" > /dev/null ||
-      echo "plot failed: $1 $2" >&2
+picture() {  # picture RUN STEP FILE [dlmfd plot options]: that step's snapshot with the particles
+  local run=$1 step=$2 file=$3
+  shift 3
+  if [[ -f $runs/$run/fields/snap_$(printf %06d "$step").h5 ]]; then
+    "$dlmfd" plot "$runs/$run" --snapshot "$step" --out "$out/$file" --width 400 --height 900 "$@" > /dev/null ||
+      echo "plot failed: $run $step" >&2
   else
-    echo "skipped (no snapshot at step $2): $1" >&2
+    echo "skipped (no snapshot at step $step): $run" >&2
   fi
 }
 
@@ -42,16 +42,18 @@ for kind in newtonian_disk disk; do
       -o "$out/5.1a_${name}_trajectory.png"
   fi
 done
-# Figures 4-6: trA at t = 0.3 (the speed for the Newtonian run).
-picture 5.1a_newtonian_disk_rho1.5_h96_dt1e-3 300 5.1a_newtonian_h96_dt1e-3_speed_t0.3.png speed
-picture 5.1a_disk_rho1.5_h96_dt1e-3 300 5.1a_oldroyd_b_h96_dt1e-3_trA_t0.3.png
-picture 5.1a_disk_rho1.5_h128_dt4e-4 750 5.1a_oldroyd_b_h128_dt4e-4_trA_t0.3.png
-picture 5.1a_disk_rho1.5_h96_dt4e-4 750 5.1a_oldroyd_b_h96_dt4e-4_trA_t0.3.png
+# Figures 4-6: trA at t = 0.3 (the speed for the Newtonian run), close-ups with log colours (trA
+# spans decades; the paper's isovalues show the same structure).
+near=(--window 0,1.7,1.5,4.7)
+picture 5.1a_newtonian_disk_rho1.5_h96_dt1e-3 300 5.1a_newtonian_h96_dt1e-3_speed_t0.3.png --quantity speed "${near[@]}"
+picture 5.1a_disk_rho1.5_h96_dt1e-3 300 5.1a_oldroyd_b_h96_dt1e-3_trA_t0.3.png --log "${near[@]}"
+picture 5.1a_disk_rho1.5_h128_dt4e-4 750 5.1a_oldroyd_b_h128_dt4e-4_trA_t0.3.png --log "${near[@]}"
+picture 5.1a_disk_rho1.5_h96_dt4e-4 750 5.1a_oldroyd_b_h96_dt4e-4_trA_t0.3.png --log "${near[@]}"
 
 # 5.1b, figure 7: rho_p = 1.02, lambda = 0.3, trA at t = 3.1.
 if have 5.1b_disk_rho1.02_lambda0.3; then
   chart $runs/5.1b_disk_rho1.02_lambda0.3 --y v --title "5.1b: v" -o "$out/5.1b_v.png"
-  picture 5.1b_disk_rho1.02_lambda0.3 7750 5.1b_trA_t3.1.png
+  picture 5.1b_disk_rho1.02_lambda0.3 7750 5.1b_trA_t3.1.png --log
 fi
 
 # 5.2, figures 8 and 9: the Newtonian and the Oldroyd-B pair.
@@ -65,15 +67,15 @@ for r in 5.2_pair_newtonian@wave 5.2_pair_oldroyd_b@wave; do
 done
 for t in 0.5 1.5 2.5 5; do
   picture 5.2_pair_newtonian@wave "$(awk -v t=$t 'BEGIN { printf "%d", t / 0.0004 + 0.5 }')" \
-    "5.2_pair_newtonian_speed_t$t.png" speed
+    "5.2_pair_newtonian_speed_t$t.png" --quantity speed
 done
 for t in 0.5 9.5 25; do
-  picture 5.2_pair_oldroyd_b@wave "$(awk -v t=$t 'BEGIN { printf "%d", t / 0.0004 + 0.5 }')" "5.2_pair_oldroyd_b_trA_t$t.png"
+  picture 5.2_pair_oldroyd_b@wave "$(awk -v t=$t 'BEGIN { printf "%d", t / 0.0004 + 0.5 }')" "5.2_pair_oldroyd_b_trA_t$t.png" --log
 done
 
 # 5.3 (figures 10, 11) and 5.4 (figure 12).
-picture 5.3a_eleven_disks@wave 2500 5.3a_trA_t1.png
-picture 5.3a_eleven_disks@wave 39000 5.3a_trA_t15.6.png
-picture 5.3b_eleven_disks_lambda3.5@wave 39000 5.3b_trA_t15.6.png
-picture 5.3c_eleven_disks_narrow@wave 52750 5.3c_trA_t21.1.png
-picture 5.4_fluidized_bed_102 5000 5.4_trA_t2.png
+picture 5.3a_eleven_disks@wave 2500 5.3a_trA_t1.png --log
+picture 5.3a_eleven_disks@wave 39000 5.3a_trA_t15.6.png --log
+picture 5.3b_eleven_disks_lambda3.5@wave 39000 5.3b_trA_t15.6.png --log
+picture 5.3c_eleven_disks_narrow@wave 52750 5.3c_trA_t21.1.png --log
+picture 5.4_fluidized_bed_102 5000 5.4_trA_t2.png --log

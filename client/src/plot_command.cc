@@ -1,6 +1,8 @@
 // dlmfd plot RESULTS_DIR [--snapshot STEP] [--quantity trA|speed] [--out FILE] [--width W] [--height H]
+//            [--log] [--window X0,Y0,X1,Y1]
 // dlmfd plot --job JOB [--out FILE] ...      (the next trA snapshot a running job streams)
 // Writes a PNG of trA (the speed for a Newtonian run) with the particles, prints its path.
+// --log colours by log10 of the value; --window draws only that part of the domain (a close-up).
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -55,8 +57,14 @@ NodeField FieldOfSnapshot(const v1::Snapshot& s) {
   return field;
 }
 
+// The field inside the window, or the whole field when no window was given.
+NodeField Windowed(const NodeField& field, const std::vector<double>& window) {
+  if (window.empty()) return field;
+  return CropField(field, window[0], window[1], window[2], window[3]);
+}
+
 int PlotJob(const ConnectionFlags& flags, const std::string& job_id, const PictureOptions& base,
-            const std::string& out) {
+            const std::vector<double>& window, const std::string& out) {
   Connection connection(flags);
   WatchOptions options;
   options.job_id = job_id;
@@ -85,7 +93,7 @@ int PlotJob(const ConnectionFlags& flags, const std::string& job_id, const Pictu
                                    "(dlmfd fetch " + job_id + ") and plot the directory", kExitNotFound);
   }
   PictureOptions picture_options = base;
-  const NodeField field = FieldOfSnapshot(snapshot);
+  const NodeField field = Windowed(FieldOfSnapshot(snapshot), window);
   if (picture_options.caption.empty()) picture_options.caption = Caption(field.quantity, snapshot.time(), snapshot.step());
   const std::string path = out.empty() ? job_id + "_" + field.quantity + "_" + std::to_string(snapshot.step()) + ".png" : out;
   WritePng(DrawFieldPicture(field, disks, picture_options).image, path);
@@ -114,6 +122,11 @@ int RunPlot(int argc, char** argv) {
   app.add_option("--width", options.max_width, "largest image width in pixels")->check(CLI::Range(64, 8192));
   app.add_option("--height", options.max_height, "largest image height in pixels")->check(CLI::Range(64, 8192));
   app.add_option("--caption", options.caption, "text above the picture (default: quantity, time, step)");
+  app.add_flag("--log", options.log_colours, "colour by log10 of the value (trA spans decades near particles)");
+  std::vector<double> window;
+  app.add_option("--window", window, "draw only [X0, X1] x [Y0, Y1] of the domain: X0,Y0,X1,Y1")
+      ->expected(4)
+      ->delimiter(',');
   if (auto code = ParseArgs(app, argc, argv)) return *code;
   if (results_dir.empty() == job_id.empty()) {
     return ReportError("plot", "name a results directory or --job JOB", kExitUsage);
@@ -121,8 +134,9 @@ int RunPlot(int argc, char** argv) {
 
   return Guarded("plot", [&] {
     try {
-      if (!job_id.empty()) return PlotJob(connection_flags, job_id, options, out);
-      const ResultsFrame frame = LoadResultsFrame(results_dir, snapshot, quantity);
+      if (!job_id.empty()) return PlotJob(connection_flags, job_id, options, window, out);
+      ResultsFrame frame = LoadResultsFrame(results_dir, snapshot, quantity);
+      frame.field = Windowed(frame.field, window);
       if (options.caption.empty()) options.caption = Caption(frame.field.quantity, frame.time, frame.step);
       const std::string path = out.empty()
           ? (std::filesystem::path(results_dir) / (frame.field.quantity + "_" + std::to_string(frame.step) + ".png")).string()

@@ -108,6 +108,53 @@ TEST(RenderTest, PixelsCarryTheLinearFieldThroughViridis) {
   EXPECT_EQ(png.At(picture.bar_left, picture.bar_top + picture.bar_height / 2), kBlack);
 }
 
+TEST(RenderTest, LogColoursMapLog10OfTheValueAndTheBottomColourToNonPositiveValues) {
+  // f = 1 + 49.5 x on the 2 x 1 domain (1 at x = 0, 100 at x = 2) is reproduced exactly by P1, so
+  // each pixel is Viridis(log10 f(centre) / 2): log10 of the value, not the value, sets the colour.
+  NodeField field = LinearField(1.0, 49.5, 0.0);
+  PictureOptions options{500, 300, ""};
+  options.log_colours = true;
+  const FieldPicture picture = DrawFieldPicture(field, {}, options);
+  EXPECT_DOUBLE_EQ(picture.value_min, 1.0);
+  EXPECT_DOUBLE_EQ(picture.value_max, 100.0);
+  for (int px : {0, picture.panel_width / 4, picture.panel_width / 2, picture.panel_width - 1}) {
+    const double x = (px + 0.5) / picture.panel_width * 2.0;
+    const double t = std::log10(1.0 + 49.5 * x) / 2.0;
+    EXPECT_EQ(picture.image.At(picture.panel_left + px, picture.panel_top + 3), Viridis(t)) << "pixel " << px;
+  }
+  // A field with zero and negative nodes: the scale is set by the positive ones, and the others
+  // take the bottom colour instead of a NaN from log10.
+  field = LinearField(-1.0, 1.0, 0.0);  // -1 ... 1 along x
+  const FieldPicture clipped = DrawFieldPicture(field, {}, options);
+  EXPECT_DOUBLE_EQ(clipped.value_min, 0.125);
+  EXPECT_DOUBLE_EQ(clipped.value_max, 1.0);
+  EXPECT_EQ(clipped.image.At(clipped.panel_left, clipped.panel_top + 3), Viridis(0.0));
+}
+
+TEST(RenderTest, CropFieldKeepsTheWindowsNodesAndRejectsEmptyWindows) {
+  const NodeField field = LinearField(0.0, 1.0, 10.0);  // f = x + 10 y, h = 1/8 on [0, 2] x [0, 1]
+  // [0.3, 0.6] x [0.2, 0.9] widens to whole cells: x from 0.25 to 0.625, y from 0.125 to 1.
+  const NodeField crop = CropField(field, 0.3, 0.2, 0.6, 0.9);
+  EXPECT_EQ(crop.grid.nx, 3);
+  EXPECT_EQ(crop.grid.ny, 7);
+  EXPECT_DOUBLE_EQ(crop.grid.x0, 0.25);
+  EXPECT_DOUBLE_EQ(crop.grid.y0, 0.125);
+  EXPECT_DOUBLE_EQ(crop.grid.h, 0.125);
+  ASSERT_EQ(crop.values.size(), crop.grid.NodeCount());
+  for (int j = 0; j <= crop.grid.ny; ++j) {
+    for (int i = 0; i <= crop.grid.nx; ++i) {
+      EXPECT_DOUBLE_EQ(crop.values[crop.grid.Index(i, j)], crop.grid.X(i) + 10.0 * crop.grid.Y(j));
+    }
+  }
+  // A window reaching past the domain is clipped to it.
+  const NodeField clipped = CropField(field, -1.0, -1.0, 0.5, 5.0);
+  EXPECT_EQ(clipped.grid.nx, 4);
+  EXPECT_EQ(clipped.grid.ny, 8);
+  EXPECT_THROW(CropField(field, 0.6, 0.2, 0.3, 0.9), InvalidParameter);  // inverted
+  EXPECT_THROW(CropField(field, 3.0, 0.0, 4.0, 1.0), InvalidParameter);  // outside
+  EXPECT_THROW(CropField(field, 0.0, 0.0, std::nan(""), 1.0), InvalidParameter);
+}
+
 TEST(RenderTest, InterpolationFollowsTheSouthWestNorthEastDiagonal) {
   // A hat at the SE node of cell (0, 0): zero on the diagonal SW-NE, 1/2 half way towards it.
   NodeField hat;

@@ -54,6 +54,32 @@ double InterpolateP1(const NodeField& field, double x, double y) {
   return CellP1(field, i, j, s - i, t - j);
 }
 
+NodeField CropField(const NodeField& field, double x_min, double y_min, double x_max, double y_max) {
+  CheckField(field);
+  const Grid& g = field.grid;
+  const bool finite = std::isfinite(x_min) && std::isfinite(y_min) && std::isfinite(x_max) && std::isfinite(y_max);
+  if (!finite || !(x_min < x_max) || !(y_min < y_max) || x_max <= g.x0 || y_max <= g.y0 ||
+      x_min >= g.x0 + g.Width() || y_min >= g.y0 + g.Height()) {
+    throw InvalidParameter("window", FormatLabel(x_min) + "," + FormatLabel(y_min) + "," + FormatLabel(x_max) + "," +
+                                         FormatLabel(y_max),
+                           "x_min < x_max and y_min < y_max, overlapping the domain [" + FormatLabel(g.x0) + ", " +
+                               FormatLabel(g.x0 + g.Width()) + "] x [" + FormatLabel(g.y0) + ", " +
+                               FormatLabel(g.y0 + g.Height()) + "]");
+  }
+  const int i0 = std::clamp(int(std::floor((x_min - g.x0) / g.h)), 0, g.nx - 1);
+  const int j0 = std::clamp(int(std::floor((y_min - g.y0) / g.h)), 0, g.ny - 1);
+  const int i1 = std::clamp(int(std::ceil((x_max - g.x0) / g.h)), i0 + 1, g.nx);
+  const int j1 = std::clamp(int(std::ceil((y_max - g.y0) / g.h)), j0 + 1, g.ny);
+  NodeField crop;
+  crop.quantity = field.quantity;
+  crop.grid = Grid{i1 - i0, j1 - j0, g.h, g.X(i0), g.Y(j0)};
+  crop.values.reserve(crop.grid.NodeCount());
+  for (int j = j0; j <= j1; ++j) {
+    for (int i = i0; i <= i1; ++i) crop.values.push_back(field.values[g.Index(i, j)]);
+  }
+  return crop;
+}
+
 double FieldPicture::PixelX(double x) const {
   return panel_left + (x - grid.x0) / grid.Width() * panel_width;
 }
@@ -67,17 +93,19 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
   CheckField(field);
   const Grid& g = field.grid;
 
+  const bool log_colours = options.log_colours;
   double lo = HUGE_VAL;
   double hi = -HUGE_VAL;
   for (double v : field.values) {
-    if (std::isfinite(v)) {
+    if (std::isfinite(v) && (!log_colours || v > 0.0)) {
       lo = std::min(lo, v);
       hi = std::max(hi, v);
     }
   }
-  if (lo > hi) lo = hi = 0.0;  // no finite value at all: every pixel is grey
+  if (lo > hi) lo = hi = log_colours ? 1.0 : 0.0;  // no usable value: grey (or the bottom colour)
   const std::string max_label = FormatLabel(hi);
   const std::string min_label = FormatLabel(lo);
+  const std::string mid_label = log_colours ? FormatLabel(std::sqrt(lo * hi)) : std::string();
 
   // Layout in pixels; the font scale grows with the picture so labels stay legible.
   const int scale = std::clamp(std::min(options.max_width, options.max_height) / 400, 1, 4);
@@ -85,7 +113,8 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
   const int caption_height = options.caption.empty() ? 0 : (kGlyphHeight + 5) * scale;
   const int gap = 8 * scale;
   const int bar_width = 14 * scale;
-  const int label_width = (std::max(TextWidth(max_label), TextWidth(min_label)) + 4) * scale;
+  const int label_width =
+      (std::max({TextWidth(max_label), TextWidth(min_label), TextWidth(mid_label)}) + 4) * scale;
   const int min_bar_height = 3 * kGlyphHeight * scale;
   const int room_x = options.max_width - 2 * margin - gap - bar_width - label_width;
   const int room_y = options.max_height - 2 * margin - caption_height;
@@ -116,10 +145,14 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
   picture.grid = g;
   RasterImage& image = picture.image;
 
-  const double span = hi - lo;
+  // The colour coordinate: the value, or its log10, mapped from [lo, hi] onto [0, 1].
+  const double bottom = log_colours ? std::log10(lo) : lo;
+  const double span = (log_colours ? std::log10(hi) : hi) - bottom;
   const auto colour_of = [&](double v) {
     if (!std::isfinite(v)) return kNanColour;
-    return Viridis(span > 0.0 ? (v - lo) / span : 0.5);
+    if (log_colours && !(v > 0.0)) return Viridis(0.0);
+    const double c = log_colours ? std::log10(v) : v;
+    return Viridis(span > 0.0 ? std::clamp((c - bottom) / span, 0.0, 1.0) : 0.5);
   };
   for (int py = 0; py < panel_height; ++py) {
     const double y = g.y0 + (1.0 - (py + 0.5) / panel_height) * g.Height();
@@ -151,6 +184,9 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
   const int label_left = picture.bar_left + bar_width + 3 * scale;
   image.DrawText(label_left, picture.bar_top, max_label, scale, kBlack);
   image.DrawText(label_left, picture.bar_top + body_height - kGlyphHeight * scale, min_label, scale, kBlack);
+  if (!mid_label.empty()) {
+    image.DrawText(label_left, picture.bar_top + (body_height - kGlyphHeight * scale) / 2, mid_label, scale, kBlack);
+  }
   if (!options.caption.empty()) image.DrawText(margin, margin, options.caption, scale, kBlack);
   return picture;
 }

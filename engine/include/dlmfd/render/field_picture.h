@@ -5,7 +5,11 @@
 // the pixel centre: P1 on the triangles of the velocity mesh (squares of side h cut by the SW-NE
 // diagonal, paper section 3), so the picture shows exactly what the solver computed, with no
 // smoothing across the diagonal. Values map linearly from [min, max] of the finite node values to
-// viridis; a constant field takes the middle colour (no division by zero); NaN/Inf pixels are grey.
+// viridis, or, with log_colours, log10 of the value from [min, max] of the positive finite node
+// values (a value <= 0 takes the bottom colour; the bar then also labels its middle, the geometric
+// mean): trA spans decades near a particle, and a linear scale shows only the hottest spot. A
+// constant field takes the middle colour (no division by zero); NaN/Inf pixels are grey.
+// CropField cuts a field down to the nodes of a window, for close-ups of particles.
 // Particles are filled white with a black rim. A colour bar on the right carries the max (top) and
 // min (bottom) labels; an optional caption runs above the field.
 // Layout: the field panel keeps the domain's aspect ratio (to within one pixel) and is as large as
@@ -38,6 +42,7 @@ struct PictureOptions {
   int max_width = 1000;   // pixels, whole image
   int max_height = 1000;  // pixels, whole image
   std::string caption;    // drawn above the field when not empty
+  bool log_colours = false;  // colour by log10 of the value (see the header)
 };
 
 struct FieldPicture {
@@ -61,6 +66,10 @@ struct FieldPicture {
 // Throws InvalidParameter when the values do not match the grid or the size leaves no room.
 FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutline>& disks,
                               const PictureOptions& options = {});
+// The nodes of `field` inside [x_min, x_max] x [y_min, y_max], widened outwards to whole cells and
+// clipped to the domain. Throws InvalidParameter when the window is empty, inverted, not finite or
+// misses the domain.
+NodeField CropField(const NodeField& field, double x_min, double y_min, double x_max, double y_max);
 // The value of the P1 interpolant at (x, y); (x, y) is clamped into the domain.
 double InterpolateP1(const NodeField& field, double x, double y);
 // "%.4g" of a value, the form of the colour bar labels.
