@@ -54,6 +54,7 @@ picture 5.1a_disk_rho1.5_h96_dt4e-4 750 5.1a_oldroyd_b_h96_dt4e-4_trA_t0.3.png -
 if have 5.1b_disk_rho1.02_lambda0.3; then
   chart $runs/5.1b_disk_rho1.02_lambda0.3 --y v --title "5.1b: v" -o "$out/5.1b_v.png"
   picture 5.1b_disk_rho1.02_lambda0.3 7750 5.1b_trA_t3.1.png --log
+  picture 5.1b_disk_rho1.02_lambda0.3 7750 5.1b_trA_t3.1_close.png --log --window 0,0.3,1.5,2.3
 fi
 
 # 5.2, figures 8 and 9: the Newtonian and the Oldroyd-B pair.
