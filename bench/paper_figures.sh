@@ -62,7 +62,7 @@ for r in 5.2_pair_newtonian@wave 5.2_pair_oldroyd_b@wave; do
   name=${r%@*}
   if have "$r"; then
     label=(--label "${name#5.2_pair_} (${r#*@} advection)")
-    for q in y v gap; do chart "$runs/$r" "${label[@]}" --y "$q" --title "$name: $q" -o "$out/${name}_$q.png"; done
+    for q in y u v omega gap; do chart "$runs/$r" "${label[@]}" --y "$q" --title "$name: $q" -o "$out/${name}_$q.png"; done
     chart "$runs/$r" "${label[@]}" --x x --y y --title "$name: trajectories" -o "$out/${name}_trajectory.png"
   fi
 done
