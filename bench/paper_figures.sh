@@ -78,5 +78,5 @@ done
 picture 5.3a_eleven_disks@wave 2500 5.3a_trA_t1.png --log
 picture 5.3a_eleven_disks@wave 39000 5.3a_trA_t15.6.png --log
 picture 5.3b_eleven_disks_lambda3.5@wave 39000 5.3b_trA_t15.6.png --log
-picture 5.3c_eleven_disks_narrow@wave 52750 5.3c_trA_t21.1.png --log
+picture 5.3c_eleven_disks_narrow@wave 52500 5.3c_trA_t21.png --log  # the last snapshot (t = 21.0)
 picture 5.4_fluidized_bed_102 5000 5.4_trA_t2.png --log
