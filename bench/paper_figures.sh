@@ -74,9 +74,36 @@ for t in 0.5 9.5 25; do
   picture 5.2_pair_oldroyd_b@wave "$(awk -v t=$t 'BEGIN { printf "%d", t / 0.0004 + 0.5 }')" "5.2_pair_oldroyd_b_trA_t$t.png" --log
 done
 
+# 5.2 from figure 9's caption positions (y = 7.7 and 6.6).
+r=5.2_pair_oldroyd_b_caption_start@wave
+if have "$r"; then
+  for q in y v gap; do chart "$runs/$r" --label "caption start (wave advection)" --y "$q" --title "5.2 Oldroyd-B, caption start: $q" -o "$out/5.2_caption_start_$q.png"; done
+fi
+picture "$r" 23750 5.2_caption_start_trA_t9.5.png --log
+
+# Single disks in Stokes flow against Faxen's law (5.2 and 5.3c liquids, Newtonian).
+if have faxen_disk_w2 faxen_disk_w1; then
+  chart $runs/faxen_disk_w2 $runs/faxen_disk_w1 --label "W = 2, eta = 0.12 (Faxen 0.287)" \
+    --label "W = 1, eta = 0.1 (Faxen 0.186)" --y v --title "one disk, Newtonian: v" -o "$out/faxen_disk_v.png"
+fi
+
+# 5.1b mesh study (wave advection, to t = 2).
+if have "5.1b_mesh_h96@wave" "5.1b_mesh_h128@wave"; then
+  chart "$runs/5.1b_mesh_h96@wave" "$runs/5.1b_mesh_h128@wave" --label "h = 1/96, h_p = 1/70" \
+    --label "h = 1/128, h_p = 1/120" --y v --title "5.1b mesh study: v" -o "$out/5.1b_mesh_v.png"
+fi
+
 # 5.3 (figures 10, 11) and 5.4 (figure 12).
+for r in 5.3a_eleven_disks@wave 5.3b_eleven_disks_lambda3.5@wave 5.3c_eleven_disks_narrow@wave; do
+  name=${r%%_*}
+  if have "$r"; then
+    chart "$runs/$r" --label "$name" --y y --title "$name: y of the eleven disks" -o "$out/${name}_y.png"
+    chart "$runs/$r" --label "$name" --x x --y y --title "$name: trajectories" -o "$out/${name}_trajectory.png"
+  fi
+done
 picture 5.3a_eleven_disks@wave 2500 5.3a_trA_t1.png --log
 picture 5.3a_eleven_disks@wave 39000 5.3a_trA_t15.6.png --log
 picture 5.3b_eleven_disks_lambda3.5@wave 39000 5.3b_trA_t15.6.png --log
+picture 5.3b_eleven_disks_lambda3.5@wave 45500 5.3b_trA_t18.2.png --log  # the last snapshot (t = 18.2)
 picture 5.3c_eleven_disks_narrow@wave 52500 5.3c_trA_t21.png --log  # the last snapshot (t = 21.0)
 picture 5.4_fluidized_bed_102 5000 5.4_trA_t2.png --log

@@ -171,13 +171,7 @@ void AdvectionLeastSquares::ApplyPreconditioner(const double* tu, const double* 
   if (helmholtz_) {
     std::fill(yu, yu + mass_.size(), 0.0);
     std::fill(yv, yv + mass_.size(), 0.0);
-#pragma omp parallel sections num_threads(2)
-    {
-#pragma omp section
-      helmholtz_->Solve(tu, yu, 0);
-#pragma omp section
-      helmholtz_->Solve(tv, yv, 1);
-    }
+    helmholtz_->SolvePair(tu, yu, tv, yv);
   } else {
     const long n = static_cast<long>(mass_.size());
     const double* m = mass_.data();

@@ -216,13 +216,7 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
     std::copy(ua, ua + n, u);
     std::copy(va, va + n, v);
     boundary_data_.Apply(u, v);
-#pragma omp parallel sections num_threads(2)
-    {
-#pragma omp section
-      helmholtz_->Solve(fu, u, 0);
-#pragma omp section
-      helmholtz_->Solve(fv, v, 1);
-    }
+    helmholtz_->SolvePair(fu, u, fv, v);
     report.fast_solves = 2;
   } else {
     std::copy(u1_.begin(), u1_.end(), u);

@@ -43,13 +43,7 @@ StokesSolver::StokesSolver(const Grid& grid, const DomainParams& domain, const F
 StokesSolver::~StokesSolver() = default;
 
 void StokesSolver::SolveVelocityPair(const double* fu, const double* fv, double* u, double* v) {
-#pragma omp parallel sections num_threads(2)
-  {
-#pragma omp section
-    velocity_solver_.Solve(fu, u, 0);
-#pragma omp section
-    velocity_solver_.Solve(fv, v, 1);
-  }
+  velocity_solver_.SolvePair(fu, u, fv, v);
 }
 
 // g = nu M_p^-1 r + (rho/dt) K_p^-1 r; g is zero on pressure Dirichlet nodes.

@@ -15,6 +15,7 @@
 #include "dlmfd/solvers/separable_helmholtz.h"
 
 #include <fftw3.h>
+#include <omp.h>
 
 #include <cmath>
 #include <mutex>
@@ -339,6 +340,17 @@ void SeparableHelmholtz::Solve(const double* f, double* x, int workspace) const 
   s.SolveModes(buf);
   fftw_execute_r2r(s.backward, buf, buf);
   s.Scatter(buf, x);
+}
+
+void SeparableHelmholtz::SolvePair(const double* fu, double* u, const double* fv, double* v) const {
+  // num_threads(2) alone would override the caller's budget of 1 thread.
+#pragma omp parallel sections num_threads(omp_get_max_threads() >= 2 ? 2 : 1)
+  {
+#pragma omp section
+    Solve(fu, u, 0);
+#pragma omp section
+    Solve(fv, v, 1);
+  }
 }
 
 const Grid& SeparableHelmholtz::grid() const { return impl_->grid; }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -41,14 +42,16 @@ struct StepReport {
   double wall_seconds = 0.0;  // of this step
   std::vector<std::pair<std::string, double>> columns;
 
-  void Set(const std::string& name, double value) {
+  // After the first step every column exists, and Set allocates nothing (a string_view, not a
+  // std::string built from the literal, is compared).
+  void Set(std::string_view name, double value) {
     for (auto& c : columns) {
       if (c.first == name) { c.second = value; return; }
     }
-    columns.emplace_back(name, value);
+    columns.emplace_back(std::string(name), value);
   }
   // The value of a column, or `fallback` when the run has no such column.
-  double Get(const std::string& name, double fallback = 0.0) const {
+  double Get(std::string_view name, double fallback = 0.0) const {
     for (const auto& c : columns) {
       if (c.first == name) return c.second;
     }

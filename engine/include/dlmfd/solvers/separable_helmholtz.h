@@ -32,6 +32,10 @@ class SeparableHelmholtz {
   // duplicates equal to their first node. f is read at unknown nodes only. f and x may not alias.
   // `workspace` in [0, workspaces) selects the buffers; concurrent calls must use distinct ones.
   void Solve(const double* f, double* x, int workspace = 0) const;
+  // The two components of a vector field, side by side: Solve(fu, u, 0) and Solve(fv, v, 1) in an
+  // OpenMP region of 2 threads, or one after the other when the caller's thread budget
+  // (omp_get_max_threads, e.g. dlmfd-solve --threads 1) is 1. Needs workspaces >= 2.
+  void SolvePair(const double* fu, double* u, const double* fv, double* v) const;
 
   const Grid& grid() const;
   const BoundaryTopology& topology() const;
