@@ -13,13 +13,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <cstdio>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "dlmfd/core/simulation.h"
+#include "dlmfd/reference/waters_king_series.h"
 #include "dlmfd/scene/scene_file.h"
 
 namespace dlmfd {
@@ -28,28 +28,9 @@ namespace {
 constexpr double kBeta = 1.0 / 9.0;  // eta_s / eta
 constexpr double kElasticity = 1.0;  // E = lambda eta / (rho H^2)
 constexpr double kEndT = 6.0;
-constexpr int kTerms = 400;
 
-// U(Y, T) / Ubar of the Waters-King series (README), the exponentials combined so that nothing
-// overflows: exp(-a T/2)[cosh(b T/2) + (g/b) sinh(b T/2)]
-//   = ((1 + g/b) exp((b - a) T/2) + (1 - g/b) exp(-(a + b) T/2)) / 2,
-// with b complex (purely imaginary) for the low modes where a^2 < E N^2; the sum is real.
-double WatersKing(double y, double t, double beta, double e) {
-  const double pi = std::acos(-1.0);
-  double sum = 0.0;
-  for (int k = 1; k <= kTerms; ++k) {
-    const double n = (2 * k - 1) * pi;
-    const double a = 1.0 + beta * e * n * n / 4.0;
-    const double g = 1.0 - (2.0 - beta) * e * n * n / 4.0;
-    const std::complex<double> b = std::sqrt(std::complex<double>(a * a - e * n * n, 0.0));
-    const std::complex<double> mode =
-        0.5 * ((1.0 + g / b) * std::exp((b - a) * t / 2.0) + (1.0 - g / b) * std::exp(-(a + b) * t / 2.0));
-    sum += std::sin(n * (1.0 + y) / 2.0) / (n * n * n) * mode.real();
-  }
-  return 1.5 * (1.0 - y * y) - 48.0 * sum;
-}
-
-double Centreline(double t) { return WatersKing(0.0, t, kBeta, kElasticity); }
+// U(0, T) / Ubar of the Waters-King series (engine/include/dlmfd/reference/waters_king_series.h).
+double Centreline(double t) { return WatersKingVelocity(0.0, t, kBeta, kElasticity); }
 
 // Extremum of Centreline on [lo, hi] by golden-section search (unimodal there); sign = +1 for a
 // maximum, -1 for a minimum. Returns the abscissa.
@@ -115,7 +96,7 @@ TEST(WatersKingSeries, MatchesReferenceTable) {
   const double u[] = {1.48960, 2.46619, 2.45954, 2.05795, 1.32141, 1.31706, 1.52370, 1.55461, 1.48489, 1.50387};
   for (int k = 0; k < 10; ++k) EXPECT_NEAR(Centreline(t[k]), u[k], 1e-5) << "T = " << t[k];
   EXPECT_NEAR(Centreline(0.0), 0.0, 1e-6);
-  EXPECT_NEAR(WatersKing(0.5, 40.0, kBeta, kElasticity), 1.5 * 0.75, 1e-10);  // steady parabola
+  EXPECT_NEAR(WatersKingVelocity(0.5, 40.0, kBeta, kElasticity), 1.5 * 0.75, 1e-10);  // steady parabola
   const double t_max = Extremum(0.5, 2.5, 1.0), t_min = Extremum(2.5, 4.5, -1.0);
   EXPECT_NEAR(t_max, 1.221, 5e-4);
   EXPECT_NEAR(Centreline(t_max), 2.5513, 5e-5);
