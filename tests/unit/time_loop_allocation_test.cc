@@ -55,7 +55,10 @@ constexpr bool kMallocCounted = true;  // operator new below calls malloc, which
 constexpr bool kMallocCounted = false;
 #endif
 
-// Replacements of the global allocation functions (the other forms forward to these).
+// Replacements of the global allocation functions (the other forms forward to these). GCC, seeing
+// a delete inlined after a new, takes the free() below for a mismatch; here new is malloc.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void* operator new(std::size_t size) {
   if (!kMallocCounted) CountAllocation();
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
@@ -66,6 +69,7 @@ void operator delete(void* p) noexcept { std::free(p); }
 void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
 
 namespace dlmfd {
 namespace {
