@@ -20,7 +20,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -28,6 +27,7 @@
 #include "dlmfd/io/field_snapshot.h"
 #include "dlmfd/io/particle_history.h"
 #include "dlmfd/reference/waters_king_series.h"
+#include "dlmfd/render/results_frame.h"
 
 namespace {
 
@@ -37,15 +37,10 @@ int Usage() {
 }
 
 int WatersKingError(const std::string& dir, double beta, double elasticity) {
-  std::vector<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(dir + "/fields")) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind("snap_", 0) == 0 && entry.path().extension() == ".h5") files.push_back(entry.path().string());
-  }
-  std::sort(files.begin(), files.end());
   double max_error = -1.0, time_of_max = 0.0;
   int used = 0;
-  for (const std::string& file : files) {
+  for (const long step : dlmfd::SnapshotSteps(dir)) {
+    const std::string file = dir + "/fields/" + dlmfd::SnapshotFileName(step);
     const dlmfd::FieldSnapshot snap = dlmfd::ReadFieldSnapshot(file);
     if (snap.time <= 0.0) continue;
     const dlmfd::FieldArray& u = snap.fields.at("u");
