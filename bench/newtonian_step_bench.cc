@@ -7,15 +7,10 @@
 #include <omp.h>
 
 #include "dlmfd/core/simulation.h"
+#include "step_averages.h"
 
 namespace dlmfd {
 namespace {
-
-class Last : public Observer {
- public:
-  void OnStep(const FlowState&, const StepReport& r) override { report = r; }
-  StepReport report;
-};
 
 Params PaperGrid(AdvectionScheme scheme, int threads) {
   Params p;
@@ -40,25 +35,16 @@ void BM_NewtonianStep(benchmark::State& state) {
   const auto scheme = state.range(0) == 0 ? AdvectionScheme::kLeastSquares : AdvectionScheme::kWave;
   const int threads = static_cast<int>(state.range(1));
   Simulation sim(PaperGrid(scheme, threads));
-  Last last;
-  sim.AddObserver(&last);
+  const bool wave = scheme == AdvectionScheme::kWave;
+  StepAverages averages({{"ms_stokes", "ms_stokes"},
+                         {"ms_advection", "ms_advection"},
+                         {"stokes_iterations", "stokes_its"},
+                         {wave ? "wave_substeps" : "advection_iterations", wave ? "wave_substeps" : "ls_its"}});
+  sim.AddObserver(&averages);
   for (int n = 0; n < 5; ++n) sim.Step();
-  double ms_stokes = 0, ms_adv = 0, stokes_its = 0, adv_its = 0;
-  long steps = 0;
-  for (auto _ : state) {
-    sim.Step();
-    ms_stokes += last.report.Get("ms_stokes");
-    ms_adv += last.report.Get("ms_advection");
-    stokes_its += last.report.Get("stokes_iterations");
-    adv_its += last.report.Get(scheme == AdvectionScheme::kWave ? "wave_substeps" : "advection_iterations");
-    ++steps;
-  }
-  const double nodes = static_cast<double>(sim.grid().NodeCount());
-  state.counters["ms_stokes"] = ms_stokes / steps;
-  state.counters["ms_advection"] = ms_adv / steps;
-  state.counters["stokes_its"] = stokes_its / steps;
-  state.counters[scheme == AdvectionScheme::kWave ? "wave_substeps" : "ls_its"] = adv_its / steps;
-  state.counters["node_updates_per_s"] = benchmark::Counter(nodes * steps, benchmark::Counter::kIsRate);
+  averages.Reset();
+  for (auto _ : state) sim.Step();
+  averages.Write(state, static_cast<double>(sim.grid().NodeCount()));
   omp_set_num_threads(omp_get_num_procs());
 }
 

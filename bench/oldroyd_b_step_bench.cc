@@ -14,17 +14,12 @@
 
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/scene/scene_file.h"
+#include "step_averages.h"
 
 namespace dlmfd {
 namespace {
 
 constexpr int kSetUpSteps = 20;
-
-class Last : public Observer {
- public:
-  void OnStep(const FlowState&, const StepReport& r) override { report = r; }
-  StepReport report;
-};
 
 Params PairScene(int threads) {
   Params p = LoadSceneFile(std::string(DLMFD_SOURCE_DIR) + "/cases/paper/5.2_pair_oldroyd_b.toml");
@@ -37,30 +32,12 @@ Params PairScene(int threads) {
 void BM_OldroydBStep(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   Simulation sim(PairScene(threads));
-  Last last;
-  sim.AddObserver(&last);
+  StepAverages averages(FullStepEntries());
+  sim.AddObserver(&averages);
   for (int n = 0; n < kSetUpSteps; ++n) sim.Step();
-  double ms_stokes = 0, ms_advection = 0, ms_conformation = 0, ms_particles = 0;
-  double stokes_its = 0, multiplier_its = 0;
-  long steps = 0;
-  for (auto _ : state) {
-    sim.Step();
-    ms_stokes += last.report.Get("ms_stokes");
-    ms_advection += last.report.Get("ms_advection");
-    ms_conformation += last.report.Get("ms_conformation");
-    ms_particles += last.report.Get("ms_particles");
-    stokes_its += last.report.Get("stokes_iterations");
-    multiplier_its += last.report.Get("multiplier_iterations");
-    ++steps;
-  }
-  const double nodes = static_cast<double>(sim.grid().NodeCount());
-  state.counters["ms_stokes"] = ms_stokes / steps;
-  state.counters["ms_advection"] = ms_advection / steps;
-  state.counters["ms_conformation"] = ms_conformation / steps;
-  state.counters["ms_particles"] = ms_particles / steps;
-  state.counters["stokes_its"] = stokes_its / steps;
-  state.counters["dlm_its"] = multiplier_its / steps;
-  state.counters["node_updates_per_s"] = benchmark::Counter(nodes * steps, benchmark::Counter::kIsRate);
+  averages.Reset();
+  for (auto _ : state) sim.Step();
+  averages.Write(state, static_cast<double>(sim.grid().NodeCount()));
   omp_set_num_threads(omp_get_num_procs());
 }
 

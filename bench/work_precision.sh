@@ -11,7 +11,8 @@
 #      D/h = 9.76, 19.5, 39 fit): |Cd(t = 1.5) - Richardson limit of the study's own finest runs|
 # Each problem: an h ladder (dt proportional to h), a dt ladder and a tolerance ladder on the middle
 # grid, each for advection = least_squares and wave. Tolerance level L sets solvers.stokes_tolerance =
-# solvers.multiplier_tolerance = 1e-L and solvers.advection_tolerance = 1e-(L/2) (L = 6 is the default).
+# solvers.multiplier_tolerance = 1e-L and solvers.advection_tolerance = 1e-(L/2); the h and dt ladders use L = 6
+# (solver error far below discretisation error); the engine's defaults are L = 4, chosen from these ladders.
 #
 # Usage: bench/work_precision.sh [DLMFD_SOLVE]   (default build/engine/dlmfd-solve)
 # Env:   ONLY=a|b|c|d (or several, e.g. ONLY=ab)  WORK=runs/work_precision  WP_ERROR=<wp_error binary>

@@ -29,37 +29,12 @@ fi
 
 DATA="$RUNS/daemon"
 OUT="$RUNS/main-job"
-mkdir -p "$DATA"
-rm -f "$DATA/port"
+# shellcheck source=scripts/dlmfdd_lib.sh
+. scripts/dlmfdd_lib.sh
 
 echo "== starting dlmfdd (data in $DATA, log in $RUNS/dlmfdd.log)"
-"$DLMFDD" --listen 127.0.0.1:0 --port-file "$DATA/port" --data-dir "$DATA" --solver "$SOLVER" \
-  >"$RUNS/dlmfdd.log" 2>&1 &
-DAEMON=$!
-stop_daemon() {
-  if kill -0 "$DAEMON" 2>/dev/null; then
-    kill -TERM "$DAEMON" 2>/dev/null || true
-    wait "$DAEMON" 2>/dev/null || true
-  fi
-}
-trap stop_daemon EXIT
-
-for _ in $(seq 1 150); do
-  [ -s "$DATA/port" ] && break
-  if ! kill -0 "$DAEMON" 2>/dev/null; then
-    echo "main-job: dlmfdd exited; its log:" >&2
-    cat "$RUNS/dlmfdd.log" >&2
-    exit 5
-  fi
-  sleep 0.2
-done
-if [ ! -s "$DATA/port" ]; then
-  echo "main-job: dlmfdd wrote no port file within 30 s" >&2
-  exit 5
-fi
-export DLMFD_SERVER="127.0.0.1:$(tr -d '[:space:]' <"$DATA/port")"
-unset DLMFD_TOKEN
-"$DLMFD" health --wait 30
+trap stop_dlmfdd EXIT
+start_dlmfdd "$DATA" "$RUNS/dlmfdd.log"
 
 echo "== submitting $CASE $SETS"
 # shellcheck disable=SC2086  # SETS is a list of flags

@@ -37,46 +37,72 @@ void AddPolymerForce(const Grid& grid, const DomainParams& domain, double polyme
   };
   const int last_i = px ? nx - 1 : nx;
   const int last_j = py ? ny - 1 : ny;
+  // Any node: the sum over its (up to 6) triangles, wrapping across periodic sides.
+  auto any_node = [&](int i, int j) {
+    double sx = 0.0, sy = 0.0;  // sum of (grad phi_i . mean tau) per unit h/2
+    // Squares around the node: (i, j) [node is SW], (i-1, j) [SE], (i-1, j-1) [NE], (i, j-1) [NW].
+    struct Corner {
+      int di, dj;
+      // unit gradient of phi_i in the lower / upper triangle (absent when has_* is false)
+      bool has_lower;
+      double lgx, lgy;
+      bool has_upper;
+      double ugx, ugy;
+    };
+    static constexpr Corner kCorners[4] = {
+        {0, 0, true, -1.0, 0.0, true, 0.0, -1.0},    // SW of square (i, j)
+        {-1, 0, true, 1.0, -1.0, false, 0.0, 0.0},   // SE of square (i-1, j): lower only
+        {-1, -1, true, 0.0, 1.0, true, 1.0, 0.0},    // NE of square (i-1, j-1)
+        {0, -1, false, 0.0, 0.0, true, -1.0, 1.0}};  // NW of square (i, j-1): upper only
+    for (const Corner& c : kCorners) {
+      bool in_x = true, in_y = true;
+      const int si = wrap(i + c.di, nx, px, in_x);
+      const int sj = wrap(j + c.dj, ny, py, in_y);
+      if (!in_x || !in_y) continue;
+      const std::size_t sw = grid.Index(si, sj), se = grid.Index(si + 1, sj);
+      const std::size_t ne = grid.Index(si + 1, sj + 1), nw = grid.Index(si, sj + 1);
+      if (c.has_lower) {
+        const MeanStress t = Mean(polymer_modulus, a11, a12, a22, sw, se, ne);
+        sx += c.lgx * t.t11 + c.lgy * t.t12;
+        sy += c.lgx * t.t12 + c.lgy * t.t22;
+      }
+      if (c.has_upper) {
+        const MeanStress t = Mean(polymer_modulus, a11, a12, a22, sw, ne, nw);
+        sx += c.ugx * t.t11 + c.ugy * t.t12;
+        sy += c.ugx * t.t12 + c.ugy * t.t22;
+      }
+    }
+    const std::size_t k = grid.Index(i, j);
+    fx[k] -= half_h * sx;
+    fy[k] -= half_h * sy;
+  };
+  // Nodes with all 6 triangles inside (1 <= i, j <= n - 1): the same sums collected per neighbour.
+  // Each triangle gives (1/3) grad phi_i to each of its vertices; summed over the triangles that
+  // share an edge with the node, the unit-gradient weights of the neighbours are
+  //   x: E -2, NE -1, N +1, W +2, SW +1, S -1;   y: E +1, NE -1, N -2, W -1, SW +1, S +2,
+  // and the node's own weights (and with them the -I of tau_p) sum to zero.
+  const long row = nx + 1;
+  auto dx = [row](const double* a, long k) {
+    return -2.0 * a[k + 1] - a[k + row + 1] + a[k + row] + 2.0 * a[k - 1] + a[k - row - 1] - a[k - row];
+  };
+  auto dy = [row](const double* a, long k) {
+    return a[k + 1] - a[k + row + 1] - 2.0 * a[k + row] - a[k - 1] + a[k - row - 1] + 2.0 * a[k - row];
+  };
+  const double scale = half_h * polymer_modulus / 3.0;
 #pragma omp parallel for schedule(static)
   for (int j = 0; j <= last_j; ++j) {
-    for (int i = 0; i <= last_i; ++i) {
-      double sx = 0.0, sy = 0.0;  // sum of (grad phi_i . mean tau) per unit h/2
-      // Squares around the node: (i, j) [node is SW], (i-1, j) [SE], (i-1, j-1) [NE], (i, j-1) [NW].
-      struct Corner {
-        int di, dj;
-        // unit gradient of phi_i in the lower / upper triangle (absent when has_* is false)
-        bool has_lower;
-        double lgx, lgy;
-        bool has_upper;
-        double ugx, ugy;
-      };
-      static constexpr Corner kCorners[4] = {
-          {0, 0, true, -1.0, 0.0, true, 0.0, -1.0},    // SW of square (i, j)
-          {-1, 0, true, 1.0, -1.0, false, 0.0, 0.0},   // SE of square (i-1, j): lower only
-          {-1, -1, true, 0.0, 1.0, true, 1.0, 0.0},    // NE of square (i-1, j-1)
-          {0, -1, false, 0.0, 0.0, true, -1.0, 1.0}};  // NW of square (i, j-1): upper only
-      for (const Corner& c : kCorners) {
-        bool in_x = true, in_y = true;
-        const int si = wrap(i + c.di, nx, px, in_x);
-        const int sj = wrap(j + c.dj, ny, py, in_y);
-        if (!in_x || !in_y) continue;
-        const std::size_t sw = grid.Index(si, sj), se = grid.Index(si + 1, sj);
-        const std::size_t ne = grid.Index(si + 1, sj + 1), nw = grid.Index(si, sj + 1);
-        if (c.has_lower) {
-          const MeanStress t = Mean(polymer_modulus, a11, a12, a22, sw, se, ne);
-          sx += c.lgx * t.t11 + c.lgy * t.t12;
-          sy += c.lgx * t.t12 + c.lgy * t.t22;
-        }
-        if (c.has_upper) {
-          const MeanStress t = Mean(polymer_modulus, a11, a12, a22, sw, ne, nw);
-          sx += c.ugx * t.t11 + c.ugy * t.t12;
-          sy += c.ugx * t.t12 + c.ugy * t.t22;
-        }
-      }
-      const std::size_t k = grid.Index(i, j);
-      fx[k] -= half_h * sx;
-      fy[k] -= half_h * sy;
+    if (j == 0 || j == ny) {
+      for (int i = 0; i <= last_i; ++i) any_node(i, j);
+      continue;
     }
+    any_node(0, j);
+    const long base = static_cast<long>(grid.Index(0, j));
+    for (long i = 1; i < nx; ++i) {
+      const long k = base + i;
+      fx[k] -= scale * (dx(a11, k) + dy(a12, k));
+      fy[k] -= scale * (dx(a12, k) + dy(a22, k));
+    }
+    if (last_i == nx) any_node(nx, j);
   }
 }
 

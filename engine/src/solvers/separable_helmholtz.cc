@@ -11,7 +11,8 @@
 //   ND  cos(pi (2k+1) i / (2 nx)), i = 0..nx-1 REDFT01 / REDFT10 c_k = nx/2          -> 1/(2 nx)
 //   periodic: real DFT, halfcomplex R2HC / HC2R, lam_m = 2 - 2 cos(2 pi m / nx)      -> 1/nx
 // The Thomas factors of every mode (and, for periodic y, the Sherman-Morrison vector of the cyclic
-// system) are computed once here; Solve only sweeps.
+// system) are computed once here; Solve only sweeps. DD and NN use TypeOneTransform (a real DFT of
+// the odd or even extension, faster than FFTW's own RODFT00/REDFT00), the other kinds FFTW r2r.
 #include "dlmfd/solvers/separable_helmholtz.h"
 
 #include <fftw3.h>
@@ -24,6 +25,7 @@
 #include <vector>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/solvers/type_one_transform.h"
 
 namespace dlmfd {
 namespace {
@@ -112,7 +114,12 @@ struct SeparableHelmholtz::Impl {
   std::vector<double> cyclic_coef;   // per mode: 1 / (1 + v.z), 0 for the pinned mode
   std::vector<double> cyclic_beta_over_gamma;  // per mode: beta / gamma
   std::vector<double*> buffers;      // rows x modes, plus one row of per-mode scratch
+  // DD and NN in x: the type-I transforms (their own inverse up to the scale) through a real DFT of
+  // the extension (type_one_transform.h); the other kinds: FFTW r2r plans.
+  std::unique_ptr<TypeOneTransform> type_one;
   fftw_plan forward = nullptr, backward = nullptr;
+
+  void ApplyTransform(fftw_plan plan, double* buf, int workspace) const;
 
   void Factorise();
   void Gather(const double* f, const double* x, double* buf) const;
@@ -248,6 +255,14 @@ void SeparableHelmholtz::Impl::SolveModes(double* buf) const {
   }
 }
 
+void SeparableHelmholtz::Impl::ApplyTransform(fftw_plan plan, double* buf, int workspace) const {
+  if (type_one) {
+    type_one->Apply(buf, workspace);
+  } else {
+    fftw_execute_r2r(plan, buf, buf);
+  }
+}
+
 void SeparableHelmholtz::Impl::Scatter(const double* buf, double* x) const {
   for (int r = 0; r < uy.count; ++r) {
     double* row = x + grid.Index(ux.first, uy.first + r);
@@ -312,6 +327,12 @@ SeparableHelmholtz::SeparableHelmholtz(const Grid& grid, const BoundaryTopology&
     if (!buffer) throw std::bad_alloc();
     s.buffers.push_back(buffer);
   }
+  if (s.transform.forward == FFTW_RODFT00 || s.transform.forward == FFTW_REDFT00) {
+    const auto kind = s.transform.forward == FFTW_RODFT00 ? TypeOneTransform::Kind::kSine
+                                                          : TypeOneTransform::Kind::kCosine;
+    s.type_one = std::make_unique<TypeOneTransform>(kind, s.modes, s.uy.count, workspaces);
+    return;
+  }
   const int length = s.modes;
   const unsigned flags = size > 4096 ? FFTW_MEASURE : FFTW_ESTIMATE;
   s.forward = fftw_plan_many_r2r(1, &length, s.uy.count, s.buffers[0], nullptr, 1, length, s.buffers[0],
@@ -325,6 +346,7 @@ SeparableHelmholtz::~SeparableHelmholtz() {
   std::lock_guard<std::mutex> lock(PlannerMutex());
   if (impl_->forward) fftw_destroy_plan(impl_->forward);
   if (impl_->backward) fftw_destroy_plan(impl_->backward);
+  impl_->type_one.reset();
   for (double* buffer : impl_->buffers) fftw_free(buffer);
 }
 
@@ -336,9 +358,9 @@ void SeparableHelmholtz::Solve(const double* f, double* x, int workspace) const 
   }
   double* buf = s.buffers[workspace];
   s.Gather(f, x, buf);
-  fftw_execute_r2r(s.forward, buf, buf);
+  s.ApplyTransform(s.forward, buf, workspace);
   s.SolveModes(buf);
-  fftw_execute_r2r(s.backward, buf, buf);
+  s.ApplyTransform(s.backward, buf, workspace);
   s.Scatter(buf, x);
 }
 

@@ -40,7 +40,7 @@ struct StokesReport {
   int iterations = 0;
   double residual = 0.0;    // final sqrt(r.P^-1 r) / ref
   double reference = 0.0;   // ref of the stopping rule
-  double divergence = 0.0;  // sqrt(sum_Q (B u)_Q^2 / M_p,Q): the L2 norm of the discrete divergence
+  double divergence = 0.0;  // sqrt(sum_Q (B u)_Q^2 / M_p,Q) over unknown Q: the L2 norm of the discrete divergence
 };
 
 class StokesSolver {
@@ -68,6 +68,7 @@ class StokesSolver {
 
  private:
   void ApplyPreconditioner(const double* r, double* g);
+  double WeightedSquareSum(const double* r) const;  // sum_Q M_p,Q^-1 r_Q^2 over the unknown nodes
   void SolveVelocityPair(const double* fu, const double* fv, double* u, double* v);
 
   Grid grid_, pgrid_;

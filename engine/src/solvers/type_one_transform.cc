@@ -1,0 +1,96 @@
+#include "dlmfd/solvers/type_one_transform.h"
+
+#include <fftw3.h>
+
+#include <algorithm>
+#include <new>
+#include <string>
+
+#include "dlmfd/core/errors.h"
+
+namespace dlmfd {
+
+TypeOneTransform::TypeOneTransform(Kind kind, int length, int rows, int workspaces)
+    : kind_(kind), length_(length), rows_(rows) {
+  const int shortest = kind == Kind::kSine ? 1 : 2;
+  if (length < shortest) {
+    throw InvalidParameter("type-I transform length", std::to_string(length), ">= " + std::to_string(shortest));
+  }
+  if (rows < 1) throw InvalidParameter("type-I transform rows", std::to_string(rows), ">= 1");
+  extended_ = kind == Kind::kSine ? 2 * (length + 1) : 2 * (length - 1);
+  spectrum_ = extended_ / 2 + 1;
+  const int block = std::min(rows, kBlockRows);
+  for (int w = 0; w < workspaces; ++w) {
+    auto* e = static_cast<double*>(fftw_malloc(sizeof(double) * std::size_t(extended_) * block));
+    auto* s = static_cast<double*>(fftw_malloc(sizeof(fftw_complex) * std::size_t(spectrum_) * block));
+    if (!e || !s) {
+      fftw_free(e);
+      fftw_free(s);
+      throw std::bad_alloc();
+    }
+    extension_.push_back(e);
+    spectrum_buffers_.push_back(s);
+  }
+  // Every workspace's buffers come from fftw_malloc, so they share the planned arrays' alignment
+  // (the condition of fftw_execute_dft_r2c on other arrays).
+  auto plan = [&](int howmany) -> void* {
+    if (howmany == 0) return nullptr;
+    const unsigned flags = std::size_t(extended_) * howmany > 4096 ? FFTW_MEASURE : FFTW_ESTIMATE;
+    fftw_plan p = fftw_plan_many_dft_r2c(1, &extended_, howmany, extension_[0], nullptr, 1, extended_,
+                                         reinterpret_cast<fftw_complex*>(spectrum_buffers_[0]), nullptr, 1,
+                                         spectrum_, flags);
+    if (!p) throw Error("TypeOneTransform: FFTW could not make a plan");
+    return p;
+  };
+  block_plan_ = plan(block);
+  tail_plan_ = plan(rows % block);
+}
+
+TypeOneTransform::~TypeOneTransform() {
+  for (void* p : {block_plan_, tail_plan_}) {
+    if (p) fftw_destroy_plan(static_cast<fftw_plan>(p));
+  }
+  for (double* e : extension_) fftw_free(e);
+  for (double* s : spectrum_buffers_) fftw_free(s);
+}
+
+void TypeOneTransform::ApplyBlock(double* data, int block_rows, void* plan, double* ext, double* spectrum_data) const {
+  const int n = length_, L = extended_;
+  for (int r = 0; r < block_rows; ++r) {
+    const double* in = data + std::size_t(r) * n;
+    double* e = ext + std::size_t(r) * L;
+    if (kind_ == Kind::kSine) {
+      e[0] = 0.0;
+      e[n + 1] = 0.0;
+      for (int j = 0; j < n; ++j) e[1 + j] = in[j];
+      for (int j = 0; j < n; ++j) e[L - 1 - j] = -in[j];
+    } else {
+      for (int j = 0; j < n; ++j) e[j] = in[j];
+      for (int j = 1; j + 1 < n; ++j) e[L - j] = in[j];
+    }
+  }
+  auto* spectrum = reinterpret_cast<fftw_complex*>(spectrum_data);
+  fftw_execute_dft_r2c(static_cast<fftw_plan>(plan), ext, spectrum);
+  for (int r = 0; r < block_rows; ++r) {
+    const fftw_complex* s = spectrum + std::size_t(r) * spectrum_;
+    double* out = data + std::size_t(r) * n;
+    if (kind_ == Kind::kSine) {
+      for (int k = 0; k < n; ++k) out[k] = -s[k + 1][1];
+    } else {
+      for (int k = 0; k < n; ++k) out[k] = s[k][0];
+    }
+  }
+}
+
+void TypeOneTransform::Apply(double* data, int workspace) const {
+  double* ext = extension_[workspace];
+  double* spectrum = spectrum_buffers_[workspace];
+  const int block = std::min(rows_, kBlockRows);
+  int r = 0;
+  for (; r + block <= rows_; r += block) {
+    ApplyBlock(data + std::size_t(r) * length_, block, block_plan_, ext, spectrum);
+  }
+  if (r < rows_) ApplyBlock(data + std::size_t(r) * length_, rows_ - r, tail_plan_, ext, spectrum);
+}
+
+}  // namespace dlmfd
