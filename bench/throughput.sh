@@ -34,7 +34,7 @@ trap stop_dlmfdd EXIT
 # "LABEL,jobs,threads_per_job,wall_s,node_updates_per_s".
 run_jobs() {
   local label=$1 jobs=$2 threads=$3
-  rm -rf "$WORK/$label"
+  rm -rf "${WORK:?}/${label:?}"
   start_dlmfdd "$WORK/$label" "$WORK/$label.log" --max-concurrent "$jobs" --solver-threads "$threads" >/dev/null
   local start end k
   local -a ids=()

@@ -8,7 +8,7 @@
 #   c  a disk sedimenting in a Newtonian liquid (5.1b's disk, rho_p = 1.02, eta = 0.1, channel 1 x 2, Re
 #      about 0.7): |mean v over t in [0.6, 1] - Richardson limit of the study's own finest runs|
 #   d  a fixed disk in a channel (cases/verification/schaefer_turek_2d1.toml, channel 2.255 long so that
-#      D/h = 9.76, 19.5, 39 fit): |Cd(t = 1.5) - Richardson limit of the study's own finest runs|
+#      D/h = 9.76, 19.5, 39, 78 fit): |Cd(t = 1.5) - Richardson limit of the study's own finest runs|
 # Each problem: an h ladder (dt proportional to h), a dt ladder and a tolerance ladder on the middle
 # grid, each for advection = least_squares and wave. Tolerance level L sets solvers.stokes_tolerance =
 # solvers.multiplier_tolerance = 1e-L and solvers.advection_tolerance = 1e-(L/2); the h and dt ladders use L = 6
@@ -18,8 +18,9 @@
 # Env:   ONLY=a|b|c|d (or several, e.g. ONLY=ab)  WORK=runs/work_precision  WP_ERROR=<wp_error binary>
 #        (default: bench/wp_error next to the solver's build)  DLMFD=<dlmfd CLI> (default build/client/dlmfd)
 # A run whose summary.json is in WORK already is not run again: a second call only redraws.
-# Runs use --threads 1 at nice 19; the cost of a run is the solver process's CPU seconds (user + system,
-# bash's time), also its summary.json wall_seconds. Output: docs/work_precision/<problem>.csv,
+# Runs use --threads 1 at nice 19, one at a time; the charts' cost axis is the run's wall-clock seconds
+# (summary.json wall_seconds; take them on an otherwise idle machine), the CSVs also have the process's
+# CPU seconds (user + system, bash's time). Output: docs/work_precision/<problem>.csv,
 # docs/work_precision/<problem>_reference.txt (c, d), docs/figures/wp_<problem>.png.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -124,17 +125,23 @@ richardson() {
 }
 
 # Richardson extrapolation in h and dt separately, for an error e = A h^p + B dt^q (no cross term), from
-# a three-mesh h+dt ladder (h1 > h2 > h3, dt_i = c h_i) and the dt ladder (2 dt2, dt2, dt2 / 2) on h2:
-# q from the dt ladder; p from D1 = f(h1, dt1) - f(h2, dt1) and D2 = f(h2, dt3) - f(h3, dt3) (dt1 = 2 dt2,
-# dt3 = dt2 / 2 are runs of the dt ladder); limit = f(h3, dt3) - D2 / (2^p - 1) - (f(h2, dt2) - f(h2, dt3)) /
-# (2^q - 1). Prints "limit p q", or "nan nan nan" when a ratio is not above 1.
+# the h+dt ladder (dt_i = c h_i) and the dt ladder (2 dt2, dt2, dt2 / 2) on its mesh h2: q from the dt
+# ladder; p from D1 = f(h1, dt1) - f(h2, dt1) and D2 = f(h2, dt3) - f(h3, dt3), h1 = 2 h2, h3 = h2 / 2
+# (dt1 = 2 dt2, dt3 = dt2 / 2 are runs of the dt ladder); limit = f(h3, dt3) - D2 / (2^p - 1) -
+# (f(h2, dt2) - f(h2, dt3)) / (2^q - 1). Prints "limit p q", or "nan nan nan" when a ratio is not above 1
+# or a run is missing.
 richardson_split() {
   local problem=$1 adv=$2
-  awk -F, -v a="$adv" '$3 == a && $12 != "nan" {
-      if ($4 == "h+dt") { hh[nh] = $5; hd[nh] = $6; hv[nh++] = $12 }
-      if ($4 == "dt") { dd[nd] = $6; dv[nd++] = $12 } }
-    END { if (nh < 3 || nd != 3) { print "nan nan nan"; exit }
-          f11 = hv[nh-3]; f33 = hv[nh-1]
+  awk -F, -v a="$adv" 'BEGIN { nh = 0; nd = 0 }  # numeric from the start: mawk keys hh[""] otherwise
+    $3 == a && $12 != "nan" {
+      if ($4 == "h+dt") { hh[nh] = $5; hv[nh++] = $12 }
+      if ($4 == "dt") { h2 = $5; dv[nd++] = $12 } }
+    END { if (nd != 3) { print "nan nan nan"; exit }
+          found1 = 0; found3 = 0
+          for (k = 0; k < nh; ++k) {
+            if (hh[k] > 1.999 * h2 && hh[k] < 2.001 * h2) { f11 = hv[k]; found1 = 1 }
+            if (hh[k] > 0.4999 * h2 && hh[k] < 0.5001 * h2) { f33 = hv[k]; found3 = 1 } }
+          if (!found1 || !found3) { print "nan nan nan"; exit }
           f21 = dv[0]; f22 = dv[1]; f23 = dv[2]
           rq = (f21 - f22) / (f22 - f23); rp = (f11 - f21) / (f23 - f33)
           if (rq <= 1 || rp <= 1) { printf "nan nan nan (D1 %.4g D2 %.4g, dt differences %.4g %.4g)\n", f11 - f21, f23 - f33, f21 - f22, f22 - f23; exit }
@@ -169,7 +176,7 @@ extrapolated_reference() {
 
 chart() {
   local problem=$1 title=$2
-  "$dlmfd" chart --csv "$data/$problem.csv" --xcol cpu_seconds --ycol error --group series --logx --logy \
+  "$dlmfd" chart --csv "$data/$problem.csv" --xcol wall_seconds --ycol error --group series --logx --logy \
     --markers --title "$title" --out "$figures/wp_$problem.png" > /dev/null
   echo "chart $figures/wp_$problem.png" >&2
 }
@@ -182,7 +189,7 @@ if [[ $only == *a* ]]; then
   sweep a "$root/cases/verification/waters_king.toml" wk_value "0.125 0.0625 0.03125 0.015625" \
     "0.02 0.01 0.005 0.0025" 2 "2 1 0.5" "2 4 6 8" wk_sets
   finish a
-  chart a "Waters-King start-up: max |u(centre) - series| against CPU s"
+  chart a "Waters-King start-up: max |u(centre) - series| against wall s"
 fi
 
 # --- b: lid-driven cavity -------------------------------------------------------------------------------
@@ -195,7 +202,7 @@ if [[ $only == *b* ]]; then
   sweep b "$root/cases/lid_driven_cavity.toml" cavity_value "0.0625 0.03125 0.015625 0.0078125" \
     "0.04 0.02 0.01 0.005" 2 "2 1 0.5" "2 4 6 8" cavity_sets
   finish b
-  chart b "Lid-driven cavity Re 100: max |u - Ghia| against CPU s"
+  chart b "Lid-driven cavity Re 100: max |u - Ghia| against wall s"
 fi
 
 # --- c: sedimenting disk --------------------------------------------------------------------------------
@@ -207,10 +214,10 @@ sed_sets() {
 }
 sed_value() { "$wp_error" terminal "$1" 0.6 1.0 | awk '{ print $1 }'; }
 if [[ $only == *c* ]]; then
-  sweep c "$root/cases/paper/5.1b_disk_rho1.02_lambda0.3.toml" sed_value "0.03125 0.015625 0.0078125" \
-    "0.003125 0.0015625 0.00078125" 1 "2 1 0.5" "2 4 6 8" sed_sets
+  sweep c "$root/cases/paper/5.1b_disk_rho1.02_lambda0.3.toml" sed_value "0.03125 0.015625 0.0078125 0.00390625" \
+    "0.003125 0.0015625 0.00078125 0.000390625" 1 "2 1 0.5" "2 4 6 8" sed_sets
   finish c "$(extrapolated_reference c "mean v over t in [0.6, 1]")"
-  chart c "Sedimenting disk: |v - extrapolated v| against CPU s"
+  chart c "Sedimenting disk: |v - extrapolated v| against wall s"
 fi
 
 # --- d: Schaefer-Turek drag -----------------------------------------------------------------------------
@@ -220,8 +227,8 @@ st_sets() {
 }
 st_value() { "$wp_error" particle "$1" | awk '{ printf "%.10g\n", 2 * $7 / (0.2 * 0.2 * 0.1) }'; }
 if [[ $only == *d* ]]; then
-  sweep d "$root/cases/verification/schaefer_turek_2d1.toml" st_value "0.01025 0.005125 0.0025625" \
-    "0.01025 0.005125 0.0025625" 1 "2 1 0.5" "2 4 6 8" st_sets
+  sweep d "$root/cases/verification/schaefer_turek_2d1.toml" st_value "0.01025 0.005125 0.0025625 0.00128125" \
+    "0.01025 0.005125 0.0025625 0.00128125" 1 "2 1 0.5" "2 4 6 8" st_sets
   finish d "$(extrapolated_reference d "Cd at t = 1.5")"
-  chart d "Fixed disk in a channel: |Cd - extrapolated Cd| against CPU s"
+  chart d "Fixed disk in a channel: |Cd - extrapolated Cd| against wall s"
 fi

@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Sourced by scripts that drive a real dlmfdd on loopback (scripts/main-job.sh, bench/throughput.sh).
 #   start_dlmfdd DATA_DIR LOG_FILE [dlmfdd options...]
 # starts "$DLMFDD" (with --solver "$SOLVER") on a free loopback port, waits until it serves, exports

@@ -17,7 +17,7 @@ for problem in "${@:-a b c d}"; do
           if ($4 == "h+dt" && $5 != prev_h) order = sprintf("%.2f", log(prev_e / $13) / log(prev_h / $5))
           if ($4 == "dt" && $6 != prev_dt) order = sprintf("%.2f", log(prev_e / $13) / log(prev_dt / $6))
         }
-        printf "| %s | %s | %s | %s | %s | %s | %.1f | %s | %s | %s |\n", $2, $5, $6, $7, $8, $9, $10, $12, $13, order
+        printf "| %s | %s | %s | %s | %s | %s | %.3g | %s | %s | %s |\n", $2, $5, $6, $7, $8, $9, $10, $12, $13, order
         prev_series = $2; prev_e = $13; prev_h = $5; prev_dt = $6 }' "$csv"
     echo
   done

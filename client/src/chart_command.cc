@@ -1,6 +1,6 @@
 // dlmfd chart RUN_DIR... --y Q [--x Q] [--particle ID|all] [--label TEXT]... [--title T] [--logx] [--logy]
 //             [--markers] [--out FILE.png] [--width W] [--height H]
-// dlmfd chart --csv FILE --xcol NAME --ycol NAME [--group NAME] [same drawing flags]
+// dlmfd chart --csv FILE --xcol NAME --ycol NAME [--group NAME] [--points] [same drawing flags]
 // Line charts of particle quantities (particles.h5 of results directories, design.md 3.2) against
 // time or each other, several runs overlaid, or of two columns of any CSV file with a header (one
 // series per value of a group column: work-precision charts). Local files only: no daemon.
@@ -220,6 +220,7 @@ struct CsvRequest {
   std::string y_column;
   std::string group_column;
   bool markers = false;
+  bool points_only = false;
 };
 
 void AddCsvSeries(const CsvRequest& request, LineChart& chart) {
@@ -262,7 +263,8 @@ void AddCsvSeries(const CsvRequest& request, LineChart& chart) {
     if (added) {
       series.emplace_back();
       series.back().name = group;
-      series.back().markers = request.markers;
+      series.back().markers = request.markers || request.points_only;
+      series.back().lines = !request.points_only;
     }
     series[it->second].x.push_back(CsvNumber(fields[xc], where + " column " + request.x_column));
     series[it->second].y.push_back(CsvNumber(fields[yc], where + " column " + request.y_column));
@@ -292,7 +294,7 @@ int RunChart(int argc, char** argv) {
   LineChartOptions options;
   options.width = 1000;
   options.height = 700;
-  bool log_x = false, log_y = false, markers = false;
+  bool log_x = false, log_y = false, markers = false, points_only = false;
   std::string out;
   app.add_option("runs", runs.dirs, "results directories (dlmfd-solve --out, or fetched)");
   app.add_option("--y", runs.y, "quantity on the y axis: " + AllowedQuantities());
@@ -309,6 +311,7 @@ int RunChart(int argc, char** argv) {
   app.add_flag("--logx", log_x, "log10 x axis (points with x <= 0 are skipped)");
   app.add_flag("--logy", log_y, "log10 y axis (points with y <= 0 are skipped)");
   app.add_flag("--markers", markers, "a dot at every point as well as the line");
+  app.add_flag("--points", points_only, "with --csv: a dot at every point and no lines (scatter plot)");
   app.add_option("--out,-o", out, "PNG file to write (default chart_<y>_<x>.png here)");
   app.add_option("--width", options.width, "image width in pixels")->check(CLI::Range(200, 8192));
   app.add_option("--height", options.height, "image height in pixels")->check(CLI::Range(150, 8192));
@@ -324,13 +327,14 @@ int RunChart(int argc, char** argv) {
         throw UsageError("--x, --y, --particle and --label apply to results directories, not to --csv");
       }
       csv.markers = markers;
+      csv.points_only = points_only;
       x_name = csv.x_column;
       y_name = csv.y_column;
       options.x_axis.title = x_name;
       options.y_axis.title = y_name;
     } else {
-      if (!csv.x_column.empty() || !csv.y_column.empty() || !csv.group_column.empty()) {
-        throw UsageError("--xcol, --ycol and --group apply to --csv");
+      if (!csv.x_column.empty() || !csv.y_column.empty() || !csv.group_column.empty() || points_only) {
+        throw UsageError("--xcol, --ycol, --group and --points apply to --csv");
       }
       if (runs.y.empty()) throw UsageError("--y QUANTITY is required; allowed: " + AllowedQuantities());
       if (runs.labels.size() > runs.dirs.size()) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "dlmfd/core/errors.h"
@@ -174,6 +175,26 @@ TEST(AdvectionLeastSquares, GradientRatioIsBelowToleranceAfterSolve) {
   EXPECT_LE(r.residual, 1e-6);
   EXPECT_LE(std::sqrt(gr1 / gr0), 1e-6 * (1.0 + 1e-6));
   EXPECT_LE(j1, 1e-8 * j0);
+}
+
+// A velocity far beyond what the time step can follow (a diverging run) ends the step with
+// NumericalBlowUp at once instead of sub-cycling for hours: |u| = 1e6 with dt = 1, h = 1/16 would
+// need 3.2e7 sub-steps of Courant 0.5.
+TEST(AdvectionWave, AVelocityBeyondAnyBoundThrowsInsteadOfSubCyclingForever) {
+  Params p = MakeParams(1.0 / 16, Side(SideType::kPeriodic), Side(SideType::kPeriodic), Side(SideType::kPeriodic),
+                        Side(SideType::kPeriodic));
+  p.time.dt = 1.0;
+  const Grid g = GridOf(p);
+  BoundaryData data(g, p.domain);
+  AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.5, p.solvers, data);
+  std::vector<double> u(g.NodeCount(), 1e6), v(g.NodeCount(), 0.0);
+  try {
+    wave.Solve(u.data(), v.data());
+    ADD_FAILURE() << "no exception";
+  } catch (const NumericalBlowUp& e) {
+    EXPECT_NE(std::string(e.what()).find("wave sub-steps"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("step (34)"), std::string::npos) << e.what();
+  }
 }
 
 // Von Neumann-type check of the wave scheme alone: a uniform flow U plus a small random perturbation

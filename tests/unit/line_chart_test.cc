@@ -202,6 +202,22 @@ TEST(LineChart, NanBreaksTheLine) {
   EXPECT_EQ(p.image.At(int(p.PixelX(3.0)), row), c);
 }
 
+// A series without lines (dlmfd chart --points) is a scatter plot: a marker at every point and no
+// segment between them.
+TEST(LineChart, PointsOnlySeriesHasMarkersAndNoLines) {
+  LineChart chart(Options());
+  ChartSeries scatter{"scatter", {0.0, 1.0, 2.0}, {0.0, 0.0, 0.0}, true};
+  scatter.lines = false;
+  chart.AddSeries(scatter);
+  chart.AddSeries({"ref", {0.0, 2.0}, {1.0, 1.0}, false});
+  const ChartPicture p = chart.Draw();
+  const Rgb c = SeriesColour(0);
+  const int row = int(p.PixelY(0.0));
+  for (const double x : {0.0, 1.0, 2.0}) EXPECT_EQ(p.image.At(int(p.PixelX(x)), row), c) << x;
+  EXPECT_NE(p.image.At(int(p.PixelX(0.5)), row), c);
+  EXPECT_NE(p.image.At(int(p.PixelX(1.5)), row), c);
+}
+
 TEST(LineChart, LogAxisSkipsNonPositiveValues) {
   LineChart chart(Options(AxisScale::kLog10, AxisScale::kLog10));
   // Work-precision style: error against cost; the 0 and the negative cost are skipped.

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
+#include "dlmfd/core/errors.h"
 #include "dlmfd/mesh/fem_operators.h"
 
 namespace dlmfd {
@@ -19,6 +21,9 @@ namespace dlmfd {
 // and 2), and both are second order in tau; Q = 1 costs one K_V product per call instead of two.
 // The splitting's first-order error dominates the difference (docs/performance.md).
 constexpr int kMinSubsteps = 1;
+// A velocity that would need more sub-steps than this is a blow-up (step (35) has the same bound):
+// without it a diverging run would spend hours sub-cycling one step instead of ending FAILED.
+constexpr int kMaxSubsteps = 1000;
 
 AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const FluidParams& fluid,
                              double dt, double beta, const SolverParams& solvers,
@@ -151,7 +156,15 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
   const long n = static_cast<long>(mass_.size());
   FreezeVelocity(u, v);
   const double vmax = nodes_.MaxNorm(vx_.data(), vy_.data());
-  const int substeps = std::max(kMinSubsteps, static_cast<int>(std::ceil(vmax * dt_ / (grid_.h * max_courant_) - 1e-12)));
+  const double courant_ratio = vmax * dt_ / (grid_.h * max_courant_);
+  if (!(courant_ratio <= kMaxSubsteps)) {  // (NaN velocities are Simulation::CheckFinite's)
+    std::ostringstream msg;
+    msg << "advective Courant number " << vmax * dt_ / grid_.h << " in step (34) (max |u| = " << vmax
+        << ") would need more than " << kMaxSubsteps
+        << " wave sub-steps: the velocity is beyond any bound the time step can follow";
+    throw NumericalBlowUp(msg.str());
+  }
+  const int substeps = std::max(kMinSubsteps, static_cast<int>(std::ceil(courant_ratio - 1e-12)));
   const double tau = dt_ / substeps;
   report.iterations = substeps;
 

@@ -284,6 +284,10 @@ ChartPicture LineChart::Draw() const {
       const double px = p.PixelX(series.x[k]);
       const double py = p.PixelY(series.y[k]);
       if (!std::isfinite(px) || !std::isfinite(py)) continue;
+      if (!series.lines) {
+        image.FillDisk(px, py, marker_radius, colour);
+        continue;
+      }
       const bool next_usable = k + 1 < count && std::isfinite(p.PixelX(series.x[k + 1])) &&
                                std::isfinite(p.PixelY(series.y[k + 1]));
       const bool previous_usable = k > 0 && std::isfinite(p.PixelX(series.x[k - 1])) &&
@@ -303,8 +307,8 @@ ChartPicture LineChart::Draw() const {
     const int row_top = p.panel_top + int(n) * line_height;
     const double mid = row_top + 0.5 * kGlyphHeight * s;
     const Rgb colour = SeriesColour(n);
-    image.DrawLine(legend_left, mid, legend_left + swatch, mid, line_width, colour);
-    if (series_[n].markers) image.FillDisk(legend_left + 0.5 * swatch, mid, marker_radius, colour);
+    if (series_[n].lines) image.DrawLine(legend_left, mid, legend_left + swatch, mid, line_width, colour);
+    if (series_[n].markers || !series_[n].lines) image.FillDisk(legend_left + 0.5 * swatch, mid, marker_radius, colour);
     image.DrawText(legend_left + swatch + 4 * s, row_top, Shortened(series_[n].name, max_name_chars), s, kAxisColour);
   }
   return p;

@@ -20,38 +20,43 @@ TypeOneTransform::TypeOneTransform(Kind kind, int length, int rows, int workspac
   extended_ = kind == Kind::kSine ? 2 * (length + 1) : 2 * (length - 1);
   spectrum_ = extended_ / 2 + 1;
   const int block = std::min(rows, kBlockRows);
-  for (int w = 0; w < workspaces; ++w) {
-    auto* e = static_cast<double*>(fftw_malloc(sizeof(double) * std::size_t(extended_) * block));
-    auto* s = static_cast<double*>(fftw_malloc(sizeof(fftw_complex) * std::size_t(spectrum_) * block));
-    if (!e || !s) {
-      fftw_free(e);
-      fftw_free(s);
-      throw std::bad_alloc();
+  try {
+    for (int w = 0; w < workspaces; ++w) {
+      extension_.push_back(static_cast<double*>(fftw_malloc(sizeof(double) * std::size_t(extended_) * block)));
+      spectrum_buffers_.push_back(
+          static_cast<double*>(fftw_malloc(sizeof(fftw_complex) * std::size_t(spectrum_) * block)));
+      if (!extension_.back() || !spectrum_buffers_.back()) throw std::bad_alloc();
     }
-    extension_.push_back(e);
-    spectrum_buffers_.push_back(s);
+    // Every workspace's buffers come from fftw_malloc, so they share the planned arrays' alignment
+    // (the condition of fftw_execute_dft_r2c on other arrays).
+    auto plan = [&](int howmany) -> void* {
+      if (howmany == 0) return nullptr;
+      const unsigned flags = std::size_t(extended_) * howmany > 4096 ? FFTW_MEASURE : FFTW_ESTIMATE;
+      fftw_plan p = fftw_plan_many_dft_r2c(1, &extended_, howmany, extension_[0], nullptr, 1, extended_,
+                                           reinterpret_cast<fftw_complex*>(spectrum_buffers_[0]), nullptr, 1,
+                                           spectrum_, flags);
+      if (!p) throw Error("TypeOneTransform: FFTW could not make a plan");
+      return p;
+    };
+    block_plan_ = plan(block);
+    tail_plan_ = plan(rows % block);
+  } catch (...) {
+    Release();
+    throw;
   }
-  // Every workspace's buffers come from fftw_malloc, so they share the planned arrays' alignment
-  // (the condition of fftw_execute_dft_r2c on other arrays).
-  auto plan = [&](int howmany) -> void* {
-    if (howmany == 0) return nullptr;
-    const unsigned flags = std::size_t(extended_) * howmany > 4096 ? FFTW_MEASURE : FFTW_ESTIMATE;
-    fftw_plan p = fftw_plan_many_dft_r2c(1, &extended_, howmany, extension_[0], nullptr, 1, extended_,
-                                         reinterpret_cast<fftw_complex*>(spectrum_buffers_[0]), nullptr, 1,
-                                         spectrum_, flags);
-    if (!p) throw Error("TypeOneTransform: FFTW could not make a plan");
-    return p;
-  };
-  block_plan_ = plan(block);
-  tail_plan_ = plan(rows % block);
 }
 
-TypeOneTransform::~TypeOneTransform() {
+TypeOneTransform::~TypeOneTransform() { Release(); }
+
+void TypeOneTransform::Release() {
   for (void* p : {block_plan_, tail_plan_}) {
     if (p) fftw_destroy_plan(static_cast<fftw_plan>(p));
   }
-  for (double* e : extension_) fftw_free(e);
+  block_plan_ = tail_plan_ = nullptr;
+  for (double* e : extension_) fftw_free(e);  // fftw_free(nullptr) is a no-op
   for (double* s : spectrum_buffers_) fftw_free(s);
+  extension_.clear();
+  spectrum_buffers_.clear();
 }
 
 void TypeOneTransform::ApplyBlock(double* data, int block_rows, void* plan, double* ext, double* spectrum_data) const {

@@ -8,7 +8,7 @@
 // zero width is widened around its value. Consecutive usable points are joined by straight
 // segments; a point with a non-finite coordinate, or a value <= 0 on a log axis, is not usable and
 // breaks the line (it is skipped, never drawn and never an error). An isolated usable point is
-// drawn as a dot.
+// drawn as a dot. A series without lines is drawn as markers only (scatter).
 // Ticks: on a linear axis the multiples of a 1-2-5 step (1, 2 or 5 times a power of ten) inside the
 // range, the step the smallest giving no more than the wanted count; on a log axis the 1, 2 and 5
 // multiples of the decades when the range holds fewer than three decades and those are not too
@@ -41,6 +41,7 @@ struct ChartSeries {
   std::vector<double> x;
   std::vector<double> y;
   bool markers = false;  // a filled disk at every usable point as well as the line
+  bool lines = true;     // false: markers only, no line (a scatter plot; implies markers)
 };
 
 struct ChartAxis {

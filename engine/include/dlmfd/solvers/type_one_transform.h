@@ -38,6 +38,7 @@ class TypeOneTransform {
   static constexpr int kBlockRows = 16;
 
   void ApplyBlock(double* data, int block_rows, void* plan, double* ext, double* spectrum) const;
+  void Release();  // plans and buffers (destructor, and a constructor that throws)
 
   Kind kind_;
   int length_, rows_, extended_, spectrum_;  // n, rows, L, L/2 + 1
