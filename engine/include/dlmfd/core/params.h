@@ -60,7 +60,7 @@ struct SplittingParams {
 
 // Stopping rules and limits of the iterative solvers. The defaults are the loosest level of the
 // work-precision study (docs/work_precision.md, "tol" ladders: 1e-2 ... 1e-8) whose answers differ
-// from the tightest by at most 0.5 % of the discretisation error on all four reference problems;
+// from the tightest by at most 0.6 % of the discretisation error on all four reference problems;
 // on the paper's 5.2 pair they move particle velocities by 2e-5 relative to t = 1 against 1e-6
 // (docs/performance.md, "Stopping rules").
 struct SolverParams {
