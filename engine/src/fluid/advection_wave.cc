@@ -17,7 +17,7 @@ namespace dlmfd {
 // 1/sqrt(2) along y = -x (the minimum over directions), not the 1.02-1.04 of the method notes,
 // which came from M^-1 K_V alone on nearly vertical fields. The implementation matches this
 // analysis to the power iteration's accuracy, so no bug was found. The bound holds for Q = 1 (the
-// Taylor start alone, a Lax-Wendroff step) as for Q >= 2 (tests/unit/advection_test.cc checks Q = 1
+// Taylor start alone, a Lax-Wendroff step) as for Q >= 2 (the stability test checks Q = 1
 // and 2), and both are second order in tau; Q = 1 costs one K_V product per call instead of two.
 // The splitting's first-order error dominates the difference (docs/performance.md).
 constexpr int kMinSubsteps = 1;
