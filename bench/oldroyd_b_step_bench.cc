@@ -8,7 +8,6 @@
 // Uzawa and DLM CG iterations, velocity node updates per second.
 //   OMP_WAIT_POLICY=active build/bench/oldroyd_b_step_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
-#include <omp.h>
 
 #include <string>
 
@@ -31,14 +30,7 @@ Params PairScene(int threads) {
 
 void BM_OldroydBStep(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
-  Simulation sim(PairScene(threads));
-  StepAverages averages(FullStepEntries());
-  sim.AddObserver(&averages);
-  for (int n = 0; n < kSetUpSteps; ++n) sim.Step();
-  averages.Reset();
-  for (auto _ : state) sim.Step();
-  averages.Write(state, static_cast<double>(sim.grid().NodeCount()));
-  omp_set_num_threads(omp_get_num_procs());
+  TimeFullSteps(state, PairScene(threads), kSetUpSteps);
 }
 
 BENCHMARK(BM_OldroydBStep)

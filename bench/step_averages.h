@@ -1,15 +1,18 @@
 // Shared by the full-step benchmarks: an Observer that averages StepReport entries (per-substep
 // milliseconds, iteration counts) over the timed steps and writes them as Google Benchmark
-// counters, with the velocity node updates per second (nodes x steps / wall time).
+// counters, with the velocity node updates per second (nodes x steps / wall time); and
+// TimeFullSteps, the timing loop of a full Oldroyd-B step with particles.
 #pragma once
 
 #include <benchmark/benchmark.h>
+#include <omp.h>
 
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "dlmfd/core/observer.h"
+#include "dlmfd/core/simulation.h"
 #include "dlmfd/core/state.h"
 
 namespace dlmfd {
@@ -51,6 +54,22 @@ inline std::vector<std::pair<std::string, std::string>> FullStepEntries() {
           {"ms_conformation", "ms_conformation"}, {"ms_particles", "ms_particles"},
           {"stokes_iterations", "stokes_its"},   {"wave_substeps", "wave_substeps"},
           {"multiplier_iterations", "dlm_its"}};
+}
+
+// Runs `set_up_steps` steps of a simulation of `params` untimed, then times one step per benchmark
+// iteration; counters: FullStepEntries, node updates per second, velocity_nodes. Restores the
+// OpenMP thread count that Simulation set from params.threads.
+inline void TimeFullSteps(benchmark::State& state, const Params& params, int set_up_steps) {
+  Simulation sim(params);
+  StepAverages averages(FullStepEntries());
+  sim.AddObserver(&averages);
+  for (int n = 0; n < set_up_steps; ++n) sim.Step();
+  averages.Reset();
+  for (auto _ : state) sim.Step();
+  const double nodes = static_cast<double>(sim.grid().NodeCount());
+  averages.Write(state, nodes);
+  state.counters["velocity_nodes"] = nodes;
+  omp_set_num_threads(omp_get_num_procs());
 }
 
 }  // namespace dlmfd

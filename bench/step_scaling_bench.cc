@@ -10,7 +10,6 @@
 //                           expected: linear in P for the particle step, the rest unchanged.
 //   OMP_WAIT_POLICY=active build/bench/step_scaling_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
-#include <omp.h>
 
 #include <string>
 
@@ -32,24 +31,12 @@ Params PairScene() {
   return p;
 }
 
-void TimeSteps(benchmark::State& state, const Params& params) {
-  Simulation sim(params);
-  StepAverages averages(FullStepEntries());
-  sim.AddObserver(&averages);
-  for (int n = 0; n < kSetUpSteps; ++n) sim.Step();
-  averages.Reset();
-  for (auto _ : state) sim.Step();
-  averages.Write(state, static_cast<double>(sim.grid().NodeCount()));
-  state.counters["velocity_nodes"] = static_cast<double>(sim.grid().NodeCount());
-  omp_set_num_threads(omp_get_num_procs());
-}
-
 void BM_StepMesh(benchmark::State& state) {
   Params p = PairScene();
   const double cells = static_cast<double>(state.range(0));
   p.domain.h = 1.0 / cells;
   p.particle_mesh.h = (96.0 / 70.0) / cells;
-  TimeSteps(state, p);
+  TimeFullSteps(state, p, kSetUpSteps);
 }
 
 void BM_StepParticles(benchmark::State& state) {
@@ -61,7 +48,7 @@ void BM_StepParticles(benchmark::State& state) {
     q.center = Vec2(0.25 + 0.5 * (k % 4), 7.7 - 0.4 * (k / 4));
     p.particles.push_back(q);
   }
-  TimeSteps(state, p);
+  TimeFullSteps(state, p, kSetUpSteps);
 }
 
 BENCHMARK(BM_StepMesh)
