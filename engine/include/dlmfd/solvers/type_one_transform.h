@@ -32,8 +32,6 @@ class TypeOneTransform {
 
   void Apply(double* data, int workspace) const;
 
-  Kind kind() const { return kind_; }
-
  private:
   static constexpr int kBlockRows = 16;
 
