@@ -1,7 +1,7 @@
 // Cost of step (35) (ConformationStep::Advance) on the paper's grid: 2 x 8 with h = 1/96, that is
-// 193 x 769 velocity nodes, dt = 4e-4, Oldroyd-B with lambda = 1.4 (paper 5.2), and a velocity field
-// like a disk of diameter 0.2 falling at 1.5 (a divergence-free vortex dipole around the disk, no slip
-// on the walls) with A = I inside the disk. Run with 1 and 2 threads:
+// 193 x 769 velocity nodes, dt = 4e-4, Oldroyd-B with lambda = 1.4 (paper 5.2), and a velocity
+// field like a disk of diameter 0.2 falling at 1.5 (a divergence-free vortex dipole around the
+// disk, no slip on the walls) with A = I inside the disk. Run with 1 and 2 threads:
 //   build/bench/conformation_step_bench --benchmark_counters_tabular=true
 // Reports wall time per step (ms), node updates per second and the sub-step count.
 #include <benchmark/benchmark.h>

@@ -31,7 +31,8 @@ BoundaryTopology NeumannAllRound() {
 std::vector<double> Smooth(const Grid& g, double phase) {
   std::vector<double> f(g.NodeCount());
   for (int j = 0; j <= g.ny; ++j) {
-    for (int i = 0; i <= g.nx; ++i) f[g.Index(i, j)] = std::sin(3.0 * g.X(i) + phase) * std::cos(1.7 * g.Y(j));
+    for (int i = 0; i <= g.nx; ++i)
+      f[g.Index(i, j)] = std::sin(3.0 * g.X(i) + phase) * std::cos(1.7 * g.Y(j));
   }
   return f;
 }
@@ -68,7 +69,8 @@ void BM_TwoVelocitySolvesOnTwoThreads(benchmark::State& state) {
 #pragma omp parallel num_threads(2)
     {
       if (omp_get_thread_num() == 0) solver.Solve(fu.data(), u.data(), 0);
-      if (omp_get_thread_num() == 1 || omp_get_num_threads() == 1) solver.Solve(fv.data(), v.data(), 1);
+      if (omp_get_thread_num() == 1 || omp_get_num_threads() == 1)
+        solver.Solve(fv.data(), v.data(), 1);
     }
     benchmark::DoNotOptimize(u.data());
     benchmark::DoNotOptimize(v.data());

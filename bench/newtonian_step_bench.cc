@@ -2,7 +2,8 @@
 // (193 x 769 velocity nodes), walls, eta = 0.01, alpha = beta = 0.5, dt = 4e-4, the flow driven by
 // the left wall moving upwards at 1 (5 set-up steps before timing so that iterations are those of a
 // developing flow). Arguments: {advection scheme: 0 least squares, 1 wave} x {threads}.
-// Counters: per-substep ms, Uzawa and LS-CG iterations (or wave sub-steps), node updates per second.
+// Counters: per-substep ms, Uzawa and LS-CG iterations (or wave sub-steps), node updates per
+// second.
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
@@ -36,10 +37,11 @@ void BM_NewtonianStep(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(1));
   Simulation sim(PaperGrid(scheme, threads));
   const bool wave = scheme == AdvectionScheme::kWave;
-  StepAverages averages({{"ms_stokes", "ms_stokes"},
-                         {"ms_advection", "ms_advection"},
-                         {"stokes_iterations", "stokes_its"},
-                         {wave ? "wave_substeps" : "advection_iterations", wave ? "wave_substeps" : "ls_its"}});
+  StepAverages averages(
+      {{"ms_stokes", "ms_stokes"},
+       {"ms_advection", "ms_advection"},
+       {"stokes_iterations", "stokes_its"},
+       {wave ? "wave_substeps" : "advection_iterations", wave ? "wave_substeps" : "ls_its"}});
   sim.AddObserver(&averages);
   for (int n = 0; n < 5; ++n) sim.Step();
   averages.Reset();

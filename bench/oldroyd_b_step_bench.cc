@@ -1,11 +1,11 @@
 // ms per full Oldroyd-B time step with particles: Stokes (33), advection (34) by the wave-like
-// scheme, conformation (35) and particles (36)-(38), on paper 5.2 (cases/paper/5.2_pair_oldroyd_b.toml:
-// two disks D = 0.2, rho_d = 1.01, in an Oldroyd-B liquid with eta = 0.12, lambda = 1.4, beta = 1/2,
-// on the paper's grid 2 x 8, h = 1/96, dt = 4e-4), after 20 set-up steps from rest so that the
-// disks move and the flow and the iteration counts are those of a developing flow (the scene's own
-// advection, least squares, is replaced by the wave scheme). Argument: threads.
-// Counters: per-substep ms (StepReport ms_stokes, ms_advection, ms_conformation, ms_particles),
-// Uzawa and DLM CG iterations, velocity node updates per second.
+// scheme, conformation (35) and particles (36)-(38), on paper 5.2
+// (cases/paper/5.2_pair_oldroyd_b.toml: two disks D = 0.2, rho_d = 1.01, in an Oldroyd-B liquid
+// with eta = 0.12, lambda = 1.4, beta = 1/2, on the paper's grid 2 x 8, h = 1/96, dt = 4e-4), after
+// 20 set-up steps from rest so that the disks move and the flow and the iteration counts are those
+// of a developing flow (the scene's own advection, least squares, is replaced by the wave scheme).
+// Argument: threads. Counters: per-substep ms (StepReport ms_stokes, ms_advection, ms_conformation,
+// ms_particles), Uzawa and DLM CG iterations, velocity node updates per second.
 //   OMP_WAIT_POLICY=active build/bench/oldroyd_b_step_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 

@@ -10,12 +10,11 @@
 #include <cmath>
 #include <vector>
 
+#include "dlmfd/core/constants.h"
 #include "dlmfd/particles/particle_step.h"
 
 namespace dlmfd {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Params PaperScene(int count) {
   Params params;

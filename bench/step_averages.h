@@ -21,7 +21,8 @@ class StepAverages : public Observer {
  public:
   // (StepReport entry, counter name) pairs; an entry a step does not report counts as 0.
   explicit StepAverages(std::vector<std::pair<std::string, std::string>> entries)
-      : entries_(std::move(entries)), sums_(entries_.size(), 0.0) {}
+      : entries_(std::move(entries)),
+        sums_(entries_.size(), 0.0) {}
 
   void OnStep(const FlowState&, const StepReport& report) override {
     for (std::size_t k = 0; k < entries_.size(); ++k) sums_[k] += report.Get(entries_[k].first);
@@ -36,7 +37,8 @@ class StepAverages : public Observer {
 
   void Write(benchmark::State& state, double velocity_nodes) const {
     if (steps_ == 0) return;
-    for (std::size_t k = 0; k < entries_.size(); ++k) state.counters[entries_[k].second] = sums_[k] / steps_;
+    for (std::size_t k = 0; k < entries_.size(); ++k)
+      state.counters[entries_[k].second] = sums_[k] / steps_;
     state.counters["node_updates_per_s"] =
         benchmark::Counter(velocity_nodes * steps_, benchmark::Counter::kIsRate);
   }
@@ -50,9 +52,12 @@ class StepAverages : public Observer {
 // The entries of a full Oldroyd-B step with particles: the four substeps' milliseconds and the
 // Uzawa, wave and DLM CG counts.
 inline std::vector<std::pair<std::string, std::string>> FullStepEntries() {
-  return {{"ms_stokes", "ms_stokes"},           {"ms_advection", "ms_advection"},
-          {"ms_conformation", "ms_conformation"}, {"ms_particles", "ms_particles"},
-          {"stokes_iterations", "stokes_its"},   {"wave_substeps", "wave_substeps"},
+  return {{"ms_stokes", "ms_stokes"},
+          {"ms_advection", "ms_advection"},
+          {"ms_conformation", "ms_conformation"},
+          {"ms_particles", "ms_particles"},
+          {"stokes_iterations", "stokes_its"},
+          {"wave_substeps", "wave_substeps"},
           {"multiplier_iterations", "dlm_its"}};
 }
 

@@ -1,11 +1,14 @@
 // How the cost of a full Oldroyd-B step with particles grows with the grid and with the number of
-// particles (issue 6, point 3; docs/performance.md "Scaling"). Base: cases/paper/5.2_pair_oldroyd_b.toml
-// (2 x 8 box, eta = 0.12, lambda = 1.4, dt = 4e-4) with the wave-like advection, 2 threads,
-// 20 set-up steps from rest, then timed steps.
-//   BM_StepMesh/cells:C     the scene's two disks on h = 1/C (C = 24 ... 192; the paper's grid is 96),
+// particles (issue 6, point 3; docs/performance.md "Scaling"). Base:
+// cases/paper/5.2_pair_oldroyd_b.toml (2 x 8 box, eta = 0.12, lambda = 1.4, dt = 4e-4) with the
+// wave-like advection, 2 threads, 20 set-up steps from rest, then timed steps.
+//   BM_StepMesh/cells:C     the scene's two disks on h = 1/C (C = 24 ... 192; the paper's grid is
+//   96),
 //                           the particle mesh scaled with h (h_p = h 96/70 as in the paper);
-//                           expected: N log N in the velocity nodes N (fast solves), N for the rest.
-//   BM_StepParticles/n:P    P disks (D = 0.2, rho = 1.01) on the paper's grid, in rows of 4 from the
+//                           expected: N log N in the velocity nodes N (fast solves), N for the
+//                           rest.
+//   BM_StepParticles/n:P    P disks (D = 0.2, rho = 1.01) on the paper's grid, in rows of 4 from
+//   the
 //                           top (x = 0.25, 0.75, 1.25, 1.75; rows 0.4 apart from y = 7.7);
 //                           expected: linear in P for the particle step, the rest unchanged.
 //   OMP_WAIT_POLICY=active build/bench/step_scaling_bench --benchmark_counters_tabular=true

@@ -209,8 +209,8 @@ void CallOnCancel(void* call, void* reactor)
     DLMFD_SYMBOL("_ZN4grpc8internal18ServerCallbackCall12CallOnCancelEPNS0_13ServerReactorE");
 
 void ScheduleOnDone(void* call, bool inline_ondone) {
-  static auto real = Real<void (*)(void*, bool)>(
-      "_ZN4grpc8internal18ServerCallbackCall14ScheduleOnDoneEb");
+  static auto real =
+      Real<void (*)(void*, bool)>("_ZN4grpc8internal18ServerCallbackCall14ScheduleOnDoneEb");
   Acquire(&static_cast<ServerCallbackCallData*>(call)->callbacks_outstanding);
   real(call, inline_ondone);
 }

@@ -25,7 +25,7 @@
 
 namespace {
 
-int g_unguarded = 0;                  // incremented by two threads with no synchronisation
+int g_unguarded = 0;                 // incremented by two threads with no synchronisation
 std::atomic<bool> g_written{false};  // relaxed only: no happens-before for TSan
 
 class CanaryReactor final : public grpc::ServerWriteReactor<dlmfd::v1::WatchEvent> {

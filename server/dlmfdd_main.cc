@@ -1,5 +1,6 @@
-// dlmfdd: the dlmfd job daemon. Configuration: docs/api.md (flag > DLMFD_* environment > TOML file >
-// defaults). SIGTERM or SIGINT stop it cleanly: running solvers checkpoint and resume at the next start.
+// dlmfdd: the dlmfd job daemon. Configuration: docs/api.md (flag > DLMFD_* environment > TOML file
+// > defaults). SIGTERM or SIGINT stop it cleanly: running solvers checkpoint and resume at the next
+// start.
 #include <signal.h>
 
 #include <spdlog/spdlog.h>
@@ -22,8 +23,8 @@ int main(int argc, char** argv) {
 
   Config config;
   try {
-    if (!dlmfd::server::LoadConfig(argc, argv, [](const char* name) { return std::getenv(name); },
-                                   config)) {
+    if (!dlmfd::server::LoadConfig(
+            argc, argv, [](const char* name) { return std::getenv(name); }, config)) {
       return 0;
     }
   } catch (const std::exception& e) {

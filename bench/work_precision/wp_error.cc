@@ -1,4 +1,5 @@
-// wp_error: the error figures of bench/work_precision.sh, read from one dlmfd-solve results directory.
+// wp_error: the error figures of bench/work_precision.sh, read from one dlmfd-solve results
+// directory.
 //
 //   wp_error waters-king DIR [BETA ELASTICITY]
 //       max over the field snapshots (t > 0) of |u(centre line, t) - U(0, t)|, U the Waters-King
@@ -9,9 +10,9 @@
 //       the last record of particles.h5 for particle ID (default 0).
 //       Prints: time x y u v omega fx fy.
 //   wp_error terminal DIR T0 T1 [ID]
-//       mean of the vertical velocity of particle ID (default 0) over the records with T0 <= t <= T1
-//       (with output.particles_every = 0 a time average; it removes the small oscillation of a disk
-//       crossing the mesh cells). Prints: mean_v records.
+//       mean of the vertical velocity of particle ID (default 0) over the records with T0 <= t <=
+//       T1 (with output.particles_every = 0 a time average; it removes the small oscillation of a
+//       disk crossing the mesh cells). Prints: mean_v records.
 //
 // Exit status 0, or 2 with a message on stderr (bad arguments, unreadable or empty results).
 // Not supported: Waters-King scenes with H != 1 or Ubar != 1 (the series is scaled by them).
@@ -32,7 +33,9 @@
 namespace {
 
 int Usage() {
-  std::fprintf(stderr, "usage: wp_error waters-king DIR [BETA ELASTICITY] | wp_error particle DIR [ID] | wp_error terminal DIR T0 T1 [ID]\n");
+  std::fprintf(stderr,
+               "usage: wp_error waters-king DIR [BETA ELASTICITY] | wp_error particle DIR [ID] | "
+               "wp_error terminal DIR T0 T1 [ID]\n");
   return 2;
 }
 
@@ -45,9 +48,11 @@ int WatersKingError(const std::string& dir, double beta, double elasticity) {
     if (snap.time <= 0.0) continue;
     const dlmfd::FieldArray& u = snap.fields.at("u");
     const std::size_t rows = u.shape.at(0), columns = u.shape.at(1);
-    if (rows % 2 == 0) throw std::runtime_error(file + ": the centre line needs an even number of cells in y");
+    if (rows % 2 == 0)
+      throw std::runtime_error(file + ": the centre line needs an even number of cells in y");
     const double centre = u.values[(rows / 2) * columns];
-    const double error = std::abs(centre - dlmfd::WatersKingVelocity(0.0, snap.time, beta, elasticity));
+    const double error =
+        std::abs(centre - dlmfd::WatersKingVelocity(0.0, snap.time, beta, elasticity));
     if (error > max_error) {
       max_error = error;
       time_of_max = snap.time;
@@ -62,7 +67,8 @@ int WatersKingError(const std::string& dir, double beta, double elasticity) {
 // Index of particle id in the history; throws when absent.
 std::size_t ParticleIndex(const dlmfd::ParticleHistory& h, const std::string& dir, long id) {
   const auto it = std::find(h.id.begin(), h.id.end(), static_cast<std::int64_t>(id));
-  if (it == h.id.end()) throw std::runtime_error(dir + "/particles.h5: no particle " + std::to_string(id));
+  if (it == h.id.end())
+    throw std::runtime_error(dir + "/particles.h5: no particle " + std::to_string(id));
   return static_cast<std::size_t>(it - h.id.begin());
 }
 
@@ -86,9 +92,9 @@ int LastParticleRecord(const std::string& dir, long id) {
   const std::size_t np = h.id.size(), nt = h.time.size();
   if (nt == 0) throw std::runtime_error(dir + "/particles.h5: no record");
   const std::size_t k = (nt - 1) * np + ParticleIndex(h, dir, id);
-  std::printf("%.10g %.12g %.12g %.12g %.12g %.12g %.12g %.12g\n", h.time[nt - 1], h.position[2 * k],
-              h.position[2 * k + 1], h.velocity[2 * k], h.velocity[2 * k + 1], h.angular_velocity[k],
-              h.force[2 * k], h.force[2 * k + 1]);
+  std::printf("%.10g %.12g %.12g %.12g %.12g %.12g %.12g %.12g\n", h.time[nt - 1],
+              h.position[2 * k], h.position[2 * k + 1], h.velocity[2 * k], h.velocity[2 * k + 1],
+              h.angular_velocity[k], h.force[2 * k], h.force[2 * k + 1]);
   return 0;
 }
 
@@ -103,9 +109,11 @@ int main(int argc, char** argv) {
       const double elasticity = argc == 5 ? std::atof(argv[4]) : 1.0;
       return WatersKingError(dir, beta, elasticity);
     }
-    if (command == "particle" && (argc == 3 || argc == 4)) return LastParticleRecord(dir, argc == 4 ? std::atol(argv[3]) : 0);
+    if (command == "particle" && (argc == 3 || argc == 4))
+      return LastParticleRecord(dir, argc == 4 ? std::atol(argv[3]) : 0);
     if (command == "terminal" && (argc == 5 || argc == 6))
-      return MeanVerticalVelocity(dir, std::atof(argv[3]), std::atof(argv[4]), argc == 6 ? std::atol(argv[5]) : 0);
+      return MeanVerticalVelocity(dir, std::atof(argv[3]), std::atof(argv[4]),
+                                  argc == 6 ? std::atol(argv[5]) : 0);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "wp_error: %s\n", e.what());
     return 2;

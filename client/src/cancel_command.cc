@@ -18,10 +18,12 @@ int RunCancel(int argc, char** argv) {
   std::vector<std::string> job_ids;
   std::string sweep;
   auto* jobs_option = app.add_option("job", job_ids, "job ids");
-  auto* sweep_option = app.add_option("--sweep", sweep, "cancel every unfinished job of this sweep");
+  auto* sweep_option =
+      app.add_option("--sweep", sweep, "cancel every unfinished job of this sweep");
   jobs_option->excludes(sweep_option);
   if (auto code = ParseArgs(app, argc, argv)) return *code;
-  if (job_ids.empty() && sweep.empty()) return ReportError("cancel", "name a job id or --sweep ID", kExitUsage);
+  if (job_ids.empty() && sweep.empty())
+    return ReportError("cancel", "name a job id or --sweep ID", kExitUsage);
 
   return Guarded("cancel", [&] {
     Connection connection(connection_flags);

@@ -1,4 +1,5 @@
-// dlmfd chart RUN_DIR... --y Q [--x Q] [--particle ID|all] [--label TEXT]... [--title T] [--logx] [--logy]
+// dlmfd chart RUN_DIR... --y Q [--x Q] [--particle ID|all] [--label TEXT]... [--title T] [--logx]
+// [--logy]
 //             [--markers] [--out FILE.png] [--width W] [--height H]
 // dlmfd chart --csv FILE --xcol NAME --ycol NAME [--group NAME] [--points] [same drawing flags]
 // Line charts of particle quantities (particles.h5 of results directories, design.md 3.2) against
@@ -61,7 +62,8 @@ const Quantity& FindQuantity(const std::string& name, const std::string& flag) {
   for (const Quantity& q : kQuantities) {
     if (name == q.name) return q;
   }
-  throw UsageError(flag + " " + name + " is not a quantity of particles.h5; allowed: " + AllowedQuantities());
+  throw UsageError(flag + " " + name +
+                   " is not a quantity of particles.h5; allowed: " + AllowedQuantities());
 }
 
 // The value of `quantity` of particle p at record r (gap: of the whole run, p ignored).
@@ -83,7 +85,8 @@ double Value(const ParticleHistory& h, const std::string& quantity, std::size_t 
     for (std::size_t j = i + 1; j < h.particles; ++j) {
       const std::size_t a = 2 * (r * h.particles + i);
       const std::size_t b = 2 * (r * h.particles + j);
-      const double centres = std::hypot(h.position[a] - h.position[b], h.position[a + 1] - h.position[b + 1]);
+      const double centres =
+          std::hypot(h.position[a] - h.position[b], h.position[a + 1] - h.position[b + 1]);
       gap = std::min(gap, centres - h.radius[i] - h.radius[j]);
     }
   }
@@ -116,7 +119,8 @@ struct RunRequest {
 ParticleHistory ReadRun(const std::string& dir) {
   const fs::path file = fs::path(dir) / "particles.h5";
   if (!fs::is_regular_file(file)) {
-    throw UsageError("no " + file.string() + " (is " + dir + " a results directory of dlmfd-solve?)");
+    throw UsageError("no " + file.string() + " (is " + dir +
+                     " a results directory of dlmfd-solve?)");
   }
   try {
     return ReadParticleHistory(file.string());
@@ -135,12 +139,14 @@ std::vector<std::size_t> SelectParticles(const ParticleHistory& h, const std::st
   }
   char* end = nullptr;
   const long long id = std::strtoll(particle.c_str(), &end, 10);
-  if (particle.empty() || *end != '\0') throw UsageError("--particle " + particle + ": expected a particle id or all");
+  if (particle.empty() || *end != '\0')
+    throw UsageError("--particle " + particle + ": expected a particle id or all");
   for (std::size_t p = 0; p < h.particles; ++p) {
     if (h.id[p] == id) selected.push_back(p);
   }
   if (selected.empty()) {
-    throw UsageError("--particle " + particle + ": " + dir + " has no such particle; its ids: " + IdList(h));
+    throw UsageError("--particle " + particle + ": " + dir +
+                     " has no such particle; its ids: " + IdList(h));
   }
   return selected;
 }
@@ -154,11 +160,13 @@ void AddRunSeries(const RunRequest& request, LineChart& chart) {
     const ParticleHistory h = ReadRun(dir);
     if (h.records == 0) throw UsageError(dir + "/particles.h5 holds no records yet");
     if (per_run && h.particles < 2) {
-      throw UsageError("gap needs two or more particles; " + dir + " has " + std::to_string(h.particles));
+      throw UsageError("gap needs two or more particles; " + dir + " has " +
+                       std::to_string(h.particles));
     }
     if (!particle_free && h.particles == 0) throw UsageError(dir + " has no particles");
-    std::vector<std::size_t> selected = per_run || particle_free ? std::vector<std::size_t>{0}
-                                                                  : SelectParticles(h, request.particle, dir);
+    std::vector<std::size_t> selected = per_run || particle_free
+                                            ? std::vector<std::size_t>{0}
+                                            : SelectParticles(h, request.particle, dir);
     for (const std::size_t p : selected) {
       ChartSeries series;
       series.name = name;
@@ -205,12 +213,14 @@ std::vector<std::string> SplitCsvLine(const std::string& line) {
   return fields;
 }
 
-// A numeric cell; empty, nan and inf cells are NaN or Inf (they break the line), other text is an error.
+// A numeric cell; empty, nan and inf cells are NaN or Inf (they break the line), other text is an
+// error.
 double CsvNumber(const std::string& cell, const std::string& where) {
   if (cell.empty()) return std::numeric_limits<double>::quiet_NaN();
   char* end = nullptr;
   const double value = std::strtod(cell.c_str(), &end);
-  if (end == cell.c_str() || *end != '\0') throw UsageError(where + ": '" + cell + "' is not a number");
+  if (end == cell.c_str() || *end != '\0')
+    throw UsageError(where + ": '" + cell + "' is not a number");
   return value;
 }
 
@@ -233,12 +243,14 @@ void AddCsvSeries(const CsvRequest& request, LineChart& chart) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (!line.empty()) header = SplitCsvLine(line);
   }
-  if (header.empty()) throw UsageError(request.file + " is empty: expected a header line of column names");
+  if (header.empty())
+    throw UsageError(request.file + " is empty: expected a header line of column names");
   std::string columns;
   for (const std::string& h : header) columns += (columns.empty() ? "" : ", ") + h;
   const auto column = [&](const std::string& name, const std::string& flag) {
     const auto it = std::find(header.begin(), header.end(), name);
-    if (it == header.end()) throw UsageError(flag + " " + name + ": " + request.file + " has columns " + columns);
+    if (it == header.end())
+      throw UsageError(flag + " " + name + ": " + request.file + " has columns " + columns);
     return std::size_t(it - header.begin());
   };
   const std::size_t xc = column(request.x_column, "--xcol");
@@ -255,8 +267,8 @@ void AddCsvSeries(const CsvRequest& request, LineChart& chart) {
     const std::vector<std::string> fields = SplitCsvLine(line);
     const std::string where = request.file + ":" + std::to_string(line_number);
     if (fields.size() != header.size()) {
-      throw UsageError(where + " has " + std::to_string(fields.size()) + " fields; the header has " +
-                       std::to_string(header.size()));
+      throw UsageError(where + " has " + std::to_string(fields.size()) +
+                       " fields; the header has " + std::to_string(header.size()));
     }
     const std::string group = grouped ? fields[gc] : request.y_column;
     auto [it, added] = index_of_group.emplace(group, series.size());
@@ -285,8 +297,11 @@ std::string FileStem(const std::string& text) {
 }  // namespace
 
 int RunChart(int argc, char** argv) {
-  CLI::App app{"Draw particle quantities of results directories, or columns of a CSV file, as a line chart PNG."};
-  ConnectionFlags unused_connection;  // accepted for `dlmfd --server ... chart`; chart reads local files only
+  CLI::App app{
+      "Draw particle quantities of results directories, or columns of a CSV file, as a line chart "
+      "PNG."};
+  ConnectionFlags
+      unused_connection;  // accepted for `dlmfd --server ... chart`; chart reads local files only
   AddConnectionFlags(app, unused_connection);
   for (const char* flag : {"--server", "--token", "--timeout"}) app.get_option(flag)->group("");
   RunRequest runs;
@@ -298,10 +313,12 @@ int RunChart(int argc, char** argv) {
   std::string out;
   app.add_option("runs", runs.dirs, "results directories (dlmfd-solve --out, or fetched)");
   app.add_option("--y", runs.y, "quantity on the y axis: " + AllowedQuantities());
-  app.add_option("--x", runs.x, "quantity on the x axis (default t; --x x --y y is the trajectory)");
+  app.add_option("--x", runs.x,
+                 "quantity on the x axis (default t; --x x --y y is the trajectory)");
   app.add_option("--particle", runs.particle, "a particle id, or all (default)");
   // One value per --label, so that `--label a RUN` does not take RUN as a second label.
-  app.add_option("--label", runs.labels, "series name of each run directory, in order (default: its name)")
+  app.add_option("--label", runs.labels,
+                 "series name of each run directory, in order (default: its name)")
       ->allow_extra_args(false);
   app.add_option("--csv", csv.file, "chart two columns of this CSV file (header line of names)");
   app.add_option("--xcol", csv.x_column, "CSV column on the x axis");
@@ -311,20 +328,25 @@ int RunChart(int argc, char** argv) {
   app.add_flag("--logx", log_x, "log10 x axis (points with x <= 0 are skipped)");
   app.add_flag("--logy", log_y, "log10 y axis (points with y <= 0 are skipped)");
   app.add_flag("--markers", markers, "a dot at every point as well as the line");
-  app.add_flag("--points", points_only, "with --csv: a dot at every point and no lines (scatter plot)");
+  app.add_flag("--points", points_only,
+               "with --csv: a dot at every point and no lines (scatter plot)");
   app.add_option("--out,-o", out, "PNG file to write (default chart_<y>_<x>.png here)");
   app.add_option("--width", options.width, "image width in pixels")->check(CLI::Range(200, 8192));
-  app.add_option("--height", options.height, "image height in pixels")->check(CLI::Range(150, 8192));
+  app.add_option("--height", options.height, "image height in pixels")
+      ->check(CLI::Range(150, 8192));
   if (auto code = ParseArgs(app, argc, argv)) return *code;
 
   return Guarded("chart", [&] {
     const bool csv_mode = !csv.file.empty();
-    if (csv_mode == !runs.dirs.empty()) throw UsageError("name results directories or --csv FILE, not both");
+    if (csv_mode == !runs.dirs.empty())
+      throw UsageError("name results directories or --csv FILE, not both");
     std::string x_name, y_name;
     if (csv_mode) {
-      if (csv.x_column.empty() || csv.y_column.empty()) throw UsageError("--csv needs --xcol and --ycol");
+      if (csv.x_column.empty() || csv.y_column.empty())
+        throw UsageError("--csv needs --xcol and --ycol");
       if (!runs.y.empty() || runs.x != "t" || runs.particle != "all" || !runs.labels.empty()) {
-        throw UsageError("--x, --y, --particle and --label apply to results directories, not to --csv");
+        throw UsageError(
+            "--x, --y, --particle and --label apply to results directories, not to --csv");
       }
       csv.markers = markers;
       csv.points_only = points_only;
@@ -333,13 +355,15 @@ int RunChart(int argc, char** argv) {
       options.x_axis.title = x_name;
       options.y_axis.title = y_name;
     } else {
-      if (!csv.x_column.empty() || !csv.y_column.empty() || !csv.group_column.empty() || points_only) {
+      if (!csv.x_column.empty() || !csv.y_column.empty() || !csv.group_column.empty() ||
+          points_only) {
         throw UsageError("--xcol, --ycol, --group and --points apply to --csv");
       }
-      if (runs.y.empty()) throw UsageError("--y QUANTITY is required; allowed: " + AllowedQuantities());
+      if (runs.y.empty())
+        throw UsageError("--y QUANTITY is required; allowed: " + AllowedQuantities());
       if (runs.labels.size() > runs.dirs.size()) {
-        throw UsageError(std::to_string(runs.labels.size()) + " labels for " + std::to_string(runs.dirs.size()) +
-                         " results directories");
+        throw UsageError(std::to_string(runs.labels.size()) + " labels for " +
+                         std::to_string(runs.dirs.size()) + " results directories");
       }
       options.x_axis.title = FindQuantity(runs.x, "--x").title;
       options.y_axis.title = FindQuantity(runs.y, "--y").title;
@@ -362,7 +386,8 @@ int RunChart(int argc, char** argv) {
     } catch (const InvalidParameter& e) {
       throw UsageError(e.what());
     }
-    const std::string path = out.empty() ? "chart_" + FileStem(y_name) + "_" + FileStem(x_name) + ".png" : out;
+    const std::string path =
+        out.empty() ? "chart_" + FileStem(y_name) + "_" + FileStem(x_name) + ".png" : out;
     try {
       WritePng(picture.image, path);
     } catch (const Error& e) {

@@ -39,9 +39,11 @@ Endpoint ResolveEndpoint(const ConnectionFlags& flags, const EnvLookup& env) {
     for (const auto& [key, value] : table) {
       const std::string name(key.str());
       if (name != "server" && name != "token") {
-        throw UsageError("config file " + path + ": unknown key '" + name + "' (allowed: server, token)");
+        throw UsageError("config file " + path + ": unknown key '" + name +
+                         "' (allowed: server, token)");
       }
-      if (!value.is_string()) throw UsageError("config file " + path + ": " + name + " must be a string");
+      if (!value.is_string())
+        throw UsageError("config file " + path + ": " + name + " must be a string");
     }
     if (auto server = table["server"].value<std::string>()) {
       e.server = *server;

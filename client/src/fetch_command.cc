@@ -1,6 +1,6 @@
 // dlmfd fetch JOB [--out DIR] [--path FILE]...
-// Writes each file to DIR/<its path in the results directory> through a temporary name, renamed when
-// its last chunk has arrived, so an interrupted fetch never leaves a truncated file under the
+// Writes each file to DIR/<its path in the results directory> through a temporary name, renamed
+// when its last chunk has arrived, so an interrupted fetch never leaves a truncated file under the
 // final name. Paths from the server are checked: absolute ones or ones with ".." are refused.
 #include <filesystem>
 #include <fstream>
@@ -26,8 +26,8 @@ bool SafeRelative(const std::string& path) {
 }
 
 // Receives one Fetch stream into `out_dir`; counts files and bytes.
-int Receive(Connection& connection, const std::string& job_id, const std::string& path, const fs::path& out_dir,
-            int& files, long long& bytes) {
+int Receive(Connection& connection, const std::string& job_id, const std::string& path,
+            const fs::path& out_dir, int& files, long long& bytes) {
   v1::FetchRequest request;
   request.set_job_id(job_id);
   request.set_path(path);
@@ -43,12 +43,14 @@ int Receive(Connection& connection, const std::string& job_id, const std::string
       if (file.is_open()) {
         file.close();
         fs::remove(temporary);
-        return ReportError("fetch", "the transfer of " + current + " ended early", kExitServerError);
+        return ReportError("fetch", "the transfer of " + current + " ended early",
+                           kExitServerError);
       }
       if (!SafeRelative(chunk.path())) {
         context->TryCancel();
         reader->Finish();
-        return ReportError("fetch", "refusing the unsafe path '" + chunk.path() + "' sent by the server",
+        return ReportError("fetch",
+                           "refusing the unsafe path '" + chunk.path() + "' sent by the server",
                            kExitServerError);
       }
       current = chunk.path();
@@ -60,8 +62,10 @@ int Receive(Connection& connection, const std::string& job_id, const std::string
       written = 0;
     }
     if (chunk.offset() != written) {
-      return ReportError("fetch", current + ": chunk at offset " + std::to_string(chunk.offset()) +
-                                      ", expected " + std::to_string(written), kExitServerError);
+      return ReportError("fetch",
+                         current + ": chunk at offset " + std::to_string(chunk.offset()) +
+                             ", expected " + std::to_string(written),
+                         kExitServerError);
     }
     file.write(chunk.data().data(), std::streamsize(chunk.data().size()));
     written += static_cast<long long>(chunk.data().size());
@@ -79,7 +83,8 @@ int Receive(Connection& connection, const std::string& job_id, const std::string
   if (file.is_open()) {
     file.close();
     fs::remove(temporary);
-    if (status.ok()) return ReportError("fetch", "the transfer of " + current + " ended early", kExitServerError);
+    if (status.ok())
+      return ReportError("fetch", "the transfer of " + current + " ended early", kExitServerError);
   }
   if (!status.ok()) return ReportRpcError("fetch", status);
   return kExitOk;
@@ -96,16 +101,20 @@ int RunFetch(int argc, char** argv) {
   std::vector<std::string> paths;
   app.add_option("job", job_id, "job id")->required();
   app.add_option("--out,-o", out_dir, "directory to write into (default: ./<job id>)");
-  app.add_option("--path", paths, "one file, relative to the results directory (repeatable; default: all)");
+  app.add_option("--path", paths,
+                 "one file, relative to the results directory (repeatable; default: all)");
   if (auto code = ParseArgs(app, argc, argv)) return *code;
 
   return Guarded("fetch", [&] {
     const fs::path dir = out_dir.empty() ? fs::path(job_id) : fs::path(out_dir);
     std::error_code ec;
     fs::create_directories(dir, ec);
-    if (ec) return ReportError("fetch", "cannot create " + dir.string() + ": " + ec.message(), kExitLocalIo);
+    if (ec)
+      return ReportError("fetch", "cannot create " + dir.string() + ": " + ec.message(),
+                         kExitLocalIo);
     for (const std::string& p : paths) {
-      if (!SafeRelative(p)) throw UsageError("--path " + p + ": expected a path relative to the results directory");
+      if (!SafeRelative(p))
+        throw UsageError("--path " + p + ": expected a path relative to the results directory");
     }
     Connection connection(connection_flags);
     int files = 0;
@@ -115,8 +124,8 @@ int RunFetch(int argc, char** argv) {
       const int code = Receive(connection, job_id, p, dir, files, bytes);
       if (code != kExitOk) return code;
     }
-    std::cerr << "fetched " << files << (files == 1 ? " file" : " files") << ", " << bytes << " bytes, into "
-              << dir.string() << "\n";
+    std::cerr << "fetched " << files << (files == 1 ? " file" : " files") << ", " << bytes
+              << " bytes, into " << dir.string() << "\n";
     return kExitOk;
   });
 }

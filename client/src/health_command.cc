@@ -28,22 +28,24 @@ int RunHealth(int argc, char** argv) {
   return Guarded("health", [&] {
     Connection connection(connection_flags);
     auto stub = grpc::health::v1::Health::NewStub(connection.channel());
-    const auto give_up = std::chrono::steady_clock::now() + std::chrono::duration<double>(wait_seconds);
+    const auto give_up =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(wait_seconds);
     for (;;) {
       auto context = connection.UnaryContext();
       grpc::health::v1::HealthCheckRequest request;
       request.set_service(service);
       grpc::health::v1::HealthCheckResponse response;
       const grpc::Status status = stub->Check(context.get(), request, &response);
-      const bool serving = status.ok() && response.status() == grpc::health::v1::HealthCheckResponse::SERVING;
+      const bool serving =
+          status.ok() && response.status() == grpc::health::v1::HealthCheckResponse::SERVING;
       if (serving) {
         std::cout << "SERVING " << connection.endpoint().server << "\n";
         return kExitOk;
       }
       if (std::chrono::steady_clock::now() >= give_up) {
         if (!status.ok()) return ReportRpcError("health", status);
-        std::cout << grpc::health::v1::HealthCheckResponse::ServingStatus_Name(response.status()) << " "
-                  << connection.endpoint().server << "\n";
+        std::cout << grpc::health::v1::HealthCheckResponse::ServingStatus_Name(response.status())
+                  << " " << connection.endpoint().server << "\n";
         return kExitUnavailable;
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(200));

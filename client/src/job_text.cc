@@ -16,22 +16,30 @@ namespace dlmfd::cli {
 
 std::string StateName(v1::JobState state) {
   switch (state) {
-    case v1::QUEUED: return "queued";
-    case v1::RUNNING: return "running";
-    case v1::COMPLETED: return "completed";
-    case v1::FAILED: return "failed";
-    case v1::CANCELLED: return "cancelled";
-    default: return "unspecified";
+    case v1::QUEUED:
+      return "queued";
+    case v1::RUNNING:
+      return "running";
+    case v1::COMPLETED:
+      return "completed";
+    case v1::FAILED:
+      return "failed";
+    case v1::CANCELLED:
+      return "cancelled";
+    default:
+      return "unspecified";
   }
 }
 
 v1::JobState ParseState(const std::string& name) {
   std::string lower = name;
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   for (v1::JobState s : {v1::QUEUED, v1::RUNNING, v1::COMPLETED, v1::FAILED, v1::CANCELLED}) {
     if (StateName(s) == lower) return s;
   }
-  throw UsageError("--state " + name + " is not allowed: expected queued, running, completed, failed or cancelled");
+  throw UsageError("--state " + name +
+                   " is not allowed: expected queued, running, completed, failed or cancelled");
 }
 
 bool IsFinal(v1::JobState state) {
@@ -66,7 +74,8 @@ std::string FormatTimestamp(double epoch_seconds) {
 
 namespace {
 
-std::string Join(const google::protobuf::RepeatedPtrField<std::string>& items, const char* separator) {
+std::string Join(const google::protobuf::RepeatedPtrField<std::string>& items,
+                 const char* separator) {
   std::string out;
   for (const std::string& item : items) out += (out.empty() ? "" : separator) + item;
   return out;
@@ -81,11 +90,13 @@ std::string Progress(const v1::Job& job) {
 }  // namespace
 
 std::string JobTable(const std::vector<v1::Job>& jobs) {
-  const std::vector<std::string> header = {"ID", "NAME", "STATE", "STEP", "TIME/END", "PRIO", "TAGS", "CREATED"};
+  const std::vector<std::string> header = {"ID",       "NAME", "STATE", "STEP",
+                                           "TIME/END", "PRIO", "TAGS",  "CREATED"};
   std::vector<std::vector<std::string>> rows = {header};
   for (const v1::Job& job : jobs) {
-    rows.push_back({job.id(), job.name(), StateName(job.state()), std::to_string(job.step()), Progress(job),
-                    std::to_string(job.priority()), Join(job.tags(), ","), FormatTimestamp(job.created_time())});
+    rows.push_back({job.id(), job.name(), StateName(job.state()), std::to_string(job.step()),
+                    Progress(job), std::to_string(job.priority()), Join(job.tags(), ","),
+                    FormatTimestamp(job.created_time())});
   }
   std::vector<std::size_t> width(header.size(), 0);
   for (const auto& row : rows) {

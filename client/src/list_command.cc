@@ -1,4 +1,5 @@
-// dlmfd list [--state S]... [--tag T] [--sweep ID] [--page-size N] [--page-token T | --all] [--json]
+// dlmfd list [--state S]... [--tag T] [--sweep ID] [--page-size N] [--page-token T | --all]
+// [--json]
 #include <iostream>
 
 #include "command.h"
@@ -17,7 +18,8 @@ int RunList(int argc, char** argv) {
   std::string tag, sweep, page_token;
   int page_size = 50;
   bool all = false, json = false;
-  app.add_option("--state", states, "queued|running|completed|failed|cancelled (repeatable or comma list)")
+  app.add_option("--state", states,
+                 "queued|running|completed|failed|cancelled (repeatable or comma list)")
       ->delimiter(',');
   app.add_option("--tag", tag, "only jobs with this tag");
   app.add_option("--sweep", sweep, "only jobs of this sweep");
@@ -52,7 +54,8 @@ int RunList(int argc, char** argv) {
     } else {
       std::cout << JobTable(jobs);
     }
-    if (!next.empty()) std::cerr << "more jobs: dlmfd list --page-token " << next << " (or --all)\n";
+    if (!next.empty())
+      std::cerr << "more jobs: dlmfd list --page-token " << next << " (or --all)\n";
     return kExitOk;
   });
 }

@@ -32,7 +32,8 @@ int RunLogs(int argc, char** argv) {
   bool follow = false;
   app.add_option("job", job_id, "job id")->required();
   app.add_flag("--follow,-f", follow, "keep printing until the job ends");
-  app.add_option("--level", level, "lowest level shown")->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
+  app.add_option("--level", level, "lowest level shown")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
   if (auto code = ParseArgs(app, argc, argv)) return *code;
 
   return Guarded("logs", [&] {
@@ -51,11 +52,12 @@ int RunLogs(int argc, char** argv) {
     options.job_id = job_id;
     const WatchOutcome outcome = WatchJob(connection, options, [&](const v1::WatchEvent& e) {
       if (e.has_log() && LevelRank(e.log().level()) >= LevelRank(level)) {
-        std::cout << FormatTimestamp(e.wall_time()) << " " << e.log().level() << " " << e.log().text() << "\n";
+        std::cout << FormatTimestamp(e.wall_time()) << " " << e.log().level() << " "
+                  << e.log().text() << "\n";
         ++printed;
       } else if (e.has_gap()) {
-        std::cout << "-- events " << e.gap().from_seq() << "-" << e.gap().to_seq() << " not held (" << e.gap().reason()
-                  << ")\n";
+        std::cout << "-- events " << e.gap().from_seq() << "-" << e.gap().to_seq() << " not held ("
+                  << e.gap().reason() << ")\n";
       }
       return follow || e.seq() < stop_at;
     });

@@ -35,10 +35,13 @@ void Usage(std::ostream& out) {
     out << "  " << c.name << std::string(10 - std::strlen(c.name), ' ') << c.summary << "\n";
   }
   out << "\n`dlmfd COMMAND --help` describes a command; docs/cli.md has examples and exit codes.\n"
-      << "Server and token: flag > DLMFD_SERVER / DLMFD_TOKEN > ~/.config/dlmfd/config.toml > 127.0.0.1:7443\n";
+      << "Server and token: flag > DLMFD_SERVER / DLMFD_TOKEN > ~/.config/dlmfd/config.toml > "
+         "127.0.0.1:7443\n";
 }
 
-bool TakesValue(const std::string& arg) { return arg == "--server" || arg == "--token" || arg == "--timeout"; }
+bool TakesValue(const std::string& arg) {
+  return arg == "--server" || arg == "--token" || arg == "--timeout";
+}
 
 bool IsGlobalOption(const std::string& arg) {
   return TakesValue(arg) || arg.rfind("--server=", 0) == 0 || arg.rfind("--token=", 0) == 0 ||

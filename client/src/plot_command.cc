@@ -1,4 +1,5 @@
-// dlmfd plot RESULTS_DIR [--snapshot STEP] [--quantity trA|speed] [--out FILE] [--width W] [--height H]
+// dlmfd plot RESULTS_DIR [--snapshot STEP] [--quantity trA|speed] [--out FILE] [--width W]
+// [--height H]
 //            [--log] [--window X0,Y0,X1,Y1]
 // dlmfd plot --job JOB [--out FILE] ...      (the next trA snapshot a running job streams)
 // Writes a PNG of trA (the speed for a Newtonian run) with the particles, prints its path.
@@ -29,8 +30,8 @@ std::string Caption(const std::string& quantity, double time, long step) {
 NodeField FieldOfSnapshot(const v1::Snapshot& s) {
   if (s.nx() < 1 || s.ny() < 1 || !(s.width() > 0) || !(s.height() > 0) ||
       s.values_size() != (s.nx() + 1) * (s.ny() + 1)) {
-    throw Error("the streamed snapshot is malformed (" + std::to_string(s.values_size()) + " values for " +
-                std::to_string(s.nx()) + "x" + std::to_string(s.ny()) + " cells)");
+    throw Error("the streamed snapshot is malformed (" + std::to_string(s.values_size()) +
+                " values for " + std::to_string(s.nx()) + "x" + std::to_string(s.ny()) + " cells)");
   }
   const double hx = s.width() / s.nx();
   const double hy = s.height() / s.ny();
@@ -89,13 +90,19 @@ int PlotJob(const ConnectionFlags& flags, const std::string& job_id, const Pictu
   if (outcome.interrupted) return kExitInterrupted;
   if (!outcome.status.ok()) return ReportRpcError("plot", outcome.status);
   if (!have_snapshot) {
-    return ReportError("plot", "job " + job_id + " streamed no snapshot before it ended; fetch its results " +
-                                   "(dlmfd fetch " + job_id + ") and plot the directory", kExitNotFound);
+    return ReportError("plot",
+                       "job " + job_id +
+                           " streamed no snapshot before it ended; fetch its results " +
+                           "(dlmfd fetch " + job_id + ") and plot the directory",
+                       kExitNotFound);
   }
   PictureOptions picture_options = base;
   const NodeField field = Windowed(FieldOfSnapshot(snapshot), window);
-  if (picture_options.caption.empty()) picture_options.caption = Caption(field.quantity, snapshot.time(), snapshot.step());
-  const std::string path = out.empty() ? job_id + "_" + field.quantity + "_" + std::to_string(snapshot.step()) + ".png" : out;
+  if (picture_options.caption.empty())
+    picture_options.caption = Caption(field.quantity, snapshot.time(), snapshot.step());
+  const std::string path =
+      out.empty() ? job_id + "_" + field.quantity + "_" + std::to_string(snapshot.step()) + ".png"
+                  : out;
   WritePng(DrawFieldPicture(field, disks, picture_options).image, path);
   std::cout << path << "\n";
   return kExitOk;
@@ -112,17 +119,24 @@ int RunPlot(int argc, char** argv) {
   PictureOptions options;
   options.max_width = 1000;
   options.max_height = 1000;
-  auto* dir_option = app.add_option("results", results_dir, "a results directory (dlmfd-solve --out, or fetched)");
-  auto* job_option = app.add_option("--job", job_id, "a running job: draw the next snapshot it streams");
+  auto* dir_option =
+      app.add_option("results", results_dir, "a results directory (dlmfd-solve --out, or fetched)");
+  auto* job_option =
+      app.add_option("--job", job_id, "a running job: draw the next snapshot it streams");
   dir_option->excludes(job_option);
-  app.add_option("--snapshot", snapshot, "the snapshot's step (default: the latest)")->check(CLI::NonNegativeNumber);
+  app.add_option("--snapshot", snapshot, "the snapshot's step (default: the latest)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--quantity", quantity, "trA or speed (default: trA when present)")
       ->check(CLI::IsMember({"trA", "speed"}));
   app.add_option("--out,-o", out, "PNG file to write");
-  app.add_option("--width", options.max_width, "largest image width in pixels")->check(CLI::Range(64, 8192));
-  app.add_option("--height", options.max_height, "largest image height in pixels")->check(CLI::Range(64, 8192));
-  app.add_option("--caption", options.caption, "text above the picture (default: quantity, time, step)");
-  app.add_flag("--log", options.log_colours, "colour by log10 of the value (trA spans decades near particles)");
+  app.add_option("--width", options.max_width, "largest image width in pixels")
+      ->check(CLI::Range(64, 8192));
+  app.add_option("--height", options.max_height, "largest image height in pixels")
+      ->check(CLI::Range(64, 8192));
+  app.add_option("--caption", options.caption,
+                 "text above the picture (default: quantity, time, step)");
+  app.add_flag("--log", options.log_colours,
+               "colour by log10 of the value (trA spans decades near particles)");
   std::vector<double> window;
   app.add_option("--window", window, "draw only [X0, X1] x [Y0, Y1] of the domain: X0,Y0,X1,Y1")
       ->expected(4)
@@ -137,10 +151,13 @@ int RunPlot(int argc, char** argv) {
       if (!job_id.empty()) return PlotJob(connection_flags, job_id, options, window, out);
       ResultsFrame frame = LoadResultsFrame(results_dir, snapshot, quantity);
       frame.field = Windowed(frame.field, window);
-      if (options.caption.empty()) options.caption = Caption(frame.field.quantity, frame.time, frame.step);
-      const std::string path = out.empty()
-          ? (std::filesystem::path(results_dir) / (frame.field.quantity + "_" + std::to_string(frame.step) + ".png")).string()
-          : out;
+      if (options.caption.empty())
+        options.caption = Caption(frame.field.quantity, frame.time, frame.step);
+      const std::string path =
+          out.empty() ? (std::filesystem::path(results_dir) /
+                         (frame.field.quantity + "_" + std::to_string(frame.step) + ".png"))
+                            .string()
+                      : out;
       try {
         WritePng(DrawFieldPicture(frame.field, frame.disks, options).image, path);
       } catch (const InvalidParameter&) {

@@ -11,15 +11,18 @@
 namespace dlmfd::cli {
 
 ProgressPrinter::ProgressPrinter(std::string job_id, PrintMode mode, std::ostream& out)
-    : job_id_(std::move(job_id)), mode_(mode), out_(out) {}
+    : job_id_(std::move(job_id)),
+      mode_(mode),
+      out_(out) {}
 
 std::string ProgressPrinter::StatusLine() const {
   char text[256];
-  std::snprintf(text, sizeof(text), "%s %-9s step %lld  t %.4g/%.4g  %.1f steps/s  ETA %s", job_id_.c_str(),
-                state_.c_str(), static_cast<long long>(step_), time_, end_time_, steps_per_second_,
-                FormatDuration(eta_seconds_).c_str());
+  std::snprintf(text, sizeof(text), "%s %-9s step %lld  t %.4g/%.4g  %.1f steps/s  ETA %s",
+                job_id_.c_str(), state_.c_str(), static_cast<long long>(step_), time_, end_time_,
+                steps_per_second_, FormatDuration(eta_seconds_).c_str());
   std::string line = text;
-  if (particles_ >= 0) line += "  " + std::to_string(particles_) + (particles_ == 1 ? " particle" : " particles");
+  if (particles_ >= 0)
+    line += "  " + std::to_string(particles_) + (particles_ == 1 ? " particle" : " particles");
   return line;
 }
 
@@ -52,7 +55,8 @@ bool ProgressPrinter::OnEvent(const v1::WatchEvent& event) {
       time_ = s.job().time();
       end_time_ = s.job().end_time();
     }
-    if (!repeated) PrintAbove(job_id_ + " " + state_ + (s.reason().empty() ? "" : ": " + s.reason()));
+    if (!repeated)
+      PrintAbove(job_id_ + " " + state_ + (s.reason().empty() ? "" : ": " + s.reason()));
   } else if (event.has_progress()) {
     const v1::JobProgress& p = event.progress();
     step_ = p.step();
@@ -70,7 +74,8 @@ bool ProgressPrinter::OnEvent(const v1::WatchEvent& event) {
     particles_ = event.particles().particles_size();
   } else if (event.has_log()) {
     const std::string& level = event.log().level();
-    if (level == "warn" || level == "error") PrintAbove(job_id_ + " " + level + ": " + event.log().text());
+    if (level == "warn" || level == "error")
+      PrintAbove(job_id_ + " " + level + ": " + event.log().text());
   } else if (event.has_gap()) {
     PrintAbove(job_id_ + " missed events " + std::to_string(event.gap().from_seq()) + "-" +
                std::to_string(event.gap().to_seq()) + " (" + event.gap().reason() + ")");
@@ -81,7 +86,8 @@ bool ProgressPrinter::OnEvent(const v1::WatchEvent& event) {
 void ProgressPrinter::OnReconnect(const grpc::Status& status, double delay) {
   char text[64];
   std::snprintf(text, sizeof(text), "; reconnecting in %.2g s", delay);
-  const std::string line = job_id_ + " stream broken (" + StatusCodeName(status.error_code()) + ")" + text;
+  const std::string line =
+      job_id_ + " stream broken (" + StatusCodeName(status.error_code()) + ")" + text;
   if (mode_ == PrintMode::kJson) {
     std::cerr << line << "\n";
   } else {

@@ -1,5 +1,6 @@
 // What `watch` and `submit --wait` print while a job runs.
-//   live (stdout is a terminal): one status line rewritten in place -- state, step, simulated time /
+//   live (stdout is a terminal): one status line rewritten in place -- state, step, simulated time
+//   /
 //     end, steps/s, ETA, particle count -- with state changes, warnings and gaps on lines above it;
 //   plain (a pipe or file): state changes, warnings and a progress line at most every 10 s;
 //   json: every event as one JSON line (NDJSON), nothing else on stdout.

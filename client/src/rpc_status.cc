@@ -35,24 +35,42 @@ int ExitCodeFor(grpc::StatusCode code) {
 
 std::string StatusCodeName(grpc::StatusCode code) {
   switch (code) {
-    case grpc::StatusCode::OK: return "ok";
-    case grpc::StatusCode::CANCELLED: return "cancelled";
-    case grpc::StatusCode::UNKNOWN: return "unknown error";
-    case grpc::StatusCode::INVALID_ARGUMENT: return "invalid argument";
-    case grpc::StatusCode::DEADLINE_EXCEEDED: return "deadline exceeded";
-    case grpc::StatusCode::NOT_FOUND: return "not found";
-    case grpc::StatusCode::ALREADY_EXISTS: return "already exists";
-    case grpc::StatusCode::PERMISSION_DENIED: return "permission denied";
-    case grpc::StatusCode::RESOURCE_EXHAUSTED: return "resource exhausted";
-    case grpc::StatusCode::FAILED_PRECONDITION: return "failed precondition";
-    case grpc::StatusCode::ABORTED: return "aborted";
-    case grpc::StatusCode::OUT_OF_RANGE: return "out of range";
-    case grpc::StatusCode::UNIMPLEMENTED: return "unimplemented";
-    case grpc::StatusCode::INTERNAL: return "internal error";
-    case grpc::StatusCode::UNAVAILABLE: return "server unavailable";
-    case grpc::StatusCode::DATA_LOSS: return "data loss";
-    case grpc::StatusCode::UNAUTHENTICATED: return "unauthenticated";
-    default: return "status " + std::to_string(int(code));
+    case grpc::StatusCode::OK:
+      return "ok";
+    case grpc::StatusCode::CANCELLED:
+      return "cancelled";
+    case grpc::StatusCode::UNKNOWN:
+      return "unknown error";
+    case grpc::StatusCode::INVALID_ARGUMENT:
+      return "invalid argument";
+    case grpc::StatusCode::DEADLINE_EXCEEDED:
+      return "deadline exceeded";
+    case grpc::StatusCode::NOT_FOUND:
+      return "not found";
+    case grpc::StatusCode::ALREADY_EXISTS:
+      return "already exists";
+    case grpc::StatusCode::PERMISSION_DENIED:
+      return "permission denied";
+    case grpc::StatusCode::RESOURCE_EXHAUSTED:
+      return "resource exhausted";
+    case grpc::StatusCode::FAILED_PRECONDITION:
+      return "failed precondition";
+    case grpc::StatusCode::ABORTED:
+      return "aborted";
+    case grpc::StatusCode::OUT_OF_RANGE:
+      return "out of range";
+    case grpc::StatusCode::UNIMPLEMENTED:
+      return "unimplemented";
+    case grpc::StatusCode::INTERNAL:
+      return "internal error";
+    case grpc::StatusCode::UNAVAILABLE:
+      return "server unavailable";
+    case grpc::StatusCode::DATA_LOSS:
+      return "data loss";
+    case grpc::StatusCode::UNAUTHENTICATED:
+      return "unauthenticated";
+    default:
+      return "status " + std::to_string(int(code));
   }
 }
 

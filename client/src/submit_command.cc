@@ -24,9 +24,11 @@ int RunSubmit(int argc, char** argv) {
   int priority = 0;
   bool wait = false, json = false;
   app.add_option("scene", scene_path, "scene file (TOML)")->required();
-  app.add_option("--set", overrides, "override a scene key: --set fluid.relaxation_time=2 (repeatable)");
+  app.add_option("--set", overrides,
+                 "override a scene key: --set fluid.relaxation_time=2 (repeatable)");
   app.add_option("--tag", tags, "label the job (repeatable)");
-  app.add_option("--priority", priority, "higher runs first, -1000..1000")->check(CLI::Range(-1000, 1000));
+  app.add_option("--priority", priority, "higher runs first, -1000..1000")
+      ->check(CLI::Range(-1000, 1000));
   app.add_option("--name", name, "job name (default: the scene file's stem)");
   app.add_option("--request-id", request_id, "idempotency key (default: a fresh random id)");
   app.add_flag("--wait", wait, "watch the job to the end; exit 0 if it completed, 1 if not");
@@ -59,7 +61,8 @@ int RunSubmit(int argc, char** argv) {
       std::cout << ToJsonLine(job) << "\n";
     } else {
       std::cout << job.id() << "\n";
-      std::cerr << "submitted " << job.name() << " as job " << job.id() << " (" << StateName(job.state()) << ")\n";
+      std::cerr << "submitted " << job.name() << " as job " << job.id() << " ("
+                << StateName(job.state()) << ")\n";
     }
     std::cout.flush();
     if (!wait) return kExitOk;

@@ -50,10 +50,12 @@ int RunSweep(int argc, char** argv) {
   int priority = 0;
   bool json = false;
   app.add_option("scene", scene_path, "base scene file (TOML)")->required();
-  app.add_option("--grid", grids, "an axis: key=v1,v2,... (repeatable; the grid is their product)")->required();
+  app.add_option("--grid", grids, "an axis: key=v1,v2,... (repeatable; the grid is their product)")
+      ->required();
   app.add_option("--set", overrides, "override for every point: key=value (repeatable)");
   app.add_option("--tag", tags, "label every job (repeatable)");
-  app.add_option("--priority", priority, "higher runs first, -1000..1000")->check(CLI::Range(-1000, 1000));
+  app.add_option("--priority", priority, "higher runs first, -1000..1000")
+      ->check(CLI::Range(-1000, 1000));
   app.add_option("--name", name, "sweep name (default: the scene file's stem)");
   app.add_option("--request-id", request_id, "idempotency key (default: a fresh random id)");
   app.add_flag("--json", json, "print the response as one JSON line");

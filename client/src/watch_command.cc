@@ -19,10 +19,13 @@ int RunWatch(int argc, char** argv) {
   app.add_option("job", options.job_id, "job id")->required();
   app.add_flag("--json", json, "print every event as one JSON line (NDJSON)");
   app.add_flag("--snapshots", options.include_snapshots, "with --json: include trA snapshots");
-  app.add_option("--snapshot-width", options.snapshot_max_width, "downsample snapshots to this many nodes in x");
+  app.add_option("--snapshot-width", options.snapshot_max_width,
+                 "downsample snapshots to this many nodes in x");
   app.add_option("--snapshot-height", options.snapshot_max_height, "... and in y");
-  app.add_option("--from-seq", options.from_seq, "start after this event sequence number")->check(CLI::NonNegativeNumber);
-  app.add_option("--reconnect-seconds", options.reconnect_seconds, "give up after this long without the daemon")
+  app.add_option("--from-seq", options.from_seq, "start after this event sequence number")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--reconnect-seconds", options.reconnect_seconds,
+                 "give up after this long without the daemon")
       ->check(CLI::PositiveNumber);
   if (auto code = ParseArgs(app, argc, argv)) return *code;
   if (!json) options.include_snapshots = false;

@@ -26,7 +26,8 @@ bool Retryable(grpc::StatusCode code) {
 // Cancels the current stream's context once an interrupt arrives.
 class InterruptWatchdog {
  public:
-  InterruptWatchdog() : thread_([this] { Run(); }) {}
+  InterruptWatchdog()
+      : thread_([this] { Run(); }) {}
   ~InterruptWatchdog() {
     done_.store(true);
     thread_.join();
@@ -109,7 +110,9 @@ WatchOutcome WatchJob(Connection& connection, const WatchOptions& options,
     }
     const double waited = std::chrono::duration<double>(Clock::now() - last_contact).count();
     if (waited + delay > options.reconnect_seconds) {
-      outcome.status = status.ok() ? grpc::Status(grpc::StatusCode::UNAVAILABLE, "the stream ended early") : status;
+      outcome.status = status.ok()
+                           ? grpc::Status(grpc::StatusCode::UNAVAILABLE, "the stream ended early")
+                           : status;
       break;
     }
     if (on_reconnect) on_reconnect(status, delay);

@@ -23,18 +23,19 @@ struct WatchOptions {
 };
 
 struct WatchOutcome {
-  grpc::Status status;              // the permanent error, or OK
-  bool finished = false;            // a final state was seen
-  v1::Job job;                      // the job as of the latest state change
+  grpc::Status status;    // the permanent error, or OK
+  bool finished = false;  // a final state was seen
+  v1::Job job;            // the job as of the latest state change
   std::int64_t last_seq = 0;
   int reconnects = 0;
-  bool interrupted = false;         // SIGINT or SIGTERM
-  bool stopped = false;             // the handler returned false
+  bool interrupted = false;  // SIGINT or SIGTERM
+  bool stopped = false;      // the handler returned false
 };
 
 // `on_event` returns false to stop watching. `on_reconnect` (may be empty) is told of each retry.
-WatchOutcome WatchJob(Connection& connection, const WatchOptions& options,
-                      const std::function<bool(const v1::WatchEvent&)>& on_event,
-                      const std::function<void(const grpc::Status&, double delay)>& on_reconnect = {});
+WatchOutcome WatchJob(
+    Connection& connection, const WatchOptions& options,
+    const std::function<bool(const v1::WatchEvent&)>& on_event,
+    const std::function<void(const grpc::Status&, double delay)>& on_reconnect = {});
 
 }  // namespace dlmfd::cli

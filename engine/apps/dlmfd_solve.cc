@@ -1,6 +1,7 @@
 // dlmfd-solve: one scene in, one results directory out (design.md 3.1-3.2).
 //
-//   dlmfd-solve SCENE --out DIR [--set key=value]... [--resume] [--threads N] [--events FD] [--quiet]
+//   dlmfd-solve SCENE --out DIR [--set key=value]... [--resume] [--threads N] [--events FD]
+//   [--quiet]
 //
 // Exit status: 0 completed; 1 failed while running (reason in summary.json, results so far kept
 // and closed); 2 invalid scene or arguments (message on stderr naming key, value and what is
@@ -8,9 +9,9 @@
 // summary.json status cancelled). The handler only sets an atomic flag, checked between steps.
 // --resume goes on from DIR/checkpoint.h5 when the scene (after defaults and --set) is the one in
 // DIR/scene.toml; the resumed run's results equal an uninterrupted run's bit for bit.
-#include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
 #include <atomic>
 #include <chrono>
@@ -64,8 +65,12 @@ struct Options {
 class ProgressLine {
  public:
   ProgressLine(bool quiet, long first_step, long total_steps, double end_time)
-      : quiet_(quiet), first_step_(first_step), total_steps_(total_steps), end_time_(end_time),
-        start_(std::chrono::steady_clock::now()), last_(start_) {}
+      : quiet_(quiet),
+        first_step_(first_step),
+        total_steps_(total_steps),
+        end_time_(end_time),
+        start_(std::chrono::steady_clock::now()),
+        last_(start_) {}
 
   void Update(long step, double time, bool force) {
     const auto now = std::chrono::steady_clock::now();
@@ -74,8 +79,8 @@ class ProgressLine {
     const double wall = std::chrono::duration<double>(now - start_).count();
     const double rate = wall > 0.0 ? static_cast<double>(step - first_step_) / wall : 0.0;
     const double eta = rate > 0.0 ? static_cast<double>(total_steps_ - step) / rate : 0.0;
-    std::fprintf(stderr, "step %ld/%ld  t = %.6g / %.6g  %.1f steps/s  ETA %.0f s\n", step, total_steps_, time,
-                 end_time_, rate, eta);
+    std::fprintf(stderr, "step %ld/%ld  t = %.6g / %.6g  %.1f steps/s  ETA %.0f s\n", step,
+                 total_steps_, time, end_time_, rate, eta);
     std::fflush(stderr);
   }
 
@@ -103,7 +108,8 @@ int Run(const Options& opt, dlmfd::EventStream& events) {
     std::vector<SceneOverride> overrides;
     for (const std::string& s : opt.sets) overrides.push_back(ParseOverride(s));
     params = LoadSceneFile(opt.scene, overrides);
-    if (opt.threads < 0) throw InvalidParameter("--threads", std::to_string(opt.threads), "an integer >= 0");
+    if (opt.threads < 0)
+      throw InvalidParameter("--threads", std::to_string(opt.threads), "an integer >= 0");
     params.threads = opt.threads;
     sim = std::make_unique<Simulation>(params);
     if (opt.resume) {
@@ -111,18 +117,19 @@ int Run(const Options& opt, dlmfd::EventStream& events) {
       try {
         checkpoint = ReadCheckpoint(ckpt_path);
       } catch (const Error& e) {
-        throw InvalidParameter("--resume", ckpt_path, std::string("a readable checkpoint (") + e.what() + ")");
+        throw InvalidParameter("--resume", ckpt_path,
+                               std::string("a readable checkpoint (") + e.what() + ")");
       }
       const std::string scene_text = WriteScene(params);
       std::string stored;
       try {
         stored = ReadTextFile(opt.out + "/" + ResultsWriter::kScene);
-      } catch (const Error&) {
-      }
+      } catch (const Error&) {}
       if (stored != scene_text || checkpoint.scene_text != scene_text) {
         throw InvalidParameter("--resume", opt.scene,
-                               "the scene of " + opt.out + "/scene.toml and of its checkpoint (after defaults "
-                               "and --set); run without --resume to start over");
+                               "the scene of " + opt.out +
+                                   "/scene.toml and of its checkpoint (after defaults "
+                                   "and --set); run without --resume to start over");
       }
       sim->Restore(checkpoint.state);
     }
@@ -132,8 +139,9 @@ int Run(const Options& opt, dlmfd::EventStream& events) {
 
   std::unique_ptr<ResultsWriter> results;
   try {
-    results = opt.resume ? ResultsWriter::Resume(opt.out, params, sim->grid(), checkpoint.state.step)
-                         : ResultsWriter::Start(opt.out, params, sim->grid(), sim->state());
+    results = opt.resume
+                  ? ResultsWriter::Resume(opt.out, params, sim->grid(), checkpoint.state.step)
+                  : ResultsWriter::Start(opt.out, params, sim->grid(), sim->state());
   } catch (const Error& e) {
     spdlog::error("cannot prepare the results directory: {}", e.what());
     events.Log("error", e.what());
@@ -169,8 +177,8 @@ int Run(const Options& opt, dlmfd::EventStream& events) {
   if (opt.resume) {
     spdlog::info("resuming {} from step {} (t = {})", opt.scene, first_step, sim->state().time);
   } else {
-    spdlog::info("running {} into {}: {} steps on a {} x {} mesh", opt.scene, opt.out, sim->TotalSteps(),
-                 sim->grid().nx, sim->grid().ny);
+    spdlog::info("running {} into {}: {} steps on a {} x {} mesh", opt.scene, opt.out,
+                 sim->TotalSteps(), sim->grid().nx, sim->grid().ny);
   }
 
   RunSummary summary;
@@ -202,7 +210,8 @@ int Run(const Options& opt, dlmfd::EventStream& events) {
     events.Log("error", e.what());
   }
   progress.Update(sim->state().step, sim->state().time, true);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const long steps_here = sim->state().step - first_step;
   summary.exit_code = code;
   summary.steps = sim->state().step;
@@ -217,7 +226,8 @@ int Run(const Options& opt, dlmfd::EventStream& events) {
     if (code == kExitCompleted) code = kExitFailed;
   }
   results.reset();
-  spdlog::info("{} after {} steps (t = {}); results in {}", summary.status, summary.steps, summary.time, opt.out);
+  spdlog::info("{} after {} steps (t = {}); results in {}", summary.status, summary.steps,
+               summary.time, opt.out);
   events.Finished(summary.status, summary.reason, summary.steps, summary.time, code);
   return code;
 }
@@ -227,11 +237,13 @@ int Run(const Options& opt, dlmfd::EventStream& events) {
 int main(int argc, char** argv) {
   spdlog::set_default_logger(spdlog::stderr_color_st("dlmfd-solve"));
   Options opt;
-  CLI::App app{"dlmfd-solve: DLM/FD particulate flow in an Oldroyd-B or Newtonian liquid; one scene in, one "
-               "results directory out"};
+  CLI::App app{
+      "dlmfd-solve: DLM/FD particulate flow in an Oldroyd-B or Newtonian liquid; one scene in, one "
+      "results directory out"};
   app.add_option("scene", opt.scene, "scene file (TOML, docs/scenes.md)")->required();
   app.add_option("--out", opt.out, "results directory (docs/results.md)")->required();
-  app.add_option("--set", opt.sets, "override a scene key: key=value (dotted, e.g. fluid.relaxation_time=2)");
+  app.add_option("--set", opt.sets,
+                 "override a scene key: key=value (dotted, e.g. fluid.relaxation_time=2)");
   app.add_flag("--resume", opt.resume, "go on from DIR/checkpoint.h5");
   app.add_option("--threads", opt.threads, "OpenMP threads (0: the default)");
   app.add_option("--events", opt.events_fd, "write the SolverEvent stream to this file descriptor");

@@ -10,7 +10,8 @@
 namespace dlmfd {
 
 struct EventStream::Output {
-  explicit Output(int fd) : stream(fd) {}
+  explicit Output(int fd)
+      : stream(fd) {}
   google::protobuf::io::FileOutputStream stream;
 };
 
@@ -25,8 +26,9 @@ void EventStream::Send(v1::SolverEvent& event) {
   event.set_seq(++seq_);
   event.set_wall_time(
       std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
-  const bool ok = google::protobuf::util::SerializeDelimitedToZeroCopyStream(event, &out_->stream) &&
-                  out_->stream.Flush();
+  const bool ok =
+      google::protobuf::util::SerializeDelimitedToZeroCopyStream(event, &out_->stream) &&
+      out_->stream.Flush();
   if (!ok) out_.reset();
 }
 
@@ -37,8 +39,8 @@ void EventStream::Log(const std::string& level, const std::string& text) {
   Send(e);
 }
 
-void EventStream::Finished(const std::string& status, const std::string& reason, long steps, double time,
-                           int exit_code) {
+void EventStream::Finished(const std::string& status, const std::string& reason, long steps,
+                           double time, int exit_code) {
   v1::SolverEvent e;
   v1::Finished* f = e.mutable_finished();
   f->set_status(status);
@@ -56,7 +58,8 @@ EventObserver::EventObserver(EventStream* stream, const Params& params, const Gr
       total_steps_(std::llround(params.time.end / params.time.dt)) {
   v1::ParticleStates* ps = particles_event_.mutable_particles();
   for (std::size_t i = 0; i < params.particles.size(); ++i) ps->add_particles();
-  snapshot_event_.mutable_snapshot()->mutable_values()->Resize(static_cast<int>(grid.NodeCount()), 0.0f);
+  snapshot_event_.mutable_snapshot()->mutable_values()->Resize(static_cast<int>(grid.NodeCount()),
+                                                               0.0f);
   progress_event_.mutable_progress();
   Begin(0);
 }
@@ -92,7 +95,8 @@ void EventObserver::OnParticles(const FlowState& state) {
   v1::ParticleStates* ps = particles_event_.mutable_particles();
   ps->set_step(state.step);
   ps->set_time(state.time);
-  for (std::size_t i = 0; i < state.particles.size() && static_cast<int>(i) < ps->particles_size(); ++i) {
+  for (std::size_t i = 0; i < state.particles.size() && static_cast<int>(i) < ps->particles_size();
+       ++i) {
     const ParticleState& q = state.particles[i];
     v1::Particle* out = ps->mutable_particles(static_cast<int>(i));
     out->set_id(q.id);

@@ -30,7 +30,8 @@ class EventStream {
   // Sets seq and wall_time, writes and flushes.
   void Send(v1::SolverEvent& event);
   void Log(const std::string& level, const std::string& text);
-  void Finished(const std::string& status, const std::string& reason, long steps, double time, int exit_code);
+  void Finished(const std::string& status, const std::string& reason, long steps, double time,
+                int exit_code);
 
  private:
   struct Output;
@@ -54,7 +55,8 @@ class EventObserver : public Observer {
   long total_steps_;
   long first_step_ = 0;
   std::chrono::steady_clock::time_point start_, last_progress_;
-  v1::SolverEvent particles_event_, snapshot_event_, progress_event_;  // reused: no allocation per step
+  v1::SolverEvent particles_event_, snapshot_event_,
+      progress_event_;  // reused: no allocation per step
 };
 
 }  // namespace dlmfd

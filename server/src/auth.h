@@ -15,7 +15,8 @@ inline constexpr char kLocalUser[] = "local";
 
 class Authenticator {
  public:
-  explicit Authenticator(std::map<std::string, std::string> tokens) : tokens_(std::move(tokens)) {}
+  explicit Authenticator(std::map<std::string, std::string> tokens)
+      : tokens_(std::move(tokens)) {}
   // The user of the call; throws ServiceError UNAUTHENTICATED.
   std::string User(const grpc::ServerContextBase& context) const;
   std::string UserOfHeader(const std::string* authorization) const;

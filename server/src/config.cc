@@ -1,7 +1,7 @@
 #include "config.h"
 
-#include <CLI/CLI.hpp>
 #include <toml++/toml.h>
+#include <CLI/CLI.hpp>
 
 #include <cstdlib>
 #include <filesystem>
@@ -105,7 +105,8 @@ void ApplyFile(const std::string& path, const std::vector<Setting>& settings, Co
 
 std::string DefaultDataDir(const EnvLookup& env) {
   if (const char* xdg = env("XDG_DATA_HOME"); xdg && *xdg) return std::string(xdg) + "/dlmfd";
-  if (const char* home = env("HOME"); home && *home) return std::string(home) + "/.local/share/dlmfd";
+  if (const char* home = env("HOME"); home && *home)
+    return std::string(home) + "/.local/share/dlmfd";
   return "dlmfd-data";
 }
 
@@ -129,8 +130,7 @@ bool IsLoopbackAddress(const std::string& listen) {
   if (!host.empty() && host.front() == '[') {
     auto close = host.find(']');
     host = close == std::string::npos ? host : host.substr(1, close - 1);
-  } else if (auto colon = host.rfind(':'); colon != std::string::npos &&
-                                            host.find(':') == colon) {
+  } else if (auto colon = host.rfind(':'); colon != std::string::npos && host.find(':') == colon) {
     host = host.substr(0, colon);
   }
   if (host == "localhost" || host == "::1") return true;
@@ -195,9 +195,10 @@ void ValidateConfig(Config& config) {
   config.tokens.clear();
   if (!config.tokens_file.empty()) config.tokens = LoadTokens(config.tokens_file);
   if (!IsLoopbackAddress(config.listen) && config.tokens.empty()) {
-    throw ConfigError("refusing to listen on " + config.listen +
-                      ": it is not a loopback address and no tokens are configured "
-                      "(set tokens_file to a file of \"token user\" lines, or listen on 127.0.0.1)");
+    throw ConfigError(
+        "refusing to listen on " + config.listen +
+        ": it is not a loopback address and no tokens are configured "
+        "(set tokens_file to a file of \"token user\" lines, or listen on 127.0.0.1)");
   }
   if (config.solver.empty()) throw ConfigError("solver must not be empty");
 }
@@ -210,8 +211,9 @@ bool LoadConfig(int argc, const char* const* argv, const EnvLookup& env, Config&
   std::map<std::string, std::string> flag_values;
   std::vector<CLI::Option*> options;
   for (const auto& setting : settings) {
-    options.push_back(app.add_option(FlagName(setting.key), flag_values[setting.key],
-                                     std::string("see docs/api.md (") + EnvName(setting.key) + ")"));
+    options.push_back(
+        app.add_option(FlagName(setting.key), flag_values[setting.key],
+                       std::string("see docs/api.md (") + EnvName(setting.key) + ")"));
   }
   try {
     app.parse(argc, argv);

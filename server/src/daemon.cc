@@ -18,7 +18,8 @@
 namespace dlmfd::server {
 namespace fs = std::filesystem;
 
-Daemon::Daemon(Config config) : config_(std::move(config)) {}
+Daemon::Daemon(Config config)
+    : config_(std::move(config)) {}
 
 Daemon::~Daemon() {
   Shutdown();
@@ -50,8 +51,8 @@ void Daemon::Start() {
   grpc::ServerBuilder builder;
   builder.AddListeningPort(config_.listen, grpc::InsecureServerCredentials(), &port_);
   builder.RegisterService(service_.get());
-  builder.SetMaxReceiveMessageSize(static_cast<int>(
-      std::min<int64_t>(config_.max_scene_bytes * 2 + (1 << 20), INT32_MAX)));
+  builder.SetMaxReceiveMessageSize(
+      static_cast<int>(std::min<int64_t>(config_.max_scene_bytes * 2 + (1 << 20), INT32_MAX)));
   server_ = builder.BuildAndStart();
   if (!server_ || port_ == 0) {
     throw ConfigError("cannot listen on " + config_.listen);

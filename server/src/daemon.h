@@ -1,8 +1,8 @@
-// Daemon: dlmfdd put together. Takes the data directory's lock (one daemon per directory), opens the
-// store (DATA/jobs.db), re-queues the jobs a previous daemon left RUNNING (they resume from their
-// checkpoints), starts the scheduler and the gRPC server with the Jobs service, the standard health
-// service and server reflection. Shutdown stops the server (open streams are cancelled after a short
-// grace) and then the scheduler (running solvers checkpoint and stay RUNNING in the store).
+// Daemon: dlmfdd put together. Takes the data directory's lock (one daemon per directory), opens
+// the store (DATA/jobs.db), re-queues the jobs a previous daemon left RUNNING (they resume from
+// their checkpoints), starts the scheduler and the gRPC server with the Jobs service, the standard
+// health service and server reflection. Shutdown stops the server (open streams are cancelled after
+// a short grace) and then the scheduler (running solvers checkpoint and stay RUNNING in the store).
 #pragma once
 
 #include <grpcpp/server.h>

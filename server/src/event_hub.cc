@@ -15,8 +15,8 @@ struct EventHub::Channel {
   v1::Job job;
   std::deque<v1::WatchEvent> ring;
   std::optional<v1::WatchEvent> snapshot;
-  int64_t last_seq = 0;   // last issued
-  int64_t reserved = 0;   // issued numbers never exceed this (persisted)
+  int64_t last_seq = 0;  // last issued
+  int64_t reserved = 0;  // issued numbers never exceed this (persisted)
   std::vector<std::shared_ptr<WatcherQueue>> watchers;
   bool finished = false;
 };
@@ -39,8 +39,9 @@ std::shared_ptr<EventHub::Channel> EventHub::FindOrCreate(const JobRecord& job) 
   return slot;
 }
 
-// Assigns the sequence number, keeps the event, pushes it to the watchers; those whose send token was
-// taken are added to `wake`, to be woken after the channel lock is released. Channel locked by caller.
+// Assigns the sequence number, keeps the event, pushes it to the watchers; those whose send token
+// was taken are added to `wake`, to be woken after the channel lock is released. Channel locked by
+// caller.
 void EventHub::Deliver(Channel& channel, v1::WatchEvent event, WakeList& wake) {
   if (channel.last_seq >= channel.reserved) {
     channel.reserved = channel.last_seq + kSeqBlock;
@@ -80,22 +81,22 @@ void EventHub::PublishState(const JobRecord& job) {
   }
   WakeList wake;
   {
-  std::lock_guard lock(channel->mutex);
-  channel->job = ToProto(job);
-  channel->job.set_last_seq(channel->reserved);
-  v1::WatchEvent event;
-  auto* state = event.mutable_state();
-  state->set_state(channel->job.state());
-  state->set_reason(job.reason);
-  *state->mutable_job() = channel->job;
-  Deliver(*channel, std::move(event), wake);
-  if (IsFinished(job.state)) {
-    channel->finished = true;
-    for (const auto& watcher : channel->watchers) {
-      if (watcher->PushEnd()) wake.push_back(watcher);
+    std::lock_guard lock(channel->mutex);
+    channel->job = ToProto(job);
+    channel->job.set_last_seq(channel->reserved);
+    v1::WatchEvent event;
+    auto* state = event.mutable_state();
+    state->set_state(channel->job.state());
+    state->set_reason(job.reason);
+    *state->mutable_job() = channel->job;
+    Deliver(*channel, std::move(event), wake);
+    if (IsFinished(job.state)) {
+      channel->finished = true;
+      for (const auto& watcher : channel->watchers) {
+        if (watcher->PushEnd()) wake.push_back(watcher);
+      }
+      channel->watchers.clear();
     }
-    channel->watchers.clear();
-  }
   }
   WakeAll(wake);
 }
@@ -152,7 +153,8 @@ bool EventHub::Attach(const JobRecord& job, int64_t from_seq,
   state->set_reason(channel->job.reason());
   *state->mutable_job() = channel->job;
   push(current);
-  const int64_t first_held = channel->ring.empty() ? channel->last_seq + 1 : channel->ring.front().seq();
+  const int64_t first_held =
+      channel->ring.empty() ? channel->last_seq + 1 : channel->ring.front().seq();
   if (from_seq + 1 < first_held && from_seq < channel->last_seq && from_seq > 0) {
     v1::WatchEvent gap;
     gap.set_wall_time(NowSeconds());

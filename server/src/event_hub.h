@@ -1,11 +1,12 @@
 // EventHub: per job, the recent events with their sequence numbers, fanned out to watchers.
 //
-// Each unfinished job that is running or watched has a channel: a ring of the last `ring_size` events
-// (snapshots excluded), the latest snapshot (a newer one replaces it), the job as of its last state
-// change, and the attached WatcherQueues. Publishing assigns the next sequence number and pushes to
-// every watcher without blocking. Sequence numbers are reserved in the store in blocks of kSeqBlock,
-// so they keep increasing across daemon restarts. A job's final state change ends every watch and
-// drops the channel; a later Watch of a finished job replays the final state from the store.
+// Each unfinished job that is running or watched has a channel: a ring of the last `ring_size`
+// events (snapshots excluded), the latest snapshot (a newer one replaces it), the job as of its
+// last state change, and the attached WatcherQueues. Publishing assigns the next sequence number
+// and pushes to every watcher without blocking. Sequence numbers are reserved in the store in
+// blocks of kSeqBlock, so they keep increasing across daemon restarts. A job's final state change
+// ends every watch and drops the channel; a later Watch of a finished job replays the final state
+// from the store.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +26,9 @@ class EventHub {
  public:
   static constexpr int64_t kSeqBlock = 1000;
 
-  EventHub(JobStore& store, size_t ring_size) : store_(store), ring_size_(ring_size) {}
+  EventHub(JobStore& store, size_t ring_size)
+      : store_(store),
+        ring_size_(ring_size) {}
 
   // A state change of a job (the record as now in the store). A finished state ends the watches.
   void PublishState(const JobRecord& job);

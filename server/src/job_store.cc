@@ -80,11 +80,16 @@ bool IsFinished(JobState state) {
 
 const char* JobStateName(JobState state) {
   switch (state) {
-    case JobState::kQueued: return "QUEUED";
-    case JobState::kRunning: return "RUNNING";
-    case JobState::kCompleted: return "COMPLETED";
-    case JobState::kFailed: return "FAILED";
-    case JobState::kCancelled: return "CANCELLED";
+    case JobState::kQueued:
+      return "QUEUED";
+    case JobState::kRunning:
+      return "RUNNING";
+    case JobState::kCompleted:
+      return "COMPLETED";
+    case JobState::kFailed:
+      return "FAILED";
+    case JobState::kCancelled:
+      return "CANCELLED";
   }
   return "UNKNOWN";
 }
@@ -92,7 +97,8 @@ const char* JobStateName(JobState state) {
 // A prepared statement with positional binding; finalised on destruction.
 class JobStore::Statement {
  public:
-  Statement(sqlite3* db, const std::string& sql) : db_(db) {
+  Statement(sqlite3* db, const std::string& sql)
+      : db_(db) {
     if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK) {
       throw StoreError(std::string("prepare: ") + sqlite3_errmsg(db));
     }
@@ -123,8 +129,7 @@ class JobStore::Statement {
     throw StoreError(std::string("step: ") + sqlite3_errmsg(db_));
   }
   void Run() {
-    while (Step()) {
-    }
+    while (Step()) {}
   }
   int64_t Int(int col) const { return sqlite3_column_int64(stmt_, col); }
   double Real(int col) const { return sqlite3_column_double(stmt_, col); }
@@ -150,7 +155,10 @@ namespace {
 // BEGIN IMMEDIATE ... COMMIT, rolled back if not committed.
 class Transaction {
  public:
-  explicit Transaction(sqlite3* db) : db_(db) { Exec("BEGIN IMMEDIATE"); }
+  explicit Transaction(sqlite3* db)
+      : db_(db) {
+    Exec("BEGIN IMMEDIATE");
+  }
   ~Transaction() {
     if (!done_) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
   }
@@ -272,7 +280,7 @@ void JobStore::LoadTags(JobRecord& job) {
 }
 
 JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const std::string& owner,
-                                           const std::string& request_key) {
+                                            const std::string& request_key) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
   InsertResult result;
@@ -295,9 +303,17 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
                      "INSERT INTO jobs (id, name, owner, state, reason, priority, sweep_id, "
                      "created_time, results_dir, scene, overrides, client_request_id) "
                      "VALUES (?, ?, ?, ?, '', ?, ?, ?, ?, ?, ?, ?)");
-    insert.Bind(job.id).Bind(job.name).Bind(job.owner).Bind(static_cast<int>(job.state))
-        .Bind(job.priority).Bind(job.sweep_id).Bind(job.created_time).Bind(job.results_dir)
-        .Bind(job.scene).Bind(Join(job.overrides, '\n')).Bind(job.client_request_id);
+    insert.Bind(job.id)
+        .Bind(job.name)
+        .Bind(job.owner)
+        .Bind(static_cast<int>(job.state))
+        .Bind(job.priority)
+        .Bind(job.sweep_id)
+        .Bind(job.created_time)
+        .Bind(job.results_dir)
+        .Bind(job.scene)
+        .Bind(Join(job.overrides, '\n'))
+        .Bind(job.client_request_id);
     insert.Run();
     job.ordinal = sqlite3_last_insert_rowid(db_);
     for (const auto& tag : job.tags) {
@@ -401,7 +417,9 @@ void JobStore::MarkRunning(const std::string& id, double started_time) {
   Statement update(db_,
                    "UPDATE jobs SET state = ?, started_time = ?, attempts = attempts + 1, "
                    "reason = '' WHERE id = ? AND state = ?");
-  update.Bind(static_cast<int>(JobState::kRunning)).Bind(started_time).Bind(id)
+  update.Bind(static_cast<int>(JobState::kRunning))
+      .Bind(started_time)
+      .Bind(id)
       .Bind(static_cast<int>(JobState::kQueued));
   update.Run();
   if (update.Changes() != 1) throw StoreError("job " + id + " is not queued");
@@ -415,8 +433,12 @@ bool JobStore::MarkFinished(const std::string& id, JobState state, const std::st
   Statement update(db_,
                    "UPDATE jobs SET state = ?, reason = ?, finished_time = ? "
                    "WHERE id = ? AND state IN (?, ?)");
-  update.Bind(static_cast<int>(state)).Bind(reason).Bind(when).Bind(id)
-      .Bind(static_cast<int>(JobState::kQueued)).Bind(static_cast<int>(JobState::kRunning));
+  update.Bind(static_cast<int>(state))
+      .Bind(reason)
+      .Bind(when)
+      .Bind(id)
+      .Bind(static_cast<int>(JobState::kQueued))
+      .Bind(static_cast<int>(JobState::kRunning));
   update.Run();
   bool changed = update.Changes() == 1;
   transaction.Commit();
@@ -429,7 +451,10 @@ bool JobStore::CancelQueued(const std::string& id, const std::string& reason, do
   Statement update(db_,
                    "UPDATE jobs SET state = ?, reason = ?, finished_time = ?, cancel_requested = 1 "
                    "WHERE id = ? AND state = ?");
-  update.Bind(static_cast<int>(JobState::kCancelled)).Bind(reason).Bind(when).Bind(id)
+  update.Bind(static_cast<int>(JobState::kCancelled))
+      .Bind(reason)
+      .Bind(when)
+      .Bind(id)
       .Bind(static_cast<int>(JobState::kQueued));
   update.Run();
   bool changed = update.Changes() == 1;
@@ -458,8 +483,8 @@ std::vector<std::string> JobStore::RequeueRunning(double now) {
   Transaction transaction(db_);
   std::vector<std::string> ids;
   {
-    Statement select(db_,
-                     "SELECT id FROM jobs WHERE state = ? AND cancel_requested = 0 ORDER BY ordinal");
+    Statement select(
+        db_, "SELECT id FROM jobs WHERE state = ? AND cancel_requested = 0 ORDER BY ordinal");
     select.Bind(static_cast<int>(JobState::kRunning));
     while (select.Step()) ids.push_back(select.Text(0));
   }
@@ -468,8 +493,10 @@ std::vector<std::string> JobStore::RequeueRunning(double now) {
     Statement cancel(db_,
                      "UPDATE jobs SET state = ?, reason = 'cancelled', finished_time = ? "
                      "WHERE state = ? AND cancel_requested = 1");
-    cancel.Bind(static_cast<int>(JobState::kCancelled)).Bind(now)
-        .Bind(static_cast<int>(JobState::kRunning)).Run();
+    cancel.Bind(static_cast<int>(JobState::kCancelled))
+        .Bind(now)
+        .Bind(static_cast<int>(JobState::kRunning))
+        .Run();
   }
   Statement update(db_, "UPDATE jobs SET state = ?, reason = 'daemon restarted' WHERE state = ?");
   update.Bind(static_cast<int>(JobState::kQueued)).Bind(static_cast<int>(JobState::kRunning)).Run();

@@ -1,11 +1,11 @@
 // JobStore: the durable record of every job, an SQLite file (DATA/jobs.db).
 //
-// One connection in serialized use (a mutex), WAL journal, a busy timeout, a schema_version table and
-// ordered migrations applied at open. Every statement is prepared and parameterised; every state change
-// is one transaction. An accepted job is committed before Submit returns; a job id is never reused.
-// Watch sequence numbers are handed out in blocks: last_seq is the reserved high-water mark, so after a
-// crash the next daemon starts above any number it may have issued.
-// Not supported: several daemons on one data directory (the daemon holds an flock on it).
+// One connection in serialized use (a mutex), WAL journal, a busy timeout, a schema_version table
+// and ordered migrations applied at open. Every statement is prepared and parameterised; every
+// state change is one transaction. An accepted job is committed before Submit returns; a job id is
+// never reused. Watch sequence numbers are handed out in blocks: last_seq is the reserved
+// high-water mark, so after a crash the next daemon starts above any number it may have issued. Not
+// supported: several daemons on one data directory (the daemon holds an flock on it).
 #pragma once
 
 #include <cstdint>
@@ -69,8 +69,8 @@ class JobStore {
 
   static int SchemaVersion();
 
-  // Inserts the jobs in one transaction. If request_key is non-empty and (owner, request_key) was used
-  // before, nothing is inserted and the earlier jobs are returned with `existed` set.
+  // Inserts the jobs in one transaction. If request_key is non-empty and (owner, request_key) was
+  // used before, nothing is inserted and the earlier jobs are returned with `existed` set.
   struct InsertResult {
     std::vector<JobRecord> jobs;
     bool existed = false;

@@ -71,7 +71,8 @@ std::vector<std::string> ToVector(const google::protobuf::RepeatedPtrField<std::
 
 // A unary reply: runs body under Guarded and finishes the default reactor with its status.
 template <class Body>
-grpc::ServerUnaryReactor* Reply(grpc::CallbackServerContext* context, const char* rpc, Body&& body) {
+grpc::ServerUnaryReactor* Reply(grpc::CallbackServerContext* context, const char* rpc,
+                                Body&& body) {
   auto* reactor = context->DefaultReactor();
   grpc::Status status = Guarded(std::forward<Body>(body));
   if (!status.ok() && status.error_code() == StatusCode::INTERNAL) {
@@ -101,7 +102,9 @@ std::vector<std::pair<std::string, fs::directory_entry>> ResultFiles(const fs::p
 class WatchReactor final : public grpc::ServerWriteReactor<v1::WatchEvent> {
  public:
   WatchReactor(EventHub& hub, std::string job_id, std::shared_ptr<WatcherQueue> queue)
-      : hub_(hub), job_id_(std::move(job_id)), queue_(std::move(queue)) {
+      : hub_(hub),
+        job_id_(std::move(job_id)),
+        queue_(std::move(queue)) {
     queue_->SetWake([this] { Pump(); });
   }
 
@@ -157,7 +160,8 @@ class WatchReactor final : public grpc::ServerWriteReactor<v1::WatchEvent> {
 class FetchReactor final : public grpc::ServerWriteReactor<v1::FileChunk> {
  public:
   FetchReactor(fs::path root, std::vector<std::string> files)
-      : root_(std::move(root)), files_(std::move(files)) {
+      : root_(std::move(root)),
+        files_(std::move(files)) {
     Next();
   }
   void OnWriteDone(bool ok) override {
@@ -185,7 +189,8 @@ class FetchReactor final : public grpc::ServerWriteReactor<v1::FileChunk> {
           size_ = static_cast<int64_t>(fs::file_size(path, error));
           offset_ = 0;
         }
-        const int64_t length = std::min<int64_t>(kChunkBytes, std::max<int64_t>(size_ - offset_, 0));
+        const int64_t length =
+            std::min<int64_t>(kChunkBytes, std::max<int64_t>(size_ - offset_, 0));
         chunk_.Clear();
         chunk_.set_path(files_[index_]);
         chunk_.set_offset(offset_);
@@ -234,7 +239,11 @@ class FailedStream final : public grpc::ServerWriteReactor<Message> {
 }  // namespace
 
 JobsService::JobsService(const Config& config, JobStore& store, EventHub& hub, Scheduler& scheduler)
-    : config_(config), store_(store), hub_(hub), scheduler_(scheduler), auth_(config.tokens) {}
+    : config_(config),
+      store_(store),
+      hub_(hub),
+      scheduler_(scheduler),
+      auth_(config.tokens) {}
 
 JobRecord JobsService::OwnJob(const std::string& user, const std::string& job_id) {
   CheckJobId(job_id);
@@ -291,8 +300,8 @@ grpc::ServerUnaryReactor* JobsService::Submit(grpc::CallbackServerContext* conte
       }
     }
     CheckQueueRoom(1);
-    JobRecord job = NewJob(user, request->scene(), overrides, request->name(), tags,
-                           request->priority());
+    JobRecord job =
+        NewJob(user, request->scene(), overrides, request->name(), tags, request->priority());
     job.client_request_id = request->client_request_id();
     auto result = store_.InsertJobs({job}, user, key);
     *reply = ToProto(result.jobs.front());
@@ -305,9 +314,8 @@ grpc::ServerUnaryReactor* JobsService::Submit(grpc::CallbackServerContext* conte
 
 grpc::ServerUnaryReactor* JobsService::Get(grpc::CallbackServerContext* context,
                                            const v1::GetRequest* request, v1::Job* reply) {
-  return Reply(context, "Get", [&] {
-    *reply = ToProto(OwnJob(auth_.User(*context), request->job_id()));
-  });
+  return Reply(context, "Get",
+               [&] { *reply = ToProto(OwnJob(auth_.User(*context), request->job_id())); });
 }
 
 grpc::ServerUnaryReactor* JobsService::List(grpc::CallbackServerContext* context,
@@ -331,7 +339,7 @@ grpc::ServerUnaryReactor* JobsService::List(grpc::CallbackServerContext* context
     if (!request->page_token().empty()) {
       const std::string& token = request->page_token();
       Require(token.size() <= 18 && std::all_of(token.begin(), token.end(),
-                                                  [](char c) { return c >= '0' && c <= '9'; }),
+                                                [](char c) { return c >= '0' && c <= '9'; }),
               "page_token: malformed");
       filter.before_ordinal = std::stoll(token);
       Require(filter.before_ordinal > 0, "page_token: malformed");
@@ -362,9 +370,9 @@ grpc::ServerWriteReactor<v1::WatchEvent>* JobsService::Watch(grpc::CallbackServe
     Require(request->from_seq() >= 0, "from_seq: negative");
     Require(request->snapshot_max_width() >= 0 && request->snapshot_max_width() <= kMaxSnapshotSize,
             "snapshot_max_width: expected 0 to 4096");
-    Require(request->snapshot_max_height() >= 0 &&
-                request->snapshot_max_height() <= kMaxSnapshotSize,
-            "snapshot_max_height: expected 0 to 4096");
+    Require(
+        request->snapshot_max_height() >= 0 && request->snapshot_max_height() <= kMaxSnapshotSize,
+        "snapshot_max_height: expected 0 to 4096");
     job = OwnJob(user, request->job_id());
   });
   if (!status.ok()) return new FailedStream<v1::WatchEvent>(status);
@@ -406,9 +414,9 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
       Require(axis.values_size() > 0, "axes: " + axis.key() + " has no values");
       points *= axis.values_size();
       if (points > config_.max_queued) {
-        throw ServiceError(StatusCode::RESOURCE_EXHAUSTED,
-                           "the sweep has more points than max_queued = " +
-                               std::to_string(config_.max_queued));
+        throw ServiceError(
+            StatusCode::RESOURCE_EXHAUSTED,
+            "the sweep has more points than max_queued = " + std::to_string(config_.max_queued));
       }
     }
     const std::string key =
@@ -436,11 +444,11 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
       }
       std::vector<std::string> job_tags = tags;
       job_tags.push_back(sweep_id);
-      const std::string name = (request->name().empty() ? sweep_id : request->name()) + "[" +
-                               label + "]";
+      const std::string name =
+          (request->name().empty() ? sweep_id : request->name()) + "[" + label + "]";
       try {
-        jobs.push_back(NewJob(user, request->scene(), overrides, name, job_tags,
-                              request->priority()));
+        jobs.push_back(
+            NewJob(user, request->scene(), overrides, name, job_tags, request->priority()));
       } catch (const ServiceError& e) {
         throw ServiceError(e.code(), std::string(e.what()) + " (sweep point " + label + ")");
       } catch (const std::exception& e) {
@@ -533,8 +541,7 @@ grpc::ServerUnaryReactor* JobsService::ListFiles(grpc::CallbackServerContext* co
       const auto modified = entry.last_write_time(error);
       const auto system = std::chrono::time_point_cast<std::chrono::system_clock::duration>(
           modified - fs::file_time_type::clock::now() + std::chrono::system_clock::now());
-      info->set_modified_time(
-          std::chrono::duration<double>(system.time_since_epoch()).count());
+      info->set_modified_time(std::chrono::duration<double>(system.time_since_epoch()).count());
     }
   });
 }

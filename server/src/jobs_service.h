@@ -1,11 +1,11 @@
 // JobsService: the dlmfd.v1.Jobs rpcs (proto/dlmfd/v1/jobs.proto documents each one's error codes).
 //
 // Callback API: unary rpcs answer on the gRPC callback thread (scene validation and one SQLite
-// transaction); Watch and Fetch are ServerWriteReactors, so 100 watchers cost no thread each. A Watch
-// reactor sends from a WatcherQueue: the solver's reader thread only enqueues and, when the stream is
-// idle, starts a write; it never waits for a client. Every handler runs inside Guarded(), so every
-// exception becomes a status through ToStatus and none escapes into gRPC.
-// Ownership: a job of another user is NOT_FOUND, never PERMISSION_DENIED.
+// transaction); Watch and Fetch are ServerWriteReactors, so 100 watchers cost no thread each. A
+// Watch reactor sends from a WatcherQueue: the solver's reader thread only enqueues and, when the
+// stream is idle, starts a write; it never waits for a client. Every handler runs inside Guarded(),
+// so every exception becomes a status through ToStatus and none escapes into gRPC. Ownership: a job
+// of another user is NOT_FOUND, never PERMISSION_DENIED.
 #pragma once
 
 #include <string>

@@ -12,9 +12,9 @@ SceneEstimate AdmitScene(const std::string& scene, const std::vector<std::string
                          const Config& config) {
   using grpc::StatusCode;
   if (static_cast<int64_t>(scene.size()) > config.max_scene_bytes) {
-    throw ServiceError(StatusCode::RESOURCE_EXHAUSTED,
-                       "scene has " + std::to_string(scene.size()) + " bytes, over the limit of " +
-                           std::to_string(config.max_scene_bytes));
+    throw ServiceError(StatusCode::RESOURCE_EXHAUSTED, "scene has " + std::to_string(scene.size()) +
+                                                           " bytes, over the limit of " +
+                                                           std::to_string(config.max_scene_bytes));
   }
   if (scene.empty()) throw ServiceError(StatusCode::INVALID_ARGUMENT, "scene: empty scene text");
   std::vector<SceneOverride> parsed;
@@ -47,9 +47,9 @@ SceneEstimate AdmitScene(const std::string& scene, const std::vector<std::string
   estimate.memory_mb = static_cast<int64_t>(std::ceil(bytes / (1024.0 * 1024.0)));
   if (estimate.memory_mb > config.max_memory_mb) {
     throw ServiceError(StatusCode::RESOURCE_EXHAUSTED,
-                       "domain.h: the run needs an estimated " + std::to_string(estimate.memory_mb) +
-                           " MiB, over the limit of " + std::to_string(config.max_memory_mb) +
-                           " MiB");
+                       "domain.h: the run needs an estimated " +
+                           std::to_string(estimate.memory_mb) + " MiB, over the limit of " +
+                           std::to_string(config.max_memory_mb) + " MiB");
   }
   return estimate;
 }

@@ -18,8 +18,8 @@
 namespace dlmfd::server {
 
 struct SceneEstimate {
-  int64_t nodes = 0;       // velocity nodes (nx + 1)(ny + 1)
-  int64_t memory_mb = 0;   // estimated peak memory of dlmfd-solve
+  int64_t nodes = 0;      // velocity nodes (nx + 1)(ny + 1)
+  int64_t memory_mb = 0;  // estimated peak memory of dlmfd-solve
   double end_time = 0;
 };
 

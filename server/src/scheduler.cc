@@ -74,7 +74,9 @@ v1::WatchEvent LogEvent(const std::string& level, const std::string& text) {
 }  // namespace
 
 Scheduler::Scheduler(const Config& config, JobStore& store, EventHub& hub)
-    : config_(config), store_(store), hub_(hub) {}
+    : config_(config),
+      store_(store),
+      hub_(hub) {}
 
 Scheduler::~Scheduler() { Stop(std::chrono::seconds(5)); }
 
@@ -86,7 +88,9 @@ std::string Scheduler::ResultsDir(const std::string& job_id) const {
   return (fs::path(JobDir(job_id)) / "results").string();
 }
 
-void Scheduler::Start() { loop_ = std::thread([this] { Loop(); }); }
+void Scheduler::Start() {
+  loop_ = std::thread([this] { Loop(); });
+}
 
 void Scheduler::Wake() {
   std::lock_guard lock(mutex_);
@@ -126,8 +130,7 @@ void Scheduler::Loop() {
         std::optional<JobRecord> again;
         try {
           again = store_.Get(next->id);
-        } catch (const std::exception&) {
-        }
+        } catch (const std::exception&) {}
         if (!again || again->state == JobState::kQueued) {
           spdlog::error("job {}: cannot start: {}", next->id, e.what());
           break;
@@ -204,7 +207,7 @@ void Scheduler::RunJob(JobRecord job) {
       spdlog::info("job {}: solver pid {} started{}", job.id, process->pid(),
                    resume ? " with --resume" : "");
       hub_.Publish(job.id, LogEvent("info", resume ? "solver resumed from results/checkpoint.h5"
-                                                    : "solver started"));
+                                                   : "solver started"));
       if (cancel_requested()) process->Signal(SIGTERM);
 
       std::optional<v1::Finished> finished;
@@ -264,8 +267,8 @@ void Scheduler::RunJob(JobRecord job) {
             break;
           case v1::SolverEvent::kCheckpointed: {
             std::ostringstream text;
-            text << "checkpoint at step " << in.checkpointed().step() << ", t = "
-                 << in.checkpointed().time();
+            text << "checkpoint at step " << in.checkpointed().step()
+                 << ", t = " << in.checkpointed().time();
             out = LogEvent("info", text.str());
             break;
           }
@@ -307,7 +310,8 @@ void Scheduler::RunJob(JobRecord job) {
       } else if (exit.signalled) {
         outcome.emplace(JobState::kFailed, "solver killed by signal " + std::to_string(exit.code));
       } else {
-        outcome.emplace(JobState::kFailed, "solver exited with status " + std::to_string(exit.code));
+        outcome.emplace(JobState::kFailed,
+                        "solver exited with status " + std::to_string(exit.code));
       }
     }
   } catch (const std::exception& e) {
@@ -331,8 +335,9 @@ JobRecord Scheduler::Cancel(const std::string& job_id) {
   auto job = store_.Get(job_id);
   if (!job) throw ServiceError(grpc::StatusCode::NOT_FOUND, "job " + job_id + " not found");
   if (IsFinished(job->state)) {
-    throw ServiceError(grpc::StatusCode::FAILED_PRECONDITION,
-                       "job " + job_id + " has already finished (" + JobStateName(job->state) + ")");
+    throw ServiceError(
+        grpc::StatusCode::FAILED_PRECONDITION,
+        "job " + job_id + " has already finished (" + JobStateName(job->state) + ")");
   }
   if (job->state == JobState::kQueued && store_.CancelQueued(job_id, "cancelled", NowSeconds())) {
     job = store_.Get(job_id);

@@ -2,16 +2,17 @@
 //
 // A scheduler thread takes the next QUEUED job from the store, marks it RUNNING (one transaction,
 // attempts + 1) and gives it a runner thread. The runner writes DIR/scene.in.toml, resumes from
-// results/checkpoint.h5 when one exists (else clears results/), takes the job directory's flock (so a
-// job never runs twice at once), runs dlmfd-solve (SolverProcess; OMP_NUM_THREADS = cores /
-// max_concurrent unless configured, since oversubscribed OpenMP teams crawl), turns its events into Watch events
-// for the EventHub, records progress in the store at most once a second, and maps the exit:
+// results/checkpoint.h5 when one exists (else clears results/), takes the job directory's flock (so
+// a job never runs twice at once), runs dlmfd-solve (SolverProcess; OMP_NUM_THREADS = cores /
+// max_concurrent unless configured, since oversubscribed OpenMP teams crawl), turns its events into
+// Watch events for the EventHub, records progress in the store at most once a second, and maps the
+// exit:
 //   0 COMPLETED; 1 FAILED (the reason from the finished event or results/summary.json); 2 FAILED
 //   (invalid scene); 130 CANCELLED; killed by signal N: FAILED "solver killed by signal N".
 // Cancel: a QUEUED job is cancelled in the store at once; a RUNNING one gets SIGTERM (the solver
-// checkpoints and exits 130 at a step boundary). Stop (daemon shutdown) sends SIGTERM too but leaves
-// the jobs RUNNING in the store, so that the next start resumes them; a solver still alive after the
-// grace period gets SIGKILL.
+// checkpoints and exits 130 at a step boundary). Stop (daemon shutdown) sends SIGTERM too but
+// leaves the jobs RUNNING in the store, so that the next start resumes them; a solver still alive
+// after the grace period gets SIGKILL.
 #pragma once
 
 #include <atomic>

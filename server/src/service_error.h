@@ -1,6 +1,7 @@
-// ServiceError: an rpc failure with its gRPC status code, thrown by handlers and the store and turned
-// into a grpc::Status by ToStatus, the one place where exceptions become status codes (design.md 5:
-// handlers never throw out; every error of a job or a client ends in a status, not a crash).
+// ServiceError: an rpc failure with its gRPC status code, thrown by handlers and the store and
+// turned into a grpc::Status by ToStatus, the one place where exceptions become status codes
+// (design.md 5: handlers never throw out; every error of a job or a client ends in a status, not a
+// crash).
 #pragma once
 
 #include <grpcpp/support/status.h>
@@ -14,7 +15,8 @@ namespace dlmfd::server {
 class ServiceError : public std::runtime_error {
  public:
   ServiceError(grpc::StatusCode code, const std::string& message)
-      : std::runtime_error(message), code_(code) {}
+      : std::runtime_error(message),
+        code_(code) {}
   grpc::StatusCode code() const { return code_; }
 
  private:

@@ -119,7 +119,8 @@ void SolverProcess::ReadEvents(const std::function<void(const v1::SolverEvent&)>
   bool clean_eof = false;
   while (true) {
     event.Clear();  // parsing merges into the message
-    if (!google::protobuf::util::ParseDelimitedFromZeroCopyStream(&event, &input, &clean_eof)) break;
+    if (!google::protobuf::util::ParseDelimitedFromZeroCopyStream(&event, &input, &clean_eof))
+      break;
     on_event(event);
   }
   close(events_fd_);
@@ -129,12 +130,10 @@ void SolverProcess::ReadEvents(const std::function<void(const v1::SolverEvent&)>
 SolverExit SolverProcess::Wait() {
   // Wait without reaping so that the pid stays reserved while Signal may still use it.
   siginfo_t info{};
-  while (waitid(P_PID, static_cast<id_t>(pid_), &info, WEXITED | WNOWAIT) != 0 && errno == EINTR) {
-  }
+  while (waitid(P_PID, static_cast<id_t>(pid_), &info, WEXITED | WNOWAIT) != 0 && errno == EINTR) {}
   std::lock_guard lock(mutex_);
   int status = 0;
-  while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
-  }
+  while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {}
   pid_ = -1;
   SolverExit exit;
   if (WIFSIGNALED(status)) {

@@ -3,9 +3,9 @@
 // The child is started with fork/exec as
 //   SOLVER DIR/scene.in.toml --out DIR/results --set k=v ... --events 3 [--resume]
 // with the write end of a pipe on fd 3, stdout and stderr appended to DIR/solver.log, the job
-// directory's flock on fd 4 (so the lock lives as long as any run of the job, even one orphaned by a
-// killed daemon), PR_SET_PDEATHSIG = SIGKILL (a daemon that dies takes its solvers with it) and every
-// other descriptor closed. The child does only async-signal-safe work between fork and exec.
+// directory's flock on fd 4 (so the lock lives as long as any run of the job, even one orphaned by
+// a killed daemon), PR_SET_PDEATHSIG = SIGKILL (a daemon that dies takes its solvers with it) and
+// every other descriptor closed. The child does only async-signal-safe work between fork and exec.
 // The thread that calls Start must stay alive until Wait returns: PR_SET_PDEATHSIG follows the
 // thread that forked. Events are length-delimited SolverEvent messages (events.proto).
 // Not supported: running the solver under a batch system (Slurm); that would be another executor.
@@ -61,8 +61,9 @@ class SolverProcess {
   int events_fd_ = -1;
 };
 
-// Takes an exclusive flock on path (a directory), waiting while another process holds it. Returns the
-// descriptor, or -1 when should_stop() became true first. Throws when the path cannot be opened.
+// Takes an exclusive flock on path (a directory), waiting while another process holds it. Returns
+// the descriptor, or -1 when should_stop() became true first. Throws when the path cannot be
+// opened.
 int LockDirectory(const std::string& path, const std::function<bool()>& should_stop);
 
 }  // namespace dlmfd::server

@@ -1,13 +1,13 @@
 // WatcherQueue: the bounded buffer between one job's event channel and one Watch stream.
 //
-// The producer (the thread that reads a solver's events) never waits: Push is O(capacity) at worst and
-// never blocks on the network. When the queue is full the oldest event that is not a state change is
-// dropped; an unsent snapshot is replaced by a newer one. Either way the watcher is told: the next
-// event it receives is a Gap (seq 0) naming the first and last dropped sequence numbers. State changes
-// are never dropped.
-// Sending is serialised by a token: whoever takes it (Push, PushEnd or Cancel returning true) owns the
-// stream until Next returns kEmpty (token given back), kEnd or kClosed (stream must be finished).
-// Snapshots are downsampled here to the watcher's requested size.
+// The producer (the thread that reads a solver's events) never waits: Push is O(capacity) at worst
+// and never blocks on the network. When the queue is full the oldest event that is not a state
+// change is dropped; an unsent snapshot is replaced by a newer one. Either way the watcher is told:
+// the next event it receives is a Gap (seq 0) naming the first and last dropped sequence numbers.
+// State changes are never dropped. Sending is serialised by a token: whoever takes it (Push,
+// PushEnd or Cancel returning true) owns the stream until Next returns kEmpty (token given back),
+// kEnd or kClosed (stream must be finished). Snapshots are downsampled here to the watcher's
+// requested size.
 #pragma once
 
 #include <cstdint>
@@ -23,18 +23,20 @@ namespace dlmfd::server {
 struct WatchOptions {
   size_t capacity = 256;
   bool include_snapshots = false;
-  int max_width = 0;   // 0: as sent
+  int max_width = 0;  // 0: as sent
   int max_height = 0;
 };
 
-// Nearest-node downsampling of a (ny+1) x (nx+1) node field to at most max_width x max_height nodes.
+// Nearest-node downsampling of a (ny+1) x (nx+1) node field to at most max_width x max_height
+// nodes.
 v1::Snapshot DownsampleSnapshot(const v1::Snapshot& full, int max_width, int max_height);
 
 class WatcherQueue {
  public:
   enum class Next { kEvent, kEmpty, kEnd, kClosed };
 
-  explicit WatcherQueue(WatchOptions options) : options_(options) {}
+  explicit WatcherQueue(WatchOptions options)
+      : options_(options) {}
 
   // Called by the token holder outside any lock to start sending.
   void SetWake(std::function<void()> wake) { wake_ = std::move(wake); }

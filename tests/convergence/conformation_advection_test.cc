@@ -1,8 +1,8 @@
-// Order of convergence of the advection in step (35): a smooth SPD field carried by u = (1, 1) in the
-// doubly periodic unit box, relaxing with lambda = 1. The exact solution is
-// A(x, t) = I + (A0(x - u t) - I) e^{-t/lambda}: with a uniform u, L = 0 and the advection and the
-// pointwise relaxation commute, so the splitting adds no error and only the third-order advection
-// (SSP-RK3 + third-order upwind-biased differences, error O(h^3 + dt^3)) remains.
+// Order of convergence of the advection in step (35): a smooth SPD field carried by u = (1, 1) in
+// the doubly periodic unit box, relaxing with lambda = 1. The exact solution is A(x, t) = I + (A0(x
+// - u t) - I) e^{-t/lambda}: with a uniform u, L = 0 and the advection and the pointwise relaxation
+// commute, so the splitting adds no error and only the third-order advection (SSP-RK3 + third-order
+// upwind-biased differences, error O(h^3 + dt^3)) remains.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -53,7 +53,8 @@ AdvectionRun AdvectOnGrid(int n, double courant, double end_time) {
   StepReport report;
   double blended = 0.0;
   for (int s = 0; s < steps; ++s) {
-    step.Advance(s * dt, dt, u.data(), v.data(), nullptr, a11.data(), a12.data(), a22.data(), report);
+    step.Advance(s * dt, dt, u.data(), v.data(), nullptr, a11.data(), a12.data(), a22.data(),
+                 report);
     blended += report.Get("blended_nodes");
     EXPECT_EQ(report.Get("conformation_substeps"), 1.0);
   }

@@ -1,8 +1,8 @@
 // Lid-driven cavity, Newtonian, Re = 100 (unit square, lid u = 1, eta = 0.01, rho = 1), the scene
 // cases/lid_driven_cavity.toml on 32 x 32 cells, run to steady state and compared on both
 // centre-lines with Ghia, Ghia & Shin, J. Comput. Phys. 48 (1982) 387-411, tables I and II
-// (copied below from the project's shared reference data, ../shared/reference/README.md), the computed centre-line interpolated
-// linearly to Ghia's points.
+// (copied below from the project's shared reference data, ../shared/reference/README.md), the
+// computed centre-line interpolated linearly to Ghia's points.
 //
 // Grid study (docs/validation.md, wave advection, dt = 0.01, t = 20, dlmfd-solve and
 // cases/verification/cavity_ghia_errors.sh):
@@ -31,13 +31,15 @@ namespace dlmfd {
 namespace {
 
 // Ghia, Ghia & Shin (1982), Re = 100: u on x = 0.5 (table I) and v on y = 0.5 (table II).
-constexpr double kGhiaY[17] = {1.0000, 0.9766, 0.9688, 0.9609, 0.9531, 0.8516, 0.7344, 0.6172, 0.5000,
-                               0.4531, 0.2813, 0.1719, 0.1016, 0.0703, 0.0625, 0.0547, 0.0000};
+constexpr double kGhiaY[17] = {1.0000, 0.9766, 0.9688, 0.9609, 0.9531, 0.8516,
+                               0.7344, 0.6172, 0.5000, 0.4531, 0.2813, 0.1719,
+                               0.1016, 0.0703, 0.0625, 0.0547, 0.0000};
 constexpr double kGhiaU[17] = {1.00000,  0.84123,  0.78871,  0.73722,  0.68717,  0.23151,
                                0.00332,  -0.13641, -0.20581, -0.21090, -0.15662, -0.10150,
                                -0.06434, -0.04775, -0.04192, -0.03717, 0.0};
-constexpr double kGhiaX[17] = {1.0000, 0.9688, 0.9609, 0.9531, 0.9453, 0.9063, 0.8594, 0.8047, 0.5000,
-                               0.2344, 0.2266, 0.1563, 0.0938, 0.0781, 0.0703, 0.0625, 0.0000};
+constexpr double kGhiaX[17] = {1.0000, 0.9688, 0.9609, 0.9531, 0.9453, 0.9063,
+                               0.8594, 0.8047, 0.5000, 0.2344, 0.2266, 0.1563,
+                               0.0938, 0.0781, 0.0703, 0.0625, 0.0000};
 constexpr double kGhiaV[17] = {0.0,      -0.05906, -0.07391, -0.08864, -0.10313, -0.16914,
                                -0.22445, -0.24533, 0.05454,  0.17527,  0.17507,  0.16077,
                                0.12317,  0.10890,  0.10091,  0.09233,  0.0};
@@ -47,20 +49,20 @@ struct CentreLineErrors {
 };
 
 // Linear interpolation of node values f(k) = values[start + k * stride], k = 0..n, at s in [0, 1].
-double Interpolate(const std::vector<double>& values, std::size_t start, std::size_t stride, int n, double s) {
+double Interpolate(const std::vector<double>& values, std::size_t start, std::size_t stride, int n,
+                   double s) {
   const int k = std::min(static_cast<int>(std::floor(s * n)), n - 1);
   const double w = s * n - k;
   return (1.0 - w) * values[start + k * stride] + w * values[start + (k + 1) * stride];
 }
 
 CentreLineErrors RunCavity(const std::string& advection) {
-  const std::vector<SceneOverride> overrides = {{"domain.h", "0.03125"},
-                                                {"time.dt", "0.02"},
-                                                {"time.end", "15.0"},
-                                                {"splitting.advection", advection},
-                                                {"output.fields_every", "0"},
-                                                {"output.checkpoint_every", "0"}};
-  const Params params = LoadSceneFile(std::string(DLMFD_SOURCE_DIR) + "/cases/lid_driven_cavity.toml", overrides);
+  const std::vector<SceneOverride> overrides = {
+      {"domain.h", "0.03125"},      {"time.dt", "0.02"},
+      {"time.end", "15.0"},         {"splitting.advection", advection},
+      {"output.fields_every", "0"}, {"output.checkpoint_every", "0"}};
+  const Params params =
+      LoadSceneFile(std::string(DLMFD_SOURCE_DIR) + "/cases/lid_driven_cavity.toml", overrides);
   Simulation sim(params);
   const long steps = sim.TotalSteps();
   for (long n = 0; n < steps; ++n) sim.Step();
@@ -76,8 +78,9 @@ CentreLineErrors RunCavity(const std::string& advection) {
     e.u = std::max(e.u, std::abs(u - kGhiaU[k]));
     e.v = std::max(e.v, std::abs(v - kGhiaV[k]));
   }
-  std::printf("cavity Re = 100, 32 cells, %s: max|u - Ghia| = %.5f, max|v - Ghia| = %.5f, min u = %.5f\n",
-              advection.c_str(), e.u, e.v, e.u_min);
+  std::printf(
+      "cavity Re = 100, 32 cells, %s: max|u - Ghia| = %.5f, max|v - Ghia| = %.5f, min u = %.5f\n",
+      advection.c_str(), e.u, e.v, e.u_min);
   return e;
 }
 

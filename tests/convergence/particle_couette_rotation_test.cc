@@ -2,8 +2,8 @@
 // vorticity, omega / shear rate -> -1/2 as Re -> 0 (reference/README.md, "Freely rotating disk").
 //
 // Scene: periodic in x (period 1), walls at y = 0 and y = 1 moving at -0.5 and +0.5 (shear rate
-// g = 1), rho = eta = 1, a free disk D = 0.25 with rho_d = rho_L at the centre, at rest at t = 0 in the
-// undisturbed Couette profile. Re = rho g D^2 / eta = 0.0625. End time 0.4 rho H^2 / eta: omega
+// g = 1), rho = eta = 1, a free disk D = 0.25 with rho_d = rho_L at the centre, at rest at t = 0 in
+// the undisturbed Couette profile. Re = rho g D^2 / eta = 0.0625. End time 0.4 rho H^2 / eta: omega
 // then changes by less than 1e-4 g per 10 steps (asserted at 1e-4, a tenth of the band below).
 // Grids h = 1/16, 1/24, 1/32 with h_p = h and R = 2, 3, 4 h_p (the same multiplier mesh in units of
 // h), and the diffusion number eta dt / (rho h^2) = 2 held fixed (see particle_drag_test.cc).
@@ -85,8 +85,9 @@ TEST(ParticleCouetteRotation, NeutrallyBuoyantDiskTurnsAtHalfTheVorticity) {
   for (int n : cells) {
     const Rotation r = FreeRotation(n);
     ratio.push_back(r.ratio);
-    std::printf("h = 1/%-3d omega / g = %.5f  (|omega/g + 1/2| = %.4f, change over 10 steps %.1e)\n", n,
-                r.ratio, std::abs(r.ratio + 0.5), r.last_change);
+    std::printf(
+        "h = 1/%-3d omega / g = %.5f  (|omega/g + 1/2| = %.4f, change over 10 steps %.1e)\n", n,
+        r.ratio, std::abs(r.ratio + 0.5), r.last_change);
     EXPECT_LT(r.last_change, 1e-4);
     EXPECT_NEAR(r.ratio, -0.5, 0.015);
   }

@@ -14,8 +14,8 @@
 // observed orders 0.981 (16-24-32) and 0.979 (24-32-48), extrapolated limits 0.5641 and 0.5643.
 // At eta dt / (rho h^2) = 1 the grids 1/16 and 1/32 give 0.458894, 0.510299, whose first-order
 // extrapolation 0.5617 is within 0.5% of those: the limit does not depend on the diffusion number.
-// Hence the asserts: monotone convergence (F_x increases with every refinement) and an observed order
-// in [0.8, 1.2] (first order, the DLM/FD expectation; the margin is far above what the 2e-6
+// Hence the asserts: monotone convergence (F_x increases with every refinement) and an observed
+// order in [0.8, 1.2] (first order, the DLM/FD expectation; the margin is far above what the 2e-6
 // steady-state noise can do to differences of 3e-2, and below what a half-order method would give).
 #include <gtest/gtest.h>
 
@@ -60,7 +60,8 @@ Drag SteadyDrag(int cells) {
   FlowState& state = sim.mutable_state();
   const Grid& grid = sim.grid();
   for (int j = 0; j <= grid.ny; ++j) {
-    for (int i = 0; i <= grid.nx; ++i) state.u[grid.Index(i, j)] = 0.5 * grid.Y(j) * (1.0 - grid.Y(j));
+    for (int i = 0; i <= grid.nx; ++i)
+      state.u[grid.Index(i, j)] = 0.5 * grid.Y(j) * (1.0 - grid.Y(j));
   }
   Drag drag;
   const long steps = sim.TotalSteps();
@@ -105,9 +106,10 @@ TEST(ParticleDrag, FixedDiskInAChannelConvergesAtFirstOrder) {
   for (std::size_t k = 2; k < force.size(); ++k) {
     const double p = ObservedOrder(h[k - 2], h[k - 1], h[k], force[k - 1] - force[k - 2],
                                    force[k] - force[k - 1]);
-    const double limit = force[k] + (force[k] - force[k - 1]) / (std::pow(h[k - 1] / h[k], p) - 1.0);
-    std::printf("grids 1/%d, 1/%d, 1/%d: observed order %.3f, extrapolated F_x %.5f\n", cells[k - 2],
-                cells[k - 1], cells[k], p, limit);
+    const double limit =
+        force[k] + (force[k] - force[k - 1]) / (std::pow(h[k - 1] / h[k], p) - 1.0);
+    std::printf("grids 1/%d, 1/%d, 1/%d: observed order %.3f, extrapolated F_x %.5f\n",
+                cells[k - 2], cells[k - 1], cells[k], p, limit);
     EXPECT_GE(p, 0.8);
     EXPECT_LE(p, 1.2);
   }

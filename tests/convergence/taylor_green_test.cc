@@ -21,13 +21,13 @@
 #include <cstdio>
 #include <vector>
 
+#include "dlmfd/core/constants.h"
 #include "dlmfd/core/params.h"
 #include "dlmfd/core/simulation.h"
 
 namespace dlmfd {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kViscosity = 0.05;  // rho = 1: nu = 0.05
 constexpr double kEnd = 0.5;
 
@@ -117,13 +117,14 @@ void CheckOrders(AdvectionScheme scheme, const char* name) {
   const int cells[] = {16, 32, 64};
   std::vector<Errors> e;
   for (int c : cells) e.push_back(RunTaylorGreen(c, scheme));
-  std::printf("Taylor-Green, %s advection, nu = %.2f, t = %.1f, dt = 0.25 h^2 (rounded to divide t)\n", name,
-              kViscosity, kEnd);
-  std::printf("%6s %9s %9s %11s %11s %11s %11s | %6s %6s %6s %6s\n", "cells", "h", "dt", "u L2", "u max", "p L2", "p max",
-              "o uL2", "o umax", "o pL2", "o pmax");
+  std::printf(
+      "Taylor-Green, %s advection, nu = %.2f, t = %.1f, dt = 0.25 h^2 (rounded to divide t)\n",
+      name, kViscosity, kEnd);
+  std::printf("%6s %9s %9s %11s %11s %11s %11s | %6s %6s %6s %6s\n", "cells", "h", "dt", "u L2",
+              "u max", "p L2", "p max", "o uL2", "o umax", "o pL2", "o pmax");
   for (std::size_t k = 0; k < e.size(); ++k) {
-    std::printf("%6d %9.3e %9.2e %11.4e %11.4e %11.4e %11.4e", cells[k], e[k].h, e[k].dt, e[k].u_l2, e[k].u_max, e[k].p_l2,
-                e[k].p_max);
+    std::printf("%6d %9.3e %9.2e %11.4e %11.4e %11.4e %11.4e", cells[k], e[k].h, e[k].dt, e[k].u_l2,
+                e[k].u_max, e[k].p_l2, e[k].p_max);
     if (k == 0) {
       std::printf(" |\n");
       continue;
@@ -136,17 +137,19 @@ void CheckOrders(AdvectionScheme scheme, const char* name) {
     const char* labels[4] = {"u L2", "u max", "p L2", "p max"};
     for (int q = 0; q < 4; ++q) {
       if (k + 1 == e.size()) {
-        EXPECT_NEAR(orders[q], 2.0, 0.5) << name << " " << labels[q] << " between " << cells[k - 1] << " and "
-                                         << cells[k] << " cells";
+        EXPECT_NEAR(orders[q], 2.0, 0.5) << name << " " << labels[q] << " between " << cells[k - 1]
+                                         << " and " << cells[k] << " cells";
       } else {
-        EXPECT_GE(orders[q], 1.5) << name << " " << labels[q] << " between " << cells[k - 1] << " and "
-                                  << cells[k] << " cells";
+        EXPECT_GE(orders[q], 1.5) << name << " " << labels[q] << " between " << cells[k - 1]
+                                  << " and " << cells[k] << " cells";
       }
     }
   }
 }
 
-TEST(TaylorGreen, SecondOrderWithLeastSquaresAdvection) { CheckOrders(AdvectionScheme::kLeastSquares, "least-squares"); }
+TEST(TaylorGreen, SecondOrderWithLeastSquaresAdvection) {
+  CheckOrders(AdvectionScheme::kLeastSquares, "least-squares");
+}
 
 TEST(TaylorGreen, SecondOrderWithWaveAdvection) { CheckOrders(AdvectionScheme::kWave, "wave"); }
 

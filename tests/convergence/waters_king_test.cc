@@ -1,5 +1,5 @@
-// Start-up of plane Poiseuille flow of an Oldroyd-B liquid through the whole Simulation, against the
-// series of Waters & King (Rheol. Acta 9 (1970) 345-355), shared/reference/README.md.
+// Start-up of plane Poiseuille flow of an Oldroyd-B liquid through the whole Simulation, against
+// the series of Waters & King (Rheol. Acta 9 (1970) 345-355), shared/reference/README.md.
 //
 // Scene: cases/verification/waters_king.toml. Channel periodic in x, walls at y = 0 and y = 2H
 // (H = 1), at rest with A = I, driven from t = 0 by the body force G = 3 (= -dp/dx). With rho = 1,
@@ -62,11 +62,10 @@ struct History {
 // Runs the scene with ny cells across the gap (nx = 4) and time step dt up to T = kEndT.
 History RunStartup(int ny, double dt) {
   const double h = 2.0 / ny;
-  const std::vector<SceneOverride> overrides = {
-      {"domain.h", Text(h)},
-      {"domain.size", "[" + Text(4 * h) + ", 2.0]"},
-      {"time.dt", Text(dt)},
-      {"time.end", Text(kEndT)}};
+  const std::vector<SceneOverride> overrides = {{"domain.h", Text(h)},
+                                                {"domain.size", "[" + Text(4 * h) + ", 2.0]"},
+                                                {"time.dt", Text(dt)},
+                                                {"time.end", Text(kEndT)}};
   Params params = LoadSceneFile(DLMFD_SOURCE_DIR "/cases/verification/waters_king.toml", overrides);
   params.threads = 1;  // a 4 x ny grid: threads would only contend
   Simulation sim(params);
@@ -85,7 +84,8 @@ History RunStartup(int ny, double dt) {
 
 double MaxError(const History& h) {
   double e = 0.0;
-  for (std::size_t n = 0; n < h.t.size(); ++n) e = std::max(e, std::abs(h.u[n] - Centreline(h.t[n])));
+  for (std::size_t n = 0; n < h.t.size(); ++n)
+    e = std::max(e, std::abs(h.u[n] - Centreline(h.t[n])));
   return e;
 }
 
@@ -93,10 +93,12 @@ double MaxError(const History& h) {
 // (2.5513 at T = 1.221, 1.2457 at T = 3.45: rounding 5e-5, 5e-4 and 5e-3).
 TEST(WatersKingSeries, MatchesReferenceTable) {
   const double t[] = {0.5, 1, 1.5, 2, 3, 4, 5, 6, 8, 10};
-  const double u[] = {1.48960, 2.46619, 2.45954, 2.05795, 1.32141, 1.31706, 1.52370, 1.55461, 1.48489, 1.50387};
+  const double u[] = {1.48960, 2.46619, 2.45954, 2.05795, 1.32141,
+                      1.31706, 1.52370, 1.55461, 1.48489, 1.50387};
   for (int k = 0; k < 10; ++k) EXPECT_NEAR(Centreline(t[k]), u[k], 1e-5) << "T = " << t[k];
   EXPECT_NEAR(Centreline(0.0), 0.0, 1e-6);
-  EXPECT_NEAR(WatersKingVelocity(0.5, 40.0, kBeta, kElasticity), 1.5 * 0.75, 1e-10);  // steady parabola
+  EXPECT_NEAR(WatersKingVelocity(0.5, 40.0, kBeta, kElasticity), 1.5 * 0.75,
+              1e-10);  // steady parabola
   const double t_max = Extremum(0.5, 2.5, 1.0), t_min = Extremum(2.5, 4.5, -1.0);
   EXPECT_NEAR(t_max, 1.221, 5e-4);
   EXPECT_NEAR(Centreline(t_max), 2.5513, 5e-5);
@@ -129,12 +131,12 @@ TEST(WatersKingStartup, DISABLED_GridAndTimeStepStudy) {
 
 // The test runs (ny, dt) = (32, 0.01) and (64, 0.005): 15 s of CPU on the loaded dev machine.
 // Tolerances from the study above: the error model e = C_h h^2 + 0.4 dt predicts 1.4e-3 + 2.0e-3 =
-// 3.4e-3 at (64, 0.005) (measured 3.356e-3); the bound is that estimate plus 20%, 4e-3. Halving h and
-// dt together divides e_h by 4 and e_t by 2, so the error ratio between the two runs lies in [2, 4]
-// (measured 2.74); the test asks for at least 1.8, which a scheme of order below one would fail.
-// The extrema of the discrete history are sampled every dt and lag by the first-order phase error
-// (measured 3.7e-3 at the peak and 5.2e-3 at the dip, about one dt): their times must be within 2 dt,
-// their values within the max-error bound.
+// 3.4e-3 at (64, 0.005) (measured 3.356e-3); the bound is that estimate plus 20%, 4e-3. Halving h
+// and dt together divides e_h by 4 and e_t by 2, so the error ratio between the two runs lies in
+// [2, 4] (measured 2.74); the test asks for at least 1.8, which a scheme of order below one would
+// fail. The extrema of the discrete history are sampled every dt and lag by the first-order phase
+// error (measured 3.7e-3 at the peak and 5.2e-3 at the dip, about one dt): their times must be
+// within 2 dt, their values within the max-error bound.
 TEST(WatersKingStartup, CentrelineVelocityFollowsSeries) {
   const History coarse = RunStartup(32, 0.01);
   const double dt = 0.005;
@@ -142,7 +144,8 @@ TEST(WatersKingStartup, CentrelineVelocityFollowsSeries) {
   ASSERT_EQ(h.t.size(), 1200u);
   const double error = MaxError(h), error_coarse = MaxError(coarse);
   EXPECT_LE(error, 4e-3);
-  EXPECT_GE(error_coarse / error, 1.8) << "errors " << error_coarse << " (32, 0.01), " << error << " (64, 0.005)";
+  EXPECT_GE(error_coarse / error, 1.8)
+      << "errors " << error_coarse << " (32, 0.01), " << error << " (64, 0.005)";
 
   const auto peak = std::max_element(h.u.begin(), h.u.end());
   const std::size_t n_peak = static_cast<std::size_t>(peak - h.u.begin());

@@ -37,8 +37,7 @@ std::string SettlingScene(const std::string& disks) {
          "gravity = [0.0, -981.0]\n"
          "[time]\ndt = 0.001\nend = 0.01\n"
          "[particle_mesh]\nh = 0.08571428571428572\n" +
-         disks +
-         "[output]\nfields_every = 0.0\nparticles_every = 0.002\ncheckpoint_every = 0.0\n";
+         disks + "[output]\nfields_every = 0.0\nparticles_every = 0.002\ncheckpoint_every = 0.0\n";
 }
 
 std::string Disk(double x, double y) {
@@ -63,7 +62,8 @@ Outcome Execute(const std::vector<std::string>& argv, const fs::path& cwd) {
   const pid_t pid = fork();
   if (pid == 0) {
     if (chdir(cwd.c_str()) != 0) _exit(126);
-    if (!freopen(out_path.c_str(), "w", stdout) || !freopen(err_path.c_str(), "w", stderr)) _exit(126);
+    if (!freopen(out_path.c_str(), "w", stdout) || !freopen(err_path.c_str(), "w", stderr))
+      _exit(126);
     execv(args[0], args.data());
     _exit(127);
   }
@@ -86,7 +86,8 @@ struct Picture {
   std::vector<std::uint8_t> rgb;
   std::set<std::uint32_t> Colours() const {
     std::set<std::uint32_t> colours;
-    for (std::size_t k = 0; k + 2 < rgb.size(); k += 3) colours.insert(rgb[k] << 16 | rgb[k + 1] << 8 | rgb[k + 2]);
+    for (std::size_t k = 0; k + 2 < rgb.size(); k += 3)
+      colours.insert(rgb[k] << 16 | rgb[k + 1] << 8 | rgb[k + 2]);
     return colours;
   }
 };
@@ -118,8 +119,8 @@ class ChartTest : public ::testing::Test {
     std::ofstream(root_ / "pair.toml") << SettlingScene(Disk(0.5, 1.4) + Disk(0.5, 0.9));
     std::ofstream(root_ / "single.toml") << SettlingScene(Disk(0.5, 1.4));
     for (const char* name : {"pair", "single"}) {
-      const Outcome solve = Execute({kSolver, (root_ / (std::string(name) + ".toml")).string(), "--out",
-                                     (root_ / name).string(), "--quiet", "--threads", "1"},
+      const Outcome solve = Execute({kSolver, (root_ / (std::string(name) + ".toml")).string(),
+                                     "--out", (root_ / name).string(), "--quiet", "--threads", "1"},
                                     root_);
       ASSERT_EQ(solve.code, 0) << name << ": " << solve.err;
     }
@@ -138,8 +139,9 @@ fs::path ChartTest::root_;
 
 TEST_F(ChartTest, OverlaysTheVelocityOfSeveralRuns) {
   // Each --label takes one value, so labels may stand before their directories.
-  const Outcome run = Chart({"--label", "two disks", "pair", "--label", "one disk", "single", "--y", "v", "--title",
-                             "settling", "--out", "v.png", "--width", "640", "--height", "480"});
+  const Outcome run =
+      Chart({"--label", "two disks", "pair", "--label", "one disk", "single", "--y", "v", "--title",
+             "settling", "--out", "v.png", "--width", "640", "--height", "480"});
   ASSERT_EQ(run.code, 0) << run.err;
   EXPECT_EQ(run.out, "v.png\n");
   const Picture picture = ReadPng(root_ / "v.png");
@@ -153,7 +155,8 @@ TEST_F(ChartTest, OverlaysTheVelocityOfSeveralRuns) {
 }
 
 TEST_F(ChartTest, DrawsATrajectoryAndTheGapWithDefaultNames) {
-  const Outcome trajectory = Chart({"pair", "--x", "x", "--y", "y", "--particle", "1", "--markers"});
+  const Outcome trajectory =
+      Chart({"pair", "--x", "x", "--y", "y", "--particle", "1", "--markers"});
   ASSERT_EQ(trajectory.code, 0) << trajectory.err;
   EXPECT_EQ(trajectory.out, "chart_y_x.png\n");
   const Picture t = ReadPng(root_ / "chart_y_x.png");
@@ -176,8 +179,9 @@ TEST_F(ChartTest, ChartsCsvColumnsGroupedIntoSeries) {
                                      "wave,0.0625,1.2,3.0e-2\n"
                                      "wave,0.03125,4.4,\n"
                                      "\"wave\",0.015625,17.0,2.1e-3\n";
-  const Outcome run = Chart({"--csv", "wp.csv", "--xcol", "ms_per_step", "--ycol", "error", "--group", "advection",
-                             "--logx", "--logy", "--markers", "--out", "wp.png"});
+  const Outcome run =
+      Chart({"--csv", "wp.csv", "--xcol", "ms_per_step", "--ycol", "error", "--group", "advection",
+             "--logx", "--logy", "--markers", "--out", "wp.png"});
   ASSERT_EQ(run.code, 0) << run.err;
   const Picture picture = ReadPng(root_ / "wp.png");
   EXPECT_EQ(picture.width, 1000);

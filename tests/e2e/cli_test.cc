@@ -61,7 +61,8 @@ struct CliRun {
 };
 
 // Runs `argv` with exactly the environment `env`, capturing stdout and stderr.
-CliRun Execute(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env) {
+CliRun Execute(const std::vector<std::string>& argv,
+               const std::map<std::string, std::string>& env) {
   // Everything the child needs is built before fork: a test may run this from a second thread.
   std::vector<std::string> env_text;
   for (const auto& [k, v] : env) env_text.push_back(k + "=" + v);
@@ -120,7 +121,8 @@ class CliTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     const std::string* binaries[] = {&kClient, &kDaemon, &kSolver};
-    for (const std::string* binary : binaries) ASSERT_TRUE(fs::exists(*binary)) << *binary << " is not built";
+    for (const std::string* binary : binaries)
+      ASSERT_TRUE(fs::exists(*binary)) << *binary << " is not built";
     root_ = fs::path(::testing::TempDir()) / ("dlmfd_cli_e2e_" + std::to_string(getpid()));
     fs::remove_all(root_);
     fs::create_directories(root_ / "data");
@@ -142,14 +144,15 @@ class CliTest : public ::testing::Test {
       const int log = open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
       dup2(log, STDOUT_FILENO);
       dup2(log, STDERR_FILENO);
-      execl(kDaemon.c_str(), kDaemon.c_str(), "--listen", listen.c_str(), "--port-file", port_file.c_str(),
-            "--data-dir", data.c_str(), "--solver", kSolver.c_str(), "--tokens-file", tokens.c_str(),
-            "--max-concurrent", "2", static_cast<char*>(nullptr));
+      execl(kDaemon.c_str(), kDaemon.c_str(), "--listen", listen.c_str(), "--port-file",
+            port_file.c_str(), "--data-dir", data.c_str(), "--solver", kSolver.c_str(),
+            "--tokens-file", tokens.c_str(), "--max-concurrent", "2", static_cast<char*>(nullptr));
       _exit(127);
     }
     while (!fs::exists(port_file) || fs::file_size(port_file) == 0) {
       int status = 0;
-      ASSERT_EQ(waitpid(daemon_, &status, WNOHANG), 0) << "dlmfdd exited: " << Slurp(root_ / "dlmfdd.log");
+      ASSERT_EQ(waitpid(daemon_, &status, WNOHANG), 0)
+          << "dlmfdd exited: " << Slurp(root_ / "dlmfdd.log");
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
     std::string port = Slurp(port_file);
@@ -176,7 +179,8 @@ class CliTest : public ::testing::Test {
     return env;
   }
 
-  static CliRun Cli(const std::vector<std::string>& args, const std::map<std::string, std::string>& env = Env()) {
+  static CliRun Cli(const std::vector<std::string>& args,
+                    const std::map<std::string, std::string>& env = Env()) {
     std::vector<std::string> argv(1, kClient);
     for (const std::string& a : args) argv.push_back(a);
     return Execute(argv, env);
@@ -211,7 +215,8 @@ TEST_F(CliTest, HealthServesAndAClosedPortIsUnavailable) {
 }
 
 TEST_F(CliTest, SubmitWaitListShowFetchAndPlot) {
-  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--tag", "e2e", "--name", "cavity", "--wait"});
+  const CliRun submit = Cli(
+      {"submit", (root_ / "cavity.toml").string(), "--tag", "e2e", "--name", "cavity", "--wait"});
   ASSERT_EQ(submit.code, 0) << submit.out << submit.err;
   const std::string job = FirstLine(submit.out);
   ASSERT_FALSE(job.empty());
@@ -231,12 +236,14 @@ TEST_F(CliTest, SubmitWaitListShowFetchAndPlot) {
   ASSERT_EQ(fetch.code, 0) << fetch.err;
   ASSERT_TRUE(fs::exists(out / "summary.json"));
   EXPECT_THAT(Slurp(out / "summary.json"), HasSubstr("\"completed\""));
-  const CliRun one = Cli({"fetch", job, "--out", (root_ / "one").string(), "--path", "summary.json"});
+  const CliRun one =
+      Cli({"fetch", job, "--out", (root_ / "one").string(), "--path", "summary.json"});
   ASSERT_EQ(one.code, 0) << one.err;
   EXPECT_EQ(Slurp(root_ / "one" / "summary.json"), Slurp(out / "summary.json"));
 
   const fs::path png = root_ / "cavity.png";
-  const CliRun plot = Cli({"plot", out.string(), "--out", png.string(), "--width", "500", "--height", "400"});
+  const CliRun plot =
+      Cli({"plot", out.string(), "--out", png.string(), "--width", "500", "--height", "400"});
   ASSERT_EQ(plot.code, 0) << plot.err;
   EXPECT_EQ(FirstLine(plot.out), png.string());
   const std::string bytes = Slurp(png);
@@ -279,7 +286,8 @@ TEST_F(CliTest, WatchJsonYieldsProgressAndTheFinalState) {
 }
 
 TEST_F(CliTest, CancelStopsALongJob) {
-  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=100000"});
+  const CliRun submit =
+      Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=100000"});
   ASSERT_EQ(submit.code, 0) << submit.err;
   const std::string job = FirstLine(submit.out);
   AwaitState(job, "RUNNING");
@@ -314,7 +322,8 @@ TEST_F(CliTest, WatchResumesAcrossADaemonRestart) {
 }
 
 TEST_F(CliTest, InvalidSceneExitsTwoNamingTheKey) {
-  const CliRun bad = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "fluid.viscosity=-1"});
+  const CliRun bad =
+      Cli({"submit", (root_ / "cavity.toml").string(), "--set", "fluid.viscosity=-1"});
   EXPECT_EQ(bad.code, 2);
   EXPECT_THAT(bad.err, HasSubstr("fluid.viscosity"));
   EXPECT_THAT(bad.err, HasSubstr("invalid argument"));
@@ -341,12 +350,13 @@ TEST_F(CliTest, WrongTokenExitsFourAndOtherUsersSeeNothing) {
 TEST_F(CliTest, ConfigPrecedenceIsFlagThenEnvironmentThenFile) {
   const fs::path xdg = root_ / "xdg";
   fs::create_directories(xdg / "dlmfd");
-  std::ofstream(xdg / "dlmfd" / "config.toml") << "server = \"" << server_ << "\"\ntoken = \"alice-token-0123456789\"\n";
+  std::ofstream(xdg / "dlmfd" / "config.toml")
+      << "server = \"" << server_ << "\"\ntoken = \"alice-token-0123456789\"\n";
   auto env = Env(false, false);
   env["XDG_CONFIG_HOME"] = xdg.string();
   EXPECT_EQ(Cli({"list"}, env).code, 0);  // file alone
   env["DLMFD_SERVER"] = "127.0.0.1:1";
-  EXPECT_EQ(Cli({"list"}, env).code, 5);  // environment beats file
+  EXPECT_EQ(Cli({"list"}, env).code, 5);                       // environment beats file
   EXPECT_EQ(Cli({"list", "--server", server_}, env).code, 0);  // flag beats environment
   EXPECT_EQ(Cli({"--server", server_, "list"}, env).code, 0);  // also before the command
   env.erase("DLMFD_SERVER");

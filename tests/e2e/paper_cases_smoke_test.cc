@@ -48,16 +48,30 @@ struct CaseRun {
   FieldSnapshot last;  // the snapshot at the end time
 };
 
-// Runs cases/paper/<name>.toml coarse until `end`, particles every kRecordEvery, one snapshot at end.
+// Runs cases/paper/<name>.toml coarse until `end`, particles every kRecordEvery, one snapshot at
+// end.
 CaseRun RunCase(const std::string& name, double end) {
   CaseRun run;
   run.out = ::testing::TempDir() + "/paper_smoke_" + name;
   fs::remove_all(run.out);
-  const std::vector<std::string> args = {
-      kCases + name + ".toml", "--out", run.out, "--quiet", "--threads", "1",
-      "--set", "domain.h=" + Number(kCoarseH), "--set", "particle_mesh.h=" + Number(kCoarseParticleH),
-      "--set", "time.end=" + Number(end), "--set", "output.particles_every=" + Number(kRecordEvery),
-      "--set", "output.fields_every=" + Number(end), "--set", "output.checkpoint_every=0"};
+  const std::vector<std::string> args = {kCases + name + ".toml",
+                                         "--out",
+                                         run.out,
+                                         "--quiet",
+                                         "--threads",
+                                         "1",
+                                         "--set",
+                                         "domain.h=" + Number(kCoarseH),
+                                         "--set",
+                                         "particle_mesh.h=" + Number(kCoarseParticleH),
+                                         "--set",
+                                         "time.end=" + Number(end),
+                                         "--set",
+                                         "output.particles_every=" + Number(kRecordEvery),
+                                         "--set",
+                                         "output.fields_every=" + Number(end),
+                                         "--set",
+                                         "output.checkpoint_every=0"};
   const pid_t pid = fork();
   if (pid == 0) {
     std::vector<char*> argv{const_cast<char*>(kSolve)};
@@ -93,7 +107,8 @@ double VerticalVelocity(const ParticleHistory& h, std::size_t record, std::size_
 void ExpectCompleted(const CaseRun& run, double end) {
   ASSERT_EQ(run.exit_code, 0) << "see " << run.out;
   EXPECT_THAT(run.summary, HasSubstr("\"status\": \"completed\""));
-  const std::size_t expected = static_cast<std::size_t>(std::llround(end / kRecordEvery)) + 1;  // t = 0 too
+  const std::size_t expected =
+      static_cast<std::size_t>(std::llround(end / kRecordEvery)) + 1;  // t = 0 too
   EXPECT_EQ(run.history.records, expected);
   EXPECT_NEAR(run.last.time, end, 1e-12);
 }
@@ -105,7 +120,8 @@ void ExpectApartAndInside(const ParticleHistory& h, double width, double height)
     for (std::size_t i = 0; i < h.particles; ++i) {
       const Vec2 xi = Position(h, r, i);
       const double ri = h.radius[i];
-      EXPECT_GT(std::min({xi.x() - ri, width - xi.x() - ri, xi.y() - ri, height - xi.y() - ri}), 0.0)
+      EXPECT_GT(std::min({xi.x() - ri, width - xi.x() - ri, xi.y() - ri, height - xi.y() - ri}),
+                0.0)
           << "particle " << i << " at record " << r;
       for (std::size_t j = i + 1; j < h.particles; ++j) {
         EXPECT_GT((Position(h, r, j) - xi).norm(), ri + h.radius[j])
@@ -184,8 +200,8 @@ TEST(PaperCasesSmoke, LightDiskInElasticLiquidFalls) {
   EXPECT_GE(tr.min, 2.0 - kTrASlack);
 }
 
-// 5.3c: eleven disks in a channel 1 wide, closer to each other and to the walls (gaps 0.05) than the
-// collision range 1.5 h = 0.0625 of this mesh: the collision forces act from the first step.
+// 5.3c: eleven disks in a channel 1 wide, closer to each other and to the walls (gaps 0.05) than
+// the collision range 1.5 h = 0.0625 of this mesh: the collision forces act from the first step.
 TEST(PaperCasesSmoke, ElevenDisksInNarrowChannelFallAndStayApart) {
   const double end = 0.012;
   const CaseRun run = RunCase("5.3c_eleven_disks_narrow", end);
@@ -202,7 +218,8 @@ TEST(PaperCasesSmoke, ElevenDisksInNarrowChannelFallAndStayApart) {
   }
   EXPECT_LT(mean_end, mean_start) << "the cloud must sink";
   double mean_velocity = 0.0;
-  for (std::size_t p = 0; p < h.particles; ++p) mean_velocity += VerticalVelocity(h, h.records - 1, p);
+  for (std::size_t p = 0; p < h.particles; ++p)
+    mean_velocity += VerticalVelocity(h, h.records - 1, p);
   EXPECT_LT(mean_velocity, 0.0);
   const TrAStats tr = TrA(run.last, centres, 2.0 * 0.1);
   EXPECT_GT(tr.near_max, 2.0);

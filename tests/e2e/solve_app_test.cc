@@ -1,6 +1,7 @@
 // dlmfd-solve end to end (design.md 3.1-3.2): the real binary on a 16 x 16 lid-driven cavity.
-// Exit statuses 0 / 2 / 130, every file of the results directory, the event stream, and a run killed
-// with SIGKILL after a checkpoint and resumed giving results bitwise equal to an uninterrupted run.
+// Exit statuses 0 / 2 / 130, every file of the results directory, the event stream, and a run
+// killed with SIGKILL after a checkpoint and resumed giving results bitwise equal to an
+// uninterrupted run.
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -35,12 +36,18 @@ const char* const kSolve = DLMFD_BINARY_DIR "/engine/dlmfd-solve";
 std::string CavityScene(double end, double fields_every, double checkpoint_every) {
   return "title = \"e2e cavity\"\n"
          "[domain]\nsize = [1.0, 1.0]\nh = 0.0625\n"
-         "[domain.boundary]\ntop = { type = \"velocity\", profile = \"uniform\", value = [1.0, 0.0] }\n"
+         "[domain.boundary]\ntop = { type = \"velocity\", profile = \"uniform\", value = [1.0, "
+         "0.0] }\n"
          "[fluid]\nviscosity = 0.01\n"
-         "[time]\ndt = 0.001\nend = " + std::to_string(end) + "\n"
+         "[time]\ndt = 0.001\nend = " +
+         std::to_string(end) +
+         "\n"
          "[splitting]\nadvection = \"wave\"\n"
-         "[output]\nfields_every = " + std::to_string(fields_every) + "\nparticles_every = 0.0\n"
-         "checkpoint_every = " + std::to_string(checkpoint_every) + "\n";
+         "[output]\nfields_every = " +
+         std::to_string(fields_every) +
+         "\nparticles_every = 0.0\n"
+         "checkpoint_every = " +
+         std::to_string(checkpoint_every) + "\n";
 }
 
 std::string Fresh(const std::string& name) {
@@ -61,7 +68,8 @@ struct Child {
   std::string stderr_path;
 };
 
-Child Start(const std::vector<std::string>& args, const std::string& stderr_path, int events_fd = -1) {
+Child Start(const std::vector<std::string>& args, const std::string& stderr_path,
+            int events_fd = -1) {
   Child c;
   c.stderr_path = stderr_path;
   c.pid = fork();
@@ -87,7 +95,8 @@ int Wait(const Child& c) {
   return WEXITSTATUS(status);
 }
 
-int RunToEnd(const std::vector<std::string>& args, const std::string& stderr_path, int events_fd = -1) {
+int RunToEnd(const std::vector<std::string>& args, const std::string& stderr_path,
+             int events_fd = -1) {
   return Wait(Start(args, stderr_path, events_fd));
 }
 
@@ -112,9 +121,11 @@ TEST(SolveApp, CompletesAndWritesTheResultsDirectory) {
   const std::string dir = Fresh("complete");
   const std::string scene = WriteFile(dir + "/cavity.toml", CavityScene(0.02, 0.005, 0.01));
   const std::string out = dir + "/out";
-  ASSERT_EQ(RunToEnd({scene, "--out", out, "--quiet"}, dir + "/stderr.txt"), 0) << ReadTextFile(dir + "/stderr.txt");
-  for (const char* f : {"scene.toml", "summary.json", "particles.h5", "diagnostics.csv", "fields.xmf",
-                        "checkpoint.h5", "fields/snap_000000.h5", "fields/snap_000020.h5"}) {
+  ASSERT_EQ(RunToEnd({scene, "--out", out, "--quiet"}, dir + "/stderr.txt"), 0)
+      << ReadTextFile(dir + "/stderr.txt");
+  for (const char* f :
+       {"scene.toml", "summary.json", "particles.h5", "diagnostics.csv", "fields.xmf",
+        "checkpoint.h5", "fields/snap_000000.h5", "fields/snap_000020.h5"}) {
     EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
   }
   // Snapshots at t = 0, 0.005, ..., 0.02: steps 0, 5, 10, 15, 20.
@@ -125,7 +136,7 @@ TEST(SolveApp, CompletesAndWritesTheResultsDirectory) {
   EXPECT_EQ(s.fields.at("u").shape, (std::vector<std::size_t>{17, 17}));
   EXPECT_EQ(s.fields.at("v").shape, (std::vector<std::size_t>{17, 17}));
   EXPECT_EQ(s.fields.at("p").shape, (std::vector<std::size_t>{9, 9}));
-  EXPECT_EQ(s.fields.count("trA"), 0u);  // Newtonian
+  EXPECT_EQ(s.fields.count("trA"), 0u);                  // Newtonian
   EXPECT_EQ(s.fields.at("u").values[16 * 17 + 8], 1.0);  // the lid
   const std::string xmf = ReadTextFile(out + "/fields.xmf");
   for (const char* step : {"000000", "000005", "000010", "000015", "000020"}) {
@@ -176,11 +187,14 @@ TEST(SolveApp, SigtermCancelsWithReadableFiles) {
   EXPECT_GE(ck.state.step, 10);
   const DiagnosticsTable d = ReadDiagnostics(out + "/diagnostics.csv");
   EXPECT_EQ(static_cast<long>(d.rows.size()), ck.state.step);
-  EXPECT_EQ(ReadParticleHistory(out + "/particles.h5").records, static_cast<std::size_t>(ck.state.step + 1));
-  EXPECT_EQ(ReadFieldSnapshot(LastSnapshot(out)).fields.at("u").shape, (std::vector<std::size_t>{17, 17}));
+  EXPECT_EQ(ReadParticleHistory(out + "/particles.h5").records,
+            static_cast<std::size_t>(ck.state.step + 1));
+  EXPECT_EQ(ReadFieldSnapshot(LastSnapshot(out)).fields.at("u").shape,
+            (std::vector<std::size_t>{17, 17}));
 }
 
-void ExpectSameDoubles(const std::vector<double>& a, const std::vector<double>& b, const char* what) {
+void ExpectSameDoubles(const std::vector<double>& a, const std::vector<double>& b,
+                       const char* what) {
   ASSERT_EQ(a.size(), b.size()) << what;
   if (a.empty()) return;  // memcmp must not see the null data() of an empty vector
   EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0) << what;
@@ -204,7 +218,8 @@ TEST(SolveApp, ResumeAfterSigkillEqualsAnUninterruptedRun) {
 
   const FieldSnapshot a = ReadFieldSnapshot(whole + "/fields/snap_000300.h5");
   const FieldSnapshot b = ReadFieldSnapshot(resumed + "/fields/snap_000300.h5");
-  for (const char* f : {"u", "v", "p"}) ExpectSameDoubles(a.fields.at(f).values, b.fields.at(f).values, f);
+  for (const char* f : {"u", "v", "p"})
+    ExpectSameDoubles(a.fields.at(f).values, b.fields.at(f).values, f);
   const ParticleHistory pa = ReadParticleHistory(whole + "/particles.h5");
   const ParticleHistory pb = ReadParticleHistory(resumed + "/particles.h5");
   EXPECT_EQ(pa.records, pb.records);
@@ -215,15 +230,19 @@ TEST(SolveApp, ResumeAfterSigkillEqualsAnUninterruptedRun) {
   ExpectSameDoubles(pa.force, pb.force, "particles.h5:/force");
   EXPECT_EQ(ReadDiagnostics(resumed + "/diagnostics.csv").rows.size(), 300u);
   std::vector<std::string> names_a, names_b;
-  for (const auto& e : fs::directory_iterator(whole + "/fields")) names_a.push_back(e.path().filename().string());
-  for (const auto& e : fs::directory_iterator(resumed + "/fields")) names_b.push_back(e.path().filename().string());
+  for (const auto& e : fs::directory_iterator(whole + "/fields"))
+    names_a.push_back(e.path().filename().string());
+  for (const auto& e : fs::directory_iterator(resumed + "/fields"))
+    names_b.push_back(e.path().filename().string());
   std::sort(names_a.begin(), names_a.end());
   std::sort(names_b.begin(), names_b.end());
   EXPECT_EQ(names_a, names_b);
-  EXPECT_THAT(ReadTextFile(resumed + "/summary.json"), HasSubstr("\"resumed_from_step\": " + std::to_string(checkpoint_step)));
+  EXPECT_THAT(ReadTextFile(resumed + "/summary.json"),
+              HasSubstr("\"resumed_from_step\": " + std::to_string(checkpoint_step)));
 
   // A different scene is refused on resume.
-  EXPECT_EQ(RunToEnd({scene, "--out", resumed, "--resume", "--set", "fluid.viscosity=0.02"}, dir + "/stderr4.txt"),
+  EXPECT_EQ(RunToEnd({scene, "--out", resumed, "--resume", "--set", "fluid.viscosity=0.02"},
+                     dir + "/stderr4.txt"),
             2);
   EXPECT_THAT(ReadTextFile(dir + "/stderr4.txt"), HasSubstr("--resume"));
 }
@@ -281,8 +300,9 @@ TEST(SolveApp, EventStreamParsesAndEndsWithFinished) {
   const std::string events_path = dir + "/events.bin";
   const int fd = open(events_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   ASSERT_GE(fd, 0);
-  const int code = RunToEnd({scene, "--out", dir + "/out", "--quiet", "--events", std::to_string(fd)},
-                            dir + "/stderr.txt", fd);
+  const int code =
+      RunToEnd({scene, "--out", dir + "/out", "--quiet", "--events", std::to_string(fd)},
+               dir + "/stderr.txt", fd);
   close(fd);
   ASSERT_EQ(code, 0) << ReadTextFile(dir + "/stderr.txt");
   const std::string bytes = ReadTextFile(events_path);
@@ -305,9 +325,11 @@ TEST(SolveApp, EventStreamParsesAndEndsWithFinished) {
       kind = number;
       Wire body{data, data + n};
       body.Fields([&](int f, int t, const unsigned char* d, std::uint64_t m) {
-        if (number == 16 && f == 1 && t == 2) finished_status.assign(reinterpret_cast<const char*>(d), m);
+        if (number == 16 && f == 1 && t == 2)
+          finished_status.assign(reinterpret_cast<const char*>(d), m);
         if (number == 16 && f == 5 && t == 0) finished_exit = m;
-        if (number == 13 && f == 6 && t == 2) snapshot_quantity.assign(reinterpret_cast<const char*>(d), m);
+        if (number == 13 && f == 6 && t == 2)
+          snapshot_quantity.assign(reinterpret_cast<const char*>(d), m);
       });
     }));
     kinds.push_back(kind);
@@ -318,7 +340,8 @@ TEST(SolveApp, EventStreamParsesAndEndsWithFinished) {
   EXPECT_EQ(std::count(kinds.begin(), kinds.end(), 16), 1);
   EXPECT_EQ(std::count(kinds.begin(), kinds.end(), 13), 3);  // snapshots at steps 0, 10, 20
   EXPECT_GE(std::count(kinds.begin(), kinds.end(), 15), 1);  // checkpointed
-  EXPECT_GE(std::count(kinds.begin(), kinds.end(), 11), 1);  // progress (the last step always reports)
+  EXPECT_GE(std::count(kinds.begin(), kinds.end(), 11),
+            1);  // progress (the last step always reports)
   EXPECT_EQ(finished_status, "completed");
   EXPECT_EQ(finished_exit, 0u);
   EXPECT_EQ(snapshot_quantity, "speed");

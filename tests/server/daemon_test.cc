@@ -22,7 +22,7 @@ using grpc::StatusCode;
 constexpr char kAlice[] = "alice-token-0123456789";
 constexpr char kBob[] = "bob-token-0123456789ab";
 
-#define REQUIRE_SOLVER()                                                   \
+#define REQUIRE_SOLVER() \
   if (!SolverAvailable()) GTEST_SKIP() << "dlmfd-solve is not built: " << kSolverPath
 
 v1::SubmitRequest CavityRequest(double end_time, const std::string& name = "cavity") {
@@ -32,7 +32,8 @@ v1::SubmitRequest CavityRequest(double end_time, const std::string& name = "cavi
   return request;
 }
 
-v1::Job Submit(v1::Jobs::Stub& stub, const v1::SubmitRequest& request, const std::string& token = "") {
+v1::Job Submit(v1::Jobs::Stub& stub, const v1::SubmitRequest& request,
+               const std::string& token = "") {
   auto context = Context(token);
   v1::Job job;
   auto status = stub.Submit(context.get(), request, &job);
@@ -43,8 +44,8 @@ v1::Job Submit(v1::Jobs::Stub& stub, const v1::SubmitRequest& request, const std
 TEST(Daemon, NonLoopbackWithoutTokensRefusesToStart) {
   TempDir dir;
   const std::string log = dir.path() + "/log";
-  const std::string command = std::string(kDaemonPath) + " --listen 0.0.0.0:0 --data-dir " +
-                              dir.path() + "/data 2> " + log;
+  const std::string command =
+      std::string(kDaemonPath) + " --listen 0.0.0.0:0 --data-dir " + dir.path() + "/data 2> " + log;
   const int status = std::system(command.c_str());
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 2);
@@ -116,53 +117,71 @@ TEST(Daemon, MalformedRequestsGetTheRightCodesAndTheDaemonStaysHealthy) {
   };
   v1::Job job;
   v1::GetRequest get;
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->Get(c, get, &job); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->Get(c, get, &job); }),
+            StatusCode::INVALID_ARGUMENT);
   get.set_job_id("j-doesnotexist");
   EXPECT_EQ(unary_code([&](auto* c) { return stub->Get(c, get, &job); }), StatusCode::NOT_FOUND);
   get.set_job_id(std::string(100, 'x'));
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->Get(c, get, &job); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->Get(c, get, &job); }),
+            StatusCode::INVALID_ARGUMENT);
   v1::CancelRequest cancel;
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->Cancel(c, cancel, &job); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->Cancel(c, cancel, &job); }),
+            StatusCode::INVALID_ARGUMENT);
   cancel.set_job_id("j-missing");
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->Cancel(c, cancel, &job); }), StatusCode::NOT_FOUND);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->Cancel(c, cancel, &job); }),
+            StatusCode::NOT_FOUND);
   v1::ListResponse list;
   v1::ListRequest list_request;
   list_request.set_page_size(-1);
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->List(c, list_request, &list); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->List(c, list_request, &list); }),
+            StatusCode::INVALID_ARGUMENT);
   list_request.set_page_size(5000);
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->List(c, list_request, &list); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->List(c, list_request, &list); }),
+            StatusCode::INVALID_ARGUMENT);
   list_request.set_page_size(10);
   list_request.set_page_token("abc");
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->List(c, list_request, &list); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->List(c, list_request, &list); }),
+            StatusCode::INVALID_ARGUMENT);
   list_request.set_page_token("");
   list_request.add_states(static_cast<v1::JobState>(42));
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->List(c, list_request, &list); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->List(c, list_request, &list); }),
+            StatusCode::INVALID_ARGUMENT);
   v1::SubmitSweepRequest sweep;
   v1::SubmitSweepResponse sweep_reply;
   sweep.set_scene(good);
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }),
+            StatusCode::INVALID_ARGUMENT);
   auto* axis = sweep.add_axes();
   axis->set_key("fluid.viscosity");
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }),
+            StatusCode::INVALID_ARGUMENT);
   axis->add_values("0.1");
   axis->add_values("-0.1");
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }),
+            StatusCode::INVALID_ARGUMENT);
   sweep.add_axes()->CopyFrom(*axis);
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }),
+            StatusCode::INVALID_ARGUMENT);
   sweep.clear_axes();
   auto* big = sweep.add_axes();
   big->set_key("fluid.viscosity");
   for (int i = 1; i <= 5; ++i) big->add_values(std::to_string(0.01 * i));
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }), StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }),
+            StatusCode::RESOURCE_EXHAUSTED);
   v1::CancelSweepRequest cancel_sweep;
   v1::CancelSweepResponse cancel_sweep_reply;
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->CancelSweep(c, cancel_sweep, &cancel_sweep_reply); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(
+      unary_code([&](auto* c) { return stub->CancelSweep(c, cancel_sweep, &cancel_sweep_reply); }),
+      StatusCode::INVALID_ARGUMENT);
   cancel_sweep.set_sweep_id("s-missing");
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->CancelSweep(c, cancel_sweep, &cancel_sweep_reply); }), StatusCode::NOT_FOUND);
+  EXPECT_EQ(
+      unary_code([&](auto* c) { return stub->CancelSweep(c, cancel_sweep, &cancel_sweep_reply); }),
+      StatusCode::NOT_FOUND);
   v1::ListFilesRequest files_request;
   v1::ListFilesResponse files;
   files_request.set_job_id("j-missing");
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->ListFiles(c, files_request, &files); }), StatusCode::NOT_FOUND);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->ListFiles(c, files_request, &files); }),
+            StatusCode::NOT_FOUND);
   auto stream_code = [&](auto open) {
     auto context = Context();
     ++checked;
@@ -172,8 +191,7 @@ TEST(Daemon, MalformedRequestsGetTheRightCodesAndTheDaemonStaysHealthy) {
     return stream_code([&](grpc::ClientContext* c) {
       auto reader = stub->Watch(c, request);
       v1::WatchEvent event;
-      while (reader->Read(&event)) {
-      }
+      while (reader->Read(&event)) {}
       return reader->Finish().error_code();
     });
   };
@@ -197,8 +215,7 @@ TEST(Daemon, MalformedRequestsGetTheRightCodesAndTheDaemonStaysHealthy) {
     return stream_code([&](grpc::ClientContext* c) {
       auto reader = stub->Fetch(c, request);
       v1::FileChunk chunk;
-      while (reader->Read(&chunk)) {
-      }
+      while (reader->Read(&chunk)) {}
       return reader->Finish().error_code();
     });
   };
@@ -366,8 +383,7 @@ TEST(Daemon, CancelStopsARunningJobAndKeepsPartialResults) {
     watch.set_job_id(job.id());
     auto reader = stub->Watch(context.get(), watch);
     v1::WatchEvent event;
-    while (reader->Read(&event) && !(event.has_progress() && event.progress().step() > 0)) {
-    }
+    while (reader->Read(&event) && !(event.has_progress() && event.progress().step() > 0)) {}
     context->TryCancel();
     reader->Finish();
   }

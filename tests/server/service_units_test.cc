@@ -135,12 +135,13 @@ TEST(Config, FlagBeatsEnvironmentBeatsFileBeatsDefault) {
   const std::string file = dir.path() + "/dlmfdd.toml";
   std::ofstream(file) << "max_concurrent = 3\nwatcher_buffer = 99\nmax_queued = 7\n";
   gEnv = {{"DLMFD_WATCHER_BUFFER", "77"}, {"DLMFD_MAX_QUEUED", "8"}, {"HOME", dir.path()}};
-  const char* argv[] = {"dlmfdd", "--config", file.c_str(), "--max-queued", "9", "--solver", "/bin/true"};
+  const char* argv[] = {"dlmfdd", "--config", file.c_str(), "--max-queued",
+                        "9",      "--solver", "/bin/true"};
   Config config;
   ASSERT_TRUE(LoadConfig(7, argv, FakeEnv, config));
-  EXPECT_EQ(config.max_concurrent, 3);   // file
-  EXPECT_EQ(config.watcher_buffer, 77);  // environment over file
-  EXPECT_EQ(config.max_queued, 9);       // flag over environment
+  EXPECT_EQ(config.max_concurrent, 3);         // file
+  EXPECT_EQ(config.watcher_buffer, 77);        // environment over file
+  EXPECT_EQ(config.max_queued, 9);             // flag over environment
   EXPECT_EQ(config.listen, "127.0.0.1:7443");  // default
   EXPECT_EQ(config.data_dir, dir.path() + "/.local/share/dlmfd");
 }

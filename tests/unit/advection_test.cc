@@ -23,7 +23,8 @@ BoundarySide Side(SideType type, double ux = 0.0, double uy = 0.0) {
   return s;
 }
 
-Params MakeParams(double h, BoundarySide left, BoundarySide right, BoundarySide bottom, BoundarySide top) {
+Params MakeParams(double h, BoundarySide left, BoundarySide right, BoundarySide bottom,
+                  BoundarySide top) {
   Params p;
   p.domain.size = Vec2(1.0, 1.0);
   p.domain.h = h;
@@ -39,18 +40,20 @@ Params MakeParams(double h, BoundarySide left, BoundarySide right, BoundarySide 
 }
 
 Grid GridOf(const Params& p) {
-  return Grid{static_cast<int>(std::lround(1.0 / p.domain.h)), static_cast<int>(std::lround(1.0 / p.domain.h)),
-              p.domain.h, 0.0, 0.0};
+  return Grid{static_cast<int>(std::lround(1.0 / p.domain.h)),
+              static_cast<int>(std::lround(1.0 / p.domain.h)), p.domain.h, 0.0, 0.0};
 }
 
 std::vector<Params> UniformFlowCases() {
   const Vec2 w(0.7, 0.4);
-  return {MakeParams(1.0 / 16, Side(SideType::kVelocity, w.x(), w.y()), Side(SideType::kVelocity, w.x(), w.y()),
-                     Side(SideType::kVelocity, w.x(), w.y()), Side(SideType::kVelocity, w.x(), w.y())),
-          MakeParams(1.0 / 16, Side(SideType::kPeriodic), Side(SideType::kPeriodic),
-                     Side(SideType::kVelocity, w.x(), w.y()), Side(SideType::kOutflow)),
-          MakeParams(1.0 / 16, Side(SideType::kVelocity, w.x(), w.y()), Side(SideType::kOutflow),
-                     Side(SideType::kPeriodic), Side(SideType::kPeriodic))};
+  return {
+      MakeParams(1.0 / 16, Side(SideType::kVelocity, w.x(), w.y()),
+                 Side(SideType::kVelocity, w.x(), w.y()), Side(SideType::kVelocity, w.x(), w.y()),
+                 Side(SideType::kVelocity, w.x(), w.y())),
+      MakeParams(1.0 / 16, Side(SideType::kPeriodic), Side(SideType::kPeriodic),
+                 Side(SideType::kVelocity, w.x(), w.y()), Side(SideType::kOutflow)),
+      MakeParams(1.0 / 16, Side(SideType::kVelocity, w.x(), w.y()), Side(SideType::kOutflow),
+                 Side(SideType::kPeriodic), Side(SideType::kPeriodic))};
 }
 
 TEST(Advection, UniformFlowIsUnchangedByBothSchemes) {
@@ -61,7 +64,8 @@ TEST(Advection, UniformFlowIsUnchangedByBothSchemes) {
     AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.5, p.solvers, data);
     for (int scheme = 0; scheme < 2; ++scheme) {
       std::vector<double> u(g.NodeCount(), 0.7), v(g.NodeCount(), 0.4);
-      const AdvectionReport r = scheme == 0 ? ls.Solve(u.data(), v.data()) : wave.Solve(u.data(), v.data());
+      const AdvectionReport r =
+          scheme == 0 ? ls.Solve(u.data(), v.data()) : wave.Solve(u.data(), v.data());
       if (scheme == 0) {
         EXPECT_EQ(r.iterations, 0);  // T(u*) = 0 exactly: nothing to minimise
       }
@@ -75,8 +79,8 @@ TEST(Advection, UniformFlowIsUnchangedByBothSchemes) {
 }
 
 // A smooth field plus data on the Dirichlet nodes, duplicates synced.
-void FillSmooth(const Grid& g, const NodeSet& nodes, const BoundaryData& data, std::vector<double>& u,
-                std::vector<double>& v, double phase) {
+void FillSmooth(const Grid& g, const NodeSet& nodes, const BoundaryData& data,
+                std::vector<double>& u, std::vector<double>& v, double phase) {
   u.assign(g.NodeCount(), 0.0);
   v.assign(g.NodeCount(), 0.0);
   for (int j = 0; j <= g.ny; ++j) {
@@ -95,10 +99,10 @@ void FillSmooth(const Grid& g, const NodeSet& nodes, const BoundaryData& data, s
 // its boundary term), and T'(u) w = (T(u + e w) - T(u - e w)) / 2e exactly since T is quadratic.
 TEST(AdvectionLeastSquares, GradientIsTheAdjointOfTheLinearisedResidual) {
   const std::vector<Params> cases = {
-      MakeParams(1.0 / 8, Side(SideType::kPeriodic), Side(SideType::kPeriodic), Side(SideType::kWall),
-                 Side(SideType::kOutflow)),
-      MakeParams(1.0 / 8, Side(SideType::kOutflow), Side(SideType::kOutflow), Side(SideType::kVelocity, 0.1, 1.0),
-                 Side(SideType::kOutflow)),
+      MakeParams(1.0 / 8, Side(SideType::kPeriodic), Side(SideType::kPeriodic),
+                 Side(SideType::kWall), Side(SideType::kOutflow)),
+      MakeParams(1.0 / 8, Side(SideType::kOutflow), Side(SideType::kOutflow),
+                 Side(SideType::kVelocity, 0.1, 1.0), Side(SideType::kOutflow)),
       MakeParams(1.0 / 8, Side(SideType::kWall), Side(SideType::kWall), Side(SideType::kWall),
                  Side(SideType::kVelocity, 1.0, 0.0))};
   for (const Params& p : cases) {
@@ -134,7 +138,8 @@ TEST(AdvectionLeastSquares, GradientIsTheAdjointOfTheLinearisedResidual) {
     ls.Residual(um.data(), vm.data(), tmu.data(), tmv.data());
     double diff = 0.0, scale = 0.0;
     for (std::size_t k = 0; k < n; ++k) {
-      diff = std::max({diff, std::abs((tpu[k] - tmu[k]) / (2 * e) - jwu[k]), std::abs((tpv[k] - tmv[k]) / (2 * e) - jwv[k])});
+      diff = std::max({diff, std::abs((tpu[k] - tmu[k]) / (2 * e) - jwu[k]),
+                       std::abs((tpv[k] - tmv[k]) / (2 * e) - jwv[k])});
       scale = std::max({scale, std::abs(jwu[k]), std::abs(jwv[k])});
     }
     EXPECT_LE(diff, 1e-9 * scale);  // round-off of a difference quotient with e = 1e-3
@@ -144,8 +149,8 @@ TEST(AdvectionLeastSquares, GradientIsTheAdjointOfTheLinearisedResidual) {
 // sqrt(g.r / g0.r0), recomputed from scratch after the solve, is below the tolerance, and the
 // residual norm <P^-1 T, T> has fallen accordingly.
 TEST(AdvectionLeastSquares, GradientRatioIsBelowToleranceAfterSolve) {
-  Params p = MakeParams(1.0 / 16, Side(SideType::kPeriodic), Side(SideType::kPeriodic), Side(SideType::kWall),
-                        Side(SideType::kOutflow));
+  Params p = MakeParams(1.0 / 16, Side(SideType::kPeriodic), Side(SideType::kPeriodic),
+                        Side(SideType::kWall), Side(SideType::kOutflow));
   p.solvers.advection_tolerance = 1e-6;
   p.time.dt = 0.05;
   const Grid g = GridOf(p);
@@ -181,8 +186,8 @@ TEST(AdvectionLeastSquares, GradientRatioIsBelowToleranceAfterSolve) {
 // NumericalBlowUp at once instead of sub-cycling for hours: |u| = 1e6 with dt = 1, h = 1/16 would
 // need 3.2e7 sub-steps of Courant 0.5.
 TEST(AdvectionWave, AVelocityBeyondAnyBoundThrowsInsteadOfSubCyclingForever) {
-  Params p = MakeParams(1.0 / 16, Side(SideType::kPeriodic), Side(SideType::kPeriodic), Side(SideType::kPeriodic),
-                        Side(SideType::kPeriodic));
+  Params p = MakeParams(1.0 / 16, Side(SideType::kPeriodic), Side(SideType::kPeriodic),
+                        Side(SideType::kPeriodic), Side(SideType::kPeriodic));
   p.time.dt = 1.0;
   const Grid g = GridOf(p);
   BoundaryData data(g, p.domain);
@@ -197,16 +202,16 @@ TEST(AdvectionWave, AVelocityBeyondAnyBoundThrowsInsteadOfSubCyclingForever) {
   }
 }
 
-// Von Neumann-type check of the wave scheme alone: a uniform flow U plus a small random perturbation
-// in a doubly periodic box, advected by repeated calls (no Stokes step, no diffusion): to first
-// order in the perturbation this is constant-coefficient advection, which the scheme must not
-// amplify. Measured limit (400 steps, h = 1/32): stable at Courant 0.7 per sub-step for flows along
-// x, y = x/2, y = x and y = -x; at 0.8 the flow along y = -x (across the mesh diagonals) grows, and
-// along x it grows at 0.9. So 0.7 is asserted, not the 0.9 hoped for; at 1.6 every direction grows,
-// so the check can fail.
+// Von Neumann-type check of the wave scheme alone: a uniform flow U plus a small random
+// perturbation in a doubly periodic box, advected by repeated calls (no Stokes step, no diffusion):
+// to first order in the perturbation this is constant-coefficient advection, which the scheme must
+// not amplify. Measured limit (400 steps, h = 1/32): stable at Courant 0.7 per sub-step for flows
+// along x, y = x/2, y = x and y = -x; at 0.8 the flow along y = -x (across the mesh diagonals)
+// grows, and along x it grows at 0.9. So 0.7 is asserted, not the 0.9 hoped for; at 1.6 every
+// direction grows, so the check can fail.
 double PerturbationGrowth(double courant, Vec2 flow) {
-  Params p = MakeParams(1.0 / 32, Side(SideType::kPeriodic), Side(SideType::kPeriodic), Side(SideType::kPeriodic),
-                        Side(SideType::kPeriodic));
+  Params p = MakeParams(1.0 / 32, Side(SideType::kPeriodic), Side(SideType::kPeriodic),
+                        Side(SideType::kPeriodic), Side(SideType::kPeriodic));
   p.solvers.wave_max_courant = courant * 1.01;  // two sub-steps (the minimum) of Courant `courant`
   p.time.dt = 2.0 * courant * p.domain.h / flow.norm();
   const Grid g = GridOf(p);
@@ -228,7 +233,8 @@ double PerturbationGrowth(double courant, Vec2 flow) {
   auto perturbation = [&] {
     double e = 0.0;
     for (std::size_t k = 0; k < u.size(); ++k) {
-      e += nodes.distinct()[k] * ((u[k] - flow.x()) * (u[k] - flow.x()) + (v[k] - flow.y()) * (v[k] - flow.y()));
+      e += nodes.distinct()[k] *
+           ((u[k] - flow.x()) * (u[k] - flow.x()) + (v[k] - flow.y()) * (v[k] - flow.y()));
     }
     return e;
   };

@@ -3,21 +3,24 @@
 //
 // Theory. For a constant flow V in a doubly periodic box every operator is circulant, so a Fourier
 // mode exp(i(theta_x i + theta_y j)) is an eigenvector. With the lumped mass M = h^2:
-//   M^-1 C   -> i sigma |V| / h, sigma = (V/|V|) . g(theta), g the symbol of the integrated gradient
+//   M^-1 C   -> i sigma |V| / h, sigma = (V/|V|) . g(theta), g the symbol of the integrated
+//   gradient
 //               G (method notes 1, section 1) divided by h^2, which is real;
-//   M^-1 K_V -> kappa |V|^2 / h^2, kappa = (|g1|^2 + |g2|^2) / 2, g1, g2 the difference quotients of
+//   M^-1 K_V -> kappa |V|^2 / h^2, kappa = (|g1|^2 + |g2|^2) / 2, g1, g2 the difference quotients
+//   of
 //               the mode along V on the two triangles of a square (W_T = |T| V V^T for constant V).
-// With c = tau |V| / h and y = c^2 kappa, one call (start-up, then Q - 1 centred sub-steps) maps the
-// mode's amplitude 1 to
+// With c = tau |V| / h and y = c^2 kappa, one call (start-up, then Q - 1 centred sub-steps) maps
+// the mode's amplitude 1 to
 //   u^1 = 1 - i c sigma - y / 2,  u^{q+1} = (2 - y) u^q - u^{q-1},  G = u^Q,
-// and, writing cos phi = 1 - y / 2, G = cos(Q phi) - i c sigma sin(Q phi) / sin(phi). Hence |G| <= 1
-// for every mode iff y <= 4 (the leapfrog limit of K_V alone) and
+// and, writing cos phi = 1 - y / 2, G = cos(Q phi) - i c sigma sin(Q phi) / sin(phi). Hence |G| <=
+// 1 for every mode iff y <= 4 (the leapfrog limit of K_V alone) and
 //   sigma^2 <= kappa (1 - c^2 kappa / 4)   (the restarted Taylor start must not add energy),
-// a condition independent of Q. Because C (vertex quadrature of N(V, .)) is not C^T M^-1 C-compatible
-// with K_V, the second condition binds before the leapfrog limit except across the diagonals:
-//   along x or y: c* = sqrt(2/3) = 0.816 (modes with theta_y = -theta_x / 2; leapfrog alone gives 1);
-//   along y = x:  c* = 2/sqrt(3) = 1.155 (leapfrog alone gives sqrt(2));
-//   along y = -x: c* = 1/sqrt(2) = 0.707 (the checkerboard, leapfrog limit of K_V);
+// a condition independent of Q. Because C (vertex quadrature of N(V, .)) is not C^T M^-1
+// C-compatible with K_V, the second condition binds before the leapfrog limit except across the
+// diagonals:
+//   along x or y: c* = sqrt(2/3) = 0.816 (modes with theta_y = -theta_x / 2; leapfrog alone gives
+//   1); along y = x:  c* = 2/sqrt(3) = 1.155 (leapfrog alone gives sqrt(2)); along y = -x: c* =
+//   1/sqrt(2) = 0.707 (the checkerboard, leapfrog limit of K_V);
 // and 1/sqrt(2) is the minimum over all directions (at 135 degrees). The method notes' 1.02-1.04
 // came from power iteration on M^-1 K_V alone for nearly vertical fields, which misses both the
 // start-up condition and the direction dependence; solvers.wave_max_courant = 0.5 keeps a margin of
@@ -35,6 +38,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "dlmfd/core/constants.h"
 #include "dlmfd/core/params.h"
 #include "dlmfd/fluid/advection_wave.h"
 #include "dlmfd/fluid/boundary_data.h"
@@ -45,20 +49,24 @@ namespace dlmfd {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kCells = 32;  // periodic box of 32 x 32 cells
-constexpr int kSubstepCounts[] = {1, 2};  // Q = 1 is the engine's minimum; the theory holds for any Q
+constexpr int kSubstepCounts[] = {1,
+                                  2};  // Q = 1 is the engine's minimum; the theory holds for any Q
 
-// Spectral radius of one call of the scheme over the modes of the kCells-periodic grid (theory above).
+// Spectral radius of one call of the scheme over the modes of the kCells-periodic grid (theory
+// above).
 double TheoreticalRadius(Vec2 direction, double courant, int substeps) {
   const Vec2 d = direction.normalized();
   const Complex i1(0.0, 1.0);
   double rho = 0.0;
   for (int a = 0; a < kCells; ++a) {
     for (int b = 0; b < kCells; ++b) {
-      const Complex ex = std::exp(i1 * (2.0 * kPi * a / kCells)), ey = std::exp(i1 * (2.0 * kPi * b / kCells));
-      const Complex gx = (2.0 * (ex - 1.0 / ex) + (1.0 / ey - 1.0 / (ex * ey)) + (ex * ey - ey)) / 6.0;
-      const Complex gy = (2.0 * (ey - 1.0 / ey) + (ex * ey - ex) + (1.0 / ex - 1.0 / (ex * ey))) / 6.0;
+      const Complex ex = std::exp(i1 * (2.0 * kPi * a / kCells)),
+                    ey = std::exp(i1 * (2.0 * kPi * b / kCells));
+      const Complex gx =
+          (2.0 * (ex - 1.0 / ex) + (1.0 / ey - 1.0 / (ex * ey)) + (ex * ey - ey)) / 6.0;
+      const Complex gy =
+          (2.0 * (ey - 1.0 / ey) + (ex * ey - ex) + (1.0 / ex - 1.0 / (ex * ey))) / 6.0;
       const double sigma = (d.x() * gx + d.y() * gy).imag();
       const Complex g1 = d.x() * (ex - 1.0) + d.y() * ex * (ey - 1.0);
       const Complex g2 = d.x() * ey * (ex - 1.0) + d.y() * (ey - 1.0);
@@ -149,16 +157,18 @@ TEST(AdvectionWaveStability, TheoryOnTheGridMatchesTheAnalysis) {
   for (const int q : kSubstepCounts) {
     for (const Direction& d : kDirections) {
       const double limit = TheoreticalLimit(d.flow, q);
-      std::printf("Q = %d, flow along %-5s theoretical limit %.4f (continuous theta: %.4f)\n", q, d.name, limit,
-                  d.analytic_limit);
+      std::printf("Q = %d, flow along %-5s theoretical limit %.4f (continuous theta: %.4f)\n", q,
+                  d.name, limit, d.analytic_limit);
       EXPECT_GE(limit, d.analytic_limit - 1e-5) << d.name << ", Q = " << q;
-      EXPECT_LE(limit, d.analytic_limit * 1.01) << d.name << ", Q = " << q;  // 32 modes resolve theta to 2 pi/32
+      EXPECT_LE(limit, d.analytic_limit * 1.01)
+          << d.name << ", Q = " << q;  // 32 modes resolve theta to 2 pi/32
     }
   }
 }
 
 // The engine's amplification: never above the theoretical radius (normal map), equal to it once the
-// power iteration has converged, and so stable at 0.97 c* and unstable at 1.05 c* in every direction.
+// power iteration has converged, and so stable at 0.97 c* and unstable at 1.05 c* in every
+// direction.
 TEST(AdvectionWaveStability, MeasuredLimitMatchesTheoryInEveryDirection) {
   for (const int q : kSubstepCounts) {
     for (const Direction& d : kDirections) {
@@ -167,9 +177,10 @@ TEST(AdvectionWaveStability, MeasuredLimitMatchesTheoryInEveryDirection) {
         const double c = factor * limit;
         const double theory = TheoreticalRadius(d.flow, c, q);
         const double measured = MeasuredRadius(d.flow, c, 300, q);
-        std::printf("Q = %d, flow along %-5s Courant %.4f: radius measured %.6f, theory %.6f\n", q, d.name, c,
-                    measured, theory);
-        // Round-off of (u - U) / eps with eps = 1e-7 and |U| ~ 1 is about 1e-16 / 1e-7 = 1e-9 per node.
+        std::printf("Q = %d, flow along %-5s Courant %.4f: radius measured %.6f, theory %.6f\n", q,
+                    d.name, c, measured, theory);
+        // Round-off of (u - U) / eps with eps = 1e-7 and |U| ~ 1 is about 1e-16 / 1e-7 = 1e-9 per
+        // node.
         EXPECT_LE(measured, theory + 1e-6) << d.name << ", Q = " << q;
         if (factor < 1.0) {
           EXPECT_LE(measured, 1.0 + 1e-6) << d.name << ", Q = " << q;
@@ -193,7 +204,8 @@ TEST(AdvectionWaveStability, DefaultMaxCourantIsBelowTheWorstDirection) {
   EXPECT_LT(defaults.wave_max_courant, 1.0 / std::sqrt(2.0));
   for (const Direction& d : kDirections) {
     for (const int q : kSubstepCounts) {
-      EXPECT_LE(MeasuredRadius(d.flow, defaults.wave_max_courant, 100, q), 1.0 + 1e-6) << d.name << ", Q = " << q;
+      EXPECT_LE(MeasuredRadius(d.flow, defaults.wave_max_courant, 100, q), 1.0 + 1e-6)
+          << d.name << ", Q = " << q;
     }
   }
 }

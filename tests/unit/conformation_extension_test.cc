@@ -1,13 +1,15 @@
 // Positive definiteness in a strong planar extensional flow (method notes 2, section 2.3): the
 // stagnation-point flow u = e R diag(1, -1) R^T x, R a rotation by 30 degrees (so the outgoing axis
 // is not a grid line), on [-1, 1]^2, h = 1/48, A = I on the inflow parts of the boundary, A0 = I,
-// lambda = 1, lambda e = 2 (> 1/2: A grows without bound near the outgoing axis), e dt = 0.006, t <= 3.
+// lambda = 1, lambda e = 2 (> 1/2: A grows without bound near the outgoing axis), e dt = 0.006, t
+// <= 3.
 //
 // Construction A (ConformationStep) must keep A SPD at every step; a naive scheme (the same
-// third-order upwind-biased advection without the SPD blend, and explicit stretching and relaxation,
-// all in one SSP-RK3, written out below as the comparison) must lose positive definiteness on the
-// same problem. The prototype of the notes saw the naive scheme fail at t = 2.37 with lambda_min
-// ~ -6e4, a spatial failure near the outgoing axis that a smaller dt does not cure.
+// third-order upwind-biased advection without the SPD blend, and explicit stretching and
+// relaxation, all in one SSP-RK3, written out below as the comparison) must lose positive
+// definiteness on the same problem. The prototype of the notes saw the naive scheme fail at t
+// = 2.37 with lambda_min ~ -6e4, a spatial failure near the outgoing axis that a smaller dt does
+// not cure.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,7 +35,8 @@ struct Flow {
   std::vector<double> u, v;
   Flow() {
     const double c = std::cos(M_PI / 6.0), s = std::sin(M_PI / 6.0);
-    l = Mat2{kRate * (c * c - s * s), 2.0 * kRate * c * s, 2.0 * kRate * c * s, kRate * (s * s - c * c)};
+    l = Mat2{kRate * (c * c - s * s), 2.0 * kRate * c * s, 2.0 * kRate * c * s,
+             kRate * (s * s - c * c)};
     u.resize(grid.NodeCount());
     v.resize(grid.NodeCount());
     for (int j = 0; j <= kCells; ++j) {
@@ -68,7 +71,8 @@ NaiveResult RunNaive(const Flow& flow) {
     for (int j = 0; j <= n; ++j) {
       for (int i = 0; i <= n; ++i) {
         if (i != 0 && i != n && j != 0 && j != n) continue;
-        const double nx = i == 0 ? -1.0 : (i == n ? 1.0 : 0.0), ny = j == 0 ? -1.0 : (j == n ? 1.0 : 0.0);
+        const double nx = i == 0 ? -1.0 : (i == n ? 1.0 : 0.0),
+                     ny = j == 0 ? -1.0 : (j == n ? 1.0 : 0.0);
         const std::size_t k = g.Index(i, j);
         if (flow.u[k] * nx + flow.v[k] * ny < 0.0) {
           f[0][P(i, j)] = 1.0;
@@ -101,15 +105,16 @@ NaiveResult RunNaive(const Flow& flow) {
         for (int c = 0; c < 3; ++c) {
           const double* q = in[c].data() + p;
           const std::ptrdiff_t sy = pad;
-          const double dx =
-              uk >= 0 ? q[-2] - 6 * q[-1] + 3 * q[0] + 2 * q[1] : -2 * q[-1] - 3 * q[0] + 6 * q[1] - q[2];
+          const double dx = uk >= 0 ? q[-2] - 6 * q[-1] + 3 * q[0] + 2 * q[1]
+                                    : -2 * q[-1] - 3 * q[0] + 6 * q[1] - q[2];
           const double dy = vk >= 0 ? q[-2 * sy] - 6 * q[-sy] + 3 * q[0] + 2 * q[sy]
                                     : -2 * q[-sy] - 3 * q[0] + 6 * q[sy] - q[2 * sy];
           adv[c] = -c6 * (uk * dx + vk * dy);
         }
         const double a11 = in[0][p], a12 = in[1][p], a22 = in[2][p];
         const double r11 = adv[0] + 2.0 * (l.m11 * a11 + l.m12 * a12) - (a11 - 1.0) / kLambda;
-        const double r12 = adv[1] + l.m11 * a12 + l.m12 * a22 + a11 * l.m21 + a12 * l.m22 - a12 / kLambda;
+        const double r12 =
+            adv[1] + l.m11 * a12 + l.m12 * a22 + a11 * l.m21 + a12 * l.m22 - a12 / kLambda;
         const double r22 = adv[2] + 2.0 * (l.m21 * a12 + l.m22 * a22) - (a22 - 1.0) / kLambda;
         out[0][p] = wb * base[0][p] + wi * (a11 + kDt * r11);
         out[1][p] = wb * base[1][p] + wi * (a12 + kDt * r12);
@@ -164,8 +169,8 @@ TEST(ConformationExtension, ConstructionAStaysPositiveDefiniteWhereTheNaiveSchem
   const int steps = static_cast<int>(std::lround(kEndTime / kDt));
   for (int s = 0; s < steps; ++s) {
     // Throws ConformationNotPositiveDefinite if A ever loses positive definiteness.
-    step.Advance(s * kDt, kDt, flow.u.data(), flow.v.data(), nullptr, a11.data(), a12.data(), a22.data(),
-                 report);
+    step.Advance(s * kDt, kDt, flow.u.data(), flow.v.data(), nullptr, a11.data(), a12.data(),
+                 a22.data(), report);
     min_eig = std::min(min_eig, report.Get("min_eig_A"));
     max_trace = std::max(max_trace, report.Get("max_trA"));
     blended += report.Get("blended_nodes");
@@ -177,8 +182,8 @@ TEST(ConformationExtension, ConstructionAStaysPositiveDefiniteWhereTheNaiveSchem
   EXPECT_GT(min_eig, 0.0);
 
   const NaiveResult naive = RunNaive(flow);
-  std::printf("naive scheme: min lambda_min %.3e, lost positive definiteness at t = %.3f\n", naive.min_eig,
-              naive.failure_time);
+  std::printf("naive scheme: min lambda_min %.3e, lost positive definiteness at t = %.3f\n",
+              naive.min_eig, naive.failure_time);
   EXPECT_LE(naive.min_eig, 0.0);
   EXPECT_GT(naive.failure_time, 0.0);
 }
@@ -196,8 +201,8 @@ TEST(ConformationExtension, WithoutTheBlendTheExactPointwiseUpdateAloneDoesNotSa
   bool lost_positive_definiteness = false;
   try {
     for (int s = 0; s < steps; ++s) {
-      step.Advance(s * kDt, kDt, flow.u.data(), flow.v.data(), nullptr, a11.data(), a12.data(), a22.data(),
-                   report);
+      step.Advance(s * kDt, kDt, flow.u.data(), flow.v.data(), nullptr, a11.data(), a12.data(),
+                   a22.data(), report);
     }
   } catch (const ConformationNotPositiveDefinite& e) {
     std::printf("blend disabled: %s\n", e.what());

@@ -1,5 +1,6 @@
-// Failure reporting of step (35): a field that is indefinite or not finite ends the step with a typed
-// error naming the time, the node and its position, and the quantity (design.md 5; issue 4 point 5).
+// Failure reporting of step (35): a field that is indefinite or not finite ends the step with a
+// typed error naming the time, the node and its position, and the quantity (design.md 5; issue 4
+// point 5).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -46,7 +47,8 @@ std::string ErrorOfStep(Case& c, double time, double dt = 0.01) {
   ConformationStep step(WalledBox(), c.grid);
   StepReport report;
   try {
-    step.Advance(time, dt, c.u.data(), c.v.data(), nullptr, c.a11.data(), c.a12.data(), c.a22.data(), report);
+    step.Advance(time, dt, c.u.data(), c.v.data(), nullptr, c.a11.data(), c.a12.data(),
+                 c.a22.data(), report);
   } catch (const ErrorType& e) {
     return e.what();
   }

@@ -13,7 +13,8 @@
 namespace dlmfd {
 namespace {
 
-// exp(M) by its Taylor series in long double (60 terms: truncation < 3^60/60! ~ 1e-53 for |M| <= 3).
+// exp(M) by its Taylor series in long double (60 terms: truncation < 3^60/60! ~ 1e-53 for |M| <=
+// 3).
 Mat2 TaylorExponential(const Mat2& l, double s) {
   long double e[2][2] = {{1, 0}, {0, 1}}, term[2][2] = {{1, 0}, {0, 1}};
   const long double m[2][2] = {{l.m11 * s, l.m12 * s}, {l.m21 * s, l.m22 * s}};
@@ -65,7 +66,8 @@ double MaxDiff(const SymTensor& a, const SymTensor& b) {
 Mat2 RotatedExtension(double rate, double angle) {
   const double c = std::cos(angle), s = std::sin(angle);
   // R diag(rate, -rate) R^T
-  return Mat2{rate * (c * c - s * s), 2.0 * rate * c * s, 2.0 * rate * c * s, rate * (s * s - c * c)};
+  return Mat2{rate * (c * c - s * s), 2.0 * rate * c * s, 2.0 * rate * c * s,
+              rate * (s * s - c * c)};
 }
 
 const std::vector<Mat2> kGradients = {
@@ -82,7 +84,8 @@ TEST(MatrixExponential, EqualsTaylorSeriesToRoundOff) {
   for (const Mat2& l : kGradients) {
     for (double s : {1e-6, 0.01, 0.5, 1.0, 2.0}) {
       const Mat2 f = MatrixExponential(l, s), t = TaylorExponential(l, s);
-      const double scale = std::max({std::abs(t.m11), std::abs(t.m12), std::abs(t.m21), std::abs(t.m22)});
+      const double scale =
+          std::max({std::abs(t.m11), std::abs(t.m12), std::abs(t.m21), std::abs(t.m22)});
       // Round-off: a few ulps of the cosh/sinh evaluation times the norm of F.
       EXPECT_NEAR(f.m11, t.m11, 1e-14 * scale) << "s = " << s;
       EXPECT_NEAR(f.m12, t.m12, 1e-14 * scale) << "s = " << s;
@@ -140,15 +143,16 @@ TEST(OnePanelRow, EqualsTheGeneralRuleWhereItApplies) {
     }
     const int count = static_cast<int>(a11.size());
     std::vector<double> o11(count), o12(count), o22(count);
-    OnePanelRow(count, constants, a11.data(), a12.data(), a22.data(), l11.data(), l12.data(), l21.data(),
-                l22.data(), o11.data(), o12.data(), o22.data());
+    OnePanelRow(count, constants, a11.data(), a12.data(), a22.data(), l11.data(), l12.data(),
+                l21.data(), l22.data(), o11.data(), o12.data(), o22.data());
     int applied = 0;
     for (int i = 0; i < count; ++i) {
       const Mat2 l{l11[i], l12[i], l21[i], l22[i]};
       if (!OnePanelApplies(constants, l)) continue;
       ++applied;
       const SymTensor general = StretchAndRelax(SymTensor{a11[i], a12[i], a22[i]}, l, dt, lambda);
-      EXPECT_LT(MaxDiff(SymTensor{o11[i], o12[i], o22[i]}, general), 1e-14 * Trace(general)) << "dt " << dt;
+      EXPECT_LT(MaxDiff(SymTensor{o11[i], o12[i], o22[i]}, general), 1e-14 * Trace(general))
+          << "dt " << dt;
     }
     EXPECT_GT(applied, 0);
   }
@@ -226,7 +230,8 @@ TEST(SteadyConformation, SimpleShearMatchesReference) {
 
 TEST(SteadyConformation, SolvesTheSteadyEquationAndRejectsStrongExtension) {
   const double lambda = 1.0;
-  for (const Mat2& l : {Mat2{0.2, 0.5, -0.1, -0.2}, RotatedExtension(0.3, 0.4), Mat2{0, -2, 2, 0}}) {
+  for (const Mat2& l :
+       {Mat2{0.2, 0.5, -0.1, -0.2}, RotatedExtension(0.3, 0.4), Mat2{0, -2, 2, 0}}) {
     const SymTensor a = SteadyConformation(l, lambda);
     const SymTensor r = Rate(a, l, lambda);
     EXPECT_LT(std::max({std::abs(r.a11), std::abs(r.a12), std::abs(r.a22)}), 1e-13 * Trace(a));
@@ -247,7 +252,8 @@ TEST(InflowConformation, PoiseuilleSideIsTheFullyDevelopedChannelState) {
       BoundarySide{SideType::kVelocity, Profile::kUniform, Vec2(1.0, 0.0), Vec2::Zero()};
   const double lambda = 1.4;
   for (int k = 0; k <= grid.nx; ++k) {
-    // v(x) = 0.5 * 4 x (1 - x): shear rate dv/dx = 2 (1 - 2x); the channel state has the flow along y.
+    // v(x) = 0.5 * 4 x (1 - x): shear rate dv/dx = 2 (1 - 2x); the channel state has the flow along
+    // y.
     const double x = k * grid.h, g = 2.0 * (1.0 - 2.0 * x);
     const SymTensor a = InflowConformation(grid, domain, Side::kBottom, k, lambda);
     const double wi = lambda * g;
@@ -264,7 +270,8 @@ TEST(InflowConformation, PoiseuilleSideIsTheFullyDevelopedChannelState) {
 TEST(MinEigenvalue, KeepsRelativeAccuracyForLargeStretch) {
   // A = R diag(1e5, 1e-3) R^T: the textbook formula loses all digits of the small eigenvalue.
   const double c = std::cos(0.3), s = std::sin(0.3), big = 1e5, small = 1e-3;
-  const SymTensor a{big * c * c + small * s * s, (big - small) * c * s, big * s * s + small * c * c};
+  const SymTensor a{big * c * c + small * s * s, (big - small) * c * s,
+                    big * s * s + small * c * c};
   EXPECT_NEAR(MinEigenvalue(a), small, 1e-9 * small * 1e3);
   EXPECT_LT(MinEigenvalue(SymTensor{1.0, 2.0, 1.0}), 0.0);
 }

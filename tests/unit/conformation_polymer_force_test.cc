@@ -1,6 +1,6 @@
-// The polymer force of (33), f_i = -int grad phi_i : tau_p with tau_p = G (A - I), G = eta_p/lambda:
-// against an independently assembled matrix, against h^2 div tau for a linear tau at interior nodes,
-// and zero for a uniform A away from the boundary.
+// The polymer force of (33), f_i = -int grad phi_i : tau_p with tau_p = G (A - I), G =
+// eta_p/lambda: against an independently assembled matrix, against h^2 div tau for a linear tau at
+// interior nodes, and zero for a uniform A away from the boundary.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -82,7 +82,8 @@ Field SmoothField(const Grid& g) {
   Field f{Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n)};
   for (int j = 0; j <= g.ny; ++j) {
     for (int i = 0; i <= g.nx; ++i) {
-      const double x = 2 * M_PI * (g.X(i) - g.x0) / g.Width(), y = 2 * M_PI * (g.Y(j) - g.y0) / g.Height();
+      const double x = 2 * M_PI * (g.X(i) - g.x0) / g.Width(),
+                   y = 2 * M_PI * (g.Y(j) - g.y0) / g.Height();
       const int k = int(g.Index(i, j));
       f.a11[k] = 3.0 + std::sin(x) * std::cos(2 * y);
       f.a12[k] = 0.7 * std::cos(x + y);
@@ -97,12 +98,14 @@ void ExpectEqualsAssembled(const Grid& g, bool px, bool py) {
   const Field a = SmoothField(g);
   const int n = int(g.NodeCount());
   std::vector<double> fx(n, 0.25), fy(n, -0.5);  // AddPolymerForce adds into what is there
-  AddPolymerForce(
-      g, Domain(g, px ? SideType::kPeriodic : SideType::kWall, py ? SideType::kPeriodic : SideType::kOutflow),
-      modulus, a.a11.data(), a.a12.data(), a.a22.data(), fx.data(), fy.data());
+  AddPolymerForce(g,
+                  Domain(g, px ? SideType::kPeriodic : SideType::kWall,
+                         py ? SideType::kPeriodic : SideType::kOutflow),
+                  modulus, a.a11.data(), a.a12.data(), a.a22.data(), fx.data(), fy.data());
   const AssembledDerivative d = Assemble(g, px, py);
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(n);
-  const Eigen::VectorXd t11 = modulus * (a.a11 - ones), t12 = modulus * a.a12, t22 = modulus * (a.a22 - ones);
+  const Eigen::VectorXd t11 = modulus * (a.a11 - ones), t12 = modulus * a.a12,
+                        t22 = modulus * (a.a22 - ones);
   const Eigen::VectorXd ex = -(d.dx * t11 + d.dy * t12), ey = -(d.dx * t12 + d.dy * t22);
   const double scale = g.h * modulus * 4.0;  // f ~ h tau
   for (int k = 0; k < n; ++k) {
@@ -136,8 +139,8 @@ TEST(AddPolymerForce, LinearStressGivesHSquaredDivergenceAtInteriorNodes) {
       a22[k] = 1.0 + (-0.2 + 0.4 * x + 0.9 * y) / modulus;  // tau22 = -0.2 + 0.4 x + 0.9 y
     }
   }
-  AddPolymerForce(g, Domain(g, SideType::kWall, SideType::kWall), modulus, a11.data(), a12.data(), a22.data(),
-                  fx.data(), fy.data());
+  AddPolymerForce(g, Domain(g, SideType::kWall, SideType::kWall), modulus, a11.data(), a12.data(),
+                  a22.data(), fx.data(), fy.data());
   const double div_x = 1.2 + 2.0, div_y = -0.8 + 0.9;
   for (int j = 1; j < g.ny; ++j) {
     for (int i = 1; i < g.nx; ++i) {
@@ -151,8 +154,8 @@ TEST(AddPolymerForce, UniformConformationGivesNoInteriorForce) {
   const Grid g{8, 8, 0.125, 0.0, 0.0};
   const int n = int(g.NodeCount());
   std::vector<double> a11(n, 4.0), a12(n, 1.5), a22(n, 2.0), fx(n, 0.0), fy(n, 0.0);
-  AddPolymerForce(g, Domain(g, SideType::kWall, SideType::kWall), 3.0, a11.data(), a12.data(), a22.data(),
-                  fx.data(), fy.data());
+  AddPolymerForce(g, Domain(g, SideType::kWall, SideType::kWall), 3.0, a11.data(), a12.data(),
+                  a22.data(), fx.data(), fy.data());
   for (int j = 1; j < g.ny; ++j) {
     for (int i = 1; i < g.nx; ++i) {
       EXPECT_NEAR(fx[g.Index(i, j)], 0.0, 1e-15);

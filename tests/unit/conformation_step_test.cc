@@ -38,7 +38,12 @@ Params MakeParams(int nx, int ny, double h, SideType x_sides, SideType y_sides, 
 
 struct Fields {
   std::vector<double> u, v, a11, a12, a22;
-  explicit Fields(std::size_t n) : u(n, 0.0), v(n, 0.0), a11(n, 1.0), a12(n, 0.0), a22(n, 1.0) {}
+  explicit Fields(std::size_t n)
+      : u(n, 0.0),
+        v(n, 0.0),
+        a11(n, 1.0),
+        a12(n, 0.0),
+        a22(n, 1.0) {}
 };
 
 TEST(ConformationStep, NewtonianSceneHasNoConformationStep) {
@@ -74,14 +79,15 @@ TEST(ConformationStep, HomogeneousRelaxationIsExactToRoundOff) {
     const int steps = 20;
     StepReport report;
     for (int n = 0; n < steps; ++n) {
-      step.Advance(n * dt, dt, f.u.data(), f.v.data(), nullptr, f.a11.data(), f.a12.data(), f.a22.data(),
-                   report);
+      step.Advance(n * dt, dt, f.u.data(), f.v.data(), nullptr, f.a11.data(), f.a12.data(),
+                   f.a22.data(), report);
     }
     const double decay = std::exp(-steps * dt / lambda);
     double error = 0.0;
     for (std::size_t k = 0; k < grid.NodeCount(); ++k) {
       error = std::max({error, std::abs(f.a11[k] - (1.0 + b11[k] * decay)),
-                        std::abs(f.a12[k] - b12[k] * decay), std::abs(f.a22[k] - (1.0 + b22[k] * decay))});
+                        std::abs(f.a12[k] - b12[k] * decay),
+                        std::abs(f.a22[k] - (1.0 + b22[k] * decay))});
     }
     std::printf("dt = %.2f: max error after %d steps %.2e\n", dt, steps, error);
     EXPECT_LT(error, steps * 4.0 * 2.2e-16 * 4.0);
@@ -93,10 +99,10 @@ TEST(ConformationStep, HomogeneousRelaxationIsExactToRoundOff) {
 }
 
 TEST(ConformationStep, SteadySimpleShearReachesTheAnalyticState) {
-  // u = g (y - y0), v = 0 in a box periodic in x with velocity sides at y = 0 and 1 (data u = 0 and g,
-  // so u . n = 0: no inflow). L is uniform and exact at every node (P1 gradient of a linear field),
-  // A stays uniform in x, so every node converges to A11 = 1 + 2 (lambda g)^2, A12 = lambda g,
-  // A22 = 1 (reference README). Error budget: the pointwise quadrature, measured in
+  // u = g (y - y0), v = 0 in a box periodic in x with velocity sides at y = 0 and 1 (data u = 0 and
+  // g, so u . n = 0: no inflow). L is uniform and exact at every node (P1 gradient of a linear
+  // field), A stays uniform in x, so every node converges to A11 = 1 + 2 (lambda g)^2, A12 = lambda
+  // g, A22 = 1 (reference README). Error budget: the pointwise quadrature, measured in
   // conformation_pointwise_test (<= 2.7e-13 relative at dt/lambda = 1/16), and the transient
   // (t^2 e^{-t/lambda} (lambda g)^2 at t = 60 lambda: < 1e-20).
   const int n = 8;
@@ -112,8 +118,8 @@ TEST(ConformationStep, SteadySimpleShearReachesTheAnalyticState) {
     }
     StepReport report;
     for (int s = 0; s < 60 * 16; ++s) {
-      step.Advance(s * dt, dt, f.u.data(), f.v.data(), nullptr, f.a11.data(), f.a12.data(), f.a22.data(),
-                   report);
+      step.Advance(s * dt, dt, f.u.data(), f.v.data(), nullptr, f.a11.data(), f.a12.data(),
+                   f.a22.data(), report);
     }
     const SymTensor exact = SimpleShearConformation(lambda, g);
     double error = 0.0;
@@ -122,7 +128,8 @@ TEST(ConformationStep, SteadySimpleShearReachesTheAnalyticState) {
                         std::abs(f.a22[k] - exact.a22)});
     }
     std::printf(
-        "lambda g = %4.1f: max |A - A_exact| / trA = %.2e, trA on the wall %.6f (2 + 2 (lambda g)^2 = "
+        "lambda g = %4.1f: max |A - A_exact| / trA = %.2e, trA on the wall %.6f (2 + 2 (lambda "
+        "g)^2 = "
         "%.6f)\n",
         wi, error / Trace(exact), f.a11[0] + f.a22[0], 2.0 + 2.0 * wi * wi);
     EXPECT_LT(error / Trace(exact), 1e-12);
@@ -132,10 +139,10 @@ TEST(ConformationStep, SteadySimpleShearReachesTheAnalyticState) {
 }
 
 TEST(ConformationStep, IdentityInsideParticlesAndInflowDataOnUpstreamNodes) {
-  // Uniform flow u = (1, 0) through a channel: left side velocity (inflow), right side outflow, walls
-  // at y = 0, 1 (slip data in the array, which the step reads as given). A0 = 3 I everywhere: inflow
-  // nodes get A_L = I (uniform profile), nodes flagged inside a particle get I, the outflow side keeps
-  // advected values.
+  // Uniform flow u = (1, 0) through a channel: left side velocity (inflow), right side outflow,
+  // walls at y = 0, 1 (slip data in the array, which the step reads as given). A0 = 3 I everywhere:
+  // inflow nodes get A_L = I (uniform profile), nodes flagged inside a particle get I, the outflow
+  // side keeps advected values.
   const int n = 8;
   const Grid grid{n, n, 1.0 / n, 0.0, 0.0};
   Params p = MakeParams(n, n, 1.0 / n, SideType::kVelocity, SideType::kWall, 1.0);
@@ -150,8 +157,8 @@ TEST(ConformationStep, IdentityInsideParticlesAndInflowDataOnUpstreamNodes) {
   inside[grid.Index(4, 4)] = 1;
   StepReport report;
   const double dt = 0.01;
-  step.Advance(0.0, dt, f.u.data(), f.v.data(), inside.data(), f.a11.data(), f.a12.data(), f.a22.data(),
-               report);
+  step.Advance(0.0, dt, f.u.data(), f.v.data(), inside.data(), f.a11.data(), f.a12.data(),
+               f.a22.data(), report);
   EXPECT_EQ(f.a11[grid.Index(4, 4)], 1.0);
   EXPECT_EQ(f.a12[grid.Index(4, 4)], 0.0);
   EXPECT_EQ(f.a22[grid.Index(4, 4)], 1.0);
@@ -179,7 +186,8 @@ TEST(ConformationStep, SubCyclesToTheCourantLimit) {
   }
   StepReport report;
   // (|u| + |v|) dt / h = 1.5 * 0.1 * 8 = 1.2 -> 3 sub-steps.
-  step.Advance(0.0, 0.1, f.u.data(), f.v.data(), nullptr, f.a11.data(), f.a12.data(), f.a22.data(), report);
+  step.Advance(0.0, 0.1, f.u.data(), f.v.data(), nullptr, f.a11.data(), f.a12.data(), f.a22.data(),
+               report);
   EXPECT_EQ(report.Get("conformation_substeps"), 3.0);
 }
 
@@ -204,8 +212,9 @@ TEST(NodeVelocityGradient, ExactForLinearFieldsAtEveryNode) {
 }
 
 TEST(NodeVelocityGradient, SecondOrderOnAPeriodicBox) {
-  // u = sin(2 pi x) cos(2 pi y), v = cos(2 pi x + 1) sin(4 pi y) on the doubly periodic unit box: the
-  // 6-triangle average is a centred stencil, second order; the error must fall by ~4 per halving.
+  // u = sin(2 pi x) cos(2 pi y), v = cos(2 pi x + 1) sin(4 pi y) on the doubly periodic unit box:
+  // the 6-triangle average is a centred stencil, second order; the error must fall by ~4 per
+  // halving.
   double previous = 0.0;
   for (int n : {16, 32, 64}) {
     const Grid grid{n, n, 1.0 / n, 0.0, 0.0};
@@ -226,10 +235,11 @@ TEST(NodeVelocityGradient, SecondOrderOnAPeriodicBox) {
       for (int i = 0; i <= n; ++i) {
         const double x = grid.X(i), y = grid.Y(j);
         const std::size_t k = grid.Index(i, j);
-        error = std::max({error, std::abs(l11[k] - tp * std::cos(tp * x) * std::cos(tp * y)),
-                          std::abs(l12[k] + tp * std::sin(tp * x) * std::sin(tp * y)),
-                          std::abs(l21[k] + tp * std::sin(tp * x + 1.0) * std::sin(2.0 * tp * y)),
-                          std::abs(l22[k] - 2.0 * tp * std::cos(tp * x + 1.0) * std::cos(2.0 * tp * y))});
+        error = std::max(
+            {error, std::abs(l11[k] - tp * std::cos(tp * x) * std::cos(tp * y)),
+             std::abs(l12[k] + tp * std::sin(tp * x) * std::sin(tp * y)),
+             std::abs(l21[k] + tp * std::sin(tp * x + 1.0) * std::sin(2.0 * tp * y)),
+             std::abs(l22[k] - 2.0 * tp * std::cos(tp * x + 1.0) * std::cos(2.0 * tp * y))});
       }
     }
     if (previous > 0.0) {

@@ -2,7 +2,8 @@
 // independent codes: stencil gathers vs. a triangle loop with basis gradients from coordinates), on
 // small meshes and every boundary topology, plus the properties and interior stencils of method
 // notes 1, section 1. Tolerances: the two codes differ only by round-off in sums of O(10) terms of
-// size O(h) or O(1), so 1e-13 relative to the largest output is a generous bound for double precision.
+// size O(h) or O(1), so 1e-13 relative to the largest output is a generous bound for double
+// precision.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -30,7 +31,8 @@ const std::vector<Case>& Cases() {
       {"all_walls", SideType::kWall, SideType::kWall, SideType::kWall, SideType::kWall},
       {"outflow_top", SideType::kWall, SideType::kWall, SideType::kVelocity, SideType::kOutflow},
       {"periodic_x", SideType::kPeriodic, SideType::kPeriodic, SideType::kWall, SideType::kWall},
-      {"periodic_xy", SideType::kPeriodic, SideType::kPeriodic, SideType::kPeriodic, SideType::kPeriodic},
+      {"periodic_xy", SideType::kPeriodic, SideType::kPeriodic, SideType::kPeriodic,
+       SideType::kPeriodic},
       {"outflow_right", SideType::kVelocity, SideType::kOutflow, SideType::kWall, SideType::kWall},
   };
   return cases;
@@ -64,12 +66,14 @@ Eigen::VectorXd Map(const std::vector<double>& v) {
 // max |a - b| / max |b|.
 double RelativeDifference(const std::vector<double>& a, const Eigen::VectorXd& b) {
   double diff = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) diff = std::max(diff, std::abs(a[i] - b[Eigen::Index(i)]));
+  for (std::size_t i = 0; i < a.size(); ++i)
+    diff = std::max(diff, std::abs(a[i] - b[Eigen::Index(i)]));
   return diff / std::max(b.cwiseAbs().maxCoeff(), 1e-300);
 }
 
 bool IsDuplicate(const Grid& g, const BoundaryTopology& t, int i, int j) {
-  return (t.x.low == EndKind::kPeriodic && i == g.nx) || (t.y.low == EndKind::kPeriodic && j == g.ny);
+  return (t.x.low == EndKind::kPeriodic && i == g.nx) ||
+         (t.y.low == EndKind::kPeriodic && j == g.ny);
 }
 
 constexpr double kTolerance = 1e-13;
@@ -110,8 +114,8 @@ TEST_P(OperatorsTest, DivergenceEqualsAssembledWithBoundaryData) {
   const Grid coarse = grid_.Coarse();
   std::vector<double> out(coarse.NodeCount());
   ApplyDivergence(grid_, pressure_, u.data(), v.data(), out.data());
-  const Eigen::VectorXd expected =
-      AssembleDivergenceX(grid_, pressure_) * Map(u) + AssembleDivergenceY(grid_, pressure_) * Map(v);
+  const Eigen::VectorXd expected = AssembleDivergenceX(grid_, pressure_) * Map(u) +
+                                   AssembleDivergenceY(grid_, pressure_) * Map(v);
   EXPECT_LT(RelativeDifference(out, expected), kTolerance) << kase_.name;
 }
 
@@ -130,7 +134,8 @@ TEST_P(OperatorsTest, DivergenceTransposeEqualsAssembled) {
 // where the separable trapezoid value h^2/4 replaces h^2/3 or h^2/6 (header of fem_operators.h).
 TEST_P(OperatorsTest, LumpedMassIsRowSumExceptAtCorners) {
   for (const auto& [g, t] : {std::pair{grid_, velocity_}, std::pair{grid_.Coarse(), pressure_}}) {
-    const Eigen::VectorXd row_sum = AssembleConsistentMass(g, t) * Eigen::VectorXd::Ones(Eigen::Index(g.NodeCount()));
+    const Eigen::VectorXd row_sum =
+        AssembleConsistentMass(g, t) * Eigen::VectorXd::Ones(Eigen::Index(g.NodeCount()));
     std::vector<double> ones(g.NodeCount(), 1.0), applied(g.NodeCount()), diagonal(g.NodeCount());
     ApplyLumpedMass(g, t, ones.data(), applied.data());
     LumpedMassDiagonal(g, t, diagonal.data());
@@ -153,8 +158,8 @@ TEST_P(OperatorsTest, LumpedMassIsRowSumExceptAtCorners) {
 }
 
 // Symmetric, positive semi-definite; positive definite on the unknowns when a Dirichlet side
-// exists, else exactly one zero eigenvalue (the constants). 1e-12 separates round-off zeros from the
-// smallest true eigenvalue, which is O(1/n^2) ~ 1e-2 on these meshes.
+// exists, else exactly one zero eigenvalue (the constants). 1e-12 separates round-off zeros from
+// the smallest true eigenvalue, which is O(1/n^2) ~ 1e-2 on these meshes.
 TEST_P(OperatorsTest, StiffnessIsSymmetricSemiDefinite) {
   for (const auto& [g, t] : {std::pair{grid_, velocity_}, std::pair{grid_.Coarse(), pressure_}}) {
     const Eigen::SparseMatrix<double> k = AssembleStiffness(g, t);
@@ -168,7 +173,8 @@ TEST_P(OperatorsTest, StiffnessIsSymmetricSemiDefinite) {
       }
     }
     const Eigen::MatrixXd dense(k);
-    const Eigen::VectorXd all = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(dense(kept, kept)).eigenvalues();
+    const Eigen::VectorXd all =
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(dense(kept, kept)).eigenvalues();
     EXPECT_GT(all.minCoeff(), -1e-12);
     const Eigen::VectorXd on_unknowns =
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(dense(unknown, unknown)).eigenvalues();
@@ -197,10 +203,11 @@ TEST_P(OperatorsTest, DivergenceTransposeOfConstantVanishesInside) {
   }
 }
 
-// G_x x = int phi_i (and G_y y) at every row, boundary rows included, where the axis is not periodic.
+// G_x x = int phi_i (and G_y y) at every row, boundary rows included, where the axis is not
+// periodic.
 TEST_P(OperatorsTest, GradientOfCoordinateIsBasisIntegral) {
-  const Eigen::VectorXd basis_integral =
-      AssembleConsistentMass(grid_, velocity_) * Eigen::VectorXd::Ones(Eigen::Index(grid_.NodeCount()));
+  const Eigen::VectorXd basis_integral = AssembleConsistentMass(grid_, velocity_) *
+                                         Eigen::VectorXd::Ones(Eigen::Index(grid_.NodeCount()));
   std::vector<double> fx(grid_.NodeCount()), fy(grid_.NodeCount());
   for (int j = 0; j <= grid_.ny; ++j) {
     for (int i = 0; i <= grid_.nx; ++i) {
@@ -220,21 +227,25 @@ TEST_P(OperatorsTest, GradientOfCoordinateIsBasisIntegral) {
 }
 
 std::string CaseName(const ::testing::TestParamInfo<std::tuple<int, int>>& param) {
-  return "mesh" + std::to_string(std::get<0>(param.param)) + "_" + Cases()[std::get<1>(param.param)].name;
+  return "mesh" + std::to_string(std::get<0>(param.param)) + "_" +
+         Cases()[std::get<1>(param.param)].name;
 }
 
 INSTANTIATE_TEST_SUITE_P(MeshesAndTopologies, OperatorsTest,
-                         ::testing::Combine(::testing::Values(0, 1), ::testing::Values(0, 1, 2, 3, 4)),
+                         ::testing::Combine(::testing::Values(0, 1),
+                                            ::testing::Values(0, 1, 2, 3, 4)),
                          CaseName);
 
 using Stencil = std::map<std::pair<int, int>, double>;
 
-// The non-zero entries of one row of m, keyed by column-node offset from (ci, cj), in units of scale.
-Stencil RowStencil(const Eigen::SparseMatrix<double>& m, const Grid& columns, std::size_t row, int ci, int cj,
-                   double scale) {
+// The non-zero entries of one row of m, keyed by column-node offset from (ci, cj), in units of
+// scale.
+Stencil RowStencil(const Eigen::SparseMatrix<double>& m, const Grid& columns, std::size_t row,
+                   int ci, int cj, double scale) {
   const Eigen::SparseMatrix<double, Eigen::RowMajor> rows(m);
   Stencil out;
-  for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows, Eigen::Index(row)); it; ++it) {
+  for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows, Eigen::Index(row)); it;
+       ++it) {
     if (std::abs(it.value()) < 1e-14 * scale) continue;
     const int col = int(it.col());
     out[{col % columns.NodesX() - ci, col / columns.NodesX() - cj}] = it.value() / scale;
@@ -246,7 +257,8 @@ void ExpectStencil(const Stencil& actual, const Stencil& expected, const std::st
   EXPECT_EQ(actual.size(), expected.size()) << what;
   for (const auto& [offset, value] : expected) {
     const auto it = actual.find(offset);
-    ASSERT_NE(it, actual.end()) << what << " missing offset " << offset.first << "," << offset.second;
+    ASSERT_NE(it, actual.end()) << what << " missing offset " << offset.first << ","
+                                << offset.second;
     EXPECT_NEAR(it->second, value, 1e-14) << what << " at " << offset.first << "," << offset.second;
   }
 }
@@ -259,7 +271,8 @@ class InteriorStencilTest : public ::testing::Test {
 
 TEST_F(InteriorStencilTest, StiffnessIsFivePointLaplacian) {
   ExpectStencil(RowStencil(AssembleStiffness(grid_, walls_), grid_, grid_.Index(3, 3), 3, 3, 1.0),
-                {{{0, 0}, 4.0}, {{1, 0}, -1.0}, {{-1, 0}, -1.0}, {{0, 1}, -1.0}, {{0, -1}, -1.0}}, "K");
+                {{{0, 0}, 4.0}, {{1, 0}, -1.0}, {{-1, 0}, -1.0}, {{0, 1}, -1.0}, {{0, -1}, -1.0}},
+                "K");
   // Bottom edge and SW corner rows of the Neumann stiffness (pressure notes: [2; -1/2, -1/2, -1]).
   ExpectStencil(RowStencil(AssembleStiffness(grid_, walls_), grid_, grid_.Index(3, 0), 3, 0, 1.0),
                 {{{0, 0}, 2.0}, {{1, 0}, -0.5}, {{-1, 0}, -0.5}, {{0, 1}, -1.0}}, "K edge");
@@ -270,31 +283,45 @@ TEST_F(InteriorStencilTest, StiffnessIsFivePointLaplacian) {
 TEST_F(InteriorStencilTest, ConsistentMass) {
   const double h2 = grid_.h * grid_.h;
   const double e = 1.0 / 12.0;
-  ExpectStencil(RowStencil(AssembleConsistentMass(grid_, walls_), grid_, grid_.Index(3, 3), 3, 3, h2),
-                {{{0, 0}, 0.5}, {{1, 0}, e}, {{-1, 0}, e}, {{0, 1}, e}, {{0, -1}, e}, {{1, 1}, e}, {{-1, -1}, e}},
-                "M");
+  ExpectStencil(
+      RowStencil(AssembleConsistentMass(grid_, walls_), grid_, grid_.Index(3, 3), 3, 3, h2),
+      {{{0, 0}, 0.5},
+       {{1, 0}, e},
+       {{-1, 0}, e},
+       {{0, 1}, e},
+       {{0, -1}, e},
+       {{1, 1}, e},
+       {{-1, -1}, e}},
+      "M");
 }
 
 TEST_F(InteriorStencilTest, IntegratedGradientFormulas) {
   const double s = 1.0 / 6.0;
-  ExpectStencil(RowStencil(AssembleGradientX(grid_, walls_), grid_, grid_.Index(3, 3), 3, 3, grid_.h),
-                {{{1, 0}, 2 * s}, {{-1, 0}, -2 * s}, {{0, -1}, s}, {{-1, -1}, -s}, {{1, 1}, s}, {{0, 1}, -s}}, "Gx");
-  ExpectStencil(RowStencil(AssembleGradientY(grid_, walls_), grid_, grid_.Index(3, 3), 3, 3, grid_.h),
-                {{{0, 1}, 2 * s}, {{0, -1}, -2 * s}, {{1, 1}, s}, {{1, 0}, -s}, {{-1, 0}, s}, {{-1, -1}, -s}}, "Gy");
+  ExpectStencil(
+      RowStencil(AssembleGradientX(grid_, walls_), grid_, grid_.Index(3, 3), 3, 3, grid_.h),
+      {{{1, 0}, 2 * s}, {{-1, 0}, -2 * s}, {{0, -1}, s}, {{-1, -1}, -s}, {{1, 1}, s}, {{0, 1}, -s}},
+      "Gx");
+  ExpectStencil(
+      RowStencil(AssembleGradientY(grid_, walls_), grid_, grid_.Index(3, 3), 3, 3, grid_.h),
+      {{{0, 1}, 2 * s}, {{0, -1}, -2 * s}, {{1, 1}, s}, {{1, 0}, -s}, {{-1, 0}, s}, {{-1, -1}, -s}},
+      "Gy");
 }
 
 TEST_F(InteriorStencilTest, DivergenceSixteenPoints) {
-  const Stencil bx = {{{-2, -2}, -1.0 / 12}, {{0, -2}, 1.0 / 12},                                          //
-                      {{-2, -1}, -0.25},     {{-1, -1}, -0.25},   {{0, -1}, 0.25},    {{1, -1}, 0.25},    //
-                      {{-2, 0}, -1.0 / 6},   {{-1, 0}, -0.5},     {{1, 0}, 0.5},      {{2, 0}, 1.0 / 6},  //
-                      {{-1, 1}, -0.25},      {{0, 1}, -0.25},     {{1, 1}, 0.25},     {{2, 1}, 0.25},     //
-                      {{0, 2}, -1.0 / 12},   {{2, 2}, 1.0 / 12}};
+  const Stencil bx = {
+      {{-2, -2}, -1.0 / 12}, {{0, -2}, 1.0 / 12},                                      //
+      {{-2, -1}, -0.25},     {{-1, -1}, -0.25},   {{0, -1}, 0.25}, {{1, -1}, 0.25},    //
+      {{-2, 0}, -1.0 / 6},   {{-1, 0}, -0.5},     {{1, 0}, 0.5},   {{2, 0}, 1.0 / 6},  //
+      {{-1, 1}, -0.25},      {{0, 1}, -0.25},     {{1, 1}, 0.25},  {{2, 1}, 0.25},     //
+      {{0, 2}, -1.0 / 12},   {{2, 2}, 1.0 / 12}};
   Stencil by;
   for (const auto& [offset, value] : bx) by[{offset.second, offset.first}] = value;
   const Grid coarse = grid_.Coarse();
   const std::size_t row = coarse.Index(2, 1);  // fine node (4, 2)
-  ExpectStencil(RowStencil(AssembleDivergenceX(grid_, walls_), grid_, row, 4, 2, grid_.h), bx, "Bx");
-  ExpectStencil(RowStencil(AssembleDivergenceY(grid_, walls_), grid_, row, 4, 2, grid_.h), by, "By");
+  ExpectStencil(RowStencil(AssembleDivergenceX(grid_, walls_), grid_, row, 4, 2, grid_.h), bx,
+                "Bx");
+  ExpectStencil(RowStencil(AssembleDivergenceY(grid_, walls_), grid_, row, 4, 2, grid_.h), by,
+                "By");
 }
 
 // The velocity topology of the scene sides, and the pressure one the other way round.

@@ -179,7 +179,8 @@ TEST(LineChart, PointsLandOnTheirPixelsInTheSeriesColour) {
   const Rgb b = SeriesColour(1);
   EXPECT_NE(a, b);
   EXPECT_EQ(p.image.At(int(p.PixelX(1.8)), int(p.PixelY(1.5))), b);
-  // Between a's descending segment and the top of the range, at (1.8, 1.7): background or grid only.
+  // Between a's descending segment and the top of the range, at (1.8, 1.7): background or grid
+  // only.
   const Rgb empty = p.image.At(int(p.PixelX(1.8)), int(p.PixelY(1.7)));
   EXPECT_TRUE(empty == kWhite || empty == (Rgb{225, 225, 225}));
   // Ticks on the widened ranges.
@@ -271,7 +272,8 @@ TEST(LineChart, EmptyInputIsAClearError) {
 TEST(LineChart, PaletteIsDistinctAndCycles) {
   for (std::size_t i = 0; i < kPaletteSize; ++i) {
     EXPECT_NE(SeriesColour(i), kWhite);
-    for (std::size_t j = i + 1; j < kPaletteSize; ++j) EXPECT_NE(SeriesColour(i), SeriesColour(j)) << i << j;
+    for (std::size_t j = i + 1; j < kPaletteSize; ++j)
+      EXPECT_NE(SeriesColour(i), SeriesColour(j)) << i << j;
   }
   EXPECT_EQ(SeriesColour(kPaletteSize + 2), SeriesColour(2));
 }

@@ -59,9 +59,15 @@ void ExpectCellListEqualsAllPairs(bool periodic_x, bool periodic_y) {
   EXPECT_EQ(cell_pairs, all_pairs);
 }
 
-TEST(CollisionForces, CellListFindsTheAllPairsNeighboursWithWalls) { ExpectCellListEqualsAllPairs(false, false); }
-TEST(CollisionForces, CellListFindsTheAllPairsNeighboursPeriodic) { ExpectCellListEqualsAllPairs(true, true); }
-TEST(CollisionForces, CellListFindsTheAllPairsNeighboursMixed) { ExpectCellListEqualsAllPairs(true, false); }
+TEST(CollisionForces, CellListFindsTheAllPairsNeighboursWithWalls) {
+  ExpectCellListEqualsAllPairs(false, false);
+}
+TEST(CollisionForces, CellListFindsTheAllPairsNeighboursPeriodic) {
+  ExpectCellListEqualsAllPairs(true, true);
+}
+TEST(CollisionForces, CellListFindsTheAllPairsNeighboursMixed) {
+  ExpectCellListEqualsAllPairs(true, false);
+}
 
 TEST(CollisionForces, PairForceIsEquation14) {
   Params params = Box(2.0, 2.0, 1.0 / 96, false, false);
@@ -85,7 +91,7 @@ TEST(CollisionForces, WallForceUsesTheMirrorImage) {
   const Grid grid = GridOf(params);
   CollisionForces forces(params, grid, {0.1});
   const double rho = 1.5 / 96;
-  const double distance = 0.1 + 0.3 * rho;  // centre to the left wall
+  const double distance = 0.1 + 0.3 * rho;             // centre to the left wall
   std::vector<Vec2> x = {Vec2(distance, 0.01)}, f(1);  // near the periodic bottom: no force from it
   EXPECT_EQ(forces.Compute(x, f), 1);
   const double d = 2 * distance;

@@ -7,12 +7,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 
 namespace dlmfd {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(ParticleMesh, PaperMeshHasSevenRingsAnd177Nodes) {
   const ParticleMesh mesh(0.1, 1.0 / 70);  // D = 0.2, h_p = 1/70 (notes 1.1)
@@ -36,8 +35,8 @@ TEST(ParticleMesh, TrianglesArePositiveAndTileTheInscribedPolygon) {
       const Vec2 b = mesh.nodes()[t[2]] - mesh.nodes()[t[0]];
       ASSERT_GT(a.x() * b.y() - a.y() * b.x(), 0.0);
     }
-    // The outer ring is a regular polygon with n nodes: area n/2 R^2 sin(2 pi/n). Equal to round-off
-    // only if the triangles neither overlap nor leave holes.
+    // The outer ring is a regular polygon with n nodes: area n/2 R^2 sin(2 pi/n). Equal to
+    // round-off only if the triangles neither overlap nor leave holes.
     const int n = static_cast<int>(std::lround(2 * kPi * 0.1 / hp));
     const double polygon = 0.5 * n * 0.01 * std::sin(2 * kPi / n);
     EXPECT_NEAR(mesh.Area(), polygon, 1e-15);

@@ -11,12 +11,11 @@
 #include <cstdio>
 #include <vector>
 
+#include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 
 namespace dlmfd {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Unit box of walls, h = 1/48, h_p = 1/35 (the paper's ratio 96/70), one disk D = 0.2.
 struct DiskScene {
@@ -63,7 +62,8 @@ struct DiskScene {
 
 // P1 interpolation on the SW-NE triangles, written independently of the library: barycentric
 // coordinates of the containing triangle from a 2x2 solve.
-Vec2 Interpolate(const Grid& grid, const std::vector<double>& u, const std::vector<double>& v, Vec2 y) {
+Vec2 Interpolate(const Grid& grid, const std::vector<double>& u, const std::vector<double>& v,
+                 Vec2 y) {
   const int i = static_cast<int>(std::floor((y.x() - grid.x0) / grid.h));
   const int j = static_cast<int>(std::floor((y.y() - grid.y0) / grid.h));
   const Vec2 sw(grid.X(i), grid.Y(j)), ne(grid.X(i + 1), grid.Y(j + 1));
@@ -98,7 +98,8 @@ TEST(RigidBodyConstraint, VelocityIsRigidAtTheMultiplierNodesToTheCgTolerance) {
     s.Vortical();
     RigidBodyConstraint dlm(s.params, s.grid);
     const double before = MaxMismatch(s, dlm);
-    // Bound from the stopping rule <g,g>_G <= tol^2 <g0,g0>_G and |g|_2^2 <= <g,g>_G / lambda_min(G).
+    // Bound from the stopping rule <g,g>_G <= tol^2 <g0,g0>_G and |g|_2^2 <= <g,g>_G /
+    // lambda_min(G).
     const ParticleMesh& mesh = dlm.MeshOf(0);
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig{Eigen::MatrixXd(mesh.Gram())};
     const double lambda_min = eig.eigenvalues().minCoeff();
@@ -115,7 +116,8 @@ TEST(RigidBodyConstraint, VelocityIsRigidAtTheMultiplierNodesToTheCgTolerance) {
       }
       g0 = mesh.GramDot2(g.data(), g.data(), gg.data());
     }
-    const RigidBodyConstraint::Outcome out = dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
+    const RigidBodyConstraint::Outcome out =
+        dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
     const double after = MaxMismatch(s, dlm);
     const double bound = tol * std::sqrt(g0 / lambda_min) + 1e-13;
     std::printf("tol %.0e: %d iterations, mismatch %.3e -> %.3e (bound %.3e, reported %.3e)\n", tol,
@@ -258,7 +260,8 @@ TEST(RigidBodyConstraint, NeutrallyBuoyantDiskInRigidFluidMotionTakesThatMotion)
   RigidBodyConstraint dlm(s.params, s.grid);
   EXPECT_TRUE(dlm.IsNeutral(0));
   const auto out = dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
-  // E reproduces linear fields exactly, so the projected mismatch is round-off: no iteration, no change.
+  // E reproduces linear fields exactly, so the projected mismatch is round-off: no iteration, no
+  // change.
   EXPECT_EQ(out.iterations, 0);
   for (std::size_t q = 0; q < u0.size(); ++q) {
     ASSERT_EQ(s.u[q], u0[q]);
@@ -279,10 +282,11 @@ TEST(RigidBodyConstraint, NeutrallyBuoyantDiskIsRigidAtTheNodesAndConservesFluid
   const auto out = dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
   FluidMomentum(s, &p1, &l1);
   const double after = MaxMismatch(s, dlm);
-  std::printf("neutral: %d iterations, mismatch %.3e -> %.3e, momentum change %.3e / %.3e, "
-              "net nodal force %.3e, torque %.3e\n",
-              out.iterations, before, after, (p1 - p0).norm(), std::abs(l1 - l0),
-              dlm.NodalForceSum(0).norm(), std::abs(dlm.NodalTorqueSum(0)));
+  std::printf(
+      "neutral: %d iterations, mismatch %.3e -> %.3e, momentum change %.3e / %.3e, "
+      "net nodal force %.3e, torque %.3e\n",
+      out.iterations, before, after, (p1 - p0).norm(), std::abs(l1 - l0),
+      dlm.NodalForceSum(0).norm(), std::abs(dlm.NodalTorqueSum(0)));
   EXPECT_GT(before, 0.1);
   // Same stopping rule as the heavy case: tol 1e-6 of an O(1) mismatch in the G norm, and
   // |g|_inf <= |g|_G / sqrt(lambda_min(G)) ~ 10 |g|_G on this mesh (first test above).
@@ -318,8 +322,8 @@ TEST(RigidBodyConstraint, NeutrallyBuoyantDiskIsTheLimitOfSlightlyHeavyOnes) {
   solve(1.0 + 1e-3, &u2, &w2);
   const double d1 = (u1 - u0).norm() + 0.1 * std::abs(w1 - w0);
   const double d2 = (u2 - u0).norm() + 0.1 * std::abs(w2 - w0);
-  std::printf("neutral U = (%.6f, %.6f), omega = %.6f; |diff| at 1e-2: %.3e, at 1e-3: %.3e\n", u0.x(),
-              u0.y(), w0, d1, d2);
+  std::printf("neutral U = (%.6f, %.6f), omega = %.6f; |diff| at 1e-2: %.3e, at 1e-3: %.3e\n",
+              u0.x(), u0.y(), w0, d1, d2);
   EXPECT_GT(d1, 0.0);
   // First order in (rho_d - rho_L): the ratio is 10 up to O(m_e) and the CG tolerance.
   EXPECT_NEAR(d1 / d2, 10.0, 1.0);
@@ -336,8 +340,9 @@ TEST(RigidBodyConstraint, NeutrallyBuoyantDiskPassesItsNetForceToTheFluid) {
   RigidBodyConstraint dlm(s.params, s.grid);
   dlm.Enforce(0.0, dt, s.particles, s.u.data(), s.v.data(), &force);
   FluidMomentum(s, &p1, &l1);
-  std::printf("net force (%.3e, %.3e), momentum change / dt (%.3e, %.3e)\n", dlm.NodalForceSum(0).x(),
-              dlm.NodalForceSum(0).y(), (p1 - p0).x() / dt, (p1 - p0).y() / dt);
+  std::printf("net force (%.3e, %.3e), momentum change / dt (%.3e, %.3e)\n",
+              dlm.NodalForceSum(0).x(), dlm.NodalForceSum(0).y(), (p1 - p0).x() / dt,
+              (p1 - p0).y() / dt);
   EXPECT_NEAR((dlm.NodalForceSum(0) - force).norm(), 0.0, 1e-13);
   EXPECT_NEAR(dlm.NodalTorqueSum(0), 0.0, 1e-14);
   EXPECT_NEAR(((p1 - p0) / dt - force).norm(), 0.0, 1e-11);  // round-off of 1e-1 sums over dt
@@ -412,7 +417,8 @@ TEST(RigidBodyConstraint, ResultDoesNotDependOnTheThreadCount) {
   EXPECT_TRUE(one.v == two.v);
   for (std::size_t p = 0; p < initial.size(); ++p) {
     EXPECT_EQ(one.particles[p].velocity, two.particles[p].velocity) << "particle " << p;
-    EXPECT_EQ(one.particles[p].angular_velocity, two.particles[p].angular_velocity) << "particle " << p;
+    EXPECT_EQ(one.particles[p].angular_velocity, two.particles[p].angular_velocity)
+        << "particle " << p;
     EXPECT_TRUE(one.particles[p].multiplier == two.particles[p].multiplier) << "particle " << p;
   }
 }

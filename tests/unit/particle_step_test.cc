@@ -12,18 +12,18 @@
 #include <utility>
 #include <vector>
 
+#include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 
 namespace dlmfd {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 Params Scene(double size, double h, bool periodic) {
   Params params;
   params.domain.size = Vec2(size, size);
   params.domain.h = h;
-  for (auto& side : params.domain.sides) side.type = periodic ? SideType::kPeriodic : SideType::kWall;
+  for (auto& side : params.domain.sides)
+    side.type = periodic ? SideType::kPeriodic : SideType::kWall;
   params.particle_mesh.h = h * 96.0 / 70.0;  // the paper's ratio h_p / h
   params.time.dt = 4e-4;
   return params;
@@ -53,8 +53,12 @@ struct SceneRun {
   long n = 0;
 
   explicit SceneRun(const Params& p)
-      : params(p), grid(GridOf(p)), step(p, grid), particles(ParticleStep::InitialStates(p)),
-        u(grid.NodeCount(), 0.0), v(grid.NodeCount(), 0.0) {}
+      : params(p),
+        grid(GridOf(p)),
+        step(p, grid),
+        particles(ParticleStep::InitialStates(p)),
+        u(grid.NodeCount(), 0.0),
+        v(grid.NodeCount(), 0.0) {}
   void Advance() {
     step.Advance(n * params.time.dt, params.time.dt, particles, u.data(), v.data(), report);
     ++n;
@@ -120,7 +124,8 @@ TEST(ParticleStep, HydrodynamicForceSatisfiesTheMomentumIdentity) {
       const double mass = b.density * kPi * b.radius * b.radius;
       const double inertia = mass * b.radius * b.radius / 2;
       const Vec2 collision = run.step.CollisionForceAverage()[p];
-      const Vec2 expected = mass * (b.velocity - a.velocity) / dt - mass * params.gravity - collision;
+      const Vec2 expected =
+          mass * (b.velocity - a.velocity) / dt - mass * params.gravity - collision;
       const double scale = mass * params.gravity.norm() + collision.norm();
       std::printf("step %d particle %zu: F_h = (%.6e, %.6e), F' = (%.3e, %.3e), T_h = %.3e\n", k, p,
                   b.force.x(), b.force.y(), collision.x(), collision.y(), b.torque);
@@ -180,7 +185,8 @@ TEST(ParticleStep, NeutrallyBuoyantDiskSatisfiesTheMomentumIdentityInContact) {
     const Vec2 collision = run.step.CollisionForceAverage()[0];
     EXPECT_GT(collision.norm(), 0.0);
     // The neutral disk hands F' to the fluid: sum nu = F'_avg exactly.
-    EXPECT_NEAR((run.step.constraint().NodalForceSum(0) - collision).norm(), 0.0, 1e-12 * collision.norm());
+    EXPECT_NEAR((run.step.constraint().NodalForceSum(0) - collision).norm(), 0.0,
+                1e-12 * collision.norm());
     for (std::size_t p = 0; p < 2; ++p) {
       const ParticleState& a = before[p];
       const ParticleState& b = run.particles[p];
@@ -236,7 +242,8 @@ TEST(ParticleStep, TwoDisksPushedTogetherNeverTouch) {
       params.particles.push_back(Disk(Vec2(0.4 - h, 0.5), density, Vec2(speed, 0.0)));
       params.particles.push_back(Disk(Vec2(0.6 + h, 0.5), density, Vec2(-speed, 0.0)));
       char label[96];
-      std::snprintf(label, sizeof label, "pair, rho_d = %.2f, approach speed 2 x %.1f", density, speed);
+      std::snprintf(label, sizeof label, "pair, rho_d = %.2f, approach speed 2 x %.1f", density,
+                    speed);
       const double gap = MinGapOfRun(params, 400, label);
       EXPECT_GT(gap, 0.0);
       EXPECT_LT(gap, 1.5 * h);
@@ -291,7 +298,8 @@ TEST(ParticleStep, OverlapDuringARunThrowsWithIdsTimeAndGap) {
   } catch (const ParticlesOverlap& e) {
     const std::string what = e.what();
     std::printf("%s\n", what.c_str());
-    EXPECT_NE(what.find("particles 3 and 7 overlap at t = 0.0004 (gap = -"), std::string::npos) << what;
+    EXPECT_NE(what.find("particles 3 and 7 overlap at t = 0.0004 (gap = -"), std::string::npos)
+        << what;
   }
 }
 

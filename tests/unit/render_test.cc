@@ -14,13 +14,13 @@
 #include <gtest/gtest.h>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/io/field_snapshot.h"
+#include "dlmfd/io/particle_history.h"
 #include "dlmfd/render/bitmap_font.h"
 #include "dlmfd/render/colour_map.h"
 #include "dlmfd/render/field_picture.h"
 #include "dlmfd/render/png_file.h"
 #include "dlmfd/render/results_frame.h"
-#include "dlmfd/io/field_snapshot.h"
-#include "dlmfd/io/particle_history.h"
 
 namespace dlmfd {
 namespace {
@@ -59,13 +59,15 @@ NodeField LinearField(double a, double b, double c) {
   f.grid = Grid{16, 8, 0.125, 0.0, 0.0};
   f.values.resize(f.grid.NodeCount());
   for (int j = 0; j <= f.grid.ny; ++j) {
-    for (int i = 0; i <= f.grid.nx; ++i) f.values[f.grid.Index(i, j)] = a + b * f.grid.X(i) + c * f.grid.Y(j);
+    for (int i = 0; i <= f.grid.nx; ++i)
+      f.values[f.grid.Index(i, j)] = a + b * f.grid.X(i) + c * f.grid.Y(j);
   }
   return f;
 }
 
 TEST(RenderTest, PngHasTheLaidOutSizeAndKeepsTheAspectRatio) {
-  const FieldPicture picture = DrawFieldPicture(LinearField(1.0, 1.0, 0.0), {}, {600, 400, "trA t = 1"});
+  const FieldPicture picture =
+      DrawFieldPicture(LinearField(1.0, 1.0, 0.0), {}, {600, 400, "trA t = 1"});
   EXPECT_LE(picture.image.Width(), 600);
   EXPECT_LE(picture.image.Height(), 400);
   // The panel is floor(2 s) x floor(1 s) for one scale s: the 2:1 aspect to within a pixel.
@@ -82,7 +84,8 @@ TEST(RenderTest, PngHasTheLaidOutSizeAndKeepsTheAspectRatio) {
 }
 
 TEST(RenderTest, PixelsCarryTheLinearFieldThroughViridis) {
-  // P1 reproduces a linear field exactly, so each pixel is Viridis((f(centre) - min) / (max - min)).
+  // P1 reproduces a linear field exactly, so each pixel is Viridis((f(centre) - min) / (max -
+  // min)).
   const NodeField field = LinearField(2.0, 3.0, -1.0);
   const FieldPicture picture = DrawFieldPicture(field, {}, {500, 300, ""});
   EXPECT_DOUBLE_EQ(picture.value_min, 2.0 - 1.0);
@@ -91,20 +94,24 @@ TEST(RenderTest, PixelsCarryTheLinearFieldThroughViridis) {
   WritePng(picture.image, path);
   const DecodedPng png = ReadPng(path);
   std::remove(path.c_str());
-  const int probes[][2] = {{0, 0}, {picture.panel_width - 1, 0}, {0, picture.panel_height - 1},
+  const int probes[][2] = {{0, 0},
+                           {picture.panel_width - 1, 0},
+                           {0, picture.panel_height - 1},
                            {picture.panel_width / 2, picture.panel_height / 3},
                            {picture.panel_width - 1, picture.panel_height - 1}};
   for (const auto& p : probes) {
     const double x = (p[0] + 0.5) / picture.panel_width * 2.0;
     const double y = (1.0 - (p[1] + 0.5) / picture.panel_height) * 1.0;
-    const double t = (2.0 + 3.0 * x - y - picture.value_min) / (picture.value_max - picture.value_min);
+    const double t =
+        (2.0 + 3.0 * x - y - picture.value_min) / (picture.value_max - picture.value_min);
     EXPECT_EQ(png.At(picture.panel_left + p[0], picture.panel_top + p[1]), Viridis(t))
         << "pixel " << p[0] << "," << p[1];
   }
   // Colour bar: the top row is the maximum, the bottom row the minimum (inside the frame).
   const int bar_x = picture.bar_left + picture.bar_width / 2;
   EXPECT_EQ(png.At(bar_x, picture.bar_top + 1), Viridis(1.0 - 1.5 / picture.bar_height));
-  EXPECT_EQ(png.At(bar_x, picture.bar_top + picture.bar_height - 2), Viridis(1.5 / picture.bar_height));
+  EXPECT_EQ(png.At(bar_x, picture.bar_top + picture.bar_height - 2),
+            Viridis(1.5 / picture.bar_height));
   EXPECT_EQ(png.At(picture.bar_left, picture.bar_top + picture.bar_height / 2), kBlack);
 }
 
@@ -120,7 +127,8 @@ TEST(RenderTest, LogColoursMapLog10OfTheValueAndTheBottomColourToNonPositiveValu
   for (int px : {0, picture.panel_width / 4, picture.panel_width / 2, picture.panel_width - 1}) {
     const double x = (px + 0.5) / picture.panel_width * 2.0;
     const double t = std::log10(1.0 + 49.5 * x) / 2.0;
-    EXPECT_EQ(picture.image.At(picture.panel_left + px, picture.panel_top + 3), Viridis(t)) << "pixel " << px;
+    EXPECT_EQ(picture.image.At(picture.panel_left + px, picture.panel_top + 3), Viridis(t))
+        << "pixel " << px;
   }
   // A field with zero and negative nodes: the scale is set by the positive ones, and the others
   // take the bottom colour instead of a NaN from log10.
@@ -165,7 +173,7 @@ TEST(RenderTest, InterpolationFollowsTheSouthWestNorthEastDiagonal) {
   EXPECT_DOUBLE_EQ(InterpolateP1(hat, 0.75, 0.25), 0.5);
   EXPECT_DOUBLE_EQ(InterpolateP1(hat, 0.25, 0.75), 0.0);  // NW triangle does not see the SE node
   EXPECT_DOUBLE_EQ(InterpolateP1(hat, 1.0, 0.0), 1.0);
-  EXPECT_DOUBLE_EQ(InterpolateP1(hat, 5.0, -3.0), 0.0);   // clamped to the corner (2, 0)
+  EXPECT_DOUBLE_EQ(InterpolateP1(hat, 5.0, -3.0), 0.0);  // clamped to the corner (2, 0)
 }
 
 TEST(RenderTest, ParticleIsAWhiteDiskWithABlackRimWhereItIs) {
@@ -298,11 +306,13 @@ TEST_F(ResultsFrameTest, ChosenSnapshotSpeedAndErrors) {
   EXPECT_EQ(frame.field.quantity, "speed");
   EXPECT_DOUBLE_EQ(frame.field.values[3], 5.0);
   EXPECT_DOUBLE_EQ(frame.disks[0].x, 0.5);
-  EXPECT_THROW(LoadResultsFrame(dir_, 5), InvalidParameter);  // particles at step 5, no field snapshot
+  EXPECT_THROW(LoadResultsFrame(dir_, 5),
+               InvalidParameter);  // particles at step 5, no field snapshot
   EXPECT_THROW(LoadResultsFrame(dir_, -1, "pressure"), InvalidParameter);
   EXPECT_THROW(LoadResultsFrame(dir_ + "/nothing"), InvalidParameter);
   // And the frame draws: the disk at x = 1.5 is white at its centre.
-  const FieldPicture picture = DrawFieldPicture(LoadResultsFrame(dir_).field, LoadResultsFrame(dir_).disks, {400, 300, ""});
+  const FieldPicture picture =
+      DrawFieldPicture(LoadResultsFrame(dir_).field, LoadResultsFrame(dir_).disks, {400, 300, ""});
   EXPECT_EQ(picture.image.At(int(picture.PixelX(1.5)), int(picture.PixelY(0.5))), kWhite);
 }
 

@@ -1,6 +1,6 @@
 // The writers and readers of the results directory (design.md 3.2) on their own: field snapshots,
-// fields.xmf, particles.h5, diagnostics.csv, summary.json, checkpoint.h5, and ResultsWriter's resume
-// cut-back. Values are compared bitwise: these files store doubles as doubles.
+// fields.xmf, particles.h5, diagnostics.csv, summary.json, checkpoint.h5, and ResultsWriter's
+// resume cut-back. Values are compared bitwise: these files store doubles as doubles.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -221,7 +221,8 @@ TEST(Diagnostics, HeaderFromTheFirstReportAndOneRowPerStep) {
     for (long n = 1; n <= 10; ++n) w.Append(Report(n));
   }
   DiagnosticsTable t = ReadDiagnostics(path);
-  EXPECT_EQ(t.header, (std::vector<std::string>{"step", "time", "wall_seconds", "stokes_iterations", "divergence"}));
+  EXPECT_EQ(t.header, (std::vector<std::string>{"step", "time", "wall_seconds", "stokes_iterations",
+                                                "divergence"}));
   ASSERT_EQ(t.rows.size(), 10u);
   EXPECT_EQ(t.rows[4][0], 5.0);
   EXPECT_EQ(t.rows[4][1], 0.5);
@@ -262,8 +263,10 @@ TEST(Checkpoint, RoundTripsEveryFieldBitForBit) {
     const ParticleState& b = s.particles[i];
     EXPECT_EQ(a.id, b.id);
     EXPECT_EQ(a.motion, b.motion);
-    EXPECT_TRUE(SameBits(a.position.x(), b.position.x()) && SameBits(a.position.y(), b.position.y()));
-    EXPECT_TRUE(SameBits(a.velocity.x(), b.velocity.x()) && SameBits(a.velocity.y(), b.velocity.y()));
+    EXPECT_TRUE(SameBits(a.position.x(), b.position.x()) &&
+                SameBits(a.position.y(), b.position.y()));
+    EXPECT_TRUE(SameBits(a.velocity.x(), b.velocity.x()) &&
+                SameBits(a.velocity.y(), b.velocity.y()));
     EXPECT_TRUE(SameBits(a.force.x(), b.force.x()) && SameBits(a.force.y(), b.force.y()));
     EXPECT_TRUE(SameBits(a.angular_velocity, b.angular_velocity));
     EXPECT_TRUE(SameBits(a.torque, b.torque));
@@ -298,10 +301,11 @@ TEST(RunSummary, JsonHasTheContractKeysAndNoNaN) {
   s.particles.push_back(q);
   s.diagnostics = {{"stokes_iterations", 11.0}};
   const std::string json = RunSummaryJson(s);
-  for (const char* key : {"\"status\": \"failed\"", "\"reason\": \"solver \\\"stokes\\\" did not converge\\n\"",
-                          "\"steps\": 12", "\"time\": 0.012", "\"wall_seconds\"", "\"ms_per_step\": null",
-                          "\"particles\": [", "\"id\": 3", "\"position\": [0.5, 0.25]", "\"angular_velocity\"",
-                          "\"force\"", "\"torque\"", "\"version\"", "\"stokes_iterations\": 11"}) {
+  for (const char* key :
+       {"\"status\": \"failed\"", "\"reason\": \"solver \\\"stokes\\\" did not converge\\n\"",
+        "\"steps\": 12", "\"time\": 0.012", "\"wall_seconds\"", "\"ms_per_step\": null",
+        "\"particles\": [", "\"id\": 3", "\"position\": [0.5, 0.25]", "\"angular_velocity\"",
+        "\"force\"", "\"torque\"", "\"version\"", "\"stokes_iterations\": 11"}) {
     EXPECT_THAT(json, HasSubstr(key));
   }
   EXPECT_EQ(json.find("nan"), std::string::npos);
@@ -350,9 +354,7 @@ TEST(ResultsWriter, ResumeCutsBackToTheCheckpoint) {
   EXPECT_EQ(c.state.step, 5);
   EXPECT_EQ(c.state.u[0], 5.0);
   EXPECT_EQ(c.scene_text, WriteScene(params));
-  {
-    auto w = ResultsWriter::Resume(dir, params, g, c.state.step);
-  }
+  { auto w = ResultsWriter::Resume(dir, params, g, c.state.step); }
   EXPECT_FALSE(fs::exists(dir + "/fields/snap_000008.h5"));
   EXPECT_TRUE(fs::exists(dir + "/fields/snap_000004.h5"));
   EXPECT_FALSE(fs::exists(dir + "/summary.json"));

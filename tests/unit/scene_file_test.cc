@@ -73,7 +73,8 @@ particles_every = 0.01
 checkpoint_every = 1.0
 )TOML";
 
-// ----- bad scenes ---------------------------------------------------------------------------------
+// ----- bad scenes
+// ---------------------------------------------------------------------------------
 
 struct BadScene {
   const char* name;
@@ -109,11 +110,13 @@ const BadScene kBadScenes[] = {
     {"ViscosityWrongType", "[fluid]\nviscosity = \"high\"\n", "fluid.viscosity", "\"high\""},
     {"ViscosityNegative", "[fluid]\nviscosity = -0.1\n", "fluid.viscosity", "-0.1"},
     {"DensityZero", "[fluid]\ndensity = 0.0\n", "fluid.density", "0.0"},
-    {"RelaxationTimeNegative", "[fluid]\nrelaxation_time = -1.0\n", "fluid.relaxation_time", "-1.0"},
+    {"RelaxationTimeNegative", "[fluid]\nrelaxation_time = -1.0\n", "fluid.relaxation_time",
+     "-1.0"},
     {"SolventRatioZero", "[fluid]\nsolvent_ratio = 0.0\n", "fluid.solvent_ratio", "0.0"},
     {"SolventRatioAboveOne", "[fluid]\nsolvent_ratio = 1.5\n", "fluid.solvent_ratio", "1.5"},
     {"BodyForceScalar", "[fluid]\nbody_force = 1.0\n", "fluid.body_force", "1.0"},
-    {"GravityTwice", "gravity = [0.0, -1.0]\n[fluid]\ngravity = [0.0, -2.0]\n", "fluid.gravity", "[0.0, -2.0]"},
+    {"GravityTwice", "gravity = [0.0, -1.0]\n[fluid]\ngravity = [0.0, -2.0]\n", "fluid.gravity",
+     "[0.0, -2.0]"},
     {"GravityOneComponent", "gravity = [0.0]\n", "gravity", "[0.0]"},
     {"DtZero", "[time]\ndt = 0.0\n", "time.dt", "0.0"},
     {"DtNegative", "[time]\ndt = -0.001\n", "time.dt", "-0.001"},
@@ -124,21 +127,26 @@ const BadScene kBadScenes[] = {
     {"SizeZeroWidth", "[domain]\nsize = [0.0, 1.0]\n", "domain.size", "[0.0, 1.0]"},
     {"HNegative", "[domain]\nh = -0.1\n", "domain.h", "-0.1"},
     {"GridTooLarge", "[domain]\nsize = [100.0, 100.0]\nh = 0.001\n", "domain.h", "0.001"},
-    {"SideTypeUnknown", "[domain.boundary]\nleft = { type = \"slip\" }\n", "domain.boundary.left.type", "\"slip\""},
-    {"SideTypeMissing", "[domain.boundary]\nleft = { profile = \"uniform\" }\n", "domain.boundary.left.type",
-     "(missing)"},
-    {"PeriodicUnpaired", "[domain.boundary]\nleft = { type = \"periodic\" }\n", "domain.boundary.right.type",
-     "(not periodic)"},
-    {"PeriodicUnpairedTop", "[domain.boundary]\ntop = { type = \"periodic\" }\n", "domain.boundary.bottom.type",
-     "(not periodic)"},
-    {"UniformWithoutValue", "[domain.boundary]\ntop = { type = \"velocity\" }\n", "domain.boundary.top.value",
-     "(missing)"},
-    {"PoiseuilleWithoutMax", "[domain.boundary]\ntop = { type = \"velocity\", profile = \"poiseuille\" }\n",
+    {"SideTypeUnknown", "[domain.boundary]\nleft = { type = \"slip\" }\n",
+     "domain.boundary.left.type", "\"slip\""},
+    {"SideTypeMissing", "[domain.boundary]\nleft = { profile = \"uniform\" }\n",
+     "domain.boundary.left.type", "(missing)"},
+    {"PeriodicUnpaired", "[domain.boundary]\nleft = { type = \"periodic\" }\n",
+     "domain.boundary.right.type", "(not periodic)"},
+    {"PeriodicUnpairedTop", "[domain.boundary]\ntop = { type = \"periodic\" }\n",
+     "domain.boundary.bottom.type", "(not periodic)"},
+    {"UniformWithoutValue", "[domain.boundary]\ntop = { type = \"velocity\" }\n",
+     "domain.boundary.top.value", "(missing)"},
+    {"PoiseuilleWithoutMax",
+     "[domain.boundary]\ntop = { type = \"velocity\", profile = \"poiseuille\" }\n",
      "domain.boundary.top.max", "(missing)"},
     {"PoiseuilleWithValue",
-     "[domain.boundary]\ntop = { type = \"velocity\", profile = \"poiseuille\", max = [1.0, 0.0], value = [1.0, 0.0] }\n",
+     "[domain.boundary]\ntop = { type = \"velocity\", profile = \"poiseuille\", max = [1.0, 0.0], "
+     "value = [1.0, 0.0] }\n",
      "domain.boundary.top.value", "[1.0, 0.0]"},
-    {"ProfileUnknown", "[domain.boundary]\ntop = { type = \"velocity\", profile = \"parabolic\", max = [1.0, 0.0] }\n",
+    {"ProfileUnknown",
+     "[domain.boundary]\ntop = { type = \"velocity\", profile = \"parabolic\", max = [1.0, 0.0] "
+     "}\n",
      "domain.boundary.top.profile", "\"parabolic\""},
     {"WallWithValue", "[domain.boundary]\nleft = { type = \"wall\", value = [1.0, 0.0] }\n",
      "domain.boundary.left.value", "[1.0, 0.0]"},
@@ -149,41 +157,53 @@ const BadScene kBadScenes[] = {
     {"SideNotATable", "[domain.boundary]\nleft = \"wall\"\n", "domain.boundary.left", "\"wall\""},
     {"GammaNonZero", "[splitting]\nalpha = 0.5\nbeta = 0.4\n", "splitting.beta", "0.4"},
     {"AlphaAboveOne", "[splitting]\nalpha = 1.5\nbeta = -0.5\n", "splitting.alpha", "1.5"},
-    {"AdvectionUnknown", "[splitting]\nadvection = \"upwind\"\n", "splitting.advection", "\"upwind\""},
-    {"StokesToleranceOne", "[solvers]\nstokes_tolerance = 1.0\n", "solvers.stokes_tolerance", "1.0"},
-    {"StokesMaxIterationsZero", "[solvers]\nstokes_max_iterations = 0\n", "solvers.stokes_max_iterations", "0"},
-    {"MultiplierIterationsReal", "[solvers]\nmultiplier_max_iterations = 10.5\n", "solvers.multiplier_max_iterations",
-     "10.5"},
+    {"AdvectionUnknown", "[splitting]\nadvection = \"upwind\"\n", "splitting.advection",
+     "\"upwind\""},
+    {"StokesToleranceOne", "[solvers]\nstokes_tolerance = 1.0\n", "solvers.stokes_tolerance",
+     "1.0"},
+    {"StokesMaxIterationsZero", "[solvers]\nstokes_max_iterations = 0\n",
+     "solvers.stokes_max_iterations", "0"},
+    {"MultiplierIterationsReal", "[solvers]\nmultiplier_max_iterations = 10.5\n",
+     "solvers.multiplier_max_iterations", "10.5"},
     {"WaveCourantZero", "[solvers]\nwave_max_courant = 0.0\n", "solvers.wave_max_courant", "0.0"},
     {"ParticleMeshHZero", "[particle_mesh]\nh = 0.0\n", "particle_mesh.h", "0.0"},
     {"CollisionRangeZero", "[collisions]\nrange = 0.0\n", "collisions.range", "0.0"},
-    {"WallStiffnessNegative", "[collisions]\nwall_stiffness = -1e-5\n", "collisions.wall_stiffness", "-1e-05"},
-    {"ParticleStiffnessZero", "[collisions]\nparticle_stiffness = 0\n", "collisions.particle_stiffness", "0.0"},
+    {"WallStiffnessNegative", "[collisions]\nwall_stiffness = -1e-5\n", "collisions.wall_stiffness",
+     "-1e-05"},
+    {"ParticleStiffnessZero", "[collisions]\nparticle_stiffness = 0\n",
+     "collisions.particle_stiffness", "0.0"},
     {"SubstepsZero", "[collisions]\nsubsteps = 0\n", "collisions.substeps", "0"},
     {"ConformationFormLog", "[conformation]\nform = \"log\"\n", "conformation.form", "\"log\""},
     {"BlendKappaZero", "[conformation]\nblend_kappa = 0.0\n", "conformation.blend_kappa", "0.0"},
     {"FieldsEveryNegative", "[output]\nfields_every = -0.1\n", "output.fields_every", "-0.1"},
-    {"CheckpointEveryString", "[output]\ncheckpoint_every = \"often\"\n", "output.checkpoint_every", "\"often\""},
-    {"ParticleMissingCenter", "[fluid]\ndensity = 1.0\n[[particles]]\ndiameter = 0.2\ndensity = 1.5\n",
-     "particles.0.center", "(missing)"},
+    {"CheckpointEveryString", "[output]\ncheckpoint_every = \"often\"\n", "output.checkpoint_every",
+     "\"often\""},
+    {"ParticleMissingCenter",
+     "[fluid]\ndensity = 1.0\n[[particles]]\ndiameter = 0.2\ndensity = 1.5\n", "particles.0.center",
+     "(missing)"},
     {"ParticleDiameterZero", "[[particles]]\ncenter = [0.5, 0.5]\ndiameter = 0.0\ndensity = 1.5\n",
      "particles.0.diameter", "0.0"},
-    {"ParticleDensityNegative", "[[particles]]\ncenter = [0.5, 0.5]\ndiameter = 0.2\ndensity = -1.5\n",
-     "particles.0.density", "-1.5"},
-    {"ParticleMotionUnknown", "[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\nmotion = \"spinning\"\n",
+    {"ParticleDensityNegative",
+     "[[particles]]\ncenter = [0.5, 0.5]\ndiameter = 0.2\ndensity = -1.5\n", "particles.0.density",
+     "-1.5"},
+    {"ParticleMotionUnknown",
+     "[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\nmotion = \"spinning\"\n",
      "particles.0.motion", "\"spinning\""},
-    {"ParticleLighterThanFluid", "[fluid]\ndensity = 1.0\n[[particles]]\ncenter = [0.5, 0.5]\ndensity = 0.9\n",
+    {"ParticleLighterThanFluid",
+     "[fluid]\ndensity = 1.0\n[[particles]]\ncenter = [0.5, 0.5]\ndensity = 0.9\n",
      "particles.0.density", "0.9"},
-    {"ParticleOutsideDomain", "[[particles]]\ncenter = [1.5, 0.5]\ndensity = 1.5\n", "particles.0.center",
-     "[1.5, 0.5]"},
+    {"ParticleOutsideDomain", "[[particles]]\ncenter = [1.5, 0.5]\ndensity = 1.5\n",
+     "particles.0.center", "[1.5, 0.5]"},
     {"ParticleCrossesWall", "[[particles]]\ncenter = [0.5, 0.05]\ndiameter = 0.2\ndensity = 1.5\n",
      "particles.0.center", "[0.5, 0.05]"},
     {"ParticlesOverlap",
-     "[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n[[particles]]\ncenter = [0.5, 0.65]\ndensity = 1.5\n",
+     "[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n[[particles]]\ncenter = [0.5, "
+     "0.65]\ndensity = 1.5\n",
      "particles.1.center", "[0.5, 0.65]"},
     {"ParticlesOverlapAcrossPeriodicSides",
      "[domain.boundary]\nleft = { type = \"periodic\" }\nright = { type = \"periodic\" }\n"
-     "[[particles]]\ncenter = [0.02, 0.5]\ndensity = 1.5\n[[particles]]\ncenter = [0.95, 0.5]\ndensity = 1.5\n",
+     "[[particles]]\ncenter = [0.02, 0.5]\ndensity = 1.5\n[[particles]]\ncenter = [0.95, "
+     "0.5]\ndensity = 1.5\n",
      "particles.1.center", "[0.95, 0.5]"},
     {"ParticleUnknownKey", "[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\ncolour = \"red\"\n",
      "particles.0.colour", "\"red\""},
@@ -193,12 +213,15 @@ const BadScene kBadScenes[] = {
 };
 
 INSTANTIATE_TEST_SUITE_P(SceneFile, BadSceneTest, ::testing::ValuesIn(kBadScenes),
-                         [](const ::testing::TestParamInfo<BadScene>& param_info) { return std::string(param_info.param.name); });
+                         [](const ::testing::TestParamInfo<BadScene>& param_info) {
+                           return std::string(param_info.param.name);
+                         });
 
 TEST(SceneFile, OverlapMessageNamesBothParticlesAndTheGap) {
   try {
-    ParseScene("[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n"
-               "[[particles]]\ncenter = [0.5, 0.65]\ndensity = 1.5\n");
+    ParseScene(
+        "[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n"
+        "[[particles]]\ncenter = [0.5, 0.65]\ndensity = 1.5\n");
     FAIL();
   } catch (const InvalidParameter& e) {
     // Radii 0.1 + 0.1, distance 0.15: gap -0.05 (to rounding).
@@ -225,7 +248,8 @@ TEST(SceneFile, GammaMessageSaysOnlyGammaZeroIsSupported) {
   }
 }
 
-// ----- good scenes ----------------------------------------------------------------------------------
+// ----- good scenes
+// ----------------------------------------------------------------------------------
 
 TEST(SceneFile, PaperSceneGivesItsValues) {
   const Params p = ParseScene(kPaperScene);
@@ -290,7 +314,8 @@ TEST(SceneFile, FreeParticleMayBeNeutrallyBuoyant) {
 }
 
 TEST(SceneFile, FixedParticleMayBeNeutrallyBuoyant) {
-  const Params p = ParseScene("[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.0\nmotion = \"fixed\"\n");
+  const Params p =
+      ParseScene("[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.0\nmotion = \"fixed\"\n");
   EXPECT_EQ(p.particles[0].motion, Motion::kFixed);
 }
 
@@ -298,7 +323,8 @@ TEST(SceneFile, EndZeroAllowsAnyDt) {
   EXPECT_NO_THROW(ParseScene("[time]\ndt = 5.0\nend = 0.0\n"));
 }
 
-// ----- overrides ---------------------------------------------------------------------------------------
+// ----- overrides
+// ---------------------------------------------------------------------------------------
 
 TEST(SceneFile, ParseOverrideSplitsAtTheFirstEquals) {
   const SceneOverride o = ParseOverride("title=a=b");
@@ -322,7 +348,8 @@ TEST(SceneFile, OverridesApplyBeforeValidation) {
       ParseOverride("solvers.stokes_tolerance=1e-8"),
   };
   const Params p = ParseScene(
-      "[domain.boundary]\ntop = { type = \"velocity\", profile = \"poiseuille\", max = [0.0, 1.0] }\n"
+      "[domain.boundary]\ntop = { type = \"velocity\", profile = \"poiseuille\", max = [0.0, 1.0] "
+      "}\n"
       "[fluid]\nrelaxation_time = 1.0\nsolvent_ratio = 0.5\n"
       "[[particles]]\ncenter = [0.3, 0.5]\ndensity = 1.5\n"
       "[[particles]]\ncenter = [0.7, 0.5]\ndensity = 1.5\n",
@@ -362,7 +389,8 @@ TEST(SceneFile, OverrideValuesAreValidatedLikeSceneValues) {
 
 TEST(SceneFile, OverrideOfAMissingParticleNamesTheIndex) {
   try {
-    ParseScene("[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n", {ParseOverride("particles.3.density=2")});
+    ParseScene("[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n",
+               {ParseOverride("particles.3.density=2")});
     FAIL();
   } catch (const InvalidParameter& e) {
     EXPECT_EQ(e.key(), "particles.3");
@@ -379,7 +407,8 @@ TEST(SceneFile, OverrideThroughAValueIsAnError) {
   }
 }
 
-// ----- round trip -------------------------------------------------------------------------------------
+// ----- round trip
+// -------------------------------------------------------------------------------------
 
 void ExpectSameParams(const Params& a, const Params& b) {
   EXPECT_EQ(a.title, b.title);
@@ -446,9 +475,10 @@ TEST(SceneFile, WriteSceneRoundTripsAwkwardValues) {
   p.domain.h = 3.0 / 7.0 / 2.0;  // size.x / h = 4 (to rounding: within the 1e-9 check)
   p.domain.h = p.domain.size.x() / 4.0;
   p.domain.size.y() = p.domain.h * 6.0;
-  p.domain.sides[static_cast<int>(Side::kTop)] = {SideType::kVelocity, Profile::kUniform, Vec2(0.1 + 0.2, -1e-300),
-                                                  Vec2::Zero()};
-  p.domain.sides[static_cast<int>(Side::kLeft)] = {SideType::kPeriodic, Profile::kUniform, Vec2::Zero(), Vec2::Zero()};
+  p.domain.sides[static_cast<int>(Side::kTop)] = {SideType::kVelocity, Profile::kUniform,
+                                                  Vec2(0.1 + 0.2, -1e-300), Vec2::Zero()};
+  p.domain.sides[static_cast<int>(Side::kLeft)] = {SideType::kPeriodic, Profile::kUniform,
+                                                   Vec2::Zero(), Vec2::Zero()};
   p.domain.sides[static_cast<int>(Side::kRight)] = p.domain.sides[static_cast<int>(Side::kLeft)];
   p.fluid.viscosity = 1.0 / 3.0;
   p.fluid.relaxation_time = 1e22;

@@ -1,10 +1,10 @@
 // The fast separable solver against the assembled system (a M_l + b K) restricted to the unknowns:
-// for every boundary topology of the velocity and pressure grids, with a > 0 and a = 0 (the singular
-// Neumann/periodic case included), non-zero Dirichlet data, the fast solution satisfies the assembled
-// equations to 1e-12 relative and agrees with an independent Jacobi-PCG solve (run to 1e-14) to
-// 1e-10 (issue 2, point 5). Both bounds are round-off bounds: a direct solve on these O(100)-node
-// systems with condition numbers below 1e4 loses at most a few digits; the residual bound checks
-// every scaling of the transforms (a wrong c_k or lambda_k gives O(1) residuals).
+// for every boundary topology of the velocity and pressure grids, with a > 0 and a = 0 (the
+// singular Neumann/periodic case included), non-zero Dirichlet data, the fast solution satisfies
+// the assembled equations to 1e-12 relative and agrees with an independent Jacobi-PCG solve (run to
+// 1e-14) to 1e-10 (issue 2, point 5). Both bounds are round-off bounds: a direct solve on these
+// O(100)-node systems with condition numbers below 1e4 loses at most a few digits; the residual
+// bound checks every scaling of the transforms (a wrong c_k or lambda_k gives O(1) residuals).
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -38,7 +38,8 @@ BoundaryTopology Make(EndKind xl, EndKind xh, EndKind yl, EndKind yh) {
 }
 
 // Every end-kind combination the scenes produce on either grid (velocity and pressure of: all
-// walls, outflow top, periodic x, periodic x and y, outflow right), plus the mirrored one-sided kinds.
+// walls, outflow top, periodic x, periodic x and y, outflow right), plus the mirrored one-sided
+// kinds.
 std::vector<Topology> Topologies() {
   const EndKind D = EndKind::kDirichlet, N = EndKind::kNeumann, P = EndKind::kPeriodic;
   return {
@@ -55,7 +56,8 @@ std::vector<Grid> Meshes() {
 }
 
 bool IsDuplicate(const Grid& g, const BoundaryTopology& t, int i, int j) {
-  return (t.x.low == EndKind::kPeriodic && i == g.nx) || (t.y.low == EndKind::kPeriodic && j == g.ny);
+  return (t.x.low == EndKind::kPeriodic && i == g.nx) ||
+         (t.y.low == EndKind::kPeriodic && j == g.ny);
 }
 
 // Trapezoid lumped mass, written here from its definition h^2 Dx (x) Dy.
@@ -89,8 +91,8 @@ Problem Assemble(const Grid& g, const BoundaryTopology& t, double a, double b) {
   return p;
 }
 
-Eigen::SparseMatrix<double> Restrict(const Eigen::SparseMatrix<double>& m, const std::vector<int>& rows,
-                                     const std::vector<int>& cols) {
+Eigen::SparseMatrix<double> Restrict(const Eigen::SparseMatrix<double>& m,
+                                     const std::vector<int>& rows, const std::vector<int>& cols) {
   const Eigen::MatrixXd dense(m);
   return dense(rows, cols).sparseView();
 }
@@ -138,21 +140,25 @@ TEST_P(SeparableHelmholtzTest, MatchesAssembledSystemAndPcg) {
   Eigen::VectorXd x_all = Eigen::Map<Eigen::VectorXd>(x.data(), Eigen::Index(x.size()));
   for (int j = 0; j <= g.ny; ++j) {
     for (int i = 0; i <= g.nx; ++i) {
-      if (IsDuplicate(g, t, i, j)) x_all[Eigen::Index(g.Index(i, j))] = 0.0;  // empty columns anyway
+      if (IsDuplicate(g, t, i, j))
+        x_all[Eigen::Index(g.Index(i, j))] = 0.0;  // empty columns anyway
     }
   }
   const Eigen::VectorXd ax = p.a * x_all;
   Eigen::VectorXd residual(f_u.size());
-  for (std::size_t k = 0; k < p.unknown.size(); ++k) residual[Eigen::Index(k)] = ax[p.unknown[k]] - f_u[Eigen::Index(k)];
+  for (std::size_t k = 0; k < p.unknown.size(); ++k)
+    residual[Eigen::Index(k)] = ax[p.unknown[k]] - f_u[Eigen::Index(k)];
   EXPECT_LT(residual.norm() / f_u.norm(), 1e-12) << topology.name;
 
   // Independent PCG on A_uu x_u = f_u - A_ud x_d.
   Eigen::VectorXd x_d(Eigen::Index(p.dirichlet.size()));
-  for (std::size_t k = 0; k < p.dirichlet.size(); ++k) x_d[Eigen::Index(k)] = x_given[p.dirichlet[k]];
+  for (std::size_t k = 0; k < p.dirichlet.size(); ++k)
+    x_d[Eigen::Index(k)] = x_given[p.dirichlet[k]];
   Eigen::VectorXd rhs = f_u;
   if (!p.dirichlet.empty()) rhs -= Restrict(p.a, p.unknown, p.dirichlet) * x_d;
   Eigen::VectorXd x_pcg = Eigen::VectorXd::Zero(rhs.size());
-  const PcgResult pcg = SolveSparsePcg(Restrict(p.a, p.unknown, p.unknown), rhs, x_pcg, 1e-14, 10000);
+  const PcgResult pcg =
+      SolveSparsePcg(Restrict(p.a, p.unknown, p.unknown), rhs, x_pcg, 1e-14, 10000);
   ASSERT_TRUE(pcg.converged) << topology.name << " PCG residual " << pcg.relative_residual;
   double weighted = 0.0, total = 0.0, fast_weighted = 0.0;
   for (std::size_t k = 0; k < p.unknown.size(); ++k) {
@@ -165,13 +171,14 @@ TEST_P(SeparableHelmholtzTest, MatchesAssembledSystemAndPcg) {
     EXPECT_LT(std::abs(fast_weighted / total), 1e-14 * x_pcg.cwiseAbs().maxCoeff());
   }
   double diff = 0.0;
-  for (std::size_t k = 0; k < p.unknown.size(); ++k) diff = std::max(diff, std::abs(x[p.unknown[k]] - x_pcg[Eigen::Index(k)]));
+  for (std::size_t k = 0; k < p.unknown.size(); ++k)
+    diff = std::max(diff, std::abs(x[p.unknown[k]] - x_pcg[Eigen::Index(k)]));
   EXPECT_LT(diff / x_pcg.cwiseAbs().maxCoeff(), 1e-10) << topology.name;
 }
 
 std::string ParamName(const ::testing::TestParamInfo<Param>& info_) {
-  return "mesh" + std::to_string(std::get<0>(info_.param)) + "_" + Topologies()[std::get<1>(info_.param)].name +
-         (std::get<2>(info_.param) ? "_a40" : "_a0");
+  return "mesh" + std::to_string(std::get<0>(info_.param)) + "_" +
+         Topologies()[std::get<1>(info_.param)].name + (std::get<2>(info_.param) ? "_a40" : "_a0");
 }
 
 INSTANTIATE_TEST_SUITE_P(AllTopologies, SeparableHelmholtzTest,

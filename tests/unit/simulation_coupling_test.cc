@@ -1,8 +1,8 @@
 // Simulation with every substep wired (issues 3 and 4): what a step models follows the scene, rest
 // stays rest with A = I (to round-off), plane Couette flow reaches the steady simple-shear A of the
-// reference README, a fixed disk in a body-force-driven periodic box takes the body force as drag at
-// steady state, the initial A is A_L on inflow nodes, and Restore from a checkpoint file continues
-// bit for bit. Coarse grids, well under a second in all on an idle machine.
+// reference README, a fixed disk in a body-force-driven periodic box takes the body force as drag
+// at steady state, the initial A is A_L on inflow nodes, and Restore from a checkpoint file
+// continues bit for bit. Coarse grids, well under a second in all on an idle machine.
 #include "dlmfd/core/simulation.h"
 
 #include <gtest/gtest.h>
@@ -14,13 +14,12 @@
 #include <vector>
 
 #include "dlmfd/conformation/inflow_state.h"
+#include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/io/checkpoint.h"
 
 namespace dlmfd {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The last StepReport a Simulation produced.
 class LastReport : public Observer {
@@ -76,8 +75,8 @@ double MaxAbs(const std::vector<double>& f) {
 
 TEST(SimulationCoupling, NewtonianSceneModelsNoConformationAndNoParticles) {
   Params p = Box(1.0, 1.0, 1.0 / 16, SideType::kWall);
-  p.domain.sides[static_cast<int>(Side::kTop)] = {SideType::kVelocity, Profile::kUniform, Vec2(1.0, 0.0),
-                                                  Vec2::Zero()};
+  p.domain.sides[static_cast<int>(Side::kTop)] = {SideType::kVelocity, Profile::kUniform,
+                                                  Vec2(1.0, 0.0), Vec2::Zero()};
   p.fluid.relaxation_time = 0.5;  // with solvent_ratio = 1 the liquid is still Newtonian
   p.fluid.solvent_ratio = 1.0;
   Simulation sim(p);
@@ -106,19 +105,22 @@ TEST(SimulationCoupling, ViscoelasticLiquidAndDiskAtRestStayAtRestWithIdentityA)
   for (int k = 0; k < 10; ++k) sim.Step();
   const FlowState& s = sim.state();
   ASSERT_EQ(s.a11.size(), sim.grid().NodeCount());
-  // Round-off only: with L = 0 the pointwise update of (35) is A <- decay A + w with w the sum of its
-  // quadrature weights, equal to 1 - decay up to an ulp or two but not bitwise, so A settles at
-  // 1 + O(eps lambda / dt) = 1 + O(20 eps) here (measured 1.2e-15 after 10 steps); the polymer force
-  // of that moves the velocity by ~1e-17. Any real coupling error (gravity leaking into the liquid,
-  // a force from A = I, the particle step moving a resting disk) would be orders of magnitude larger.
+  // Round-off only: with L = 0 the pointwise update of (35) is A <- decay A + w with w the sum of
+  // its quadrature weights, equal to 1 - decay up to an ulp or two but not bitwise, so A settles at
+  // 1 + O(eps lambda / dt) = 1 + O(20 eps) here (measured 1.2e-15 after 10 steps); the polymer
+  // force of that moves the velocity by ~1e-17. Any real coupling error (gravity leaking into the
+  // liquid, a force from A = I, the particle step moving a resting disk) would be orders of
+  // magnitude larger.
   double a_error = 0.0;
   for (std::size_t k = 0; k < s.a11.size(); ++k) {
-    a_error = std::max({a_error, std::abs(s.a11[k] - 1.0), std::abs(s.a12[k]), std::abs(s.a22[k] - 1.0)});
+    a_error =
+        std::max({a_error, std::abs(s.a11[k] - 1.0), std::abs(s.a12[k]), std::abs(s.a22[k] - 1.0)});
   }
   EXPECT_LE(a_error, 1e-14);
   EXPECT_LE(MaxAbs(s.u), 1e-14);
   EXPECT_LE(MaxAbs(s.v), 1e-14);
-  std::printf("rest: max |A - I| = %.3g, max |u| = %.3g, max |v| = %.3g\n", a_error, MaxAbs(s.u), MaxAbs(s.v));
+  std::printf("rest: max |A - I| = %.3g, max |u| = %.3g, max |v| = %.3g\n", a_error, MaxAbs(s.u),
+              MaxAbs(s.v));
   ASSERT_EQ(s.particles.size(), 1u);
   EXPECT_LE(s.particles[0].velocity.norm(), 1e-14);
   EXPECT_LE(std::abs(s.particles[0].angular_velocity), 1e-14);
@@ -134,18 +136,18 @@ TEST(SimulationCoupling, ViscoelasticLiquidAndDiskAtRestStayAtRestWithIdentityA)
 // The steady discrete state is exact: the linear profile is a fixed point of (33) and (34) (the
 // 5-point Laplacian and u . grad u vanish on it, a uniform polymer stress has no interior force),
 // its P1 gradient is exact, and the pointwise update of (35) is exact for a steady state. What is
-// left at t is the start-up transient: Waters & King's slowest mode decays like exp(-a_1 t/(2 lambda))
-// with a_1 = 1 + beta E pi^2/4 = 1.62 here (E = lambda eta/(rho H^2) = 0.5, complex b_1), i.e. by
-// e^{-1.62 t}: at t = 5, exp(-8.1) = 3e-4 of an O(1) start-up (measured: 2.6e-4). The
+// left at t is the start-up transient: Waters & King's slowest mode decays like exp(-a_1 t/(2
+// lambda)) with a_1 = 1 + beta E pi^2/4 = 1.62 here (E = lambda eta/(rho H^2) = 0.5, complex b_1),
+// i.e. by e^{-1.62 t}: at t = 5, exp(-8.1) = 3e-4 of an O(1) start-up (measured: 2.6e-4). The
 // tolerance 1e-3 covers that with the solver tolerances (Stokes 1e-6 relative, advection 1e-3 on a
 // field whose advection is zero).
 TEST(SimulationCoupling, PlaneCouetteApproachesSteadySimpleShearConformation) {
   const double height = 1.0, lid = 1.0, lambda = 0.5;
   Params p = Box(0.5, height, 1.0 / 16, SideType::kPeriodic);
-  p.domain.sides[static_cast<int>(Side::kBottom)] = {SideType::kWall, Profile::kUniform, Vec2::Zero(),
-                                                     Vec2::Zero()};
-  p.domain.sides[static_cast<int>(Side::kTop)] = {SideType::kVelocity, Profile::kUniform, Vec2(lid, 0.0),
-                                                  Vec2::Zero()};
+  p.domain.sides[static_cast<int>(Side::kBottom)] = {SideType::kWall, Profile::kUniform,
+                                                     Vec2::Zero(), Vec2::Zero()};
+  p.domain.sides[static_cast<int>(Side::kTop)] = {SideType::kVelocity, Profile::kUniform,
+                                                  Vec2(lid, 0.0), Vec2::Zero()};
   MakeViscoelastic(p, lambda);
   p.time.dt = 0.01;
   p.time.end = 5.0;
@@ -159,7 +161,8 @@ TEST(SimulationCoupling, PlaneCouetteApproachesSteadySimpleShearConformation) {
   for (int j = 2; j <= g.ny - 2; ++j) {
     for (int i = 0; i <= g.nx; ++i) {
       const std::size_t k = g.Index(i, j);
-      worst = std::max({worst, std::abs(s.a11[k] - a11), std::abs(s.a12[k] - a12), std::abs(s.a22[k] - a22)});
+      worst = std::max(
+          {worst, std::abs(s.a11[k] - a11), std::abs(s.a12[k] - a12), std::abs(s.a22[k] - a22)});
       EXPECT_NEAR(s.u[k], shear * g.Y(j), 1e-3) << "node " << i << ", " << j;
     }
   }
@@ -168,16 +171,16 @@ TEST(SimulationCoupling, PlaneCouetteApproachesSteadySimpleShearConformation) {
 }
 
 // A fixed disk in a fully periodic box driven by a body force f along x. Total momentum of the
-// liquid (lumped mass rho h^2 per node, sum = rho W H) changes only by the body force, which acts on
-// the whole domain including the fictitious liquid in the disk, and by the multiplier: (33) adds
+// liquid (lumped mass rho h^2 per node, sum = rho W H) changes only by the body force, which acts
+// on the whole domain including the fictitious liquid in the disk, and by the multiplier: (33) adds
 // f W H dt, (34) conserves momentum on the periodic mesh up to its tolerance, (37) removes dt times
-// the nodal force sum. At steady state the reported force, -sum nu for a fixed disk without gravity,
-// is therefore f W H: the drag of the real liquid, f (W H - pi R^2), plus the push f pi R^2 of the
-// driving mean pressure gradient on the disk's own area. No splitting error enters this balance at a
-// fixed point; what is left is the transient and the advection and multiplier tolerances (1e-3
-// and 1e-6, relative). The transient, measured on this scene, decays like e^{-3.2 t} (force error
-// 1.9e-3 of f W H at t = 1, 2.8e-6 at t = 3), so at t = 3 the bound 1e-3 of f W H leaves a factor
-// 300 for the tolerances.
+// the nodal force sum. At steady state the reported force, -sum nu for a fixed disk without
+// gravity, is therefore f W H: the drag of the real liquid, f (W H - pi R^2), plus the push f pi
+// R^2 of the driving mean pressure gradient on the disk's own area. No splitting error enters this
+// balance at a fixed point; what is left is the transient and the advection and multiplier
+// tolerances (1e-3 and 1e-6, relative). The transient, measured on this scene, decays like e^{-3.2
+// t} (force error 1.9e-3 of f W H at t = 1, 2.8e-6 at t = 3), so at t = 3 the bound 1e-3 of f W H
+// leaves a factor 300 for the tolerances.
 TEST(SimulationCoupling, FixedDiskInDrivenPeriodicBoxTakesTheBodyForceAsDrag) {
   const double body = 2.0, radius = 0.15;
   Params p = Box(1.0, 1.0, 1.0 / 24, SideType::kPeriodic);
@@ -188,7 +191,8 @@ TEST(SimulationCoupling, FixedDiskInDrivenPeriodicBoxTakesTheBodyForceAsDrag) {
   Simulation sim(p);
   sim.Run();
   const ParticleState& disk = sim.state().particles[0];
-  std::printf("fixed disk: force = (%.8g, %.8g), f W H = %.8g\n", disk.force.x(), disk.force.y(), body);
+  std::printf("fixed disk: force = (%.8g, %.8g), f W H = %.8g\n", disk.force.x(), disk.force.y(),
+              body);
   const double total = body * 1.0 * 1.0;
   const double liquid_drag = disk.force.x() - body * kPi * radius * radius;
   EXPECT_GT(disk.force.x(), 0.0) << "drag must point along the flow";
@@ -199,9 +203,9 @@ TEST(SimulationCoupling, FixedDiskInDrivenPeriodicBoxTakesTheBodyForceAsDrag) {
   EXPECT_GT(MaxAbs(sim.state().u), 0.0);
 }
 
-// A heavy disk falling in a viscoelastic liquid: 6 steps, a checkpoint file, 6 more from the restored
-// state in a fresh Simulation equal 12 uninterrupted steps bit for bit (fields, A, particles and
-// their multipliers).
+// A heavy disk falling in a viscoelastic liquid: 6 steps, a checkpoint file, 6 more from the
+// restored state in a fresh Simulation equal 12 uninterrupted steps bit for bit (fields, A,
+// particles and their multipliers).
 TEST(SimulationCoupling, RestoreFromCheckpointContinuesBitwise) {
   Params p = Box(1.0, 1.0, 1.0 / 16, SideType::kWall);
   MakeViscoelastic(p, 0.1);
@@ -245,16 +249,16 @@ TEST(SimulationCoupling, RestoreFromCheckpointContinuesBitwise) {
   EXPECT_GT(MaxAbs(a.a12), 0.0);
 }
 
-// A channel fed through the bottom by a poiseuille profile: the initial A is A_L (the fully developed
-// Oldroyd-B state of the profile) at the inflow nodes of the bottom side, where v > 0, and I
-// elsewhere (the corners carry v = 0 and are walls); step (35) keeps A_L there.
+// A channel fed through the bottom by a poiseuille profile: the initial A is A_L (the fully
+// developed Oldroyd-B state of the profile) at the inflow nodes of the bottom side, where v > 0,
+// and I elsewhere (the corners carry v = 0 and are walls); step (35) keeps A_L there.
 TEST(SimulationCoupling, InitialConformationIsTheInflowStateOnInflowNodes) {
   const double lambda = 0.5;
   Params p = Box(1.0, 2.0, 1.0 / 8, SideType::kWall);
-  p.domain.sides[static_cast<int>(Side::kBottom)] = {SideType::kVelocity, Profile::kPoiseuille, Vec2::Zero(),
-                                                     Vec2(0.0, 1.0)};
-  p.domain.sides[static_cast<int>(Side::kTop)] = {SideType::kOutflow, Profile::kUniform, Vec2::Zero(),
-                                                  Vec2::Zero()};
+  p.domain.sides[static_cast<int>(Side::kBottom)] = {SideType::kVelocity, Profile::kPoiseuille,
+                                                     Vec2::Zero(), Vec2(0.0, 1.0)};
+  p.domain.sides[static_cast<int>(Side::kTop)] = {SideType::kOutflow, Profile::kUniform,
+                                                  Vec2::Zero(), Vec2::Zero()};
   MakeViscoelastic(p, lambda);
   Simulation sim(p);
   const Grid& g = sim.grid();

@@ -1,5 +1,5 @@
-// Step (33): discrete divergence after the solve, exact steady solutions, and agreement with a direct
-// sparse solve of the assembled KKT system.
+// Step (33): discrete divergence after the solve, exact steady solutions, and agreement with a
+// direct sparse solve of the assembled KKT system.
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseLU>
@@ -111,7 +111,8 @@ TEST(StokesSolver, DivergenceBelowToleranceAfterSolve) {
     // Recomputed residual versus the recursive one: they differ by round-off only (1e-12 of ref).
     EXPECT_LE(after, p.solvers.stokes_tolerance * r.reference + 1e-12 * r.reference);
     EXPECT_GT(before, 1e3 * after);
-    EXPECT_NEAR(stokes.DivergenceNorm(u.data(), v.data()), r.divergence, 1e-14 + 1e-12 * r.divergence);
+    EXPECT_NEAR(stokes.DivergenceNorm(u.data(), v.data()), r.divergence,
+                1e-14 + 1e-12 * r.divergence);
   }
 }
 
@@ -140,12 +141,12 @@ TEST(Simulation, PlaneCouetteIsReproducedToRoundOff) {
   }
 }
 
-// Plane Poiseuille flow driven by a body force f between walls, periodic in x: u = f y (H - y) / (2 eta).
-// The 5-point stiffness of a quadratic is exact: K u = h^2 f / eta = M_l f / eta at interior rows, so
-// the nodal parabola solves (33) exactly when all the viscosity is in (33), alpha = 1, beta = 0.
-// With alpha < 1 it does not: the Marchuk-Yanenko steady state differs from the parabola by O(dt)
-// (the splitting error, u^{n+1/4} = u + beta dt f / rho away from the walls), so it is not a test
-// of round-off. N(u, u) = 0 and K_V u = 0 as for Couette flow.
+// Plane Poiseuille flow driven by a body force f between walls, periodic in x: u = f y (H - y) / (2
+// eta). The 5-point stiffness of a quadratic is exact: K u = h^2 f / eta = M_l f / eta at interior
+// rows, so the nodal parabola solves (33) exactly when all the viscosity is in (33), alpha = 1,
+// beta = 0. With alpha < 1 it does not: the Marchuk-Yanenko steady state differs from the parabola
+// by O(dt) (the splitting error, u^{n+1/4} = u + beta dt f / rho away from the walls), so it is not
+// a test of round-off. N(u, u) = 0 and K_V u = 0 as for Couette flow.
 TEST(Simulation, PlanePoiseuilleBodyForceIsReproducedToRoundOff) {
   for (AdvectionScheme scheme : {AdvectionScheme::kLeastSquares, AdvectionScheme::kWave}) {
     Params p = MakeParams(0.5, 1.0, 1.0 / 16, Periodic(), Periodic(), Wall(), Wall());
@@ -170,9 +171,9 @@ TEST(Simulation, PlanePoiseuilleBodyForceIsReproducedToRoundOff) {
 
 // Inflow with a parabolic profile through the bottom, walls left and right, outflow at the top:
 // v = 4 V x (W - x) / W^2, u = 0, p = (8 eta V / W^2)(H - y) (zero on the outflow side, where the
-// do-nothing condition eta dv/dy - p = 0 holds). v is quadratic in x (K exact as above), p is linear
-// and so exactly P1 on the 2h mesh, and B^T p = -(dp/dy) M_l holds row by row, natural top rows
-// included (trapezoid mass h^2/2 there). Started from the exact pressure the Uzawa residual is
+// do-nothing condition eta dv/dy - p = 0 holds). v is quadratic in x (K exact as above), p is
+// linear and so exactly P1 on the 2h mesh, and B^T p = -(dp/dy) M_l holds row by row, natural top
+// rows included (trapezoid mass h^2/2 there). Started from the exact pressure the Uzawa residual is
 // round-off and the state is a fixed point of (33)-(34) with alpha = 1, beta = 0.
 TEST(Simulation, InflowPoiseuilleWithOutflowIsReproducedToRoundOff) {
   for (AdvectionScheme scheme : {AdvectionScheme::kLeastSquares, AdvectionScheme::kWave}) {
@@ -187,10 +188,12 @@ TEST(Simulation, InflowPoiseuilleWithOutflowIsReproducedToRoundOff) {
     FlowState& s = sim.mutable_state();
     const double eta = p.fluid.viscosity, w = g.Width(), hh = g.Height();
     for (int j = 0; j <= g.ny; ++j) {
-      for (int i = 0; i <= g.nx; ++i) s.v[g.Index(i, j)] = 4 * vmax * g.X(i) * (w - g.X(i)) / (w * w);
+      for (int i = 0; i <= g.nx; ++i)
+        s.v[g.Index(i, j)] = 4 * vmax * g.X(i) * (w - g.X(i)) / (w * w);
     }
     for (int j = 0; j <= pg.ny; ++j) {
-      for (int i = 0; i <= pg.nx; ++i) s.p[pg.Index(i, j)] = 8 * eta * vmax / (w * w) * (hh - pg.Y(j));
+      for (int i = 0; i <= pg.nx; ++i)
+        s.p[pg.Index(i, j)] = 8 * eta * vmax / (w * w) * (hh - pg.Y(j));
     }
     const std::vector<double> v0 = s.v, p0 = s.p;
     for (int n = 0; n < 10; ++n) sim.Step();
@@ -202,10 +205,12 @@ TEST(Simulation, InflowPoiseuilleWithOutflowIsReproducedToRoundOff) {
 
 // Uzawa/PCG against Eigen's SparseLU on the assembled KKT system
 //   [A 0 -Bx^T 0; 0 A -By^T 0; Bx By 0 m; 0 0 m^T 0] (u, v, p, l) = (F - A_D u_D, -B_D u_D, 0)
-// restricted to the unknown nodes (m = M_p weights fix the constant pressure when it is in the kernel).
+// restricted to the unknown nodes (m = M_p weights fix the constant pressure when it is in the
+// kernel).
 void CompareWithDirectSolve(const Params& p) {
   const Grid g = GridOf(p), pg = g.Coarse();
-  const double rdt = p.fluid.density / p.time.dt, nu = p.splitting.alpha * p.fluid.SolventViscosity();
+  const double rdt = p.fluid.density / p.time.dt,
+               nu = p.splitting.alpha * p.fluid.SolventViscosity();
   BoundaryData data(g, p.domain);
   SolverParams tight = p.solvers;
   tight.stokes_tolerance = 1e-12;
@@ -227,15 +232,18 @@ void CompareWithDirectSolve(const Params& p) {
   // Numbering of unknowns.
   std::vector<int> vid(g.NodeCount(), -1), pid(pg.NodeCount(), -1);
   int nv = 0, np = 0;
-  for (std::size_t k = 0; k < vid.size(); ++k) if (stokes.velocity_nodes().IsUnknown(k)) vid[k] = nv++;
-  for (std::size_t k = 0; k < pid.size(); ++k) if (stokes.pressure_nodes().IsUnknown(k)) pid[k] = np++;
+  for (std::size_t k = 0; k < vid.size(); ++k)
+    if (stokes.velocity_nodes().IsUnknown(k)) vid[k] = nv++;
+  for (std::size_t k = 0; k < pid.size(); ++k)
+    if (stokes.pressure_nodes().IsUnknown(k)) pid[k] = np++;
   const bool null_space = pt.HasNullSpace();
   const int n = 2 * nv + np + (null_space ? 1 : 0);
 
   std::vector<double> ud = u, vd = v;  // Dirichlet data at t^{n+1}
   data.Apply(ud.data(), vd.data());
   const Eigen::SparseMatrix<double> k_mat = AssembleStiffness(g, vt);
-  const Eigen::SparseMatrix<double> bx = AssembleDivergenceX(g, pt), by = AssembleDivergenceY(g, pt);
+  const Eigen::SparseMatrix<double> bx = AssembleDivergenceX(g, pt),
+                                    by = AssembleDivergenceY(g, pt);
   std::vector<Eigen::Triplet<double>> t;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
   for (std::size_t k = 0; k < vid.size(); ++k) {

@@ -2,10 +2,10 @@
 // warm-up steps, Simulation::Step allocates nothing, for the paper's Oldroyd-B pair (5.2) with
 // either advection scheme, for a Newtonian scene and for the 102-disk bed with collisions, on 1 and
 // 2 threads. Every operator new of the process is counted while a step runs, and, outside sanitizer
-// builds (whose runtime owns malloc), every malloc, calloc and realloc too, from any library (glibc's
-// allocator is replaced by forwarders to its __libc_ entry points). Observers (file output) are not
-// attached, since writing results is not part of the step.
-// Coarse grids (h = 1/24), a few seconds in all.
+// builds (whose runtime owns malloc), every malloc, calloc and realloc too, from any library
+// (glibc's allocator is replaced by forwarders to its __libc_ entry points). Observers (file
+// output) are not attached, since writing results is not part of the step. Coarse grids (h = 1/24),
+// a few seconds in all.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -24,7 +24,8 @@ std::atomic<long> g_allocations{0};
 
 namespace {
 void CountAllocation() {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (g_counting.load(std::memory_order_relaxed))
+    g_allocations.fetch_add(1, std::memory_order_relaxed);
 }
 }  // namespace
 
@@ -77,8 +78,8 @@ namespace {
 // Allocations during `steps` steps after `warmup` steps.
 long AllocationsPerSteps(const std::string& scene, std::vector<std::string> overrides, int threads,
                          int warmup = 5, int steps = 5) {
-  overrides.push_back("domain.h=0.041666666666666664");          // 1/24
-  overrides.push_back("particle_mesh.h=0.05714285714285714");    // 1/17.5, the paper's h_p / h
+  overrides.push_back("domain.h=0.041666666666666664");        // 1/24
+  overrides.push_back("particle_mesh.h=0.05714285714285714");  // 1/17.5, the paper's h_p / h
   overrides.push_back("output.fields_every=0");
   overrides.push_back("output.particles_every=0");
   overrides.push_back("output.checkpoint_every=0");
@@ -110,13 +111,15 @@ TEST(AllocationCounter, SeesNewAndMalloc) {
 
 TEST(TimeLoopAllocation, OldroydBPairWave) {
   for (int threads : {1, 2}) {
-    EXPECT_EQ(AllocationsPerSteps("5.2_pair_oldroyd_b.toml", {"splitting.advection=wave"}, threads), 0)
+    EXPECT_EQ(AllocationsPerSteps("5.2_pair_oldroyd_b.toml", {"splitting.advection=wave"}, threads),
+              0)
         << threads << " threads";
   }
 }
 
 TEST(TimeLoopAllocation, OldroydBPairLeastSquares) {
-  EXPECT_EQ(AllocationsPerSteps("5.2_pair_oldroyd_b.toml", {"splitting.advection=least_squares"}, 1), 0);
+  EXPECT_EQ(
+      AllocationsPerSteps("5.2_pair_oldroyd_b.toml", {"splitting.advection=least_squares"}, 1), 0);
 }
 
 TEST(TimeLoopAllocation, NewtonianPair) {
@@ -127,7 +130,8 @@ TEST(TimeLoopAllocation, FluidizedBedWithContacts) {
   // 102 disks, touching neighbours in the initial lattice: the collision and the OpenMP
   // particle paths (32 disks or more) run.
   for (int threads : {1, 2}) {
-    EXPECT_EQ(AllocationsPerSteps("5.4_fluidized_bed_102.toml", {"splitting.advection=wave"}, threads), 0)
+    EXPECT_EQ(
+        AllocationsPerSteps("5.4_fluidized_bed_102.toml", {"splitting.advection=wave"}, threads), 0)
         << threads << " threads";
   }
 }

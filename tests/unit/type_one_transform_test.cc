@@ -27,10 +27,11 @@ std::vector<double> RandomRows(int length, int rows, unsigned seed) {
 }
 
 // FFTW's r2r transform of every row (the definition TypeOneTransform must reproduce).
-std::vector<double> Reference(TypeOneTransform::Kind kind, int length, int rows, std::vector<double> x) {
+std::vector<double> Reference(TypeOneTransform::Kind kind, int length, int rows,
+                              std::vector<double> x) {
   const fftw_r2r_kind k = kind == TypeOneTransform::Kind::kSine ? FFTW_RODFT00 : FFTW_REDFT00;
-  fftw_plan plan = fftw_plan_many_r2r(1, &length, rows, x.data(), nullptr, 1, length, x.data(), nullptr, 1,
-                                      length, &k, FFTW_ESTIMATE);
+  fftw_plan plan = fftw_plan_many_r2r(1, &length, rows, x.data(), nullptr, 1, length, x.data(),
+                                      nullptr, 1, length, &k, FFTW_ESTIMATE);
   fftw_execute(plan);
   fftw_destroy_plan(plan);
   return x;
@@ -58,7 +59,8 @@ TEST(TypeOneTransform, MatchesFftwSineAndCosineKinds) {
         transform.Apply(y.data(), 1);
         const double difference = MaxRelativeDifference(y, expected);
         std::printf("%s, length %3d, rows %2d: max difference / max value %.2e\n",
-                    kind == TypeOneTransform::Kind::kSine ? "sine  " : "cosine", length, rows, difference);
+                    kind == TypeOneTransform::Kind::kSine ? "sine  " : "cosine", length, rows,
+                    difference);
         EXPECT_LE(difference, 1e-13) << (kind == TypeOneTransform::Kind::kSine ? "sine" : "cosine")
                                      << ", length " << length << ", rows " << rows;
       }

@@ -91,14 +91,15 @@ namespace {
 
 // One row of a stage: out = w_base base + w_in (a - tau (u dA/dx + v dA/dy)), third-order
 // upwind-biased differences written without a branch, so that the loop vectorises:
-// u D_upwind = u C + |u| Q with C = (A_{i-2} - 8 A_{i-1} + 8 A_{i+1} - A_{i+2}) / 12 (the mean of the
-// two biased stencils) and Q = (A_{i-2} - 4 A_{i-1} + 6 A_i - 4 A_{i+1} + A_{i+2}) / 12 (half their
-// difference); for u > 0 this is (A_{i-2} - 6 A_{i-1} + 3 A_i + 2 A_{i+1}) / 6, for u < 0 its mirror.
-// Compiled for AVX2 and for the baseline, chosen at load time (GCC function multi-versioning).
+// u D_upwind = u C + |u| Q with C = (A_{i-2} - 8 A_{i-1} + 8 A_{i+1} - A_{i+2}) / 12 (the mean of
+// the two biased stencils) and Q = (A_{i-2} - 4 A_{i-1} + 6 A_i - 4 A_{i+1} + A_{i+2}) / 12 (half
+// their difference); for u > 0 this is (A_{i-2} - 6 A_{i-1} + 3 A_i + 2 A_{i+1}) / 6, for u < 0 its
+// mirror. Compiled for AVX2 and for the baseline, chosen at load time (GCC function
+// multi-versioning).
 __attribute__((target_clones("avx2", "default"))) void AdvectRow(
     int count, const double* __restrict u, const double* __restrict v, const double* __restrict a,
-    std::ptrdiff_t sy, const double* __restrict base, double w_base, double w_in, double tau_over_12h,
-    double* __restrict out) {
+    std::ptrdiff_t sy, const double* __restrict base, double w_base, double w_in,
+    double tau_over_12h, double* __restrict out) {
   for (int i = 0; i < count; ++i) {
     const double* p = a + i;
     const double cx = p[-2] - 8.0 * (p[-1] - p[1]) - p[2];
@@ -123,13 +124,15 @@ void ConformationAdvection::Stage(double tau, const double* u, const double* v, 
     const std::size_t k = grid_.Index(0, j);
     const std::size_t p = Padded(0, j);
     for (int c = 0; c < 3; ++c) {
-      AdvectRow(nx + 1, u + k, v + k, in[c] + p, sy, base[c] + p, w_base, w_in, tau_over_12h, out[c] + p);
+      AdvectRow(nx + 1, u + k, v + k, in[c] + p, sy, base[c] + p, w_base, w_in, tau_over_12h,
+                out[c] + p);
     }
   }
 }
 
 long ConformationAdvection::SubStep(double tau, const double* u, const double* v) {
-  // SSP-RK3: s1 = A + tau R(A); s2 = 3/4 A + 1/4 (s1 + tau R(s1)); s1 = 1/3 A + 2/3 (s2 + tau R(s2)).
+  // SSP-RK3: s1 = A + tau R(A); s2 = 3/4 A + 1/4 (s1 + tau R(s1)); s1 = 1/3 A + 2/3 (s2 + tau
+  // R(s2)).
   Stage(tau, u, v, 0.0, a_, 1.0, a_, s1_);  // base = in: 0 * base adds nothing
   RestoreFixedAndGhosts(s1_);
   Stage(tau, u, v, 0.75, a_, 0.25, s1_, s2_);
@@ -161,8 +164,8 @@ long ConformationAdvection::SubStep(double tau, const double* u, const double* v
           low_c[c] = centre * a[0] + ax * a[ox] + ay * a[oy];
         }
         const SymTensor low{low_c[0], low_c[1], low_c[2]};
-        // Screen: lambda_min(A_H) >= Gershgorin bound >= kappa min diag(A_L) >= kappa lambda_min(A_L)
-        // keeps A_H without the eigenvalues (the common case).
+        // Screen: lambda_min(A_H) >= Gershgorin bound >= kappa min diag(A_L) >= kappa
+        // lambda_min(A_L) keeps A_H without the eigenvalues (the common case).
         if (GershgorinLowerBound(high) >= kappa * std::min(low.a11, low.a22)) {
           s2_[0][p] = high.a11;
           s2_[1][p] = high.a12;

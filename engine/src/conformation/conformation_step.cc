@@ -20,8 +20,9 @@ double CheckedRelaxationTime(const Params& params) {
   if (params.fluid.IsNewtonian()) {
     std::ostringstream value;
     value << params.fluid.relaxation_time;
-    throw InvalidParameter("fluid.relaxation_time", value.str(),
-                           "> 0 with solvent_ratio < 1 for a conformation step (Newtonian scenes have none)");
+    throw InvalidParameter(
+        "fluid.relaxation_time", value.str(),
+        "> 0 with solvent_ratio < 1 for a conformation step (Newtonian scenes have none)");
   }
   return params.fluid.relaxation_time;
 }
@@ -73,8 +74,8 @@ void ConformationStep::CollectInflow(const double* u, const double* v) {
   }
 }
 
-void ConformationStep::CheckField(double time, const char* when, const double* a11, const double* a12,
-                                  const double* a22) const {
+void ConformationStep::CheckField(double time, const char* when, const double* a11,
+                                  const double* a12, const double* a22) const {
   const long n = static_cast<long>(grid_.NodeCount());
   long first_bad = n;
 #pragma omp parallel for schedule(static) reduction(min : first_bad)
@@ -87,15 +88,17 @@ void ConformationStep::CheckField(double time, const char* when, const double* a
     ThrowBadNode(time, when, first_bad, SymTensor{a11[first_bad], a12[first_bad], a22[first_bad]});
 }
 
-void ConformationStep::ThrowBadNode(double time, const char* when, long k, const SymTensor& a) const {
+void ConformationStep::ThrowBadNode(double time, const char* when, long k,
+                                    const SymTensor& a) const {
   const int i = static_cast<int>(k % (grid_.nx + 1));
   const int j = static_cast<int>(k / (grid_.nx + 1));
   std::ostringstream msg;
   msg.precision(6);
   const bool finite = IsFinite(a);
-  msg << (finite ? "conformation tensor A not positive definite" : "conformation tensor A not finite") << " "
-      << when << " step (35) at t = " << time << ": node (" << i << ", " << j << ") at (x, y) = ("
-      << grid_.X(i) << ", " << grid_.Y(j) << "): ";
+  msg << (finite ? "conformation tensor A not positive definite"
+                 : "conformation tensor A not finite")
+      << " " << when << " step (35) at t = " << time << ": node (" << i << ", " << j
+      << ") at (x, y) = (" << grid_.X(i) << ", " << grid_.Y(j) << "): ";
   if (finite) msg << "lambda_min(A) = " << MinEigenvalue(a) << ", ";
   msg << "A11 = " << a.a11 << ", A12 = " << a.a12 << ", A22 = " << a.a22;
   if (finite) throw ConformationNotPositiveDefinite(msg.str());
@@ -103,8 +106,8 @@ void ConformationStep::ThrowBadNode(double time, const char* when, long k, const
 }
 
 void ConformationStep::Advance(double time, double dt, const double* u, const double* v,
-                               const unsigned char* inside_particle, double* a11, double* a12, double* a22,
-                               StepReport& report) {
+                               const unsigned char* inside_particle, double* a11, double* a12,
+                               double* a22, StepReport& report) {
   CheckField(time, "before", a11, a12, a22);
 
   NodeVelocityGradient(grid_, periodic_x_, periodic_y_, u, v, l11_.data(), l12_.data(), l21_.data(),
@@ -128,9 +131,9 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
     const int i = static_cast<int>(first_bad_velocity % (grid_.nx + 1));
     const int j = static_cast<int>(first_bad_velocity / (grid_.nx + 1));
     std::ostringstream msg;
-    msg << "velocity or its gradient not finite in step (35) at t = " << time << ": node (" << i << ", " << j
-        << ") at (x, y) = (" << grid_.X(i) << ", " << grid_.Y(j) << "): u = " << u[first_bad_velocity]
-        << ", v = " << v[first_bad_velocity];
+    msg << "velocity or its gradient not finite in step (35) at t = " << time << ": node (" << i
+        << ", " << j << ") at (x, y) = (" << grid_.X(i) << ", " << grid_.Y(j)
+        << "): u = " << u[first_bad_velocity] << ", v = " << v[first_bad_velocity];
     throw NumericalBlowUp(msg.str());
   }
 
@@ -139,8 +142,9 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
   const double courant_ratio = dt * max_speed / (grid_.h * max_courant_);
   if (courant_ratio > kMaxSubsteps) {
     std::ostringstream msg;
-    msg << "advective Courant number " << dt * max_speed / grid_.h << " in step (35) at t = " << time
-        << " (max |u| + |v| = " << max_speed << ") would need more than " << kMaxSubsteps
+    msg << "advective Courant number " << dt * max_speed / grid_.h
+        << " in step (35) at t = " << time << " (max |u| + |v| = " << max_speed
+        << ") would need more than " << kMaxSubsteps
         << " conformation sub-steps: the velocity is beyond any bound the time step can follow";
     throw NumericalBlowUp(msg.str());
   }
@@ -159,12 +163,14 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
   long first_bad = n;
   double min_eig = std::numeric_limits<double>::infinity();
   double max_trace = -std::numeric_limits<double>::infinity();
-#pragma omp parallel for schedule(static) reduction(min : first_bad, min_eig) reduction(max : max_trace)
+#pragma omp parallel for schedule(static) reduction(min                                 \
+                                                    : first_bad, min_eig) reduction(max \
+                                                                                    : max_trace)
   for (int j = 0; j <= ny; ++j) {
     const std::size_t row = grid_.Index(0, j);
     OnePanelRow(nx + 1, constants, advection_.Row(0, j), advection_.Row(1, j), advection_.Row(2, j),
-                l11_.data() + row, l12_.data() + row, l21_.data() + row, l22_.data() + row, a11 + row,
-                a12 + row, a22 + row);
+                l11_.data() + row, l12_.data() + row, l21_.data() + row, l22_.data() + row,
+                a11 + row, a12 + row, a22 + row);
     for (int i = 0; i <= nx; ++i) {
       const std::size_t k = row + i;
       if (inflow_[k]) continue;  // A_L, set below
@@ -189,7 +195,8 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
     }
   }
   if (first_bad < n) {
-    ThrowBadNode(time + dt, "after", first_bad, SymTensor{a11[first_bad], a12[first_bad], a22[first_bad]});
+    ThrowBadNode(time + dt, "after", first_bad,
+                 SymTensor{a11[first_bad], a12[first_bad], a22[first_bad]});
   }
   // 3. A = A_L on inflow nodes (SPD by construction); periodic duplicates equal to the first node.
   for (const BoundaryNode& b : boundary_) {

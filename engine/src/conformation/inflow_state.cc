@@ -38,8 +38,9 @@ SymTensor SteadyConformation(const Mat2& l, double lambda) {
   if (!(2.0 * lambda * max_real_eig < 1.0) || !IsFinite(a) || !(MinEigenvalue(a) > 0.0)) {
     std::ostringstream value;
     value << "lambda max Re eig(L) = " << lambda * max_real_eig;
-    throw InvalidParameter("fluid.relaxation_time", value.str(),
-                           "2 lambda max Re eig(L) < 1 at an inflow boundary (no steady Oldroyd-B state)");
+    throw InvalidParameter(
+        "fluid.relaxation_time", value.str(),
+        "2 lambda max Re eig(L) < 1 at an inflow boundary (no steady Oldroyd-B state)");
   }
   return a;
 }
@@ -49,7 +50,8 @@ SymTensor SimpleShearConformation(double lambda, double shear_rate) {
   return SymTensor{1.0 + 2.0 * wi * wi, wi, 1.0};
 }
 
-SymTensor InflowConformation(const Grid& grid, const DomainParams& domain, Side side, int k, double lambda) {
+SymTensor InflowConformation(const Grid& grid, const DomainParams& domain, Side side, int k,
+                             double lambda) {
   const BoundarySide& b = domain.side(side);
   if (b.type != SideType::kVelocity || b.profile != Profile::kPoiseuille) return SymTensor{};
   const bool vertical = (side == Side::kLeft || side == Side::kRight);

@@ -11,14 +11,16 @@ struct MeanStress {
 inline MeanStress Mean(double modulus, const double* a11, const double* a12, const double* a22,
                        std::size_t k0, std::size_t k1, std::size_t k2) {
   const double third = modulus / 3.0;
-  return MeanStress{third * (a11[k0] + a11[k1] + a11[k2] - 3.0), third * (a12[k0] + a12[k1] + a12[k2]),
+  return MeanStress{third * (a11[k0] + a11[k1] + a11[k2] - 3.0),
+                    third * (a12[k0] + a12[k1] + a12[k2]),
                     third * (a22[k0] + a22[k1] + a22[k2] - 3.0)};
 }
 
 }  // namespace
 
-void AddPolymerForce(const Grid& grid, const DomainParams& domain, double polymer_modulus, const double* a11,
-                     const double* a12, const double* a22, double* fx, double* fy) {
+void AddPolymerForce(const Grid& grid, const DomainParams& domain, double polymer_modulus,
+                     const double* a11, const double* a12, const double* a22, double* fx,
+                     double* fy) {
   const int nx = grid.nx, ny = grid.ny;
   const bool px = domain.PeriodicX(), py = domain.PeriodicY();
   // |T| grad phi = (h^2/2)(gx, gy)/h: the h cancels to h/2 times the unit-mesh gradients (+-1, 0).
@@ -83,10 +85,12 @@ void AddPolymerForce(const Grid& grid, const DomainParams& domain, double polyme
   // and the node's own weights (and with them the -I of tau_p) sum to zero.
   const long row = nx + 1;
   auto dx = [row](const double* a, long k) {
-    return -2.0 * a[k + 1] - a[k + row + 1] + a[k + row] + 2.0 * a[k - 1] + a[k - row - 1] - a[k - row];
+    return -2.0 * a[k + 1] - a[k + row + 1] + a[k + row] + 2.0 * a[k - 1] + a[k - row - 1] -
+           a[k - row];
   };
   auto dy = [row](const double* a, long k) {
-    return a[k + 1] - a[k + row + 1] - 2.0 * a[k + row] - a[k - 1] + a[k - row - 1] + 2.0 * a[k - row];
+    return a[k + 1] - a[k + row + 1] - 2.0 * a[k + row] - a[k - 1] + a[k - row - 1] +
+           2.0 * a[k - row];
   };
   const double scale = half_h * polymer_modulus / 3.0;
 #pragma omp parallel for schedule(static)

@@ -38,7 +38,8 @@ inline void AddTriangle(const Grid& g, const double* u, const double* v, int si,
 
 // The 6 triangles that touch node (i, j): both of squares (i, j) and (i-1, j-1), the lower one of
 // (i-1, j) and the upper one of (i, j-1).
-GradientSum SumAround(const Grid& g, bool px, bool py, const double* u, const double* v, int i, int j) {
+GradientSum SumAround(const Grid& g, bool px, bool py, const double* u, const double* v, int i,
+                      int j) {
   struct Candidate {
     int di, dj;
     bool lower, upper;
@@ -58,8 +59,9 @@ GradientSum SumAround(const Grid& g, bool px, bool py, const double* u, const do
 // Interior nodes i = 1 .. count of one row (p points at node (1, j)): the closed form of the
 // 6-triangle average. Compiled for AVX2 and for the baseline, chosen at load time.
 __attribute__((target_clones("avx2", "default"))) void InteriorRow(
-    int count, std::ptrdiff_t row, double inv_6h, const double* __restrict u, const double* __restrict v,
-    double* __restrict l11, double* __restrict l12, double* __restrict l21, double* __restrict l22) {
+    int count, std::ptrdiff_t row, double inv_6h, const double* __restrict u,
+    const double* __restrict v, double* __restrict l11, double* __restrict l12,
+    double* __restrict l21, double* __restrict l22) {
   for (int i = 0; i < count; ++i) {
     const double* p = u + i;
     const double* q = v + i;

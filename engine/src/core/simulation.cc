@@ -1,6 +1,7 @@
 // Simulation: the Marchuk-Yanenko loop (paper section 4). This file owns the state and the substep
 // solvers (built once, sized once); Step() runs the substeps as separate members:
-//   SolveStokes (33) -> AdvectVelocity (34) -> [UpdateConformation (35)] -> [MoveParticles (36)-(38)].
+//   SolveStokes (33) -> AdvectVelocity (34) -> [UpdateConformation (35)] -> [MoveParticles
+//   (36)-(38)].
 // A step models no more than the scene needs: a Newtonian liquid (relaxation_time = 0 or
 // solvent_ratio = 1) has no conformation arrays, no polymer force and no step (35); a scene without
 // particles has no step (36)-(38).
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "../mesh/grid_kernels.h"
 #include "dlmfd/conformation/conformation_step.h"
 #include "dlmfd/conformation/inflow_state.h"
 #include "dlmfd/conformation/polymer_force.h"
@@ -71,19 +73,6 @@ long Period(long n, double dt, double every) {
   return static_cast<long>(std::floor(static_cast<double>(n) * dt / every + 1e-9));
 }
 
-// The node range [lo, hi] that the interval [a, b] covers on a line of n cells of size h from x0.
-// Periodic lines return an unclamped range (the caller wraps); others are clamped to 0..n.
-void CoveredNodes(double a, double b, double x0, double h, int n, bool periodic, int* lo, int* hi) {
-  *lo = static_cast<int>(std::ceil((a - x0) / h));
-  *hi = static_cast<int>(std::floor((b - x0) / h));
-  if (!periodic) {
-    *lo = std::max(*lo, 0);
-    *hi = std::min(*hi, n);
-  }
-}
-
-int Wrap(int i, int n) { return ((i % n) + n) % n; }
-
 }  // namespace
 
 struct Simulation::Impl {
@@ -95,8 +84,8 @@ struct Simulation::Impl {
         stokes(grid, p.domain, p.fluid, p.time.dt, p.splitting.alpha, p.solvers, boundary_data),
         viscoelastic(!p.fluid.IsNewtonian()) {
     if (p.splitting.advection == AdvectionScheme::kLeastSquares) {
-      least_squares = std::make_unique<AdvectionLeastSquares>(grid, p.domain, p.fluid, p.time.dt,
-                                                              p.splitting.beta, p.solvers, boundary_data);
+      least_squares = std::make_unique<AdvectionLeastSquares>(
+          grid, p.domain, p.fluid, p.time.dt, p.splitting.beta, p.solvers, boundary_data);
     } else {
       wave = std::make_unique<AdvectionWave>(grid, p.domain, p.fluid, p.time.dt, p.splitting.beta,
                                              p.solvers, boundary_data);
@@ -190,15 +179,17 @@ struct Simulation::Impl {
     for (const ParticleState& q : state.particles) {
       const double r = q.radius;
       int i_lo, i_hi, j_lo, j_hi;
-      CoveredNodes(q.position.x() - r, q.position.x() + r, grid.x0, grid.h, grid.nx, px, &i_lo, &i_hi);
-      CoveredNodes(q.position.y() - r, q.position.y() + r, grid.y0, grid.h, grid.ny, py, &j_lo, &j_hi);
+      kernels::CoveredNodes(q.position.x() - r, q.position.x() + r, grid.x0, grid.h, grid.nx, px,
+                            &i_lo, &i_hi);
+      kernels::CoveredNodes(q.position.y() - r, q.position.y() + r, grid.y0, grid.h, grid.ny, py,
+                            &j_lo, &j_hi);
       for (int jj = j_lo; jj <= j_hi; ++jj) {
         const double dy = grid.Y(jj) - q.position.y();
-        const int j = py ? Wrap(jj, grid.ny) : jj;
+        const int j = py ? kernels::Wrap(jj, grid.ny) : jj;
         for (int ii = i_lo; ii <= i_hi; ++ii) {
           const double dx = grid.X(ii) - q.position.x();
           if (dx * dx + dy * dy >= r * r) continue;
-          const int i = px ? Wrap(ii, grid.nx) : ii;
+          const int i = px ? kernels::Wrap(ii, grid.nx) : ii;
           inside_particle[grid.Index(i, j)] = 1;
           // The repeated last node of a periodic line mirrors the first.
           if (px && i == 0) inside_particle[grid.Index(grid.nx, j)] = 1;
@@ -225,8 +216,8 @@ struct Simulation::Impl {
   // Steps (36)-(38): particles X^n -> X^{n+1}, velocity u^{n+2/4} -> u^{n+1} in place.
   void MoveParticles(StepReport& report) {
     const auto t0 = Clock::now();
-    particle_step->Advance(state.time, params.time.dt, state.particles, state.u.data(), state.v.data(),
-                           report);
+    particle_step->Advance(state.time, params.time.dt, state.particles, state.u.data(),
+                           state.v.data(), report);
     report.Set("ms_particles", Milliseconds(t0, Clock::now()));
   }
 
@@ -267,9 +258,10 @@ struct Simulation::Impl {
   std::unique_ptr<AdvectionWave> wave;
   std::unique_ptr<ConformationStep> conformation;  // viscoelastic only
   std::unique_ptr<ParticleStep> particle_step;     // with particles only
-  std::vector<double> stokes_fx, stokes_fy;  // polymer force of (33); viscoelastic only
-  std::vector<unsigned char> inside_particle;  // nodes where A = I; viscoelastic with particles only
-  StepReport report;  // reused: its columns are created by the first step, overwritten after
+  std::vector<double> stokes_fx, stokes_fy;        // polymer force of (33); viscoelastic only
+  std::vector<unsigned char>
+      inside_particle;  // nodes where A = I; viscoelastic with particles only
+  StepReport report;    // reused: its columns are created by the first step, overwritten after
   FlowState state;
   std::vector<Observer*> observers;
 };
@@ -311,9 +303,10 @@ void Simulation::Step() {
   const long n = s.state.step;
   const double dt = s.params.time.dt;
   const bool particles_due =
-      out.particles_every <= 0.0 || Period(n, dt, out.particles_every) > Period(n - 1, dt, out.particles_every);
-  const bool fields_due =
-      out.fields_every > 0.0 && Period(n, dt, out.fields_every) > Period(n - 1, dt, out.fields_every);
+      out.particles_every <= 0.0 ||
+      Period(n, dt, out.particles_every) > Period(n - 1, dt, out.particles_every);
+  const bool fields_due = out.fields_every > 0.0 &&
+                          Period(n, dt, out.fields_every) > Period(n - 1, dt, out.fields_every);
   for (Observer* o : s.observers) {
     o->OnStep(s.state, report);
     if (particles_due) o->OnParticles(s.state);
@@ -337,24 +330,28 @@ void Simulation::Restore(const FlowState& state) {
       state.p.size() != s.pgrid.NodeCount()) {
     throw InvalidParameter("checkpoint", "fields of " + std::to_string(state.u.size()) + " nodes",
                            std::to_string(s.grid.NodeCount()) + " velocity and " +
-                               std::to_string(s.pgrid.NodeCount()) + " pressure nodes (the same scene)");
+                               std::to_string(s.pgrid.NodeCount()) +
+                               " pressure nodes (the same scene)");
   }
   const std::size_t a_nodes = s.viscoelastic ? s.grid.NodeCount() : 0;
   if (state.a11.size() != a_nodes || state.a12.size() != a_nodes || state.a22.size() != a_nodes) {
-    throw InvalidParameter("checkpoint", "a configuration tensor of " + std::to_string(state.a11.size()) + " nodes",
-                           std::to_string(a_nodes) + " nodes (" +
-                               (s.viscoelastic ? "a viscoelastic" : "a Newtonian") + " scene)");
+    throw InvalidParameter(
+        "checkpoint", "a configuration tensor of " + std::to_string(state.a11.size()) + " nodes",
+        std::to_string(a_nodes) + " nodes (" + (s.viscoelastic ? "a viscoelastic" : "a Newtonian") +
+            " scene)");
   }
   if (state.particles.size() != s.state.particles.size()) {
-    throw InvalidParameter("checkpoint", std::to_string(state.particles.size()) + " particles",
-                           std::to_string(s.state.particles.size()) + " particles (the same scene)");
+    throw InvalidParameter(
+        "checkpoint", std::to_string(state.particles.size()) + " particles",
+        std::to_string(s.state.particles.size()) + " particles (the same scene)");
   }
   for (std::size_t p = 0; p < state.particles.size(); ++p) {
     if (state.particles[p].multiplier.size() != s.state.particles[p].multiplier.size()) {
-      throw InvalidParameter("checkpoint",
-                             "particle " + std::to_string(p) + " with " +
-                                 std::to_string(state.particles[p].multiplier.size()) + " multiplier values",
-                             std::to_string(s.state.particles[p].multiplier.size()) + " (the same scene)");
+      throw InvalidParameter(
+          "checkpoint",
+          "particle " + std::to_string(p) + " with " +
+              std::to_string(state.particles[p].multiplier.size()) + " multiplier values",
+          std::to_string(s.state.particles[p].multiplier.size()) + " (the same scene)");
     }
   }
   impl_->state = state;

@@ -30,9 +30,9 @@ AdvectionLeastSquares::AdvectionLeastSquares(const Grid& grid, const DomainParam
   const std::size_t n = grid_.NodeCount();
   mass_.assign(n, 0.0);
   LumpedMassDiagonal(grid_, topo_, mass_.data());
-  for (auto* a : {&su_, &sv_, &gxu_, &gyu_, &gxv_, &gyv_, &gxw_, &gyw_, &gxwv_, &gywv_, &t0u_, &t0v_,
-                  &t1u_, &t1v_, &t2u_, &t2v_, &yu_, &yv_, &z1u_, &z1v_, &z2u_, &z2v_, &ru_, &rv_, &gu_,
-                  &gv_, &wu_, &wv_, &s1_, &s2_, &s3_, &s4_}) {
+  for (auto* a : {&su_,  &sv_,  &gxu_, &gyu_, &gxv_, &gyv_, &gxw_, &gyw_, &gxwv_, &gywv_, &t0u_,
+                  &t0v_, &t1u_, &t1v_, &t2u_, &t2v_, &yu_,  &yv_,  &z1u_, &z1v_,  &z2u_,  &z2v_,
+                  &ru_,  &rv_,  &gu_,  &gv_,  &wu_,  &wv_,  &s1_,  &s2_,  &s3_,   &s4_}) {
     a->assign(n, 0.0);
   }
 }
@@ -49,7 +49,8 @@ void AdvectionLeastSquares::GradientsOf(const double* u, const double* v) {
   ApplyIntegratedGradient(grid_, topo_, v, gxv_.data(), gyv_.data());
 }
 
-void AdvectionLeastSquares::Residual(const double* u, const double* v, double* out_u, double* out_v) {
+void AdvectionLeastSquares::Residual(const double* u, const double* v, double* out_u,
+                                     double* out_v) {
   GradientsOf(u, v);
   ApplyStiffness(grid_, topo_, u, s1_.data());
   ApplyStiffness(grid_, topo_, v, s2_.data());
@@ -83,15 +84,18 @@ void AdvectionLeastSquares::Jacobian(const double* u, const double* v, const dou
 #pragma omp parallel for schedule(static)
   for (long k = 0; k < n; ++k) {
     out_u[k] = rdt * m[k] * wu[k] +
-               rho * (u[k] * gxw[k] + v[k] * gyw[k] + wu[k] * gxu[k] + wv[k] * gyu[k]) + nub * ku[k];
+               rho * (u[k] * gxw[k] + v[k] * gyw[k] + wu[k] * gxu[k] + wv[k] * gyu[k]) +
+               nub * ku[k];
     out_v[k] = rdt * m[k] * wv[k] +
-               rho * (u[k] * gxwv[k] + v[k] * gywv[k] + wu[k] * gxv[k] + wv[k] * gyv[k]) + nub * kv[k];
+               rho * (u[k] * gxwv[k] + v[k] * gywv[k] + wu[k] * gxv[k] + wv[k] * gyv[k]) +
+               nub * kv[k];
   }
   nodes_.ZeroKnown(out_u);
   nodes_.ZeroKnown(out_v);
 }
 
-// Adds n_c int_side z_h phi_j ds on outflow sides whose normal has a `component` part (0 = x, 1 = y).
+// Adds n_c int_side z_h phi_j ds on outflow sides whose normal has a `component` part (0 = x, 1 =
+// y).
 void AdvectionLeastSquares::AddBoundaryTransposeTerm(const double* z, int component,
                                                      double* out) const {
   const double h6 = grid_.h / 6.0;
@@ -102,7 +106,8 @@ void AdvectionLeastSquares::AddBoundaryTransposeTerm(const double* z, int compon
     if ((vertical ? 0 : 1) != component) continue;
     const double sign = (side == Side::kLeft || side == Side::kBottom) ? -1.0 : 1.0;
     const int count = vertical ? grid_.ny : grid_.nx;
-    const bool wraps = vertical ? topo_.y.low == EndKind::kPeriodic : topo_.x.low == EndKind::kPeriodic;
+    const bool wraps =
+        vertical ? topo_.y.low == EndKind::kPeriodic : topo_.x.low == EndKind::kPeriodic;
     auto id = [&](int k) {
       return vertical ? grid_.Index(side == Side::kLeft ? 0 : grid_.nx, k)
                       : grid_.Index(k, side == Side::kBottom ? 0 : grid_.ny);
@@ -144,8 +149,8 @@ void AdvectionLeastSquares::JacobianTranspose(const double* u, const double* v, 
     }
     nodes_.SyncPeriodic(s1);
     nodes_.SyncPeriodic(s2);
-    ApplyIntegratedGradient(grid_, topo_, s1, gxw_.data(), gyw_.data());   // use G_x (u y_c)
-    ApplyIntegratedGradient(grid_, topo_, s2, gxwv_.data(), gywv_.data()); // use G_y (v y_c)
+    ApplyIntegratedGradient(grid_, topo_, s1, gxw_.data(), gyw_.data());    // use G_x (u y_c)
+    ApplyIntegratedGradient(grid_, topo_, s2, gxwv_.data(), gywv_.data());  // use G_y (v y_c)
     ApplyStiffness(grid_, topo_, y, s3_.data());
     const double *gx1 = gxw_.data(), *gy2 = gywv_.data(), *ky = s3_.data();
     const double* gcu = c == 0 ? gxu_.data() : gyu_.data();  // G_c u

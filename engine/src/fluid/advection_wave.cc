@@ -13,13 +13,13 @@ namespace dlmfd {
 // Fourier mode by G = cos(Q phi) - i c sigma sin(Q phi) / sin(phi), cos(phi) = 1 - c^2 kappa / 2
 // (c = tau |V| / h; i sigma, kappa the symbols of M^-1 C and M^-1 K_V), so |G| <= 1 iff
 // sigma^2 <= kappa (1 - c^2 kappa / 4) and c^2 kappa <= 4, whatever Q. Because K_V is not
-// C^T M^-1 C (C, by vertex quadrature, has a wider stencil) the limit is c = sqrt(2/3) along x or y, 2/sqrt(3) along y = x and
-// 1/sqrt(2) along y = -x (the minimum over directions), not the 1.02-1.04 of the method notes,
-// which came from M^-1 K_V alone on nearly vertical fields. The implementation matches this
-// analysis to the power iteration's accuracy, so no bug was found. The bound holds for Q = 1 (the
-// Taylor start alone, a Lax-Wendroff step) as for Q >= 2 (the stability test checks Q = 1
-// and 2), and both are second order in tau; Q = 1 costs one K_V product per call instead of two.
-// The splitting's first-order error dominates the difference (docs/performance.md).
+// C^T M^-1 C (C, by vertex quadrature, has a wider stencil) the limit is c = sqrt(2/3) along x or
+// y, 2/sqrt(3) along y = x and 1/sqrt(2) along y = -x (the minimum over directions), not
+// the 1.02-1.04 of the method notes, which came from M^-1 K_V alone on nearly vertical fields. The
+// implementation matches this analysis to the power iteration's accuracy, so no bug was found. The
+// bound holds for Q = 1 (the Taylor start alone, a Lax-Wendroff step) as for Q >= 2 (the stability
+// test checks Q = 1 and 2), and both are second order in tau; Q = 1 costs one K_V product per call
+// instead of two. The splitting's first-order error dominates the difference (docs/performance.md).
 constexpr int kMinSubsteps = 1;
 // A velocity that would need more sub-steps than this is a blow-up (step (35) has the same bound):
 // without it a diverging run would spend hours sub-cycling one step instead of ending FAILED.
@@ -45,9 +45,11 @@ AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const
   const std::size_t padded = std::size_t(grid_.nx + 2) * (grid_.ny + 2);
   mass_.assign(n, 0.0);
   LumpedMassDiagonal(grid_, topo_, mass_.data());
-  for (auto* a : {&out_mass_, &vx_, &vy_, &u0_, &v0_, &u1_, &v1_, &ku_, &kv_, &gx_, &gy_}) a->assign(n, 0.0);
+  for (auto* a : {&out_mass_, &vx_, &vy_, &u0_, &v0_, &u1_, &v1_, &ku_, &kv_, &gx_, &gy_})
+    a->assign(n, 0.0);
   for (auto* a : {&w11a_, &w12a_, &w22a_, &w11b_, &w12b_, &w22b_}) a->assign(cells, 0.0);
-  for (auto* a : {&f1xu_, &f1yu_, &f2xu_, &f2yu_, &f1xv_, &f1yv_, &f2xv_, &f2yv_}) a->assign(padded, 0.0);
+  for (auto* a : {&f1xu_, &f1yu_, &f2xu_, &f2yu_, &f1xv_, &f1yv_, &f2xv_, &f2yv_})
+    a->assign(padded, 0.0);
 }
 
 AdvectionWave::~AdvectionWave() = default;
@@ -87,7 +89,8 @@ void AdvectionWave::FreezeVelocity(const double* u, const double* v) {
     const Side side = static_cast<Side>(s);
     const bool vertical = (side == Side::kLeft || side == Side::kRight);
     const int count = vertical ? ny : nx;
-    const bool wraps = vertical ? topo_.y.low == EndKind::kPeriodic : topo_.x.low == EndKind::kPeriodic;
+    const bool wraps =
+        vertical ? topo_.y.low == EndKind::kPeriodic : topo_.x.low == EndKind::kPeriodic;
     for (int k = 0; k <= count; ++k) {
       const int i = vertical ? (side == Side::kLeft ? 0 : nx) : k;
       const int j = vertical ? k : (side == Side::kBottom ? 0 : ny);
@@ -139,14 +142,18 @@ void AdvectionWave::ApplyWaveStiffness(const double* u, const double* v, double*
       for (int ci = -1; ci < nx; ++ci) (*f)[Cell(ci, -1)] = (*f)[Cell(ci, ny - 1)];
     }
   }
-  // Gather: node (i, j) is a of cell (i, j), b of T1 in (i-1, j), c of (i-1, j-1), d of T2 in (i, j-1).
+  // Gather: node (i, j) is a of cell (i, j), b of T1 in (i-1, j), c of (i-1, j-1), d of T2 in (i,
+  // j-1).
 #pragma omp parallel for schedule(static)
   for (int j = 0; j <= ny; ++j) {
     for (int i = 0; i <= nx; ++i) {
-      const std::size_t own = Cell(i, j), w = Cell(i - 1, j), sw = Cell(i - 1, j - 1), s = Cell(i, j - 1);
+      const std::size_t own = Cell(i, j), w = Cell(i - 1, j), sw = Cell(i - 1, j - 1),
+                        s = Cell(i, j - 1);
       const std::size_t id = grid_.Index(i, j);
-      ku[id] = -f1xu_[own] - f2yu_[own] + f1xu_[w] - f1yu_[w] + f1yu_[sw] + f2xu_[sw] - f2xu_[s] + f2yu_[s];
-      kv[id] = -f1xv_[own] - f2yv_[own] + f1xv_[w] - f1yv_[w] + f1yv_[sw] + f2xv_[sw] - f2xv_[s] + f2yv_[s];
+      ku[id] = -f1xu_[own] - f2yu_[own] + f1xu_[w] - f1yu_[w] + f1yu_[sw] + f2xu_[sw] - f2xu_[s] +
+               f2yu_[s];
+      kv[id] = -f1xv_[own] - f2yv_[own] + f1xv_[w] - f1yv_[w] + f1yv_[sw] + f2xv_[sw] - f2xv_[s] +
+               f2yv_[s];
     }
   }
 }
@@ -159,8 +166,8 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
   const double courant_ratio = vmax * dt_ / (grid_.h * max_courant_);
   if (!(courant_ratio <= kMaxSubsteps)) {  // (NaN velocities are Simulation::CheckFinite's)
     std::ostringstream msg;
-    msg << "advective Courant number " << vmax * dt_ / grid_.h << " in step (34) (max |u| = " << vmax
-        << ") would need more than " << kMaxSubsteps
+    msg << "advective Courant number " << vmax * dt_ / grid_.h
+        << " in step (34) (max |u| = " << vmax << ") would need more than " << kMaxSubsteps
         << " wave sub-steps: the velocity is beyond any bound the time step can follow";
     throw NumericalBlowUp(msg.str());
   }
@@ -175,7 +182,8 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
   const double* vy = vy_.data();
   std::copy(u, u + n, u0_.begin());
   std::copy(v, v + n, v0_.begin());
-  // Start: u^1 = u^0 + tau u_t + tau^2/2 u_tt, u_t = -M^-1 N(V, u^0), u_tt = -M^-1 (K_V u^0 + M_out u_t).
+  // Start: u^1 = u^0 + tau u_t + tau^2/2 u_tt, u_t = -M^-1 N(V, u^0), u_tt = -M^-1 (K_V u^0 + M_out
+  // u_t).
   ApplyWaveStiffness(u0_.data(), v0_.data(), ku_.data(), kv_.data());
   for (int c = 0; c < 2; ++c) {
     const double* x0 = c == 0 ? u0_.data() : v0_.data();
@@ -197,7 +205,8 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
   }
   nodes_.SyncPeriodic(u1_.data());
   nodes_.SyncPeriodic(v1_.data());
-  // Centred steps: (M/tau^2 + M_out/(2 tau)) u^{q+1} = M/tau^2 (2u^q - u^{q-1}) + M_out/(2 tau) u^{q-1} - K_V u^q.
+  // Centred steps: (M/tau^2 + M_out/(2 tau)) u^{q+1} = M/tau^2 (2u^q - u^{q-1}) + M_out/(2 tau)
+  // u^{q-1} - K_V u^q.
   for (int q = 1; q < substeps; ++q) {
     ApplyWaveStiffness(u1_.data(), v1_.data(), ku_.data(), kv_.data());
     const double it2 = 1.0 / (tau * tau), i2t = 0.5 / tau;

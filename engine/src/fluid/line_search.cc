@@ -2,10 +2,10 @@
 
 #include <cmath>
 
+#include "dlmfd/core/constants.h"
+
 namespace dlmfd {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // dJ/dl / 2 = c3 l^3 + c2 l^2 + c1 l + c0.
 struct Cubic {
@@ -44,7 +44,8 @@ double MinimiseQuarticLine(const QuarticLine& q) {
       roots[count++] = f.Polish(s * std::cos((theta + 2 * kPi) / 3) - a / 3);
       roots[count++] = f.Polish(s * std::cos((theta - 2 * kPi) / 3) - a / 3);
     } else {
-      const double big = -std::copysign(std::cbrt(std::abs(r) + std::sqrt(r * r - qq * qq * qq)), r);
+      const double big =
+          -std::copysign(std::cbrt(std::abs(r) + std::sqrt(r * r - qq * qq * qq)), r);
       const double small = big != 0.0 ? qq / big : 0.0;
       roots[count++] = f.Polish(big + small - a / 3);
     }

@@ -6,7 +6,8 @@
 namespace dlmfd {
 
 NodeSet::NodeSet(const Grid& grid, const BoundaryTopology& topo)
-    : unknown_(grid.NodeCount(), 0.0), distinct_(grid.NodeCount(), 1.0) {
+    : unknown_(grid.NodeCount(), 0.0),
+      distinct_(grid.NodeCount(), 1.0) {
   const bool px = topo.x.low == EndKind::kPeriodic;
   const bool py = topo.y.low == EndKind::kPeriodic;
   for (int j = 0; j <= grid.ny; ++j) {

@@ -81,7 +81,8 @@ double StokesSolver::DivergenceNorm(const double* u, const double* v) {
   return std::sqrt(WeightedSquareSum(r_.data()));
 }
 
-StokesReport StokesSolver::Solve(const double* fx, const double* fy, double* u, double* v, double* p) {
+StokesReport StokesSolver::Solve(const double* fx, const double* fy, double* u, double* v,
+                                 double* p) {
   const long n = static_cast<long>(grid_.NodeCount());
   const double* m = mass_.data();
   const double* dist = vnodes_.distinct().data();
@@ -139,7 +140,8 @@ StokesReport StokesSolver::Solve(const double* fx, const double* fy, double* u, 
       std::ostringstream msg;
       msg << "Stokes step (33), Uzawa/PCG: not converged after " << it
           << " iterations; residual sqrt(r.P^-1 r)/ref = " << std::sqrt(std::max(rg, 0.0)) / ref
-          << " > tolerance " << tolerance_ << " (solvers.stokes_max_iterations, solvers.stokes_tolerance)";
+          << " > tolerance " << tolerance_
+          << " (solvers.stokes_max_iterations, solvers.stokes_tolerance)";
       throw SolverNotConverged(msg.str());
     }
     ++it;

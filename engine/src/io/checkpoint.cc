@@ -15,7 +15,8 @@ std::vector<double> ReadField(hid_t f, const char* name) { return h5::ReadDouble
 
 }  // namespace
 
-void WriteCheckpoint(const std::string& path, const FlowState& state, const std::string& scene_text) {
+void WriteCheckpoint(const std::string& path, const FlowState& state,
+                     const std::string& scene_text) {
   const std::string temporary = TemporaryPath(path);
   {
     h5::Handle file = h5::CreateFile(temporary);
@@ -32,7 +33,8 @@ void WriteCheckpoint(const std::string& path, const FlowState& state, const std:
       WriteField(f, "a12", state.a12);
       WriteField(f, "a22", state.a22);
     }
-    h5::Handle group(h5::CheckId(H5Gcreate2(f, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "create group"),
+    h5::Handle group(h5::CheckId(H5Gcreate2(f, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                                 "create group"),
                      H5Gclose);
     const hid_t g = group.get();
     const hsize_t np = state.particles.size();
@@ -83,7 +85,8 @@ Checkpoint ReadCheckpoint(const std::string& path) {
     s.a12 = ReadField(f, "a12");
     s.a22 = ReadField(f, "a22");
   }
-  h5::Handle group(h5::CheckId(H5Gopen2(f, "particles", H5P_DEFAULT), "open " + path + ":/particles"), H5Gclose);
+  h5::Handle group(
+      h5::CheckId(H5Gopen2(f, "particles", H5P_DEFAULT), "open " + path + ":/particles"), H5Gclose);
   const hid_t g = group.get();
   const auto id = h5::ReadInts(g, "id");
   const auto motion = h5::ReadInts(g, "motion");
@@ -97,8 +100,8 @@ Checkpoint ReadCheckpoint(const std::string& path) {
   const auto multiplier = h5::ReadDoubles(g, "multiplier");
   const auto offset = h5::ReadInts(g, "multiplier_offset");
   const std::size_t np = id.size();
-  if (offset.size() != np + 1 || position.size() != 2 * np || static_cast<std::size_t>(offset.back()) !=
-                                                                    multiplier.size()) {
+  if (offset.size() != np + 1 || position.size() != 2 * np ||
+      static_cast<std::size_t>(offset.back()) != multiplier.size()) {
     throw Error("checkpoint " + path + ": inconsistent particle arrays");
   }
   for (std::size_t i = 0; i < np; ++i) {

@@ -27,9 +27,12 @@ std::FILE* OpenOrThrow(const std::string& path, const char* mode) {
 
 }  // namespace
 
-DiagnosticsWriter::DiagnosticsWriter(const std::string& path) : path_(path), file_(OpenOrThrow(path, "w")) {}
+DiagnosticsWriter::DiagnosticsWriter(const std::string& path)
+    : path_(path),
+      file_(OpenOrThrow(path, "w")) {}
 
-DiagnosticsWriter::DiagnosticsWriter(const std::string& path, long last_step) : path_(path) {
+DiagnosticsWriter::DiagnosticsWriter(const std::string& path, long last_step)
+    : path_(path) {
   std::stringstream in(ReadTextFile(path));
   std::string line, kept;
   if (std::getline(in, line) && !line.empty()) {
@@ -82,7 +85,8 @@ DiagnosticsTable ReadDiagnostics(const std::string& path) {
   while (std::getline(in, line)) {
     if (line.empty()) continue;
     std::vector<double> row;
-    for (const std::string& cell : SplitCsv(line)) row.push_back(std::strtod(cell.c_str(), nullptr));
+    for (const std::string& cell : SplitCsv(line))
+      row.push_back(std::strtod(cell.c_str(), nullptr));
     t.rows.push_back(std::move(row));
   }
   return t;

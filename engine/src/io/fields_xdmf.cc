@@ -7,12 +7,15 @@
 namespace dlmfd {
 namespace {
 
-std::string Dims(const Grid& g) { return std::to_string(g.NodesY()) + " " + std::to_string(g.NodesX()); }
+std::string Dims(const Grid& g) {
+  return std::to_string(g.NodesY()) + " " + std::to_string(g.NodesX());
+}
 
-void HeavyItem(std::ostringstream& o, const Grid& g, const std::string& file, const std::string& set,
-               const std::string& indent) {
-  o << indent << "<DataItem Dimensions=\"" << Dims(g) << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
-    << file << ":/" << set << "</DataItem>\n";
+void HeavyItem(std::ostringstream& o, const Grid& g, const std::string& file,
+               const std::string& set, const std::string& indent) {
+  o << indent << "<DataItem Dimensions=\"" << Dims(g)
+    << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file << ":/" << set
+    << "</DataItem>\n";
 }
 
 void Scalar(std::ostringstream& o, const Grid& g, const std::string& file, const std::string& set) {
@@ -25,16 +28,17 @@ void Mesh(std::ostringstream& o, const Grid& g) {
   o.precision(17);
   o << "        <Topology TopologyType=\"2DCoRectMesh\" Dimensions=\"" << Dims(g) << "\"/>\n";
   o << "        <Geometry GeometryType=\"ORIGIN_DXDY\">\n";
-  o << "          <DataItem Dimensions=\"2\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">" << g.y0 << " "
-    << g.x0 << "</DataItem>\n";
-  o << "          <DataItem Dimensions=\"2\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">" << g.h << " "
-    << g.h << "</DataItem>\n";
+  o << "          <DataItem Dimensions=\"2\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">"
+    << g.y0 << " " << g.x0 << "</DataItem>\n";
+  o << "          <DataItem Dimensions=\"2\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">"
+    << g.h << " " << g.h << "</DataItem>\n";
   o << "        </Geometry>\n";
 }
 
 }  // namespace
 
-std::string FieldsXdmfText(const Grid& grid, const std::vector<XdmfEntry>& entries, bool has_conformation) {
+std::string FieldsXdmfText(const Grid& grid, const std::vector<XdmfEntry>& entries,
+                           bool has_conformation) {
   const Grid coarse = grid.Coarse();
   std::ostringstream o;
   o.precision(17);
@@ -48,8 +52,8 @@ std::string FieldsXdmfText(const Grid& grid, const std::vector<XdmfEntry>& entri
     o << "      <Grid Name=\"velocity_mesh\" GridType=\"Uniform\">\n";
     Mesh(o, grid);
     o << "          <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n";
-    o << "            <DataItem ItemType=\"Function\" Function=\"JOIN($0, $1)\" Dimensions=\"" << Dims(grid)
-      << " 2\">\n";
+    o << "            <DataItem ItemType=\"Function\" Function=\"JOIN($0, $1)\" Dimensions=\""
+      << Dims(grid) << " 2\">\n";
     HeavyItem(o, grid, e.file, "u", "              ");
     HeavyItem(o, grid, e.file, "v", "              ");
     o << "            </DataItem>\n";
@@ -72,8 +76,8 @@ std::string FieldsXdmfText(const Grid& grid, const std::vector<XdmfEntry>& entri
   return o.str();
 }
 
-void WriteFieldsXdmf(const std::string& path, const Grid& grid, const std::vector<XdmfEntry>& entries,
-                     bool has_conformation) {
+void WriteFieldsXdmf(const std::string& path, const Grid& grid,
+                     const std::vector<XdmfEntry>& entries, bool has_conformation) {
   WriteTextAtomically(path, FieldsXdmfText(grid, entries, has_conformation));
 }
 

@@ -23,24 +23,31 @@ std::string Name(hid_t loc, const std::string& name) {
 
 Handle Space(const std::vector<hsize_t>& dims) {
   if (dims.empty()) return Handle(CheckId(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
-  return Handle(CheckId(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), "dataspace"),
-                H5Sclose);
+  return Handle(
+      CheckId(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), "dataspace"),
+      H5Sclose);
 }
 
 template <typename T>
-void WriteArray(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims, const T* data, hid_t type) {
+void WriteArray(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims, const T* data,
+                hid_t type) {
   Handle space = Space(dims);
-  Handle set(CheckId(H5Dcreate2(loc, name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+  Handle set(CheckId(H5Dcreate2(loc, name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                                H5P_DEFAULT),
                      "create " + Name(loc, name)),
              H5Dclose);
   hsize_t count = 1;
   for (hsize_t d : dims) count *= d;
-  if (count > 0) Check(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + Name(loc, name));
+  if (count > 0)
+    Check(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+          "write " + Name(loc, name));
 }
 
 template <typename T>
-std::vector<T> ReadArray(hid_t loc, const std::string& name, std::vector<hsize_t>* dims, hid_t type) {
-  Handle set(CheckId(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "open " + Name(loc, name)), H5Dclose);
+std::vector<T> ReadArray(hid_t loc, const std::string& name, std::vector<hsize_t>* dims,
+                         hid_t type) {
+  Handle set(CheckId(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "open " + Name(loc, name)),
+             H5Dclose);
   Handle space(CheckId(H5Dget_space(set.get()), "dataspace of " + Name(loc, name)), H5Sclose);
   const int rank = H5Sget_simple_extent_ndims(space.get());
   std::vector<hsize_t> shape(static_cast<std::size_t>(rank > 0 ? rank : 0));
@@ -48,13 +55,17 @@ std::vector<T> ReadArray(hid_t loc, const std::string& name, std::vector<hsize_t
   hsize_t count = 1;
   for (hsize_t d : shape) count *= d;
   std::vector<T> out(count);
-  if (count > 0) Check(H5Dread(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), "read " + Name(loc, name));
+  if (count > 0)
+    Check(H5Dread(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()),
+          "read " + Name(loc, name));
   if (dims != nullptr) *dims = shape;
   return out;
 }
 
 Handle OpenAttribute(hid_t loc, const std::string& name) {
-  return Handle(CheckId(H5Aopen(loc, name.c_str(), H5P_DEFAULT), "open attribute " + Name(loc, name)), H5Aclose);
+  return Handle(
+      CheckId(H5Aopen(loc, name.c_str(), H5P_DEFAULT), "open attribute " + Name(loc, name)),
+      H5Aclose);
 }
 
 template <typename T>
@@ -95,25 +106,31 @@ hid_t CheckId(hid_t id, const std::string& what) {
 
 Handle CreateFile(const std::string& path) {
   SilenceHdf5();
-  return Handle(CheckId(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "create " + path),
-                H5Fclose);
+  return Handle(
+      CheckId(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "create " + path),
+      H5Fclose);
 }
 
 Handle OpenFile(const std::string& path, bool writable) {
   SilenceHdf5();
   Handle fapl(CheckId(H5Pcreate(H5P_FILE_ACCESS), "file access list"), H5Pclose);
   if (!writable) H5Pset_file_locking(fapl.get(), false, true);
-  return Handle(CheckId(H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, fapl.get()), "open " + path),
+  return Handle(CheckId(H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, fapl.get()),
+                        "open " + path),
                 H5Fclose);
 }
 
-bool Exists(hid_t loc, const std::string& name) { return H5Lexists(loc, name.c_str(), H5P_DEFAULT) > 0; }
+bool Exists(hid_t loc, const std::string& name) {
+  return H5Lexists(loc, name.c_str(), H5P_DEFAULT) > 0;
+}
 
-void WriteDoubles(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims, const double* data) {
+void WriteDoubles(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
+                  const double* data) {
   WriteArray(loc, name, dims, data, H5T_NATIVE_DOUBLE);
 }
 
-void WriteInts(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims, const std::int64_t* data) {
+void WriteInts(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
+               const std::int64_t* data) {
   WriteArray(loc, name, dims, data, H5T_NATIVE_INT64);
 }
 
@@ -139,9 +156,10 @@ void WriteAttribute(hid_t loc, const std::string& name, const std::string& value
   H5Tset_size(type.get(), value.size() + 1);
   H5Tset_strpad(type.get(), H5T_STR_NULLTERM);
   Handle space = Space({});
-  Handle attr(CheckId(H5Acreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                      "create attribute " + Name(loc, name)),
-              H5Aclose);
+  Handle attr(
+      CheckId(H5Acreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+              "create attribute " + Name(loc, name)),
+      H5Aclose);
   Check(H5Awrite(attr.get(), type.get(), value.c_str()), "write attribute " + Name(loc, name));
 }
 

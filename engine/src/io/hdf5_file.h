@@ -17,8 +17,14 @@ class Handle {
  public:
   using Closer = herr_t (*)(hid_t);
   Handle() = default;
-  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
-  Handle(Handle&& other) noexcept : id_(other.id_), closer_(other.closer_) { other.id_ = -1; }
+  Handle(hid_t id, Closer closer)
+      : id_(id),
+        closer_(closer) {}
+  Handle(Handle&& other) noexcept
+      : id_(other.id_),
+        closer_(other.closer_) {
+    other.id_ = -1;
+  }
   Handle& operator=(Handle&& other) noexcept;
   Handle(const Handle&) = delete;
   Handle& operator=(const Handle&) = delete;
@@ -38,11 +44,15 @@ Handle CreateFile(const std::string& path);
 Handle OpenFile(const std::string& path, bool writable);
 
 bool Exists(hid_t loc, const std::string& name);
-void WriteDoubles(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims, const double* data);
-void WriteInts(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims, const std::int64_t* data);
+void WriteDoubles(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
+                  const double* data);
+void WriteInts(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
+               const std::int64_t* data);
 // Reads a whole dataset; `dims` receives its shape.
-std::vector<double> ReadDoubles(hid_t loc, const std::string& name, std::vector<hsize_t>* dims = nullptr);
-std::vector<std::int64_t> ReadInts(hid_t loc, const std::string& name, std::vector<hsize_t>* dims = nullptr);
+std::vector<double> ReadDoubles(hid_t loc, const std::string& name,
+                                std::vector<hsize_t>* dims = nullptr);
+std::vector<std::int64_t> ReadInts(hid_t loc, const std::string& name,
+                                   std::vector<hsize_t>* dims = nullptr);
 
 void WriteAttribute(hid_t loc, const std::string& name, double value);
 void WriteAttribute(hid_t loc, const std::string& name, std::int64_t value);

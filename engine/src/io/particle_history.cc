@@ -17,8 +17,13 @@ struct Series {
 };
 
 const Series kSeries[] = {
-    {"time", 0, false},       {"step", 0, true},   {"position", 2, false}, {"velocity", 2, false},
-    {"angular_velocity", 1, false}, {"force", 2, false}, {"torque", 1, false},
+    {"time", 0, false},
+    {"step", 0, true},
+    {"position", 2, false},
+    {"velocity", 2, false},
+    {"angular_velocity", 1, false},
+    {"force", 2, false},
+    {"torque", 1, false},
 };
 
 // A dataset shape without heap allocation (Append runs inside the time loop).
@@ -47,7 +52,8 @@ struct ParticleHistoryWriter::Impl {
   std::vector<double> buffer;  // one record of the widest series
 };
 
-ParticleHistoryWriter::ParticleHistoryWriter(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+ParticleHistoryWriter::ParticleHistoryWriter(std::unique_ptr<Impl> impl)
+    : impl_(std::move(impl)) {}
 ParticleHistoryWriter::~ParticleHistoryWriter() = default;
 
 std::unique_ptr<ParticleHistoryWriter> ParticleHistoryWriter::Create(const std::string& path,
@@ -69,7 +75,8 @@ std::unique_ptr<ParticleHistoryWriter> ParticleHistoryWriter::Create(const std::
     const Dims dims = Shape(s, 0, impl->np);
     const hsize_t maxdims[3] = {H5S_UNLIMITED, H5S_UNLIMITED, H5S_UNLIMITED};
     const Dims chunk = Shape(s, kChunkRecords, std::max<hsize_t>(impl->np, 1));
-    h5::Handle space(h5::CheckId(H5Screate_simple(dims.rank, dims.data(), maxdims), "dataspace"), H5Sclose);
+    h5::Handle space(h5::CheckId(H5Screate_simple(dims.rank, dims.data(), maxdims), "dataspace"),
+                     H5Sclose);
     h5::Handle plist(h5::CheckId(H5Pcreate(H5P_DATASET_CREATE), "property list"), H5Pclose);
     h5::Check(H5Pset_chunk(plist.get(), chunk.rank, chunk.data()), "chunk particles.h5");
     const hid_t type = s.integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE;
@@ -83,7 +90,8 @@ std::unique_ptr<ParticleHistoryWriter> ParticleHistoryWriter::Create(const std::
   return std::unique_ptr<ParticleHistoryWriter>(new ParticleHistoryWriter(std::move(impl)));
 }
 
-std::unique_ptr<ParticleHistoryWriter> ParticleHistoryWriter::Resume(const std::string& path, long last_step) {
+std::unique_ptr<ParticleHistoryWriter> ParticleHistoryWriter::Resume(const std::string& path,
+                                                                     long last_step) {
   auto impl = std::make_unique<Impl>();
   impl->file = h5::OpenFile(path, true);
   const hid_t f = impl->file.get();
@@ -91,10 +99,11 @@ std::unique_ptr<ParticleHistoryWriter> ParticleHistoryWriter::Resume(const std::
   h5::ReadInts(f, "id", &id_dims);
   impl->np = id_dims.empty() ? 0 : id_dims[0];
   const std::vector<std::int64_t> steps = h5::ReadInts(f, "step");
-  const hsize_t keep = static_cast<hsize_t>(
-      std::count_if(steps.begin(), steps.end(), [last_step](std::int64_t s) { return s <= last_step; }));
+  const hsize_t keep = static_cast<hsize_t>(std::count_if(
+      steps.begin(), steps.end(), [last_step](std::int64_t s) { return s <= last_step; }));
   for (int k = 0; k < 7; ++k) {
-    impl->sets[k] = h5::Handle(h5::CheckId(H5Dopen2(f, kSeries[k].name, H5P_DEFAULT), "open particles.h5"), H5Dclose);
+    impl->sets[k] = h5::Handle(
+        h5::CheckId(H5Dopen2(f, kSeries[k].name, H5P_DEFAULT), "open particles.h5"), H5Dclose);
     const Dims dims = Shape(kSeries[k], keep, impl->np);
     h5::Check(H5Dset_extent(impl->sets[k].get(), dims.data()), "truncate particles.h5");
   }
@@ -119,13 +128,16 @@ void ParticleHistoryWriter::Append(const FlowState& state) {
     const Dims count = Shape(s, 1, m.np);
     if (count.Count() == 0) continue;
     h5::Handle file_space(h5::CheckId(H5Dget_space(set), "dataspace"), H5Sclose);
-    h5::Check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+    h5::Check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr,
+                                  count.data(), nullptr),
               "select record");
-    h5::Handle memory_space(h5::CheckId(H5Screate_simple(count.rank, count.data(), nullptr), "dataspace"), H5Sclose);
+    h5::Handle memory_space(
+        h5::CheckId(H5Screate_simple(count.rank, count.data(), nullptr), "dataspace"), H5Sclose);
     if (s.integer) {
       const std::int64_t step = state.step;
-      h5::Check(H5Dwrite(set, H5T_NATIVE_INT64, memory_space.get(), file_space.get(), H5P_DEFAULT, &step),
-                "write particles.h5");
+      h5::Check(
+          H5Dwrite(set, H5T_NATIVE_INT64, memory_space.get(), file_space.get(), H5P_DEFAULT, &step),
+          "write particles.h5");
       continue;
     }
     double* b = m.buffer.data();
@@ -135,16 +147,30 @@ void ParticleHistoryWriter::Append(const FlowState& state) {
       for (std::size_t i = 0; i < m.np; ++i) {
         const ParticleState& q = state.particles[i];
         switch (k) {
-          case 2: b[2 * i] = q.position.x(); b[2 * i + 1] = q.position.y(); break;
-          case 3: b[2 * i] = q.velocity.x(); b[2 * i + 1] = q.velocity.y(); break;
-          case 4: b[i] = q.angular_velocity; break;
-          case 5: b[2 * i] = q.force.x(); b[2 * i + 1] = q.force.y(); break;
-          default: b[i] = q.torque; break;
+          case 2:
+            b[2 * i] = q.position.x();
+            b[2 * i + 1] = q.position.y();
+            break;
+          case 3:
+            b[2 * i] = q.velocity.x();
+            b[2 * i + 1] = q.velocity.y();
+            break;
+          case 4:
+            b[i] = q.angular_velocity;
+            break;
+          case 5:
+            b[2 * i] = q.force.x();
+            b[2 * i + 1] = q.force.y();
+            break;
+          default:
+            b[i] = q.torque;
+            break;
         }
       }
     }
-    h5::Check(H5Dwrite(set, H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT, b),
-              "write particles.h5");
+    h5::Check(
+        H5Dwrite(set, H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT, b),
+        "write particles.h5");
   }
   ++records_;
   h5::Check(H5Fflush(m.file.get(), H5F_SCOPE_LOCAL), "flush particles.h5");

@@ -24,7 +24,9 @@ long Period(long n, double dt, double every) {
 
 // The step of "snap_NNNNNN.h5", or -1 for any other name.
 long SnapshotStep(const std::string& name) {
-  if (name.size() < 9 || name.compare(0, 5, "snap_") != 0 || name.compare(name.size() - 3, 3, ".h5") != 0) return -1;
+  if (name.size() < 9 || name.compare(0, 5, "snap_") != 0 ||
+      name.compare(name.size() - 3, 3, ".h5") != 0)
+    return -1;
   const std::string digits = name.substr(5, name.size() - 8);
   if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) return -1;
   return std::strtol(digits.c_str(), nullptr, 10);
@@ -33,16 +35,20 @@ long SnapshotStep(const std::string& name) {
 void MakeDirectory(const std::string& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir)) throw Error("cannot create the results directory " + dir + ": " + ec.message());
+  if (ec || !fs::is_directory(dir))
+    throw Error("cannot create the results directory " + dir + ": " + ec.message());
 }
 
 }  // namespace
 
 ResultsWriter::ResultsWriter(const std::string& dir, const Params& params, const Grid& grid)
-    : dir_(dir), params_(params), scene_text_(WriteScene(params)), grid_(grid) {}
+    : dir_(dir),
+      params_(params),
+      scene_text_(WriteScene(params)),
+      grid_(grid) {}
 
-std::unique_ptr<ResultsWriter> ResultsWriter::Start(const std::string& dir, const Params& params, const Grid& grid,
-                                                    const FlowState& initial) {
+std::unique_ptr<ResultsWriter> ResultsWriter::Start(const std::string& dir, const Params& params,
+                                                    const Grid& grid, const FlowState& initial) {
   std::unique_ptr<ResultsWriter> w(new ResultsWriter(dir, params, grid));
   MakeDirectory(dir);
   MakeDirectory(w->Path(kFields));
@@ -56,8 +62,8 @@ std::unique_ptr<ResultsWriter> ResultsWriter::Start(const std::string& dir, cons
   return w;
 }
 
-std::unique_ptr<ResultsWriter> ResultsWriter::Resume(const std::string& dir, const Params& params, const Grid& grid,
-                                                     long checkpoint_step) {
+std::unique_ptr<ResultsWriter> ResultsWriter::Resume(const std::string& dir, const Params& params,
+                                                     const Grid& grid, long checkpoint_step) {
   std::unique_ptr<ResultsWriter> w(new ResultsWriter(dir, params, grid));
   MakeDirectory(w->Path(kFields));
   fs::remove(w->Path(kSummary));
@@ -74,7 +80,8 @@ std::unique_ptr<ResultsWriter> ResultsWriter::Resume(const std::string& dir, con
   }
   std::sort(kept.begin(), kept.end());
   for (const auto& [step, name] : kept) {
-    w->snapshots_.push_back({std::string(kFields) + "/" + name, ReadFieldSnapshot(w->Path(kFields) + "/" + name).time});
+    w->snapshots_.push_back(
+        {std::string(kFields) + "/" + name, ReadFieldSnapshot(w->Path(kFields) + "/" + name).time});
   }
   WriteFieldsXdmf(w->Path(kXdmf), grid, w->snapshots_, !params.fluid.IsNewtonian());
   if (fs::exists(w->Path(kDiagnostics))) {
@@ -90,7 +97,8 @@ void ResultsWriter::OnStep(const FlowState& state, const StepReport& report) {
   diagnostics_->Append(report);
   last_report_ = report;
   const double every = params_.output.checkpoint_every;
-  if (every > 0.0 && Period(state.step, params_.time.dt, every) > Period(state.step - 1, params_.time.dt, every)) {
+  if (every > 0.0 &&
+      Period(state.step, params_.time.dt, every) > Period(state.step - 1, params_.time.dt, every)) {
     checkpoint_due_ = true;
   }
 }
@@ -100,7 +108,8 @@ void ResultsWriter::OnParticles(const FlowState& state) {
 }
 
 void ResultsWriter::OnSnapshot(const FlowState& state) {
-  if (params_.output.fields_every <= 0.0) return;  // no snapshots asked for (not even the initial one)
+  if (params_.output.fields_every <= 0.0)
+    return;  // no snapshots asked for (not even the initial one)
   const std::string relative = std::string(kFields) + "/" + SnapshotFileName(state.step);
   WriteFieldSnapshot(Path(relative), grid_, state);
   snapshots_.push_back({relative, state.time});

@@ -62,13 +62,15 @@ std::string RunSummaryJson(const RunSummary& s) {
   for (std::size_t i = 0; i < s.particles.size(); ++i) {
     const ParticleState& q = s.particles[i];
     o << (i ? ",\n" : "\n") << "    {\"id\": " << q.id << ", \"position\": " << Pair(q.position)
-      << ", \"velocity\": " << Pair(q.velocity) << ", \"angular_velocity\": " << Number(q.angular_velocity)
+      << ", \"velocity\": " << Pair(q.velocity)
+      << ", \"angular_velocity\": " << Number(q.angular_velocity)
       << ", \"force\": " << Pair(q.force) << ", \"torque\": " << Number(q.torque) << "}";
   }
   o << (s.particles.empty() ? "],\n" : "\n  ],\n");
   o << "  \"diagnostics\": {";
   for (std::size_t k = 0; k < s.diagnostics.size(); ++k) {
-    o << (k ? ", " : "") << String(s.diagnostics[k].first) << ": " << Number(s.diagnostics[k].second);
+    o << (k ? ", " : "") << String(s.diagnostics[k].first) << ": "
+      << Number(s.diagnostics[k].second);
   }
   o << "}\n";
   o << "}\n";

@@ -3,7 +3,8 @@
 // exact integrals (|T|/12 (1 + delta_ij) for the mass, |T| grad phi_i . grad phi_j for the
 // stiffness, |T|/3 d phi_j for the P1-P1 gradient). For the divergence the pressure basis is
 // evaluated at the vertices of each h-triangle through barycentric coordinates in the 2h-triangle
-// that contains it (exact: q_Q is linear there). Periodic duplicates are folded into the first node.
+// that contains it (exact: q_Q is linear there). Periodic duplicates are folded into the first
+// node.
 #include <array>
 #include <cmath>
 #include <vector>
@@ -37,7 +38,8 @@ Triangle MakeTriangle(const Grid& grid, const BoundaryTopology& topo,
     t.x[k] = grid.X(corners[k][0]);
     t.y[k] = grid.Y(corners[k][1]);
   }
-  const double twice_area = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.x[2] - t.x[0]) * (t.y[1] - t.y[0]);
+  const double twice_area =
+      (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.x[2] - t.x[0]) * (t.y[1] - t.y[0]);
   t.area = 0.5 * std::abs(twice_area);
   for (int k = 0; k < 3; ++k) {
     const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
@@ -60,7 +62,8 @@ std::vector<Triangle> Triangles(const Grid& grid, const BoundaryTopology& topo) 
   return out;
 }
 
-Eigen::SparseMatrix<double> FromTriplets(std::size_t rows, std::size_t cols, const Triplets& entries) {
+Eigen::SparseMatrix<double> FromTriplets(std::size_t rows, std::size_t cols,
+                                         const Triplets& entries) {
   Eigen::SparseMatrix<double> m(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
   m.setFromTriplets(entries.begin(), entries.end());
   return m;
@@ -77,7 +80,8 @@ std::array<double, 3> Barycentric(const Triangle& t, double px, double py) {
 }
 
 // B_c(Q, j) = int q_Q d_c phi_j, c = 0 (x) or 1 (y).
-Eigen::SparseMatrix<double> AssembleDivergence(const Grid& grid, const BoundaryTopology& pressure_topo,
+Eigen::SparseMatrix<double> AssembleDivergence(const Grid& grid,
+                                               const BoundaryTopology& pressure_topo,
                                                int component) {
   const Grid coarse = grid.Coarse();
   Triplets entries;
@@ -110,7 +114,8 @@ Eigen::SparseMatrix<double> AssembleConsistentMass(const Grid& grid, const Bound
   Triplets entries;
   for (const Triangle& t : Triangles(grid, topo)) {
     for (int k = 0; k < 3; ++k) {
-      for (int m = 0; m < 3; ++m) entries.emplace_back(t.dof[k], t.dof[m], t.area / 12.0 * (k == m ? 2.0 : 1.0));
+      for (int m = 0; m < 3; ++m)
+        entries.emplace_back(t.dof[k], t.dof[m], t.area / 12.0 * (k == m ? 2.0 : 1.0));
     }
   }
   return FromTriplets(grid.NodeCount(), grid.NodeCount(), entries);
@@ -148,11 +153,13 @@ Eigen::SparseMatrix<double> AssembleGradientY(const Grid& grid, const BoundaryTo
   return FromTriplets(grid.NodeCount(), grid.NodeCount(), entries);
 }
 
-Eigen::SparseMatrix<double> AssembleDivergenceX(const Grid& grid, const BoundaryTopology& pressure_topo) {
+Eigen::SparseMatrix<double> AssembleDivergenceX(const Grid& grid,
+                                                const BoundaryTopology& pressure_topo) {
   return AssembleDivergence(grid, pressure_topo, 0);
 }
 
-Eigen::SparseMatrix<double> AssembleDivergenceY(const Grid& grid, const BoundaryTopology& pressure_topo) {
+Eigen::SparseMatrix<double> AssembleDivergenceY(const Grid& grid,
+                                                const BoundaryTopology& pressure_topo) {
   return AssembleDivergence(grid, pressure_topo, 1);
 }
 

@@ -54,7 +54,9 @@ void DivergenceOnVelocityNodes(const Grid& grid, const AxisWrap& ax, const AxisW
   for (int j = 0; j < lines_y; ++j) {
     const Rows ru = RowsAt(grid, ay, u, j), rv = RowsAt(grid, ay, v, j);
     double* out = w + grid.Index(0, j);
-    SweepRow(ax, [&](int im, int i, int ip) { out[i] = scale * kernels::DivergenceSumsAt(ru, rv, im, i, ip); });
+    SweepRow(ax, [&](int im, int i, int ip) {
+      out[i] = scale * kernels::DivergenceSumsAt(ru, rv, im, i, ip);
+    });
   }
 }
 
@@ -92,7 +94,9 @@ void ApplyStiffness(const Grid& grid, const BoundaryTopology& topo, const double
     const Rows r = RowsAt(grid, ay, u, j);
     const double wy = ay.Weight(j);
     double* o = out + grid.Index(0, j);
-    SweepRow(ax, [&](int im, int i, int ip) { o[i] = kernels::StiffnessAt(r, im, i, ip, ax.Weight(i), wy); });
+    SweepRow(ax, [&](int im, int i, int ip) {
+      o[i] = kernels::StiffnessAt(r, im, i, ip, ax.Weight(i), wy);
+    });
   }
   ZeroDuplicates(grid, ax, ay, out);
 }
@@ -138,8 +142,8 @@ void ApplyDivergence(const Grid& grid, const BoundaryTopology& pressure_topo, co
   ZeroDuplicates(coarse, cx, cy, out);
 }
 
-void ApplyDivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo, const double* p,
-                              double* out_u, double* out_v) {
+void ApplyDivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo,
+                              const double* p, double* out_u, double* out_v) {
   const AxisWrap ax(grid.nx, pressure_topo.x), ay(grid.ny, pressure_topo.y);
   const Grid coarse = grid.Coarse();
   const AxisWrap cx(coarse.nx, pressure_topo.x), cy(coarse.ny, pressure_topo.y);

@@ -4,11 +4,14 @@
 // out exactly (method notes 1, section 1).
 //
 // Triangles of the h-square with corners a = (i,j), b = (i+1,j), c = (i+1,j+1), d = (i,j+1):
-//   T1 = (a,b,c): h dx f = f_b - f_a, h dy f = f_c - f_b;   T2 = (a,c,d): h dx f = f_c - f_d, h dy f = f_d - f_a.
+//   T1 = (a,b,c): h dx f = f_b - f_a, h dy f = f_c - f_b;   T2 = (a,c,d): h dx f = f_c - f_d, h dy
+//   f = f_d - f_a.
 // Around node n = (i,j): square (i,j) [n = a of T1 and T2], (i-1,j) [n = b of T1],
 // (i-1,j-1) [n = c of T1 and T2], (i,j-1) [n = d of T2].
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 #include "dlmfd/core/grid.h"
@@ -23,7 +26,8 @@ struct AxisWrap {
   bool periodic = false;
 
   AxisWrap(int n_cells, const AxisBoundary& ends)
-      : cells(n_cells), periodic(ends.low == EndKind::kPeriodic) {}
+      : cells(n_cells),
+        periodic(ends.low == EndKind::kPeriodic) {}
   // Node lines that own a row: all of them, less the periodic duplicate.
   int Lines() const { return periodic ? cells : cells + 1; }
   // Neighbour line below / above, or -1 where there is none.
@@ -36,6 +40,22 @@ struct AxisWrap {
   // Trapezoid weight of the line: 1/2 on a non-periodic end, 1 elsewhere.
   double Weight(int i) const { return (!periodic && (i == 0 || i == cells)) ? 0.5 : 1.0; }
 };
+
+// The index of line i on a periodic axis of n cells: i mod n, also for negative i.
+inline int Wrap(int i, int n) { return ((i % n) + n) % n; }
+
+// The node range [lo, hi] that the interval [a, b] covers on a line of n cells of size h from x0.
+// Periodic lines return an unclamped range (the caller wraps with Wrap); others are clamped to
+// 0..n.
+inline void CoveredNodes(double a, double b, double x0, double h, int n, bool periodic, int* lo,
+                         int* hi) {
+  *lo = static_cast<int>(std::ceil((a - x0) / h));
+  *hi = static_cast<int>(std::floor((b - x0) / h));
+  if (!periodic) {
+    *lo = std::max(*lo, 0);
+    *hi = std::min(*hi, n);
+  }
+}
 
 // Three node rows (below, this, above) of a node array; below/above are null where absent.
 struct Rows {
@@ -156,7 +176,8 @@ inline double RestrictAt(const Rows& w, int im, int i, int ip) {
 // P1 interpolation I_p from the 2h-grid along one fine row: `low` is coarse row j/2, `high` the
 // next coarse row for odd j (null for even j). Odd-odd fine nodes are midpoints of the SW-NE
 // diagonal of a 2h-square, so they average the SW and NE coarse values.
-inline void ProlongRow(const AxisWrap& cx, const double* low, const double* high, int fine_lines, double* out) {
+inline void ProlongRow(const AxisWrap& cx, const double* low, const double* high, int fine_lines,
+                       double* out) {
   for (int i = 0; i < fine_lines; ++i) {
     const int ci = i / 2;
     if (i % 2 == 0) {

@@ -6,13 +6,12 @@
 #include <string>
 #include <utility>
 
+#include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 
 namespace dlmfd {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double SignedArea(const Vec2& a, const Vec2& b, const Vec2& c) {
   return 0.5 * ((b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x()));
@@ -20,9 +19,12 @@ double SignedArea(const Vec2& a, const Vec2& b, const Vec2& c) {
 
 }  // namespace
 
-ParticleMesh::ParticleMesh(double radius, double mesh_size) : radius_(radius) {
-  if (!(radius > 0.0)) throw InvalidParameter("particles.diameter", std::to_string(2 * radius), "> 0");
-  if (!(mesh_size > 0.0)) throw InvalidParameter("particle_mesh.h", std::to_string(mesh_size), "> 0");
+ParticleMesh::ParticleMesh(double radius, double mesh_size)
+    : radius_(radius) {
+  if (!(radius > 0.0))
+    throw InvalidParameter("particles.diameter", std::to_string(2 * radius), "> 0");
+  if (!(mesh_size > 0.0))
+    throw InvalidParameter("particle_mesh.h", std::to_string(mesh_size), "> 0");
   BuildNodesAndTriangles(mesh_size);
   Assemble();
 }

@@ -7,14 +7,13 @@
 #include <sstream>
 #include <string>
 
+#include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/particles/particle_mesh.h"
 
 namespace dlmfd {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<double> Radii(const Params& params) {
   std::vector<double> radii;
@@ -52,7 +51,8 @@ ParticleStep::ParticleStep(const Params& params, const Grid& grid)
     inv_excess_mass_.push_back(heavy_free ? 1.0 / excess : 0.0);
     predicted_.push_back(heavy_free ? 1 : 0);
   }
-  for (auto* a : {&x_old_, &u_old_, &x_, &x_star_, &u_, &u_star_, &f0_, &f1_, &collision_average_}) {
+  for (auto* a :
+       {&x_old_, &u_old_, &x_, &x_star_, &u_, &u_star_, &f0_, &f1_, &collision_average_}) {
     a->assign(n, Vec2::Zero());
   }
   omega_old_.assign(n, 0.0);
@@ -70,7 +70,8 @@ void ParticleStep::Predict(double dt, std::vector<ParticleState>& particles) {
   for (int k = 1; k <= substeps_; ++k) {
     max_contacts_ = std::max(max_contacts_, collisions_.Compute(x_, f0_));
     for (std::size_t p = 0; p < n; ++p) {
-      u_star_[p] = predicted_[p] ? Vec2(u_[p] + (gravity_ + inv_excess_mass_[p] * f0_[p]) * tau) : u_[p];
+      u_star_[p] =
+          predicted_[p] ? Vec2(u_[p] + (gravity_ + inv_excess_mass_[p] * f0_[p]) * tau) : u_[p];
       x_star_[p] = x_[p] + 0.5 * (u_[p] + u_star_[p]) * tau;
     }
     collisions_.Compute(x_star_, f1_);
@@ -147,8 +148,9 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
     const double inertia = 0.5 * particle.density * kPi * std::pow(particle.radius, 4);
     particle.force = -constraint_.NodalForceSum(p) +
                      displaced_mass * ((particle.velocity - u_old_[p]) / dt - gravity_);
-    particle.torque = -constraint_.NodalTorqueSum(p) + (fluid_density_ / particle.density) * inertia *
-                                                           (particle.angular_velocity - omega_old_[p]) / dt;
+    particle.torque =
+        -constraint_.NodalTorqueSum(p) + (fluid_density_ / particle.density) * inertia *
+                                             (particle.angular_velocity - omega_old_[p]) / dt;
   }
 
   for (std::size_t p = 0; p < n; ++p) x_[p] = particles[p].position;

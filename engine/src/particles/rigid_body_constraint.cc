@@ -1,4 +1,5 @@
-// The DLM step (37) by conjugate gradients in the H1 product; see particles/rigid_body_constraint.h.
+// The DLM step (37) by conjugate gradients in the H1 product; see
+// particles/rigid_body_constraint.h.
 #include "dlmfd/particles/rigid_body_constraint.h"
 
 #include <algorithm>
@@ -10,13 +11,13 @@
 
 #include <Eigen/LU>
 
+#include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 
 namespace dlmfd {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Relative round-off level of a converged mismatch, in units of the velocity scale.
 constexpr double kRoundOffFloor = 1e-11;
 // The CG runs on the OpenMP threads from this many particles on. One CG iteration costs about
@@ -87,10 +88,10 @@ RigidBodyConstraint::RigidBodyConstraint(const Params& params, const Grid& grid)
     any_neutral_ = any_neutral_ || neutral;
     if (free && !neutral) {
       if (!(excess_mass > 0.0)) {
-        throw InvalidParameter("particles." + std::to_string(p) + ".density",
-                               std::to_string(pp.density),
-                               ">= fluid.density for a free particle (a free particle lighter than the "
-                               "liquid makes the DLM problem (37) indefinite; the solver is CG)");
+        throw InvalidParameter(
+            "particles." + std::to_string(p) + ".density", std::to_string(pp.density),
+            ">= fluid.density for a free particle (a free particle lighter than the "
+            "liquid makes the DLM problem (37) indefinite; the solver is CG)");
       }
       inv_excess_mass_.push_back(1.0 / excess_mass);
       inv_excess_inertia_.push_back(2.0 / (excess_mass * radius * radius));
@@ -270,13 +271,25 @@ void RigidBodyConstraint::BuildInterpolation(double time, double dt,
       int ii[3], jj[3];
       double wt[3];
       if (xi >= eta) {
-        ii[0] = i0; jj[0] = j0; wt[0] = 1.0 - xi;
-        ii[1] = i1; jj[1] = j0; wt[1] = xi - eta;
-        ii[2] = i1; jj[2] = j1; wt[2] = eta;
+        ii[0] = i0;
+        jj[0] = j0;
+        wt[0] = 1.0 - xi;
+        ii[1] = i1;
+        jj[1] = j0;
+        wt[1] = xi - eta;
+        ii[2] = i1;
+        jj[2] = j1;
+        wt[2] = eta;
       } else {
-        ii[0] = i0; jj[0] = j0; wt[0] = 1.0 - eta;
-        ii[1] = i1; jj[1] = j1; wt[1] = xi;
-        ii[2] = i0; jj[2] = j1; wt[2] = eta - xi;
+        ii[0] = i0;
+        jj[0] = j0;
+        wt[0] = 1.0 - eta;
+        ii[1] = i1;
+        jj[1] = j1;
+        wt[1] = xi;
+        ii[2] = i0;
+        jj[2] = j1;
+        wt[2] = eta - xi;
       }
       for (int q = 0; q < 3; ++q) {
         const std::size_t entry = 3 * (offset_[p] + k) + q;
@@ -307,7 +320,8 @@ void RigidBodyConstraint::BuildSpreading(double dt) {
     if (stencil_slot_[q] != 0) ++spread_start_[stencil_slot_[q] + 1];
   }
   spread_start_[1] = 0;
-  for (std::size_t slot = 1; slot <= slot_count_; ++slot) spread_start_[slot + 1] += spread_start_[slot];
+  for (std::size_t slot = 1; slot <= slot_count_; ++slot)
+    spread_start_[slot + 1] += spread_start_[slot];
   std::copy(spread_start_.begin(), spread_start_.begin() + slot_count_ + 2, spread_cursor_.begin());
   for (std::size_t q = 0; q < 3 * total_nodes_; ++q) {
     if (stencil_slot_[q] == 0) continue;
@@ -401,7 +415,8 @@ void RigidBodyConstraint::Respond(double dt, const double* dir) {
   }
 }
 
-void RigidBodyConstraint::AddResponse(const double* ub, const double* vb, double* u, double* v) const {
+void RigidBodyConstraint::AddResponse(const double* ub, const double* vb, double* u,
+                                      double* v) const {
   for (std::size_t slot = 1; slot <= slot_count_; ++slot) {
     u[touched_[slot]] += ub[slot];
     v[touched_[slot]] += vb[slot];
@@ -411,7 +426,8 @@ void RigidBodyConstraint::AddResponse(const double* ub, const double* vb, double
 void RigidBodyConstraint::ApplyGram(const double* a, double* out) const {
   const long particles = static_cast<long>(mesh_of_.size());
 #pragma omp parallel for schedule(static) if (parallel_)
-  for (long p = 0; p < particles; ++p) MeshOf(p).ApplyGram2(a + 2 * offset_[p], out + 2 * offset_[p]);
+  for (long p = 0; p < particles; ++p)
+    MeshOf(p).ApplyGram2(a + 2 * offset_[p], out + 2 * offset_[p]);
 }
 
 double RigidBodyConstraint::GramDot(const double* a, const double* b) {
@@ -427,8 +443,8 @@ double RigidBodyConstraint::GramDot(const double* a, const double* b) {
   return sum;
 }
 
-bool RigidBodyConstraint::ConjugateGradients(double dt, double threshold, double& gg, int& iterations,
-                                             double* curvature_out) {
+bool RigidBodyConstraint::ConjugateGradients(double dt, double threshold, double& gg,
+                                             int& iterations, double* curvature_out) {
   // One parallel region for the whole CG: the loops below are work-shared, and sums are per
   // particle, then over the particles in order (by every thread): the same result for every
   // thread count.
@@ -523,7 +539,8 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
 
 RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt,
                                                           std::vector<ParticleState>& particles,
-                                                          double* u, double* v, const Vec2* net_force) {
+                                                          double* u, double* v,
+                                                          const Vec2* net_force) {
   Outcome outcome;
   const std::size_t n = particles.size();
   if (n == 0) return outcome;
@@ -540,13 +557,14 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
   for (std::size_t p = 0; p < n; ++p) {
     const ParticleMesh& mesh = MeshOf(p);
     scale = std::max(scale, velocity_[p].norm() + std::abs(omega_[p]) * mesh.radius());
-    const double ratio = mesh.radius() / (mesh.nodes()[mesh.NodeCount() - 1] -
-                                          mesh.nodes()[mesh.NodeCount() - 2]).norm();
+    const double ratio =
+        mesh.radius() /
+        (mesh.nodes()[mesh.NodeCount() - 1] - mesh.nodes()[mesh.NodeCount() - 2]).norm();
     floor_weight += 2.0 * mesh.Area() * (1.0 + ratio * ratio);
   }
   for (std::size_t q = 0; q < total_nodes_; ++q) {
-    outcome.cold_residual =
-        std::max(outcome.cold_residual, std::sqrt(g_[2 * q] * g_[2 * q] + g_[2 * q + 1] * g_[2 * q + 1]));
+    outcome.cold_residual = std::max(
+        outcome.cold_residual, std::sqrt(g_[2 * q] * g_[2 * q] + g_[2 * q + 1] * g_[2 * q + 1]));
     scale = std::max(scale, outcome.cold_residual);
   }
   ProjectMismatch(g_.data());
@@ -578,9 +596,8 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
     }
   }
   const double cold = GramDot(g_.data(), g_.data());
-  const double threshold =
-      std::max(tolerance_ * tolerance_ * cold,
-               kRoundOffFloor * kRoundOffFloor * scale * scale * floor_weight);
+  const double threshold = std::max(tolerance_ * tolerance_ * cold,
+                                    kRoundOffFloor * kRoundOffFloor * scale * scale * floor_weight);
 
   // Warm start from the stored nodal forces when they reduce the mismatch (for a neutral particle,
   // the stored forces less their net force and torque, on top of nu_f).
@@ -595,7 +612,8 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
   if (have_warm && cold > threshold) {
     for (std::size_t p = 0; p < n; ++p) {
       if (particles[p].multiplier.size() != MultiplierSize(p)) {
-        std::fill(nub_.begin() + 2 * offset_[p], nub_.begin() + 2 * offset_[p] + MultiplierSize(p), 0.0);
+        std::fill(nub_.begin() + 2 * offset_[p], nub_.begin() + 2 * offset_[p] + MultiplierSize(p),
+                  0.0);
       }
     }
     ProjectForces(nub_.data());
@@ -615,7 +633,8 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
     }
   }
 
-  // Conjugate gradients in <., .>_G (method notes 1.3, steps 2-7), iterate tracked as nu = G lambda.
+  // Conjugate gradients in <., .>_G (method notes 1.3, steps 2-7), iterate tracked as nu = G
+  // lambda.
   std::copy(g_.begin(), g_.end(), w_.begin());
   ApplyGram(w_.data(), nub_.data());
   ProjectForces(nub_.data());  // exact already (w is G-orthogonal to C); keeps round-off out
@@ -673,8 +692,8 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
   // The true residual, the new particle velocities, and the nodal force sums.
   Mismatch(u, v, velocity_.data(), omega_.data(), g_.data());
   for (std::size_t q = 0; q < total_nodes_; ++q) {
-    outcome.residual =
-        std::max(outcome.residual, std::sqrt(g_[2 * q] * g_[2 * q] + g_[2 * q + 1] * g_[2 * q + 1]));
+    outcome.residual = std::max(outcome.residual,
+                                std::sqrt(g_[2 * q] * g_[2 * q] + g_[2 * q + 1] * g_[2 * q + 1]));
   }
   for (std::size_t p = 0; p < n; ++p) {
     ParticleState& particle = particles[p];

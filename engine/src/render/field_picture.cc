@@ -27,9 +27,10 @@ inline double CellP1(const NodeField& f, int i, int j, double a, double b) {
 void CheckField(const NodeField& field) {
   const Grid& g = field.grid;
   if (g.nx < 1 || g.ny < 1 || !(g.h > 0.0) || !std::isfinite(g.h)) {
-    throw InvalidParameter("field grid", std::to_string(g.nx) + "x" + std::to_string(g.ny) + " cells, h " +
-                                             FormatLabel(g.h),
-                           "at least 1x1 cells and a finite h > 0");
+    throw InvalidParameter(
+        "field grid",
+        std::to_string(g.nx) + "x" + std::to_string(g.ny) + " cells, h " + FormatLabel(g.h),
+        "at least 1x1 cells and a finite h > 0");
   }
   if (field.values.size() != g.NodeCount()) {
     throw InvalidParameter("field values", std::to_string(field.values.size()) + " values",
@@ -54,17 +55,20 @@ double InterpolateP1(const NodeField& field, double x, double y) {
   return CellP1(field, i, j, s - i, t - j);
 }
 
-NodeField CropField(const NodeField& field, double x_min, double y_min, double x_max, double y_max) {
+NodeField CropField(const NodeField& field, double x_min, double y_min, double x_max,
+                    double y_max) {
   CheckField(field);
   const Grid& g = field.grid;
-  const bool finite = std::isfinite(x_min) && std::isfinite(y_min) && std::isfinite(x_max) && std::isfinite(y_max);
+  const bool finite =
+      std::isfinite(x_min) && std::isfinite(y_min) && std::isfinite(x_max) && std::isfinite(y_max);
   if (!finite || !(x_min < x_max) || !(y_min < y_max) || x_max <= g.x0 || y_max <= g.y0 ||
       x_min >= g.x0 + g.Width() || y_min >= g.y0 + g.Height()) {
-    throw InvalidParameter("window", FormatLabel(x_min) + "," + FormatLabel(y_min) + "," + FormatLabel(x_max) + "," +
-                                         FormatLabel(y_max),
-                           "x_min < x_max and y_min < y_max, overlapping the domain [" + FormatLabel(g.x0) + ", " +
-                               FormatLabel(g.x0 + g.Width()) + "] x [" + FormatLabel(g.y0) + ", " +
-                               FormatLabel(g.y0 + g.Height()) + "]");
+    throw InvalidParameter("window",
+                           FormatLabel(x_min) + "," + FormatLabel(y_min) + "," +
+                               FormatLabel(x_max) + "," + FormatLabel(y_max),
+                           "x_min < x_max and y_min < y_max, overlapping the domain [" +
+                               FormatLabel(g.x0) + ", " + FormatLabel(g.x0 + g.Width()) + "] x [" +
+                               FormatLabel(g.y0) + ", " + FormatLabel(g.y0 + g.Height()) + "]");
   }
   const int i0 = std::clamp(int(std::floor((x_min - g.x0) / g.h)), 0, g.nx - 1);
   const int j0 = std::clamp(int(std::floor((y_min - g.y0) / g.h)), 0, g.ny - 1);
@@ -119,9 +123,10 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
   const int room_x = options.max_width - 2 * margin - gap - bar_width - label_width;
   const int room_y = options.max_height - 2 * margin - caption_height;
   if (room_x < 8 || room_y < std::max(8, min_bar_height)) {
-    throw InvalidParameter("picture size", std::to_string(options.max_width) + "x" +
-                                               std::to_string(options.max_height),
-                           "room for the field, the colour bar and its labels (try 400x300 or more)");
+    throw InvalidParameter(
+        "picture size",
+        std::to_string(options.max_width) + "x" + std::to_string(options.max_height),
+        "room for the field, the colour bar and its labels (try 400x300 or more)");
   }
   const double pixels_per_unit = std::min(room_x / g.Width(), room_y / g.Height());
   const int panel_width = std::max(1, int(std::floor(g.Width() * pixels_per_unit)));
@@ -158,7 +163,8 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
     const double y = g.y0 + (1.0 - (py + 0.5) / panel_height) * g.Height();
     for (int px = 0; px < panel_width; ++px) {
       const double x = g.x0 + (px + 0.5) / panel_width * g.Width();
-      image.Set(picture.panel_left + px, picture.panel_top + py, colour_of(InterpolateP1(field, x, y)));
+      image.Set(picture.panel_left + px, picture.panel_top + py,
+                colour_of(InterpolateP1(field, x, y)));
     }
   }
 
@@ -183,9 +189,11 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
   image.FrameRect(picture.bar_left, picture.bar_top, bar_width, body_height, kBlack);
   const int label_left = picture.bar_left + bar_width + 3 * scale;
   image.DrawText(label_left, picture.bar_top, max_label, scale, kBlack);
-  image.DrawText(label_left, picture.bar_top + body_height - kGlyphHeight * scale, min_label, scale, kBlack);
+  image.DrawText(label_left, picture.bar_top + body_height - kGlyphHeight * scale, min_label, scale,
+                 kBlack);
   if (!mid_label.empty()) {
-    image.DrawText(label_left, picture.bar_top + (body_height - kGlyphHeight * scale) / 2, mid_label, scale, kBlack);
+    image.DrawText(label_left, picture.bar_top + (body_height - kGlyphHeight * scale) / 2,
+                   mid_label, scale, kBlack);
   }
   if (!options.caption.empty()) image.DrawText(margin, margin, options.caption, scale, kBlack);
   return picture;

@@ -15,14 +15,17 @@ namespace {
 
 // Okabe-Ito without its yellow, which is too pale on white: blue, vermillion, bluish green,
 // reddish purple, orange, sky blue, black.
-constexpr Rgb kPalette[kPaletteSize] = {{0, 114, 178},  {213, 94, 0},   {0, 158, 115}, {204, 121, 167},
-                                        {230, 159, 0},  {86, 180, 233}, {0, 0, 0}};
+constexpr Rgb kPalette[kPaletteSize] = {{0, 114, 178},   {213, 94, 0},  {0, 158, 115},
+                                        {204, 121, 167}, {230, 159, 0}, {86, 180, 233},
+                                        {0, 0, 0}};
 constexpr Rgb kGridColour{225, 225, 225};
 constexpr Rgb kAxisColour{0, 0, 0};
 // Relative slack when deciding whether a computed tick lies inside the range.
 constexpr double kRoundOff = 1e-9;
 
-double Transform(double value, AxisScale scale) { return scale == AxisScale::kLog10 ? std::log10(value) : value; }
+double Transform(double value, AxisScale scale) {
+  return scale == AxisScale::kLog10 ? std::log10(value) : value;
+}
 
 std::string Printf(const char* format, int digits, double value) {
   char text[48];
@@ -55,7 +58,8 @@ void AxisRange(double data_lo, double data_hi, AxisScale scale, double& lo, doub
   double t_lo = Transform(data_lo, scale);
   double t_hi = Transform(data_hi, scale);
   if (t_hi - t_lo <= 1e-12 * std::max(1.0, std::abs(t_lo))) {
-    const double half = scale == AxisScale::kLog10 ? 0.5 : (t_lo != 0.0 ? 0.1 * std::abs(t_lo) : 1.0);
+    const double half =
+        scale == AxisScale::kLog10 ? 0.5 : (t_lo != 0.0 ? 0.1 * std::abs(t_lo) : 1.0);
     t_lo -= half;
     t_hi += half;
   } else {
@@ -67,7 +71,8 @@ void AxisRange(double data_lo, double data_hi, AxisScale scale, double& lo, doub
   hi = scale == AxisScale::kLog10 ? std::pow(10.0, t_hi) : t_hi;
 }
 
-double PixelAlong(double value, double lo, double hi, AxisScale scale, int first, int count, bool reversed) {
+double PixelAlong(double value, double lo, double hi, AxisScale scale, int first, int count,
+                  bool reversed) {
   if (!Usable(value, scale)) return std::numeric_limits<double>::quiet_NaN();
   const double t_lo = Transform(lo, scale);
   const double fraction = (Transform(value, scale) - t_lo) / (Transform(hi, scale) - t_lo);
@@ -111,7 +116,8 @@ AxisTicks LinearTicks(double lo, double hi, int wanted) {
   }
   AxisTicks ticks;
   const double magnitude = std::max(std::abs(lo), std::abs(hi));
-  for (double k = std::ceil(lo / step - kRoundOff); k <= std::floor(hi / step + kRoundOff); k += 1.0) {
+  for (double k = std::ceil(lo / step - kRoundOff); k <= std::floor(hi / step + kRoundOff);
+       k += 1.0) {
     const double value = std::abs(k) < 0.5 ? 0.0 : k * step;
     ticks.values.push_back(value);
     ticks.labels.push_back(LinearLabel(value, step, magnitude));
@@ -121,7 +127,8 @@ AxisTicks LinearTicks(double lo, double hi, int wanted) {
 
 AxisTicks LogTicks(double lo, double hi, int wanted) {
   if (!(std::isfinite(lo) && std::isfinite(hi) && lo > 0.0 && lo < hi)) {
-    throw InvalidParameter("log axis range", "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]",
+    throw InvalidParameter("log axis range",
+                           "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]",
                            "finite ends with 0 < lo < hi");
   }
   wanted = std::max(2, wanted);
@@ -167,8 +174,9 @@ double ChartPicture::PixelY(double y) const {
 
 void LineChart::AddSeries(ChartSeries series) {
   if (series.x.size() != series.y.size()) {
-    throw InvalidParameter("series " + series.name, std::to_string(series.x.size()) + " x values and " +
-                                                        std::to_string(series.y.size()) + " y values",
+    throw InvalidParameter("series " + series.name,
+                           std::to_string(series.x.size()) + " x values and " +
+                               std::to_string(series.y.size()) + " y values",
                            "as many x values as y values");
   }
   series_.push_back(std::move(series));
@@ -177,7 +185,8 @@ void LineChart::AddSeries(ChartSeries series) {
 ChartPicture LineChart::Draw() const {
   const AxisScale xs = options_.x_axis.scale;
   const AxisScale ys = options_.y_axis.scale;
-  if (series_.empty()) throw InvalidParameter("chart", "no series", "at least one series of points");
+  if (series_.empty())
+    throw InvalidParameter("chart", "no series", "at least one series of points");
   double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min;
   double y_min = x_min, y_max = -x_min;
   for (const ChartSeries& s : series_) {
@@ -191,7 +200,8 @@ ChartPicture LineChart::Draw() const {
   }
   if (!(x_min <= x_max)) {
     const bool log = xs == AxisScale::kLog10 || ys == AxisScale::kLog10;
-    throw InvalidParameter("chart", "no usable point in " + std::to_string(series_.size()) + " series",
+    throw InvalidParameter("chart",
+                           "no usable point in " + std::to_string(series_.size()) + " series",
                            log ? "at least one point with finite coordinates, > 0 on a log axis"
                                : "at least one point with finite coordinates");
   }
@@ -216,10 +226,12 @@ ChartPicture LineChart::Draw() const {
   p.panel_top = margin + title_height + y_title_height;
   p.panel_height = height - p.panel_top - margin - x_title_height - line_height - tick - 1;
   if (p.panel_height < 32) {
-    throw InvalidParameter("chart height", std::to_string(height), "room for a panel of at least 32 pixels");
+    throw InvalidParameter("chart height", std::to_string(height),
+                           "room for a panel of at least 32 pixels");
   }
-  p.y_ticks = ys == AxisScale::kLog10 ? LogTicks(p.y_lo, p.y_hi, std::clamp(p.panel_height / (40 * s), 2, 8))
-                                      : LinearTicks(p.y_lo, p.y_hi, std::clamp(p.panel_height / (40 * s), 2, 8));
+  p.y_ticks = ys == AxisScale::kLog10
+                  ? LogTicks(p.y_lo, p.y_hi, std::clamp(p.panel_height / (40 * s), 2, 8))
+                  : LinearTicks(p.y_lo, p.y_hi, std::clamp(p.panel_height / (40 * s), 2, 8));
 
   // Horizontal layout: y labels on the left, the legend on the right.
   const int swatch = 16 * s;
@@ -232,11 +244,13 @@ ChartPicture LineChart::Draw() const {
   p.panel_left = margin + LabelsWidth(p.y_ticks) * s + 3 * s + tick + 1;
   p.panel_width = width - p.panel_left - margin - legend_width - 1;
   if (p.panel_width < 32) {
-    throw InvalidParameter("chart width", std::to_string(width), "room for a panel of at least 32 pixels");
+    throw InvalidParameter("chart width", std::to_string(width),
+                           "room for a panel of at least 32 pixels");
   }
   // The most x ticks whose labels do not collide.
   for (int wanted = std::clamp(p.panel_width / (60 * s), 2, 10);; --wanted) {
-    p.x_ticks = xs == AxisScale::kLog10 ? LogTicks(p.x_lo, p.x_hi, wanted) : LinearTicks(p.x_lo, p.x_hi, wanted);
+    p.x_ticks = xs == AxisScale::kLog10 ? LogTicks(p.x_lo, p.x_hi, wanted)
+                                        : LinearTicks(p.x_lo, p.x_hi, wanted);
     const int needed = int(p.x_ticks.values.size()) * (LabelsWidth(p.x_ticks) + 4) * s;
     if (needed <= p.panel_width || wanted == 2) break;
   }
@@ -245,25 +259,29 @@ ChartPicture LineChart::Draw() const {
   RasterImage& image = p.image;
   const int panel_bottom = p.panel_top + p.panel_height;  // the frame row
   const int panel_right = p.panel_left + p.panel_width;   // the frame column
-  for (const double v : p.x_ticks.values) image.FillRect(int(p.PixelX(v)), p.panel_top, 1, p.panel_height, kGridColour);
-  for (const double v : p.y_ticks.values) image.FillRect(p.panel_left, int(p.PixelY(v)), p.panel_width, 1, kGridColour);
-  image.FrameRect(p.panel_left - 1, p.panel_top - 1, p.panel_width + 2, p.panel_height + 2, kAxisColour);
+  for (const double v : p.x_ticks.values)
+    image.FillRect(int(p.PixelX(v)), p.panel_top, 1, p.panel_height, kGridColour);
+  for (const double v : p.y_ticks.values)
+    image.FillRect(p.panel_left, int(p.PixelY(v)), p.panel_width, 1, kGridColour);
+  image.FrameRect(p.panel_left - 1, p.panel_top - 1, p.panel_width + 2, p.panel_height + 2,
+                  kAxisColour);
   for (std::size_t k = 0; k < p.x_ticks.values.size(); ++k) {
     const int px = int(p.PixelX(p.x_ticks.values[k]));
     image.FillRect(px, panel_bottom + 1, 1, tick, kAxisColour);
     const int label_width = TextWidth(p.x_ticks.labels[k]) * s;
-    image.DrawText(px - label_width / 2, panel_bottom + 1 + tick + 2 * s, p.x_ticks.labels[k], s, kAxisColour);
+    image.DrawText(px - label_width / 2, panel_bottom + 1 + tick + 2 * s, p.x_ticks.labels[k], s,
+                   kAxisColour);
   }
   for (std::size_t k = 0; k < p.y_ticks.values.size(); ++k) {
     const int py = int(p.PixelY(p.y_ticks.values[k]));
     image.FillRect(p.panel_left - 1 - tick, py, tick, 1, kAxisColour);
     const int label_width = TextWidth(p.y_ticks.labels[k]) * s;
-    image.DrawText(p.panel_left - 1 - tick - 2 * s - label_width, py - kGlyphHeight * s / 2, p.y_ticks.labels[k], s,
-                   kAxisColour);
+    image.DrawText(p.panel_left - 1 - tick - 2 * s - label_width, py - kGlyphHeight * s / 2,
+                   p.y_ticks.labels[k], s, kAxisColour);
   }
   if (!options_.title.empty()) {
-    image.DrawText((width - TextWidth(options_.title) * title_scale) / 2, margin, options_.title, title_scale,
-                   kAxisColour);
+    image.DrawText((width - TextWidth(options_.title) * title_scale) / 2, margin, options_.title,
+                   title_scale, kAxisColour);
   }
   if (!options_.y_axis.title.empty()) {
     image.DrawText(margin, p.panel_top - line_height, options_.y_axis.title, s, kAxisColour);
@@ -293,7 +311,8 @@ ChartPicture LineChart::Draw() const {
       const bool previous_usable = k > 0 && std::isfinite(p.PixelX(series.x[k - 1])) &&
                                    std::isfinite(p.PixelY(series.y[k - 1]));
       if (next_usable) {
-        image.DrawLine(px, py, p.PixelX(series.x[k + 1]), p.PixelY(series.y[k + 1]), line_width, colour);
+        image.DrawLine(px, py, p.PixelX(series.x[k + 1]), p.PixelY(series.y[k + 1]), line_width,
+                       colour);
       } else if (!previous_usable) {
         image.FillDisk(px, py, std::max(1.5, line_width), colour);
       }
@@ -307,9 +326,12 @@ ChartPicture LineChart::Draw() const {
     const int row_top = p.panel_top + int(n) * line_height;
     const double mid = row_top + 0.5 * kGlyphHeight * s;
     const Rgb colour = SeriesColour(n);
-    if (series_[n].lines) image.DrawLine(legend_left, mid, legend_left + swatch, mid, line_width, colour);
-    if (series_[n].markers || !series_[n].lines) image.FillDisk(legend_left + 0.5 * swatch, mid, marker_radius, colour);
-    image.DrawText(legend_left + swatch + 4 * s, row_top, Shortened(series_[n].name, max_name_chars), s, kAxisColour);
+    if (series_[n].lines)
+      image.DrawLine(legend_left, mid, legend_left + swatch, mid, line_width, colour);
+    if (series_[n].markers || !series_[n].lines)
+      image.FillDisk(legend_left + 0.5 * swatch, mid, marker_radius, colour);
+    image.DrawText(legend_left + swatch + 4 * s, row_top,
+                   Shortened(series_[n].name, max_name_chars), s, kAxisColour);
   }
   return p;
 }

@@ -29,7 +29,8 @@ void OnPngWarning(png_structp, png_const_charp) {}
 // Returns an empty string on success, libpng's message otherwise.
 std::string EncodePng(std::FILE* file, const RasterImage& image, png_bytepp rows) {
   PngErrorState state;
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, OnPngError, OnPngWarning);
+  png_structp png =
+      png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, OnPngError, OnPngWarning);
   if (png == nullptr) return "cannot create the PNG writer";
   png_infop info = png_create_info_struct(png);
   if (info == nullptr) {
@@ -41,8 +42,9 @@ std::string EncodePng(std::FILE* file, const RasterImage& image, png_bytepp rows
     return state.message;
   }
   png_init_io(png, file);
-  png_set_IHDR(png, info, png_uint_32(image.Width()), png_uint_32(image.Height()), 8, PNG_COLOR_TYPE_RGB,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(png, info, png_uint_32(image.Width()), png_uint_32(image.Height()), 8,
+               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   png_write_image(png, rows);
   png_write_end(png, nullptr);

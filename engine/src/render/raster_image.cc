@@ -9,7 +9,9 @@
 
 namespace dlmfd {
 
-RasterImage::RasterImage(int width, int height, Rgb background) : width_(width), height_(height) {
+RasterImage::RasterImage(int width, int height, Rgb background)
+    : width_(width),
+      height_(height) {
   if (width < 1 || width > kMaxSide || height < 1 || height > kMaxSide) {
     throw InvalidParameter("image size", std::to_string(width) + "x" + std::to_string(height),
                            "1 to " + std::to_string(kMaxSide) + " pixels per side");
@@ -70,7 +72,9 @@ void RasterImage::DrawLine(double x0, double y0, double x1, double y1, double wi
   if (!std::isfinite(x0) || !std::isfinite(y0) || !std::isfinite(x1) || !std::isfinite(y1)) return;
   const double half = 0.5 * std::max(1.0, width);
   // The bounding box, clamped in floating point first so that far-away ends never overflow an int.
-  const auto clamp_to = [](double v, int hi) { return int(std::clamp(std::floor(v), -1.0, double(hi))); };
+  const auto clamp_to = [](double v, int hi) {
+    return int(std::clamp(std::floor(v), -1.0, double(hi)));
+  };
   const int x_lo = std::max(0, clamp_to(std::min(x0, x1) - half, width_));
   const int x_hi = std::min(width_ - 1, clamp_to(std::max(x0, x1) + half, width_));
   const int y_lo = std::max(0, clamp_to(std::min(y0, y1) - half, height_));

@@ -22,8 +22,10 @@ long StepOfSnapshotName(const std::string& name) {
       name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
     return -1;
   }
-  const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
-  if (digits.empty() || !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+  const std::string digits =
+      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  if (digits.empty() ||
+      !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
     return -1;
   }
   return std::stol(digits);
@@ -33,7 +35,8 @@ std::string ListSteps(const std::vector<long>& steps) {
   if (steps.empty()) return "none";
   std::string text;
   const std::size_t shown = std::min<std::size_t>(steps.size(), 12);
-  for (std::size_t k = steps.size() - shown; k < steps.size(); ++k) text += (text.empty() ? "" : ", ") + std::to_string(steps[k]);
+  for (std::size_t k = steps.size() - shown; k < steps.size(); ++k)
+    text += (text.empty() ? "" : ", ") + std::to_string(steps[k]);
   return (shown < steps.size() ? "..., " : "") + text;
 }
 
@@ -58,17 +61,20 @@ std::vector<long> SnapshotSteps(const std::string& results_dir) {
   return steps;
 }
 
-ResultsFrame LoadResultsFrame(const std::string& results_dir, long step, const std::string& quantity) {
+ResultsFrame LoadResultsFrame(const std::string& results_dir, long step,
+                              const std::string& quantity) {
   if (!quantity.empty() && quantity != "trA" && quantity != "speed") {
     throw InvalidParameter("quantity", quantity, "trA or speed");
   }
   const std::vector<long> steps = SnapshotSteps(results_dir);
   if (steps.empty()) {
-    throw InvalidParameter("results directory", results_dir,
-                           "a directory with field snapshots in fields/snap_NNNNNN.h5 (output.fields_every > 0)");
+    throw InvalidParameter(
+        "results directory", results_dir,
+        "a directory with field snapshots in fields/snap_NNNNNN.h5 (output.fields_every > 0)");
   }
   if (step >= 0 && !std::binary_search(steps.begin(), steps.end(), step)) {
-    throw InvalidParameter("snapshot", std::to_string(step), "one of the snapshot steps: " + ListSteps(steps));
+    throw InvalidParameter("snapshot", std::to_string(step),
+                           "one of the snapshot steps: " + ListSteps(steps));
   }
   const long chosen = step >= 0 ? step : steps.back();
   ResultsFrame frame;
@@ -80,13 +86,15 @@ ResultsFrame LoadResultsFrame(const std::string& results_dir, long step, const s
   const bool has_tra = snapshot.fields.count("trA") > 0;
   const std::string wanted = quantity.empty() ? (has_tra ? "trA" : "speed") : quantity;
   if (wanted == "trA" && !has_tra) {
-    throw InvalidParameter("quantity", "trA", "speed: " + frame.snapshot_path + " has no trA (a Newtonian run)");
+    throw InvalidParameter("quantity", "trA",
+                           "speed: " + frame.snapshot_path + " has no trA (a Newtonian run)");
   }
   const FieldArray& reference = snapshot.fields.at(wanted == "trA" ? "trA" : "u");
   if (reference.shape.size() != 2 || reference.shape[0] < 2 || reference.shape[1] < 2) {
     throw Error(frame.snapshot_path + ": the node fields are not 2-D arrays of at least 2x2 nodes");
   }
-  frame.field.grid = Grid{int(reference.shape[1]) - 1, int(reference.shape[0]) - 1, snapshot.h, snapshot.x0, snapshot.y0};
+  frame.field.grid = Grid{int(reference.shape[1]) - 1, int(reference.shape[0]) - 1, snapshot.h,
+                          snapshot.x0, snapshot.y0};
   frame.field.quantity = wanted;
   if (wanted == "trA") {
     frame.field.values = std::move(snapshot.fields.at("trA").values);
@@ -107,7 +115,8 @@ ResultsFrame LoadResultsFrame(const std::string& results_dir, long step, const s
           best = r;
           break;
         }
-        if (std::abs(history.time[r] - frame.time) < std::abs(history.time[best] - frame.time)) best = r;
+        if (std::abs(history.time[r] - frame.time) < std::abs(history.time[best] - frame.time))
+          best = r;
       }
       frame.particles_time = history.time[best];
       for (std::size_t k = 0; k < history.particles; ++k) {

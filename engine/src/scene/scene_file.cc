@@ -23,7 +23,9 @@ using scene::TableReader;
 constexpr double kMaxNodes = 2e7;
 constexpr double kBytesPerNode = 320.0;
 
-std::string VecText(const Vec2& v) { return "[" + ExactText(v.x()) + ", " + ExactText(v.y()) + "]"; }
+std::string VecText(const Vec2& v) {
+  return "[" + ExactText(v.x()) + ", " + ExactText(v.y()) + "]";
+}
 
 void RequirePositive(const std::string& key, double x) {
   if (!(x > 0.0)) throw InvalidParameter(key, ExactText(x), "a number > 0");
@@ -59,10 +61,12 @@ Enum Choose(const std::string& key, const std::string& word,
 int EvenCells(const std::string& key, const Vec2& size, double length, double h) {
   const double n = length / h;
   const double rounded = std::round(n);
-  if (std::abs(n - rounded) > 1e-9 * std::max(1.0, n) || static_cast<long long>(rounded) % 2 != 0 || rounded < 2) {
+  if (std::abs(n - rounded) > 1e-9 * std::max(1.0, n) || static_cast<long long>(rounded) % 2 != 0 ||
+      rounded < 2) {
     std::ostringstream allowed;
-    allowed << "a size that is an even number of cells of domain.h = " << ExactText(h) << " in both directions (here "
-            << ExactText(length) << " / h = " << n << "; the pressure mesh is 2h)";
+    allowed << "a size that is an even number of cells of domain.h = " << ExactText(h)
+            << " in both directions (here " << ExactText(length) << " / h = " << n
+            << "; the pressure mesh is 2h)";
     throw InvalidParameter(key, VecText(size), allowed.str());
   }
   return static_cast<int>(rounded);
@@ -80,8 +84,9 @@ void ReadDomain(TableReader& top, Params& p) {
   const double nodes = (d.size.x() / d.h + 1.0) * (d.size.y() / d.h + 1.0);
   if (nodes > kMaxNodes) {
     std::ostringstream allowed;
-    allowed << "a mesh of at most " << kMaxNodes << " velocity nodes (this one has " << nodes << ", about "
-            << nodes * kBytesPerNode / (1024.0 * 1024.0 * 1024.0) << " GiB of memory)";
+    allowed << "a mesh of at most " << kMaxNodes << " velocity nodes (this one has " << nodes
+            << ", about " << nodes * kBytesPerNode / (1024.0 * 1024.0 * 1024.0)
+            << " GiB of memory)";
     throw InvalidParameter("domain.h", ExactText(d.h), allowed.str());
   }
   EvenCells("domain.size", d.size, d.size.x(), d.h);
@@ -101,8 +106,9 @@ void ReadDomain(TableReader& top, Params& p) {
                                   {"outflow", SideType::kOutflow},
                                   {"periodic", SideType::kPeriodic}});
     if (side.type == SideType::kVelocity) {
-      side.profile = Choose<Profile>(r.Key("profile"), r.String("profile", "uniform"),
-                                     {{"uniform", Profile::kUniform}, {"poiseuille", Profile::kPoiseuille}});
+      side.profile =
+          Choose<Profile>(r.Key("profile"), r.String("profile", "uniform"),
+                          {{"uniform", Profile::kUniform}, {"poiseuille", Profile::kPoiseuille}});
       if (side.profile == Profile::kUniform) {
         side.value = r.Vector("value", std::nullopt);
         r.RejectUnknown("type, profile, value for a uniform velocity side");
@@ -121,10 +127,10 @@ void ReadDomain(TableReader& top, Params& p) {
     if (first != second) {
       const int odd = first ? s + 1 : s;
       const int even = first ? s : s + 1;
-      throw InvalidParameter(std::string("domain.boundary.") + names[odd] + ".type",
-                             "(not periodic)",
-                             std::string("\"periodic\", because domain.boundary.") + names[even] +
-                                 " is periodic (periodic sides come in pairs: left with right, bottom with top)");
+      throw InvalidParameter(
+          std::string("domain.boundary.") + names[odd] + ".type", "(not periodic)",
+          std::string("\"periodic\", because domain.boundary.") + names[even] +
+              " is periodic (periodic sides come in pairs: left with right, bottom with top)");
     }
   }
   domain.RejectUnknown("size, h, boundary");
@@ -167,8 +173,9 @@ void ReadTimeAndSplitting(TableReader& top, Params& p) {
   p.time.end = time.Real("end", p.time.end);
   RequireNonNegative("time.end", p.time.end);
   if (p.time.end > 0.0 && p.time.dt > p.time.end) {
-    throw InvalidParameter("time.dt", ExactText(p.time.dt),
-                           "a step <= time.end = " + ExactText(p.time.end) + " (unless time.end = 0)");
+    throw InvalidParameter(
+        "time.dt", ExactText(p.time.dt),
+        "a step <= time.end = " + ExactText(p.time.end) + " (unless time.end = 0)");
   }
   time.RejectUnknown("dt, end");
 
@@ -179,13 +186,14 @@ void ReadTimeAndSplitting(TableReader& top, Params& p) {
   s.beta = splitting.Real("beta", s.beta);
   RequireClosedUnit("splitting.beta", s.beta);
   if (std::abs(s.alpha + s.beta - 1.0) > 1e-12) {
-    throw InvalidParameter("splitting.beta", ExactText(s.beta),
-                           "1 - splitting.alpha = " + ExactText(1.0 - s.alpha) +
-                               " (gamma = 1 - alpha - beta must be 0: the only splitting the engine supports)");
+    throw InvalidParameter(
+        "splitting.beta", ExactText(s.beta),
+        "1 - splitting.alpha = " + ExactText(1.0 - s.alpha) +
+            " (gamma = 1 - alpha - beta must be 0: the only splitting the engine supports)");
   }
-  s.advection = Choose<AdvectionScheme>("splitting.advection", splitting.String("advection", "least_squares"),
-                                        {{"least_squares", AdvectionScheme::kLeastSquares},
-                                         {"wave", AdvectionScheme::kWave}});
+  s.advection = Choose<AdvectionScheme>(
+      "splitting.advection", splitting.String("advection", "least_squares"),
+      {{"least_squares", AdvectionScheme::kLeastSquares}, {"wave", AdvectionScheme::kWave}});
   splitting.RejectUnknown("alpha, beta, advection");
 }
 
@@ -207,7 +215,8 @@ void ReadSolvers(TableReader& top, Params& p) {
   s.multiplier_max_iterations = r.Integer("multiplier_max_iterations", s.multiplier_max_iterations);
   RequireAtLeastOne("solvers.multiplier_max_iterations", s.multiplier_max_iterations);
   r.RejectUnknown(
-      "stokes_tolerance, stokes_max_iterations, advection_tolerance, advection_max_iterations, wave_max_courant, "
+      "stokes_tolerance, stokes_max_iterations, advection_tolerance, advection_max_iterations, "
+      "wave_max_courant, "
       "multiplier_tolerance, multiplier_max_iterations");
 }
 
@@ -266,10 +275,11 @@ void CheckInside(const DomainParams& d, const std::string& key, const ParticlePa
     const double hi = periodic[k] ? d.size[k] : d.size[k] - r;
     if (!(c >= lo && c <= hi)) {
       throw InvalidParameter(key, VecText(q.center),
-                             std::string("a centre with ") + (k == 0 ? "x" : "y") + " in [" + ExactText(lo) + ", " +
-                                 ExactText(hi) + "] (the disk of radius " + ExactText(r) +
-                                 " inside the domain [0, " + ExactText(d.size.x()) + "] x [0, " +
-                                 ExactText(d.size.y()) + "]; it may cross periodic sides only)");
+                             std::string("a centre with ") + (k == 0 ? "x" : "y") + " in [" +
+                                 ExactText(lo) + ", " + ExactText(hi) + "] (the disk of radius " +
+                                 ExactText(r) + " inside the domain [0, " + ExactText(d.size.x()) +
+                                 "] x [0, " + ExactText(d.size.y()) +
+                                 "]; it may cross periodic sides only)");
     }
   }
 }
@@ -281,7 +291,8 @@ void ReadParticles(TableReader& top, Params& p) {
   for (std::size_t i = 0; i < array->size(); ++i) {
     const std::string prefix = "particles." + std::to_string(i);
     const toml::table* table = array->get(i)->as_table();
-    if (table == nullptr) throw InvalidParameter(prefix, scene::NodeText(*array->get(i)), "a table ([[particles]])");
+    if (table == nullptr)
+      throw InvalidParameter(prefix, scene::NodeText(*array->get(i)), "a table ([[particles]])");
     TableReader r(table, prefix);
     ParticleParams q;
     q.center = r.Vector("center", std::nullopt);
@@ -291,14 +302,16 @@ void ReadParticles(TableReader& top, Params& p) {
     RequirePositive(r.Key("density"), q.density);
     q.velocity = r.Vector("velocity", q.velocity);
     q.angular_velocity = r.Real("angular_velocity", q.angular_velocity);
-    q.motion = Choose<Motion>(r.Key("motion"), r.String("motion", "free"),
-                              {{"free", Motion::kFree}, {"fixed", Motion::kFixed}, {"prescribed", Motion::kPrescribed}});
+    q.motion = Choose<Motion>(
+        r.Key("motion"), r.String("motion", "free"),
+        {{"free", Motion::kFree}, {"fixed", Motion::kFixed}, {"prescribed", Motion::kPrescribed}});
     r.RejectUnknown("center, diameter, density, velocity, angular_velocity, motion");
     if (q.motion == Motion::kFree && q.density < p.fluid.density) {
-      throw InvalidParameter(r.Key("density"), ExactText(q.density),
-                             ">= fluid.density = " + ExactText(p.fluid.density) +
-                                 " for a free particle (a light disk makes the excess mass (rho_d - rho_L) V "
-                                 "of (36)-(38) negative and the multiplier problem (37) indefinite)");
+      throw InvalidParameter(
+          r.Key("density"), ExactText(q.density),
+          ">= fluid.density = " + ExactText(p.fluid.density) +
+              " for a free particle (a light disk makes the excess mass (rho_d - rho_L) V "
+              "of (36)-(38) negative and the multiplier problem (37) indefinite)");
     }
     CheckInside(p.domain, r.Key("center"), q);
     p.particles.push_back(q);
@@ -310,8 +323,9 @@ void ReadParticles(TableReader& top, Params& p) {
       const double gap = CenterDistance(p.domain, a.center, b.center) - a.Radius() - b.Radius();
       if (gap < 0.0) {
         throw InvalidParameter("particles." + std::to_string(j) + ".center", VecText(b.center),
-                               "a disk that does not overlap particle " + std::to_string(i) + " at t = 0 (gap " +
-                                   scene::ShortText(gap) + " between particles " + std::to_string(i) + " and " +
+                               "a disk that does not overlap particle " + std::to_string(i) +
+                                   " at t = 0 (gap " + scene::ShortText(gap) +
+                                   " between particles " + std::to_string(i) + " and " +
                                    std::to_string(j) + ")");
       }
     }
@@ -323,7 +337,8 @@ void ReadParticles(TableReader& top, Params& p) {
 SceneOverride ParseOverride(const std::string& key_equals_value) {
   const auto eq = key_equals_value.find('=');
   if (eq == std::string::npos || eq == 0) {
-    throw InvalidParameter("--set", key_equals_value, "key=value with a dotted scene key (e.g. fluid.viscosity=0.1)");
+    throw InvalidParameter("--set", key_equals_value,
+                           "key=value with a dotted scene key (e.g. fluid.viscosity=0.1)");
   }
   auto trim = [](std::string s) {
     const auto b = s.find_first_not_of(" \t");
@@ -332,7 +347,8 @@ SceneOverride ParseOverride(const std::string& key_equals_value) {
   };
   SceneOverride o{trim(key_equals_value.substr(0, eq)), trim(key_equals_value.substr(eq + 1))};
   if (o.key.empty()) {
-    throw InvalidParameter("--set", key_equals_value, "key=value with a dotted scene key (e.g. fluid.viscosity=0.1)");
+    throw InvalidParameter("--set", key_equals_value,
+                           "key=value with a dotted scene key (e.g. fluid.viscosity=0.1)");
   }
   return o;
 }
@@ -345,7 +361,8 @@ Params ParseScene(const std::string& toml_text, const std::vector<SceneOverride>
   } catch (const toml::parse_error& e) {
     std::ostringstream where;
     where << "line " << e.source().begin.line << " column " << e.source().begin.column;
-    throw InvalidParameter(origin, where.str(), "valid TOML (" + std::string(e.description()) + ")");
+    throw InvalidParameter(origin, where.str(),
+                           "valid TOML (" + std::string(e.description()) + ")");
   }
   scene::ApplyOverrides(root, overrides);
 
@@ -360,7 +377,8 @@ Params ParseScene(const std::string& toml_text, const std::vector<SceneOverride>
   ReadMeshCollisionsConformationOutput(top, p);
   ReadParticles(top, p);
   top.RejectUnknown(
-      "title, domain, fluid, gravity, time, splitting, solvers, particles, particle_mesh, collisions, conformation, "
+      "title, domain, fluid, gravity, time, splitting, solvers, particles, particle_mesh, "
+      "collisions, conformation, "
       "output");
   return p;
 }

@@ -38,8 +38,7 @@ toml::table ParseValue(const std::string& text) {
   try {
     toml::table wrapper = toml::parse("value = " + text);
     if (wrapper.size() == 1 && wrapper.contains("value")) return wrapper;
-  } catch (const toml::parse_error&) {
-  }
+  } catch (const toml::parse_error&) {}
   toml::table wrapper;
   wrapper.insert_or_assign("value", text);
   return wrapper;
@@ -52,7 +51,9 @@ bool IsSideTypeKey(const std::vector<std::string>& parts) {
 void ApplyOne(toml::table& root, const SceneOverride& o) {
   const std::vector<std::string> parts = SplitKey(o.key);
   for (const auto& p : parts) {
-    if (p.empty()) throw InvalidParameter(o.key, o.value, "a dotted key of non-empty names (e.g. fluid.viscosity)");
+    if (p.empty())
+      throw InvalidParameter(o.key, o.value,
+                             "a dotted key of non-empty names (e.g. fluid.viscosity)");
   }
   toml::table value_holder = ParseValue(o.value);
   toml::node& value = *value_holder.get("value");
@@ -71,12 +72,14 @@ void ApplyOne(toml::table& root, const SceneOverride& o) {
       node = next;
     } else if (auto* array = node->as_array()) {
       if (!IsIndex(part) || std::stoul(part) >= array->size()) {
-        throw InvalidParameter(walked, part, "an index below " + std::to_string(array->size()) +
-                                                 " (the number of entries in the scene)");
+        throw InvalidParameter(walked, part,
+                               "an index below " + std::to_string(array->size()) +
+                                   " (the number of entries in the scene)");
       }
       node = array->get(std::stoul(part));
     } else {
-      throw InvalidParameter(walked, NodeText(*node), "a table or an array to set " + o.key + " in");
+      throw InvalidParameter(walked, NodeText(*node),
+                             "a table or an array to set " + o.key + " in");
     }
   }
   const std::string& leaf = parts.back();
@@ -85,9 +88,12 @@ void ApplyOne(toml::table& root, const SceneOverride& o) {
     value.visit([&](auto& v) { table->insert_or_assign(leaf, std::move(v)); });
   } else if (auto* array = node->as_array()) {
     if (!IsIndex(leaf) || std::stoul(leaf) >= array->size()) {
-      throw InvalidParameter(o.key, o.value, "an existing index below " + std::to_string(array->size()));
+      throw InvalidParameter(o.key, o.value,
+                             "an existing index below " + std::to_string(array->size()));
     }
-    value.visit([&](auto& v) { array->replace(array->begin() + static_cast<long>(std::stoul(leaf)), std::move(v)); });
+    value.visit([&](auto& v) {
+      array->replace(array->begin() + static_cast<long>(std::stoul(leaf)), std::move(v));
+    });
   } else {
     throw InvalidParameter(walked, NodeText(*node), "a table or an array to set " + o.key + " in");
   }

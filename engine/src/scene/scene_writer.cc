@@ -16,10 +16,14 @@ std::string Quoted(const std::string& s) { return scene::QuotedText(s); }
 
 const char* SideTypeName(SideType t) {
   switch (t) {
-    case SideType::kWall: return "wall";
-    case SideType::kVelocity: return "velocity";
-    case SideType::kOutflow: return "outflow";
-    case SideType::kPeriodic: return "periodic";
+    case SideType::kWall:
+      return "wall";
+    case SideType::kVelocity:
+      return "velocity";
+    case SideType::kOutflow:
+      return "outflow";
+    case SideType::kPeriodic:
+      return "periodic";
   }
   return "wall";
 }
@@ -38,9 +42,12 @@ std::string SideText(const BoundarySide& s) {
 
 const char* MotionName(Motion m) {
   switch (m) {
-    case Motion::kFree: return "free";
-    case Motion::kFixed: return "fixed";
-    case Motion::kPrescribed: return "prescribed";
+    case Motion::kFree:
+      return "free";
+    case Motion::kFixed:
+      return "fixed";
+    case Motion::kPrescribed:
+      return "prescribed";
   }
   return "free";
 }
@@ -76,7 +83,8 @@ std::string WriteScene(const Params& p) {
   o << "\n[splitting]\n";
   o << "alpha = " << ExactText(p.splitting.alpha) << "\n";
   o << "beta = " << ExactText(p.splitting.beta) << "\n";
-  o << "advection = \"" << (p.splitting.advection == AdvectionScheme::kWave ? "wave" : "least_squares") << "\"\n";
+  o << "advection = \""
+    << (p.splitting.advection == AdvectionScheme::kWave ? "wave" : "least_squares") << "\"\n";
 
   const SolverParams& s = p.solvers;
   o << "\n[solvers]\n";

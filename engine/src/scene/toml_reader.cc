@@ -71,7 +71,8 @@ std::string ExactText(double x) {
 }
 
 TableReader::TableReader(const toml::table* table, std::string prefix)
-    : table_(table), prefix_(std::move(prefix)) {}
+    : table_(table),
+      prefix_(std::move(prefix)) {}
 
 bool TableReader::Has(const std::string& name) const {
   return table_ != nullptr && table_->contains(name);
@@ -94,7 +95,8 @@ double TableReader::Real(const std::string& name, std::optional<double> fallback
     return *fallback;
   }
   if (const auto* f = node->as_floating_point()) {
-    if (!std::isfinite(f->get())) throw InvalidParameter(Key(name), NodeText(*node), "a finite number");
+    if (!std::isfinite(f->get()))
+      throw InvalidParameter(Key(name), NodeText(*node), "a finite number");
     return f->get();
   }
   if (const auto* i = node->as_integer()) return static_cast<double>(i->get());
@@ -146,7 +148,8 @@ Vec2 TableReader::Vector(const std::string& name, std::optional<Vec2> fallback) 
     } else {
       throw InvalidParameter(Key(name), NodeText(*node), "an array of two numbers");
     }
-    if (!std::isfinite(out[k])) throw InvalidParameter(Key(name), NodeText(*node), "two finite numbers");
+    if (!std::isfinite(out[k]))
+      throw InvalidParameter(Key(name), NodeText(*node), "two finite numbers");
   }
   return out;
 }
@@ -172,7 +175,8 @@ void TableReader::RejectUnknown(const std::string& allowed_keys) const {
   for (const auto& [key, node] : *table_) {
     const std::string name(key.str());
     if (known_.count(name) == 0) {
-      throw InvalidParameter(Key(name), NodeText(node), "no such key here (known keys: " + allowed_keys + ")");
+      throw InvalidParameter(Key(name), NodeText(node),
+                             "no such key here (known keys: " + allowed_keys + ")");
     }
   }
 }

@@ -31,7 +31,9 @@ class TableReader {
   // `table` may be null (an absent optional table: every getter returns its default).
   TableReader(const toml::table* table, std::string prefix);
 
-  std::string Key(const std::string& name) const { return prefix_.empty() ? name : prefix_ + "." + name; }
+  std::string Key(const std::string& name) const {
+    return prefix_.empty() ? name : prefix_ + "." + name;
+  }
   bool Has(const std::string& name) const;
 
   // A real (TOML float or integer); `fallback` when absent, an error when absent and !fallback.

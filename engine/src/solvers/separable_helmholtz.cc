@@ -63,8 +63,10 @@ struct Transform {
 Transform TransformFor(const AxisBoundary& x, int nx) {
   const double sine_cosine = 1.0 / (2.0 * nx);
   if (x.low == EndKind::kPeriodic) return {FFTW_R2HC, FFTW_HC2R, 1.0 / nx};
-  if (x.low == EndKind::kDirichlet && x.high == EndKind::kDirichlet) return {FFTW_RODFT00, FFTW_RODFT00, sine_cosine};
-  if (x.low == EndKind::kNeumann && x.high == EndKind::kNeumann) return {FFTW_REDFT00, FFTW_REDFT00, sine_cosine};
+  if (x.low == EndKind::kDirichlet && x.high == EndKind::kDirichlet)
+    return {FFTW_RODFT00, FFTW_RODFT00, sine_cosine};
+  if (x.low == EndKind::kNeumann && x.high == EndKind::kNeumann)
+    return {FFTW_REDFT00, FFTW_REDFT00, sine_cosine};
   if (x.low == EndKind::kDirichlet) return {FFTW_RODFT01, FFTW_RODFT10, sine_cosine};
   return {FFTW_REDFT01, FFTW_REDFT10, sine_cosine};
 }
@@ -86,7 +88,8 @@ double ModeEigenvalue(const AxisBoundary& x, int nx, int p) {
 }
 
 void CheckAxis(const char* name, int cells, const AxisBoundary& ends) {
-  const bool periodic_low = ends.low == EndKind::kPeriodic, periodic_high = ends.high == EndKind::kPeriodic;
+  const bool periodic_low = ends.low == EndKind::kPeriodic,
+             periodic_high = ends.high == EndKind::kPeriodic;
   if (periodic_low != periodic_high) {
     throw InvalidParameter(std::string("domain.boundary (") + name + ")", "one periodic side",
                            "periodic sides in pairs");
@@ -103,7 +106,7 @@ struct SeparableHelmholtz::Impl {
   BoundaryTopology topo;
   double a = 0.0, b = 0.0;
   UnknownLines ux, uy;
-  int modes = 0;      // = ux.count, the transform length
+  int modes = 0;  // = ux.count, the transform length
   bool cyclic = false;
   bool singular = false;
   Transform transform{};
@@ -113,7 +116,7 @@ struct SeparableHelmholtz::Impl {
   std::vector<double> cyclic_z;      // uy.count x modes: A'^-1 u of Sherman-Morrison
   std::vector<double> cyclic_coef;   // per mode: 1 / (1 + v.z), 0 for the pinned mode
   std::vector<double> cyclic_beta_over_gamma;  // per mode: beta / gamma
-  std::vector<double*> buffers;      // rows x modes, plus one row of per-mode scratch
+  std::vector<double*> buffers;                // rows x modes, plus one row of per-mode scratch
   // DD and NN in x: the type-I transforms (their own inverse up to the scale) through a real DFT of
   // the extension (type_one_transform.h); the other kinds: FFTW r2r plans.
   std::unique_ptr<TypeOneTransform> type_one;
@@ -296,14 +299,17 @@ void SeparableHelmholtz::Impl::Scatter(const double* buf, double* x) const {
   }
 }
 
-SeparableHelmholtz::SeparableHelmholtz(const Grid& grid, const BoundaryTopology& topo, double a, double b,
-                                       int workspaces)
+SeparableHelmholtz::SeparableHelmholtz(const Grid& grid, const BoundaryTopology& topo, double a,
+                                       double b, int workspaces)
     : impl_(std::make_unique<Impl>()) {
   CheckAxis("x", grid.nx, topo.x);
   CheckAxis("y", grid.ny, topo.y);
-  if (!(a >= 0.0) || !std::isfinite(a)) throw InvalidParameter("helmholtz a", std::to_string(a), ">= 0");
-  if (!(b > 0.0) || !std::isfinite(b)) throw InvalidParameter("helmholtz b", std::to_string(b), "> 0");
-  if (workspaces < 1) throw InvalidParameter("helmholtz workspaces", std::to_string(workspaces), ">= 1");
+  if (!(a >= 0.0) || !std::isfinite(a))
+    throw InvalidParameter("helmholtz a", std::to_string(a), ">= 0");
+  if (!(b > 0.0) || !std::isfinite(b))
+    throw InvalidParameter("helmholtz b", std::to_string(b), "> 0");
+  if (workspaces < 1)
+    throw InvalidParameter("helmholtz workspaces", std::to_string(workspaces), ">= 1");
   Impl& s = *impl_;
   s.grid = grid;
   s.topo = topo;
@@ -335,10 +341,10 @@ SeparableHelmholtz::SeparableHelmholtz(const Grid& grid, const BoundaryTopology&
   }
   const int length = s.modes;
   const unsigned flags = size > 4096 ? FFTW_MEASURE : FFTW_ESTIMATE;
-  s.forward = fftw_plan_many_r2r(1, &length, s.uy.count, s.buffers[0], nullptr, 1, length, s.buffers[0],
-                                 nullptr, 1, length, &s.transform.forward, flags);
-  s.backward = fftw_plan_many_r2r(1, &length, s.uy.count, s.buffers[0], nullptr, 1, length, s.buffers[0],
-                                  nullptr, 1, length, &s.transform.backward, flags);
+  s.forward = fftw_plan_many_r2r(1, &length, s.uy.count, s.buffers[0], nullptr, 1, length,
+                                 s.buffers[0], nullptr, 1, length, &s.transform.forward, flags);
+  s.backward = fftw_plan_many_r2r(1, &length, s.uy.count, s.buffers[0], nullptr, 1, length,
+                                  s.buffers[0], nullptr, 1, length, &s.transform.backward, flags);
   if (!s.forward || !s.backward) throw Error("SeparableHelmholtz: FFTW could not make a plan");
 }
 

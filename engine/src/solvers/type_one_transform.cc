@@ -11,10 +11,13 @@
 namespace dlmfd {
 
 TypeOneTransform::TypeOneTransform(Kind kind, int length, int rows, int workspaces)
-    : kind_(kind), length_(length), rows_(rows) {
+    : kind_(kind),
+      length_(length),
+      rows_(rows) {
   const int shortest = kind == Kind::kSine ? 1 : 2;
   if (length < shortest) {
-    throw InvalidParameter("type-I transform length", std::to_string(length), ">= " + std::to_string(shortest));
+    throw InvalidParameter("type-I transform length", std::to_string(length),
+                           ">= " + std::to_string(shortest));
   }
   if (rows < 1) throw InvalidParameter("type-I transform rows", std::to_string(rows), ">= 1");
   extended_ = kind == Kind::kSine ? 2 * (length + 1) : 2 * (length - 1);
@@ -22,7 +25,8 @@ TypeOneTransform::TypeOneTransform(Kind kind, int length, int rows, int workspac
   const int block = std::min(rows, kBlockRows);
   try {
     for (int w = 0; w < workspaces; ++w) {
-      extension_.push_back(static_cast<double*>(fftw_malloc(sizeof(double) * std::size_t(extended_) * block)));
+      extension_.push_back(
+          static_cast<double*>(fftw_malloc(sizeof(double) * std::size_t(extended_) * block)));
       spectrum_buffers_.push_back(
           static_cast<double*>(fftw_malloc(sizeof(fftw_complex) * std::size_t(spectrum_) * block)));
       if (!extension_.back() || !spectrum_buffers_.back()) throw std::bad_alloc();
@@ -32,9 +36,9 @@ TypeOneTransform::TypeOneTransform(Kind kind, int length, int rows, int workspac
     auto plan = [&](int howmany) -> void* {
       if (howmany == 0) return nullptr;
       const unsigned flags = std::size_t(extended_) * howmany > 4096 ? FFTW_MEASURE : FFTW_ESTIMATE;
-      fftw_plan p = fftw_plan_many_dft_r2c(1, &extended_, howmany, extension_[0], nullptr, 1, extended_,
-                                           reinterpret_cast<fftw_complex*>(spectrum_buffers_[0]), nullptr, 1,
-                                           spectrum_, flags);
+      fftw_plan p = fftw_plan_many_dft_r2c(
+          1, &extended_, howmany, extension_[0], nullptr, 1, extended_,
+          reinterpret_cast<fftw_complex*>(spectrum_buffers_[0]), nullptr, 1, spectrum_, flags);
       if (!p) throw Error("TypeOneTransform: FFTW could not make a plan");
       return p;
     };
@@ -59,7 +63,8 @@ void TypeOneTransform::Release() {
   spectrum_buffers_.clear();
 }
 
-void TypeOneTransform::ApplyBlock(double* data, int block_rows, void* plan, double* ext, double* spectrum_data) const {
+void TypeOneTransform::ApplyBlock(double* data, int block_rows, void* plan, double* ext,
+                                  double* spectrum_data) const {
   const int n = length_, L = extended_;
   for (int r = 0; r < block_rows; ++r) {
     const double* in = data + std::size_t(r) * n;

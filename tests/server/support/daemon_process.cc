@@ -10,10 +10,10 @@
 
 #include <chrono>
 #include <condition_variable>
-#include <mutex>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 #include <thread>
 
@@ -39,7 +39,8 @@ TempDir::~TempDir() {
 }
 
 DaemonProcess::DaemonProcess(std::string data_dir, std::vector<std::string> extra)
-    : data_dir_(std::move(data_dir)), extra_(std::move(extra)) {
+    : data_dir_(std::move(data_dir)),
+      extra_(std::move(extra)) {
   log_path_ = data_dir_ + ".daemon.log";
   port_file_ = data_dir_ + ".port";
 }
@@ -54,9 +55,9 @@ DaemonProcess::~DaemonProcess() {
 bool DaemonProcess::Start() {
   std::error_code error;
   fs::remove(port_file_, error);
-  std::vector<std::string> args = {kDaemonPath,  "--listen",     "127.0.0.1:0", "--data-dir",
-                                   data_dir_,    "--port-file",  port_file_,    "--solver",
-                                   kSolverPath};
+  std::vector<std::string> args = {kDaemonPath,  "--listen", "127.0.0.1:0",
+                                   "--data-dir", data_dir_,  "--port-file",
+                                   port_file_,   "--solver", kSolverPath};
   args.insert(args.end(), extra_.begin(), extra_.end());
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -96,7 +97,7 @@ int DaemonProcess::Wait() {
     const std::string fresh = log.substr(log_checked_);
     log_checked_ = log.size();
     static const char* const kSanitizerMarkers[] = {"WARNING: ThreadSanitizer",
-                                                     "ERROR: AddressSanitizer", "runtime error:"};
+                                                    "ERROR: AddressSanitizer", "runtime error:"};
     for (const char* marker : kSanitizerMarkers) {
       if (fresh.find(marker) != std::string::npos) {
         ADD_FAILURE() << "the daemon reported \"" << marker << "\":\n" << fresh;
@@ -144,7 +145,8 @@ bool DaemonProcess::Healthy() const {
   std::vector<grpc::Slice> slices;
   if (!reply_buffer.Dump(&slices).ok()) return false;
   std::string bytes;
-  for (const auto& slice : slices) bytes.append(reinterpret_cast<const char*>(slice.begin()), slice.size());
+  for (const auto& slice : slices)
+    bytes.append(reinterpret_cast<const char*>(slice.begin()), slice.size());
   // HealthCheckResponse { status = 1 (SERVING) }: field 1, varint 1 -> bytes 0x08 0x01.
   return bytes == std::string("\x08\x01", 2);
 }

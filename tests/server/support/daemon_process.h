@@ -77,6 +77,7 @@ std::string CavityScene(double end_time = 0.5);
 std::vector<v1::WatchEvent> WatchAll(v1::Jobs::Stub& stub, const std::string& job_id,
                                      const std::string& token = "", int64_t from_seq = 0);
 // Polls Get until the job is finished; returns it.
-v1::Job WaitFinished(v1::Jobs::Stub& stub, const std::string& job_id, const std::string& token = "");
+v1::Job WaitFinished(v1::Jobs::Stub& stub, const std::string& job_id,
+                     const std::string& token = "");
 
 }  // namespace dlmfd::testing

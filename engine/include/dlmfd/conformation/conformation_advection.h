@@ -1,13 +1,16 @@
-// The advective part of step (35): dA/dt + u . grad A = 0 with u = u^{n+2/4} frozen, component-wise,
-// keeping A symmetric positive definite (method notes 2, section 2.1, construction A, step 1).
+// The advective part of step (35): dA/dt + u . grad A = 0 with u = u^{n+2/4} frozen,
+// component-wise, keeping A symmetric positive definite (method notes 2, section 2.1, construction
+// A, step 1).
 //
 // Discrete method, one sub-step of length tau on the node values:
 //   high order A_H: SSP-RK3 (Shu-Osher) of the third-order upwind-biased differences, for u > 0
-//     dA/dx ~ (A_{i-2} - 6 A_{i-1} + 3 A_i + 2 A_{i+1}) / 6h and the mirror image for u < 0 (same in y);
+//     dA/dx ~ (A_{i-2} - 6 A_{i-1} + 3 A_i + 2 A_{i+1}) / 6h and the mirror image for u < 0 (same
+//     in y);
 //   low order A_L: one forward-Euler step of first-order upwind, A_L = (1 - |cx| - |cy|) A_i
 //     + |cx| A_upwind-x + |cy| A_upwind-y, a convex combination when |cx| + |cy| <= 1;
 //   SPD blend per node: with m_H = lambda_min(A_H), m_L = lambda_min(A_L), keep A_H when
-//     m_H >= kappa m_L, else A = theta A_H + (1 - theta) A_L, theta = (1 - kappa) m_L / (m_L - m_H).
+//     m_H >= kappa m_L, else A = theta A_H + (1 - theta) A_L, theta = (1 - kappa) m_L / (m_L -
+//     m_H).
 //   The caller chooses tau so that (|u| + |v|) tau / h <= conformation.max_courant <= 1.
 // Why A stays SPD: the SPD cone is convex, so A_L is SPD with lambda_min(A_L) >= the smallest
 //   lambda_min of its stencil; lambda_min is concave, so lambda_min(theta A_H + (1 - theta) A_L) >=
@@ -60,8 +63,8 @@ class ConformationAdvection {
   void FillGhosts(double* f) const;
   void RestoreFixedAndGhosts(double* const f[3]) const;
   // out = w_base * base + w_in * (in + tau R(in)), R the third-order advection operator.
-  void Stage(double tau, const double* u, const double* v, double w_base, double* const base[3], double w_in,
-             double* const in[3], double* const out[3]) const;
+  void Stage(double tau, const double* u, const double* v, double w_base, double* const base[3],
+             double w_in, double* const in[3], double* const out[3]) const;
 
   static constexpr int kGhost = 2;
   Grid grid_;

@@ -1,8 +1,9 @@
-// Step (35) of the paper: the Oldroyd-B configuration tensor A from t_n to t_{n+1} with the velocity
-// u = u^{n+2/4} frozen (construction A of method notes 2, section 2.1).
+// Step (35) of the paper: the Oldroyd-B configuration tensor A from t_n to t_{n+1} with the
+// velocity u = u^{n+2/4} frozen (construction A of method notes 2, section 2.1).
 //
 // Equation (5): dA/dt + u . grad A = L A + A L^T - (A - I)/lambda, L_ij = du_i/dx_j; A = I inside
-//   the particles, A = A_L on the upstream boundary. A is P1 on the h-mesh (values at the velocity nodes).
+//   the particles, A = A_L on the upstream boundary. A is P1 on the h-mesh (values at the velocity
+//   nodes).
 // Discrete method (a first-order Lie splitting of (35) into advection and a pointwise ODE):
 //   1. advection dA/dt + u . grad A = 0 over dt: SSP-RK3 of third-order upwind-biased differences,
 //      blended per node with first-order upwind to keep A SPD (conformation_advection.h), in n_sub
@@ -11,8 +12,9 @@
 //      (average of the 6 P1 triangle gradients, velocity_gradient.h), solved exactly by the
 //      exponential integrator (pointwise_update.h);
 //   3. A = I at nodes inside particles; A = A_L at the nodes of velocity sides where u . n < 0
-//      (inflow_state.h: the fully developed Oldroyd-B state of a poiseuille profile, I for a uniform
-//      one), also held during step 1; walls and outflow sides get nothing (constant extrapolation).
+//      (inflow_state.h: the fully developed Oldroyd-B state of a poiseuille profile, I for a
+//      uniform one), also held during step 1; walls and outflow sides get nothing (constant
+//      extrapolation).
 // Consistency with (35): (35) is a backward-Euler step of (5) with u^{n+2/4} frozen; the paper
 //   (remark 3 of section 4) solves it by a third-order upwind, positive-only scheme. Splitting the
 //   frozen-coefficient operator into its convective and pointwise parts is first-order accurate in
@@ -20,14 +22,15 @@
 //   higher order (third in space and time for the advection; the pointwise part exact up to a
 //   sixth-order quadrature, exact for steady states up to it and for pure relaxation).
 // Positive definiteness (method notes 2, 2.1): step 1 keeps A SPD (convexity of the SPD cone and
-//   concavity of lambda_min, see conformation_advection.h) under the sub-cycled Courant bound; step 2
-//   is a positive combination of congruences F A F^T, det F = e^{s tr L} > 0, so SPD for any dt;
+//   concavity of lambda_min, see conformation_advection.h) under the sub-cycled Courant bound; step
+//   2 is a positive combination of congruences F A F^T, det F = e^{s tr L} > 0, so SPD for any dt;
 //   step 3 assigns SPD values. Hence SPD in, SPD out, unconditionally in dt.
 // Checks: A^n is checked before the step and A^{n+1} after it; a non-finite value throws
 //   NumericalBlowUp, lambda_min <= 0 throws ConformationNotPositiveDefinite, each naming the time,
 //   the node and its position and the quantity. From SPD, finite input this happens only through
-//   overflow (e^{2 dt max eig L} beyond 1e308) or a condition number of A beyond 1/eps. A non-finite
-//   velocity, or one that would need more than 1000 advection sub-steps, throws NumericalBlowUp.
+//   overflow (e^{2 dt max eig L} beyond 1e308) or a condition number of A beyond 1/eps. A
+//   non-finite velocity, or one that would need more than 1000 advection sub-steps, throws
+//   NumericalBlowUp.
 // Report columns: min_eig_A, max_trA, elastic_courant = lambda dt max |L|_F, blended_nodes (summed
 //   over sub-steps), conformation_substeps.
 // Not supported: the log-conformation form; time-dependent inflow data.
@@ -52,8 +55,9 @@ class ConformationStep {
   ConformationStep(const Params& params, const Grid& grid);
 
   // Step (35) with u = u^{n+2/4} frozen: A^n at t_n = time -> A^{n+1} at time + dt (header block).
-  void Advance(double time, double dt, const double* u, const double* v, const unsigned char* inside_particle,
-               double* a11, double* a12, double* a22, StepReport& report);
+  void Advance(double time, double dt, const double* u, const double* v,
+               const unsigned char* inside_particle, double* a11, double* a12, double* a22,
+               StepReport& report);
 
   // Comparison option for tests only: the unlimited advection (no SPD blend).
   void DisableBlendForComparison() { advection_.DisableBlendForComparison(); }

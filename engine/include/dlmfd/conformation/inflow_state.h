@@ -2,8 +2,8 @@
 //
 // Equation: the steady, homogeneous form of paper (5): L A + A L^T - (A - I)/lambda = 0 with a
 // constant velocity gradient L. It is linear in (A11, A12, A22):
-//   [1/lambda - 2 L11, -2 L12, 0; -L21, 1/lambda - L11 - L22, -L12; 0, -2 L21, 1/lambda - 2 L22] A =
-//   I/lambda,
+//   [1/lambda - 2 L11, -2 L12, 0; -L21, 1/lambda - L11 - L22, -L12; 0, -2 L21, 1/lambda - 2 L22] A
+//   = I/lambda,
 // solved by Cramer's rule. For a parallel flow (L^2 = 0) the solution is
 // A = I + lambda (L + L^T) + 2 lambda^2 L L^T; in simple shear of rate g (u = g y):
 // A11 = 1 + 2 (lambda g)^2, A12 = lambda g, A22 = 1 (reference README, "steady simple shear").
@@ -25,7 +25,9 @@ namespace dlmfd {
 SymTensor SteadyConformation(const Mat2& l, double lambda);
 // Steady simple shear of rate g: the closed form of the reference README.
 SymTensor SimpleShearConformation(double lambda, double shear_rate);
-// A_L at node k (k = 0..nodes along the side - 1, from the bottom or left corner) of a velocity side.
-SymTensor InflowConformation(const Grid& grid, const DomainParams& domain, Side side, int k, double lambda);
+// A_L at node k (k = 0..nodes along the side - 1, from the bottom or left corner) of a velocity
+// side.
+SymTensor InflowConformation(const Grid& grid, const DomainParams& domain, Side side, int k,
+                             double lambda);
 
 }  // namespace dlmfd

@@ -1,20 +1,21 @@
 // The pointwise part of step (35): dA/dt = L A + A L^T - (A - I)/lambda with L frozen, solved
 // exactly up to a quadrature (method notes 2, section 2.1, "exponential integrator").
 //
-// Equation: paper (5) without the convective term, L_ij = du_i/dx_j of u^{n+2/4} frozen over the step.
-// Discrete method: with F(s) = exp(s L),
+// Equation: paper (5) without the convective term, L_ij = du_i/dx_j of u^{n+2/4} frozen over the
+// step. Discrete method: with F(s) = exp(s L),
 //   A(dt) = e^{-dt/lambda} F(dt) A F(dt)^T + (1/lambda) int_0^dt e^{-s/lambda} F(s) F(s)^T ds.
-//   F(s) in closed form: L0 = L - (tr L / 2) I, q^2 = -det L0, F = e^{s tr L/2} (c I + sigma L0) with
-//   c = cosh(q s), sigma = sinh(q s)/q (q^2 > 0), the cos/sin forms (q^2 < 0), and the even power
-//   series in x = q^2 s^2 when |x| < 1e-2 (5 terms: truncation below 1e-16).
-//   The integral: composite 3-point Gauss-Legendre on n panels, n = ceil(dt (1/lambda + |tr L|
+//   F(s) in closed form: L0 = L - (tr L / 2) I, q^2 = -det L0, F = e^{s tr L/2} (c I + sigma L0)
+//   with c = cosh(q s), sigma = sinh(q s)/q (q^2 > 0), the cos/sin forms (q^2 < 0), and the even
+//   power series in x = q^2 s^2 when |x| < 1e-2 (5 terms: truncation below 1e-16). The integral:
+//   composite 3-point Gauss-Legendre on n panels, n = ceil(dt (1/lambda + |tr L|
 //   + 2|q|) / 0.125), at most 256. Relative error of one panel about 0.125^6 / 2016000 ~ 2e-12, far
 //   less when the rate is small (2e-15 at the paper's dt/lambda = 0.04); measured on steady shear:
-//   1.7e-11 at the panel limit, order 6 in the panel width. The weights w_k e^{-s_k/lambda}/lambda are
-//   rescaled so that they integrate e^{-s/lambda}/lambda exactly: they stay positive, and homogeneous
-//   relaxation (L = 0) is exact to round-off: A <- e^{-dt/lambda} A + (1 - e^{-dt/lambda}) I.
-//   Per node of a step: ExponentialIntegrator (one panel: two closed-form exponentials) and its
-//   vectorised row form OnePanelRow; the general rule StretchAndRelax where one panel is not enough.
+//   1.7e-11 at the panel limit, order 6 in the panel width. The weights w_k e^{-s_k/lambda}/lambda
+//   are rescaled so that they integrate e^{-s/lambda}/lambda exactly: they stay positive, and
+//   homogeneous relaxation (L = 0) is exact to round-off: A <- e^{-dt/lambda} A + (1 -
+//   e^{-dt/lambda}) I. Per node of a step: ExponentialIntegrator (one panel: two closed-form
+//   exponentials) and its vectorised row form OnePanelRow; the general rule StretchAndRelax where
+//   one panel is not enough.
 // Positive definiteness, for any dt: det F = e^{s tr L} > 0, so F A F^T is SPD when A is, and the
 //   update is a positive combination of SPD matrices (F(s) F(s)^T is SPD).
 // Not supported: lambda <= 0 (a Newtonian liquid has no conformation step).
@@ -38,7 +39,8 @@ inline double ExpPolynomial(double y) {
                   (1.0 +
                    y * k3 *
                        (1.0 +
-                        y * 0.25 * (1.0 + y * k5 * (1.0 + y * k6 * (1.0 + y * k7 * (1.0 + y * 0.125)))))));
+                        y * 0.25 *
+                            (1.0 + y * k5 * (1.0 + y * k6 * (1.0 + y * k7 * (1.0 + y * 0.125)))))));
 }
 
 // e^y: the polynomial for |y| <= 0.05, the library otherwise.
@@ -55,9 +57,11 @@ inline void HyperbolicPair(double q2, double s, double& c, double& sigma) {
   if (std::abs(x) < 1e-2) {
     // cosh(sqrt x) and sinh(sqrt x)/sqrt x as power series in x (valid for either sign of x).
     constexpr double k12 = 1.0 / 12.0, k30 = 1.0 / 30.0, k56 = 1.0 / 56.0, k90 = 1.0 / 90.0;
-    constexpr double k6 = 1.0 / 6.0, k20 = 1.0 / 20.0, k42 = 1.0 / 42.0, k72 = 1.0 / 72.0, k110 = 1.0 / 110.0;
+    constexpr double k6 = 1.0 / 6.0, k20 = 1.0 / 20.0, k42 = 1.0 / 42.0, k72 = 1.0 / 72.0,
+                     k110 = 1.0 / 110.0;
     c = 1.0 + x * 0.5 * (1.0 + x * k12 * (1.0 + x * k30 * (1.0 + x * k56 * (1.0 + x * k90))));
-    sigma = s * (1.0 + x * k6 * (1.0 + x * k20 * (1.0 + x * k42 * (1.0 + x * k72 * (1.0 + x * k110)))));
+    sigma =
+        s * (1.0 + x * k6 * (1.0 + x * k20 * (1.0 + x * k42 * (1.0 + x * k72 * (1.0 + x * k110)))));
   } else if (q2 > 0.0) {
     const double q = std::sqrt(q2);
     c = std::cosh(q * s);
@@ -81,15 +85,18 @@ inline ExponentialParts ExponentialPartsOf(const Mat2& l, double s) {
 inline Mat2 Assemble(const ExponentialParts& e, const Mat2& l, double sign) {
   const double scale = sign > 0.0 ? e.scale : 1.0 / e.scale;
   const double sg = sign * e.sigma;
-  return Mat2{scale * (e.c + sg * e.d), scale * sg * l.m12, scale * sg * l.m21, scale * (e.c - sg * e.d)};
+  return Mat2{scale * (e.c + sg * e.d), scale * sg * l.m12, scale * sg * l.m21,
+              scale * (e.c - sg * e.d)};
 }
 
 // exp(s L) for a 2x2 L, in closed form.
-inline Mat2 MatrixExponential(const Mat2& l, double s) { return Assemble(ExponentialPartsOf(l, s), l, 1.0); }
+inline Mat2 MatrixExponential(const Mat2& l, double s) {
+  return Assemble(ExponentialPartsOf(l, s), l, 1.0);
+}
 
 inline Mat2 Product(const Mat2& a, const Mat2& b) {
-  return Mat2{a.m11 * b.m11 + a.m12 * b.m21, a.m11 * b.m12 + a.m12 * b.m22, a.m21 * b.m11 + a.m22 * b.m21,
-              a.m21 * b.m12 + a.m22 * b.m22};
+  return Mat2{a.m11 * b.m11 + a.m12 * b.m21, a.m11 * b.m12 + a.m12 * b.m22,
+              a.m21 * b.m11 + a.m22 * b.m21, a.m21 * b.m12 + a.m22 * b.m22};
 }
 
 // A(dt) of the frozen-L Oldroyd-B ODE from A(0) = a (see the header block).
@@ -187,22 +194,25 @@ class ExponentialIntegrator {
     const double e_h = ExpOf(half_dt * half_trace);
     const Mat2 e{e_h * (c_h + sigma_h * d), e_h * sigma_h * l.m12, e_h * sigma_h * l.m21,
                  e_h * (c_h - sigma_h * d)};
-    // G^{-+1} = g^{-+1} (c I -+ sigma L0): G G^T and G^{-1} G^{-T} share c^2 I + sigma^2 L0 L0^T and
-    // differ in the sign of c sigma (L0 + L0^T), so
-    // M = w1 G^{-1} G^{-T} + w2 I + w3 G G^T = p (c^2 I + sigma^2 S) + m c sigma P + w2 I.
+    // G^{-+1} = g^{-+1} (c I -+ sigma L0): G G^T and G^{-1} G^{-T} share c^2 I + sigma^2 L0 L0^T
+    // and differ in the sign of c sigma (L0 + L0^T), so M = w1 G^{-1} G^{-T} + w2 I + w3 G G^T = p
+    // (c^2 I + sigma^2 S) + m c sigma P + w2 I.
     const double g2 = ExpOf(2.0 * delta * half_trace), g2_inv = ExpOf(-2.0 * delta * half_trace);
-    const double plus = weight_[0] * g2_inv + weight_[2] * g2, minus = weight_[2] * g2 - weight_[0] * g2_inv;
+    const double plus = weight_[0] * g2_inv + weight_[2] * g2,
+                 minus = weight_[2] * g2 - weight_[0] * g2_inv;
     const double cc = c_d * c_d, ss = sigma_d * sigma_d, cs = minus * c_d * sigma_d;
     const SymTensor inner = Congruence(e, a);
     const SymTensor middle{
         decay_ * inner.a11 + plus * (cc + ss * (d * d + l.m12 * l.m12)) + cs * 2.0 * d + weight_[1],
         decay_ * inner.a12 + plus * ss * d * (l.m21 - l.m12) + cs * (l.m12 + l.m21),
-        decay_ * inner.a22 + plus * (cc + ss * (d * d + l.m21 * l.m21)) - cs * 2.0 * d + weight_[1]};
+        decay_ * inner.a22 + plus * (cc + ss * (d * d + l.m21 * l.m21)) - cs * 2.0 * d +
+            weight_[1]};
     return Congruence(e, middle);
   }
 
   OnePanelConstants Constants() const {
-    return OnePanelConstants{dt_, inv_lambda_, decay_, max_rate_, weight_[0], weight_[1], weight_[2]};
+    return OnePanelConstants{dt_,        inv_lambda_, decay_,    max_rate_,
+                             weight_[0], weight_[1],  weight_[2]};
   }
 
  private:
@@ -217,8 +227,9 @@ class ExponentialIntegrator {
 // redoes those nodes with ExponentialIntegrator::Apply. Compiled for AVX2 and for the baseline
 // (chosen at load time); both do the same IEEE operations in the same order.
 void OnePanelRow(int count, const OnePanelConstants& k, const double* __restrict a11,
-                 const double* __restrict a12, const double* __restrict a22, const double* __restrict l11,
-                 const double* __restrict l12, const double* __restrict l21, const double* __restrict l22,
-                 double* __restrict o11, double* __restrict o12, double* __restrict o22);
+                 const double* __restrict a12, const double* __restrict a22,
+                 const double* __restrict l11, const double* __restrict l12,
+                 const double* __restrict l21, const double* __restrict l22, double* __restrict o11,
+                 double* __restrict o12, double* __restrict o22);
 
 }  // namespace dlmfd

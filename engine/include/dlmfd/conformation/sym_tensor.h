@@ -34,7 +34,8 @@ inline double MaxEigenvalue(const SymTensor& a) {
   return 0.5 * (a.a11 + a.a22) + std::sqrt(half_diff * half_diff + a.a12 * a.a12);
 }
 
-// lambda_min = det / lambda_max when lambda_max > 0 (no cancellation); otherwise the direct formula.
+// lambda_min = det / lambda_max when lambda_max > 0 (no cancellation); otherwise the direct
+// formula.
 inline double MinEigenvalue(const SymTensor& a) {
   const double lambda_max = MaxEigenvalue(a);
   if (lambda_max > 0.0) return Determinant(a) / lambda_max;
@@ -43,7 +44,9 @@ inline double MinEigenvalue(const SymTensor& a) {
 }
 
 // A lower bound of lambda_min (Gershgorin discs): cheap screens before the exact value.
-inline double GershgorinLowerBound(const SymTensor& a) { return std::min(a.a11, a.a22) - std::abs(a.a12); }
+inline double GershgorinLowerBound(const SymTensor& a) {
+  return std::min(a.a11, a.a22) - std::abs(a.a12);
+}
 
 // theta a + (1 - theta) b.
 inline SymTensor Mix(double theta, const SymTensor& a, const SymTensor& b) {

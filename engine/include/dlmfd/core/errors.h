@@ -1,6 +1,6 @@
 // Typed errors of the engine. The engine throws, never exits; dlmfd-solve maps them to exit status
-// and summary.json (design.md 5): InvalidParameter -> status 2 before the run; the others -> the run
-// ends FAILED with what() as the reason and every result written so far kept.
+// and summary.json (design.md 5): InvalidParameter -> status 2 before the run; the others -> the
+// run ends FAILED with what() as the reason and every result written so far kept.
 #pragma once
 
 #include <stdexcept>
@@ -19,7 +19,9 @@ class InvalidParameter : public Error {
  public:
   InvalidParameter(std::string key, std::string value, std::string allowed)
       : Error(key + " = " + value + " is not allowed: expected " + allowed),
-        key_(std::move(key)), value_(std::move(value)), allowed_(std::move(allowed)) {}
+        key_(std::move(key)),
+        value_(std::move(value)),
+        allowed_(std::move(allowed)) {}
   const std::string& key() const { return key_; }
   const std::string& value() const { return value_; }
   const std::string& allowed() const { return allowed_; }

@@ -22,7 +22,9 @@ struct Grid {
   int NodesX() const { return nx + 1; }
   int NodesY() const { return ny + 1; }
   std::size_t NodeCount() const { return std::size_t(nx + 1) * std::size_t(ny + 1); }
-  std::size_t Index(int i, int j) const { return std::size_t(j) * std::size_t(nx + 1) + std::size_t(i); }
+  std::size_t Index(int i, int j) const {
+    return std::size_t(j) * std::size_t(nx + 1) + std::size_t(i);
+  }
   double X(int i) const { return x0 + i * h; }
   double Y(int j) const { return y0 + j * h; }
   double Width() const { return nx * h; }

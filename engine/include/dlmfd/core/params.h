@@ -37,7 +37,8 @@ struct FluidParams {
   double viscosity = 0.01;       // zero-shear eta = eta_s + eta_p > 0
   double relaxation_time = 0.0;  // lambda_r >= 0; 0 = Newtonian
   double solvent_ratio = 1.0;    // beta = eta_s / eta in (0, 1]
-  Vec2 body_force = Vec2::Zero();  // force per unit volume on the liquid (e.g. a mean pressure gradient)
+  Vec2 body_force =
+      Vec2::Zero();  // force per unit volume on the liquid (e.g. a mean pressure gradient)
   double SolventViscosity() const { return solvent_ratio * viscosity; }
   double PolymerViscosity() const { return (1.0 - solvent_ratio) * viscosity; }
   bool IsNewtonian() const { return relaxation_time == 0.0 || solvent_ratio == 1.0; }
@@ -50,8 +51,8 @@ struct TimeParams {
 
 enum class AdvectionScheme { kLeastSquares, kWave };
 
-// Marchuk-Yanenko weights of the viscous term: alpha in (33), beta in (34), gamma = 1 - alpha - beta
-// in (37). The engine supports gamma = 0 only (the paper's choice), which validation enforces.
+// Marchuk-Yanenko weights of the viscous term: alpha in (33), beta in (34), gamma = 1 - alpha -
+// beta in (37). The engine supports gamma = 0 only (the paper's choice), which validation enforces.
 struct SplittingParams {
   double alpha = 0.5;
   double beta = 0.5;
@@ -64,9 +65,9 @@ struct SplittingParams {
 // on the paper's 5.2 pair they move particle velocities by 2e-5 relative to t = 1 against 1e-6
 // (docs/performance.md, "Stopping rules").
 struct SolverParams {
-  double stokes_tolerance = 1e-4;      // Uzawa/PCG, relative to a fixed reference residual
+  double stokes_tolerance = 1e-4;  // Uzawa/PCG, relative to a fixed reference residual
   int stokes_max_iterations = 200;
-  double advection_tolerance = 1e-2;   // LS-CG, ratio of gradient norms
+  double advection_tolerance = 1e-2;  // LS-CG, ratio of gradient norms
   int advection_max_iterations = 50;
   double wave_max_courant = 0.5;       // wave-like scheme: sub-steps so that |u| tau / h <= this
   double multiplier_tolerance = 1e-4;  // DLM CG (37), relative
@@ -100,14 +101,14 @@ enum class ConformationForm { kA };
 
 struct ConformationParams {
   ConformationForm form = ConformationForm::kA;
-  double max_courant = 0.4;    // advection sub-cycling: |u| tau / h <= this
-  double blend_kappa = 0.5;    // SPD blend: lambda_min(A) >= kappa lambda_min(A_low)
+  double max_courant = 0.4;  // advection sub-cycling: |u| tau / h <= this
+  double blend_kappa = 0.5;  // SPD blend: lambda_min(A) >= kappa lambda_min(A_low)
 };
 
 struct OutputParams {
-  double fields_every = 0.1;       // simulated time between field snapshots; 0 = none
-  double particles_every = 0.01;   // between particle records; 0 = every step
-  double checkpoint_every = 1.0;   // between checkpoints; 0 = none
+  double fields_every = 0.1;      // simulated time between field snapshots; 0 = none
+  double particles_every = 0.01;  // between particle records; 0 = every step
+  double checkpoint_every = 1.0;  // between checkpoints; 0 = none
 };
 
 struct Params {

@@ -46,7 +46,10 @@ struct StepReport {
   // std::string built from the literal, is compared).
   void Set(std::string_view name, double value) {
     for (auto& c : columns) {
-      if (c.first == name) { c.second = value; return; }
+      if (c.first == name) {
+        c.second = value;
+        return;
+      }
     }
     columns.emplace_back(std::string(name), value);
   }

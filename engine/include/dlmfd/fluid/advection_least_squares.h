@@ -5,11 +5,11 @@
 // by vertex (trapezoidal) quadrature, consistent with the lumped mass (method notes 1, section 4).
 //
 // Solver: minimise J(u) = 1/2 <P^-1 T(u), T(u)> with P = (rho/dt) M_l + nu_b K (fast solver; the
-// diagonal (rho/dt) M_l when nu_b = 0) by Polak-Ribiere CG (restart when the coefficient is negative)
-// with the exact line search along w: T(u - l w) = T0 - l T1 + l^2 T2 is quadratic in l, so J is a
-// quartic whose stationary points are the real roots of a cubic; the root with the lowest J is taken.
-// 6 scalar fast solves per iteration, 4 to start. Stopping rule: sqrt(g.r / g0.r0) <= tol
-// (solvers.advection_tolerance; 1e-3 is ample for this first-order splitting, notes section 4).
+// diagonal (rho/dt) M_l when nu_b = 0) by Polak-Ribiere CG (restart when the coefficient is
+// negative) with the exact line search along w: T(u - l w) = T0 - l T1 + l^2 T2 is quadratic in l,
+// so J is a quartic whose stationary points are the real roots of a cubic; the root with the lowest
+// J is taken. 6 scalar fast solves per iteration, 4 to start. Stopping rule: sqrt(g.r / g0.r0) <=
+// tol (solvers.advection_tolerance; 1e-3 is ample for this first-order splitting, notes section 4).
 // The gradient T'(u)^T y uses G^T z = -G z + (boundary integral of z phi n) on outflow sides, exact
 // for every boundary kind (the boundary term vanishes where y = 0 and on periodic sides).
 // Throws SolverNotConverged after advection_max_iterations.
@@ -79,13 +79,13 @@ class AdvectionLeastSquares {
   std::vector<double> mass_;
   bool outflow_[4] = {false, false, false, false};  // by Side
   // Work arrays, two components each where paired.
-  std::vector<double> su_, sv_;                       // u*
-  std::vector<double> gxu_, gyu_, gxv_, gyv_;         // G of the current iterate
-  std::vector<double> gxw_, gyw_, gxwv_, gywv_;       // G of w (u and v components)
+  std::vector<double> su_, sv_;                  // u*
+  std::vector<double> gxu_, gyu_, gxv_, gyv_;    // G of the current iterate
+  std::vector<double> gxw_, gyw_, gxwv_, gywv_;  // G of w (u and v components)
   std::vector<double> t0u_, t0v_, t1u_, t1v_, t2u_, t2v_;
   std::vector<double> yu_, yv_, z1u_, z1v_, z2u_, z2v_;
   std::vector<double> ru_, rv_, gu_, gv_, wu_, wv_;
-  std::vector<double> s1_, s2_, s3_, s4_;             // scratch
+  std::vector<double> s1_, s2_, s3_, s4_;  // scratch
 };
 
 }  // namespace dlmfd

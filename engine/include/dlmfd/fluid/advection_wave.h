@@ -2,14 +2,15 @@
 // implicit diffusion step: the advection part d_t u + (V.grad) u = 0, with V = u^{n+1/4} frozen
 // (discretely solenoidal after (33)), is replaced by the equivalent second-order problem
 //   d_tt u - div((V.grad u) V) = 0,  u(0) = u^{n+1/4},  d_t u(0) = -(V.grad) u^{n+1/4},
-// u = u_Gamma on Dirichlet sides and (V.n)(d_t u + V.grad u) = 0 on the rest (method notes 1, end of
-// section 4). Then (rho/dt) M_l (u^{n+2/4} - u_adv) + nu_b K u^{n+2/4} = 0 with nu_b = beta eta_s
-// (one fast solve per component; skipped when beta = 0).
+// u = u_Gamma on Dirichlet sides and (V.n)(d_t u + V.grad u) = 0 on the rest (method notes 1, end
+// of section 4). Then (rho/dt) M_l (u^{n+2/4} - u_adv) + nu_b K u^{n+2/4} = 0 with nu_b = beta
+// eta_s (one fast solve per component; skipped when beta = 0).
 //
 // Discrete method: lumped mass M_l, K_V = int (V.grad phi_i)(V.grad phi_j) with the exact P1
-// integral W_T = int_T V V^T = |T|/12 (sum_k V_k V_k^T + S S^T) per triangle (S the sum of the vertex
-// values); centred explicit sub-steps tau = dt / Q,
-//   M (u^{q+1} - 2 u^q + u^{q-1}) / tau^2 + K_V u^q + M_out (V.n)^+ (u^{q+1} - u^{q-1}) / (2 tau) = 0,
+// integral W_T = int_T V V^T = |T|/12 (sum_k V_k V_k^T + S S^T) per triangle (S the sum of the
+// vertex values); centred explicit sub-steps tau = dt / Q,
+//   M (u^{q+1} - 2 u^q + u^{q-1}) / tau^2 + K_V u^q + M_out (V.n)^+ (u^{q+1} - u^{q-1}) / (2 tau) =
+//   0,
 // started by u^1 = u^0 + tau u_t + tau^2/2 u_tt with u_t = -M^-1 N(V, u^0). Q is the smallest count
 // with max|V| tau / h <= solvers.wave_max_courant (a uniform flow is stable up to 1/sqrt(2)
 // across the mesh diagonals and sqrt(2/3) along the axes: advection_wave.cc).
@@ -46,7 +47,7 @@ class AdvectionWave {
   AdvectionReport Solve(double* u, double* v);
 
  private:
-  void FreezeVelocity(const double* u, const double* v);          // W_T per triangle from V
+  void FreezeVelocity(const double* u, const double* v);  // W_T per triangle from V
   void ApplyWaveStiffness(const double* u, const double* v, double* ku, double* kv);  // K_V
   std::size_t Cell(int ci, int cj) const { return std::size_t(cj + 1) * (grid_.nx + 2) + (ci + 1); }
 
@@ -59,7 +60,8 @@ class AdvectionWave {
   std::vector<double> mass_, out_mass_;  // lumped mass; outflow boundary mass (V.n)^+ M_out
   std::vector<double> vx_, vy_;          // frozen V
   std::vector<double> w11a_, w12a_, w22a_, w11b_, w12b_, w22b_;  // W_T / h^2 of (a,b,c), (a,c,d)
-  std::vector<double> f1xu_, f1yu_, f2xu_, f2yu_, f1xv_, f1yv_, f2xv_, f2yv_;  // fluxes, padded cells
+  std::vector<double> f1xu_, f1yu_, f2xu_, f2yu_, f1xv_, f1yv_, f2xv_,
+      f2yv_;  // fluxes, padded cells
   std::vector<double> u0_, v0_, u1_, v1_, ku_, kv_, gx_, gy_;
   int outflow_normal_[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
   bool outflow_[4] = {false, false, false, false};

@@ -2,8 +2,8 @@
 // u - l w the residual is T0 - l T1 + l^2 T2, so with a_ij = T_i . P^-1 T_j
 //   2 J(l) = a00 - 2 l a01 + l^2 (a11 + 2 a02) - 2 l^3 a12 + l^4 a22,
 // a quartic whose stationary points are the real roots of the cubic J'(l) = 0 (up to three). The
-// minimiser is the root with the lowest J. Roots by the trigonometric / Cardano formulas, polished by
-// Newton; when the cubic and quadratic terms are negligible at the quadratic model's minimiser
+// minimiser is the root with the lowest J. Roots by the trigonometric / Cardano formulas, polished
+// by Newton; when the cubic and quadratic terms are negligible at the quadratic model's minimiser
 // l0 = a01 / (a11 + 2 a02) (a nearly linear problem), l0 polished by Newton is used.
 #pragma once
 

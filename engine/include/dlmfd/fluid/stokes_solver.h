@@ -10,14 +10,14 @@
 // Gravity does not enter: the split scheme absorbs rho_L g into the pressure.
 //
 // Solver: Uzawa / preconditioned CG on the pressure (Glowinski), Cahouet-Chabard preconditioner
-// P^-1 = nu M_p^-1 + (rho/dt) K_p^-1; each iteration 2 velocity fast solves (u and v side by side on
-// two OpenMP sections), 1 pressure fast solve. Warm start from the given pressure.
-// Stopping rule: sqrt(r.P^-1 r) <= tol * ref with the fixed reference
+// P^-1 = nu M_p^-1 + (rho/dt) K_p^-1; each iteration 2 velocity fast solves (u and v side by side
+// on two OpenMP sections), 1 pressure fast solve. Warm start from the given pressure. Stopping
+// rule: sqrt(r.P^-1 r) <= tol * ref with the fixed reference
 //   ref = sqrt((rho/dt) max(|u^n|^2_M, |u^0|^2_M))    (u^0 the first velocity iterate),
 // so sqrt(r.P^-1 r)/ref measures the non-solenoidal part of the velocity relative to the velocity
 // itself; it does not depend on how good the warm start is (method notes 1, pitfall 5).
-// Pressure: mean-free (M_p-weighted) when every side is Dirichlet or periodic; p = 0 on outflow sides.
-// Throws SolverNotConverged after stokes_max_iterations.
+// Pressure: mean-free (M_p-weighted) when every side is Dirichlet or periodic; p = 0 on outflow
+// sides. Throws SolverNotConverged after stokes_max_iterations.
 //
 // Not supported: the symmetric-gradient form 2 eta_s D:D (it couples the components).
 // References: Glowinski, Finite element methods for incompressible viscous flow (2003), sections
@@ -38,9 +38,10 @@ namespace dlmfd {
 
 struct StokesReport {
   int iterations = 0;
-  double residual = 0.0;    // final sqrt(r.P^-1 r) / ref
-  double reference = 0.0;   // ref of the stopping rule
-  double divergence = 0.0;  // sqrt(sum_Q (B u)_Q^2 / M_p,Q) over unknown Q: the L2 norm of the discrete divergence
+  double residual = 0.0;   // final sqrt(r.P^-1 r) / ref
+  double reference = 0.0;  // ref of the stopping rule
+  double divergence =
+      0.0;  // sqrt(sum_Q (B u)_Q^2 / M_p,Q) over unknown Q: the L2 norm of the discrete divergence
 };
 
 class StokesSolver {
@@ -51,9 +52,9 @@ class StokesSolver {
   StokesSolver(const StokesSolver&) = delete;
   StokesSolver& operator=(const StokesSolver&) = delete;
 
-  // In: u, v = u^n, p = the warm start (pressure grid). fx, fy: extra dual forcing at velocity nodes
-  // (already integrated against the test functions), or nullptr. Out: u, v = u^{n+1/4} (boundary
-  // data written), p = p^{n+1/4}.
+  // In: u, v = u^n, p = the warm start (pressure grid). fx, fy: extra dual forcing at velocity
+  // nodes (already integrated against the test functions), or nullptr. Out: u, v = u^{n+1/4}
+  // (boundary data written), p = p^{n+1/4}.
   StokesReport Solve(const double* fx, const double* fy, double* u, double* v, double* p);
 
   // sqrt(r.P^-1 r) for r = B(u, v): the residual measure of the stopping rule (for tests).
@@ -79,8 +80,8 @@ class StokesSolver {
   double tolerance_;
   int max_iterations_;
   const BoundaryData& boundary_data_;
-  SeparableHelmholtz velocity_solver_;  // (rho/dt) M_l + nu K
-  SeparableHelmholtz pressure_solver_;  // K_p (Neumann: mean-free; Dirichlet on outflow)
+  SeparableHelmholtz velocity_solver_;            // (rho/dt) M_l + nu K
+  SeparableHelmholtz pressure_solver_;            // K_p (Neumann: mean-free; Dirichlet on outflow)
   std::vector<double> mass_, pmass_, pmass_inv_;  // pmass_: 0 at known nodes
   std::vector<double> fu_, fv_, ubar_, vbar_, tu_, tv_;  // velocity work
   std::vector<double> r_, g_, w_, sw_, z_;               // pressure work

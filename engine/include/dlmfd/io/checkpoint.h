@@ -1,12 +1,13 @@
-// checkpoint.h5: the whole FlowState, bit for bit, to resume a run (design.md 3.2, issue 5 point 3).
+// checkpoint.h5: the whole FlowState, bit for bit, to resume a run (design.md 3.2, issue 5 point
+// 3).
 //
 // Root attributes step, time, scene (the scene text as WriteScene gives it, to check on resume that
-// the same scene goes on). Datasets /u, /v, /p and, for a non-Newtonian run, /a11, /a12, /a22 (flat,
-// as in FlowState); per particle, in /particles: id, position (np, 2), velocity (np, 2),
+// the same scene goes on). Datasets /u, /v, /p and, for a non-Newtonian run, /a11, /a12, /a22
+// (flat, as in FlowState); per particle, in /particles: id, position (np, 2), velocity (np, 2),
 // angular_velocity, force (np, 2), torque, radius, density, motion (0 free, 1 fixed, 2 prescribed),
-// and the multiplier vectors concatenated in multiplier with multiplier_offset (np + 1). Doubles are
-// stored as native doubles: what is read back equals what was written. Written to a temporary name
-// and renamed, so a crash while writing leaves the previous checkpoint intact.
+// and the multiplier vectors concatenated in multiplier with multiplier_offset (np + 1). Doubles
+// are stored as native doubles: what is read back equals what was written. Written to a temporary
+// name and renamed, so a crash while writing leaves the previous checkpoint intact.
 #pragma once
 
 #include <string>
@@ -15,7 +16,8 @@
 
 namespace dlmfd {
 
-void WriteCheckpoint(const std::string& path, const FlowState& state, const std::string& scene_text);
+void WriteCheckpoint(const std::string& path, const FlowState& state,
+                     const std::string& scene_text);
 
 struct Checkpoint {
   FlowState state;

@@ -33,7 +33,8 @@ struct FieldSnapshot {
   double h = 0.0;
   double x0 = 0.0;
   double y0 = 0.0;
-  std::map<std::string, FieldArray> fields;  // "u", "v", "p", and "trA", "A11", "A12", "A22" when present
+  std::map<std::string, FieldArray>
+      fields;  // "u", "v", "p", and "trA", "A11", "A12", "A22" when present
 };
 
 // Reads every dataset of a snapshot file; throws dlmfd::Error when the file cannot be read.

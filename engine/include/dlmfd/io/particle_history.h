@@ -1,4 +1,5 @@
-// particles.h5 of the results directory (design.md 3.2): the particle states at the particle cadence.
+// particles.h5 of the results directory (design.md 3.2): the particle states at the particle
+// cadence.
 //
 // Datasets, nt records of np particles: /time (nt), /step (nt), /position (nt, np, 2), /velocity
 // (nt, np, 2), /angular_velocity (nt, np), /force (nt, np, 2), /torque (nt, np); fixed per run: /id
@@ -20,7 +21,8 @@ namespace dlmfd {
 class ParticleHistoryWriter {
  public:
   // Creates (truncates) `path` for the particles of `state`.
-  static std::unique_ptr<ParticleHistoryWriter> Create(const std::string& path, const FlowState& state);
+  static std::unique_ptr<ParticleHistoryWriter> Create(const std::string& path,
+                                                       const FlowState& state);
   // Reopens an existing file and drops the records with step > last_step.
   static std::unique_ptr<ParticleHistoryWriter> Resume(const std::string& path, long last_step);
   ~ParticleHistoryWriter();

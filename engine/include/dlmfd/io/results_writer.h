@@ -4,10 +4,10 @@
 //   fields.xmf (OnSnapshot), checkpoint.h5 (AfterStep, every output.checkpoint_every of simulated
 //   time, and on request), summary.json (Finish).
 //
-// Checkpoints are written by AfterStep, after every observer has seen the step, so that every record
-// of a step at or before the checkpoint is on disk before the checkpoint exists. Resume() cuts
-// particles.h5 and diagnostics.csv back to the records at or before the checkpoint step, drops the
-// snapshots after it and rebuilds fields.xmf: the resumed run then appends exactly what an
+// Checkpoints are written by AfterStep, after every observer has seen the step, so that every
+// record of a step at or before the checkpoint is on disk before the checkpoint exists. Resume()
+// cuts particles.h5 and diagnostics.csv back to the records at or before the checkpoint step, drops
+// the snapshots after it and rebuilds fields.xmf: the resumed run then appends exactly what an
 // uninterrupted run would have written.
 #pragma once
 
@@ -28,13 +28,13 @@ namespace dlmfd {
 
 class ResultsWriter : public Observer {
  public:
-  // A fresh run: creates DIR and DIR/fields, removes the results of an earlier run there (snapshots,
-  // fields.xmf, checkpoint.h5, summary.json), writes scene.toml.
-  static std::unique_ptr<ResultsWriter> Start(const std::string& dir, const Params& params, const Grid& grid,
-                                              const FlowState& initial);
+  // A fresh run: creates DIR and DIR/fields, removes the results of an earlier run there
+  // (snapshots, fields.xmf, checkpoint.h5, summary.json), writes scene.toml.
+  static std::unique_ptr<ResultsWriter> Start(const std::string& dir, const Params& params,
+                                              const Grid& grid, const FlowState& initial);
   // Goes on from the checkpoint at `checkpoint_step` in DIR (see the header comment).
-  static std::unique_ptr<ResultsWriter> Resume(const std::string& dir, const Params& params, const Grid& grid,
-                                               long checkpoint_step);
+  static std::unique_ptr<ResultsWriter> Resume(const std::string& dir, const Params& params,
+                                               const Grid& grid, long checkpoint_step);
 
   void OnStep(const FlowState& state, const StepReport& report) override;
   void OnParticles(const FlowState& state) override;

@@ -4,8 +4,9 @@
 // Velocity (and A): wall and velocity sides are Dirichlet (data prescribed), outflow sides are
 // Neumann (do-nothing: the natural condition nu du/dn - p n = 0), periodic sides are periodic.
 // Pressure: the other way round on the 2h grid: Neumann where the velocity is prescribed, Dirichlet
-// (p = 0) on outflow sides, periodic where periodic. Corners belong to Dirichlet when either side is.
-// A periodic pair keeps its last node column (row) equal to the first; only the first is an unknown.
+// (p = 0) on outflow sides, periodic where periodic. Corners belong to Dirichlet when either side
+// is. A periodic pair keeps its last node column (row) equal to the first; only the first is an
+// unknown.
 #pragma once
 
 #include "dlmfd/core/grid.h"

@@ -32,8 +32,8 @@ void ApplyIntegratedGradient(const Grid& grid, const BoundaryTopology& topo, con
 void ApplyDivergence(const Grid& grid, const BoundaryTopology& pressure_topo, const double* u,
                      const double* v, double* out);
 // (out_u, out_v) (velocity nodes) = B^T p, (B^T p)_i = int p_h div phi_i (per component).
-void ApplyDivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo, const double* p,
-                              double* out_u, double* out_v);
+void ApplyDivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo,
+                              const double* p, double* out_u, double* out_v);
 
 // Assembled reference matrices over all nodes of the grid (periodic duplicates folded into the
 // first node; the duplicate rows and columns are empty). For tests and small problems only.
@@ -42,7 +42,9 @@ Eigen::SparseMatrix<double> AssembleStiffness(const Grid& grid, const BoundaryTo
 Eigen::SparseMatrix<double> AssembleGradientX(const Grid& grid, const BoundaryTopology& topo);
 Eigen::SparseMatrix<double> AssembleGradientY(const Grid& grid, const BoundaryTopology& topo);
 // B_x, B_y: (pressure nodes) x (velocity nodes).
-Eigen::SparseMatrix<double> AssembleDivergenceX(const Grid& grid, const BoundaryTopology& pressure_topo);
-Eigen::SparseMatrix<double> AssembleDivergenceY(const Grid& grid, const BoundaryTopology& pressure_topo);
+Eigen::SparseMatrix<double> AssembleDivergenceX(const Grid& grid,
+                                                const BoundaryTopology& pressure_topo);
+Eigen::SparseMatrix<double> AssembleDivergenceY(const Grid& grid,
+                                                const BoundaryTopology& pressure_topo);
 
 }  // namespace dlmfd

@@ -7,10 +7,10 @@
 // rho = collisions.range * h; eps_p, eps_w from the scene. Periodic sides wrap (minimum image).
 // Discrete method: cell lists with cells of side >= 2 R_max + rho, so only the 3 x 3 neighbouring
 // cells can interact: building and sweeping cost O(N). Storage is allocated at construction.
-// Not supported: a periodic length shorter than 2 (2 R_max + rho) (a pair would interact through two
-// images; only the nearest image is seen).
-// References: Glowinski et al., J. Comput. Phys. 169 (2001) 363-426, section 4; method notes 2,
-// section 1.7; Allen & Tildesley, Computer Simulation of Liquids, cell lists.
+// Not supported: a periodic length shorter than 2 (2 R_max + rho) (a pair would interact through
+// two images; only the nearest image is seen). References: Glowinski et al., J. Comput. Phys. 169
+// (2001) 363-426, section 4; method notes 2, section 1.7; Allen & Tildesley, Computer Simulation of
+// Liquids, cell lists.
 #pragma once
 
 #include <algorithm>
@@ -27,7 +27,8 @@ class CollisionForces {
   // radii: one per particle, fixed for the run.
   CollisionForces(const Params& params, const Grid& grid, std::vector<double> radii);
 
-  // forces[i] = F'_i (pairs plus walls) at the given centres; returns the number of active contacts.
+  // forces[i] = F'_i (pairs plus walls) at the given centres; returns the number of active
+  // contacts.
   int Compute(const std::vector<Vec2>& positions, std::vector<Vec2>& forces);
 
   // Smallest surface gap d - R_i - R_j over neighbour pairs and R-to-wall distance over particles;
@@ -49,7 +50,8 @@ class CollisionForces {
  private:
   int CellOf(const Vec2& x) const;
   void BuildCells(const std::vector<Vec2>& positions);
-  // Indices of the distinct neighbouring cells of cell (cx, cy), itself included; returns the count.
+  // Indices of the distinct neighbouring cells of cell (cx, cy), itself included; returns the
+  // count.
   int NeighbourCells(int cx, int cy, int* cells) const;
 
   Grid grid_;

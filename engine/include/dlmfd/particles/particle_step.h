@@ -1,21 +1,23 @@
 // Step 4 of the Marchuk-Yanenko scheme: the particle predictor (36), the rigid-body (DLM) step (37)
-// and the corrector (38), with the collision forces (14)-(15), and the hydrodynamic force and torque.
+// and the corrector (38), with the collision forces (14)-(15), and the hydrodynamic force and
+// torque.
 //
 // Equations, in the corrected form of method notes 2, section 1.7 (typos of (36) and (38) fixed):
 //   (36) for k = 1..K, free particles:
-//          U*^k = U^{k-1} + (g + F'(X^{k-1}) / m_e) dt/K,  X*^k = X^{k-1} + (U^{k-1} + U*^k)/2 dt/K,
-//          U^k  = U^{k-1} + (g + (F'(X^{k-1}) + F'(X*^k)) / (2 m_e)) dt/K,
-//          X^k  = X^{k-1} + (U^{k-1} + U^k)/2 dt/K;   U^{n+2/4} = U^K, X^{n+2/4} = X^K;
+//          U*^k = U^{k-1} + (g + F'(X^{k-1}) / m_e) dt/K,  X*^k = X^{k-1} + (U^{k-1} + U*^k)/2
+//          dt/K, U^k  = U^{k-1} + (g + (F'(X^{k-1}) + F'(X*^k)) / (2 m_e)) dt/K, X^k  = X^{k-1} +
+//          (U^{k-1} + U^k)/2 dt/K;   U^{n+2/4} = U^K, X^{n+2/4} = X^K;
 //        omega is not predicted (central forces).
 //   (37) particles/rigid_body_constraint.h at X^{n+2/4}.
 //   (38) X^{n+1,0} = X^n; for k = 1..K:
 //          X*^k = X^{k-1} + (U^n + U^{n+1})/2 dt/K,
-//          X^k  = X*^k + (F'(X^{k-1}) + F'(X*^k)) / (2 m_e) dt^2/(2K)     (dt^2/(2K), not (dt/K)^2/2).
+//          X^k  = X*^k + (F'(X^{k-1}) + F'(X*^k)) / (2 m_e) dt^2/(2K)     (dt^2/(2K), not
+//          (dt/K)^2/2).
 //   m_e = (1 - rho_L/rho_d) M, M = rho_d pi R^2, I = M R^2/2. Fixed particles stay; prescribed ones
 //   move at their given velocity; neither feels F'.
 //   Force exerted by the fluid (notes 1.6): F_h = -sum nu + rho_L pi R^2 ((U^{n+1} - U^n)/dt - g),
-//   T_h = -sum r_perp . nu + (rho_L/rho_d) I (omega^{n+1} - omega^n)/dt. F_h includes the hydrostatic
-//   buoyancy -rho_L pi R^2 g, because the fluid steps carry no gravity.
+//   T_h = -sum r_perp . nu + (rho_L/rho_d) I (omega^{n+1} - omega^n)/dt. F_h includes the
+//   hydrostatic buoyancy -rho_L pi R^2 g, because the fluid steps carry no gravity.
 // Solver: see RigidBodyConstraint (CG in the H1 product). After (38): overlap check (d < R_i + R_j,
 // or distance to a non-periodic side < R) throws ParticlesOverlap with ids, time and gap.
 // Positions are wrapped into the domain across periodic sides after (38).
@@ -23,12 +25,14 @@
 // multiplier nodes), multiplier_warm_start, collision_contacts (max over the predictor sub-steps),
 // particle_min_gap (capped at 2 R_max + rho).
 // Neutrally buoyant free particles (rho_d = rho_L, m_e = 0): gravity and buoyancy cancel, so (36)
-//   keeps U^{n+2/4} = U^n (X^{n+2/4} = X^n + U^n dt), (38) has no push term, and the collision force
-//   F'_avg of the predictor goes to the fluid through the constraint sum_k nu_k = F'_avg of (37)
-//   (m_e (U - U^n)/dt = m_e g + F'_avg - sum nu with m_e = 0); the force identity below still holds.
+//   keeps U^{n+2/4} = U^n (X^{n+2/4} = X^n + U^n dt), (38) has no push term, and the collision
+//   force F'_avg of the predictor goes to the fluid through the constraint sum_k nu_k = F'_avg of
+//   (37) (m_e (U - U^n)/dt = m_e g + F'_avg - sum nu with m_e = 0); the force identity below still
+//   holds.
 // Not supported: free particles with rho_d < rho_L; gamma != 0; non-circular particles.
-// References: Glowinski et al., J. Comput. Phys. 169 (2001) 363-426; Singh, Joseph, Hesla, Glowinski,
-// Pan, J. Non-Newtonian Fluid Mech. 91 (2000) 165-188 (the paper); method notes 2, part 1.
+// References: Glowinski et al., J. Comput. Phys. 169 (2001) 363-426; Singh, Joseph, Hesla,
+// Glowinski, Pan, J. Non-Newtonian Fluid Mech. 91 (2000) 165-188 (the paper); method notes 2,
+// part 1.
 #pragma once
 
 #include <vector>
@@ -47,8 +51,8 @@ class ParticleStep {
   ParticleStep(const Params& params, const Grid& grid);
 
   // Steps (36)-(38) for one time step: u, v hold u^{n+2/4} on entry and u^{n+1} on return;
-  // particles hold (X^n, U^n, omega^n) on entry and (X^{n+1}, U^{n+1}, omega^{n+1}, F, T) on return.
-  // time is t_n. Throws SolverNotConverged, ParticlesOverlap.
+  // particles hold (X^n, U^n, omega^n) on entry and (X^{n+1}, U^{n+1}, omega^{n+1}, F, T) on
+  // return. time is t_n. Throws SolverNotConverged, ParticlesOverlap.
   void Advance(double time, double dt, std::vector<ParticleState>& particles, double* u, double* v,
                StepReport& report);
 

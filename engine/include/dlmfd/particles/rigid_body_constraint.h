@@ -6,40 +6,40 @@
 //   j_e (omega - omega*)/dt = -sum_k r_perp_k . nu_k,   E u = U + omega r_perp_k at every node k,
 // with nu = G lambda the nodal forces, G = M_p + R^2 K_p the H1 Gram matrix of (24), m_e = (rho_d -
 // rho_L) pi R^2, j_e = m_e R^2 / 2. Fixed and prescribed particles keep U and omega.
-// Discrete method: E is the P1 interpolation from the fluid h-grid (SW-NE diagonals) at the particle
-// nodes, rebuilt each step; E^T only reaches fluid nodes that are unknowns (Dirichlet nodes keep
-// their data); the lumped mass is rho_L h^2 times the trapezoid edge factors.
-// Solver: the conjugate gradient of method notes 1.3 in the H1 product <a, b>_G = a^T G b, all
-// particles stacked in one CG (their supports share fluid nodes when they are close, so the
-// per-particle problems are coupled then; the spectrum of the stacked operator is the union of the
-// per-particle spectra, so the iteration count does not grow with N). The iterate is tracked as nu
-// (lambda is never formed). Warm start from the stored nu when it leaves a smaller residual than the
-// cold start. Stop when <g, g>_G <= max(tol^2 <g0, g0>_G, floor), g0 = E u* - U* - omega* r_perp the
-// cold-start mismatch (for neutral particles: its projection P g0, after the particular forces nu_f;
-// an absolute reference, so warm starts pay) and floor a round-off level (1e-11 times the velocity
-// scale, in the G norm). Throws SolverNotConverged after
+// Discrete method: E is the P1 interpolation from the fluid h-grid (SW-NE diagonals) at the
+// particle nodes, rebuilt each step; E^T only reaches fluid nodes that are unknowns (Dirichlet
+// nodes keep their data); the lumped mass is rho_L h^2 times the trapezoid edge factors. Solver:
+// the conjugate gradient of method notes 1.3 in the H1 product <a, b>_G = a^T G b, all particles
+// stacked in one CG (their supports share fluid nodes when they are close, so the per-particle
+// problems are coupled then; the spectrum of the stacked operator is the union of the per-particle
+// spectra, so the iteration count does not grow with N). The iterate is tracked as nu (lambda is
+// never formed). Warm start from the stored nu when it leaves a smaller residual than the cold
+// start. Stop when <g, g>_G <= max(tol^2 <g0, g0>_G, floor), g0 = E u* - U* - omega* r_perp the
+// cold-start mismatch (for neutral particles: its projection P g0, after the particular forces
+// nu_f; an absolute reference, so warm starts pay) and floor a round-off level (1e-11 times the
+// velocity scale, in the G norm). Throws SolverNotConverged after
 // solvers.multiplier_max_iterations.
-// Cost: one G product per iteration (G w is updated by the CG recursion G w' = G g' + beta G w), and
-// E^T is applied by fluid node: the distinct fluid nodes that E^T reaches get compact slots, and
-// each slot gathers its contributions (stacked multiplier node, weight) from a transposed list built
-// once per step, so the work per iteration is proportional to the multiplier nodes (no fluid-sized
-// array is touched inside the CG) and the fluid velocity is updated once after it. OpenMP (from 32
-// particles on; below, the barriers cost more than the work): the per-particle loops and the
-// per-slot gathers are shared between the threads; every sum is taken per particle and then over
-// the particles in a fixed order, so the result does not depend on the thread count (no atomics).
-// Neutrally buoyant free particles (rho_d = rho_L, m_e = j_e = 0): the momentum equations of (37)
-// become the constraints C^T nu = f, with C = [e_x, e_y, r_perp] the rigid modes at the nodes and
-// f = (F'_avg, 0) the collision force of the predictor (the particle, having no excess mass, passes
-// it straight to the fluid); (U, omega) becomes their multiplier:
+// Cost: one G product per iteration (G w is updated by the CG recursion G w' = G g' + beta G w),
+// and E^T is applied by fluid node: the distinct fluid nodes that E^T reaches get compact slots,
+// and each slot gathers its contributions (stacked multiplier node, weight) from a transposed list
+// built once per step, so the work per iteration is proportional to the multiplier nodes (no
+// fluid-sized array is touched inside the CG) and the fluid velocity is updated once after it.
+// OpenMP (from 32 particles on; below, the barriers cost more than the work): the per-particle
+// loops and the per-slot gathers are shared between the threads; every sum is taken per particle
+// and then over the particles in a fixed order, so the result does not depend on the thread count
+// (no atomics). Neutrally buoyant free particles (rho_d = rho_L, m_e = j_e = 0): the momentum
+// equations of (37) become the constraints C^T nu = f, with C = [e_x, e_y, r_perp] the rigid modes
+// at the nodes and f = (F'_avg, 0) the collision force of the predictor (the particle, having no
+// excess mass, passes it straight to the fluid); (U, omega) becomes their multiplier:
 //   rho_L h^2 (u - u*)/dt = E^T nu,   C^T nu = f,   E u = C (U, omega).
 // Exact elimination, with nu = G lambda and the G-orthogonal projector P = I - C S^-1 C^T G
 // (S = C^T G C, 3x3 per mesh, constant because the mesh translates without rotating):
 //   lambda = lambda_f + P mu with lambda_f = C S^-1 f (so C^T G lambda_f = f, C^T G P = 0), and
 //   P (E u* + dt E M^-1 E^T G lambda) = 0 for mu: the operator P E M^-1 E^T G is self-adjoint and
 //   positive on range(P) in <., .>_G, so the same CG runs on it with the residual and the response
-//   projected by P (the G-weighted rigid part is taken out) and the nodal directions G w free of net
-//   force and torque. Then E u - C (U, omega) = P E u, hence (U, omega) = S^-1 C^T G E u, the rigid
-//   part of E u in the G metric, recovered after the CG. Heavy, neutral, fixed and prescribed
+//   projected by P (the G-weighted rigid part is taken out) and the nodal directions G w free of
+//   net force and torque. Then E u - C (U, omega) = P E u, hence (U, omega) = S^-1 C^T G E u, the
+//   rigid part of E u in the G metric, recovered after the CG. Heavy, neutral, fixed and prescribed
 //   particles mix in one stacked CG (the projector acts per neutral particle).
 // Not supported: free particles lighter than the liquid (m_e < 0: eliminating U and omega leaves
 // E M^-1 E^T + C D^-1 C^T with D = diag(m_e, m_e, j_e) < 0; on a uniform nodal force the first term
@@ -72,26 +72,29 @@ class RigidBodyConstraint {
     bool warm_start = false;     // the stored multiplier was used
   };
 
-  // Meshes for every particle of params.particles (one per distinct radius). Throws InvalidParameter.
+  // Meshes for every particle of params.particles (one per distinct radius). Throws
+  // InvalidParameter.
   RigidBodyConstraint(const Params& params, const Grid& grid);
 
-  // Solves (37). On entry particles hold X^{n+2/4}, U* and omega*, u and v hold u^{n+2/4}; on return
-  // particles hold U^{n+1}, omega^{n+1} and multiplier = nu, u and v hold u^{n+1}. time names the
-  // step in errors. Throws ParticlesOverlap when a particle mesh leaves a non-periodic domain,
-  // SolverNotConverged.
+  // Solves (37). On entry particles hold X^{n+2/4}, U* and omega*, u and v hold u^{n+2/4}; on
+  // return particles hold U^{n+1}, omega^{n+1} and multiplier = nu, u and v hold u^{n+1}. time
+  // names the step in errors. Throws ParticlesOverlap when a particle mesh leaves a non-periodic
+  // domain, SolverNotConverged.
   Outcome Enforce(double time, double dt, std::vector<ParticleState>& particles, double* u,
                   double* v);
   // The same, with net_force[p] the force a neutrally buoyant free particle p passes to the fluid
   // (its predictor collision force F'_avg); ignored for the other particles. nullptr means zero.
-  Outcome Enforce(double time, double dt, std::vector<ParticleState>& particles, double* u, double* v,
-                  const Vec2* net_force);
+  Outcome Enforce(double time, double dt, std::vector<ParticleState>& particles, double* u,
+                  double* v, const Vec2* net_force);
 
   // True for a free particle with rho_d = rho_L (solved by the projected CG).
   bool IsNeutral(std::size_t particle) const { return neutral_[particle] != 0; }
 
   const ParticleMesh& MeshOf(std::size_t particle) const { return meshes_[mesh_of_[particle]]; }
   // The nodal multiplier count (2 per node) of a particle.
-  std::size_t MultiplierSize(std::size_t particle) const { return 2 * MeshOf(particle).NodeCount(); }
+  std::size_t MultiplierSize(std::size_t particle) const {
+    return 2 * MeshOf(particle).NodeCount();
+  }
   // sum_k nu_k and sum_k r_perp_k . nu_k of the last Enforce (the force and torque the particle
   // exerts on the fluid nodes).
   Vec2 NodalForceSum(std::size_t particle) const { return force_sum_[particle]; }
@@ -148,17 +151,18 @@ class RigidBodyConstraint {
   std::vector<double> inv_excess_mass_, inv_excess_inertia_;  // 0 for fixed, prescribed, neutral
   std::vector<char> neutral_;
   bool any_neutral_ = false;
-  std::vector<std::vector<double>> gram_rigid_;  // per mesh: G C, column c at [c * 2 N + q]
+  std::vector<std::vector<double>> gram_rigid_;      // per mesh: G C, column c at [c * 2 N + q]
   std::vector<Eigen::Matrix3d> rigid_gram_inverse_;  // per mesh: S^-1
 
-  // E, 3 entries per stacked node: the fluid node, its compact response slot (0, a slot always zero,
-  // at Dirichlet nodes), the P1 weight and the weight / lumped node mass (0 at Dirichlet nodes).
+  // E, 3 entries per stacked node: the fluid node, its compact response slot (0, a slot always
+  // zero, at Dirichlet nodes), the P1 weight and the weight / lumped node mass (0 at Dirichlet
+  // nodes).
   std::vector<std::uint32_t> stencil_node_, stencil_slot_;
   std::vector<double> stencil_weight_, stencil_scatter_;
-  std::size_t slot_count_ = 0;           // slots 1..slot_count_ are in use this step
-  std::vector<std::uint32_t> touched_;   // per slot: its fluid node (touched_[0] unused)
-  std::vector<long> stamp_;              // per fluid node: last step that gave it a slot
-  std::vector<std::uint32_t> slot_of_;   // per fluid node: its slot in that step
+  std::size_t slot_count_ = 0;          // slots 1..slot_count_ are in use this step
+  std::vector<std::uint32_t> touched_;  // per slot: its fluid node (touched_[0] unused)
+  std::vector<long> stamp_;             // per fluid node: last step that gave it a slot
+  std::vector<std::uint32_t> slot_of_;  // per fluid node: its slot in that step
   long stamp_counter_ = 0;
   // E^T by slot: contributions spread_start_[s] .. spread_start_[s + 1] - 1, each a stacked node
   // and dt times its scatter weight, in increasing stacked node order.

@@ -7,9 +7,9 @@
 //   U(Y, T) = 3/2 (1 - Y^2) - 48 sum_k sin(N (1 + Y) / 2) / N^3 exp(-a T / 2)
 //             [cosh(b T / 2) + (g / b) sinh(b T / 2)],   N = (2k - 1) pi,
 //   a = 1 + beta E N^2 / 4,  b^2 = a^2 - E N^2,  g = 1 - (2 - beta) E N^2 / 4.
-// Method: the exponentials are combined as ((1 + g/b) e^{(b - a) T/2} + (1 - g/b) e^{-(a + b) T/2}) / 2
-// with b complex (purely imaginary) for the low modes where a^2 < E N^2, so nothing overflows and
-// the sum is real. The terms decay as N^-3; with 400 terms the series matches the reference
+// Method: the exponentials are combined as ((1 + g/b) e^{(b - a) T/2} + (1 - g/b) e^{-(a + b) T/2})
+// / 2 with b complex (purely imaginary) for the low modes where a^2 < E N^2, so nothing overflows
+// and the sum is real. The terms decay as N^-3; with 400 terms the series matches the reference
 // table to its 5 decimals (tests/convergence/waters_king_test.cc).
 // Not supported: other channel geometries, the polymer stress (only the velocity is given).
 // Reference: N. D. Waters, M. J. King, Rheol. Acta 9 (1970) 345-355. Used by
@@ -33,8 +33,8 @@ inline double WatersKingVelocity(double y, double t, double beta, double elastic
     const double a = 1.0 + beta * elasticity * n * n / 4.0;
     const double g = 1.0 - (2.0 - beta) * elasticity * n * n / 4.0;
     const std::complex<double> b = std::sqrt(std::complex<double>(a * a - elasticity * n * n, 0.0));
-    const std::complex<double> mode =
-        0.5 * ((1.0 + g / b) * std::exp((b - a) * t / 2.0) + (1.0 - g / b) * std::exp(-(a + b) * t / 2.0));
+    const std::complex<double> mode = 0.5 * ((1.0 + g / b) * std::exp((b - a) * t / 2.0) +
+                                             (1.0 - g / b) * std::exp(-(a + b) * t / 2.0));
     sum += std::sin(n * (1.0 + y) / 2.0) / (n * n * n) * mode.real();
   }
   return 1.5 * (1.0 - y * y) - 48.0 * sum;

@@ -39,9 +39,9 @@ struct DiskOutline {
 };
 
 struct PictureOptions {
-  int max_width = 1000;   // pixels, whole image
-  int max_height = 1000;  // pixels, whole image
-  std::string caption;    // drawn above the field when not empty
+  int max_width = 1000;      // pixels, whole image
+  int max_height = 1000;     // pixels, whole image
+  std::string caption;       // drawn above the field when not empty
   bool log_colours = false;  // colour by log10 of the value (see the header)
 };
 
@@ -51,7 +51,7 @@ struct FieldPicture {
   int panel_top = 0;
   int panel_width = 0;
   int panel_height = 0;
-  int bar_left = 0;    // the colour bar
+  int bar_left = 0;  // the colour bar
   int bar_top = 0;
   int bar_width = 0;
   int bar_height = 0;

@@ -85,7 +85,8 @@ inline constexpr double kPadding = 0.04;
 
 class LineChart {
  public:
-  explicit LineChart(LineChartOptions options) : options_(std::move(options)) {}
+  explicit LineChart(LineChartOptions options)
+      : options_(std::move(options)) {}
   // Throws InvalidParameter when x and y differ in length.
   void AddSeries(ChartSeries series);
   std::size_t SeriesCount() const { return series_.size(); }

@@ -31,10 +31,11 @@ class RasterImage {
   void FillDisk(double cx, double cy, double radius, Rgb colour);
   // A ring: pixels whose centre is at a distance in [radius - width/2, radius + width/2].
   void DrawCircle(double cx, double cy, double radius, double width, Rgb colour);
-  // A straight segment of the given width (>= 1 pixel): every pixel whose centre lies within width/2
-  // of the segment from (x0, y0) to (x1, y1) (pixel units, y down; pixel (i, j) has its centre at
-  // (i + 0.5, j + 0.5)). Consecutive pixels of a width-1 line touch at least at a corner. A segment
-  // with a non-finite end, or too long for its squared length to be finite (~1e154), is not drawn.
+  // A straight segment of the given width (>= 1 pixel): every pixel whose centre lies within
+  // width/2 of the segment from (x0, y0) to (x1, y1) (pixel units, y down; pixel (i, j) has its
+  // centre at (i + 0.5, j + 0.5)). Consecutive pixels of a width-1 line touch at least at a corner.
+  // A segment with a non-finite end, or too long for its squared length to be finite (~1e154), is
+  // not drawn.
   void DrawLine(double x0, double y0, double x1, double y1, double width, Rgb colour);
   // Text in the built-in 5x7 font, each font pixel a scale x scale block; (x, y) the top left.
   void DrawText(int x, int y, const std::string& text, int scale, Rgb colour);

@@ -29,7 +29,8 @@ std::vector<long> SnapshotSteps(const std::string& results_dir);
 // step < 0: the latest snapshot. quantity: "" (trA if present, else speed), "trA" or "speed".
 // Throws InvalidParameter (bad quantity, no such snapshot: the message lists what exists) or
 // dlmfd::Error (unreadable files).
-ResultsFrame LoadResultsFrame(const std::string& results_dir, long step = -1, const std::string& quantity = "");
+ResultsFrame LoadResultsFrame(const std::string& results_dir, long step = -1,
+                              const std::string& quantity = "");
 // |u| at each node.
 std::vector<double> NodeSpeed(const std::vector<double>& u, const std::vector<double>& v);
 

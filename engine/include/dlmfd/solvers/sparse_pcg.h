@@ -19,11 +19,12 @@ struct PcgResult {
 };
 
 // Solves A x = b starting from the x given; zero diagonal entries are left unpreconditioned.
-inline PcgResult SolveSparsePcg(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                double tolerance, int max_iterations) {
+inline PcgResult SolveSparsePcg(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& b,
+                                Eigen::VectorXd& x, double tolerance, int max_iterations) {
   PcgResult result;
   Eigen::VectorXd inv_diag = a.diagonal();
-  for (Eigen::Index i = 0; i < inv_diag.size(); ++i) inv_diag[i] = inv_diag[i] != 0.0 ? 1.0 / inv_diag[i] : 1.0;
+  for (Eigen::Index i = 0; i < inv_diag.size(); ++i)
+    inv_diag[i] = inv_diag[i] != 0.0 ? 1.0 / inv_diag[i] : 1.0;
   const double b_norm = b.norm();
   if (b_norm == 0.0) {
     x.setZero();

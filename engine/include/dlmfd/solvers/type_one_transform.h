@@ -3,7 +3,8 @@
 //   DST-I, n points:  e = (0, X_0, ..., X_{n-1}, 0, -X_{n-1}, ..., -X_0), L = 2(n + 1),
 //                     Y_k = 2 sum_j X_j sin(pi (j+1)(k+1) / (n+1)) = -Im E_{k+1};
 //   DCT-I, n points:  e = (X_0, ..., X_{n-1}, X_{n-2}, ..., X_1), L = 2(n - 1),
-//                     Y_k = X_0 + (-1)^k X_{n-1} + 2 sum_{j=1}^{n-2} X_j cos(pi j k / (n-1)) = Re E_k,
+//                     Y_k = X_0 + (-1)^k X_{n-1} + 2 sum_{j=1}^{n-2} X_j cos(pi j k / (n-1)) = Re
+//                     E_k,
 // with E = DFT(e). Why: FFTW 3.3 computes RODFT00/REDFT00 by padding to the same length-L real DFT
 // in its halfcomplex form plus copies, which on the paper's grid (n = 191 velocity, n = 97 pressure
 // columns) takes about twice as long as the SIMD r2c codelets on the same extension
