@@ -28,7 +28,6 @@
 #include "dlmfd/io/field_snapshot.h"
 #include "dlmfd/io/particle_history.h"
 #include "dlmfd/reference/waters_king_series.h"
-#include "dlmfd/render/results_frame.h"
 
 namespace {
 

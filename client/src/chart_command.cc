@@ -23,8 +23,8 @@
 #include "connection.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/io/particle_history.h"
-#include "dlmfd/render/line_chart.h"
-#include "dlmfd/render/png_file.h"
+#include "dlmfd/viz/line_chart.h"
+#include "dlmfd/viz/png_file.h"
 #include "exit_codes.h"
 #include "rpc_status.h"
 

@@ -18,7 +18,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "dlmfd/render/line_chart.h"
+#include "dlmfd/viz/line_chart.h"
 
 namespace dlmfd {
 namespace {

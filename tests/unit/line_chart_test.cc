@@ -1,4 +1,4 @@
-// Line charts (render/line_chart): 1-2-5 and decade ticks on known ranges, data landing on the
+// Line charts (viz/line_chart): 1-2-5 and decade ticks on known ranges, data landing on the
 // expected pixels with the series colour, a NaN or a value <= 0 on a log axis breaking the line
 // instead of crashing, clear errors for empty input, and the DrawLine primitive of RasterImage.
 #include <cmath>
@@ -10,8 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "dlmfd/core/errors.h"
-#include "dlmfd/render/line_chart.h"
-#include "dlmfd/render/raster_image.h"
+#include "dlmfd/viz/line_chart.h"
+#include "dlmfd/viz/raster_image.h"
 
 namespace dlmfd {
 namespace {

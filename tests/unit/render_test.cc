@@ -1,4 +1,4 @@
-// Pictures of node fields (render/): the PNG read back with libpng has the laid-out size, the
+// Pictures of node fields (viz/): the PNG read back with libpng has the laid-out size, the
 // pixels carry the P1 value of the field through viridis exactly, particles are drawn where they
 // are, and degenerate fields (constant, NaN) give finite scales instead of dividing by zero.
 #include <png.h>
@@ -16,11 +16,11 @@
 #include "dlmfd/core/errors.h"
 #include "dlmfd/io/field_snapshot.h"
 #include "dlmfd/io/particle_history.h"
-#include "dlmfd/render/bitmap_font.h"
-#include "dlmfd/render/colour_map.h"
-#include "dlmfd/render/field_picture.h"
-#include "dlmfd/render/png_file.h"
-#include "dlmfd/render/results_frame.h"
+#include "dlmfd/viz/bitmap_font.h"
+#include "dlmfd/viz/colour_map.h"
+#include "dlmfd/viz/field_picture.h"
+#include "dlmfd/viz/png_file.h"
+#include "dlmfd/viz/results_frame.h"
 
 namespace dlmfd {
 namespace {

@@ -1,17 +1,54 @@
 #include "dlmfd/io/field_snapshot.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 #include "dlmfd/core/errors.h"
 #include "dlmfd/io/atomic_file.h"
 #include "hdf5_file.h"
 
 namespace dlmfd {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The step of "snap_000123.h5", or -1 for any other name.
+long StepOfSnapshotName(const std::string& name) {
+  const std::string prefix = "snap_";
+  const std::string suffix = ".h5";
+  if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    return -1;
+  }
+  const std::string digits =
+      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  if (digits.empty() ||
+      !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return -1;
+  }
+  return std::stol(digits);
+}
+
+}  // namespace
 
 std::string SnapshotFileName(long step) {
   char name[40];
   std::snprintf(name, sizeof name, "snap_%06ld.h5", step);
   return name;
+}
+
+std::vector<long> SnapshotSteps(const std::string& results_dir) {
+  std::vector<long> steps;
+  std::error_code ec;
+  const fs::path fields = fs::path(results_dir) / "fields";
+  if (!fs::is_directory(fields, ec)) return steps;
+  for (const auto& entry : fs::directory_iterator(fields, ec)) {
+    const long step = StepOfSnapshotName(entry.path().filename().string());
+    if (step >= 0 && entry.is_regular_file(ec)) steps.push_back(step);
+  }
+  std::sort(steps.begin(), steps.end());
+  return steps;
 }
 
 void WriteFieldSnapshot(const std::string& path, const Grid& grid, const FlowState& state) {

@@ -18,6 +18,8 @@ namespace dlmfd {
 
 // "snap_000123.h5" for step 123 (more digits when the step needs them).
 std::string SnapshotFileName(long step);
+// Steps of the snapshots in results_dir/fields, ascending (none when the folder is missing).
+std::vector<long> SnapshotSteps(const std::string& results_dir);
 
 // Writes the snapshot of `state` (conformation datasets when state.a11 is not empty).
 void WriteFieldSnapshot(const std::string& path, const Grid& grid, const FlowState& state);

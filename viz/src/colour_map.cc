@@ -3,7 +3,7 @@
 // under CC0 / public domain dedication; https://github.com/BIDS/colormap.
 #include <cmath>
 
-#include "dlmfd/render/colour_map.h"
+#include "dlmfd/viz/colour_map.h"
 
 namespace dlmfd {
 namespace {

@@ -1,13 +1,13 @@
 // DrawFieldPicture: layout, P1 sampling of the field, colour bar, labels, particles.
-#include "dlmfd/render/field_picture.h"
+#include "dlmfd/viz/field_picture.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "dlmfd/core/errors.h"
-#include "dlmfd/render/bitmap_font.h"
-#include "dlmfd/render/colour_map.h"
+#include "dlmfd/viz/bitmap_font.h"
+#include "dlmfd/viz/colour_map.h"
 
 namespace dlmfd {
 namespace {

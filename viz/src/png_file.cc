@@ -1,6 +1,6 @@
 // WritePng: libpng with its errors turned into exceptions through setjmp/longjmp, which is the
 // error protocol libpng offers; nothing with a destructor lives between setjmp and the calls.
-#include "dlmfd/render/png_file.h"
+#include "dlmfd/viz/png_file.h"
 
 #include <png.h>
 

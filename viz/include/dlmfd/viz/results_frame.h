@@ -1,7 +1,7 @@
-// What `dlmfd plot DIR` draws: one field snapshot of a results directory (design.md 3.2) with the
-// particles as they were at that step, ready for DrawFieldPicture.
+// A frame of a results directory (design.md 3.2): the field snapshot picked, the node field taken
+// from it and the particles as they were at that step, ready for DrawFieldPicture.
 //
-// The snapshot is fields/snap_NNNNNN.h5 of the requested step, or the latest one. The quantity is
+// The snapshot is fields/snap_NNNNNN.h5 of the requested step, or the latest one. The field is
 // trA when the snapshot has it (an Oldroyd-B run), else the speed |u| = sqrt(u^2 + v^2) at the
 // nodes. Particles come from particles.h5: the record of the snapshot's step, else the record
 // nearest in time (the particle cadence need not include every field snapshot).
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "dlmfd/render/field_picture.h"
+#include "dlmfd/viz/field_picture.h"
 
 namespace dlmfd {
 
@@ -24,8 +24,6 @@ struct ResultsFrame {
   double particles_time = 0.0;  // time of the particle record used (== time when they match)
 };
 
-// Steps of the snapshots in results_dir/fields, ascending.
-std::vector<long> SnapshotSteps(const std::string& results_dir);
 // step < 0: the latest snapshot. quantity: "" (trA if present, else speed), "trA" or "speed".
 // Throws InvalidParameter (bad quantity, no such snapshot: the message lists what exists) or
 // dlmfd::Error (unreadable files).

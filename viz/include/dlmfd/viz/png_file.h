@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "dlmfd/render/raster_image.h"
+#include "dlmfd/viz/raster_image.h"
 
 namespace dlmfd {
 

@@ -1,5 +1,5 @@
 // A picture of a scalar node field (trA, or the speed |u| of a Newtonian run) with the particles
-// drawn as disks: the plot of `dlmfd plot` and of the daemon's snapshots.
+// drawn as disks: a frame of a results directory, or a snapshot that a running job streams.
 //
 // Discrete method: each pixel takes the value of the field's own finite-element representation at
 // the pixel centre: P1 on the triangles of the velocity mesh (squares of side h cut by the SW-NE
@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "dlmfd/core/grid.h"
-#include "dlmfd/render/raster_image.h"
+#include "dlmfd/viz/raster_image.h"
 
 namespace dlmfd {
 

@@ -1,5 +1,6 @@
-// LoadResultsFrame: snapshot + particle record of a results directory, read with the io readers.
-#include "dlmfd/render/results_frame.h"
+// LoadResultsFrame: snapshot + particle record of a results directory, read with the results
+// readers (dlmfd_results).
+#include "dlmfd/viz/results_frame.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,23 +14,6 @@ namespace dlmfd {
 namespace {
 
 namespace fs = std::filesystem;
-
-// The step of "snap_000123.h5", or -1 for any other name.
-long StepOfSnapshotName(const std::string& name) {
-  const std::string prefix = "snap_";
-  const std::string suffix = ".h5";
-  if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
-      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
-    return -1;
-  }
-  const std::string digits =
-      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
-  if (digits.empty() ||
-      !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-    return -1;
-  }
-  return std::stol(digits);
-}
 
 std::string ListSteps(const std::vector<long>& steps) {
   if (steps.empty()) return "none";
@@ -46,19 +30,6 @@ std::vector<double> NodeSpeed(const std::vector<double>& u, const std::vector<do
   std::vector<double> speed(std::min(u.size(), v.size()));
   for (std::size_t k = 0; k < speed.size(); ++k) speed[k] = std::hypot(u[k], v[k]);
   return speed;
-}
-
-std::vector<long> SnapshotSteps(const std::string& results_dir) {
-  std::vector<long> steps;
-  std::error_code ec;
-  const fs::path fields = fs::path(results_dir) / "fields";
-  if (!fs::is_directory(fields, ec)) return steps;
-  for (const auto& entry : fs::directory_iterator(fields, ec)) {
-    const long step = StepOfSnapshotName(entry.path().filename().string());
-    if (step >= 0 && entry.is_regular_file(ec)) steps.push_back(step);
-  }
-  std::sort(steps.begin(), steps.end());
-  return steps;
 }
 
 ResultsFrame LoadResultsFrame(const std::string& results_dir, long step,

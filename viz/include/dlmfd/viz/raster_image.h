@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "dlmfd/render/colour_map.h"
+#include "dlmfd/viz/colour_map.h"
 
 namespace dlmfd {
 

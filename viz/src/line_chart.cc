@@ -1,6 +1,6 @@
 // LineChart: axis ranges and ticks from the usable points, then layout, grid, frame, labels,
 // series and legend drawn into a RasterImage.
-#include "dlmfd/render/line_chart.h"
+#include "dlmfd/viz/line_chart.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "dlmfd/core/errors.h"
-#include "dlmfd/render/bitmap_font.h"
+#include "dlmfd/viz/bitmap_font.h"
 
 namespace dlmfd {
 namespace {

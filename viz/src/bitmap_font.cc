@@ -1,5 +1,5 @@
 // The 5x7 glyphs: seven rows per glyph, top first, bit 4 the leftmost column.
-#include "dlmfd/render/bitmap_font.h"
+#include "dlmfd/viz/bitmap_font.h"
 
 #include <algorithm>
 #include <utility>

@@ -1,11 +1,11 @@
 // RasterImage: clipped pixel operations on an RGB byte buffer.
-#include "dlmfd/render/raster_image.h"
+#include "dlmfd/viz/raster_image.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "dlmfd/core/errors.h"
-#include "dlmfd/render/bitmap_font.h"
+#include "dlmfd/viz/bitmap_font.h"
 
 namespace dlmfd {
 

@@ -1,5 +1,5 @@
 // Line charts of y against x, several series overlaid: particle velocities, trajectories and gaps
-// against time (`dlmfd chart`), and log-log work-precision charts (error against cost).
+// against time, and log-log work-precision charts (error against cost).
 //
 // Discrete method: each axis maps its range linearly in the value (linear axis) or in log10 of the
 // value (log axis) onto the pixel centres of the plot panel, the lower end on the first pixel
@@ -29,8 +29,8 @@
 #include <utility>
 #include <vector>
 
-#include "dlmfd/render/colour_map.h"
-#include "dlmfd/render/raster_image.h"
+#include "dlmfd/viz/colour_map.h"
+#include "dlmfd/viz/raster_image.h"
 
 namespace dlmfd {
 

@@ -1,0 +1,31 @@
+# dlmfd_link_closure(TARGET OUT): the names of every library TARGET links, directly or through the
+# libraries it links: its LINK_LIBRARIES, then the INTERFACE_LINK_LIBRARIES of each target met
+# (a static library's private dependencies appear there as $<LINK_ONLY:...>, unwrapped here). Other
+# generator expressions are kept as text. For checks of what a binary is built from, before any
+# linker flag such as --as-needed hides it.
+function(dlmfd_link_closure target out)
+  set(seen "")
+  get_target_property(pending ${target} LINK_LIBRARIES)
+  if(NOT pending)
+    set(pending "")
+  endif()
+  while(pending)
+    list(POP_FRONT pending item)
+    string(REGEX REPLACE "^\\$<LINK_ONLY:(.+)>$" "\\1" item "${item}")
+    if(item STREQUAL "" OR item IN_LIST seen)
+      continue()
+    endif()
+    list(APPEND seen "${item}")
+    if(TARGET "${item}")
+      get_target_property(aliased "${item}" ALIASED_TARGET)
+      if(aliased)
+        list(APPEND pending "${aliased}")
+      endif()
+      get_target_property(next "${item}" INTERFACE_LINK_LIBRARIES)
+      if(next)
+        list(APPEND pending ${next})
+      endif()
+    endif()
+  endwhile()
+  set(${out} "${seen}" PARENT_SCOPE)
+endfunction()
