@@ -44,6 +44,15 @@ struct AxisWrap {
   double Weight(int i) const { return (!periodic && (i == 0 || i == cells)) ? 0.5 : 1.0; }
 };
 
+// The node (i, j) stored at index k of a node array of the grid: the inverse of Grid::Index.
+struct NodeLines {
+  int i, j;
+};
+inline NodeLines NodeAt(const Grid& grid, std::size_t k) {
+  const std::size_t row = std::size_t(grid.nx + 1);
+  return NodeLines{static_cast<int>(k % row), static_cast<int>(k / row)};
+}
+
 // The index of line i on a periodic axis of n cells: i mod n, also for negative i.
 inline int Wrap(int i, int n) { return ((i % n) + n) % n; }
 
