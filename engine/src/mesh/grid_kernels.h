@@ -102,13 +102,12 @@ inline double StiffnessAt(const Rows& u, int im, int i, int ip, double wx, doubl
 // the node's hat function in each of their triangles.
 //
 // Two layouts of a periodic axis, both of a node array whose last line repeats the first:
-//   folded (FoldedCells): the repeated line is no unknown; the cell after line n - 1 ends on line
-//   0.
-//     The layout of the Galerkin rows (fem_operators.h), whose duplicate entries are not read.
+//   folded (FoldedCells): the repeated line is no unknown, and the cell after line n - 1 ends on
+//     line 0. The layout of the Galerkin rows (fem_operators.h), which never read the duplicate.
 //   own lines (OwnCells): every cell ends on the line after its first, so the last cell ends on the
-//     repeated line, and a node on the repeated line is visited too. The layout of the
-//     conformation kernels (polymer_force.h, velocity_gradient.h), whose node arrays keep the
-//     duplicate equal to the first line.
+//     repeated line, and a node on the repeated line has cells too. The layout of the conformation
+//     kernels (polymer_force.h, velocity_gradient.h), whose node arrays keep the duplicate equal
+//     to the first line.
 
 // The node lines of the cells before and after a node line (x) or their row offsets
 // Index(0, line) (y); lo < 0 where there is no such cell.
@@ -125,9 +124,11 @@ inline CellsBeside FoldedCells(int prev, int line, int next) {
 // Own-lines layout: the cells (line - 1, line) and (line, line + 1) of an axis of `cells` cells,
 // wrapped across a periodic side to cells (cells - 1, cells) and (0, 1).
 inline CellsBeside OwnCells(int line, int cells, bool periodic) {
-  long before = line - 1, after = line;
-  if (before < 0) before = periodic ? cells - 1 : -1;
-  if (after >= cells) after = periodic ? 0 : -1;
+  auto cell = [&](int first) -> long {
+    if (first >= 0 && first < cells) return first;
+    return periodic ? Wrap(first, cells) : -1;
+  };
+  const long before = cell(line - 1), after = cell(line);
   return CellsBeside{before, before >= 0 ? before + 1 : -1, after, after >= 0 ? after + 1 : -1};
 }
 
