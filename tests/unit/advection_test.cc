@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "dlmfd/fluid/advection_least_squares.h"
 #include "dlmfd/fluid/advection_wave.h"
 #include "dlmfd/fluid/boundary_data.h"
+#include "dlmfd/fluid/velocity_advection.h"
 
 namespace dlmfd {
 namespace {
@@ -75,6 +77,40 @@ TEST(Advection, UniformFlowIsUnchangedByBothSchemes) {
       }
       EXPECT_LE(change, 1e-13) << "scheme " << scheme;
     }
+  }
+}
+
+// MakeVelocityAdvection builds the scheme of splitting.advection; each scheme writes its own
+// columns of the step report (the names diagnostics.csv and its readers rely on).
+TEST(Advection, TheSchemeIsChosenOnceAndNamesItsReportColumns) {
+  Params p = UniformFlowCases()[1];
+  const Grid g = GridOf(p);
+  BoundaryData data(g, p.domain);
+  auto columns = [](const StepReport& r) {
+    std::vector<std::string> names;
+    for (const auto& c : r.columns) names.push_back(c.first);
+    return names;
+  };
+  for (AdvectionScheme scheme : {AdvectionScheme::kLeastSquares, AdvectionScheme::kWave}) {
+    p.splitting.advection = scheme;
+    const std::unique_ptr<VelocityAdvection> advection = MakeVelocityAdvection(g, p, data);
+    const bool least_squares = scheme == AdvectionScheme::kLeastSquares;
+    EXPECT_EQ(dynamic_cast<AdvectionLeastSquares*>(advection.get()) != nullptr, least_squares);
+    EXPECT_EQ(dynamic_cast<AdvectionWave*>(advection.get()) != nullptr, !least_squares);
+    std::vector<double> u(g.NodeCount(), 0.7), v(g.NodeCount(), 0.4);
+    const AdvectionReport r = advection->Solve(u.data(), v.data());
+    StepReport report;
+    advection->Record(r, report);
+    if (least_squares) {
+      EXPECT_EQ(columns(report),
+                (std::vector<std::string>{"advection_iterations", "advection_residual"}));
+      EXPECT_EQ(report.Get("advection_residual", -1.0), r.residual);
+    } else {
+      EXPECT_EQ(columns(report), (std::vector<std::string>{"wave_substeps"}));
+      EXPECT_GE(report.Get("wave_substeps"), 1.0);
+    }
+    EXPECT_EQ(report.Get(least_squares ? "advection_iterations" : "wave_substeps", -1.0),
+              r.iterations);
   }
 }
 

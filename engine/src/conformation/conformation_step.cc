@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "../mesh/grid_kernels.h"
 #include "dlmfd/conformation/inflow_state.h"
 #include "dlmfd/conformation/pointwise_update.h"
 #include "dlmfd/conformation/velocity_gradient.h"
@@ -62,15 +63,24 @@ ConformationStep::ConformationStep(const Params& params, const Grid& grid)
   l22_.assign(n, 0.0);
 }
 
-void ConformationStep::CollectInflow(const double* u, const double* v) {
-  advection_.ClearFixed();
+void ConformationStep::FindInflow(const double* u, const double* v) {
   for (const BoundaryNode& b : boundary_) inflow_[grid_.Index(b.i, b.j)] = 0;
-  for (const BoundaryNode& b : boundary_) {
+  for (BoundaryNode& b : boundary_) {
     const std::size_t k = grid_.Index(b.i, b.j);
-    if (u[k] * b.nx + v[k] * b.ny < 0.0) {
-      advection_.AddFixed(b.i, b.j, b.inflow);
-      inflow_[k] = 1;
-    }
+    b.active = u[k] * b.nx + v[k] * b.ny < 0.0;
+    if (b.active) inflow_[k] = 1;
+  }
+}
+
+void ConformationStep::SetInflowState(const double* u, const double* v, double* a11, double* a12,
+                                      double* a22) {
+  FindInflow(u, v);
+  for (const BoundaryNode& b : boundary_) {
+    if (!b.active) continue;
+    const std::size_t k = grid_.Index(b.i, b.j);
+    a11[k] = b.inflow.a11;
+    a12[k] = b.inflow.a12;
+    a22[k] = b.inflow.a22;
   }
 }
 
@@ -90,8 +100,7 @@ void ConformationStep::CheckField(double time, const char* when, const double* a
 
 void ConformationStep::ThrowBadNode(double time, const char* when, long k,
                                     const SymTensor& a) const {
-  const int i = static_cast<int>(k % (grid_.nx + 1));
-  const int j = static_cast<int>(k / (grid_.nx + 1));
+  const auto [i, j] = kernels::NodeAt(grid_, static_cast<std::size_t>(k));
   std::ostringstream msg;
   msg.precision(6);
   const bool finite = IsFinite(a);
@@ -128,8 +137,7 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
     max_gradient = std::max(max_gradient, gradient);
   }
   if (first_bad_velocity < n) {
-    const int i = static_cast<int>(first_bad_velocity % (grid_.nx + 1));
-    const int j = static_cast<int>(first_bad_velocity / (grid_.nx + 1));
+    const auto [i, j] = kernels::NodeAt(grid_, static_cast<std::size_t>(first_bad_velocity));
     std::ostringstream msg;
     msg << "velocity or its gradient not finite in step (35) at t = " << time << ": node (" << i
         << ", " << j << ") at (x, y) = (" << grid_.X(i) << ", " << grid_.Y(j)
@@ -150,7 +158,11 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
   }
   const int substeps = std::max(1, static_cast<int>(std::ceil(courant_ratio * (1.0 - 1e-12))));
   const double tau = dt / substeps;
-  CollectInflow(u, v);
+  FindInflow(u, v);
+  advection_.ClearFixed();
+  for (const BoundaryNode& b : boundary_) {
+    if (b.active) advection_.AddFixed(b.i, b.j, b.inflow);
+  }
   advection_.Load(a11, a12, a22);
   long blended = 0;
   for (int s = 0; s < substeps; ++s) blended += advection_.SubStep(tau, u, v);
@@ -200,8 +212,8 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
   }
   // 3. A = A_L on inflow nodes (SPD by construction); periodic duplicates equal to the first node.
   for (const BoundaryNode& b : boundary_) {
+    if (!b.active) continue;
     const std::size_t k = grid_.Index(b.i, b.j);
-    if (!inflow_[k]) continue;
     a11[k] = b.inflow.a11;
     a12[k] = b.inflow.a12;
     a22[k] = b.inflow.a22;

@@ -1,5 +1,7 @@
 #include "dlmfd/conformation/polymer_force.h"
 
+#include "../mesh/grid_kernels.h"
+
 namespace dlmfd {
 namespace {
 
@@ -25,55 +27,21 @@ void AddPolymerForce(const Grid& grid, const DomainParams& domain, double polyme
   const bool px = domain.PeriodicX(), py = domain.PeriodicY();
   // |T| grad phi = (h^2/2)(gx, gy)/h: the h cancels to h/2 times the unit-mesh gradients (+-1, 0).
   const double half_h = 0.5 * grid.h;
-  // Gather form: node (i, j) sums over its 6 triangles, so rows are written by one thread each.
-  // Lower triangle of square (si, sj): SW, SE, NE with unit gradients (-1, 0), (1, -1), (0, 1).
-  // Upper triangle: SW, NE, NW with unit gradients (0, -1), (1, 0), (-1, 1).
-  auto wrap = [](int s, int n, bool periodic, bool& inside) {
-    inside = true;
-    if (s >= 0 && s < n) return s;
-    if (!periodic) {
-      inside = false;
-      return s;
-    }
-    return (s + n) % n;
-  };
+  // Gather form (grid_kernels.h): node (i, j) sums over its 6 triangles, so rows are written by one
+  // thread each; squares counter-clockwise from NE, T1 before T2, as the FEM rows.
   const int last_i = px ? nx - 1 : nx;
   const int last_j = py ? ny - 1 : ny;
   // Any node: the sum over its (up to 6) triangles, wrapping across periodic sides.
   auto any_node = [&](int i, int j) {
     double sx = 0.0, sy = 0.0;  // sum of (grad phi_i . mean tau) per unit h/2
-    // Squares around the node: (i, j) [node is SW], (i-1, j) [SE], (i-1, j-1) [NE], (i, j-1) [NW].
-    struct Corner {
-      int di, dj;
-      // unit gradient of phi_i in the lower / upper triangle (absent when has_* is false)
-      bool has_lower;
-      double lgx, lgy;
-      bool has_upper;
-      double ugx, ugy;
-    };
-    static constexpr Corner kCorners[4] = {
-        {0, 0, true, -1.0, 0.0, true, 0.0, -1.0},    // SW of square (i, j)
-        {-1, 0, true, 1.0, -1.0, false, 0.0, 0.0},   // SE of square (i-1, j): lower only
-        {-1, -1, true, 0.0, 1.0, true, 1.0, 0.0},    // NE of square (i-1, j-1)
-        {0, -1, false, 0.0, 0.0, true, -1.0, 1.0}};  // NW of square (i, j-1): upper only
-    for (const Corner& c : kCorners) {
-      bool in_x = true, in_y = true;
-      const int si = wrap(i + c.di, nx, px, in_x);
-      const int sj = wrap(j + c.dj, ny, py, in_y);
-      if (!in_x || !in_y) continue;
-      const std::size_t sw = grid.Index(si, sj), se = grid.Index(si + 1, sj);
-      const std::size_t ne = grid.Index(si + 1, sj + 1), nw = grid.Index(si, sj + 1);
-      if (c.has_lower) {
-        const MeanStress t = Mean(polymer_modulus, a11, a12, a22, sw, se, ne);
-        sx += c.lgx * t.t11 + c.lgy * t.t12;
-        sy += c.lgx * t.t12 + c.lgy * t.t22;
-      }
-      if (c.has_upper) {
-        const MeanStress t = Mean(polymer_modulus, a11, a12, a22, sw, ne, nw);
-        sx += c.ugx * t.t11 + c.ugy * t.t12;
-        sy += c.ugx * t.t12 + c.ugy * t.t22;
-      }
-    }
+    const kernels::CellsBeside x = kernels::OwnCells(i, nx, px);
+    const kernels::CellsBeside y = kernels::RowOffsets(grid, kernels::OwnCells(j, ny, py));
+    kernels::ForEachTriangleAround(x, y, [&](const kernels::TriangleAround& t) {
+      const double gx = t.gx, gy = t.gy;
+      const MeanStress m = Mean(polymer_modulus, a11, a12, a22, t.k0, t.k1, t.k2);
+      sx += gx * m.t11 + gy * m.t12;
+      sy += gx * m.t12 + gy * m.t22;
+    });
     const std::size_t k = grid.Index(i, j);
     fx[k] -= half_h * sx;
     fy[k] -= half_h * sy;

@@ -1,5 +1,7 @@
 #include "dlmfd/conformation/velocity_gradient.h"
 
+#include "../mesh/grid_kernels.h"
+
 namespace dlmfd {
 namespace {
 
@@ -8,51 +10,22 @@ struct GradientSum {
   int count = 0;
 };
 
-// Maps a square index to [0, n) when periodic; returns false when the square is outside.
-inline bool WrapSquare(int& s, int n, bool periodic) {
-  if (s >= 0 && s < n) return true;
-  if (!periodic) return false;
-  s = (s + n) % n;
-  return true;
-}
-
-// Adds the gradient of the lower (SW, SE, NE) or upper (SW, NE, NW) triangle of square (si, sj).
-inline void AddTriangle(const Grid& g, const double* u, const double* v, int si, int sj, bool upper,
-                        GradientSum& sum) {
-  const double inv_h = 1.0 / g.h;
-  const std::size_t sw = g.Index(si, sj), se = g.Index(si + 1, sj);
-  const std::size_t ne = g.Index(si + 1, sj + 1), nw = g.Index(si, sj + 1);
-  if (upper) {
-    sum.ux += (u[ne] - u[nw]) * inv_h;
-    sum.uy += (u[nw] - u[sw]) * inv_h;
-    sum.vx += (v[ne] - v[nw]) * inv_h;
-    sum.vy += (v[nw] - v[sw]) * inv_h;
-  } else {
-    sum.ux += (u[se] - u[sw]) * inv_h;
-    sum.uy += (u[ne] - u[se]) * inv_h;
-    sum.vx += (v[se] - v[sw]) * inv_h;
-    sum.vy += (v[ne] - v[se]) * inv_h;
-  }
-  ++sum.count;
-}
-
-// The 6 triangles that touch node (i, j): both of squares (i, j) and (i-1, j-1), the lower one of
-// (i-1, j) and the upper one of (i, j-1).
+// The gradients of the (up to) 6 triangles that touch node (i, j) (grid_kernels.h), summed in the
+// order NE square (T1, T2), SW square (T1, T2), NW square (T1), SE square (T2).
 GradientSum SumAround(const Grid& g, bool px, bool py, const double* u, const double* v, int i,
                       int j) {
-  struct Candidate {
-    int di, dj;
-    bool lower, upper;
-  };
-  static constexpr Candidate kCandidates[4] = {
-      {0, 0, true, true}, {-1, -1, true, true}, {-1, 0, true, false}, {0, -1, false, true}};
+  const double inv_h = 1.0 / g.h;
+  const kernels::CellsBeside x = kernels::OwnCells(i, g.nx, px);
+  const kernels::CellsBeside y = kernels::RowOffsets(g, kernels::OwnCells(j, g.ny, py));
   GradientSum sum;
-  for (const Candidate& c : kCandidates) {
-    int si = i + c.di, sj = j + c.dj;
-    if (!WrapSquare(si, g.nx, px) || !WrapSquare(sj, g.ny, py)) continue;
-    if (c.lower) AddTriangle(g, u, v, si, sj, false, sum);
-    if (c.upper) AddTriangle(g, u, v, si, sj, true, sum);
-  }
+  kernels::ForEachTriangleAround<kernels::SquareOrder::kFullSquaresFirst>(
+      x, y, [&](const kernels::TriangleAround& t) {
+        sum.ux += kernels::TriangleDx(u, t) * inv_h;
+        sum.uy += kernels::TriangleDy(u, t) * inv_h;
+        sum.vx += kernels::TriangleDx(v, t) * inv_h;
+        sum.vy += kernels::TriangleDy(v, t) * inv_h;
+        ++sum.count;
+      });
   return sum;
 }
 

@@ -192,6 +192,11 @@ void AdvectionLeastSquares::ApplyPreconditioner(const double* tu, const double* 
   nodes_.SyncPeriodic(yv);
 }
 
+void AdvectionLeastSquares::Record(const AdvectionReport& result, StepReport& report) const {
+  report.Set("advection_iterations", result.iterations);
+  report.Set("advection_residual", result.residual);
+}
+
 AdvectionReport AdvectionLeastSquares::Solve(double* u, double* v) {
   AdvectionReport report;
   SetReference(u, v);

@@ -158,6 +158,10 @@ void AdvectionWave::ApplyWaveStiffness(const double* u, const double* v, double*
   }
 }
 
+void AdvectionWave::Record(const AdvectionReport& result, StepReport& report) const {
+  report.Set("wave_substeps", result.iterations);
+}
+
 AdvectionReport AdvectionWave::Solve(double* u, double* v) {
   AdvectionReport report;
   const long n = static_cast<long>(mass_.size());

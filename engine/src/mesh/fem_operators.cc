@@ -12,6 +12,9 @@ namespace dlmfd {
 namespace {
 
 using kernels::AxisWrap;
+using kernels::CellsBeside;
+using kernels::FoldedCells;
+using kernels::FoldedRows;
 using kernels::Rows;
 using kernels::RowsAt;
 
@@ -52,10 +55,10 @@ void DivergenceOnVelocityNodes(const Grid& grid, const AxisWrap& ax, const AxisW
   const int lines_y = ay.Lines();
 #pragma omp parallel for schedule(static) if (grid.NodeCount() > kParallelNodes)
   for (int j = 0; j < lines_y; ++j) {
-    const Rows ru = RowsAt(grid, ay, u, j), rv = RowsAt(grid, ay, v, j);
+    const CellsBeside y = FoldedRows(grid, ay, j);
     double* out = w + grid.Index(0, j);
     SweepRow(ax, [&](int im, int i, int ip) {
-      out[i] = scale * kernels::DivergenceSumsAt(ru, rv, im, i, ip);
+      out[i] = scale * kernels::DivergenceSumsAt(u, v, FoldedCells(im, i, ip), y);
     });
   }
 }
@@ -108,12 +111,12 @@ void ApplyIntegratedGradient(const Grid& grid, const BoundaryTopology& topo, con
   const int lines_y = ay.Lines();
 #pragma omp parallel for schedule(static) if (grid.NodeCount() > kParallelNodes)
   for (int j = 0; j < lines_y; ++j) {
-    const Rows r = RowsAt(grid, ay, f, j);
+    const CellsBeside y = FoldedRows(grid, ay, j);
     double* ox = gx + grid.Index(0, j);
     double* oy = gy + grid.Index(0, j);
     SweepRow(ax, [&](int im, int i, int ip) {
       double sx, sy;
-      kernels::GradientSumsAt(r, im, i, ip, sx, sy);
+      kernels::GradientSumsAt(f, FoldedCells(im, i, ip), y, sx, sy);
       ox[i] = scale * sx;
       oy[i] = scale * sy;
     });
@@ -162,12 +165,12 @@ void ApplyDivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure
     }
 #pragma omp for schedule(static)
     for (int j = 0; j < lines_y; ++j) {
-      const Rows r = RowsAt(grid, ay, fine, j);
+      const CellsBeside y = FoldedRows(grid, ay, j);
       double* ou = out_u + grid.Index(0, j);
       double* ov = out_v + grid.Index(0, j);
       SweepRow(ax, [&](int im, int i, int ip) {
         double sx, sy;
-        kernels::GradientTransposeSumsAt(r, im, i, ip, sx, sy);
+        kernels::GradientTransposeSumsAt(fine, FoldedCells(im, i, ip), y, sx, sy);
         ou[i] = scale * sx;
         ov[i] = scale * sy;
       });

@@ -1,13 +1,16 @@
 // Stencil kernels of the P1 operators on the uniform SW-NE mesh: the only place where node indices
 // are computed. Each kernel gathers one node's row from the (up to) six triangles around it, so the
 // rows can be computed in parallel without write conflicts and the element-wise boundary rows come
-// out exactly (method notes 1, section 1).
+// out exactly (method notes 1, section 1). The gather itself (ForEachSquareAround,
+// ForEachTriangleAround) serves the FEM operators (fem_operators.cc) and the conformation kernels
+// (the polymer force of (33), the nodal velocity gradient of (35)); periodic wrap (Wrap, AxisWrap,
+// CellsBeside) and the nodes a disk covers (CoveredNodes) live here too.
 //
 // Triangles of the h-square with corners a = (i,j), b = (i+1,j), c = (i+1,j+1), d = (i,j+1):
-//   T1 = (a,b,c): h dx f = f_b - f_a, h dy f = f_c - f_b;   T2 = (a,c,d): h dx f = f_c - f_d, h dy
-//   f = f_d - f_a.
-// Around node n = (i,j): square (i,j) [n = a of T1 and T2], (i-1,j) [n = b of T1],
-// (i-1,j-1) [n = c of T1 and T2], (i,j-1) [n = d of T2].
+//   T1 = (a,b,c): h dx f = f_b - f_a, h dy f = f_c - f_b;
+//   T2 = (a,c,d): h dx f = f_c - f_d, h dy f = f_d - f_a.
+// Around node n = (i,j): square (i,j) [NE of n; n = a of T1 and T2], (i-1,j) [NW; n = b of T1],
+// (i-1,j-1) [SW; n = c of T1 and T2], (i,j-1) [SE; n = d of T2].
 #pragma once
 
 #include <algorithm>
@@ -40,6 +43,15 @@ struct AxisWrap {
   // Trapezoid weight of the line: 1/2 on a non-periodic end, 1 elsewhere.
   double Weight(int i) const { return (!periodic && (i == 0 || i == cells)) ? 0.5 : 1.0; }
 };
+
+// The node (i, j) stored at index k of a node array of the grid: the inverse of Grid::Index.
+struct NodeLines {
+  int i, j;
+};
+inline NodeLines NodeAt(const Grid& grid, std::size_t k) {
+  const std::size_t row = std::size_t(grid.nx + 1);
+  return NodeLines{static_cast<int>(k % row), static_cast<int>(k / row)};
+}
 
 // The index of line i on a periodic axis of n cells: i mod n, also for negative i.
 inline int Wrap(int i, int n) { return ((i % n) + n) % n; }
@@ -81,79 +93,205 @@ inline double StiffnessAt(const Rows& u, int im, int i, int ip, double wx, doubl
   return wy * kx + wx * ky;
 }
 
+// ---- The six-triangle gather ----------------------------------------------------------------
+// Every row of a P1 operator, and every nodal average of P1 gradients, sums over the (up to) six
+// triangles around the node: both triangles of the squares NE and SW of the node, T1 of the square
+// NW of it and T2 of the square SE of it. The gather is written once, here: one axis at a time,
+// the two cells beside the node line (CellsBeside) name the node lines of their sides, and
+// ForEachSquareAround visits the squares that exist, with their corner indices and the gradient of
+// the node's hat function in each of their triangles.
+//
+// Two layouts of a periodic axis, both of a node array whose last line repeats the first:
+//   folded (FoldedCells): the repeated line is no unknown, and the cell after line n - 1 ends on
+//     line 0. The layout of the Galerkin rows (fem_operators.h), which never read the duplicate.
+//   own lines (OwnCells): every cell ends on the line after its first, so the last cell ends on the
+//     repeated line, and a node on the repeated line has cells too. The layout of the conformation
+//     kernels (polymer_force.h, velocity_gradient.h), whose node arrays keep the duplicate equal
+//     to the first line.
+
+// The node lines of the cells before and after a node line (x) or their row offsets
+// Index(0, line) (y); lo < 0 where there is no such cell.
+struct CellsBeside {
+  long before_lo, before_hi;
+  long after_lo, after_hi;
+};
+
+// Folded layout, from the neighbour lines prev / next of `line` (-1 where absent: AxisWrap).
+inline CellsBeside FoldedCells(int prev, int line, int next) {
+  return CellsBeside{prev, line, next >= 0 ? line : -1, next};
+}
+
+// Own-lines layout: the cells (line - 1, line) and (line, line + 1) of an axis of `cells` cells,
+// wrapped across a periodic side to cells (cells - 1, cells) and (0, 1).
+inline CellsBeside OwnCells(int line, int cells, bool periodic) {
+  auto cell = [&](int first) -> long {
+    if (first >= 0 && first < cells) return first;
+    return periodic ? Wrap(first, cells) : -1;
+  };
+  const long before = cell(line - 1), after = cell(line);
+  return CellsBeside{before, before >= 0 ? before + 1 : -1, after, after >= 0 ? after + 1 : -1};
+}
+
+// Node lines of a y axis as row offsets of the grid.
+inline CellsBeside RowOffsets(const Grid& grid, const CellsBeside& y) {
+  const long row = grid.NodesX();
+  auto offset = [row](long line) { return line >= 0 ? line * row : -1; };
+  return CellsBeside{offset(y.before_lo), offset(y.before_hi), offset(y.after_lo),
+                     offset(y.after_hi)};
+}
+
+// The y cells of node row j in the folded layout, as row offsets.
+inline CellsBeside FoldedRows(const Grid& grid, const AxisWrap& ay, int j) {
+  return RowOffsets(grid, FoldedCells(ay.Prev(j), j, ay.Next(j)));
+}
+
+// One square around a node: corners a = SW, b = SE, c = NE, d = NW (node indices); the triangles
+// T1 = (a, b, c) and T2 = (a, c, d) that touch the node, and in each h grad phi of the node's hat
+// function (unit mesh: components -1, 0 or 1).
+struct SquareAround {
+  std::size_t a, b, c, d;
+  bool lower, upper;  // T1, T2 touch the node
+  int lx, ly;         // h grad phi on T1
+  int ux, uy;         // h grad phi on T2
+};
+
+// h times the derivatives of a P1 field f on T1 and T2 of a square.
+inline double LowerDx(const double* f, const SquareAround& s) { return f[s.b] - f[s.a]; }
+inline double LowerDy(const double* f, const SquareAround& s) { return f[s.c] - f[s.b]; }
+inline double UpperDx(const double* f, const SquareAround& s) { return f[s.c] - f[s.d]; }
+inline double UpperDy(const double* f, const SquareAround& s) { return f[s.d] - f[s.a]; }
+
+// The order in which the squares are visited (sums are not associative: each caller keeps its
+// own). kCounterClockwise: NE, NW, SW, SE. kFullSquaresFirst: NE, SW, NW, SE.
+enum class SquareOrder { kCounterClockwise, kFullSquaresFirst };
+
+// Calls visit(SquareAround) for each square around the node whose cells exist: x holds node lines,
+// y row offsets (RowOffsets). Each node row is written by its node alone: rows can be computed in
+// parallel without write conflicts, and the element-wise boundary rows come out exactly.
+template <SquareOrder kOrder = SquareOrder::kCounterClockwise, typename Visit>
+inline void ForEachSquareAround(const CellsBeside& x, const CellsBeside& y, Visit&& visit) {
+  auto square = [](long xlo, long xhi, long ylo, long yhi, bool lower, bool upper, int lx, int ly,
+                   int ux, int uy) {
+    return SquareAround{std::size_t(ylo + xlo),
+                        std::size_t(ylo + xhi),
+                        std::size_t(yhi + xhi),
+                        std::size_t(yhi + xlo),
+                        lower,
+                        upper,
+                        lx,
+                        ly,
+                        ux,
+                        uy};
+  };
+  const bool west = x.before_lo >= 0, east = x.after_lo >= 0;
+  const bool south = y.before_lo >= 0, north = y.after_lo >= 0;
+  auto ne = [&] {  // the node is a: T1 and T2
+    if (east && north)
+      visit(square(x.after_lo, x.after_hi, y.after_lo, y.after_hi, true, true, -1, 0, 0, -1));
+  };
+  auto nw = [&] {  // the node is b: T1 only
+    if (west && north)
+      visit(square(x.before_lo, x.before_hi, y.after_lo, y.after_hi, true, false, 1, -1, 0, 0));
+  };
+  auto sw = [&] {  // the node is c: T1 and T2
+    if (west && south)
+      visit(square(x.before_lo, x.before_hi, y.before_lo, y.before_hi, true, true, 0, 1, 1, 0));
+  };
+  auto se = [&] {  // the node is d: T2 only
+    if (east && south)
+      visit(square(x.after_lo, x.after_hi, y.before_lo, y.before_hi, false, true, 0, 0, -1, 1));
+  };
+  ne();
+  if constexpr (kOrder == SquareOrder::kCounterClockwise) {
+    nw();
+    sw();
+  } else {
+    sw();
+    nw();
+  }
+  se();
+}
+
+// One triangle around a node: its vertices k0, k1, k2 (T1: a, b, c; T2: a, c, d), which one it is,
+// and h grad phi of the node's hat function on it.
+struct TriangleAround {
+  std::size_t k0, k1, k2;
+  bool upper;  // T2
+  int gx, gy;
+};
+
+// h times the derivatives of a P1 field f on the triangle.
+inline double TriangleDx(const double* f, const TriangleAround& t) {
+  return t.upper ? f[t.k1] - f[t.k2] : f[t.k1] - f[t.k0];
+}
+inline double TriangleDy(const double* f, const TriangleAround& t) {
+  return t.upper ? f[t.k2] - f[t.k0] : f[t.k2] - f[t.k1];
+}
+
+// Calls visit(TriangleAround) for each triangle around the node, T1 before T2 in each square.
+template <SquareOrder kOrder = SquareOrder::kCounterClockwise, typename Visit>
+inline void ForEachTriangleAround(const CellsBeside& x, const CellsBeside& y, Visit&& visit) {
+  ForEachSquareAround<kOrder>(x, y, [&](const SquareAround& s) {
+    if (s.lower) visit(TriangleAround{s.a, s.b, s.c, false, s.lx, s.ly});
+    if (s.upper) visit(TriangleAround{s.a, s.c, s.d, true, s.ux, s.uy});
+  });
+}
+
+// acc += unit * value for unit in {-1, 0, 1}, without a multiplication (a zero unit adds nothing).
+inline void AddUnit(double& acc, int unit, double value) {
+  if (unit > 0) acc += value;
+  if (unit < 0) acc -= value;
+}
+
 // h/6-scaled sums of the element gradients of f over the triangles around the node:
-// (G_x f)_n = (h/6) gx, (G_y f)_n = (h/6) gy.
-inline void GradientSumsAt(const Rows& f, int im, int i, int ip, double& gx, double& gy) {
+// (G_x f)_n = (h/6) gx, (G_y f)_n = (h/6) gy. The two triangles of a square are added as a pair.
+inline void GradientSumsAt(const double* f, const CellsBeside& x, const CellsBeside& y, double& gx,
+                           double& gy) {
   gx = 0.0;
   gy = 0.0;
-  const double* s = f.below;
-  const double* r = f.row;
-  const double* n = f.above;
-  if (n && ip >= 0) {  // square (i,j): T1 and T2
-    gx += (r[ip] - r[i]) + (n[ip] - n[i]);
-    gy += (n[ip] - r[ip]) + (n[i] - r[i]);
-  }
-  if (n && im >= 0) {  // square (i-1,j): T1
-    gx += r[i] - r[im];
-    gy += n[i] - r[i];
-  }
-  if (s && im >= 0) {  // square (i-1,j-1): T1 and T2
-    gx += (s[i] - s[im]) + (r[i] - r[im]);
-    gy += (r[i] - s[i]) + (r[im] - s[im]);
-  }
-  if (s && ip >= 0) {  // square (i,j-1): T2
-    gx += r[ip] - r[i];
-    gy += r[i] - s[i];
-  }
+  ForEachSquareAround(x, y, [&](const SquareAround& s) {
+    if (s.lower && s.upper) {
+      gx += LowerDx(f, s) + UpperDx(f, s);
+      gy += LowerDy(f, s) + UpperDy(f, s);
+    } else if (s.lower) {
+      gx += LowerDx(f, s);
+      gy += LowerDy(f, s);
+    } else {
+      gx += UpperDx(f, s);
+      gy += UpperDy(f, s);
+    }
+  });
 }
 
 // h/6-scaled divergence row, (G_x u + G_y v)_n = (h/6) of the result: the x sums of u plus the y
 // sums of v over the same triangles as GradientSumsAt.
-inline double DivergenceSumsAt(const Rows& u, const Rows& v, int im, int i, int ip) {
+inline double DivergenceSumsAt(const double* u, const double* v, const CellsBeside& x,
+                               const CellsBeside& y) {
   double sum = 0.0;
-  if (u.above && ip >= 0) {  // square (i,j): T1 and T2
-    sum += (u.row[ip] - u.row[i]) + (u.above[ip] - u.above[i]);
-    sum += (v.above[ip] - v.row[ip]) + (v.above[i] - v.row[i]);
-  }
-  if (u.above && im >= 0) {  // square (i-1,j): T1
-    sum += (u.row[i] - u.row[im]) + (v.above[i] - v.row[i]);
-  }
-  if (u.below && im >= 0) {  // square (i-1,j-1): T1 and T2
-    sum += (u.below[i] - u.below[im]) + (u.row[i] - u.row[im]);
-    sum += (v.row[i] - v.below[i]) + (v.row[im] - v.below[im]);
-  }
-  if (u.below && ip >= 0) {  // square (i,j-1): T2
-    sum += (u.row[ip] - u.row[i]) + (v.row[i] - v.below[i]);
-  }
+  ForEachSquareAround(x, y, [&](const SquareAround& s) {
+    if (s.lower && s.upper) {
+      sum += LowerDx(u, s) + UpperDx(u, s);
+      sum += LowerDy(v, s) + UpperDy(v, s);
+    } else if (s.lower) {
+      sum += LowerDx(u, s) + LowerDy(v, s);
+    } else {
+      sum += UpperDx(u, s) + UpperDy(v, s);
+    }
+  });
   return sum;
 }
 
 // h/6-scaled rows of the transposed gradients, (G_x^T g)_n = (h/6) ox, (G_y^T g)_n = (h/6) oy:
 // each triangle adds (sum of g at its vertices) times h times the gradient of the node's basis.
-inline void GradientTransposeSumsAt(const Rows& g, int im, int i, int ip, double& ox, double& oy) {
+inline void GradientTransposeSumsAt(const double* g, const CellsBeside& x, const CellsBeside& y,
+                                    double& ox, double& oy) {
   ox = 0.0;
   oy = 0.0;
-  const double* s = g.below;
-  const double* r = g.row;
-  const double* n = g.above;
-  if (n && ip >= 0) {  // square (i,j): n = a; T1 grad (-1, 0), T2 grad (0, -1)
-    ox -= r[i] + r[ip] + n[ip];
-    oy -= r[i] + n[ip] + n[i];
-  }
-  if (n && im >= 0) {  // square (i-1,j): n = b of T1, grad (1, -1)
-    const double sum = r[im] + r[i] + n[i];
-    ox += sum;
-    oy -= sum;
-  }
-  if (s && im >= 0) {  // square (i-1,j-1): n = c; T1 grad (0, 1), T2 grad (1, 0)
-    oy += s[im] + s[i] + r[i];
-    ox += s[im] + r[i] + r[im];
-  }
-  if (s && ip >= 0) {  // square (i,j-1): n = d of T2, grad (-1, 1)
-    const double sum = s[i] + r[ip] + r[i];
-    ox -= sum;
-    oy += sum;
-  }
+  ForEachTriangleAround(x, y, [&](const TriangleAround& t) {
+    const double sum = g[t.k0] + g[t.k1] + g[t.k2];
+    AddUnit(ox, t.gx, sum);
+    AddUnit(oy, t.gy, sum);
+  });
 }
 
 // Full-weighting restriction I_p^T at the fine node under a pressure node: the node itself plus

@@ -11,10 +11,13 @@
 //   2. the pointwise ODE dA/dt = L A + A L^T - (A - I)/lambda over dt with L frozen at each node
 //      (average of the 6 P1 triangle gradients, velocity_gradient.h), solved exactly by the
 //      exponential integrator (pointwise_update.h);
-//   3. A = I at nodes inside particles; A = A_L at the nodes of velocity sides where u . n < 0
-//      (inflow_state.h: the fully developed Oldroyd-B state of a poiseuille profile, I for a
-//      uniform one), also held during step 1; walls and outflow sides get nothing (constant
-//      extrapolation).
+//   3. A = I at nodes inside particles; A = A_L at the inflow nodes (inflow_state.h: the fully
+//      developed Oldroyd-B state of a poiseuille profile, I for a uniform one), also held during
+//      step 1; walls and outflow sides get nothing (constant extrapolation).
+// Inflow rule (one rule, applied to u^0 for the initial state and to u^{n+2/4} at every step): a
+//   node of a velocity side s is an inflow node of s where u . n_s < 0 (n_s the outward normal) and
+//   takes the A_L of s; a corner node of two velocity sides takes the A_L of the last of left,
+//   right, bottom, top through which the liquid enters.
 // Consistency with (35): (35) is a backward-Euler step of (5) with u^{n+2/4} frozen; the paper
 //   (remark 3 of section 4) solves it by a third-order upwind, positive-only scheme. Splitting the
 //   frozen-coefficient operator into its convective and pointwise parts is first-order accurate in
@@ -59,16 +62,22 @@ class ConformationStep {
                const unsigned char* inside_particle, double* a11, double* a12, double* a22,
                StepReport& report);
 
+  // A = A_L at the inflow nodes of the velocity (u, v) (the inflow rule above); other nodes are
+  // left as they are.
+  void SetInflowState(const double* u, const double* v, double* a11, double* a12, double* a22);
+
   // Comparison option for tests only: the unlimited advection (no SPD blend).
   void DisableBlendForComparison() { advection_.DisableBlendForComparison(); }
 
  private:
   struct BoundaryNode {
     int i, j;
-    double nx, ny;     // outward normal
-    SymTensor inflow;  // A_L
+    double nx, ny;        // outward normal
+    SymTensor inflow;     // A_L
+    bool active = false;  // an inflow node of this side for the last velocity seen
   };
-  void CollectInflow(const double* u, const double* v);
+  // Applies the inflow rule to (u, v): BoundaryNode::active and the per-node flags inflow_.
+  void FindInflow(const double* u, const double* v);
   // Throws when a node of (a11, a12, a22) is not finite or not SPD. `when` is "before" or "after".
   void CheckField(double time, const char* when, const double* a11, const double* a12,
                   const double* a22) const;

@@ -27,28 +27,25 @@
 #include "dlmfd/core/params.h"
 #include "dlmfd/fluid/boundary_data.h"
 #include "dlmfd/fluid/node_set.h"
+#include "dlmfd/fluid/velocity_advection.h"
 #include "dlmfd/mesh/boundary_topology.h"
 #include "dlmfd/solvers/separable_helmholtz.h"
 
 namespace dlmfd {
 
-struct AdvectionReport {
-  int iterations = 0;      // LS-CG iterations, or wave sub-steps
-  double residual = 0.0;   // LS-CG: final sqrt(g.r / g0.r0); wave: 0
-  double fast_solves = 0;  // scalar fast solves used
-};
-
-class AdvectionLeastSquares {
+class AdvectionLeastSquares final : public VelocityAdvection {
  public:
   AdvectionLeastSquares(const Grid& grid, const DomainParams& domain, const FluidParams& fluid,
                         double dt, double beta, const SolverParams& solvers,
                         const BoundaryData& boundary_data);
-  ~AdvectionLeastSquares();
+  ~AdvectionLeastSquares() override;
   AdvectionLeastSquares(const AdvectionLeastSquares&) = delete;
   AdvectionLeastSquares& operator=(const AdvectionLeastSquares&) = delete;
 
   // In: u, v = u^{n+1/4}. Out: u, v = u^{n+2/4}.
-  AdvectionReport Solve(double* u, double* v);
+  AdvectionReport Solve(double* u, double* v) override;
+  // advection_iterations, advection_residual.
+  void Record(const AdvectionReport& result, StepReport& report) const override;
 
   // Exposed for tests. u* is the last Solve's input (or set by SetReference).
   void SetReference(const double* u, const double* v);

@@ -27,24 +27,26 @@
 
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/params.h"
-#include "dlmfd/fluid/advection_least_squares.h"
 #include "dlmfd/fluid/boundary_data.h"
 #include "dlmfd/fluid/node_set.h"
+#include "dlmfd/fluid/velocity_advection.h"
 #include "dlmfd/mesh/boundary_topology.h"
 #include "dlmfd/solvers/separable_helmholtz.h"
 
 namespace dlmfd {
 
-class AdvectionWave {
+class AdvectionWave final : public VelocityAdvection {
  public:
   AdvectionWave(const Grid& grid, const DomainParams& domain, const FluidParams& fluid, double dt,
                 double beta, const SolverParams& solvers, const BoundaryData& boundary_data);
-  ~AdvectionWave();
+  ~AdvectionWave() override;
   AdvectionWave(const AdvectionWave&) = delete;
   AdvectionWave& operator=(const AdvectionWave&) = delete;
 
   // In: u, v = u^{n+1/4}. Out: u, v = u^{n+2/4}. report.iterations = wave sub-steps Q.
-  AdvectionReport Solve(double* u, double* v);
+  AdvectionReport Solve(double* u, double* v) override;
+  // wave_substeps.
+  void Record(const AdvectionReport& result, StepReport& report) const override;
 
  private:
   void FreezeVelocity(const double* u, const double* v);  // W_T per triangle from V

@@ -1,0 +1,63 @@
+// The Oldroyd-B polymer of a viscoelastic liquid: everything the model adds to the Marchuk-Yanenko
+// scheme, in one place (the shape of Basilisk's log-conform.h: parameters, initial state, force on
+// the momentum equation, substep).
+//
+// Parameters: relaxation time lambda = fluid.relaxation_time, polymer viscosity eta_p = (1 - beta)
+//   eta, modulus G = eta_p / lambda; tau_p = G (A - I) (design.md 4).
+// Initial state: A^0 = I, and A^0 = A_L on the inflow nodes of u^0 (the inflow rule of
+//   conformation_step.h, the same rule that every step applies to u^{n+2/4}).
+// Force on the momentum equation (33): f_i = -int grad phi_i : G (A^n - I) (polymer_force.h),
+//   passed to the Stokes solver as its dual forcing (the solver adds the body force itself).
+// Step (35): A^n -> A^{n+1} with u^{n+2/4} frozen (conformation_step.h), with A = I at the velocity
+//   nodes strictly inside the particles at X^n (across periodic sides by the minimum image) and
+//   A = A_L on the inflow nodes.
+// A itself is FlowState::a11, a12, a22 (checkpoints and observers read it there); this object holds
+//   the force arrays, and the particle marks when the scene has particles.
+// Not supported: a Newtonian liquid (lambda = 0 or beta = 1: the run builds no polymer at all);
+//   other constitutive models.
+// References: paper (5), (33), (35); Basilisk src/log-conform.h (the module layout).
+#pragma once
+
+#include <vector>
+
+#include "dlmfd/conformation/conformation_step.h"
+#include "dlmfd/core/grid.h"
+#include "dlmfd/core/params.h"
+#include "dlmfd/core/state.h"
+
+namespace dlmfd {
+
+// A force on the momentum equation as dual node vectors; null components mean none.
+struct NodeForce {
+  const double* x = nullptr;
+  const double* y = nullptr;
+};
+
+class OldroydBPolymer {
+ public:
+  // Throws InvalidParameter for a Newtonian liquid or an inflow side without a steady state.
+  OldroydBPolymer(const Params& params, const Grid& grid);
+
+  // A^0 into state.a11, a12, a22: I, and A_L on the inflow nodes of state.u, state.v.
+  void SetInitialState(FlowState& state);
+  // The polymer force of (33) for A^n of state; the arrays stay valid until the next call.
+  NodeForce MomentumForce(const FlowState& state);
+  // Step (35): A^n at state.time -> A^{n+1}, with u^{n+2/4} = state.u, state.v and the particles
+  // of state at X^n.
+  void Update(double dt, FlowState& state, StepReport& report);
+
+  double modulus() const { return modulus_; }  // G = eta_p / lambda
+
+ private:
+  // Marks the velocity nodes strictly inside a particle (inside_particle_).
+  void MarkParticleNodes(const std::vector<ParticleState>& particles);
+
+  Grid grid_;
+  DomainParams domain_;
+  double modulus_;
+  ConformationStep step_;
+  std::vector<double> fx_, fy_;                 // the force of (33)
+  std::vector<unsigned char> inside_particle_;  // nodes where A = I; scenes with particles only
+};
+
+}  // namespace dlmfd

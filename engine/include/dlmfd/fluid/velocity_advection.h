@@ -1,0 +1,34 @@
+// Step (34) of the paper, u^{n+1/4} -> u^{n+2/4}: the advection-diffusion substep of the
+// Marchuk-Yanenko scheme, behind one interface so that the scheme is chosen once per run
+// (splitting.advection) and the time loop holds one object:
+//   least_squares: the paper's least-squares CG (advection_least_squares.h);
+//   wave:          the explicit wave-like scheme of Dean and Glowinski (advection_wave.h).
+// Each scheme names its own columns of the step report: advection_iterations and
+// advection_residual (least squares), wave_substeps (wave); diagnostics.csv prints them.
+#pragma once
+
+#include <memory>
+
+#include "dlmfd/core/grid.h"
+#include "dlmfd/core/params.h"
+#include "dlmfd/core/state.h"
+#include "dlmfd/fluid/advection_report.h"
+#include "dlmfd/fluid/boundary_data.h"
+
+namespace dlmfd {
+
+class VelocityAdvection {
+ public:
+  virtual ~VelocityAdvection() = default;
+  // In: u, v = u^{n+1/4}. Out: u, v = u^{n+2/4}.
+  virtual AdvectionReport Solve(double* u, double* v) = 0;
+  // Writes the scheme's columns of `report` from the result of Solve.
+  virtual void Record(const AdvectionReport& result, StepReport& report) const = 0;
+};
+
+// The scheme of params.splitting.advection, with the weight beta of (34) and the run's time step;
+// boundary_data must outlive it.
+std::unique_ptr<VelocityAdvection> MakeVelocityAdvection(const Grid& grid, const Params& params,
+                                                         const BoundaryData& boundary_data);
+
+}  // namespace dlmfd

@@ -1,0 +1,74 @@
+#include "dlmfd/conformation/oldroyd_b_polymer.h"
+
+#include <algorithm>
+
+#include "../mesh/grid_kernels.h"
+#include "dlmfd/conformation/polymer_force.h"
+
+namespace dlmfd {
+
+OldroydBPolymer::OldroydBPolymer(const Params& params, const Grid& grid)
+    : grid_(grid),
+      domain_(params.domain),
+      step_(params, grid),
+      fx_(grid.NodeCount(), 0.0),
+      fy_(grid.NodeCount(), 0.0) {
+  // After step_: its constructor rejects a Newtonian liquid (lambda = 0) first.
+  modulus_ = params.fluid.PolymerViscosity() / params.fluid.relaxation_time;
+  if (!params.particles.empty()) inside_particle_.assign(grid.NodeCount(), 0);
+}
+
+void OldroydBPolymer::SetInitialState(FlowState& state) {
+  state.a11.assign(grid_.NodeCount(), 1.0);
+  state.a12.assign(grid_.NodeCount(), 0.0);
+  state.a22.assign(grid_.NodeCount(), 1.0);
+  step_.SetInflowState(state.u.data(), state.v.data(), state.a11.data(), state.a12.data(),
+                       state.a22.data());
+}
+
+NodeForce OldroydBPolymer::MomentumForce(const FlowState& state) {
+  std::fill(fx_.begin(), fx_.end(), 0.0);
+  std::fill(fy_.begin(), fy_.end(), 0.0);
+  AddPolymerForce(grid_, domain_, modulus_, state.a11.data(), state.a12.data(), state.a22.data(),
+                  fx_.data(), fy_.data());
+  return NodeForce{fx_.data(), fy_.data()};
+}
+
+void OldroydBPolymer::Update(double dt, FlowState& state, StepReport& report) {
+  const unsigned char* inside = nullptr;
+  if (!inside_particle_.empty()) {
+    MarkParticleNodes(state.particles);
+    inside = inside_particle_.data();
+  }
+  step_.Advance(state.time, dt, state.u.data(), state.v.data(), inside, state.a11.data(),
+                state.a12.data(), state.a22.data(), report);
+}
+
+void OldroydBPolymer::MarkParticleNodes(const std::vector<ParticleState>& particles) {
+  std::fill(inside_particle_.begin(), inside_particle_.end(), 0);
+  const bool px = domain_.PeriodicX(), py = domain_.PeriodicY();
+  for (const ParticleState& q : particles) {
+    const double r = q.radius;
+    int i_lo, i_hi, j_lo, j_hi;
+    kernels::CoveredNodes(q.position.x() - r, q.position.x() + r, grid_.x0, grid_.h, grid_.nx, px,
+                          &i_lo, &i_hi);
+    kernels::CoveredNodes(q.position.y() - r, q.position.y() + r, grid_.y0, grid_.h, grid_.ny, py,
+                          &j_lo, &j_hi);
+    for (int jj = j_lo; jj <= j_hi; ++jj) {
+      const double dy = grid_.Y(jj) - q.position.y();
+      const int j = py ? kernels::Wrap(jj, grid_.ny) : jj;
+      for (int ii = i_lo; ii <= i_hi; ++ii) {
+        const double dx = grid_.X(ii) - q.position.x();
+        if (dx * dx + dy * dy >= r * r) continue;
+        const int i = px ? kernels::Wrap(ii, grid_.nx) : ii;
+        inside_particle_[grid_.Index(i, j)] = 1;
+        // The repeated last node of a periodic line mirrors the first.
+        if (px && i == 0) inside_particle_[grid_.Index(grid_.nx, j)] = 1;
+        if (py && j == 0) inside_particle_[grid_.Index(i, grid_.ny)] = 1;
+        if (px && py && i == 0 && j == 0) inside_particle_[grid_.Index(grid_.nx, grid_.ny)] = 1;
+      }
+    }
+  }
+}
+
+}  // namespace dlmfd
