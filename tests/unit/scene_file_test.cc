@@ -294,9 +294,9 @@ TEST(SceneFile, EmptySceneIsAllDefaults) {
 }
 
 TEST(SceneFile, IntegersAreAcceptedAsReals) {
-  const Params p = ParseScene("[fluid]\nviscosity = 2\n[domain]\nsize = [2, 4]\nh = 1\n");
+  const Params p = ParseScene("[fluid]\nviscosity = 2\n[domain]\nsize = [4, 8]\nh = 1\n");
   EXPECT_EQ(p.fluid.viscosity, 2.0);
-  EXPECT_EQ(p.domain.size, Vec2(2.0, 4.0));
+  EXPECT_EQ(p.domain.size, Vec2(4.0, 8.0));
 }
 
 TEST(SceneFile, PeriodicDiskMayCrossPeriodicSides) {
