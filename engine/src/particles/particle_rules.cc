@@ -67,6 +67,11 @@ void RequireNotLighterThanLiquid(const Params& params, std::size_t p) {
   if (q.motion != Motion::kFree || q.density == rho) return;
   const double radius = q.Radius();
   const double excess_mass = (q.density - rho) * kPi * radius * radius;
+  if (q.density > rho && !(excess_mass > 0.0)) {
+    throw InvalidParameter("particles." + std::to_string(p) + ".diameter", ExactText(q.diameter),
+                           "a diameter whose excess mass (rho_d - rho_L) pi R^2 is a positive "
+                           "double (here it underflows to 0)");
+  }
   if (!(excess_mass > 0.0)) {
     throw InvalidParameter(
         "particles." + std::to_string(p) + ".density", ExactText(q.density),

@@ -18,7 +18,8 @@
 
 namespace dlmfd {
 
-// Throws InvalidParameter (particles.P.density) when free particle p is lighter than the liquid.
+// Throws InvalidParameter (particles.P.density) when free particle p is lighter than the liquid,
+// (particles.P.diameter) when its excess mass is too small for a double.
 void RequireNotLighterThanLiquid(const Params& params, std::size_t p);
 // Throws InvalidParameter (domain.h) when `grid` has more nodes than 32-bit indices count.
 void RequireIndexableGrid(const Params& params, const Grid& grid);
