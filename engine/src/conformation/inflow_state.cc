@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/number_text.h"
