@@ -4,6 +4,7 @@
 
 #include "dlmfd/core/errors.h"
 #include "dlmfd/scene/scene_file.h"
+#include "dlmfd/scene/scene_footprint.h"
 #include "service_error.h"
 
 namespace dlmfd::server {
@@ -25,32 +26,30 @@ SceneEstimate AdmitScene(const std::string& scene, const std::vector<std::string
     }
     parsed.push_back(ParseOverride(text));  // InvalidParameter -> INVALID_ARGUMENT
   }
-  Params params = ParseScene(scene, parsed, "scene");
-  const double nx = std::round(params.domain.size.x() / params.domain.h);
-  const double ny = std::round(params.domain.size.y() / params.domain.h);
-  const double nodes = (nx + 1) * (ny + 1);
+  const Params params = ParseScene(scene, parsed, "scene");
+  const SceneFootprint footprint = EstimateFootprint(params);
+  // Compared in double: the estimate is finite but may be far beyond any integer type. Counts are
+  // printed as integers, which they fit once ParseScene has held them to the engine's limits.
+  if (!(footprint.velocity_nodes <= static_cast<double>(config.max_grid_nodes))) {
+    throw ServiceError(
+        StatusCode::RESOURCE_EXHAUSTED,
+        "domain.h: the grid has " + std::to_string(static_cast<int64_t>(footprint.velocity_nodes)) +
+            " velocity nodes, over the limit of " + std::to_string(config.max_grid_nodes));
+  }
+  const double mib = footprint.bytes / (1024.0 * 1024.0);
+  if (!(mib <= static_cast<double>(config.max_memory_mb))) {
+    const char* key =
+        footprint.multiplier_nodes > footprint.velocity_nodes ? "particle_mesh.h" : "domain.h";
+    throw ServiceError(StatusCode::RESOURCE_EXHAUSTED,
+                       std::string(key) + ": the run needs an estimated " +
+                           std::to_string(static_cast<int64_t>(std::ceil(mib))) +
+                           " MiB, over the limit of " + std::to_string(config.max_memory_mb) +
+                           " MiB");
+  }
   SceneEstimate estimate;
   estimate.end_time = params.time.end;
-  if (!(nodes <= static_cast<double>(config.max_grid_nodes))) {
-    throw ServiceError(StatusCode::RESOURCE_EXHAUSTED,
-                       "domain.h: the grid has " + std::to_string(static_cast<int64_t>(nodes)) +
-                           " velocity nodes, over the limit of " +
-                           std::to_string(config.max_grid_nodes));
-  }
-  estimate.nodes = static_cast<int64_t>(nodes);
-  double particle_nodes = 0;
-  for (const auto& particle : params.particles) {
-    const double r = particle.Radius() / params.particle_mesh.h;
-    particle_nodes += 4.0 * r * r + 8.0 * r + 1.0;
-  }
-  const double bytes = kBytesPerNode * (nodes + particle_nodes);
-  estimate.memory_mb = static_cast<int64_t>(std::ceil(bytes / (1024.0 * 1024.0)));
-  if (estimate.memory_mb > config.max_memory_mb) {
-    throw ServiceError(StatusCode::RESOURCE_EXHAUSTED,
-                       "domain.h: the run needs an estimated " +
-                           std::to_string(estimate.memory_mb) + " MiB, over the limit of " +
-                           std::to_string(config.max_memory_mb) + " MiB");
-  }
+  estimate.nodes = static_cast<int64_t>(footprint.velocity_nodes);
+  estimate.memory_mb = static_cast<int64_t>(std::ceil(mib));
   return estimate;
 }
 

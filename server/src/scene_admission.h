@@ -1,11 +1,9 @@
 // Scene admission: what Submit checks before a job is queued.
 //
-// The scene text (with overrides) is parsed and validated by dlmfd::ParseScene, whose
-// InvalidParameter names the dotted key; the grid size and an estimate of the solver's memory are
-// checked against the configured limits. The memory estimate is deliberately coarse: kBytesPerNode
-// bytes per velocity node (about 64 doubles: two velocity components and their split-step copies,
-// the three conformation components and their copies, pressure, transform work arrays), which is an
-// upper bound for the fields listed in method/fluid.md, plus the particle meshes.
+// The scene text (with overrides) is parsed and validated by dlmfd::ParseScene, the one validation
+// of dlmfd-solve too (scene/scene_validation.h), whose InvalidParameter names the dotted key; then
+// the scene's footprint (dlmfd::EstimateFootprint, scene/scene_footprint.h: velocity nodes and
+// memory, computed in double) is held against the configured limits.
 // Not supported: estimating the wall time of a run.
 #pragma once
 
@@ -22,8 +20,6 @@ struct SceneEstimate {
   int64_t memory_mb = 0;  // estimated peak memory of dlmfd-solve
   double end_time = 0;
 };
-
-inline constexpr int64_t kBytesPerNode = 512;
 
 // Throws ServiceError INVALID_ARGUMENT (scene or override invalid, the key first in the message) or
 // RESOURCE_EXHAUSTED (size, nodes or memory over the limits).

@@ -1,15 +1,19 @@
-// Scene files (design.md 3.1): bad scenes are rejected with the key, the value and what is allowed;
-// good scenes give the stated values; defaults; --set overrides; WriteScene round-trips exactly.
+// Scene files (design.md 3.1): bad scenes are rejected with the key, the value and what is allowed
+// (the ranges and the module rules of scene/scene_validation.h, the footprint limits); good scenes
+// give the stated values; defaults; --set overrides; WriteScene round-trips exactly.
 #include "dlmfd/scene/scene_file.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/scene/scene_footprint.h"
+#include "dlmfd/scene/scene_validation.h"
 
 namespace dlmfd {
 namespace {
@@ -122,11 +126,15 @@ const BadScene kBadScenes[] = {
     {"DtNegative", "[time]\ndt = -0.001\n", "time.dt", "-0.001"},
     {"EndNegative", "[time]\nend = -1.0\n", "time.end", "-1.0"},
     {"DtLongerThanEnd", "[time]\ndt = 0.5\nend = 0.1\n", "time.dt", "0.5"},
+    {"StepCountBeyond2To53", "[time]\ndt = 1e-300\nend = 1e300\n", "time.dt", "1e-300"},
     {"SizeNotMultipleOfH", "[domain]\nsize = [1.0, 1.0]\nh = 0.3\n", "domain.size", "[1.0, 1.0]"},
     {"SizeOddCells", "[domain]\nsize = [1.0, 2.0]\nh = 0.2\n", "domain.size", "[1.0, 2.0]"},
     {"SizeZeroWidth", "[domain]\nsize = [0.0, 1.0]\n", "domain.size", "[0.0, 1.0]"},
     {"HNegative", "[domain]\nh = -0.1\n", "domain.h", "-0.1"},
     {"GridTooLarge", "[domain]\nsize = [100.0, 100.0]\nh = 0.001\n", "domain.h", "0.001"},
+    {"GridTiny", "[domain]\nh = 1e-300\n", "domain.h", "1e-300"},
+    {"TooFewCellsForThePressureMesh", "[domain]\nsize = [1.0, 2.0]\nh = 0.5\n", "domain.size",
+     "[1.0, 2.0]"},
     {"SideTypeUnknown", "[domain.boundary]\nleft = { type = \"slip\" }\n",
      "domain.boundary.left.type", "\"slip\""},
     {"SideTypeMissing", "[domain.boundary]\nleft = { profile = \"uniform\" }\n",
@@ -157,6 +165,7 @@ const BadScene kBadScenes[] = {
     {"SideNotATable", "[domain.boundary]\nleft = \"wall\"\n", "domain.boundary.left", "\"wall\""},
     {"GammaNonZero", "[splitting]\nalpha = 0.5\nbeta = 0.4\n", "splitting.beta", "0.4"},
     {"AlphaAboveOne", "[splitting]\nalpha = 1.5\nbeta = -0.5\n", "splitting.alpha", "1.5"},
+    {"AlphaZero", "[splitting]\nalpha = 0.0\nbeta = 1.0\n", "splitting.alpha", "0.0"},
     {"AdvectionUnknown", "[splitting]\nadvection = \"upwind\"\n", "splitting.advection",
      "\"upwind\""},
     {"StokesToleranceOne", "[solvers]\nstokes_tolerance = 1.0\n", "solvers.stokes_tolerance",
@@ -167,6 +176,9 @@ const BadScene kBadScenes[] = {
      "solvers.multiplier_max_iterations", "10.5"},
     {"WaveCourantZero", "[solvers]\nwave_max_courant = 0.0\n", "solvers.wave_max_courant", "0.0"},
     {"ParticleMeshHZero", "[particle_mesh]\nh = 0.0\n", "particle_mesh.h", "0.0"},
+    {"ParticleMeshTiny",
+     "[particle_mesh]\nh = 1e-300\n[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n",
+     "particle_mesh.h", "1e-300"},
     {"CollisionRangeZero", "[collisions]\nrange = 0.0\n", "collisions.range", "0.0"},
     {"WallStiffnessNegative", "[collisions]\nwall_stiffness = -1e-5\n", "collisions.wall_stiffness",
      "-1e-05"},
@@ -176,6 +188,12 @@ const BadScene kBadScenes[] = {
     {"ConformationFormLog", "[conformation]\nform = \"log\"\n", "conformation.form", "\"log\""},
     {"BlendKappaZero", "[conformation]\nblend_kappa = 0.0\n", "conformation.blend_kappa", "0.0"},
     {"FieldsEveryNegative", "[output]\nfields_every = -0.1\n", "output.fields_every", "-0.1"},
+    {"CheckpointPeriodBeyond2To53", "[output]\ncheckpoint_every = 1e-300\n",
+     "output.checkpoint_every", "1e-300"},
+    {"InflowWithoutSteadyState",
+     "[domain.boundary]\nbottom = { type = \"velocity\", profile = \"poiseuille\", max = [0.5, "
+     "1.0] }\ntop = { type = \"outflow\" }\n[fluid]\nrelaxation_time = 1.0\nsolvent_ratio = 0.5\n",
+     "fluid.relaxation_time", "1.0"},
     {"CheckpointEveryString", "[output]\ncheckpoint_every = \"often\"\n", "output.checkpoint_every",
      "\"often\""},
     {"ParticleMissingCenter",
@@ -239,6 +257,86 @@ TEST(SceneFile, GridTooLargeEstimatesMemory) {
   }
 }
 
+TEST(SceneFile, StepCountMessageNamesTimeEnd) {
+  try {
+    ParseScene("[time]\ndt = 1e-300\nend = 1e300\n");
+    FAIL();
+  } catch (const InvalidParameter& e) {
+    EXPECT_THAT(e.allowed(), HasSubstr("time.end"));
+    EXPECT_THAT(e.allowed(), HasSubstr("2^53"));
+  }
+}
+
+TEST(SceneFile, InflowMessageNamesTheSide) {
+  try {
+    ParseScene(
+        "[domain.boundary]\nleft = { type = \"velocity\", profile = \"poiseuille\", max = [1.0, "
+        "2.0] }\nright = { type = \"outflow\" }\n[fluid]\nrelaxation_time = 1.0\n"
+        "solvent_ratio = 0.5\n");
+    FAIL();
+  } catch (const InvalidParameter& e) {
+    EXPECT_THAT(e.allowed(), HasSubstr("domain.boundary.left"));
+    EXPECT_THAT(e.allowed(), HasSubstr("no steady Oldroyd-B state"));
+  }
+}
+
+// A normal Poiseuille inflow (L^2 = 0) has a steady state at any lambda; so has any inflow of a
+// Newtonian liquid, which has no conformation.
+TEST(SceneFile, InflowStatesThatExistAreAccepted) {
+  const std::string sides =
+      "[domain.boundary]\nbottom = { type = \"velocity\", profile = \"poiseuille\", max = [0.0, "
+      "1.0] }\ntop = { type = \"outflow\" }\n";
+  EXPECT_NO_THROW(ParseScene(sides + "[fluid]\nrelaxation_time = 100.0\nsolvent_ratio = 0.5\n"));
+  const std::string tangential =
+      "[domain.boundary]\nbottom = { type = \"velocity\", profile = \"poiseuille\", max = [0.5, "
+      "1.0] }\ntop = { type = \"outflow\" }\n";
+  EXPECT_NO_THROW(ParseScene(tangential + "[fluid]\nrelaxation_time = 1.0\n"));
+  // 2 lambda max Re eig(L) = 2 lambda 4 (0.5) / 1 = 4 lambda < 1.
+  EXPECT_NO_THROW(ParseScene(tangential + "[fluid]\nrelaxation_time = 0.2\nsolvent_ratio = 0.5\n"));
+}
+
+TEST(SceneFile, ValidateSceneChecksParamsBuiltInCode) {
+  Params p;
+  EXPECT_NO_THROW(ValidateScene(p));
+  p.splitting.alpha = 0.0;
+  p.splitting.beta = 1.0;
+  try {
+    ValidateScene(p);
+    FAIL();
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.key(), "splitting.alpha");
+  }
+}
+
+TEST(SceneFile, FootprintIsFiniteForTinyMeshSizes) {
+  Params p;
+  p.domain.h = 1e-300;
+  ParticleParams q;
+  q.center = Vec2(0.5, 0.5);
+  p.particles.push_back(q);
+  p.particle_mesh.h = 1e-300;
+  const SceneFootprint f = EstimateFootprint(p);
+  EXPECT_TRUE(std::isfinite(f.velocity_nodes));
+  EXPECT_TRUE(std::isfinite(f.multiplier_nodes));
+  EXPECT_TRUE(std::isfinite(f.bytes));
+  EXPECT_GT(f.velocity_nodes, kMaxVelocityNodes);
+  EXPECT_GT(f.multiplier_nodes, kMaxMultiplierNodes);
+}
+
+TEST(SceneFile, FootprintCountsTheGridAndBoundsTheRingMeshes) {
+  Params p;  // 32 x 32 cells
+  ParticleParams q;
+  q.center = Vec2(0.5, 0.5);
+  q.diameter = 0.2;
+  p.particles.push_back(q);
+  p.particle_mesh.h = 1.0 / 35;  // R / h_p = 3.5: 4 rings of 5, 11, 16, 22 nodes and the centre
+  const SceneFootprint f = EstimateFootprint(p);
+  EXPECT_EQ(f.velocity_nodes, 33.0 * 33.0);
+  EXPECT_GE(f.multiplier_nodes, 55.0);
+  EXPECT_LE(f.multiplier_nodes, 2.0 * 55.0);
+  EXPECT_EQ(f.bytes, kBytesPerNode * (f.velocity_nodes + f.multiplier_nodes));
+}
+
 TEST(SceneFile, GammaMessageSaysOnlyGammaZeroIsSupported) {
   try {
     ParseScene("[splitting]\nalpha = 0.3\nbeta = 0.3\n");
@@ -294,9 +392,9 @@ TEST(SceneFile, EmptySceneIsAllDefaults) {
 }
 
 TEST(SceneFile, IntegersAreAcceptedAsReals) {
-  const Params p = ParseScene("[fluid]\nviscosity = 2\n[domain]\nsize = [2, 4]\nh = 1\n");
+  const Params p = ParseScene("[fluid]\nviscosity = 2\n[domain]\nsize = [4, 8]\nh = 1\n");
   EXPECT_EQ(p.fluid.viscosity, 2.0);
-  EXPECT_EQ(p.domain.size, Vec2(2.0, 4.0));
+  EXPECT_EQ(p.domain.size, Vec2(4.0, 8.0));
 }
 
 TEST(SceneFile, PeriodicDiskMayCrossPeriodicSides) {

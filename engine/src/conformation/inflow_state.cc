@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/core/number_text.h"
 
 namespace dlmfd {
 
@@ -68,6 +70,28 @@ SymTensor InflowConformation(const Grid& grid, const DomainParams& domain, Side 
     l.m21 = b.max.y() * dphi_ds;
   }
   return SteadyConformation(l, lambda);
+}
+
+void ValidateInflowStates(const Params& params, const Grid& grid) {
+  if (params.fluid.IsNewtonian()) return;  // no conformation, no inflow state
+  const double lambda = params.fluid.relaxation_time;
+  const char* names[4] = {"left", "right", "bottom", "top"};
+  for (int s = 0; s < 4; ++s) {
+    const Side side = static_cast<Side>(s);
+    if (params.domain.side(side).type != SideType::kVelocity) continue;
+    const int nodes = (side == Side::kLeft || side == Side::kRight ? grid.ny : grid.nx) + 1;
+    for (int k = 0; k < nodes; ++k) {
+      try {
+        InflowConformation(grid, params.domain, side, k, lambda);
+      } catch (const InvalidParameter& e) {
+        throw InvalidParameter(
+            e.key(), ExactText(lambda),
+            e.allowed() + ": here " + e.value() + " at node " + std::to_string(k) +
+                " of domain.boundary." + names[s] +
+                " (a smaller lambda, or a smaller component of its max along the side)");
+      }
+    }
+  }
 }
 
 }  // namespace dlmfd

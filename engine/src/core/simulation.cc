@@ -21,6 +21,7 @@
 #include "../mesh/grid_kernels.h"
 #include "dlmfd/conformation/oldroyd_b_polymer.h"
 #include "dlmfd/core/errors.h"
+#include "dlmfd/core/time_stepping.h"
 #include "dlmfd/fluid/boundary_data.h"
 #include "dlmfd/fluid/stokes_solver.h"
 #include "dlmfd/fluid/velocity_advection.h"
@@ -35,24 +36,11 @@ double Milliseconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
-std::string Text(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
-
+// The rules of the time stepping (core/time_stepping.h), which the scene validation applies too.
 void ValidateSupported(const Params& p) {
-  const double gamma = 1.0 - p.splitting.alpha - p.splitting.beta;
-  if (std::abs(gamma) > 1e-12) {
-    throw InvalidParameter("splitting.beta", Text(p.splitting.beta),
-                           "alpha + beta = 1 (gamma = 0: the engine puts no viscosity into (37))");
-  }
-  if (!(p.splitting.alpha > 0.0)) {
-    throw InvalidParameter("splitting.alpha", Text(p.splitting.alpha),
-                           "> 0 (the Stokes step (33) carries viscosity for its fast solver)");
-  }
-  if (!(p.time.dt > 0.0)) throw InvalidParameter("time.dt", Text(p.time.dt), "> 0");
+  ValidateSplitting(p.splitting);
+  ValidateTimeSteps(p.time);
+  ValidateOutputPeriods(p.time, p.output);
 }
 
 Grid MakeGrid(const DomainParams& d) {

@@ -13,6 +13,7 @@
 
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
+#include "dlmfd/particles/particle_rules.h"
 
 namespace dlmfd {
 
@@ -57,10 +58,7 @@ RigidBodyConstraint::RigidBodyConstraint(const Params& params, const Grid& grid)
       fluid_density_(params.fluid.density),
       tolerance_(params.solvers.multiplier_tolerance),
       max_iterations_(params.solvers.multiplier_max_iterations) {
-  if (grid.NodeCount() > std::numeric_limits<std::uint32_t>::max()) {
-    throw InvalidParameter("domain.h", std::to_string(params.domain.h),
-                           "a grid of at most 2^32 - 1 velocity nodes (32-bit node indices of E)");
-  }
+  RequireIndexableGrid(params, grid);
   for (int s = 0; s < 4; ++s) {
     const SideType type = params.domain.sides[s].type;
     dirichlet_[s] = type == SideType::kWall || type == SideType::kVelocity;
@@ -87,12 +85,7 @@ RigidBodyConstraint::RigidBodyConstraint(const Params& params, const Grid& grid)
     neutral_.push_back(neutral ? 1 : 0);
     any_neutral_ = any_neutral_ || neutral;
     if (free && !neutral) {
-      if (!(excess_mass > 0.0)) {
-        throw InvalidParameter(
-            "particles." + std::to_string(p) + ".density", std::to_string(pp.density),
-            ">= fluid.density for a free particle (a free particle lighter than the "
-            "liquid makes the DLM problem (37) indefinite; the solver is CG)");
-      }
+      RequireNotLighterThanLiquid(params, p);
       inv_excess_mass_.push_back(1.0 / excess_mass);
       inv_excess_inertia_.push_back(2.0 / (excess_mass * radius * radius));
     } else {

@@ -2,13 +2,12 @@
 // text that reads back exactly, so that ParseScene(WriteScene(p)) gives p again.
 #include <sstream>
 
+#include "dlmfd/core/number_text.h"
 #include "dlmfd/scene/scene_file.h"
 #include "toml_reader.h"
 
 namespace dlmfd {
 namespace {
-
-using scene::ExactText;
 
 std::string Vec(const Vec2& v) { return "[" + ExactText(v.x()) + ", " + ExactText(v.y()) + "]"; }
 

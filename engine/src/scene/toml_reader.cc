@@ -2,10 +2,10 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <sstream>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/core/number_text.h"
 
 namespace dlmfd {
 namespace scene {
@@ -50,24 +50,6 @@ std::string QuotedText(const std::string& s) {
     }
   }
   return out + "\"";
-}
-
-std::string ShortText(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", x);
-  return buffer;
-}
-
-std::string ExactText(double x) {
-  char buffer[40];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
-    if (std::strtod(buffer, nullptr) == x) break;
-  }
-  std::string text = buffer;
-  // TOML needs a '.' or an exponent to read a float.
-  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
-  return text;
 }
 
 TableReader::TableReader(const toml::table* table, std::string prefix)

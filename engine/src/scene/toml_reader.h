@@ -21,10 +21,6 @@ namespace scene {
 std::string NodeText(const toml::node& node);
 // A string as a TOML basic string, quoted and escaped.
 std::string QuotedText(const std::string& s);
-// Four significant digits, for derived numbers in messages.
-std::string ShortText(double x);
-// The shortest decimal text that reads back as exactly x.
-std::string ExactText(double x);
 
 class TableReader {
  public:

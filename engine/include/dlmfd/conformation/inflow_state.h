@@ -11,7 +11,8 @@
 // first corner, W its length) is the fully developed channel flow; its state is the steady state of
 // L = max (d phi/ds) e_s^T at that point. A uniform profile has L = 0, so A_L = I.
 // Not supported: a steady state that does not exist (2 lambda max Re eig L >= 1, strong extension):
-// SteadyConformation throws InvalidParameter, since no fully developed inflow state exists.
+// SteadyConformation throws InvalidParameter, since no fully developed inflow state exists. The
+// scene validation asks ValidateInflowStates before anything runs, with the same rule.
 // References: Bird, Armstrong & Hassager, Dynamics of Polymeric Liquids vol. 1 (1987), 4.3.
 #pragma once
 
@@ -29,5 +30,8 @@ SymTensor SimpleShearConformation(double lambda, double shear_rate);
 // side.
 SymTensor InflowConformation(const Grid& grid, const DomainParams& domain, Side side, int k,
                              double lambda);
+// The conformation module's scene rule: for a viscoelastic liquid, A_L exists at every node of
+// every velocity side of `grid`; else InvalidParameter naming fluid.relaxation_time and the side.
+void ValidateInflowStates(const Params& params, const Grid& grid);
 
 }  // namespace dlmfd

@@ -1,6 +1,7 @@
-// Scene files (design.md 3.1): TOML text -> one validated Params. Every error is an
-// InvalidParameter naming the dotted key, the offending value and what is allowed; unknown keys are
-// errors (a typo must not be ignored). Overrides (`--set key=value`) are applied to the TOML tree
+// Scene files (design.md 3.1): TOML text -> one validated Params (parsed here, then checked by
+// ValidateScene of scene/scene_validation.h). Every error is an InvalidParameter naming the dotted
+// key, the offending value and what is allowed; unknown keys are errors (a typo must not be
+// ignored). Overrides (`--set key=value`) are applied to the TOML tree
 // before validation, with the same dotted keys (`particles.1.density=1.02`, indices from 0).
 #pragma once
 

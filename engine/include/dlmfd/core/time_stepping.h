@@ -1,0 +1,28 @@
+// The time stepping of Simulation (paper section 4) as rules on a scene: the Marchuk-Yanenko
+// weights and the step and output counts that the loop supports. The scene validation
+// (scene/scene_validation.h) applies them to every scene; Simulation's constructor applies them
+// again as its guard, so each rule has one definition.
+//
+// Splitting: the viscous term is shared as alpha in (33), beta in (34) and gamma = 1 - alpha - beta
+// in (37). Supported: gamma = 0 (the paper's choice: no viscosity in the DLM step (37)) with
+// alpha > 0 (the Stokes step (33) needs viscosity for its fast Helmholtz solver).
+// Steps: the run makes n = round(end / dt) steps and computes t_n = n dt and the output period
+// index n dt / every in double, which counts integers exactly only up to 2^53 (kMaxStepCount); a
+// longer count would be rounded, or overflow the long that holds it, so it is refused.
+#pragma once
+
+#include "dlmfd/core/params.h"
+
+namespace dlmfd {
+
+// 2^53: the largest step count and output period index the loop counts exactly.
+inline constexpr double kMaxStepCount = 9007199254740992.0;
+
+// alpha and beta in [0, 1], gamma = 0, alpha > 0.
+void ValidateSplitting(const SplittingParams& splitting);
+// dt > 0, end >= 0, dt <= end unless end = 0, end / dt <= kMaxStepCount.
+void ValidateTimeSteps(const TimeParams& time);
+// Each period >= 0 (0: none, or every step for particles), end / period <= kMaxStepCount.
+void ValidateOutputPeriods(const TimeParams& time, const OutputParams& output);
+
+}  // namespace dlmfd

@@ -1,0 +1,29 @@
+// The rules a scene's particles obey so that the DLM/FD step (36)-(38) is well posed. The scene
+// validation (scene/scene_validation.h) applies ValidateParticles to every scene before anything
+// runs; RigidBodyConstraint's constructor applies the two DLM rules again as its guard, so each
+// rule has one definition.
+//
+// - A free particle is not lighter than the liquid: its excess mass (rho_d - rho_L) V in (36)-(38)
+//   is positive, or zero (neutrally buoyant: the rigid-mode projector handles it); a negative one
+//   makes the multiplier problem (37) indefinite, and its solver is CG.
+// - The velocity grid has at most 2^32 - 1 nodes: E and E^T store 32-bit node indices.
+// - At t = 0 every disk lies inside the domain (crossing periodic sides only) and no two disks
+//   overlap (centre distances by the nearest periodic image).
+#pragma once
+
+#include <cstddef>
+
+#include "dlmfd/core/grid.h"
+#include "dlmfd/core/params.h"
+
+namespace dlmfd {
+
+// Throws InvalidParameter (particles.P.density) when free particle p is lighter than the liquid,
+// (particles.P.diameter) when its excess mass is too small for a double.
+void RequireNotLighterThanLiquid(const Params& params, std::size_t p);
+// Throws InvalidParameter (domain.h) when `grid` has more nodes than 32-bit indices count.
+void RequireIndexableGrid(const Params& params, const Grid& grid);
+// Every rule above, for every particle of the scene (none: the grid rule does not apply).
+void ValidateParticles(const Params& params, const Grid& grid);
+
+}  // namespace dlmfd

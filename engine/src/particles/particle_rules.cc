@@ -1,0 +1,101 @@
+#include "dlmfd/particles/particle_rules.h"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+
+#include "dlmfd/core/constants.h"
+#include "dlmfd/core/errors.h"
+#include "dlmfd/core/number_text.h"
+
+namespace dlmfd {
+namespace {
+
+std::string VecText(const Vec2& v) {
+  return "[" + ExactText(v.x()) + ", " + ExactText(v.y()) + "]";
+}
+
+// Distance between two centres; the nearest periodic image along periodic directions.
+double CenterDistance(const DomainParams& d, const Vec2& a, const Vec2& b) {
+  Vec2 delta = a - b;
+  if (d.PeriodicX()) delta.x() -= d.size.x() * std::round(delta.x() / d.size.x());
+  if (d.PeriodicY()) delta.y() -= d.size.y() * std::round(delta.y() / d.size.y());
+  return delta.norm();
+}
+
+void RequireInside(const DomainParams& d, std::size_t p, const ParticleParams& q) {
+  const double r = q.Radius();
+  const bool periodic[2] = {d.PeriodicX(), d.PeriodicY()};
+  for (int k = 0; k < 2; ++k) {
+    const double c = q.center[k];
+    const double lo = periodic[k] ? 0.0 : r;
+    const double hi = periodic[k] ? d.size[k] : d.size[k] - r;
+    if (!(c >= lo && c <= hi)) {
+      throw InvalidParameter("particles." + std::to_string(p) + ".center", VecText(q.center),
+                             std::string("a centre with ") + (k == 0 ? "x" : "y") + " in [" +
+                                 ExactText(lo) + ", " + ExactText(hi) + "] (the disk of radius " +
+                                 ExactText(r) + " inside the domain [0, " + ExactText(d.size.x()) +
+                                 "] x [0, " + ExactText(d.size.y()) +
+                                 "]; it may cross periodic sides only)");
+    }
+  }
+}
+
+void RequireApart(const Params& params) {
+  for (std::size_t j = 1; j < params.particles.size(); ++j) {
+    for (std::size_t i = 0; i < j; ++i) {
+      const ParticleParams& a = params.particles[i];
+      const ParticleParams& b = params.particles[j];
+      const double gap =
+          CenterDistance(params.domain, a.center, b.center) - a.Radius() - b.Radius();
+      if (gap < 0.0) {
+        throw InvalidParameter("particles." + std::to_string(j) + ".center", VecText(b.center),
+                               "a disk that does not overlap particle " + std::to_string(i) +
+                                   " at t = 0 (gap " + ShortText(gap) + " between particles " +
+                                   std::to_string(i) + " and " + std::to_string(j) + ")");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void RequireNotLighterThanLiquid(const Params& params, std::size_t p) {
+  const ParticleParams& q = params.particles[p];
+  const double rho = params.fluid.density;
+  if (q.motion != Motion::kFree || q.density == rho) return;
+  const double radius = q.Radius();
+  const double excess_mass = (q.density - rho) * kPi * radius * radius;
+  if (q.density > rho && !(excess_mass > 0.0)) {
+    throw InvalidParameter("particles." + std::to_string(p) + ".diameter", ExactText(q.diameter),
+                           "a diameter whose excess mass (rho_d - rho_L) pi R^2 is a positive "
+                           "double (here it underflows to 0)");
+  }
+  if (!(excess_mass > 0.0)) {
+    throw InvalidParameter(
+        "particles." + std::to_string(p) + ".density", ExactText(q.density),
+        ">= fluid.density = " + ExactText(rho) +
+            " for a free particle (a light disk makes the excess mass (rho_d - rho_L) V "
+            "of (36)-(38) negative and the multiplier problem (37) indefinite)");
+  }
+}
+
+void RequireIndexableGrid(const Params& params, const Grid& grid) {
+  if (grid.NodeCount() > std::numeric_limits<std::uint32_t>::max()) {
+    throw InvalidParameter("domain.h", ExactText(params.domain.h),
+                           "a grid of at most 2^32 - 1 velocity nodes (32-bit node indices of E)");
+  }
+}
+
+void ValidateParticles(const Params& params, const Grid& grid) {
+  if (params.particles.empty()) return;
+  RequireIndexableGrid(params, grid);
+  for (std::size_t p = 0; p < params.particles.size(); ++p) {
+    RequireNotLighterThanLiquid(params, p);
+    RequireInside(params.domain, p, params.particles[p]);
+  }
+  RequireApart(params);
+}
+
+}  // namespace dlmfd

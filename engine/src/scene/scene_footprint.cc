@@ -1,0 +1,30 @@
+#include "dlmfd/scene/scene_footprint.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "dlmfd/core/constants.h"
+
+namespace dlmfd {
+namespace {
+
+double Saturated(double x) { return std::min(x, std::numeric_limits<double>::max()); }
+
+}  // namespace
+
+SceneFootprint EstimateFootprint(const Params& params) {
+  const DomainParams& d = params.domain;
+  SceneFootprint f;
+  const double nx = std::round(d.size.x() / d.h);
+  const double ny = std::round(d.size.y() / d.h);
+  f.velocity_nodes = Saturated((nx + 1.0) * (ny + 1.0));
+  for (const ParticleParams& q : params.particles) {
+    const double r = q.Radius() / params.particle_mesh.h;
+    f.multiplier_nodes = Saturated(f.multiplier_nodes + kPi * r * (r + 2.0) + 3.0 * r + 4.0);
+  }
+  f.bytes = Saturated(kBytesPerNode * (f.velocity_nodes + f.multiplier_nodes));
+  return f;
+}
+
+}  // namespace dlmfd

@@ -1,0 +1,158 @@
+// ValidateScene: the ranges of the scene's keys, the footprint limits, the mesh rules, then the
+// rules the modules own; see scene/scene_validation.h.
+#include "dlmfd/scene/scene_validation.h"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "dlmfd/conformation/inflow_state.h"
+#include "dlmfd/core/errors.h"
+#include "dlmfd/core/grid.h"
+#include "dlmfd/core/number_text.h"
+#include "dlmfd/core/time_stepping.h"
+#include "dlmfd/particles/particle_rules.h"
+#include "dlmfd/scene/scene_footprint.h"
+
+namespace dlmfd {
+namespace {
+
+constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+const char* const kSideNames[4] = {"left", "right", "bottom", "top"};
+
+std::string VecText(const Vec2& v) {
+  return "[" + ExactText(v.x()) + ", " + ExactText(v.y()) + "]";
+}
+
+void RequirePositive(const std::string& key, double x) {
+  if (!(x > 0.0)) throw InvalidParameter(key, ExactText(x), "a number > 0");
+}
+void RequireNonNegative(const std::string& key, double x) {
+  if (!(x >= 0.0)) throw InvalidParameter(key, ExactText(x), "a number >= 0");
+}
+void RequireOpenUnit(const std::string& key, double x) {
+  if (!(x > 0.0 && x < 1.0)) throw InvalidParameter(key, ExactText(x), "a number in (0, 1)");
+}
+void RequireHalfOpenUnit(const std::string& key, double x) {
+  if (!(x > 0.0 && x <= 1.0)) throw InvalidParameter(key, ExactText(x), "a number in (0, 1]");
+}
+void RequireAtLeastOne(const std::string& key, int n) {
+  if (n < 1) throw InvalidParameter(key, std::to_string(n), "an integer >= 1");
+}
+
+// The grid Simulation builds for the domain (cells = round(length / h)).
+Grid SceneGrid(const DomainParams& d) {
+  Grid g;
+  g.nx = static_cast<int>(std::lround(d.size.x() / d.h));
+  g.ny = static_cast<int>(std::lround(d.size.y() / d.h));
+  g.h = d.h;
+  return g;
+}
+
+// `length` holds an even number >= 4 of cells of h, within 1e-9 relative. Called after the node
+// limit, so the count fits in any integer.
+void RequireEvenCells(const DomainParams& d, double length) {
+  const double n = length / d.h;
+  const double rounded = std::round(n);
+  if (std::abs(n - rounded) > 1e-9 * std::max(1.0, n) || static_cast<long long>(rounded) % 2 != 0 ||
+      rounded < 4) {
+    std::ostringstream allowed;
+    allowed << "a size that is an even number >= 4 of cells of domain.h = " << ExactText(d.h)
+            << " in both directions (here " << ExactText(length) << " / h = " << n
+            << "; the pressure mesh is 2h, and its fast solver needs 2 cells)";
+    throw InvalidParameter("domain.size", VecText(d.size), allowed.str());
+  }
+}
+
+void ValidateDomain(const Params& p) {
+  const DomainParams& d = p.domain;
+  if (!(d.size.x() > 0.0 && d.size.y() > 0.0)) {
+    throw InvalidParameter("domain.size", VecText(d.size), "two numbers > 0 (width, height)");
+  }
+  RequirePositive("domain.h", d.h);
+  const SceneFootprint footprint = EstimateFootprint(p);
+  if (!(footprint.velocity_nodes <= kMaxVelocityNodes)) {
+    throw InvalidParameter(
+        "domain.h", ExactText(d.h),
+        "a mesh of at most " + ShortText(kMaxVelocityNodes) + " velocity nodes (this one has " +
+            ShortText(footprint.velocity_nodes) + ", about " +
+            ShortText(kBytesPerNode * footprint.velocity_nodes / kGiB) + " GiB of memory)");
+  }
+  RequireEvenCells(d, d.size.x());
+  RequireEvenCells(d, d.size.y());
+  for (int s = 0; s < 4; s += 2) {
+    const bool first = d.sides[s].type == SideType::kPeriodic;
+    const bool second = d.sides[s + 1].type == SideType::kPeriodic;
+    if (first != second) {
+      const int odd = first ? s + 1 : s;
+      const int even = first ? s : s + 1;
+      throw InvalidParameter(
+          std::string("domain.boundary.") + kSideNames[odd] + ".type", "(not periodic)",
+          std::string("\"periodic\", because domain.boundary.") + kSideNames[even] +
+              " is periodic (periodic sides come in pairs: left with right, bottom with top)");
+    }
+  }
+}
+
+void ValidateFluid(const FluidParams& f) {
+  RequirePositive("fluid.density", f.density);
+  RequirePositive("fluid.viscosity", f.viscosity);
+  RequireNonNegative("fluid.relaxation_time", f.relaxation_time);
+  RequireHalfOpenUnit("fluid.solvent_ratio", f.solvent_ratio);
+}
+
+void ValidateSolvers(const SolverParams& s) {
+  RequireOpenUnit("solvers.stokes_tolerance", s.stokes_tolerance);
+  RequireAtLeastOne("solvers.stokes_max_iterations", s.stokes_max_iterations);
+  RequireOpenUnit("solvers.advection_tolerance", s.advection_tolerance);
+  RequireAtLeastOne("solvers.advection_max_iterations", s.advection_max_iterations);
+  RequireHalfOpenUnit("solvers.wave_max_courant", s.wave_max_courant);
+  RequireOpenUnit("solvers.multiplier_tolerance", s.multiplier_tolerance);
+  RequireAtLeastOne("solvers.multiplier_max_iterations", s.multiplier_max_iterations);
+}
+
+void ValidateMeshCollisionsConformation(const Params& p) {
+  RequirePositive("particle_mesh.h", p.particle_mesh.h);
+  const CollisionParams& c = p.collisions;
+  RequirePositive("collisions.range", c.range);
+  RequirePositive("collisions.wall_stiffness", c.wall_stiffness);
+  RequirePositive("collisions.particle_stiffness", c.particle_stiffness);
+  RequireAtLeastOne("collisions.substeps", c.substeps);
+  RequireHalfOpenUnit("conformation.max_courant", p.conformation.max_courant);
+  RequireHalfOpenUnit("conformation.blend_kappa", p.conformation.blend_kappa);
+}
+
+void ValidateParticleRangesAndMeshes(const Params& p) {
+  for (std::size_t i = 0; i < p.particles.size(); ++i) {
+    const std::string prefix = "particles." + std::to_string(i);
+    RequirePositive(prefix + ".diameter", p.particles[i].diameter);
+    RequirePositive(prefix + ".density", p.particles[i].density);
+  }
+  const SceneFootprint footprint = EstimateFootprint(p);
+  if (!(footprint.multiplier_nodes <= kMaxMultiplierNodes)) {
+    throw InvalidParameter("particle_mesh.h", ExactText(p.particle_mesh.h),
+                           "multiplier meshes of at most " + ShortText(kMaxMultiplierNodes) +
+                               " nodes over all particles (these have about " +
+                               ShortText(footprint.multiplier_nodes) + ", about " +
+                               ShortText(kBytesPerNode * footprint.multiplier_nodes / kGiB) +
+                               " GiB of memory)");
+  }
+}
+
+}  // namespace
+
+void ValidateScene(const Params& params) {
+  ValidateDomain(params);
+  ValidateFluid(params.fluid);
+  ValidateTimeSteps(params.time);
+  ValidateSplitting(params.splitting);
+  ValidateSolvers(params.solvers);
+  ValidateMeshCollisionsConformation(params);
+  ValidateOutputPeriods(params.time, params.output);
+  ValidateParticleRangesAndMeshes(params);
+  const Grid grid = SceneGrid(params.domain);
+  ValidateParticles(params, grid);
+  ValidateInflowStates(params, grid);
+}
+
+}  // namespace dlmfd
