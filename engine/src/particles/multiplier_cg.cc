@@ -85,28 +85,31 @@ void MultiplierCg::RigidResponseOf(const ConstraintOperators& op, std::size_t p,
 }
 
 void MultiplierCg::ResponseMismatchOf(const ConstraintOperators& op, std::size_t p) {
-  const std::vector<Vec2>& r = op.points.Points(p);
-  for (int k = 0; k < op.points.Count(p); ++k) {
-    const std::size_t node = op.points.Begin(p) + k;
+  const MultiplierPoints& points = op.points;
+  const CouplingOperator& coupling = op.coupling;
+  const std::vector<Vec2>& r = points.Points(p);
+  const std::size_t first = points.Begin(p);
+  const double* ub = ub_.data();
+  const double* vb = vb_.data();
+  double* gb = gb_.data();
+  for (int k = 0; k < points.Count(p); ++k) {
+    const std::size_t node = first + k;
     double eu, ev;
-    op.coupling.InterpolateSlots(node, ub_.data(), vb_.data(), eu, ev);
+    coupling.InterpolateSlots(node, ub, vb, eu, ev);
     const Vec2 rigid = velocity_b_[p] + omega_b_[p] * RigidModes::Perp(r[k]);
-    gb_[2 * node] = eu - rigid.x();
-    gb_[2 * node + 1] = ev - rigid.y();
+    gb[2 * node] = eu - rigid.x();
+    gb[2 * node + 1] = ev - rigid.y();
   }
-  if (op.modes.IsNeutral(p))
-    op.modes.ProjectMismatchOf(op.points, p, gb_.data() + 2 * op.points.Begin(p));
+  if (op.modes.IsNeutral(p)) op.modes.ProjectMismatchOf(points, p, gb + 2 * first);
 }
 
 void MultiplierCg::Respond(const ConstraintOperators& op, double dt, const double* dir) {
   const long particles = static_cast<long>(op.points.ParticleCount());
-  const long slots = static_cast<long>(op.coupling.SlotCount());
 #pragma omp parallel if (parallel_)
   {
 #pragma omp for schedule(static) nowait
     for (long p = 0; p < particles; ++p) RigidResponseOf(op, p, dt, dir);
-#pragma omp for schedule(static)
-    for (long slot = 1; slot <= slots; ++slot) SpreadSlot(op, slot, dir);
+    op.coupling.Spread(dir, ub_.data(), vb_.data());
 #pragma omp for schedule(static)
     for (long p = 0; p < particles; ++p) ResponseMismatchOf(op, p);
   }
@@ -218,9 +221,11 @@ bool MultiplierCg::ConjugateGradients(const ConstraintOperators& op, double dt, 
   // One parallel region for the whole CG: the loops below are work-shared, and sums are per
   // particle, then over the particles in order (by every thread): the same result for every
   // thread count.
-  const long particles = static_cast<long>(op.points.ParticleCount());
+  const MultiplierPoints& points = op.points;
+  const RigidModes& modes = op.modes;
+  const long particles = static_cast<long>(points.ParticleCount());
   const long slots = static_cast<long>(op.coupling.SlotCount());
-  const std::size_t* offset = op.points.Offsets();
+  const std::size_t* offset = points.Offsets();
   double* nu = nu_.data();
   double* g = g_.data();
   double* w = w_.data();
@@ -229,6 +234,8 @@ bool MultiplierCg::ConjugateGradients(const ConstraintOperators& op, double dt, 
   double* gram_g = scratch_.data();  // G g
   double* partial = partial_.data();
   double* partial_gg = partial_gg_.data();
+  double* ub = ub_.data();
+  double* vb = vb_.data();
   bool broke_down = false;
 #pragma omp parallel if (parallel_)
   {
@@ -241,8 +248,7 @@ bool MultiplierCg::ConjugateGradients(const ConstraintOperators& op, double dt, 
 #pragma omp for schedule(static)
     for (long p = 0; p < particles; ++p) RigidResponseOf(op, p, dt, gw);
     while (local_gg > threshold && local_iterations < max_iterations_) {
-#pragma omp for schedule(static)
-      for (long slot = 1; slot <= slots; ++slot) SpreadSlot(op, slot, gw);
+      op.coupling.Spread(gw, ub, vb);
 #pragma omp for schedule(static)
       for (long p = 0; p < particles; ++p) {
         ResponseMismatchOf(op, p);
@@ -264,7 +270,7 @@ bool MultiplierCg::ConjugateGradients(const ConstraintOperators& op, double dt, 
           nu[q] -= step * gw[q];
           g[q] -= step * gb[q];
         }
-        op.points.ApplyProduct(p, g + begin, gram_g + begin);
+        points.ApplyProduct(p, g + begin, gram_g + begin);
         partial_gg[p] = Dot(g, gram_g, begin, end);
         velocity_[p] -= step * velocity_b_[p];
         omega_[p] -= step * omega_b_[p];
@@ -287,7 +293,7 @@ bool MultiplierCg::ConjugateGradients(const ConstraintOperators& op, double dt, 
           gw[q] = gram_g[q] + beta * gw[q];
         }
         // Exact already for a neutral particle (w is G-orthogonal to C); keeps round-off out.
-        if (op.modes.IsNeutral(p)) op.modes.ProjectForcesOf(op.points, p, gw + begin);
+        if (modes.IsNeutral(p)) modes.ProjectForcesOf(points, p, gw + begin);
         RigidResponseOf(op, p, dt, gw);
       }
     }

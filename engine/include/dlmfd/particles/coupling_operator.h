@@ -69,19 +69,10 @@ class CouplingOperator {
     eu = su;
     ev = sv;
   }
-  // (ub, vb) = dt M^-1 E^T dir at slot s (dir: stacked nodal forces).
-  void SpreadAt(std::size_t s, const double* dir, double& ub, double& vb) const {
-    const std::size_t* start = spread_start_.data();
-    const std::uint32_t* source = spread_source_.data();
-    const double* weight = spread_weight_.data();
-    double su = 0.0, sv = 0.0;
-    for (std::size_t c = start[s]; c < start[s + 1]; ++c) {
-      su += weight[c] * dir[2 * source[c]];
-      sv += weight[c] * dir[2 * source[c] + 1];
-    }
-    ub = su;
-    vb = sv;
-  }
+  // (ub, vb) = dt M^-1 E^T dir at every slot (dir: stacked nodal forces). Inside a parallel
+  // region the slots are shared between its threads (an orphaned omp for, static schedule, with
+  // its closing barrier); every thread of the region must call it.
+  void Spread(const double* dir, double* ub, double* vb) const;
   // u += du, v += dv at the fluid nodes of the slots.
   void AddAtSlots(const double* du, const double* dv, double* u, double* v) const {
     for (std::size_t s = 1; s <= slot_count_; ++s) {

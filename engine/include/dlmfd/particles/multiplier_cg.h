@@ -88,12 +88,9 @@ class MultiplierCg {
 
  private:
   // The response to nodal forces dir, in three parts: the rigid response (velocity_b_, omega_b_) of
-  // particle p; the fluid response (ub_, vb_) = dt M^-1 E^T dir at a slot; gb_ = P (E ub - Ub -
-  // omegab r_perp) at the points of particle p.
+  // particle p; the fluid response (ub_, vb_) = dt M^-1 E^T dir at the slots (CouplingOperator::
+  // Spread); gb_ = P (E ub - Ub - omegab r_perp) at the points of particle p.
   void RigidResponseOf(const ConstraintOperators& op, std::size_t p, double dt, const double* dir);
-  void SpreadSlot(const ConstraintOperators& op, std::size_t slot, const double* dir) {
-    op.coupling.SpreadAt(slot, dir, ub_[slot], vb_[slot]);
-  }
   void ResponseMismatchOf(const ConstraintOperators& op, std::size_t p);
   void Respond(const ConstraintOperators& op, double dt, const double* dir);  // all three
   // g = E u - U - omega r_perp at the points of particle p.
