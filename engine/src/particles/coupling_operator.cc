@@ -1,0 +1,151 @@
+// The coupling operators E and E^T of the DLM step (37); see particles/coupling_operator.h.
+#include "dlmfd/particles/coupling_operator.h"
+
+#include <algorithm>
+#include <sstream>
+#include <string>
+
+#include "../mesh/point_location.h"
+#include "dlmfd/core/errors.h"
+
+namespace dlmfd {
+
+namespace {
+
+const char* SideName(int s) {
+  static const char* const kNames[4] = {"left", "right", "bottom", "top"};
+  return kNames[s];
+}
+
+}  // namespace
+
+CouplingOperator::CouplingOperator(const Params& params, const Grid& grid, std::size_t max_points)
+    : grid_(grid),
+      periodic_x_(params.domain.PeriodicX()),
+      periodic_y_(params.domain.PeriodicY()),
+      fluid_density_(params.fluid.density),
+      max_points_(max_points) {
+  for (int s = 0; s < 4; ++s) {
+    const SideType type = params.domain.sides[s].type;
+    dirichlet_[s] = type == SideType::kWall || type == SideType::kVelocity;
+    neumann_[s] = type == SideType::kOutflow;
+  }
+  stencil_node_.assign(3 * max_points, 0);
+  stencil_slot_.assign(3 * max_points, 0);
+  stencil_weight_.assign(3 * max_points, 0.0);
+  stencil_scatter_.assign(3 * max_points, 0.0);
+  const std::size_t max_slots = MaxSlots();
+  touched_.assign(max_slots + 1, 0);
+  stamp_.assign(grid.NodeCount(), -1);
+  slot_of_.assign(grid.NodeCount(), 0);
+  spread_start_.assign(max_slots + 2, 0);
+  spread_cursor_.assign(max_slots + 2, 0);
+  spread_source_.assign(max_slots, 0);
+  spread_weight_.assign(max_slots, 0.0);
+}
+
+double CouplingOperator::InverseNodeMass(int i, int j) const {
+  const int left = static_cast<int>(Side::kLeft), right = static_cast<int>(Side::kRight);
+  const int bottom = static_cast<int>(Side::kBottom), top = static_cast<int>(Side::kTop);
+  double factor = 1.0;
+  if (!periodic_x_) {
+    const int s = i == 0 ? left : (i == grid_.nx ? right : -1);
+    if (s >= 0 && dirichlet_[s]) return 0.0;
+    if (s >= 0 && neumann_[s]) factor *= 0.5;
+  }
+  if (!periodic_y_) {
+    const int s = j == 0 ? bottom : (j == grid_.ny ? top : -1);
+    if (s >= 0 && dirichlet_[s]) return 0.0;
+    if (s >= 0 && neumann_[s]) factor *= 0.5;
+  }
+  return 1.0 / (fluid_density_ * grid_.h * grid_.h * factor);
+}
+
+void CouplingOperator::Build(double time, double dt, const MultiplierPoints& points,
+                             const std::vector<ParticleState>& particles) {
+  ++stamp_counter_;
+  slot_count_ = 0;
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    const std::vector<Vec2>& relative = points.Points(p);
+    const Vec2& centre = particles[p].position;
+    for (int k = 0; k < points.Count(p); ++k) {
+      const Vec2 y = centre + relative[k];
+      kernels::P1Stencil stencil;
+      int side = 0;
+      if (!kernels::LocatePoint(grid_, periodic_x_, periodic_y_, y.x(), y.y(), &stencil, &side)) {
+        const bool low = side == 0 || side == 2;
+        const bool along_x = side < 2;
+        const double extent = along_x ? grid_.Width() : grid_.Height();
+        const double origin = along_x ? grid_.x0 : grid_.y0;
+        const double coordinate = along_x ? centre.x() : centre.y();
+        const double distance = low ? coordinate - origin : origin + extent - coordinate;
+        std::ostringstream what;
+        what << "particle " << particles[p].id << " crosses the " << SideName(side)
+             << " side at t = " << time << " (gap = " << distance - points.Radius(p) << ")";
+        throw ParticlesOverlap(what.str());
+      }
+      for (int q = 0; q < 3; ++q) {
+        const std::size_t entry = 3 * (points.Begin(p) + k) + q;
+        const std::size_t node = grid_.Index(stencil.i[q], stencil.j[q]);
+        const double weight = stencil.weight[q];
+        const double scatter = weight * InverseNodeMass(stencil.i[q], stencil.j[q]);
+        stencil_node_[entry] = static_cast<std::uint32_t>(node);
+        stencil_weight_[entry] = weight;
+        stencil_scatter_[entry] = scatter;
+        stencil_slot_[entry] = 0;
+        if (scatter != 0.0) {
+          if (stamp_[node] != stamp_counter_) {
+            stamp_[node] = stamp_counter_;
+            slot_of_[node] = static_cast<std::uint32_t>(++slot_count_);
+            touched_[slot_count_] = static_cast<std::uint32_t>(node);
+          }
+          stencil_slot_[entry] = slot_of_[node];
+        }
+      }
+    }
+  }
+  BuildSpreading(dt);
+}
+
+void CouplingOperator::BuildSpreading(double dt) {
+  // Counting sort of the stencil entries by slot; entries stay in stacked point order per slot.
+  const std::size_t entries = 3 * max_points_;
+  std::fill(spread_start_.begin(), spread_start_.begin() + slot_count_ + 2, 0);
+  for (std::size_t q = 0; q < entries; ++q) {
+    if (stencil_slot_[q] != 0) ++spread_start_[stencil_slot_[q] + 1];
+  }
+  spread_start_[1] = 0;
+  for (std::size_t slot = 1; slot <= slot_count_; ++slot)
+    spread_start_[slot + 1] += spread_start_[slot];
+  std::copy(spread_start_.begin(), spread_start_.begin() + slot_count_ + 2, spread_cursor_.begin());
+  for (std::size_t q = 0; q < entries; ++q) {
+    if (stencil_slot_[q] == 0) continue;
+    const std::size_t at = spread_cursor_[stencil_slot_[q]]++;
+    spread_source_[at] = static_cast<std::uint32_t>(q / 3);
+    spread_weight_[at] = dt * stencil_scatter_[q];
+  }
+}
+
+void CouplingOperator::Spread(const double* dir, double* ub, double* vb) const {
+  const long slots = static_cast<long>(slot_count_);
+  const std::size_t* start = spread_start_.data();
+  const std::uint32_t* source = spread_source_.data();
+  const double* weight = spread_weight_.data();
+#pragma omp for schedule(static)
+  for (long slot = 1; slot <= slots; ++slot) {
+    double su = 0.0, sv = 0.0;
+    for (std::size_t c = start[slot]; c < start[slot + 1]; ++c) {
+      su += weight[c] * dir[2 * source[c]];
+      sv += weight[c] * dir[2 * source[c] + 1];
+    }
+    ub[slot] = su;
+    vb[slot] = sv;
+  }
+}
+
+void CouplingOperator::CopyPeriodicDuplicates(double* u, double* v) const {
+  kernels::CopyPeriodicDuplicates(grid_, periodic_x_, periodic_y_, u);
+  kernels::CopyPeriodicDuplicates(grid_, periodic_x_, periodic_y_, v);
+}
+
+}  // namespace dlmfd
