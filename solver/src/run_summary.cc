@@ -3,9 +3,12 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <sstream>
+#include <string>
 
 #include "dlmfd/io/atomic_file.h"
 
@@ -15,10 +18,37 @@ namespace {
 // Keeps the keys in the order of the contract (the header), which a reader of the text expects.
 using Json = nlohmann::ordered_json;
 
-Json Pair(const std::array<double, 2>& v) { return Json::array({v[0], v[1]}); }
+// A double as JSON: an integral value that a double holds exactly is written as an integer ("1",
+// not "1.0": counts among the diagnostics, t = 1), anything else as the shortest text that reads
+// back as the same double; non-finite as null (nlohmann's rule: JSON has no NaN).
+Json Number(double x) {
+  constexpr double kExactIntegers = 9007199254740992.0;  // 2^53
+  if (std::isfinite(x) && x == std::trunc(x) && std::abs(x) < kExactIntegers &&
+      !(x == 0.0 && std::signbit(x))) {
+    return static_cast<int64_t>(x);
+  }
+  return x;
+}
+
+Json Pair(const std::array<double, 2>& v) { return Json::array({Number(v[0]), Number(v[1])}); }
+
+// One value on one line, with ", " and ": " between items (nlohmann's compact form has none).
+std::string Inline(const Json& j) {
+  // Invalid UTF-8 in a text (a reason quoting a file name) becomes U+FFFD instead of throwing.
+  if (!j.is_structured()) return j.dump(-1, ' ', false, Json::error_handler_t::replace);
+  std::string out = j.is_array() ? "[" : "{";
+  bool first = true;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    if (!first) out += ", ";
+    first = false;
+    if (j.is_object()) out += Inline(Json(it.key())) + ": ";
+    out += Inline(*it);
+  }
+  return out + (j.is_array() ? "]" : "}");
+}
 
 // JSON null stands for a non-finite number.
-double Number(const Json& j, const char* key) {
+double ReadNumber(const Json& j, const char* key) {
   const Json& value = j.at(key);
   if (value.is_null()) return std::numeric_limits<double>::quiet_NaN();
   if (!value.is_number()) throw RunSummaryError(std::string(key) + ": not a number");
@@ -45,10 +75,10 @@ std::string RunSummaryJson(const RunSummary& s) {
   j["reason"] = s.reason;
   j["exit_code"] = s.exit_code;
   j["steps"] = s.steps;
-  j["time"] = s.time;
-  j["end_time"] = s.end_time;
-  j["wall_seconds"] = s.wall_seconds;
-  j["ms_per_step"] = s.ms_per_step;
+  j["time"] = Number(s.time);
+  j["end_time"] = Number(s.end_time);
+  j["wall_seconds"] = Number(s.wall_seconds);
+  j["ms_per_step"] = Number(s.ms_per_step);
   j["resumed_from_step"] = s.resumed_from_step;
   j["title"] = s.title;
   j["version"] = s.version;
@@ -58,17 +88,31 @@ std::string RunSummaryJson(const RunSummary& s) {
     p["id"] = q.id;
     p["position"] = Pair(q.position);
     p["velocity"] = Pair(q.velocity);
-    p["angular_velocity"] = q.angular_velocity;
+    p["angular_velocity"] = Number(q.angular_velocity);
     p["force"] = Pair(q.force);
-    p["torque"] = q.torque;
+    p["torque"] = Number(q.torque);
     particles.push_back(std::move(p));
   }
   j["particles"] = std::move(particles);
   Json diagnostics = Json::object();
-  for (const auto& [name, value] : s.diagnostics) diagnostics[name] = value;
+  for (const auto& [name, value] : s.diagnostics) diagnostics[name] = Number(value);
   j["diagnostics"] = std::move(diagnostics);
-  // nlohmann writes NaN and infinities as null; invalid UTF-8 in a reason becomes U+FFFD.
-  return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
+  // One key per line; one line per particle (a run of many particles stays readable).
+  std::string out = "{\n";
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    out += "  " + Inline(Json(it.key())) + ": ";
+    if (it.key() == "particles" && !it->empty()) {
+      out += "[";
+      for (std::size_t k = 0; k < it->size(); ++k) {
+        out += (k ? ",\n    " : "\n    ") + Inline((*it)[k]);
+      }
+      out += "\n  ]";
+    } else {
+      out += Inline(*it);
+    }
+    out += std::next(it) == j.end() ? "\n" : ",\n";
+  }
+  return out + "}\n";
 }
 
 RunSummary ParseRunSummary(const std::string& text) {
@@ -79,10 +123,10 @@ RunSummary ParseRunSummary(const std::string& text) {
     s.reason = j.at("reason").get<std::string>();
     s.exit_code = j.at("exit_code").get<int>();
     s.steps = j.at("steps").get<long>();
-    s.time = Number(j, "time");
-    s.end_time = Number(j, "end_time");
-    s.wall_seconds = Number(j, "wall_seconds");
-    s.ms_per_step = Number(j, "ms_per_step");
+    s.time = ReadNumber(j, "time");
+    s.end_time = ReadNumber(j, "end_time");
+    s.wall_seconds = ReadNumber(j, "wall_seconds");
+    s.ms_per_step = ReadNumber(j, "ms_per_step");
     s.resumed_from_step = j.at("resumed_from_step").get<long>();
     s.title = j.at("title").get<std::string>();
     s.version = j.at("version").get<std::string>();
@@ -91,9 +135,9 @@ RunSummary ParseRunSummary(const std::string& text) {
       q.id = p.at("id").get<long>();
       q.position = NumberPair(p, "position");
       q.velocity = NumberPair(p, "velocity");
-      q.angular_velocity = Number(p, "angular_velocity");
+      q.angular_velocity = ReadNumber(p, "angular_velocity");
       q.force = NumberPair(p, "force");
-      q.torque = Number(p, "torque");
+      q.torque = ReadNumber(p, "torque");
       s.particles.push_back(q);
     }
     for (const auto& [name, value] : j.at("diagnostics").items()) {

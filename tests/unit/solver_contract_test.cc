@@ -85,6 +85,50 @@ TEST(RunSummary, JsonHasTheContractKeysAndNoNaN) {
   EXPECT_LT(json.find("\"particles\""), json.find("\"diagnostics\""));
 }
 
+// The layout scripts and readers have seen since the first summary: one key per line, one line per
+// particle, integral numbers without ".0", the shortest text that reads back for the others.
+TEST(RunSummary, TextKeepsTheLayoutOfTheResultsDirectory) {
+  RunSummary s;
+  s.status = "completed";
+  s.steps = 2500;
+  s.time = 1.0;
+  s.end_time = 1.0;
+  s.wall_seconds = 0.1 + 0.2;
+  s.ms_per_step = 49.2;
+  s.title = "pair";
+  s.version = "0.1.0";
+  RunSummary::Particle q;
+  q.position = {0.5, 7.25};
+  q.velocity = {-0.0014494669113040463, 1e-05};
+  s.particles = {q, q};
+  s.particles[1].id = 1;
+  s.diagnostics = {{"stokes_iterations", 11.0}, {"divergence", 0.0011162864979271413}};
+  EXPECT_EQ(
+      RunSummaryJson(s),
+      "{\n"
+      "  \"status\": \"completed\",\n"
+      "  \"reason\": \"\",\n"
+      "  \"exit_code\": 0,\n"
+      "  \"steps\": 2500,\n"
+      "  \"time\": 1,\n"
+      "  \"end_time\": 1,\n"
+      "  \"wall_seconds\": 0.30000000000000004,\n"
+      "  \"ms_per_step\": 49.2,\n"
+      "  \"resumed_from_step\": -1,\n"
+      "  \"title\": \"pair\",\n"
+      "  \"version\": \"0.1.0\",\n"
+      "  \"particles\": [\n"
+      "    {\"id\": 0, \"position\": [0.5, 7.25], \"velocity\": [-0.0014494669113040463, 1e-05], "
+      "\"angular_velocity\": 0, \"force\": [0, 0], \"torque\": 0},\n"
+      "    {\"id\": 1, \"position\": [0.5, 7.25], \"velocity\": [-0.0014494669113040463, 1e-05], "
+      "\"angular_velocity\": 0, \"force\": [0, 0], \"torque\": 0}\n"
+      "  ],\n"
+      "  \"diagnostics\": {\"stokes_iterations\": 11, \"divergence\": 0.0011162864979271413}\n"
+      "}\n");
+  s.particles.clear();
+  EXPECT_THAT(RunSummaryJson(s), HasSubstr("  \"particles\": [],\n"));
+}
+
 TEST(RunSummary, ReadsBackWhatWasWritten) {
   const RunSummary in = FailedRun();
   const RunSummary out = ParseRunSummary(RunSummaryJson(in));

@@ -5,8 +5,10 @@
 // Keys, in this order: status (completed | failed | cancelled), reason, exit_code, steps, time,
 // end_time, wall_seconds, ms_per_step, resumed_from_step, title, version, particles [{id, position,
 // velocity, angular_velocity, force, torque}], diagnostics {the last StepReport's columns}.
-// Integers stay JSON integers; non-finite numbers are written as null (JSON has no NaN) and read
-// back as NaN. Written through a temporary file (dlmfd/io/atomic_file.h).
+// One key per line, one line per particle. Integers stay JSON integers; a double is written as the
+// shortest text that reads back as the same double (an integral one without ".0"); non-finite
+// numbers are written as null (JSON has no NaN) and read back as NaN. Written through a temporary
+// file (dlmfd/io/atomic_file.h).
 #pragma once
 
 #include <array>
