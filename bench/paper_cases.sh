@@ -8,7 +8,7 @@
 # A case whose directory holds checkpoint.h5 and no summary.json resumes from it.
 set -uo pipefail
 cd "$(dirname "$0")/.."
-solver=${SOLVER:-build/engine/dlmfd-solve}
+solver=${SOLVER:-build/solver/dlmfd-solve}
 threads=${THREADS:-1}
 mkdir -p runs/paper
 for spec in "$@"; do

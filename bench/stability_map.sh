@@ -17,12 +17,12 @@
 # Output: docs/stability/map.csv (one row per run: outcome, steps, extremes of trA and eig A, the
 # reason), a Markdown table on stdout, and docs/figures/stability_<family>_h<cells>.png: De against
 # dt on one mesh, one point per run, one series per outcome (completed, or the kind of failure).
-#   bench/stability_map.sh            # SOLVE=build/engine/dlmfd-solve DLMFD=build/client/dlmfd
+#   bench/stability_map.sh            # SOLVE=build/solver/dlmfd-solve DLMFD=build/client/dlmfd
 #                                     # WORK=runs/stability_map JOBS=2 ONLY=<grep -E on run names>
 # Runs whose summary.json exists in WORK are not run again (a second call only redraws).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-SOLVE=$(realpath "${SOLVE:-build/engine/dlmfd-solve}")
+SOLVE=$(realpath "${SOLVE:-build/solver/dlmfd-solve}")
 DLMFD=${DLMFD:-build/client/dlmfd}
 WORK=${WORK:-runs/stability_map}
 JOBS=${JOBS:-2}

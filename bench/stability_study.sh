@@ -2,7 +2,7 @@
 # Stability study of the viscoelastic scheme (docs/stability.md): how far in Deborah / Weissenberg
 # number (and in time step) each case gets, what fails first and how the run reports it.
 #   usage: bench/stability_study.sh [DLMFD_SOLVE] [WORK_DIR]
-#   DLMFD_SOLVE defaults to build/engine/dlmfd-solve; WORK_DIR to a fresh temporary directory.
+#   DLMFD_SOLVE defaults to build/solver/dlmfd-solve; WORK_DIR to a fresh temporary directory.
 #   JOBS (default 2) runs at a time, each with one OpenMP thread; ONLY (a grep -E pattern on the run
 #   names, default all) picks a subset, e.g. ONLY='^wk_' .
 # Families (each run short: a few hundred steps on a coarse grid):
@@ -17,7 +17,7 @@
 # the elastic wave Courant number c dt / h with c = sqrt(eta_p / (rho lambda)), and max CFL.
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-SOLVE=$(realpath "${1:-$ROOT/build/engine/dlmfd-solve}")
+SOLVE=$(realpath "${1:-$ROOT/build/solver/dlmfd-solve}")
 WORK=${2:-$(mktemp -d /tmp/dlmfd_stability.XXXXXX)}
 JOBS=${JOBS:-2}
 mkdir -p "$WORK"

@@ -19,7 +19,7 @@ STEPS=${STEPS:-1000}
 WORK=${WORK:-runs/throughput}
 DLMFD="$BUILD/client/dlmfd"
 DLMFDD="$BUILD/server/dlmfdd"
-SOLVER="$BUILD/engine/dlmfd-solve"
+SOLVER="$BUILD/solver/dlmfd-solve"
 CASE=cases/paper/5.2_pair_oldroyd_b.toml
 NODES=$((193 * 769))  # velocity nodes of the 2 x 8 box at h = 1/96
 END=$(awk -v s="$STEPS" 'BEGIN { printf "%.10g", s * 0.0004 }')

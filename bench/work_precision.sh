@@ -14,7 +14,7 @@
 # solvers.multiplier_tolerance = 1e-L and solvers.advection_tolerance = 1e-(L/2); the h and dt ladders use L = 6
 # (solver error far below discretisation error); the engine's defaults are L = 4, chosen from these ladders.
 #
-# Usage: bench/work_precision.sh [DLMFD_SOLVE]   (default build/engine/dlmfd-solve)
+# Usage: bench/work_precision.sh [DLMFD_SOLVE]   (default build/solver/dlmfd-solve)
 # Env:   ONLY=a|b|c|d (or several, e.g. ONLY=ab)  WORK=runs/work_precision  WP_ERROR=<wp_error binary>
 #        (default: bench/wp_error next to the solver's build)  DLMFD=<dlmfd CLI> (default build/client/dlmfd)
 # A run whose summary.json is in WORK already is not run again: a second call only redraws.
@@ -24,7 +24,7 @@
 # docs/work_precision/<problem>_reference.txt (c, d), docs/figures/wp_<problem>.png.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-solve=$(realpath "${1:-$root/build/engine/dlmfd-solve}")
+solve=$(realpath "${1:-$root/build/solver/dlmfd-solve}")
 build=$(dirname "$(dirname "$solve")")
 wp_error=${WP_ERROR:-$build/bench/wp_error}
 dlmfd=${DLMFD:-$root/build/client/dlmfd}

@@ -14,7 +14,7 @@ SETS=${SETS:---set domain.h=0.020833333333333332 --set particle_mesh.h=0.0285714
 RUNS=${RUNS:-runs}
 DLMFD="$BUILD/client/dlmfd"
 DLMFDD="$BUILD/server/dlmfdd"
-SOLVER="$BUILD/engine/dlmfd-solve"
+SOLVER="$BUILD/solver/dlmfd-solve"
 
 for binary in "$DLMFD" "$DLMFDD" "$SOLVER"; do
   if [ ! -x "$binary" ]; then

@@ -6,7 +6,7 @@ packages=(
   libeigen3-dev libhdf5-dev hdf5-tools libfftw3-dev
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libsqlite3-dev sqlite3 libspdlog-dev libfmt-dev
-  libtomlplusplus-dev libcli11-dev libpng-dev zlib1g-dev
+  libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 missing=()

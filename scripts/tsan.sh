@@ -3,7 +3,7 @@
 # with -fsanitize=thread in build-tsan and runs them (ctest -L server). The daemon's threads are
 # what is checked; the solver is a separate process, so the tests run a dlmfd-solve built WITHOUT
 # TSan (a TSan-built solver dies with SIGSEGV inside the uninstrumented libgomp):
-# $DLMFD_SOLVER_BINARY when set, else build/engine/dlmfd-solve when present, else a Release one
+# $DLMFD_SOLVER_BINARY when set, else build/solver/dlmfd-solve when present, else a Release one
 # built here in build-tsan-solver.
 # The tests pass that path to the daemon's --solver flag (tests/server/support/daemon_process.h).
 # Debian's gRPC/abseil/protobuf are not instrumented. scripts/tsan_absl_sync.cc (preloaded) tells
@@ -22,15 +22,15 @@ supp="$root/scripts/tsan.supp"
 jobs="${JOBS:-2}"
 
 solver="${DLMFD_SOLVER_BINARY:-}"
-if [[ -z "$solver" && -x "$root/build/engine/dlmfd-solve" ]]; then
-  solver="$root/build/engine/dlmfd-solve"
+if [[ -z "$solver" && -x "$root/build/solver/dlmfd-solve" ]]; then
+  solver="$root/build/solver/dlmfd-solve"
 fi
 if [[ -z "$solver" ]]; then
   cmake -S "$root" -B "$root/build-tsan-solver" -DCMAKE_BUILD_TYPE=Release \
     -DDLMFD_BUILD_SERVICE=OFF \
     -DDLMFD_BUILD_TESTS=OFF -DDLMFD_BUILD_BENCH=OFF -DDLMFD_WERROR=ON
   cmake --build "$root/build-tsan-solver" --target dlmfd-solve -j "$jobs"
-  solver="$root/build-tsan-solver/engine/dlmfd-solve"
+  solver="$root/build-tsan-solver/solver/dlmfd-solve"
 fi
 echo "tsan.sh: solver (not instrumented) = $solver"
 

@@ -1,13 +1,15 @@
 // dlmfd fetch JOB [--out DIR] [--path FILE]...
-// Writes each file to DIR/<its path in the results directory> through a temporary name, renamed
-// when its last chunk has arrived, so an interrupted fetch never leaves a truncated file under the
-// final name. Paths from the server are checked: absolute ones or ones with ".." are refused.
+// Writes each file to DIR/<its path in the results directory> through a temporary name
+// (dlmfd/io/atomic_file.h), renamed when its last chunk has arrived, so an interrupted fetch never
+// leaves a truncated file under the final name. Paths from the server are checked: absolute ones or
+// ones with ".." are refused.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 
 #include "command.h"
 #include "connection.h"
+#include "dlmfd/io/atomic_file.h"
 #include "exit_codes.h"
 #include "rpc_status.h"
 
@@ -56,7 +58,7 @@ int Receive(Connection& connection, const std::string& job_id, const std::string
       current = chunk.path();
       const fs::path target = out_dir / current;
       fs::create_directories(target.parent_path());
-      temporary = target.string() + ".part";
+      temporary = TemporaryPath(target.string());
       file.open(temporary, std::ios::binary | std::ios::trunc);
       if (!file) return ReportError("fetch", "cannot write " + temporary.string(), kExitLocalIo);
       written = 0;
@@ -73,7 +75,7 @@ int Receive(Connection& connection, const std::string& job_id, const std::string
     if (chunk.last()) {
       file.close();
       if (!file) return ReportError("fetch", "cannot write " + temporary.string(), kExitLocalIo);
-      fs::rename(temporary, out_dir / current);
+      CommitTemporary(temporary.string(), (out_dir / current).string());
       ++files;
       bytes += written;
       current.clear();

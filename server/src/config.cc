@@ -15,6 +15,10 @@ namespace dlmfd::server {
 namespace fs = std::filesystem;
 namespace {
 
+constexpr int kMaxConcurrentLimit = 1024;  // solver processes at once
+constexpr int kMinEventBuffer = 8;         // events a watcher queue or a job's ring holds at least
+constexpr size_t kMinTokenLength = 16;     // characters of a bearer token
+
 int64_t ParseInteger(const std::string& key, const std::string& text) {
   try {
     size_t used = 0;
@@ -116,8 +120,8 @@ std::string DefaultSolver(const char* argv0) {
   if (error) self = fs::absolute(argv0 ? argv0 : "dlmfdd");
   fs::path sibling = self.parent_path() / "dlmfd-solve";
   if (fs::exists(sibling)) return sibling.string();
-  // A build tree keeps the solver in engine/ next to server/.
-  fs::path build_tree = self.parent_path().parent_path() / "engine" / "dlmfd-solve";
+  // A build tree keeps the solver in solver/ next to server/.
+  fs::path build_tree = self.parent_path().parent_path() / "solver" / "dlmfd-solve";
   if (fs::exists(build_tree)) return build_tree.string();
   return sibling.string();
 }
@@ -154,9 +158,10 @@ std::map<std::string, std::string> LoadTokens(const std::string& path) {
       throw ConfigError("tokens file " + path + " line " + std::to_string(number) +
                         ": expected \"token user\"");
     }
-    if (token.size() < 16) {
+    if (token.size() < kMinTokenLength) {
       throw ConfigError("tokens file " + path + " line " + std::to_string(number) +
-                        ": a token must have at least 16 characters");
+                        ": a token must have at least " + std::to_string(kMinTokenLength) +
+                        " characters");
     }
     if (!std::regex_match(user, kUser)) {
       throw ConfigError("tokens file " + path + " line " + std::to_string(number) +
@@ -173,9 +178,9 @@ std::map<std::string, std::string> LoadTokens(const std::string& path) {
 void ValidateConfig(Config& config) {
   if (config.listen.empty()) throw ConfigError("listen must not be empty");
   if (config.data_dir.empty()) throw ConfigError("data_dir must not be empty");
-  if (config.max_concurrent < 1 || config.max_concurrent > 1024) {
+  if (config.max_concurrent < 1 || config.max_concurrent > kMaxConcurrentLimit) {
     throw ConfigError("max_concurrent = " + std::to_string(config.max_concurrent) +
-                      " is not allowed: expected 1 to 1024");
+                      " is not allowed: expected 1 to " + std::to_string(kMaxConcurrentLimit));
   }
   auto positive = [](const char* key, int64_t value) {
     if (value < 1) throw ConfigError(std::string(key) + " must be >= 1");
@@ -184,8 +189,11 @@ void ValidateConfig(Config& config) {
   positive("max_grid_nodes", config.max_grid_nodes);
   positive("max_memory_mb", config.max_memory_mb);
   positive("max_queued", config.max_queued);
-  if (config.watcher_buffer < 8) throw ConfigError("watcher_buffer must be >= 8");
-  if (config.event_ring < 8) throw ConfigError("event_ring must be >= 8");
+  auto at_least = [](const char* key, int value, int least) {
+    if (value < least) throw ConfigError(std::string(key) + " must be >= " + std::to_string(least));
+  };
+  at_least("watcher_buffer", config.watcher_buffer, kMinEventBuffer);
+  at_least("event_ring", config.event_ring, kMinEventBuffer);
   if (config.solver_threads < 0) throw ConfigError("solver_threads must be >= 0");
   static const char* const kLevels[] = {"trace", "debug", "info", "warn", "error", "off"};
   if (std::find(std::begin(kLevels), std::end(kLevels), config.log_level) == std::end(kLevels)) {

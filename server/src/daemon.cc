@@ -11,8 +11,9 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
+#include <string>
 
+#include "dlmfd/io/atomic_file.h"
 #include "job_proto.h"
 
 namespace dlmfd::server {
@@ -64,12 +65,8 @@ void Daemon::Start() {
     spdlog::info("no tokens configured: every caller is the user \"local\" (loopback only)");
   }
   if (!config_.port_file.empty()) {
-    const std::string tmp = config_.port_file + ".tmp";
-    {
-      std::ofstream out(tmp, std::ios::trunc);
-      out << port_ << "\n";
-    }
-    fs::rename(tmp, config_.port_file);
+    // Written whole or not at all: whoever polls for it never reads a half-written number.
+    WriteTextAtomically(config_.port_file, std::to_string(port_) + "\n");
   }
 }
 

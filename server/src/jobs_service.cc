@@ -4,13 +4,13 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <random>
-#include <set>
 
 #include "job_proto.h"
+#include "result_files.h"
 #include "scene_admission.h"
 #include "service_error.h"
+#include "sweep_expansion.h"
 #include "watcher_queue.h"
 
 namespace dlmfd::server {
@@ -19,6 +19,7 @@ namespace {
 
 using grpc::StatusCode;
 
+constexpr size_t kMaxJobIdBytes = 64;
 constexpr size_t kMaxNameBytes = 256;
 constexpr int kMaxTags = 32;
 constexpr size_t kMaxTagBytes = 64;
@@ -28,7 +29,6 @@ constexpr int kMaxPriority = 1000;
 constexpr int kDefaultPageSize = 100;
 constexpr int kMaxPageSize = 1000;
 constexpr int kMaxSnapshotSize = 4096;
-constexpr int64_t kChunkBytes = 1 << 20;
 
 std::string NewId(char kind) {
   static thread_local std::mt19937_64 random(std::random_device{}());
@@ -40,29 +40,31 @@ std::string NewId(char kind) {
   return id;
 }
 
-void Require(bool ok, const std::string& message) {
-  if (!ok) throw ServiceError(StatusCode::INVALID_ARGUMENT, message);
-}
-
 void CheckJobId(const std::string& id) {
   Require(!id.empty(), "job_id: empty");
-  Require(id.size() <= 64, "job_id: too long");
+  Require(id.size() <= kMaxJobIdBytes,
+          "job_id: longer than " + std::to_string(kMaxJobIdBytes) + " bytes");
 }
 
 void CheckLabels(const std::string& name, const std::vector<std::string>& tags, int priority,
                  const std::string& request_id, size_t override_count) {
-  Require(name.size() <= kMaxNameBytes, "name: longer than 256 bytes");
+  Require(name.size() <= kMaxNameBytes,
+          "name: longer than " + std::to_string(kMaxNameBytes) + " bytes");
   Require(name.find('\n') == std::string::npos, "name: contains a line break");
-  Require(static_cast<int>(tags.size()) <= kMaxTags, "tags: more than 32");
+  Require(static_cast<int>(tags.size()) <= kMaxTags, "tags: more than " + std::to_string(kMaxTags));
   for (const auto& tag : tags) {
-    Require(!tag.empty() && tag.size() <= kMaxTagBytes, "tags: each must have 1 to 64 bytes");
+    Require(!tag.empty() && tag.size() <= kMaxTagBytes,
+            "tags: each must have 1 to " + std::to_string(kMaxTagBytes) + " bytes");
     Require(tag.find_first_of("\n,") == std::string::npos,
             "tags: \"" + tag + "\" contains a comma or a line break");
   }
   Require(priority >= -kMaxPriority && priority <= kMaxPriority,
-          "priority = " + std::to_string(priority) + " is not allowed: expected -1000 to 1000");
-  Require(request_id.size() <= kMaxRequestIdBytes, "client_request_id: longer than 128 bytes");
-  Require(static_cast<int>(override_count) <= kMaxOverrides, "overrides: more than 256");
+          "priority = " + std::to_string(priority) + " is not allowed: expected " +
+              std::to_string(-kMaxPriority) + " to " + std::to_string(kMaxPriority));
+  Require(request_id.size() <= kMaxRequestIdBytes,
+          "client_request_id: longer than " + std::to_string(kMaxRequestIdBytes) + " bytes");
+  Require(static_cast<int>(override_count) <= kMaxOverrides,
+          "overrides: more than " + std::to_string(kMaxOverrides));
 }
 
 std::vector<std::string> ToVector(const google::protobuf::RepeatedPtrField<std::string>& field) {
@@ -80,22 +82,6 @@ grpc::ServerUnaryReactor* Reply(grpc::CallbackServerContext* context, const char
   }
   reactor->Finish(status);
   return reactor;
-}
-
-// The files under a results directory, relative paths, sorted.
-std::vector<std::pair<std::string, fs::directory_entry>> ResultFiles(const fs::path& root) {
-  std::vector<std::pair<std::string, fs::directory_entry>> files;
-  std::error_code error;
-  if (!fs::is_directory(root, error)) return files;
-  for (auto it = fs::recursive_directory_iterator(root, error);
-       !error && it != fs::recursive_directory_iterator(); it.increment(error)) {
-    if (it->is_regular_file(error)) {
-      files.emplace_back(fs::relative(it->path(), root, error).generic_string(), *it);
-    }
-  }
-  std::sort(files.begin(), files.end(),
-            [](const auto& a, const auto& b) { return a.first < b.first; });
-  return files;
 }
 
 // Streams a WatcherQueue to one client.
@@ -154,78 +140,6 @@ class WatchReactor final : public grpc::ServerWriteReactor<v1::WatchEvent> {
   const std::string job_id_;
   std::shared_ptr<WatcherQueue> queue_;
   v1::WatchEvent current_;
-};
-
-// Streams result files in chunks of at most 1 MiB.
-class FetchReactor final : public grpc::ServerWriteReactor<v1::FileChunk> {
- public:
-  FetchReactor(fs::path root, std::vector<std::string> files)
-      : root_(std::move(root)),
-        files_(std::move(files)) {
-    Next();
-  }
-  void OnWriteDone(bool ok) override {
-    if (!ok) {
-      Finish(grpc::Status(StatusCode::CANCELLED, "fetch cancelled"));
-      return;
-    }
-    Next();
-  }
-  void OnDone() override { delete this; }
-
- private:
-  void Next() {
-    grpc::Status status = Guarded([&] {
-      while (true) {
-        if (!in_.is_open()) {
-          if (index_ >= files_.size()) {
-            done_ = true;
-            return;
-          }
-          const fs::path path = root_ / files_[index_];
-          in_.open(path, std::ios::binary);
-          if (!in_) throw ServiceError(StatusCode::NOT_FOUND, files_[index_] + ": cannot be read");
-          std::error_code error;
-          size_ = static_cast<int64_t>(fs::file_size(path, error));
-          offset_ = 0;
-        }
-        const int64_t length =
-            std::min<int64_t>(kChunkBytes, std::max<int64_t>(size_ - offset_, 0));
-        chunk_.Clear();
-        chunk_.set_path(files_[index_]);
-        chunk_.set_offset(offset_);
-        chunk_.set_size(size_);
-        std::string* data = chunk_.mutable_data();
-        data->resize(static_cast<size_t>(length));
-        in_.read(data->data(), length);
-        data->resize(static_cast<size_t>(in_.gcount()));
-        offset_ += static_cast<int64_t>(data->size());
-        const bool last = offset_ >= size_ || data->empty();
-        chunk_.set_last(last);
-        if (last) {
-          in_.close();
-          in_.clear();
-          ++index_;
-        }
-        return;
-      }
-    });
-    if (!status.ok()) {
-      Finish(status);
-    } else if (done_) {
-      Finish(grpc::Status::OK);
-    } else {
-      StartWrite(&chunk_);
-    }
-  }
-
-  const fs::path root_;
-  const std::vector<std::string> files_;
-  size_t index_ = 0;
-  std::ifstream in_;
-  int64_t size_ = 0, offset_ = 0;
-  bool done_ = false;
-  v1::FileChunk chunk_;
 };
 
 // A write reactor that only reports an error.
@@ -326,7 +240,7 @@ grpc::ServerUnaryReactor* JobsService::List(grpc::CallbackServerContext* context
     filter.owner = auth_.User(*context);
     Require(request->page_size() >= 0 && request->page_size() <= kMaxPageSize,
             "page_size = " + std::to_string(request->page_size()) +
-                " is not allowed: expected 0 to 1000");
+                " is not allowed: expected 0 to " + std::to_string(kMaxPageSize));
     filter.limit = request->page_size() == 0 ? kDefaultPageSize : request->page_size();
     for (int state : request->states()) {
       Require(state >= static_cast<int>(JobState::kQueued) &&
@@ -369,10 +283,10 @@ grpc::ServerWriteReactor<v1::WatchEvent>* JobsService::Watch(grpc::CallbackServe
     const std::string user = auth_.User(*context);
     Require(request->from_seq() >= 0, "from_seq: negative");
     Require(request->snapshot_max_width() >= 0 && request->snapshot_max_width() <= kMaxSnapshotSize,
-            "snapshot_max_width: expected 0 to 4096");
+            "snapshot_max_width: expected 0 to " + std::to_string(kMaxSnapshotSize));
     Require(
         request->snapshot_max_height() >= 0 && request->snapshot_max_height() <= kMaxSnapshotSize,
-        "snapshot_max_height: expected 0 to 4096");
+        "snapshot_max_height: expected 0 to " + std::to_string(kMaxSnapshotSize));
     job = OwnJob(user, request->job_id());
   });
   if (!status.ok()) return new FailedStream<v1::WatchEvent>(status);
@@ -399,26 +313,10 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
                                                    v1::SubmitSweepResponse* reply) {
   return Reply(context, "SubmitSweep", [&] {
     const std::string user = auth_.User(*context);
-    const auto base = ToVector(request->overrides());
     const auto tags = ToVector(request->tags());
     CheckLabels(request->name(), tags, request->priority(), request->client_request_id(),
-                base.size() + static_cast<size_t>(request->axes_size()));
-    Require(request->axes_size() > 0, "axes: at least one axis is needed");
-    std::set<std::string> keys;
-    int64_t points = 1;
-    for (const auto& axis : request->axes()) {
-      Require(!axis.key().empty(), "axes: an axis has no key");
-      Require(axis.key().find_first_of("=\n") == std::string::npos,
-              "axes: key \"" + axis.key() + "\" contains '=' or a line break");
-      Require(keys.insert(axis.key()).second, "axes: key " + axis.key() + " appears twice");
-      Require(axis.values_size() > 0, "axes: " + axis.key() + " has no values");
-      points *= axis.values_size();
-      if (points > config_.max_queued) {
-        throw ServiceError(
-            StatusCode::RESOURCE_EXHAUSTED,
-            "the sweep has more points than max_queued = " + std::to_string(config_.max_queued));
-      }
-    }
+                static_cast<size_t>(request->overrides_size() + request->axes_size()));
+    const std::vector<SweepPoint> points = ExpandSweep(*request, config_.max_queued);
     const std::string key =
         request->client_request_id().empty() ? "" : "sweep:" + request->client_request_id();
     if (!key.empty()) {
@@ -429,39 +327,25 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
         return;
       }
     }
-    CheckQueueRoom(points);
+    CheckQueueRoom(static_cast<int64_t>(points.size()));
     const std::string sweep_id = NewId('s');
     std::vector<JobRecord> jobs;
-    std::vector<int> index(static_cast<size_t>(request->axes_size()), 0);
-    for (int64_t p = 0; p < points; ++p) {
-      std::vector<std::string> overrides = base;
-      std::string label;
-      for (int a = 0; a < request->axes_size(); ++a) {
-        const auto& axis = request->axes(a);
-        const std::string pair = axis.key() + "=" + axis.values(index[static_cast<size_t>(a)]);
-        overrides.push_back(pair);
-        label += (a ? "," : "") + pair;
-      }
+    for (const SweepPoint& point : points) {
       std::vector<std::string> job_tags = tags;
       job_tags.push_back(sweep_id);
       const std::string name =
-          (request->name().empty() ? sweep_id : request->name()) + "[" + label + "]";
-      try {
+          (request->name().empty() ? sweep_id : request->name()) + "[" + point.label + "]";
+      // Whatever the point's admission throws keeps its status (ToStatus) and names the point.
+      const grpc::Status admitted = Guarded([&] {
         jobs.push_back(
-            NewJob(user, request->scene(), overrides, name, job_tags, request->priority()));
-      } catch (const ServiceError& e) {
-        throw ServiceError(e.code(), std::string(e.what()) + " (sweep point " + label + ")");
-      } catch (const std::exception& e) {
-        throw ServiceError(StatusCode::INVALID_ARGUMENT,
-                           std::string(e.what()) + " (sweep point " + label + ")");
+            NewJob(user, request->scene(), point.overrides, name, job_tags, request->priority()));
+      });
+      if (!admitted.ok()) {
+        throw ServiceError(admitted.error_code(),
+                           admitted.error_message() + " (sweep point " + point.label + ")");
       }
       jobs.back().sweep_id = sweep_id;
       jobs.back().client_request_id = request->client_request_id();
-      for (int a = request->axes_size() - 1; a >= 0; --a) {
-        auto& i = index[static_cast<size_t>(a)];
-        if (++i < request->axes(a).values_size()) break;
-        i = 0;
-      }
     }
     auto result = store_.InsertJobs(std::move(jobs), user, key);
     reply->set_sweep_id(result.jobs.front().sweep_id);
@@ -484,12 +368,7 @@ grpc::ServerUnaryReactor* JobsService::CancelSweep(grpc::CallbackServerContext* 
       throw ServiceError(StatusCode::NOT_FOUND, "sweep " + request->sweep_id() + " not found");
     }
     for (const auto& job : jobs) {
-      if (IsFinished(job.state)) continue;
-      try {
-        scheduler_.Cancel(job.id);
-      } catch (const ServiceError& e) {
-        if (e.code() != StatusCode::FAILED_PRECONDITION) throw;  // finished meanwhile
-      }
+      if (!IsFinished(job.state)) scheduler_.CancelUnlessFinished(job.id);
     }
     for (const auto& job : store_.SweepJobs(user, request->sweep_id())) {
       *reply->add_jobs() = ToProto(job);
@@ -505,24 +384,10 @@ grpc::ServerWriteReactor<v1::FileChunk>* JobsService::Fetch(grpc::CallbackServer
     JobRecord job = OwnJob(auth_.User(*context), request->job_id());
     root = job.results_dir;
     if (request->path().empty()) {
-      for (auto& [path, entry] : ResultFiles(root)) files.push_back(path);
-      return;
+      files = ResultFilePaths(root);
+    } else {
+      files.push_back(CheckedResultPath(root, request->path()));
     }
-    const fs::path wanted(request->path());
-    Require(wanted.is_relative(), "path: must be relative to the results directory");
-    for (const auto& part : wanted) {
-      Require(part != "..", "path: must not contain \"..\"");
-    }
-    std::error_code error;
-    const fs::path full = fs::weakly_canonical(root / wanted, error);
-    const fs::path base = fs::weakly_canonical(root, error);
-    const std::string full_text = full.string(), base_text = base.string() + "/";
-    Require(!error && full_text.compare(0, base_text.size(), base_text) == 0,
-            "path: leaves the results directory");
-    if (!fs::is_regular_file(full, error)) {
-      throw ServiceError(StatusCode::NOT_FOUND, "file " + request->path() + " not found");
-    }
-    files.push_back(wanted.lexically_normal().generic_string());
   });
   if (!status.ok()) return new FailedStream<v1::FileChunk>(status);
   return new FetchReactor(root, std::move(files));
@@ -533,16 +398,7 @@ grpc::ServerUnaryReactor* JobsService::ListFiles(grpc::CallbackServerContext* co
                                                  v1::ListFilesResponse* reply) {
   return Reply(context, "ListFiles", [&] {
     JobRecord job = OwnJob(auth_.User(*context), request->job_id());
-    for (auto& [path, entry] : ResultFiles(job.results_dir)) {
-      std::error_code error;
-      auto* info = reply->add_files();
-      info->set_path(path);
-      info->set_size(static_cast<int64_t>(entry.file_size(error)));
-      const auto modified = entry.last_write_time(error);
-      const auto system = std::chrono::time_point_cast<std::chrono::system_clock::duration>(
-          modified - fs::file_time_type::clock::now() + std::chrono::system_clock::now());
-      info->set_modified_time(std::chrono::duration<double>(system.time_since_epoch()).count());
-    }
+    DescribeResultFiles(job.results_dir, reply);
   });
 }
 

@@ -10,9 +10,12 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
-#include <regex>
 #include <sstream>
 
+#include "dlmfd/io/atomic_file.h"
+#include "dlmfd/io/results_writer.h"
+#include "dlmfd/solver/exit_codes.h"
+#include "dlmfd/solver/run_summary.h"
 #include "job_proto.h"
 #include "service_error.h"
 #include "solver_process.h"
@@ -23,28 +26,13 @@ namespace {
 
 constexpr double kProgressStoreInterval = 1.0;  // seconds between progress writes to the store
 
-void WriteFileAtomically(const fs::path& path, const std::string& text) {
-  fs::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+// The "reason" of results/summary.json, or empty when there is none to read.
+std::string SummaryReason(const fs::path& results) {
+  try {
+    return solver::ReadRunSummary((results / solver::kRunSummaryFile).string()).reason;
+  } catch (const solver::RunSummaryError&) {
+    return {};
   }
-  fs::rename(tmp, path);
-}
-
-// The "reason" of results/summary.json, or empty.
-std::string SummaryReason(const fs::path& summary) {
-  std::ifstream in(summary);
-  if (!in) return {};
-  std::stringstream text;
-  text << in.rdbuf();
-  static const std::regex kReason(R"re("reason"\s*:\s*"((?:[^"\\]|\\.)*)")re");
-  std::smatch match;
-  std::string body = text.str();
-  if (!std::regex_search(body, match, kReason)) return {};
-  return match[1].str();
 }
 
 // The last non-empty line of a log file (at most its last 4 KiB are read).
@@ -180,10 +168,10 @@ void Scheduler::RunJob(JobRecord job) {
     if (lock_fd < 0) {
       if (!Stopping()) outcome.emplace(JobState::kCancelled, "cancelled before the solver started");
     } else {
-      const bool resume = fs::exists(results / "checkpoint.h5");
+      const bool resume = fs::exists(results / ResultsWriter::kCheckpoint);
       if (!resume) fs::remove_all(results);
       fs::create_directories(results);
-      WriteFileAtomically(dir / "scene.in.toml", job.scene);
+      WriteTextAtomically((dir / "scene.in.toml").string(), job.scene);
       LaunchSpec spec;
       spec.solver = config_.solver;
       spec.scene_path = (dir / "scene.in.toml").string();
@@ -293,18 +281,19 @@ void Scheduler::RunJob(JobRecord job) {
       const SolverExit exit = process->Wait();
       const bool cancelled = cancel_requested();
       const std::string reported = finished ? finished->reason() : std::string();
-      if (Stopping() && (exit.code == 130 || exit.signalled)) {
+      const auto exited = [&exit](int code) { return !exit.signalled && exit.code == code; };
+      if (Stopping() && (exited(solver::kExitCancelled) || exit.signalled)) {
         spdlog::info("job {}: solver stopped for the daemon's shutdown; stays RUNNING to resume",
                      job.id);
-      } else if (!exit.signalled && exit.code == 0) {
+      } else if (exited(solver::kExitCompleted)) {
         outcome.emplace(JobState::kCompleted, "");
-      } else if (!exit.signalled && exit.code == 1) {
-        std::string reason = !reported.empty() ? reported : SummaryReason(results / "summary.json");
+      } else if (exited(solver::kExitFailed)) {
+        std::string reason = !reported.empty() ? reported : SummaryReason(results);
         outcome.emplace(JobState::kFailed, reason.empty() ? "solver failed" : reason);
-      } else if (!exit.signalled && exit.code == 2) {
+      } else if (exited(solver::kExitInvalid)) {
         std::string reason = !reported.empty() ? reported : LastLogLine(dir / "solver.log");
         outcome.emplace(JobState::kFailed, "invalid scene or arguments: " + reason);
-      } else if ((!exit.signalled && exit.code == 130) ||
+      } else if (exited(solver::kExitCancelled) ||
                  (cancelled && exit.signalled && exit.code == SIGTERM)) {
         outcome.emplace(JobState::kCancelled, cancelled ? "cancelled" : "solver interrupted");
       } else if (exit.signalled) {
@@ -332,18 +321,23 @@ void Scheduler::RunJob(JobRecord job) {
 }
 
 JobRecord Scheduler::Cancel(const std::string& job_id) {
+  if (auto job = CancelUnlessFinished(job_id)) return *job;
+  const auto finished = store_.Get(job_id);
+  if (!finished) throw ServiceError(grpc::StatusCode::NOT_FOUND, "job " + job_id + " not found");
+  throw ServiceError(
+      grpc::StatusCode::FAILED_PRECONDITION,
+      "job " + job_id + " has already finished (" + JobStateName(finished->state) + ")");
+}
+
+std::optional<JobRecord> Scheduler::CancelUnlessFinished(const std::string& job_id) {
   auto job = store_.Get(job_id);
   if (!job) throw ServiceError(grpc::StatusCode::NOT_FOUND, "job " + job_id + " not found");
-  if (IsFinished(job->state)) {
-    throw ServiceError(
-        grpc::StatusCode::FAILED_PRECONDITION,
-        "job " + job_id + " has already finished (" + JobStateName(job->state) + ")");
-  }
+  if (IsFinished(job->state)) return std::nullopt;
   if (job->state == JobState::kQueued && store_.CancelQueued(job_id, "cancelled", NowSeconds())) {
     job = store_.Get(job_id);
     spdlog::info("job {}: CANCELLED while queued", job_id);
     hub_.PublishState(*job);
-    return *job;
+    return job;
   }
   // Running (or started since it was read).
   store_.SetCancelRequested(job_id);
@@ -358,7 +352,7 @@ JobRecord Scheduler::Cancel(const std::string& job_id) {
   }
   job = store_.Get(job_id);
   if (job->state == JobState::kRunning) job->reason = "cancel requested";
-  return *job;
+  return job;
 }
 
 void Scheduler::Stop(std::chrono::seconds grace) {

@@ -21,6 +21,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -46,9 +47,12 @@ class Scheduler {
   void Stop(std::chrono::seconds grace = std::chrono::seconds(30));
   // Something was queued.
   void Wake();
-  // Cancels a job of the store; returns its record afterwards. Throws ServiceError
+  // Cancels a job of the store; returns its record afterwards. Throws ServiceError NOT_FOUND, or
   // FAILED_PRECONDITION when it has already finished.
   JobRecord Cancel(const std::string& job_id);
+  // As Cancel, but a job that has already finished is left as it is: returns its record, or
+  // nothing when it had finished. Throws ServiceError NOT_FOUND.
+  std::optional<JobRecord> CancelUnlessFinished(const std::string& job_id);
 
   std::string JobDir(const std::string& job_id) const;
   std::string ResultsDir(const std::string& job_id) const;

@@ -23,6 +23,11 @@ class ServiceError : public std::runtime_error {
   grpc::StatusCode code_;
 };
 
+// Throws ServiceError INVALID_ARGUMENT with `message` (which names the field first) unless ok.
+inline void Require(bool ok, const std::string& message) {
+  if (!ok) throw ServiceError(grpc::StatusCode::INVALID_ARGUMENT, message);
+}
+
 // Maps the exception in flight (ServiceError, dlmfd::InvalidParameter, StoreError, anything else)
 // to a status; never throws.
 grpc::Status ToStatus(std::exception_ptr error);

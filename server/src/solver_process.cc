@@ -7,14 +7,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <google/protobuf/io/zero_copy_stream_impl.h>
-#include <google/protobuf/util/delimited_message_util.h>
-
 #include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <stdexcept>
 #include <thread>
+
+#include "dlmfd/solver/event_file.h"
 
 namespace dlmfd::server {
 namespace {
@@ -114,14 +113,10 @@ void SolverProcess::Start(const LaunchSpec& spec) {
 }
 
 void SolverProcess::ReadEvents(const std::function<void(const v1::SolverEvent&)>& on_event) {
-  google::protobuf::io::FileInputStream input(events_fd_);
-  v1::SolverEvent event;
-  bool clean_eof = false;
-  while (true) {
-    event.Clear();  // parsing merges into the message
-    if (!google::protobuf::util::ParseDelimitedFromZeroCopyStream(&event, &input, &clean_eof))
-      break;
-    on_event(event);
+  {
+    solver::EventFileReader input(events_fd_);
+    v1::SolverEvent event;
+    while (input.Next(&event)) on_event(event);
   }
   close(events_fd_);
   events_fd_ = -1;

@@ -7,7 +7,7 @@
 // a killed daemon), PR_SET_PDEATHSIG = SIGKILL (a daemon that dies takes its solvers with it) and
 // every other descriptor closed. The child does only async-signal-safe work between fork and exec.
 // The thread that calls Start must stay alive until Wait returns: PR_SET_PDEATHSIG follows the
-// thread that forked. Events are length-delimited SolverEvent messages (events.proto).
+// thread that forked. Events are read with the solver's own reader (dlmfd/solver/event_file.h).
 // Not supported: running the solver under a batch system (Slurm); that would be another executor.
 #pragma once
 

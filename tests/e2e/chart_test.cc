@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
 const std::string kClient = DLMFD_BINARY_DIR "/client/dlmfd";
-const std::string kSolver = DLMFD_BINARY_DIR "/engine/dlmfd-solve";
+const std::string kSolver = DLMFD_BINARY_DIR "/solver/dlmfd-solve";
 
 // Disks of diameter 0.25 settling in a closed Newtonian box; `disks` holds the centres' lines.
 std::string SettlingScene(const std::string& disks) {

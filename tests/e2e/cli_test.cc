@@ -30,7 +30,7 @@ using ::testing::HasSubstr;
 
 const std::string kClient = DLMFD_BINARY_DIR "/client/dlmfd";
 const std::string kDaemon = DLMFD_BINARY_DIR "/server/dlmfdd";
-const std::string kSolver = DLMFD_BINARY_DIR "/engine/dlmfd-solve";
+const std::string kSolver = DLMFD_BINARY_DIR "/solver/dlmfd-solve";
 
 const char* kCavity = R"toml(title = "lid-driven cavity (cli e2e)"
 [domain]

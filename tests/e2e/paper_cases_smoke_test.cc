@@ -28,7 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-const char* const kSolve = DLMFD_BINARY_DIR "/engine/dlmfd-solve";
+const char* const kSolve = DLMFD_BINARY_DIR "/solver/dlmfd-solve";
 const std::string kCases = DLMFD_SOURCE_DIR "/cases/paper/";
 constexpr double kCoarseH = 1.0 / 24;
 constexpr double kCoarseParticleH = kCoarseH * 96.0 / 70.0;  // the paper's ratio h_p / h

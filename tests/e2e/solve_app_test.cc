@@ -30,7 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-const char* const kSolve = DLMFD_BINARY_DIR "/engine/dlmfd-solve";
+const char* const kSolve = DLMFD_BINARY_DIR "/solver/dlmfd-solve";
 
 // 16 x 16 cavity; `end` and the output cadence vary per test.
 std::string CavityScene(double end, double fields_every, double checkpoint_every) {

@@ -1,17 +1,21 @@
 // Unit tests of the daemon's parts without a process: the SQLite store, the configuration, the
-// authenticator, the watcher queue's gap rules and snapshot downsampling.
+// authenticator, the watcher queue's gap rules and snapshot downsampling, the sweep expansion and
+// the checks of result-file paths.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 
 #include "auth.h"
 #include "config.h"
 #include "job_store.h"
+#include "result_files.h"
 #include "service_error.h"
 #include "support/daemon_process.h"
+#include "sweep_expansion.h"
 #include "watcher_queue.h"
 
 namespace dlmfd::server {
@@ -297,6 +301,66 @@ TEST(Downsample, KeepsCornersAndLimits) {
   EXPECT_EQ(small.values(5), 48.0f);
   auto same = DownsampleSnapshot(full, 0, 0);
   EXPECT_EQ(same.values_size(), full.values_size());
+}
+
+v1::SubmitSweepRequest SweepOf(std::vector<std::pair<std::string, std::vector<std::string>>> axes) {
+  v1::SubmitSweepRequest request;
+  request.add_overrides("time.end=1");
+  for (const auto& [key, values] : axes) {
+    auto* axis = request.add_axes();
+    axis->set_key(key);
+    for (const auto& v : values) axis->add_values(v);
+  }
+  return request;
+}
+
+grpc::StatusCode CodeOf(const std::function<void()>& body) { return Guarded(body).error_code(); }
+
+TEST(SweepExpansion, CartesianProductWithTheLastAxisFastest) {
+  const auto points = ExpandSweep(SweepOf({{"a", {"1", "2"}}, {"b", {"x", "y", "z"}}}), 6);
+  ASSERT_EQ(points.size(), 6u);
+  EXPECT_EQ(points[0].label, "a=1,b=x");
+  EXPECT_EQ(points[1].label, "a=1,b=y");
+  EXPECT_EQ(points[3].label, "a=2,b=x");
+  EXPECT_EQ(points[5].overrides, (std::vector<std::string>{"time.end=1", "a=2", "b=z"}));
+}
+
+TEST(SweepExpansion, InvalidAxesAndTooManyPointsAreRefusedAsAWhole) {
+  using grpc::StatusCode;
+  EXPECT_EQ(CodeOf([] { ExpandSweep(SweepOf({}), 10); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(CodeOf([] { ExpandSweep(SweepOf({{"", {"1"}}}), 10); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(CodeOf([] {
+              ExpandSweep(SweepOf({{"a=b", {"1"}}}), 10);
+            }),
+            StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(CodeOf([] {
+              ExpandSweep(SweepOf({{"a", {"1"}}, {"a", {"2"}}}), 10);
+            }),
+            StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(CodeOf([] { ExpandSweep(SweepOf({{"a", {}}}), 10); }), StatusCode::INVALID_ARGUMENT);
+  const grpc::Status big = Guarded([] { ExpandSweep(SweepOf({{"a", {"1", "2", "3"}}}), 2); });
+  EXPECT_EQ(big.error_code(), StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(big.error_message().find("max_queued = 2"), std::string::npos) << big.error_message();
+}
+
+TEST(ResultFiles, ListsSortedAndChecksRequestedPaths) {
+  dlmfd::testing::TempDir dir;
+  const std::filesystem::path root = dir.path() + "/results";
+  std::filesystem::create_directories(root / "fields");
+  std::ofstream(root / "summary.json") << "{}";
+  std::ofstream(root / "fields" / "snap_000000.h5") << "h5";
+  EXPECT_EQ(ResultFilePaths(root),
+            (std::vector<std::string>{"fields/snap_000000.h5", "summary.json"}));
+  EXPECT_TRUE(ResultFilePaths(root / "absent").empty());
+  EXPECT_EQ(CheckedResultPath(root, "fields/./snap_000000.h5"), "fields/snap_000000.h5");
+  using grpc::StatusCode;
+  EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, "/etc/passwd"); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, "fields/../../x"); }),
+            StatusCode::INVALID_ARGUMENT);
+  std::filesystem::create_symlink("/etc", root / "out");
+  EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, "out/passwd"); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, "absent.h5"); }), StatusCode::NOT_FOUND);
+  EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, "fields"); }), StatusCode::NOT_FOUND);
 }
 
 }  // namespace

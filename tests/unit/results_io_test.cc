@@ -1,5 +1,5 @@
 // The writers and readers of the results directory (design.md 3.2) on their own: field snapshots,
-// fields.xmf, particles.h5, diagnostics.csv, summary.json, checkpoint.h5, and ResultsWriter's
+// fields.xmf, particles.h5, diagnostics.csv, checkpoint.h5, and ResultsWriter's
 // resume cut-back. Values are compared bitwise: these files store doubles as doubles.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -19,7 +19,6 @@
 #include "dlmfd/io/fields_xdmf.h"
 #include "dlmfd/io/particle_history.h"
 #include "dlmfd/io/results_writer.h"
-#include "dlmfd/io/run_summary.h"
 #include "dlmfd/scene/scene_file.h"
 
 namespace dlmfd {
@@ -287,30 +286,6 @@ TEST(Checkpoint, NewtonianStateHasNoConformation) {
   EXPECT_THROW(ReadCheckpoint(dir + "/absent.h5"), Error);
 }
 
-TEST(RunSummary, JsonHasTheContractKeysAndNoNaN) {
-  RunSummary s;
-  s.status = "failed";
-  s.reason = "solver \"stokes\" did not converge\n";
-  s.exit_code = 1;
-  s.steps = 12;
-  s.time = 0.012;
-  s.ms_per_step = std::numeric_limits<double>::quiet_NaN();
-  ParticleState q;
-  q.id = 3;
-  q.position = Vec2(0.5, 0.25);
-  s.particles.push_back(q);
-  s.diagnostics = {{"stokes_iterations", 11.0}};
-  const std::string json = RunSummaryJson(s);
-  for (const char* key :
-       {"\"status\": \"failed\"", "\"reason\": \"solver \\\"stokes\\\" did not converge\\n\"",
-        "\"steps\": 12", "\"time\": 0.012", "\"wall_seconds\"", "\"ms_per_step\": null",
-        "\"particles\": [", "\"id\": 3", "\"position\": [0.5, 0.25]", "\"angular_velocity\"",
-        "\"force\"", "\"torque\"", "\"version\"", "\"stokes_iterations\": 11"}) {
-    EXPECT_THAT(json, HasSubstr(key));
-  }
-  EXPECT_EQ(json.find("nan"), std::string::npos);
-}
-
 // ResultsWriter driven by hand (no Simulation): snapshots at steps 0, 4, 8; checkpoint at step 5;
 // resume drops the step-8 snapshot and the rows after step 5.
 TEST(ResultsWriter, ResumeCutsBackToTheCheckpoint) {
@@ -339,16 +314,15 @@ TEST(ResultsWriter, ResumeCutsBackToTheCheckpoint) {
       w->OnStep(s, Report(n));
       w->OnParticles(s);
       if (n % 4 == 0) w->OnSnapshot(s);
-      w->AfterStep(s);
+      w->OnStepEnd(s);
     }
-    RunSummary summary;
-    summary.status = "cancelled";
-    w->Finish(summary);
+    EXPECT_EQ(w->last_report().step, 9);
+    EXPECT_EQ(w->last_report().Get("stokes_iterations"), 19.0);
+    w->Finish();
   }
   EXPECT_EQ(checkpoints, (std::vector<long>{5}));
   EXPECT_TRUE(fs::exists(dir + "/fields/snap_000008.h5"));
   EXPECT_EQ(ParseScene(ReadTextFile(dir + "/scene.toml")).time.end, 1.0);
-  EXPECT_THAT(ReadTextFile(dir + "/summary.json"), HasSubstr("\"stokes_iterations\": 19"));
 
   const Checkpoint c = ReadCheckpoint(dir + "/checkpoint.h5");
   EXPECT_EQ(c.state.step, 5);
@@ -357,7 +331,6 @@ TEST(ResultsWriter, ResumeCutsBackToTheCheckpoint) {
   { auto w = ResultsWriter::Resume(dir, params, g, c.state.step); }
   EXPECT_FALSE(fs::exists(dir + "/fields/snap_000008.h5"));
   EXPECT_TRUE(fs::exists(dir + "/fields/snap_000004.h5"));
-  EXPECT_FALSE(fs::exists(dir + "/summary.json"));
   const std::string xmf = ReadTextFile(dir + "/fields.xmf");
   EXPECT_THAT(xmf, HasSubstr("fields/snap_000004.h5"));
   EXPECT_EQ(xmf.find("snap_000008"), std::string::npos);

@@ -200,10 +200,14 @@ void Simulation::Step() {
     if (particles_due) o->OnParticles(s.state);
     if (fields_due) o->OnSnapshot(s.state);
   }
+  for (Observer* o : s.observers) o->OnStepEnd(s.state);
 }
 
 void Simulation::Run(const std::atomic<bool>* stop) {
   while (!Done() && !(stop && stop->load())) Step();
+  if (!Done()) {
+    for (Observer* o : impl_->observers) o->OnStopped(impl_->state);
+  }
 }
 
 bool Simulation::Done() const { return impl_->state.step >= TotalSteps(); }

@@ -55,7 +55,7 @@ std::unique_ptr<ResultsWriter> ResultsWriter::Start(const std::string& dir, cons
   for (const auto& entry : fs::directory_iterator(w->Path(kFields))) {
     if (SnapshotStep(entry.path().filename().string()) >= 0) fs::remove(entry.path());
   }
-  for (const char* stale : {kXdmf, kCheckpoint, kSummary, kParticles}) fs::remove(w->Path(stale));
+  for (const char* stale : {kXdmf, kCheckpoint, kParticles}) fs::remove(w->Path(stale));
   WriteTextAtomically(w->Path(kScene), w->scene_text_);
   w->diagnostics_ = std::make_unique<DiagnosticsWriter>(w->Path(kDiagnostics));
   w->particles_ = ParticleHistoryWriter::Create(w->Path(kParticles), initial);
@@ -66,7 +66,6 @@ std::unique_ptr<ResultsWriter> ResultsWriter::Resume(const std::string& dir, con
                                                      const Grid& grid, long checkpoint_step) {
   std::unique_ptr<ResultsWriter> w(new ResultsWriter(dir, params, grid));
   MakeDirectory(w->Path(kFields));
-  fs::remove(w->Path(kSummary));
   std::vector<std::pair<long, std::string>> kept;
   for (const auto& entry : fs::directory_iterator(w->Path(kFields))) {
     const std::string name = entry.path().filename().string();
@@ -116,24 +115,22 @@ void ResultsWriter::OnSnapshot(const FlowState& state) {
   WriteFieldsXdmf(Path(kXdmf), grid_, snapshots_, !state.a11.empty());
 }
 
-void ResultsWriter::AfterStep(const FlowState& state) {
+void ResultsWriter::OnStepEnd(const FlowState& state) {
   if (!checkpoint_due_) return;
   checkpoint_due_ = false;
-  WriteCheckpointNow(state);
+  SaveCheckpoint(state);
 }
 
-void ResultsWriter::WriteCheckpointNow(const FlowState& state) {
+void ResultsWriter::OnStopped(const FlowState& state) { SaveCheckpoint(state); }
+
+void ResultsWriter::SaveCheckpoint(const FlowState& state) {
   WriteCheckpoint(Path(kCheckpoint), state, scene_text_);
   if (on_checkpoint_) on_checkpoint_(state.step, state.time, kCheckpoint);
 }
 
-void ResultsWriter::Finish(RunSummary summary) {
+void ResultsWriter::Finish() {
   diagnostics_.reset();
   particles_.reset();
-  summary.diagnostics = last_report_.columns;
-  summary.end_time = params_.time.end;
-  summary.title = params_.title;
-  WriteRunSummary(Path(kSummary), summary);
 }
 
 }  // namespace dlmfd

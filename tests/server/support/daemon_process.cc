@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 std::string SolverPathFromEnvironment() {
   const char* from_environment = std::getenv("DLMFD_SOLVER_BINARY");
   if (from_environment && *from_environment) return from_environment;
-  return DLMFD_BINARY_DIR "/engine/dlmfd-solve";
+  return DLMFD_BINARY_DIR "/solver/dlmfd-solve";
 }
 
 bool SolverAvailable() { return access(kSolverPath.c_str(), X_OK) == 0; }

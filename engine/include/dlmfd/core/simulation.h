@@ -28,9 +28,11 @@ class Simulation {
   // Notifies OnParticles and OnSnapshot for the current state (call once before the first Step of a
   // fresh run, not after Restore).
   void EmitInitial();
-  // Advances one time step and notifies the observers. Throws RunFailure (and subclasses).
+  // Advances one time step and notifies the observers (OnStep, OnParticles and OnSnapshot when due,
+  // then OnStepEnd). Throws RunFailure (and subclasses).
   void Step();
-  // Steps until the end time or until *stop becomes true (checked between steps).
+  // The time loop: steps until the end time or until *stop becomes true (checked between steps);
+  // a run stopped early notifies OnStopped. What a step throws propagates.
   void Run(const std::atomic<bool>* stop = nullptr);
   bool Done() const;
   long TotalSteps() const;

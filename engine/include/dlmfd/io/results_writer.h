@@ -1,10 +1,11 @@
 // The results directory of one run (design.md 3.2), written by an Observer of Simulation:
 //   scene.toml (the scene as run, every default filled in), diagnostics.csv (OnStep),
 //   particles.h5 (OnParticles; np = 0 when the scene has none), fields/snap_NNNNNN.h5 and
-//   fields.xmf (OnSnapshot), checkpoint.h5 (AfterStep, every output.checkpoint_every of simulated
-//   time, and on request), summary.json (Finish).
+//   fields.xmf (OnSnapshot), checkpoint.h5 (OnStepEnd, every output.checkpoint_every of simulated
+//   time, and OnStopped: a run stopped by a signal). summary.json is not written here: it is the
+//   solver's, written when the run has ended (solver/include/dlmfd/solver/run_summary.h).
 //
-// Checkpoints are written by AfterStep, after every observer has seen the step, so that every
+// Checkpoints are written by OnStepEnd, after every observer has seen the step, so that every
 // record of a step at or before the checkpoint is on disk before the checkpoint exists. Resume()
 // cuts particles.h5 and diagnostics.csv back to the records at or before the checkpoint step, drops
 // the snapshots after it and rebuilds fields.xmf: the resumed run then appends exactly what an
@@ -22,14 +23,13 @@
 #include "dlmfd/io/diagnostics_csv.h"
 #include "dlmfd/io/fields_xdmf.h"
 #include "dlmfd/io/particle_history.h"
-#include "dlmfd/io/run_summary.h"
 
 namespace dlmfd {
 
 class ResultsWriter : public Observer {
  public:
   // A fresh run: creates DIR and DIR/fields, removes the results of an earlier run there
-  // (snapshots, fields.xmf, checkpoint.h5, summary.json), writes scene.toml.
+  // (snapshots, fields.xmf, checkpoint.h5, particles.h5), writes scene.toml.
   static std::unique_ptr<ResultsWriter> Start(const std::string& dir, const Params& params,
                                               const Grid& grid, const FlowState& initial);
   // Goes on from the checkpoint at `checkpoint_step` in DIR (see the header comment).
@@ -40,22 +40,22 @@ class ResultsWriter : public Observer {
   void OnParticles(const FlowState& state) override;
   void OnSnapshot(const FlowState& state) override;
 
-  // Call after each Simulation::Step: writes the checkpoint when one falls due.
-  void AfterStep(const FlowState& state);
-  // Writes checkpoint.h5 now (a cancelled run).
-  void WriteCheckpointNow(const FlowState& state);
-  // Writes summary.json (filling in the last diagnostics) and closes every file.
-  void Finish(RunSummary summary);
+  // Writes the checkpoint when one falls due at this step.
+  void OnStepEnd(const FlowState& state) override;
+  // Writes the checkpoint of the step reached (a cancelled run resumes from it).
+  void OnStopped(const FlowState& state) override;
+  // Closes diagnostics.csv and particles.h5 (the run has ended; nothing is written after this).
+  void Finish();
 
   // Called with (step, time, file relative to DIR) after each checkpoint.
   void SetCheckpointCallback(std::function<void(long, double, const std::string&)> callback) {
     on_checkpoint_ = std::move(callback);
   }
   const std::string& dir() const { return dir_; }
+  // The report of the last step seen (its columns go into summary.json).
   const StepReport& last_report() const { return last_report_; }
 
   static constexpr const char* kScene = "scene.toml";
-  static constexpr const char* kSummary = "summary.json";
   static constexpr const char* kParticles = "particles.h5";
   static constexpr const char* kDiagnostics = "diagnostics.csv";
   static constexpr const char* kCheckpoint = "checkpoint.h5";
@@ -65,6 +65,7 @@ class ResultsWriter : public Observer {
  private:
   ResultsWriter(const std::string& dir, const Params& params, const Grid& grid);
   std::string Path(const std::string& name) const { return dir_ + "/" + name; }
+  void SaveCheckpoint(const FlowState& state);
 
   std::string dir_;
   Params params_;

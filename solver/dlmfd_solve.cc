@@ -3,10 +3,14 @@
 //   dlmfd-solve SCENE --out DIR [--set key=value]... [--resume] [--threads N] [--events FD]
 //   [--quiet]
 //
-// Exit status: 0 completed; 1 failed while running (reason in summary.json, results so far kept
-// and closed); 2 invalid scene or arguments (message on stderr naming key, value and what is
-// allowed; nothing run); 130 cancelled by SIGINT/SIGTERM (checkpoint written, every file closed,
-// summary.json status cancelled). The handler only sets an atomic flag, checked between steps.
+// Exit status (dlmfd/solver/exit_codes.h): 0 completed; 1 failed while running (reason in
+// summary.json, results so far kept and closed); 2 invalid scene or arguments (message on stderr
+// naming key, value and what is allowed; nothing run); 130 cancelled by SIGINT/SIGTERM (checkpoint
+// written, every file closed, summary.json status cancelled). The handler only sets an atomic flag,
+// which Simulation::Run checks between steps.
+//
+// The time loop is Simulation::Run; everything the run writes is an observer of it: the results
+// directory (ResultsWriter, which also checkpoints), the event stream and the progress line.
 // --resume goes on from DIR/checkpoint.h5 when the scene (after defaults and --set) is the one in
 // DIR/scene.toml; the resumed run's results equal an uninterrupted run's bit for bit.
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -20,6 +24,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "dlmfd/core/errors.h"
@@ -28,14 +33,16 @@
 #include "dlmfd/io/checkpoint.h"
 #include "dlmfd/io/results_writer.h"
 #include "dlmfd/scene/scene_file.h"
+#include "dlmfd/solver/exit_codes.h"
+#include "dlmfd/solver/run_summary.h"
 #include "event_stream.h"
 
 namespace {
 
-constexpr int kExitCompleted = 0;
-constexpr int kExitFailed = 1;
-constexpr int kExitInvalid = 2;
-constexpr int kExitCancelled = 130;
+using dlmfd::solver::kExitCancelled;
+using dlmfd::solver::kExitCompleted;
+using dlmfd::solver::kExitFailed;
+using dlmfd::solver::kExitInvalid;
 
 std::atomic<bool> g_stop{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
@@ -62,7 +69,7 @@ struct Options {
 };
 
 // One progress line on stderr about every second: step, t / end, steps/s, ETA.
-class ProgressLine {
+class ProgressLine : public dlmfd::Observer {
  public:
   ProgressLine(bool quiet, long first_step, long total_steps, double end_time)
       : quiet_(quiet),
@@ -72,6 +79,12 @@ class ProgressLine {
         start_(std::chrono::steady_clock::now()),
         last_(start_) {}
 
+  void OnStepEnd(const dlmfd::FlowState& state) override { Update(state.step, state.time, false); }
+
+  // The last line, whatever the end of the run.
+  void Finish(const dlmfd::FlowState& state) { Update(state.step, state.time, true); }
+
+ private:
   void Update(long step, double time, bool force) {
     const auto now = std::chrono::steady_clock::now();
     if (quiet_ || (!force && now - last_ < std::chrono::seconds(1))) return;
@@ -84,22 +97,45 @@ class ProgressLine {
     std::fflush(stderr);
   }
 
- private:
   bool quiet_;
   long first_step_, total_steps_;
   double end_time_;
   std::chrono::steady_clock::time_point start_, last_;
 };
 
-int Invalid(dlmfd::EventStream& events, const std::string& message) {
+int Invalid(dlmfd::solver::EventStream& events, const std::string& message) {
   spdlog::error("invalid scene or arguments: {}", message);
   events.Log("error", message);
   events.Finished("failed", message, 0, 0.0, kExitInvalid);
   return kExitInvalid;
 }
 
-int Run(const Options& opt, dlmfd::EventStream& events) {
+// The summary.json of the run as it ended.
+dlmfd::solver::RunSummary Summary(const dlmfd::Params& params, const dlmfd::FlowState& state,
+                                  const dlmfd::StepReport& last_report) {
+  dlmfd::solver::RunSummary summary;
+  summary.steps = state.step;
+  summary.time = state.time;
+  summary.end_time = params.time.end;
+  summary.title = params.title;
+  summary.version = DLMFD_VERSION;
+  for (const dlmfd::ParticleState& q : state.particles) {
+    dlmfd::solver::RunSummary::Particle p;
+    p.id = q.id;
+    p.position = {q.position.x(), q.position.y()};
+    p.velocity = {q.velocity.x(), q.velocity.y()};
+    p.angular_velocity = q.angular_velocity;
+    p.force = {q.force.x(), q.force.y()};
+    p.torque = q.torque;
+    summary.particles.push_back(p);
+  }
+  summary.diagnostics = last_report.columns;
+  return summary;
+}
+
+int Run(const Options& opt, dlmfd::solver::EventStream& events) {
   using namespace dlmfd;
+  using namespace dlmfd::solver;
   // Everything that can be wrong with the scene or the arguments is found before anything runs.
   Params params;
   std::unique_ptr<Simulation> sim;
@@ -137,6 +173,9 @@ int Run(const Options& opt, dlmfd::EventStream& events) {
     return Invalid(events, e.what());
   }
 
+  // An earlier run's summary would tell a reader that this one has ended.
+  std::error_code no_summary;
+  std::filesystem::remove(opt.out + "/" + kRunSummaryFile, no_summary);
   std::unique_ptr<ResultsWriter> results;
   try {
     results = opt.resume
@@ -155,11 +194,14 @@ int Run(const Options& opt, dlmfd::EventStream& events) {
     e.mutable_checkpointed()->set_file(file);
     events.Send(e);
   });
+  const long first_step = sim->state().step;
   EventObserver event_observer(&events, params, sim->grid());
+  ProgressLine progress(opt.quiet, first_step, sim->TotalSteps(), params.time.end);
+  // The results first: a step's checkpoint event follows that step's other events.
   sim->AddObserver(results.get());
   sim->AddObserver(&event_observer);
+  sim->AddObserver(&progress);
 
-  const long first_step = sim->state().step;
   {
     v1::SolverEvent e;
     v1::Started* s = e.mutable_started();
@@ -181,46 +223,41 @@ int Run(const Options& opt, dlmfd::EventStream& events) {
                  sim->TotalSteps(), sim->grid().nx, sim->grid().ny);
   }
 
-  RunSummary summary;
-  summary.resumed_from_step = opt.resume ? first_step : -1;
-  ProgressLine progress(opt.quiet, first_step, sim->TotalSteps(), params.time.end);
   event_observer.Begin(first_step);
   const auto start = std::chrono::steady_clock::now();
+  std::string status, reason;
   int code = kExitCompleted;
   try {
     if (!opt.resume) sim->EmitInitial();
-    while (!sim->Done() && !g_stop.load()) {
-      sim->Step();
-      results->AfterStep(sim->state());
-      progress.Update(sim->state().step, sim->state().time, false);
-    }
+    sim->Run(&g_stop);  // a stopped run has its checkpoint written by ResultsWriter::OnStopped
     if (!sim->Done()) {
-      results->WriteCheckpointNow(sim->state());
-      summary.status = "cancelled";
-      summary.reason = "stopped by a signal; resume with --resume";
+      status = "cancelled";
+      reason = "stopped by a signal; resume with --resume";
       code = kExitCancelled;
     } else {
-      summary.status = "completed";
+      status = "completed";
     }
   } catch (const Error& e) {  // RunFailure and I/O errors: the run ends FAILED, results so far kept
-    summary.status = "failed";
-    summary.reason = e.what();
+    status = "failed";
+    reason = e.what();
     code = kExitFailed;
     spdlog::error("run failed at step {}: {}", sim->state().step, e.what());
     events.Log("error", e.what());
   }
-  progress.Update(sim->state().step, sim->state().time, true);
+  progress.Finish(sim->state());
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const long steps_here = sim->state().step - first_step;
+  RunSummary summary = Summary(params, sim->state(), results->last_report());
+  summary.status = status;
+  summary.reason = reason;
   summary.exit_code = code;
-  summary.steps = sim->state().step;
-  summary.time = sim->state().time;
+  summary.resumed_from_step = opt.resume ? first_step : -1;
   summary.wall_seconds = wall;
   summary.ms_per_step = steps_here > 0 ? 1e3 * wall / static_cast<double>(steps_here) : 0.0;
-  summary.particles = sim->state().particles;
   try {
-    results->Finish(summary);
+    results->Finish();
+    WriteRunSummary(results->dir() + "/" + kRunSummaryFile, summary);
   } catch (const Error& e) {
     spdlog::error("cannot write the summary: {}", e.what());
     if (code == kExitCompleted) code = kExitFailed;
@@ -256,6 +293,6 @@ int main(int argc, char** argv) {
   }
   if (opt.quiet) spdlog::set_level(spdlog::level::warn);
   InstallSignalHandlers();
-  dlmfd::EventStream events(opt.events_fd);
+  dlmfd::solver::EventStream events(opt.events_fd);
   return Run(opt, events);
 }

@@ -1,22 +1,13 @@
 #include "event_stream.h"
 
-#include <google/protobuf/io/zero_copy_stream_impl.h>
-#include <google/protobuf/util/delimited_message_util.h>
-
 #include <cmath>
 
 #include "dlmfd/io/field_snapshot.h"
 
-namespace dlmfd {
-
-struct EventStream::Output {
-  explicit Output(int fd)
-      : stream(fd) {}
-  google::protobuf::io::FileOutputStream stream;
-};
+namespace dlmfd::solver {
 
 EventStream::EventStream(int fd) {
-  if (fd >= 0) out_ = std::make_unique<Output>(fd);
+  if (fd >= 0) out_ = std::make_unique<EventFileWriter>(fd);
 }
 
 EventStream::~EventStream() = default;
@@ -26,10 +17,7 @@ void EventStream::Send(v1::SolverEvent& event) {
   event.set_seq(++seq_);
   event.set_wall_time(
       std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
-  const bool ok =
-      google::protobuf::util::SerializeDelimitedToZeroCopyStream(event, &out_->stream) &&
-      out_->stream.Flush();
-  if (!ok) out_.reset();
+  if (!out_->Write(event)) out_.reset();
 }
 
 void EventStream::Log(const std::string& level, const std::string& text) {
@@ -132,4 +120,4 @@ void EventObserver::OnSnapshot(const FlowState& state) {
   stream_->Send(snapshot_event_);
 }
 
-}  // namespace dlmfd
+}  // namespace dlmfd::solver

@@ -1,6 +1,7 @@
-// The solver event stream of dlmfd-solve (proto/dlmfd/v1/events.proto): SolverEvent messages,
-// each prefixed by its varint length, written to a file descriptor and flushed one by one. A write
-// failure (the reader went away) turns the stream off; the results directory stays the record.
+// The solver event stream of dlmfd-solve (proto/dlmfd/v1/events.proto): SolverEvent messages
+// framed by EventFileWriter (dlmfd/solver/event_file.h), written to a file descriptor and flushed
+// one by one. A write failure (the reader went away) turns the stream off; the results directory
+// stays the record.
 //
 // EventObserver turns Simulation's notifications into `particles` and `snapshot` events (trA, or
 // the speed |u| for a Newtonian liquid, at the field cadence) and `progress` events every ~0.5 s.
@@ -14,9 +15,10 @@
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/observer.h"
 #include "dlmfd/core/params.h"
+#include "dlmfd/solver/event_file.h"
 #include "dlmfd/v1/events.pb.h"
 
-namespace dlmfd {
+namespace dlmfd::solver {
 
 class EventStream {
  public:
@@ -34,8 +36,7 @@ class EventStream {
                 int exit_code);
 
  private:
-  struct Output;
-  std::unique_ptr<Output> out_;
+  std::unique_ptr<EventFileWriter> out_;
   long seq_ = 0;
 };
 
@@ -59,4 +60,4 @@ class EventObserver : public Observer {
       progress_event_;  // reused: no allocation per step
 };
 
-}  // namespace dlmfd
+}  // namespace dlmfd::solver

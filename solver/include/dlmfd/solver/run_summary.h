@@ -1,0 +1,64 @@
+// summary.json of the results directory (design.md 3.2, docs/results.md): how a run ended and its
+// final state. The solver writes it once, when the run ends; the daemon reads it (the reason of a
+// failed run). This header is the one definition of the file, writer and reader.
+//
+// Keys, in this order: status (completed | failed | cancelled), reason, exit_code, steps, time,
+// end_time, wall_seconds, ms_per_step, resumed_from_step, title, version, particles [{id, position,
+// velocity, angular_velocity, force, torque}], diagnostics {the last StepReport's columns}.
+// One key per line, one line per particle. Integers stay JSON integers; a double is written as the
+// shortest text that reads back as the same double (an integral one without ".0"); non-finite
+// numbers are written as null (JSON has no NaN) and read back as NaN. Written through a temporary
+// file (dlmfd/io/atomic_file.h).
+#pragma once
+
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace dlmfd::solver {
+
+// The file name inside a results directory.
+inline constexpr const char* kRunSummaryFile = "summary.json";
+
+struct RunSummary {
+  struct Particle {
+    long id = 0;
+    std::array<double, 2> position{}, velocity{};
+    double angular_velocity = 0.0;
+    std::array<double, 2> force{};  // what the fluid exerts over the last step
+    double torque = 0.0;
+  };
+
+  std::string status;  // completed, failed, cancelled
+  std::string reason;
+  int exit_code = 0;
+  long steps = 0;  // the step reached
+  double time = 0.0;
+  double end_time = 0.0;
+  double wall_seconds = 0.0;    // of stepping in this process
+  double ms_per_step = 0.0;     // over the steps of this process
+  long resumed_from_step = -1;  // -1: not resumed
+  std::string title;
+  std::string version;
+  std::vector<Particle> particles;
+  std::vector<std::pair<std::string, double>> diagnostics;
+};
+
+// A summary.json that cannot be read or does not have the contract's shape.
+class RunSummaryError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+std::string RunSummaryJson(const RunSummary& summary);
+// Throws RunSummaryError when the text is not a summary (keys missing or of the wrong type).
+RunSummary ParseRunSummary(const std::string& json);
+
+// Writes through a temporary file; throws dlmfd::Error when the file cannot be written.
+void WriteRunSummary(const std::string& path, const RunSummary& summary);
+// Throws RunSummaryError when the file cannot be read or parsed.
+RunSummary ReadRunSummary(const std::string& path);
+
+}  // namespace dlmfd::solver

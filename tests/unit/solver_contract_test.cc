@@ -1,0 +1,233 @@
+// The contract between dlmfd-solve and whoever runs it (solver/include/dlmfd/solver): the exit
+// codes of design.md 3.1, summary.json (the writer's keys, null for non-finite numbers, the reader
+// giving back what was written) and the event-file framing (what the writer frames, the reader
+// unframes, and a truncated stream ends without a partial event).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include "dlmfd/io/atomic_file.h"
+#include "dlmfd/solver/event_file.h"
+#include "dlmfd/solver/exit_codes.h"
+#include "dlmfd/solver/run_summary.h"
+
+namespace dlmfd::solver {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(ExitCodes, AreTheDocumentedOnes) {
+  EXPECT_EQ(kExitCompleted, 0);
+  EXPECT_EQ(kExitFailed, 1);
+  EXPECT_EQ(kExitInvalid, 2);
+  EXPECT_EQ(kExitCancelled, 130);
+}
+
+RunSummary FailedRun() {
+  RunSummary s;
+  s.status = "failed";
+  s.reason = "solver \"stokes\" did not converge\n";
+  s.exit_code = kExitFailed;
+  s.steps = 12;
+  s.time = 0.012;
+  s.end_time = 1.0;
+  s.wall_seconds = 0.25;
+  s.ms_per_step = std::numeric_limits<double>::quiet_NaN();
+  s.resumed_from_step = 4;
+  s.title = "two disks";
+  s.version = "0.1.0";
+  RunSummary::Particle q;
+  q.id = 3;
+  q.position = {0.5, 0.25};
+  q.velocity = {-0.125, 1e-300};
+  q.angular_velocity = 0.1;
+  q.force = {std::numeric_limits<double>::infinity(), 2.0};
+  q.torque = -3.5;
+  s.particles.push_back(q);
+  s.diagnostics = {{"stokes_iterations", 11.0}, {"max_trA", 2.0000000000000004}};
+  return s;
+}
+
+TEST(RunSummary, JsonHasTheContractKeysAndNoNaN) {
+  const std::string json = RunSummaryJson(FailedRun());
+  for (const char* key : {"\"status\": \"failed\"",
+                          "\"reason\": \"solver \\\"stokes\\\" did not converge\\n\"",
+                          "\"exit_code\": 1",
+                          "\"steps\": 12",
+                          "\"time\": 0.012",
+                          "\"end_time\"",
+                          "\"wall_seconds\"",
+                          "\"ms_per_step\": null",
+                          "\"resumed_from_step\": 4",
+                          "\"title\": \"two disks\"",
+                          "\"version\": \"0.1.0\"",
+                          "\"particles\": [",
+                          "\"id\": 3",
+                          "\"position\"",
+                          "\"velocity\"",
+                          "\"angular_velocity\"",
+                          "\"force\"",
+                          "\"torque\"",
+                          "\"diagnostics\"",
+                          "\"stokes_iterations\": 11"}) {
+    EXPECT_THAT(json, HasSubstr(key));
+  }
+  EXPECT_EQ(json.find("nan"), std::string::npos);
+  EXPECT_EQ(json.find("inf"), std::string::npos);
+  // The contract's order: how the run ended first, the final state after.
+  EXPECT_LT(json.find("\"status\""), json.find("\"reason\""));
+  EXPECT_LT(json.find("\"version\""), json.find("\"particles\""));
+  EXPECT_LT(json.find("\"particles\""), json.find("\"diagnostics\""));
+}
+
+// The layout scripts and readers have seen since the first summary: one key per line, one line per
+// particle, integral numbers without ".0", the shortest text that reads back for the others.
+TEST(RunSummary, TextKeepsTheLayoutOfTheResultsDirectory) {
+  RunSummary s;
+  s.status = "completed";
+  s.steps = 2500;
+  s.time = 1.0;
+  s.end_time = 1.0;
+  s.wall_seconds = 0.1 + 0.2;
+  s.ms_per_step = 49.2;
+  s.title = "pair";
+  s.version = "0.1.0";
+  RunSummary::Particle q;
+  q.position = {0.5, 7.25};
+  q.velocity = {-0.0014494669113040463, 1e-05};
+  s.particles = {q, q};
+  s.particles[1].id = 1;
+  s.diagnostics = {{"stokes_iterations", 11.0}, {"divergence", 0.0011162864979271413}};
+  EXPECT_EQ(
+      RunSummaryJson(s),
+      "{\n"
+      "  \"status\": \"completed\",\n"
+      "  \"reason\": \"\",\n"
+      "  \"exit_code\": 0,\n"
+      "  \"steps\": 2500,\n"
+      "  \"time\": 1,\n"
+      "  \"end_time\": 1,\n"
+      "  \"wall_seconds\": 0.30000000000000004,\n"
+      "  \"ms_per_step\": 49.2,\n"
+      "  \"resumed_from_step\": -1,\n"
+      "  \"title\": \"pair\",\n"
+      "  \"version\": \"0.1.0\",\n"
+      "  \"particles\": [\n"
+      "    {\"id\": 0, \"position\": [0.5, 7.25], \"velocity\": [-0.0014494669113040463, 1e-05], "
+      "\"angular_velocity\": 0, \"force\": [0, 0], \"torque\": 0},\n"
+      "    {\"id\": 1, \"position\": [0.5, 7.25], \"velocity\": [-0.0014494669113040463, 1e-05], "
+      "\"angular_velocity\": 0, \"force\": [0, 0], \"torque\": 0}\n"
+      "  ],\n"
+      "  \"diagnostics\": {\"stokes_iterations\": 11, \"divergence\": 0.0011162864979271413}\n"
+      "}\n");
+  s.particles.clear();
+  EXPECT_THAT(RunSummaryJson(s), HasSubstr("  \"particles\": [],\n"));
+}
+
+TEST(RunSummary, ReadsBackWhatWasWritten) {
+  const RunSummary in = FailedRun();
+  const RunSummary out = ParseRunSummary(RunSummaryJson(in));
+  EXPECT_EQ(out.status, in.status);
+  EXPECT_EQ(out.reason, in.reason);
+  EXPECT_EQ(out.exit_code, in.exit_code);
+  EXPECT_EQ(out.steps, in.steps);
+  EXPECT_EQ(out.time, in.time);
+  EXPECT_EQ(out.end_time, in.end_time);
+  EXPECT_EQ(out.wall_seconds, in.wall_seconds);
+  EXPECT_TRUE(std::isnan(out.ms_per_step));
+  EXPECT_EQ(out.resumed_from_step, in.resumed_from_step);
+  EXPECT_EQ(out.title, in.title);
+  EXPECT_EQ(out.version, in.version);
+  ASSERT_EQ(out.particles.size(), 1u);
+  const RunSummary::Particle& p = out.particles[0];
+  EXPECT_EQ(p.id, 3);
+  EXPECT_EQ(p.position, in.particles[0].position);
+  EXPECT_EQ(p.velocity, in.particles[0].velocity);  // shortest round-trip text: bit for bit
+  EXPECT_EQ(p.angular_velocity, in.particles[0].angular_velocity);
+  EXPECT_TRUE(std::isnan(p.force[0]));  // written as null: the number is gone, not its place
+  EXPECT_EQ(p.force[1], 2.0);
+  EXPECT_EQ(p.torque, in.particles[0].torque);
+  EXPECT_EQ(out.diagnostics, in.diagnostics);
+}
+
+TEST(RunSummary, FileRoundTripAndErrors) {
+  const std::string dir = ::testing::TempDir() + "/dlmfd_solver_contract";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/" + kRunSummaryFile;
+  WriteRunSummary(path, FailedRun());
+  EXPECT_EQ(ReadRunSummary(path).reason, FailedRun().reason);
+  EXPECT_THROW(ReadRunSummary(dir + "/absent.json"), RunSummaryError);
+  WriteTextAtomically(path, "{\"status\": \"completed\"}");
+  EXPECT_THROW(ReadRunSummary(path), RunSummaryError);  // keys missing
+  WriteTextAtomically(path, "{\"status\": ");
+  EXPECT_THROW(ReadRunSummary(path), RunSummaryError);  // not JSON
+}
+
+class Pipe {
+ public:
+  Pipe() { EXPECT_EQ(pipe(fds_), 0); }
+  ~Pipe() {
+    CloseWrite();
+    close(fds_[0]);
+  }
+  int read_end() const { return fds_[0]; }
+  int write_end() const { return fds_[1]; }
+  void CloseWrite() {
+    if (fds_[1] >= 0) close(fds_[1]);
+    fds_[1] = -1;
+  }
+
+ private:
+  int fds_[2] = {-1, -1};
+};
+
+TEST(EventFile, ReaderGetsWhatTheWriterFramed) {
+  Pipe pipe;
+  {
+    EventFileWriter writer(pipe.write_end());
+    v1::SolverEvent e;
+    e.set_seq(1);
+    e.mutable_started()->set_end_time(2.5);
+    EXPECT_TRUE(writer.Write(e));
+    e.Clear();
+    e.set_seq(2);
+    e.mutable_finished()->set_status("completed");
+    e.mutable_finished()->set_exit_code(kExitCompleted);
+    EXPECT_TRUE(writer.Write(e));
+  }
+  pipe.CloseWrite();
+  EventFileReader reader(pipe.read_end());
+  v1::SolverEvent e;
+  ASSERT_TRUE(reader.Next(&e));
+  EXPECT_EQ(e.seq(), 1);
+  EXPECT_EQ(e.started().end_time(), 2.5);
+  ASSERT_TRUE(reader.Next(&e));
+  EXPECT_EQ(e.seq(), 2);
+  EXPECT_FALSE(e.has_started());  // each event replaces the last, never merges into it
+  EXPECT_EQ(e.finished().status(), "completed");
+  EXPECT_FALSE(reader.Next(&e));
+}
+
+TEST(EventFile, TruncatedEventEndsTheStream) {
+  Pipe pipe;
+  v1::SolverEvent e;
+  e.set_seq(7);
+  e.mutable_log()->set_text("a line that will be cut");
+  const std::string body = e.SerializeAsString();
+  const std::string framed = std::string(1, static_cast<char>(body.size())) + body;
+  ASSERT_LT(body.size(), 128u);  // one varint byte
+  const std::string cut = framed.substr(0, framed.size() - 3);
+  ASSERT_EQ(write(pipe.write_end(), cut.data(), cut.size()), static_cast<ssize_t>(cut.size()));
+  pipe.CloseWrite();
+  EventFileReader reader(pipe.read_end());
+  EXPECT_FALSE(reader.Next(&e));
+}
+
+}  // namespace
+}  // namespace dlmfd::solver
