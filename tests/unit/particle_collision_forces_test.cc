@@ -23,15 +23,10 @@ Params Box(double width, double height, double h, bool periodic_x, bool periodic
   return params;
 }
 
-Grid GridOf(const Params& p) {
-  return Grid{static_cast<int>(std::lround(p.domain.size.x() / p.domain.h)),
-              static_cast<int>(std::lround(p.domain.size.y() / p.domain.h)), p.domain.h, 0.0, 0.0};
-}
-
 // Cell lists must find exactly the pairs that all-pairs finds within the cell size.
 void ExpectCellListEqualsAllPairs(bool periodic_x, bool periodic_y) {
   const Params params = Box(2.0, 3.0, 1.0 / 32, periodic_x, periodic_y);
-  const Grid grid = GridOf(params);
+  const Grid grid = params.domain.VelocityGrid();
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> ux(0.0, 2.0), uy(0.0, 3.0), ur(0.02, 0.1);
   const int n = 400;
@@ -71,7 +66,7 @@ TEST(CollisionForces, CellListFindsTheAllPairsNeighboursMixed) {
 
 TEST(CollisionForces, PairForceIsEquation14) {
   Params params = Box(2.0, 2.0, 1.0 / 96, false, false);
-  const Grid grid = GridOf(params);
+  const Grid grid = params.domain.VelocityGrid();
   CollisionForces forces(params, grid, {0.1, 0.1});
   const double rho = 1.5 / 96;
   const double d = 0.2 + 0.4 * rho;  // inside the range
@@ -88,7 +83,7 @@ TEST(CollisionForces, PairForceIsEquation14) {
 
 TEST(CollisionForces, WallForceUsesTheMirrorImage) {
   Params params = Box(2.0, 2.0, 1.0 / 96, false, true);  // walls left and right only
-  const Grid grid = GridOf(params);
+  const Grid grid = params.domain.VelocityGrid();
   CollisionForces forces(params, grid, {0.1});
   const double rho = 1.5 / 96;
   const double distance = 0.1 + 0.3 * rho;             // centre to the left wall
@@ -104,7 +99,7 @@ TEST(CollisionForces, WallForceUsesTheMirrorImage) {
 
 TEST(CollisionForces, PeriodicPairInteractsAcrossTheSide) {
   Params params = Box(1.0, 1.0, 1.0 / 48, true, true);
-  const Grid grid = GridOf(params);
+  const Grid grid = params.domain.VelocityGrid();
   CollisionForces forces(params, grid, {0.1, 0.1});
   std::vector<Vec2> x = {Vec2(0.05, 0.5), Vec2(0.99 - 0.15, 0.5)}, f(2);
   // Image distance 0.05 + 0.01 + 0.15 = 0.21 < 0.2 + 1.5/48.

@@ -58,11 +58,6 @@ Params MakeParams(double width, double height, double h, BoundarySide left, Boun
   return p;
 }
 
-Grid GridOf(const Params& p) {
-  return Grid{static_cast<int>(std::lround(p.domain.size.x() / p.domain.h)),
-              static_cast<int>(std::lround(p.domain.size.y() / p.domain.h)), p.domain.h, 0.0, 0.0};
-}
-
 // A smooth, non-solenoidal field to start from (not a solution of anything).
 void FillSmooth(const Grid& g, std::vector<double>& u, std::vector<double>& v) {
   u.assign(g.NodeCount(), 0.0);
@@ -96,7 +91,7 @@ TEST(StokesSolver, DivergenceBelowToleranceAfterSolve) {
       MakeParams(1.0, 2.0, 1.0 / 16, Wall(), Wall(), Poiseuille(0.0, 1.0), Outflow()),
       MakeParams(1.0, 1.0, 1.0 / 16, Periodic(), Periodic(), Uniform(0.2, 0.5), Outflow())};
   for (const Params& p : cases) {
-    const Grid g = GridOf(p);
+    const Grid g = p.domain.VelocityGrid();
     BoundaryData data(g, p.domain);
     StokesSolver stokes(g, p.domain, p.fluid, p.time.dt, 1.0, p.solvers, data);
     std::vector<double> u, v, pr(g.Coarse().NodeCount(), 0.0);
@@ -208,7 +203,7 @@ TEST(Simulation, InflowPoiseuilleWithOutflowIsReproducedToRoundOff) {
 // restricted to the unknown nodes (m = M_p weights fix the constant pressure when it is in the
 // kernel).
 void CompareWithDirectSolve(const Params& p) {
-  const Grid g = GridOf(p), pg = g.Coarse();
+  const Grid g = p.domain.VelocityGrid(), pg = g.Coarse();
   const double rdt = p.fluid.density / p.time.dt,
                nu = p.splitting.alpha * p.fluid.SolventViscosity();
   BoundaryData data(g, p.domain);

@@ -43,14 +43,6 @@ void ValidateSupported(const Params& p) {
   ValidateOutputPeriods(p.time, p.output);
 }
 
-Grid MakeGrid(const DomainParams& d) {
-  Grid g;
-  g.nx = static_cast<int>(std::lround(d.size.x() / d.h));
-  g.ny = static_cast<int>(std::lround(d.size.y() / d.h));
-  g.h = d.h;
-  return g;
-}
-
 // Index of the output period that t_n = n dt falls in; deterministic in n.
 long Period(long n, double dt, double every) {
   return static_cast<long>(std::floor(static_cast<double>(n) * dt / every + 1e-9));
@@ -61,7 +53,7 @@ long Period(long n, double dt, double every) {
 struct Simulation::Impl {
   explicit Impl(const Params& p)
       : params(p),
-        grid(MakeGrid(p.domain)),
+        grid(p.domain.VelocityGrid()),
         pgrid(grid.Coarse()),
         boundary_data(grid, p.domain),
         stokes(grid, p.domain, p.fluid, p.time.dt, p.splitting.alpha, p.solvers, boundary_data),

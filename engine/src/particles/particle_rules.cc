@@ -32,8 +32,10 @@ void RequireInside(const DomainParams& d, std::size_t p, const ParticleParams& q
     const double lo = periodic[k] ? 0.0 : r;
     const double hi = periodic[k] ? d.size[k] : d.size[k] - r;
     if (!(c >= lo && c <= hi)) {
+      const char* crossed = k == 0 ? (c < lo ? "left" : "right") : (c < lo ? "bottom" : "top");
       throw InvalidParameter("particles." + std::to_string(p) + ".center", VecText(q.center),
-                             std::string("a centre with ") + (k == 0 ? "x" : "y") + " in [" +
+                             std::string("a disk that does not cross the ") + crossed +
+                                 " side: a centre with " + (k == 0 ? "x" : "y") + " in [" +
                                  ExactText(lo) + ", " + ExactText(hi) + "] (the disk of radius " +
                                  ExactText(r) + " inside the domain [0, " + ExactText(d.size.x()) +
                                  "] x [0, " + ExactText(d.size.y()) +

@@ -10,6 +10,7 @@
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/particles/particle_mesh.h"
+#include "dlmfd/particles/particle_rules.h"
 
 namespace dlmfd {
 
@@ -19,12 +20,6 @@ std::vector<double> Radii(const Params& params) {
   std::vector<double> radii;
   for (const auto& p : params.particles) radii.push_back(p.Radius());
   return radii;
-}
-
-Grid GridOf(const Params& params) {
-  const double h = params.domain.h;
-  return Grid{static_cast<int>(std::lround(params.domain.size.x() / h)),
-              static_cast<int>(std::lround(params.domain.size.y() / h)), h, 0.0, 0.0};
 }
 
 const char* SideName(int s) {
@@ -164,7 +159,7 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
 
 std::vector<ParticleState> ParticleStep::InitialStates(const Params& params) {
   std::vector<ParticleState> states;
-  const Grid grid = GridOf(params);
+  const Grid grid = params.domain.VelocityGrid();
   std::vector<ParticleMesh> meshes;
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
     const ParticleParams& pp = params.particles[p];
@@ -187,39 +182,9 @@ std::vector<ParticleState> ParticleStep::InitialStates(const Params& params) {
     s.multiplier.assign(2 * mesh->NodeCount(), 0.0);
     states.push_back(std::move(s));
   }
-  // Overlaps at t = 0: all pairs once (not in the time loop), then the non-periodic sides.
-  CollisionForces geometry(params, grid, Radii(params));
-  auto center_text = [&](std::size_t p) {
-    std::ostringstream text;
-    text << "[" << states[p].position.x() << ", " << states[p].position.y() << "]";
-    return text.str();
-  };
-  for (std::size_t i = 0; i < states.size(); ++i) {
-    for (std::size_t j = i + 1; j < states.size(); ++j) {
-      const double gap = geometry.MinimumImage(states[j].position - states[i].position).norm() -
-                         states[i].radius - states[j].radius;
-      if (gap < 0.0) {
-        std::ostringstream allowed;
-        allowed << "a disk that does not overlap particle " << i << " (gap = " << gap << ")";
-        throw InvalidParameter("particles." + std::to_string(j) + ".center", center_text(j),
-                               allowed.str());
-      }
-    }
-    const Vec2& x = states[i].position;
-    const double r = states[i].radius;
-    const double dist[4] = {x.x() - grid.x0, grid.x0 + grid.Width() - x.x(), x.y() - grid.y0,
-                            grid.y0 + grid.Height() - x.y()};
-    for (int s = 0; s < 4; ++s) {
-      const bool periodic = s < 2 ? params.domain.PeriodicX() : params.domain.PeriodicY();
-      if (!periodic && dist[s] - r < 0.0) {
-        std::ostringstream allowed;
-        allowed << "a disk inside the domain (it crosses the " << SideName(s)
-                << " side, gap = " << dist[s] - r << ")";
-        throw InvalidParameter("particles." + std::to_string(i) + ".center", center_text(i),
-                               allowed.str());
-      }
-    }
-  }
+  // The scene rules of the particles (inside the domain, apart, DLM well posed), defined once in
+  // particles/particle_rules.h and applied by the scene validation too.
+  ValidateParticles(params, grid);
   return states;
 }
 

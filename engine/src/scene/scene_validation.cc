@@ -40,15 +40,6 @@ void RequireAtLeastOne(const std::string& key, int n) {
   if (n < 1) throw InvalidParameter(key, std::to_string(n), "an integer >= 1");
 }
 
-// The grid Simulation builds for the domain (cells = round(length / h)).
-Grid SceneGrid(const DomainParams& d) {
-  Grid g;
-  g.nx = static_cast<int>(std::lround(d.size.x() / d.h));
-  g.ny = static_cast<int>(std::lround(d.size.y() / d.h));
-  g.h = d.h;
-  return g;
-}
-
 // `length` holds an even number >= 4 of cells of h, within 1e-9 relative. Called after the node
 // limit, so the count fits in any integer.
 void RequireEvenCells(const DomainParams& d, double length) {
@@ -150,7 +141,7 @@ void ValidateScene(const Params& params) {
   ValidateMeshCollisionsConformation(params);
   ValidateOutputPeriods(params.time, params.output);
   ValidateParticleRangesAndMeshes(params);
-  const Grid grid = SceneGrid(params.domain);
+  const Grid grid = params.domain.VelocityGrid();
   ValidateParticles(params, grid);
   ValidateInflowStates(params, grid);
 }

@@ -3,8 +3,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <string>
 #include <vector>
+
+#include "dlmfd/core/grid.h"
 
 namespace dlmfd {
 
@@ -30,6 +33,12 @@ struct DomainParams {
   const BoundarySide& side(Side s) const { return sides[static_cast<int>(s)]; }
   bool PeriodicX() const { return side(Side::kLeft).type == SideType::kPeriodic; }
   bool PeriodicY() const { return side(Side::kBottom).type == SideType::kPeriodic; }
+  // The velocity grid of the domain: round(size / h) cells of side h from the origin (the one
+  // definition used by Simulation, the particle step and the scene validation).
+  Grid VelocityGrid() const {
+    return Grid{static_cast<int>(std::lround(size.x() / h)),
+                static_cast<int>(std::lround(size.y() / h)), h, 0.0, 0.0};
+  }
 };
 
 struct FluidParams {
