@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "dlmfd/core/time_stepping.h"
 #include "dlmfd/io/field_snapshot.h"
 
 namespace dlmfd::solver {
@@ -43,7 +44,7 @@ EventObserver::EventObserver(EventStream* stream, const Params& params, const Gr
     : stream_(stream),
       params_(params),
       grid_(grid),
-      total_steps_(std::llround(params.time.end / params.time.dt)) {
+      total_steps_(StepCount(params.time)) {
   v1::ParticleStates* ps = particles_event_.mutable_particles();
   for (std::size_t i = 0; i < params.particles.size(); ++i) ps->add_particles();
   snapshot_event_.mutable_snapshot()->mutable_values()->Resize(static_cast<int>(grid.NodeCount()),

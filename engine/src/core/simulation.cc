@@ -68,17 +68,17 @@ struct Simulation::Impl {
       particle_step = std::make_unique<ParticleStep>(p, grid);
     }
     if (viscoelastic) {
-      conformation = std::make_unique<OldroydBPolymer>(p, grid);
-      conformation->SetInitialState(state);
+      polymer = std::make_unique<OldroydBPolymer>(p, grid);
+      polymer->SetInitialState(state);
     }
   }
 
   // Step (33): u^n -> u^{n+1/4}, p^{n+1/4}, with the polymer stress of A^n on the right side.
   void SolveStokes(StepReport& report) {
     const auto t0 = Clock::now();
-    const NodeForce polymer = conformation ? conformation->MomentumForce(state) : NodeForce{};
+    const NodeForce force = polymer ? polymer->MomentumForce(state) : NodeForce{};
     const StokesReport r =
-        stokes.Solve(polymer.x, polymer.y, state.u.data(), state.v.data(), state.p.data());
+        stokes.Solve(force.x, force.y, state.u.data(), state.v.data(), state.p.data());
     report.Set("stokes_iterations", r.iterations);
     report.Set("stokes_residual", r.residual);
     report.Set("divergence", r.divergence);
@@ -95,7 +95,7 @@ struct Simulation::Impl {
   // Step (35): A^n -> A^{n+1} with u^{n+2/4}; A = I inside the particles at X^n.
   void UpdateConformation(StepReport& report) {
     const auto t0 = Clock::now();
-    conformation->Update(params.time.dt, state, report);
+    polymer->Update(params.time.dt, state, report);
     report.Set("ms_conformation", Milliseconds(t0, Clock::now()));
   }
 
@@ -139,8 +139,8 @@ struct Simulation::Impl {
   StokesSolver stokes;
   std::unique_ptr<VelocityAdvection> advection;
   bool viscoelastic;
-  std::unique_ptr<OldroydBPolymer> conformation;  // viscoelastic only
-  std::unique_ptr<ParticleStep> particle_step;    // with particles only
+  std::unique_ptr<OldroydBPolymer> polymer;     // viscoelastic only
+  std::unique_ptr<ParticleStep> particle_step;  // with particles only
   StepReport report;  // reused: its columns are created by the first step, overwritten after
   FlowState state;
   std::vector<Observer*> observers;
@@ -169,7 +169,7 @@ void Simulation::Step() {
   StepReport& report = s.report;
   s.SolveStokes(report);
   s.AdvectVelocity(report);
-  if (s.conformation) s.UpdateConformation(report);
+  if (s.polymer) s.UpdateConformation(report);
   if (s.particle_step) s.MoveParticles(report);
   s.state.step += 1;
   s.state.time = static_cast<double>(s.state.step) * s.params.time.dt;
@@ -204,9 +204,7 @@ void Simulation::Run(const std::atomic<bool>* stop) {
 
 bool Simulation::Done() const { return impl_->state.step >= TotalSteps(); }
 
-long Simulation::TotalSteps() const {
-  return static_cast<long>(std::llround(impl_->params.time.end / impl_->params.time.dt));
-}
+long Simulation::TotalSteps() const { return StepCount(impl_->params.time); }
 
 void Simulation::Restore(const FlowState& state) {
   const Impl& s = *impl_;

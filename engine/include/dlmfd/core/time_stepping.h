@@ -11,12 +11,20 @@
 // longer count would be rounded, or overflow the long that holds it, so it is refused.
 #pragma once
 
+#include <cmath>
+
 #include "dlmfd/core/params.h"
 
 namespace dlmfd {
 
 // 2^53: the largest step count and output period index the loop counts exactly.
 inline constexpr double kMaxStepCount = 9007199254740992.0;
+
+// n = round(end / dt), the number of steps of a run (valid for a time that passed
+// ValidateTimeSteps).
+inline long StepCount(const TimeParams& time) {
+  return static_cast<long>(std::llround(time.end / time.dt));
+}
 
 // alpha and beta in [0, 1], gamma = 0, alpha > 0.
 void ValidateSplitting(const SplittingParams& splitting);
