@@ -28,10 +28,12 @@
 #include <vector>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/core/number_text.h"
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/io/atomic_file.h"
 #include "dlmfd/io/checkpoint.h"
 #include "dlmfd/io/results_writer.h"
+#include "dlmfd/scene/accuracy_envelope.h"
 #include "dlmfd/scene/scene_file.h"
 #include "dlmfd/solver/exit_codes.h"
 #include "dlmfd/solver/run_summary.h"
@@ -110,6 +112,20 @@ int Invalid(dlmfd::solver::EventStream& events, const std::string& message) {
   return kExitInvalid;
 }
 
+// The settings that govern the run's error, and each one outside the accuracy envelope as a
+// warning in the log and the event stream (summary.json carries them too).
+void LogAccuracy(const dlmfd::Params& params, dlmfd::solver::EventStream& events) {
+  std::string settings;
+  for (const dlmfd::AccuracySetting& s : dlmfd::AccuracySettings(params)) {
+    settings += (settings.empty() ? "" : ", ") + s.name + " = " + dlmfd::ShortText(s.value);
+  }
+  spdlog::info("accuracy settings: {}", settings);
+  for (const dlmfd::AccuracyWarning& w : dlmfd::AccuracyWarnings(params)) {
+    spdlog::warn("accuracy: {}", w.Message());
+    events.Log("warning", "accuracy: " + w.Message());
+  }
+}
+
 // The summary.json of the run as it ended.
 dlmfd::solver::RunSummary Summary(const dlmfd::Params& params, const dlmfd::FlowState& state,
                                   const dlmfd::StepReport& last_report) {
@@ -130,6 +146,10 @@ dlmfd::solver::RunSummary Summary(const dlmfd::Params& params, const dlmfd::Flow
     summary.particles.push_back(p);
   }
   summary.diagnostics = last_report.columns;
+  for (const dlmfd::AccuracyWarning& w : dlmfd::AccuracyWarnings(params)) {
+    summary.warnings.push_back(
+        {w.setting, w.value, w.allowed, w.key, w.current, w.suggested, w.source});
+  }
   return summary;
 }
 
@@ -222,6 +242,7 @@ int Run(const Options& opt, dlmfd::solver::EventStream& events) {
     spdlog::info("running {} into {}: {} steps on a {} x {} mesh", opt.scene, opt.out,
                  sim->TotalSteps(), sim->grid().nx, sim->grid().ny);
   }
+  LogAccuracy(params, events);
 
   event_observer.Begin(first_step);
   const auto start = std::chrono::steady_clock::now();

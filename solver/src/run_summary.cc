@@ -97,11 +97,24 @@ std::string RunSummaryJson(const RunSummary& s) {
   Json diagnostics = Json::object();
   for (const auto& [name, value] : s.diagnostics) diagnostics[name] = Number(value);
   j["diagnostics"] = std::move(diagnostics);
+  Json warnings = Json::array();
+  for (const RunSummary::Warning& w : s.warnings) {
+    Json o;
+    o["setting"] = w.setting;
+    o["value"] = Number(w.value);
+    o["allowed"] = w.allowed;
+    o["key"] = w.key;
+    o["current"] = w.current;
+    o["suggested"] = w.suggested;
+    o["source"] = w.source;
+    warnings.push_back(std::move(o));
+  }
+  j["warnings"] = std::move(warnings);
   // One key per line; one line per particle (a run of many particles stays readable).
   std::string out = "{\n";
   for (auto it = j.begin(); it != j.end(); ++it) {
     out += "  " + Inline(Json(it.key())) + ": ";
-    if (it.key() == "particles" && !it->empty()) {
+    if ((it.key() == "particles" || it.key() == "warnings") && !it->empty()) {
       out += "[";
       for (std::size_t k = 0; k < it->size(); ++k) {
         out += (k ? ",\n    " : "\n    ") + Inline((*it)[k]);
@@ -143,6 +156,19 @@ RunSummary ParseRunSummary(const std::string& text) {
     for (const auto& [name, value] : j.at("diagnostics").items()) {
       s.diagnostics.emplace_back(
           name, value.is_null() ? std::numeric_limits<double>::quiet_NaN() : value.get<double>());
+    }
+    if (j.contains("warnings")) {
+      for (const Json& w : j.at("warnings")) {
+        RunSummary::Warning v;
+        v.setting = w.at("setting").get<std::string>();
+        v.value = ReadNumber(w, "value");
+        v.allowed = w.at("allowed").get<std::string>();
+        v.key = w.at("key").get<std::string>();
+        v.current = w.at("current").get<std::string>();
+        v.suggested = w.at("suggested").get<std::string>();
+        v.source = w.at("source").get<std::string>();
+        s.warnings.push_back(std::move(v));
+      }
     }
     return s;
   } catch (const Json::exception& e) {

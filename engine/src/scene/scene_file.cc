@@ -151,6 +151,10 @@ void ReadMeshCollisionsConformationOutput(TableReader& top, Params& p) {
   o.particles_every = out.Real("particles_every", o.particles_every);
   o.checkpoint_every = out.Real("checkpoint_every", o.checkpoint_every);
   out.RejectUnknown("fields_every, particles_every, checkpoint_every");
+
+  TableReader accuracy(top.Table("accuracy"), "accuracy");
+  p.accuracy.strict = accuracy.Boolean("strict", p.accuracy.strict);
+  accuracy.RejectUnknown("strict");
 }
 
 void ReadParticles(TableReader& top, Params& p) {
@@ -224,7 +228,7 @@ Params ParseScene(const std::string& toml_text, const std::vector<SceneOverride>
   top.RejectUnknown(
       "title, domain, fluid, gravity, time, splitting, solvers, particles, particle_mesh, "
       "collisions, conformation, "
-      "output");
+      "output, accuracy");
   ValidateScene(p);
   return p;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "dlmfd/conformation/inflow_state.h"
 #include "dlmfd/core/errors.h"
@@ -12,6 +13,7 @@
 #include "dlmfd/core/number_text.h"
 #include "dlmfd/core/time_stepping.h"
 #include "dlmfd/particles/particle_rules.h"
+#include "dlmfd/scene/accuracy_envelope.h"
 #include "dlmfd/scene/scene_footprint.h"
 
 namespace dlmfd {
@@ -130,6 +132,19 @@ void ValidateParticleRangesAndMeshes(const Params& p) {
   }
 }
 
+// accuracy.strict: the first setting outside the accuracy envelope rejects the scene, naming the
+// key to change and a value inside the bound (the same warning a non-strict run logs).
+void ValidateAccuracy(const Params& p) {
+  if (!p.accuracy.strict) return;
+  const std::vector<AccuracyWarning> warnings = AccuracyWarnings(p);
+  if (warnings.empty()) return;
+  const AccuracyWarning& w = warnings.front();
+  throw InvalidParameter(w.key, w.current,
+                         "a value inside the accuracy envelope, e.g. " + w.suggested + " (" +
+                             w.setting + " = " + ShortText(w.value) + ", allowed " + w.allowed +
+                             ", " + w.source + "; accuracy.strict = true)");
+}
+
 }  // namespace
 
 void ValidateScene(const Params& params) {
@@ -144,6 +159,7 @@ void ValidateScene(const Params& params) {
   const Grid grid = params.domain.VelocityGrid();
   ValidateParticles(params, grid);
   ValidateInflowStates(params, grid);
+  ValidateAccuracy(params);
 }
 
 }  // namespace dlmfd

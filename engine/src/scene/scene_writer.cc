@@ -114,6 +114,9 @@ std::string WriteScene(const Params& p) {
   o << "particles_every = " << ExactText(p.output.particles_every) << "\n";
   o << "checkpoint_every = " << ExactText(p.output.checkpoint_every) << "\n";
 
+  o << "\n[accuracy]\n";
+  o << "strict = " << (p.accuracy.strict ? "true" : "false") << "\n";
+
   for (const ParticleParams& q : p.particles) {
     o << "\n[[particles]]\n";
     o << "center = " << Vec(q.center) << "\n";

@@ -136,6 +136,17 @@ Vec2 TableReader::Vector(const std::string& name, std::optional<Vec2> fallback) 
   return out;
 }
 
+bool TableReader::Boolean(const std::string& name, std::optional<bool> fallback) {
+  const toml::node* node = Find(name);
+  if (node == nullptr) {
+    if (!fallback) Missing(name, "true or false");
+    return *fallback;
+  }
+  const auto* b = node->as_boolean();
+  if (b == nullptr) throw InvalidParameter(Key(name), NodeText(*node), "true or false");
+  return b->get();
+}
+
 const toml::table* TableReader::Table(const std::string& name) {
   const toml::node* node = Find(name);
   if (node == nullptr) return nullptr;

@@ -37,6 +37,7 @@ class TableReader {
   int Integer(const std::string& name, std::optional<int> fallback);
   std::string String(const std::string& name, std::optional<std::string> fallback);
   Vec2 Vector(const std::string& name, std::optional<Vec2> fallback);
+  bool Boolean(const std::string& name, std::optional<bool> fallback);
   // A sub-table, or null when absent; an error when present but not a table.
   const toml::table* Table(const std::string& name);
   // An array, or null when absent; an error when present but not an array.

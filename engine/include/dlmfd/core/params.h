@@ -120,6 +120,11 @@ struct OutputParams {
   double checkpoint_every = 1.0;  // between checkpoints; 0 = none
 };
 
+// How a run treats the accuracy envelope (scene/accuracy_envelope.h): warn (default) or reject.
+struct AccuracyParams {
+  bool strict = false;  // a setting outside the envelope is an invalid scene
+};
+
 struct Params {
   std::string title;
   DomainParams domain;
@@ -133,6 +138,7 @@ struct Params {
   CollisionParams collisions;
   ConformationParams conformation;
   OutputParams output;
+  AccuracyParams accuracy;
   int threads = 0;  // not a scene key: set by the program (0 = OpenMP default)
 };
 

@@ -11,7 +11,9 @@
 // - the rules each module owns, defined once beside the code that needs them: time stepping
 //   (core/time_stepping.h: the splitting weights, step and output counts that fit), the particles
 //   (particles/particle_rules.h: not lighter than the liquid, inside, apart, indexable grid), the
-//   conformation (conformation/inflow_state.h: steady inflow states exist).
+//   conformation (conformation/inflow_state.h: steady inflow states exist);
+// - with accuracy.strict = true, every setting inside the accuracy envelope
+//   (scene/accuracy_envelope.h); the first one outside names the key to change.
 // Every failure is an InvalidParameter naming the dotted key, its value and what is allowed.
 #pragma once
 

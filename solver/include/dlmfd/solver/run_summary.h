@@ -4,7 +4,10 @@
 //
 // Keys, in this order: status (completed | failed | cancelled), reason, exit_code, steps, time,
 // end_time, wall_seconds, ms_per_step, resumed_from_step, title, version, particles [{id, position,
-// velocity, angular_velocity, force, torque}], diagnostics {the last StepReport's columns}.
+// velocity, angular_velocity, force, torque}], diagnostics {the last StepReport's columns},
+// warnings [{setting, value, allowed, key, current, suggested, source}] (the scene's settings
+// outside the accuracy envelope, dlmfd/scene/accuracy_envelope.h; a summary without the key, from
+// an older solver, reads as none).
 // One key per line, one line per particle. Integers stay JSON integers; a double is written as the
 // shortest text that reads back as the same double (an integral one without ".0"); non-finite
 // numbers are written as null (JSON has no NaN) and read back as NaN. Written through a temporary
@@ -44,6 +47,17 @@ struct RunSummary {
   std::string version;
   std::vector<Particle> particles;
   std::vector<std::pair<std::string, double>> diagnostics;
+  // A setting outside the accuracy envelope: which key to change, and to what.
+  struct Warning {
+    std::string setting;  // "nu dt / h^2"
+    double value = 0.0;
+    std::string allowed;    // "<= 0.195"
+    std::string key;        // the scene key to change
+    std::string current;    // its value in the scene
+    std::string suggested;  // a value that satisfies the bound
+    std::string source;     // where the bound was measured
+  };
+  std::vector<Warning> warnings;
 };
 
 // A summary.json that cannot be read or does not have the contract's shape.

@@ -1,0 +1,84 @@
+// The accuracy envelope of a scene (issue 13 point 5; method note particle-coupling.md section 4):
+// the dimensionless settings that govern a run's error, computed before it starts, and a warning
+// for each one that lies outside the range in which docs/work_precision.md measured the part of
+// the error it governs below 1 %. A warning names the scene key to change and a value of it that
+// satisfies the bound. With `accuracy.strict = true` ValidateScene rejects such a scene instead.
+//
+// The bounds, each the edge of what the study measured (docs/work_precision.md, "Warnings" lists
+// which paper cases lie outside):
+// - D / h >= 120 for every particle (D its diameter, h = domain.h): problem (d), the fixed disk,
+//   converges at first order in h (drag error 12, 6, 3, 1.5 % at D/h = 10 to 78); "Which settings",
+//   item 3: 1 % in the drag takes D/h of about 120. The light disk (c) needs less (1.5 % at 51.2).
+// - nu dt / h^2 <= 0.195 in a scene with particles (nu = eta / rho, eta the zero-shear viscosity):
+//   problem (d)'s dt ladder at D/h = 19.5, where nu dt / h^2 = 0.195 (dt = h) is the largest
+//   value whose halving moved Cd by at most 1 % (0.5 % wave, 1.0 % least squares; 0.39 -> 0.195
+//   moved it 1.15 %); (c)'s dt ladder at 0.32-1.28 moved the fall speed 4.8-8.5 % per halving.
+//   The bound is necessary, not sufficient: issue 13 measured a 4 % change of the drag between
+//   0.1 and 0.02 at nu = 0.1 (the constraint step (37) split from viscosity, gamma = 0).
+// - nu dt / h^2 <= 10.24 without particles: the largest value among the runs with errors below
+//   1 % (Waters-King (a), ny = 128, dt = 0.0025: 1.3e-3; the cavity (b) reached 0.82 at 128 cells).
+// - U dt / h <= 0.64 (advective Courant number): every run of the study had at most 0.64, and the
+//   cavity (b) at 0.64 (128 cells, dt = 0.005) had 0.68 % of the lid speed.
+// - c dt / h <= 0.3017 with c = sqrt(eta_p / (rho lambda)) (elastic shear-wave Courant number, the
+//   one docs/stability.md tabulates), and dt / lambda <= 0.01: the Oldroyd-B runs of (a) with
+//   errors below 1 % (largest: h = 1/32, dt = 0.01, lambda = 1, eta_p = 8/9: error 5.2e-3).
+//
+// U, the velocity scale of the scene, is the largest of: the boundary data (|value| of uniform
+// sides, |max| of Poiseuille ones); each particle's initial |velocity| + |angular_velocity| D / 2;
+// for each free particle denser or lighter than the liquid an upper estimate of its fall speed,
+// min(sqrt(pi/2 |rho_p - rho| / rho g D) (drag coefficient 1), |rho_p - rho| g D^2 / eta); for a
+// body force across walls (not periodic in the direction across it) the plane Poiseuille peak
+// |f| H^2 / (8 eta), H the height across. It is an estimate: the run's own Courant number is in
+// diagnostics.csv.
+//
+// Not warned on, because the study did not vary it: D / h_p (the particle mesh, h_p / h = 96 / 70
+// in (c) and (d) throughout; reported among the settings), the splitting weights, the solver
+// tolerances (their "tol" ladders give the defaults, docs/work_precision.md "Which settings" 2),
+// the collision parameters. Values below the bounds' lower side (smaller dt, finer h) are never
+// warned on. Each suggestion keeps the other keys as they are (refining domain.h raises
+// nu dt / h^2: apply the time-step suggestions after the mesh one, or run the scene again).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "dlmfd/core/params.h"
+
+namespace dlmfd {
+
+inline constexpr double kMinDiskResolution = 120.0;              // D / h
+inline constexpr double kMaxViscousNumberWithParticles = 0.195;  // nu dt / h^2
+inline constexpr double kMaxViscousNumberWithoutParticles = 10.24;
+inline constexpr double kMaxAdvectiveCourant = 0.64;       // U dt / h
+inline constexpr double kMaxElasticCourant = 0.3017;       // sqrt(eta_p / (rho lambda)) dt / h
+inline constexpr double kMaxStepPerRelaxationTime = 0.01;  // dt / lambda
+
+// One dimensionless setting of the scene, for the log ("nu dt / h^2", 0.44).
+struct AccuracySetting {
+  std::string name;
+  double value = 0.0;
+};
+
+// A setting outside the envelope: the scene key to change, its value now and a value that
+// satisfies the bound; `allowed` is the bound ("<= 0.195"), `source` the study row it comes from.
+struct AccuracyWarning {
+  std::string setting;  // "nu dt / h^2", "D / h (particles.3)"
+  double value = 0.0;
+  std::string allowed;
+  std::string key;        // "time.dt", "domain.h"
+  std::string current;    // the key's value now, as scene text
+  std::string suggested;  // a value of `key` inside the bound, as scene text
+  std::string source;
+  std::string Message() const;  // one line: setting, value, bound, what to change, source
+};
+
+// The settings in a fixed order: nu dt / h^2, U dt / h, U, then with a polymer c dt / h and
+// dt / lambda, then D / h and D / h_p of each particle.
+std::vector<AccuracySetting> AccuracySettings(const Params& params);
+// The warnings in the same order; empty inside the envelope. At most one D / h warning: the
+// smallest particle's (it names how many particles are below the bound).
+std::vector<AccuracyWarning> AccuracyWarnings(const Params& params);
+// The scene's velocity scale U (see above).
+double VelocityScale(const Params& params);
+
+}  // namespace dlmfd

@@ -1,0 +1,162 @@
+// The accuracy envelope; the bounds and their sources are in scene/accuracy_envelope.h.
+#include "dlmfd/scene/accuracy_envelope.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dlmfd/core/constants.h"
+#include "dlmfd/core/number_text.h"
+
+namespace dlmfd {
+namespace {
+
+constexpr const char* kSourceD = "docs/work_precision.md (d), Which settings 3";
+constexpr const char* kSourceViscous = "docs/work_precision.md (d) dt ladder";
+constexpr const char* kSourceViscousFluid = "docs/work_precision.md (a), (b)";
+constexpr const char* kSourceCourant = "docs/work_precision.md (b), Which settings 1";
+constexpr const char* kSourceElastic = "docs/work_precision.md (a)";
+
+// A setting on its bound is inside it: the settings are products and quotients of the scene's
+// numbers (0.01 / 0.015625), so a bound is compared with this margin of round-off.
+constexpr double kRoundOff = 1e-9;
+bool Above(double value, double bound) { return value > bound * (1.0 + kRoundOff); }
+
+double KinematicViscosity(const Params& p) { return p.fluid.viscosity / p.fluid.density; }
+
+bool HasPolymer(const Params& p) { return !p.fluid.IsNewtonian(); }
+
+// The plane Poiseuille peak of a body force component across the sides it is bounded by.
+double BodyForceSpeed(const Params& p, double force, double height, bool periodic_across) {
+  if (force == 0.0 || periodic_across) return 0.0;
+  return std::abs(force) * height * height / (8.0 * p.fluid.viscosity);
+}
+
+// dt / k for the smallest integer k >= 1 with value / k <= bound: the step count stays an integer
+// multiple of the one now, so every output period that fitted still fits.
+std::string SmallerStep(double dt, double value, double bound) {
+  const double k = std::max(1.0, std::ceil(value / bound * (1.0 - kRoundOff)));
+  return ExactText(dt / k);
+}
+
+AccuracyWarning TimeStepWarning(const Params& p, std::string setting, double value, double bound,
+                                const char* source) {
+  AccuracyWarning w;
+  w.setting = std::move(setting);
+  w.value = value;
+  w.allowed = "<= " + ShortText(bound);
+  w.key = "time.dt";
+  w.current = ExactText(p.time.dt);
+  w.suggested = SmallerStep(p.time.dt, value, bound);
+  w.source = source;
+  return w;
+}
+
+double ElasticCourant(const Params& p) {
+  const double c =
+      std::sqrt(p.fluid.PolymerViscosity() / (p.fluid.density * p.fluid.relaxation_time));
+  return c * p.time.dt / p.domain.h;
+}
+
+}  // namespace
+
+std::string AccuracyWarning::Message() const {
+  return setting + " = " + ShortText(value) + " is outside the accuracy envelope (" + allowed +
+         ", " + source + "): set " + key + " = " + suggested + " (now " + current + ")";
+}
+
+double VelocityScale(const Params& p) {
+  double u = 0.0;
+  for (const BoundarySide& side : p.domain.sides) {
+    if (side.type != SideType::kVelocity) continue;
+    u = std::max(u, side.profile == Profile::kUniform ? side.value.norm() : side.max.norm());
+  }
+  const double rho = p.fluid.density;
+  const double g = p.gravity.norm();
+  for (const ParticleParams& q : p.particles) {
+    u = std::max(u, q.velocity.norm() + std::abs(q.angular_velocity) * q.Radius());
+    if (q.motion != Motion::kFree || g == 0.0) continue;
+    const double contrast = std::abs(q.density - rho) / rho;
+    const double inertial = std::sqrt(0.5 * kPi * contrast * g * q.diameter);
+    const double viscous = contrast * rho * g * q.diameter * q.diameter / p.fluid.viscosity;
+    u = std::max(u, std::min(inertial, viscous));
+  }
+  const Vec2& f = p.fluid.body_force;
+  u = std::max(u, BodyForceSpeed(p, f.x(), p.domain.size.y(), p.domain.PeriodicY()));
+  u = std::max(u, BodyForceSpeed(p, f.y(), p.domain.size.x(), p.domain.PeriodicX()));
+  return u;
+}
+
+std::vector<AccuracySetting> AccuracySettings(const Params& p) {
+  const double h = p.domain.h;
+  const double dt = p.time.dt;
+  const double u = VelocityScale(p);
+  std::vector<AccuracySetting> s = {
+      {"nu dt / h^2", KinematicViscosity(p) * dt / (h * h)}, {"U dt / h", u * dt / h}, {"U", u}};
+  if (HasPolymer(p)) {
+    s.push_back({"c dt / h", ElasticCourant(p)});
+    s.push_back({"dt / lambda", dt / p.fluid.relaxation_time});
+  }
+  for (std::size_t i = 0; i < p.particles.size(); ++i) {
+    const std::string which = " (particles." + std::to_string(i) + ")";
+    s.push_back({"D / h" + which, p.particles[i].diameter / h});
+    s.push_back({"D / h_p" + which, p.particles[i].diameter / p.particle_mesh.h});
+  }
+  return s;
+}
+
+std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
+  std::vector<AccuracyWarning> out;
+  const double h = p.domain.h;
+  const double dt = p.time.dt;
+
+  const bool particles = !p.particles.empty();
+  const double viscous = KinematicViscosity(p) * dt / (h * h);
+  const double viscous_bound =
+      particles ? kMaxViscousNumberWithParticles : kMaxViscousNumberWithoutParticles;
+  if (Above(viscous, viscous_bound)) {
+    out.push_back(TimeStepWarning(p, "nu dt / h^2", viscous, viscous_bound,
+                                  particles ? kSourceViscous : kSourceViscousFluid));
+  }
+
+  const double courant = VelocityScale(p) * dt / h;
+  if (Above(courant, kMaxAdvectiveCourant)) {
+    out.push_back(TimeStepWarning(p, "U dt / h", courant, kMaxAdvectiveCourant, kSourceCourant));
+  }
+
+  if (HasPolymer(p)) {
+    const double elastic = ElasticCourant(p);
+    if (Above(elastic, kMaxElasticCourant)) {
+      out.push_back(TimeStepWarning(p, "c dt / h", elastic, kMaxElasticCourant, kSourceElastic));
+    }
+    const double per_lambda = dt / p.fluid.relaxation_time;
+    if (Above(per_lambda, kMaxStepPerRelaxationTime)) {
+      out.push_back(
+          TimeStepWarning(p, "dt / lambda", per_lambda, kMaxStepPerRelaxationTime, kSourceElastic));
+    }
+  }
+
+  std::size_t smallest = 0;
+  int below = 0;
+  for (std::size_t i = 0; i < p.particles.size(); ++i) {
+    if (Above(kMinDiskResolution, p.particles[i].diameter / h)) ++below;
+    if (p.particles[i].diameter < p.particles[smallest].diameter) smallest = i;
+  }
+  if (below > 0) {
+    const double resolution = p.particles[smallest].diameter / h;
+    // h / k keeps every cell count an even integer.
+    const double k = std::ceil(kMinDiskResolution / resolution * (1.0 - kRoundOff));
+    AccuracyWarning w;
+    w.setting = "D / h (particles." + std::to_string(smallest) + ")";
+    if (below > 1) w.setting += ", " + std::to_string(below) + " particles below the bound";
+    w.value = resolution;
+    w.allowed = ">= " + ShortText(kMinDiskResolution);
+    w.key = "domain.h";
+    w.current = ExactText(h);
+    w.suggested = ExactText(h / k);
+    w.source = kSourceD;
+    out.push_back(std::move(w));
+  }
+  return out;
+}
+
+}  // namespace dlmfd
