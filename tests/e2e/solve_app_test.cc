@@ -23,6 +23,7 @@
 #include "dlmfd/io/diagnostics_csv.h"
 #include "dlmfd/io/field_snapshot.h"
 #include "dlmfd/io/particle_history.h"
+#include "dlmfd/solver/run_summary.h"
 
 namespace dlmfd {
 namespace {
@@ -153,6 +154,7 @@ TEST(SolveApp, CompletesAndWritesTheResultsDirectory) {
   const std::string summary = ReadTextFile(out + "/summary.json");
   EXPECT_THAT(summary, HasSubstr("\"status\": \"completed\""));
   EXPECT_THAT(summary, HasSubstr("\"steps\": 20"));
+  EXPECT_THAT(summary, HasSubstr("\"warnings\": []"));  // inside the accuracy envelope
   EXPECT_THAT(ReadTextFile(out + "/scene.toml"), HasSubstr("stokes_max_iterations = 200"));
   EXPECT_EQ(ReadCheckpoint(out + "/checkpoint.h5").state.step, 20);
 }
@@ -171,6 +173,39 @@ TEST(SolveApp, InvalidSceneExitsWithTwoNamingTheKey) {
   WriteFile(dir + "/typo.toml", "[fluid]\nviscosty = 0.1\n");
   EXPECT_EQ(RunToEnd({dir + "/typo.toml", "--out", out}, dir + "/stderr3.txt"), 2);
   EXPECT_THAT(ReadTextFile(dir + "/stderr3.txt"), HasSubstr("fluid.viscosty"));
+}
+
+// dt = 0.1 on the 16 x 16 cavity: U dt / h = 1.6, outside the envelope's 0.64
+// (dlmfd/scene/accuracy_envelope.h). The run warns, completes and lists the warning in
+// summary.json; with accuracy.strict = true it is an invalid scene naming time.dt.
+TEST(SolveApp, SceneOutsideTheAccuracyEnvelopeWarnsAndStrictRejectsIt) {
+  const std::string dir = Fresh("accuracy");
+  const std::string scene = WriteFile(dir + "/cavity.toml", CavityScene(0.2, 0.1, 0.0));
+  const std::string out = dir + "/out";
+  ASSERT_EQ(RunToEnd({scene, "--out", out, "--quiet", "--set", "time.dt=0.1"}, dir + "/err.txt"), 0)
+      << ReadTextFile(dir + "/err.txt");
+  EXPECT_THAT(ReadTextFile(dir + "/err.txt"), HasSubstr("accuracy: U dt / h = 1.6"));
+  const solver::RunSummary summary = solver::ReadRunSummary(out + "/summary.json");
+  EXPECT_EQ(summary.status, "completed");
+  ASSERT_EQ(summary.warnings.size(), 1u);
+  const solver::RunSummary::Warning& w = summary.warnings[0];
+  EXPECT_EQ(w.setting, "U dt / h");
+  EXPECT_DOUBLE_EQ(w.value, 1.6);
+  EXPECT_EQ(w.allowed, "<= 0.64");
+  EXPECT_EQ(w.key, "time.dt");
+  EXPECT_EQ(w.current, "0.1");
+  EXPECT_LE(std::stod(w.suggested) / 0.0625, 0.64);
+  EXPECT_THAT(ReadTextFile(out + "/summary.json"), HasSubstr("\"key\": \"time.dt\""));
+
+  const std::string strict = dir + "/strict";
+  EXPECT_EQ(
+      RunToEnd({scene, "--out", strict, "--set", "time.dt=0.1", "--set", "accuracy.strict=true"},
+               dir + "/strict_err.txt"),
+      2);
+  const std::string err = ReadTextFile(dir + "/strict_err.txt");
+  EXPECT_THAT(err, HasSubstr("time.dt = 0.1 is not allowed"));
+  EXPECT_THAT(err, HasSubstr("accuracy.strict"));
+  EXPECT_FALSE(fs::exists(strict + "/summary.json"));
 }
 
 TEST(SolveApp, SigtermCancelsWithReadableFiles) {
