@@ -228,7 +228,7 @@ motion = "fixed"
 )TOML";
   const std::vector<AccuracyWarning> w = AccuracyWarnings(Scene(kTwo));
   ASSERT_EQ(w.size(), 1u);
-  EXPECT_EQ(w[0].setting, "D / h (particles.1), 2 particles below the bound");
+  EXPECT_EQ(w[0].setting, "D / h (particles.1, the smallest of 2 below the bound)");
   EXPECT_DOUBLE_EQ(w[0].value, 8.0);
   EXPECT_EQ(w[0].allowed, ">= 120");
   EXPECT_EQ(w[0].key, "domain.h");

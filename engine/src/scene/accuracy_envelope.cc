@@ -147,7 +147,10 @@ std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
     const double k = std::ceil(kMinDiskResolution / resolution * (1.0 - kRoundOff));
     AccuracyWarning w;
     w.setting = "D / h (particles." + std::to_string(smallest) + ")";
-    if (below > 1) w.setting += ", " + std::to_string(below) + " particles below the bound";
+    if (below > 1) {
+      w.setting.back() = ',';
+      w.setting += " the smallest of " + std::to_string(below) + " below the bound)";
+    }
     w.value = resolution;
     w.allowed = ">= " + ShortText(kMinDiskResolution);
     w.key = "domain.h";

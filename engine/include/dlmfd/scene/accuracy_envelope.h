@@ -62,7 +62,7 @@ struct AccuracySetting {
 // A setting outside the envelope: the scene key to change, its value now and a value that
 // satisfies the bound; `allowed` is the bound ("<= 0.195"), `source` the study row it comes from.
 struct AccuracyWarning {
-  std::string setting;  // "nu dt / h^2", "D / h (particles.3)"
+  std::string setting;  // "nu dt / h^2", "D / h (particles.3, the smallest of 11 below the bound)"
   double value = 0.0;
   std::string allowed;
   std::string key;        // "time.dt", "domain.h"
