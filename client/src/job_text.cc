@@ -134,6 +134,14 @@ std::string JobDetails(const v1::Job& job) {
   }
   out << "attempts:    " << job.attempts() << "\n"
       << "results:     " << job.results_dir() << "\n";
+  // Settings outside the accuracy envelope: what to change, and to what (docs/scenes.md).
+  for (const v1::AccuracyWarning& w : job.warnings()) {
+    char value[32];
+    std::snprintf(value, sizeof(value), "%.4g", w.value());
+    out << "warning:     " << w.setting() << " = " << value << " (allowed " << w.allowed() << ", "
+        << w.source() << "): set " << w.key() << " = " << w.suggested() << " (now " << w.current()
+        << ")\n";
+  }
   return out.str();
 }
 

@@ -25,6 +25,16 @@ v1::Job ToProto(const JobRecord& job) {
   for (const auto& o : job.overrides) out.add_overrides(o);
   out.set_client_request_id(job.client_request_id);
   out.set_last_seq(job.last_seq);
+  for (const AccuracyWarning& w : job.warnings) {
+    v1::AccuracyWarning* o = out.add_warnings();
+    o->set_setting(w.setting);
+    o->set_value(w.value);
+    o->set_allowed(w.allowed);
+    o->set_key(w.key);
+    o->set_current(w.current);
+    o->set_suggested(w.suggested);
+    o->set_source(w.source);
+  }
   return out;
 }
 

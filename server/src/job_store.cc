@@ -2,6 +2,8 @@
 
 #include <sqlite3.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 namespace dlmfd::server {
@@ -46,12 +48,16 @@ const char* const kMigrations[] = {
       job_ids TEXT NOT NULL,
       PRIMARY KEY (owner, request_key));
     )sql",
+    // Schema 2: the accuracy warnings of a job's scene, one per line (EncodeWarnings).
+    R"sql(
+    ALTER TABLE jobs ADD COLUMN warnings TEXT NOT NULL DEFAULT '';
+    )sql",
 };
 
 const char kColumns[] =
     "ordinal, id, name, owner, state, reason, priority, sweep_id, created_time, started_time, "
     "finished_time, step, time, end_time, attempts, results_dir, scene, overrides, "
-    "client_request_id, last_seq, cancel_requested";
+    "client_request_id, last_seq, cancel_requested, warnings";
 
 std::string Join(const std::vector<std::string>& parts, char sep) {
   std::string out;
@@ -68,6 +74,40 @@ std::vector<std::string> Split(const std::string& text, char sep) {
   std::string part;
   std::istringstream in(text);
   while (std::getline(in, part, sep)) out.push_back(part);
+  return out;
+}
+
+// One warning per line, its fields separated by tabs (the engine writes neither into a field); the
+// value with 17 digits, so it reads back as the same double.
+std::string EncodeWarnings(const std::vector<AccuracyWarning>& warnings) {
+  std::vector<std::string> lines;
+  for (const AccuracyWarning& w : warnings) {
+    char value[40];
+    std::snprintf(value, sizeof value, "%.17g", w.value);
+    lines.push_back(
+        Join({w.setting, value, w.allowed, w.key, w.current, w.suggested, w.source}, '\t'));
+  }
+  return Join(lines, '\n');
+}
+
+std::vector<AccuracyWarning> DecodeWarnings(const std::string& text) {
+  std::vector<AccuracyWarning> out;
+  for (const std::string& line : Split(text, '\n')) {
+    std::vector<std::string> f = Split(line, '\t');
+    if (f.size() != 7) {
+      throw StoreError("jobs.warnings: a line with " + std::to_string(f.size()) +
+                       " fields instead of 7");
+    }
+    AccuracyWarning w;
+    w.setting = f[0];
+    w.value = std::strtod(f[1].c_str(), nullptr);
+    w.allowed = f[2];
+    w.key = f[3];
+    w.current = f[4];
+    w.suggested = f[5];
+    w.source = f[6];
+    out.push_back(std::move(w));
+  }
   return out;
 }
 
@@ -266,6 +306,7 @@ std::vector<JobRecord> JobStore::Query(Statement& statement) {
     job.client_request_id = statement.Text(c++);
     job.last_seq = statement.Int(c++);
     job.cancel_requested = statement.Int(c++) != 0;
+    job.warnings = DecodeWarnings(statement.Text(c++));
     jobs.push_back(std::move(job));
   }
   for (auto& job : jobs) LoadTags(job);
@@ -301,8 +342,8 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
   for (auto& job : jobs) {
     Statement insert(db_,
                      "INSERT INTO jobs (id, name, owner, state, reason, priority, sweep_id, "
-                     "created_time, results_dir, scene, overrides, client_request_id) "
-                     "VALUES (?, ?, ?, ?, '', ?, ?, ?, ?, ?, ?, ?)");
+                     "created_time, results_dir, scene, overrides, client_request_id, warnings) "
+                     "VALUES (?, ?, ?, ?, '', ?, ?, ?, ?, ?, ?, ?, ?)");
     insert.Bind(job.id)
         .Bind(job.name)
         .Bind(job.owner)
@@ -313,7 +354,8 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
         .Bind(job.results_dir)
         .Bind(job.scene)
         .Bind(Join(job.overrides, '\n'))
-        .Bind(job.client_request_id);
+        .Bind(job.client_request_id)
+        .Bind(EncodeWarnings(job.warnings));
     insert.Run();
     job.ordinal = sqlite3_last_insert_rowid(db_);
     for (const auto& tag : job.tags) {

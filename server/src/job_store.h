@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "dlmfd/scene/accuracy_envelope.h"
+
 struct sqlite3;
 
 namespace dlmfd::server {
@@ -47,6 +49,7 @@ struct JobRecord {
   std::vector<std::string> overrides;
   std::string client_request_id;
   int64_t last_seq = 0;
+  std::vector<AccuracyWarning> warnings;  // found at admission (scene/accuracy_envelope.h)
   bool cancel_requested = false;
   int64_t ordinal = 0;  // insertion order, set by the store
 };

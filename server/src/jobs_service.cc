@@ -193,6 +193,7 @@ JobRecord JobsService::NewJob(const std::string& user, const std::string& scene,
   job.results_dir = fs::absolute(scheduler_.ResultsDir(job.id)).string();
   job.scene = scene;
   job.overrides = overrides;
+  job.warnings = std::move(estimate.warnings);
   return job;
 }
 

@@ -50,6 +50,7 @@ SceneEstimate AdmitScene(const std::string& scene, const std::vector<std::string
   estimate.end_time = params.time.end;
   estimate.nodes = static_cast<int64_t>(footprint.velocity_nodes);
   estimate.memory_mb = static_cast<int64_t>(std::ceil(mib));
+  estimate.warnings = AccuracyWarnings(params);
   return estimate;
 }
 

@@ -3,7 +3,9 @@
 // The scene text (with overrides) is parsed and validated by dlmfd::ParseScene, the one validation
 // of dlmfd-solve too (scene/scene_validation.h), whose InvalidParameter names the dotted key; then
 // the scene's footprint (dlmfd::EstimateFootprint, scene/scene_footprint.h: velocity nodes and
-// memory, computed in double) is held against the configured limits.
+// memory, computed in double) is held against the configured limits. The scene's accuracy warnings
+// (dlmfd::AccuracyWarnings, scene/accuracy_envelope.h) are returned for the job record; with
+// accuracy.strict = true ParseScene has already rejected a scene that has any.
 // Not supported: estimating the wall time of a run.
 #pragma once
 
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include "config.h"
+#include "dlmfd/scene/accuracy_envelope.h"
 
 namespace dlmfd::server {
 
@@ -19,6 +22,7 @@ struct SceneEstimate {
   int64_t nodes = 0;      // velocity nodes (nx + 1)(ny + 1)
   int64_t memory_mb = 0;  // estimated peak memory of dlmfd-solve
   double end_time = 0;
+  std::vector<AccuracyWarning> warnings;  // settings outside the accuracy envelope
 };
 
 // Throws ServiceError INVALID_ARGUMENT (scene or override invalid, the key first in the message) or

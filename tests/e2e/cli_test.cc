@@ -27,6 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 const std::string kClient = DLMFD_BINARY_DIR "/client/dlmfd";
 const std::string kDaemon = DLMFD_BINARY_DIR "/server/dlmfdd";
@@ -319,6 +320,27 @@ TEST_F(CliTest, WatchResumesAcrossADaemonRestart) {
   EXPECT_EQ(watch.code, 0) << watch.err;
   EXPECT_THAT(watch.err, HasSubstr("reconnecting"));
   EXPECT_THAT(watch.out, HasSubstr("\"state\":\"COMPLETED\""));
+}
+
+// dt = 0.05 on the 16 x 16 cavity: U dt / h = 0.8 > 0.64 (the accuracy envelope). `show` prints
+// the warning with the key and a value to set, `show --json` carries it as the proto field.
+TEST_F(CliTest, ShowPrintsTheAccuracyWarnings) {
+  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.dt=0.05",
+                             "--set", "time.end=0.1", "--wait"});
+  ASSERT_EQ(submit.code, 0) << submit.out << submit.err;
+  const std::string job = FirstLine(submit.out);
+  const CliRun show = Cli({"show", job});
+  ASSERT_EQ(show.code, 0) << show.err;
+  EXPECT_THAT(show.out, HasSubstr("warning:     U dt / h = 0.8 (allowed <= 0.64, "));
+  EXPECT_THAT(show.out, HasSubstr("set time.dt = 0.025 (now 0.05)"));
+  const CliRun json = Cli({"show", job, "--json"});
+  ASSERT_EQ(json.code, 0) << json.err;
+  EXPECT_THAT(json.out, HasSubstr("\"warnings\":[{\"setting\":\"U dt / h\",\"value\":0.8"));
+  EXPECT_THAT(json.out, HasSubstr("\"key\":\"time.dt\",\"current\":\"0.05\""));
+  // Inside the envelope: no warning line.
+  const CliRun inside = Cli({"submit", (root_ / "cavity.toml").string(), "--wait"});
+  ASSERT_EQ(inside.code, 0) << inside.err;
+  EXPECT_THAT(Cli({"show", FirstLine(inside.out)}).out, Not(HasSubstr("warning:")));
 }
 
 TEST_F(CliTest, InvalidSceneExitsTwoNamingTheKey) {

@@ -468,6 +468,65 @@ TEST(Daemon, TwoHundredQueuedJobsDrainWithinTheConcurrencyLimit) {
   EXPECT_EQ(peak, 2);  // the limit was used, not just respected
 }
 
+// dt = 0.05 on the 16 x 16 cavity: U dt / h = 0.8, outside the accuracy envelope's 0.64. The job
+// record carries the warning from admission on (Get), and still after a restart of the daemon;
+// with accuracy.strict = true the same scene is INVALID_ARGUMENT naming time.dt.
+TEST(Daemon, JobRecordCarriesTheAccuracyWarningsThroughGetAndARestart) {
+  TempDir dir;
+  const std::string data = dir.path() + "/data";
+  auto request = CavityRequest(0.1, "outside");
+  request.add_overrides("time.dt=0.05");
+  auto check = [](const v1::Job& job) {
+    ASSERT_EQ(job.warnings_size(), 1);
+    const v1::AccuracyWarning& w = job.warnings(0);
+    EXPECT_EQ(w.setting(), "U dt / h");
+    EXPECT_DOUBLE_EQ(w.value(), 0.8);
+    EXPECT_EQ(w.allowed(), "<= 0.64");
+    EXPECT_EQ(w.key(), "time.dt");
+    EXPECT_EQ(w.current(), "0.05");
+    EXPECT_EQ(w.suggested(), "0.025");
+    EXPECT_NE(w.source().find("work_precision.md"), std::string::npos);
+  };
+  std::string id;
+  {
+    // The one solver slot is taken by a long job, so this one stays queued: a queued job already
+    // shows its warnings.
+    DaemonProcess daemon(data, {"--max-concurrent", "1"});
+    ASSERT_TRUE(daemon.Start()) << daemon.Log();
+    auto stub = daemon.Stub();
+    Submit(*stub, CavityRequest(1.0e4, "blocker"));
+    const v1::Job job = Submit(*stub, request);
+    check(job);
+    id = job.id();
+    v1::GetRequest get;
+    get.set_job_id(id);
+    v1::Job out;
+    ASSERT_TRUE(stub->Get(Context().get(), get, &out).ok());
+    EXPECT_EQ(out.state(), v1::QUEUED);
+    check(out);
+    EXPECT_EQ(Submit(*stub, CavityRequest(0.1, "inside")).warnings_size(), 0);
+
+    auto strict = request;
+    strict.add_overrides("accuracy.strict=true");
+    auto context = Context();
+    v1::Job rejected;
+    const grpc::Status status = stub->Submit(context.get(), strict, &rejected);
+    EXPECT_EQ(status.error_code(), StatusCode::INVALID_ARGUMENT);
+    EXPECT_NE(status.error_message().find("time.dt"), std::string::npos) << status.error_message();
+    EXPECT_NE(status.error_message().find("accuracy.strict"), std::string::npos);
+    daemon.Kill(SIGKILL);
+    daemon.Wait();
+  }
+  DaemonProcess daemon(data, {"--max-concurrent", "1"});
+  ASSERT_TRUE(daemon.Start()) << daemon.Log();
+  auto stub = daemon.Stub();
+  v1::GetRequest get;
+  get.set_job_id(id);
+  v1::Job out;
+  ASSERT_TRUE(stub->Get(Context().get(), get, &out).ok());
+  check(out);
+}
+
 TEST(Daemon, KillNineAndRestartResumesRunningAndKeepsQueued) {
   REQUIRE_SOLVER();
   TempDir dir;
