@@ -104,6 +104,20 @@ std::vector<SceneCase> Cases() {
       {"HugeGrid", "", {"domain.h=0.0001"}, "domain.h"},
       {"TinyGrid", "", {"domain.h=1e-300"}, "domain.h"},
       {"TinyParticleMesh", Disk(0.5, 0.5, 1.5), {"particle_mesh.h=1e-300"}, "particle_mesh.h"},
+      // The accuracy envelope (scene/accuracy_envelope.h): a warning for both, a rejection for
+      // both with accuracy.strict = true.
+      // U dt / h = 0.8 > 0.64; D / h = 3.2 < 120.
+      {"OutsideTheAccuracyEnvelope", "", {"time.dt=0.05", "time.end=0.05"}, ""},
+      {"StrictOutsideTheAccuracyEnvelope",
+       "",
+       {"accuracy.strict=true", "time.dt=0.05", "time.end=0.05"},
+       "time.dt"},
+      {"DiskOutsideTheAccuracyEnvelope", Disk(0.5, 0.5, 1.5), {}, ""},
+      {"StrictDiskOutsideTheAccuracyEnvelope",
+       Disk(0.5, 0.5, 1.5),
+       {"accuracy.strict=true"},
+       "domain.h"},
+      {"StrictInsideTheAccuracyEnvelope", "", {"accuracy.strict=true"}, ""},
       {"StepCountBeyond2To53", "", {"time.dt=1e-300", "time.end=1e300"}, "time.dt"},
       {"FieldPeriodBeyond2To53", "", {"output.fields_every=1e-300"}, "output.fields_every"},
       {"TooFewCellsForThePressureMesh", "", {"domain.h=0.5"}, "domain.size"},
