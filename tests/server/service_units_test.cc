@@ -2,6 +2,7 @@
 // authenticator, the watcher queue's gap rules and snapshot downsampling, the sweep expansion and
 // the checks of result-file paths.
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -47,6 +48,61 @@ TEST(JobStore, MigratesOnceAndReopens) {
   EXPECT_EQ(job->overrides, (std::vector<std::string>{"fluid.viscosity=0.1", "time.end=1"}));
   EXPECT_EQ(job->tags, (std::vector<std::string>{"t1", "t2"}));
   EXPECT_EQ(job->state, JobState::kQueued);
+}
+
+// Schema 2 stores a job's accuracy warnings; a store of schema 1 gains the column, empty.
+TEST(JobStore, AccuracyWarningsRoundTripAndASchemaOneStoreGainsTheColumn) {
+  dlmfd::testing::TempDir dir;
+  const std::string path = dir.path() + "/jobs.db";
+  {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+    const char* schema_one =
+        "CREATE TABLE schema_version (version INTEGER NOT NULL);"
+        "INSERT INTO schema_version (version) VALUES (1);"
+        "CREATE TABLE jobs (ordinal INTEGER PRIMARY KEY AUTOINCREMENT, id TEXT NOT NULL UNIQUE,"
+        " name TEXT NOT NULL, owner TEXT NOT NULL, state INTEGER NOT NULL,"
+        " reason TEXT NOT NULL DEFAULT '', priority INTEGER NOT NULL DEFAULT 0,"
+        " sweep_id TEXT NOT NULL DEFAULT '', created_time REAL NOT NULL DEFAULT 0,"
+        " started_time REAL NOT NULL DEFAULT 0, finished_time REAL NOT NULL DEFAULT 0,"
+        " step INTEGER NOT NULL DEFAULT 0, time REAL NOT NULL DEFAULT 0,"
+        " end_time REAL NOT NULL DEFAULT 0, attempts INTEGER NOT NULL DEFAULT 0,"
+        " results_dir TEXT NOT NULL, scene TEXT NOT NULL, overrides TEXT NOT NULL DEFAULT '',"
+        " client_request_id TEXT NOT NULL DEFAULT '', last_seq INTEGER NOT NULL DEFAULT 0,"
+        " cancel_requested INTEGER NOT NULL DEFAULT 0);"
+        "CREATE TABLE job_tags (job_id TEXT NOT NULL, tag TEXT NOT NULL,"
+        " PRIMARY KEY (job_id, tag));"
+        "CREATE TABLE requests (owner TEXT NOT NULL, request_key TEXT NOT NULL,"
+        " job_ids TEXT NOT NULL, PRIMARY KEY (owner, request_key));"
+        "INSERT INTO jobs (id, name, owner, state, results_dir, scene)"
+        " VALUES ('old', 'old', 'local', 1, '/tmp/old', 'scene text');";
+    ASSERT_EQ(sqlite3_exec(db, schema_one, nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(db);
+  }
+  JobStore store(path);
+  auto old = store.Get("old");
+  ASSERT_TRUE(old);
+  EXPECT_TRUE(old->warnings.empty());
+
+  JobRecord job = MakeJob("warned", 0);
+  job.warnings = {{"nu dt / h^2", 0.44236800000000003, "<= 0.195", "time.dt", "0.0004",
+                   "0.00013333333333333334", "docs/work_precision.md (d) dt ladder"},
+                  {"D / h (particles.0, the smallest of 2 below the bound)", 19.2, ">= 120",
+                   "domain.h", "0.010416666666666666", "0.001488095238095238",
+                   "docs/work_precision.md (d), Which settings 3"}};
+  store.InsertJobs({job}, "local", "");
+  auto back = store.Get("warned");
+  ASSERT_TRUE(back);
+  ASSERT_EQ(back->warnings.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(back->warnings[i].setting, job.warnings[i].setting);
+    EXPECT_EQ(back->warnings[i].value, job.warnings[i].value);  // 17 digits: bit for bit
+    EXPECT_EQ(back->warnings[i].allowed, job.warnings[i].allowed);
+    EXPECT_EQ(back->warnings[i].key, job.warnings[i].key);
+    EXPECT_EQ(back->warnings[i].current, job.warnings[i].current);
+    EXPECT_EQ(back->warnings[i].suggested, job.warnings[i].suggested);
+    EXPECT_EQ(back->warnings[i].source, job.warnings[i].source);
+  }
 }
 
 TEST(JobStore, QueueOrderIsPriorityThenAge) {

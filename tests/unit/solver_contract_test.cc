@@ -123,10 +123,40 @@ TEST(RunSummary, TextKeepsTheLayoutOfTheResultsDirectory) {
       "    {\"id\": 1, \"position\": [0.5, 7.25], \"velocity\": [-0.0014494669113040463, 1e-05], "
       "\"angular_velocity\": 0, \"force\": [0, 0], \"torque\": 0}\n"
       "  ],\n"
-      "  \"diagnostics\": {\"stokes_iterations\": 11, \"divergence\": 0.0011162864979271413}\n"
+      "  \"diagnostics\": {\"stokes_iterations\": 11, \"divergence\": 0.0011162864979271413},\n"
+      "  \"warnings\": []\n"
       "}\n");
   s.particles.clear();
   EXPECT_THAT(RunSummaryJson(s), HasSubstr("  \"particles\": [],\n"));
+  // One line per accuracy warning, as per particle.
+  s.warnings = {{"U dt / h", 1.6, "<= 0.64", "time.dt", "0.1", "0.03333333333333333", "(b)"},
+                {"D / h (particles.0)", 19.2, ">= 120", "domain.h", "0.01", "0.0015", "(d)"}};
+  EXPECT_THAT(RunSummaryJson(s),
+              HasSubstr("  \"warnings\": [\n"
+                        "    {\"setting\": \"U dt / h\", \"value\": 1.6, \"allowed\": \"<= 0.64\", "
+                        "\"key\": \"time.dt\", \"current\": \"0.1\", \"suggested\": "
+                        "\"0.03333333333333333\", \"source\": \"(b)\"},\n"
+                        "    {\"setting\": \"D / h (particles.0)\", \"value\": 19.2, "));
+}
+
+TEST(RunSummary, WarningsReadBackAndAnOlderSummaryHasNone) {
+  RunSummary in = FailedRun();
+  in.warnings = {{"nu dt / h^2", 0.44236800000000003, "<= 0.195", "time.dt", "0.0004",
+                  "0.00013333333333333334", "docs/work_precision.md (d) dt ladder"}};
+  const RunSummary out = ParseRunSummary(RunSummaryJson(in));
+  ASSERT_EQ(out.warnings.size(), 1u);
+  EXPECT_EQ(out.warnings[0].setting, "nu dt / h^2");
+  EXPECT_EQ(out.warnings[0].value, 0.44236800000000003);
+  EXPECT_EQ(out.warnings[0].allowed, "<= 0.195");
+  EXPECT_EQ(out.warnings[0].key, "time.dt");
+  EXPECT_EQ(out.warnings[0].current, "0.0004");
+  EXPECT_EQ(out.warnings[0].suggested, "0.00013333333333333334");
+  EXPECT_EQ(out.warnings[0].source, "docs/work_precision.md (d) dt ladder");
+  std::string older = RunSummaryJson(FailedRun());
+  const auto at = older.find(",\n  \"warnings\": []");
+  ASSERT_NE(at, std::string::npos);
+  older.erase(at, std::string(",\n  \"warnings\": []").size());
+  EXPECT_TRUE(ParseRunSummary(older).warnings.empty());
 }
 
 TEST(RunSummary, ReadsBackWhatWasWritten) {
