@@ -263,6 +263,10 @@ TEST(AccuracyEnvelope, StrictKeyIsABoolean) {
   EXPECT_THROW(Scene(kCavity, {"accuracy.loose=true"}), InvalidParameter);
   EXPECT_TRUE(Scene(kCavity, {"accuracy.strict=true"}).accuracy.strict);
   EXPECT_FALSE(Scene(kCavity).accuracy.strict);
+  // The scene as run keeps the key when it is set, and is the text of before the key otherwise.
+  const Params strict = Scene(kCavity, {"accuracy.strict=true"});
+  EXPECT_TRUE(ParseScene(WriteScene(strict), {}, "written.toml").accuracy.strict);
+  EXPECT_EQ(WriteScene(Scene(kCavity)).find("accuracy"), std::string::npos);
 }
 
 }  // namespace

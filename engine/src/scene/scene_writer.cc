@@ -114,8 +114,9 @@ std::string WriteScene(const Params& p) {
   o << "particles_every = " << ExactText(p.output.particles_every) << "\n";
   o << "checkpoint_every = " << ExactText(p.output.checkpoint_every) << "\n";
 
-  o << "\n[accuracy]\n";
-  o << "strict = " << (p.accuracy.strict ? "true" : "false") << "\n";
+  // Only when set: the scene text of a run (and of its checkpoint, which --resume compares) stays
+  // the one written before the key existed.
+  if (p.accuracy.strict) o << "\n[accuracy]\nstrict = true\n";
 
   for (const ParticleParams& q : p.particles) {
     o << "\n[[particles]]\n";
