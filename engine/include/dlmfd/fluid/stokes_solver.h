@@ -3,8 +3,10 @@
 // u^{n+1/4} = u_Gamma on the Dirichlet sides, nu du/dn - p n = 0 on outflow sides (do-nothing).
 //
 // Discrete method (method notes 1, sections 1-3): P1-iso-P2 velocity, P1 pressure on the 2h mesh.
-// The viscous term alpha 2 eta_s D:D is replaced by nu grad u : grad v, nu = alpha eta_s (equal
-// for solenoidal fields with Dirichlet data; it decouples u and v for the fast solver). With
+// The viscous term alpha 2 eta_N D:D is replaced by nu grad u : grad v, nu = alpha eta_N (equal
+// for solenoidal fields with Dirichlet data; it decouples u and v for the fast solver). eta_N =
+// fluid.NewtonianViscosity(): eta_s = beta eta with a modelled polymer, the whole eta without one
+// (a Newtonian liquid, lambda = 0 or beta = 1), so a Newtonian liquid has viscosity eta. With
 // A = (rho/dt) M_l + nu K per component the system is A u - B^T p = F, B u = 0, where
 // F = (rho/dt) M_l u^n + M_l f_body + (fx, fy) (the extra dual forcing: polymer stress, DLM terms).
 // Gravity does not enter: the split scheme absorbs rho_L g into the pressure.
@@ -19,7 +21,7 @@
 // Pressure: mean-free (M_p-weighted) when every side is Dirichlet or periodic; p = 0 on outflow
 // sides. Throws SolverNotConverged after stokes_max_iterations.
 //
-// Not supported: the symmetric-gradient form 2 eta_s D:D (it couples the components).
+// Not supported: the symmetric-gradient form 2 eta_N D:D (it couples the components).
 // References: Glowinski, Finite element methods for incompressible viscous flow (2003), sections
 // 21-22; Cahouet & Chabard, Int. J. Numer. Methods Fluids 8 (1988) 869-895.
 #pragma once
