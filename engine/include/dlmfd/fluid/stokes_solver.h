@@ -15,9 +15,14 @@
 // P^-1 = nu M_p^-1 + (rho/dt) K_p^-1; each iteration 2 velocity fast solves (u and v side by side
 // on two OpenMP sections), 1 pressure fast solve. Warm start from the given pressure. Stopping
 // rule: sqrt(r.P^-1 r) <= tol * ref with the fixed reference
-//   ref = sqrt((rho/dt) max(|u^n|^2_M, |u^0|^2_M))    (u^0 the first velocity iterate),
-// so sqrt(r.P^-1 r)/ref measures the non-solenoidal part of the velocity relative to the velocity
-// itself; it does not depend on how good the warm start is (method notes 1, pitfall 5).
+//   ref = max(sqrt((rho/dt) max(|u^n|^2_M, |u^0|^2_M)), 1e-11 U_data sqrt((rho/dt) |Omega|))
+// (u^0 the first velocity iterate), so sqrt(r.P^-1 r)/ref measures the non-solenoidal part of the
+// velocity relative to the velocity itself; it does not depend on how good the warm start is
+// (method notes 1, pitfall 5). The floor: U_data = max(|u_Gamma|, |f_body| dt / rho, G dt /
+// (rho h)) is the data's velocity scale (boundary values, one step of the body force, one step of
+// a polymer stress of modulus G = eta_p / lambda over one cell); a flow below 1e-11 of it is at
+// rest, so a liquid at rest, whose velocity is the round-off of its data, costs no iterations
+// (issue 13 point 8). Moving flows are 1e-8 and more of U_data, where the floor does not bind.
 // Pressure: mean-free (M_p-weighted) when every side is Dirichlet or periodic; p = 0 on outflow
 // sides. Throws SolverNotConverged after stokes_max_iterations.
 //
@@ -80,6 +85,7 @@ class StokesSolver {
   double rho_over_dt_, nu_;
   Vec2 body_force_;
   double tolerance_;
+  double reference_floor_ = 0.0;  // the floor of ref (header block)
   int max_iterations_;
   const BoundaryData& boundary_data_;
   SeparableHelmholtz velocity_solver_;            // (rho/dt) M_l + nu K
