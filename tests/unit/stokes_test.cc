@@ -205,7 +205,7 @@ TEST(Simulation, InflowPoiseuilleWithOutflowIsReproducedToRoundOff) {
 void CompareWithDirectSolve(const Params& p) {
   const Grid g = p.domain.VelocityGrid(), pg = g.Coarse();
   const double rdt = p.fluid.density / p.time.dt,
-               nu = p.splitting.alpha * p.fluid.SolventViscosity();
+               nu = p.splitting.alpha * p.fluid.NewtonianViscosity();
   BoundaryData data(g, p.domain);
   SolverParams tight = p.solvers;
   tight.stokes_tolerance = 1e-12;

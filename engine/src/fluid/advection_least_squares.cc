@@ -19,7 +19,7 @@ AdvectionLeastSquares::AdvectionLeastSquares(const Grid& grid, const DomainParam
       nodes_(grid_, topo_),
       rho_(fluid.density),
       rho_over_dt_(fluid.density / dt),
-      nu_b_(beta * fluid.SolventViscosity()),
+      nu_b_(beta * fluid.NewtonianViscosity()),
       tolerance_(solvers.advection_tolerance),
       max_iterations_(solvers.advection_max_iterations),
       boundary_data_(boundary_data) {

@@ -33,7 +33,7 @@ AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const
       nodes_(grid_, topo_),
       dt_(dt),
       rho_over_dt_(fluid.density / dt),
-      nu_b_(beta * fluid.SolventViscosity()),
+      nu_b_(beta * fluid.NewtonianViscosity()),
       max_courant_(solvers.wave_max_courant),
       boundary_data_(boundary_data) {
   if (nu_b_ > 0.0) {

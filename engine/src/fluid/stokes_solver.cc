@@ -8,6 +8,29 @@
 #include "dlmfd/mesh/fem_operators.h"
 
 namespace dlmfd {
+namespace {
+
+// A flow slower than this fraction of the data's velocity scale is at rest for the stopping rule:
+// 1e-11 is the relative round-off floor of the DLM step's rule too (rigid_body_constraint.cc), far
+// above the velocity noise that round-off in the data makes (a few eps of the scale) and far below
+// any velocity the tolerances can resolve (tol >= 1e-8 times the flow's own scale).
+constexpr double kQuietFlow = 1e-11;
+
+// The velocity scale of the data of (33), from the scene alone: the boundary values, the change a
+// body force makes in one step, and the change a polymer stress of one modulus G = eta_p / lambda
+// makes in one step over one cell (the scale of the polymer force, whose round-off is what a liquid
+// at rest carries). Gravity is not forcing of (33): the split scheme absorbs rho_L g into p.
+double DataSpeed(const Grid& grid, const FluidParams& fluid, double dt,
+                 const BoundaryData& boundary_data) {
+  double speed = std::max(boundary_data.MaxSpeed(), fluid.body_force.norm() * dt / fluid.density);
+  if (!fluid.IsNewtonian()) {
+    const double modulus = fluid.PolymerViscosity() / fluid.relaxation_time;
+    speed = std::max(speed, modulus * dt / (fluid.density * grid.h));
+  }
+  return speed;
+}
+
+}  // namespace
 
 StokesSolver::StokesSolver(const Grid& grid, const DomainParams& domain, const FluidParams& fluid,
                            double dt, double alpha, const SolverParams& solvers,
@@ -19,7 +42,7 @@ StokesSolver::StokesSolver(const Grid& grid, const DomainParams& domain, const F
       vnodes_(grid_, vtopo_),
       pnodes_(pgrid_, ptopo_),
       rho_over_dt_(fluid.density / dt),
-      nu_(alpha * fluid.SolventViscosity()),
+      nu_(alpha * fluid.NewtonianViscosity()),
       body_force_(fluid.body_force),
       tolerance_(solvers.stokes_tolerance),
       max_iterations_(solvers.stokes_max_iterations),
@@ -39,6 +62,12 @@ StokesSolver::StokesSolver(const Grid& grid, const DomainParams& domain, const F
   // ubar_, vbar_ keep zero Dirichlet data for good: the fast solves write unknown nodes only.
   for (auto* a : {&fu_, &fv_, &ubar_, &vbar_, &tu_, &tv_}) a->assign(n, 0.0);
   for (auto* a : {&r_, &g_, &w_, &sw_, &z_}) a->assign(np, 0.0);
+  // The floor of the reference: the data's velocity scale, times kQuietFlow, over the domain.
+  const std::vector<double>& dist = vnodes_.distinct();
+  double area = 0.0;
+  for (std::size_t k = 0; k < n; ++k) area += dist[k] * mass_[k];
+  reference_floor_ =
+      kQuietFlow * DataSpeed(grid_, fluid, dt, boundary_data_) * std::sqrt(rho_over_dt_ * area);
 }
 
 StokesSolver::~StokesSolver() = default;
@@ -122,7 +151,8 @@ StokesReport StokesSolver::Solve(const double* fx, const double* fy, double* u, 
   double energy_new = 0.0;
 #pragma omp parallel for reduction(+ : energy_new) schedule(static)
   for (long k = 0; k < n; ++k) energy_new += dist[k] * m[k] * (u[k] * u[k] + v[k] * v[k]);
-  const double ref = std::sqrt(rho_over_dt_ * std::max(energy_old, energy_new));
+  const double ref =
+      std::max(std::sqrt(rho_over_dt_ * std::max(energy_old, energy_new)), reference_floor_);
   report.reference = ref;
 
   // Step 2: r = B u^0, g = P^-1 r, w = g.

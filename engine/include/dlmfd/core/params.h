@@ -48,9 +48,20 @@ struct FluidParams {
   double solvent_ratio = 1.0;    // beta = eta_s / eta in (0, 1]
   Vec2 body_force =
       Vec2::Zero();  // force per unit volume on the liquid (e.g. a mean pressure gradient)
-  double SolventViscosity() const { return solvent_ratio * viscosity; }
-  double PolymerViscosity() const { return (1.0 - solvent_ratio) * viscosity; }
+  // The one viscosity rule (design.md 4): the polymer is modelled only when lambda > 0 and
+  // beta < 1; then the Newtonian part of the momentum equation carries eta_s = beta eta and the
+  // polymer stress carries eta_p = (1 - beta) eta. A Newtonian liquid has no polymer stress, so
+  // its Newtonian part carries the whole eta, whatever solvent_ratio says. The two always sum to
+  // eta, which keeps the drag continuous as lambda -> 0 and as beta -> 1.
   bool IsNewtonian() const { return relaxation_time == 0.0 || solvent_ratio == 1.0; }
+  // The viscosity of the term 2 eta D(u) that steps (33)-(34) treat implicitly.
+  double NewtonianViscosity() const {
+    return IsNewtonian() ? viscosity : solvent_ratio * viscosity;
+  }
+  // The viscosity the polymer stress carries: 0 when no polymer is modelled.
+  double PolymerViscosity() const {
+    return IsNewtonian() ? 0.0 : (1.0 - solvent_ratio) * viscosity;
+  }
 };
 
 struct TimeParams {

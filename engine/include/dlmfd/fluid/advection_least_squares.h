@@ -1,8 +1,9 @@
 // Step (34) of the paper by the least-squares conjugate gradient method of Bristeau, Glowinski and
 // Periaux: find u = u^{n+2/4} with u = u_Gamma on the Dirichlet sides and, at every unknown node,
 //   T_c(u) = (rho/dt) M_l (u_c - u*_c) + rho N_c(u, u) + nu_b K u_c = 0,   c = x, y,
-// where u* = u^{n+1/4}, nu_b = beta eta_s, N_c(a, b) = a_x (G_x b_c) + a_y (G_y b_c) the convection
+// where u* = u^{n+1/4}, nu_b = beta eta_N, N_c(a, b) = a_x (G_x b_c) + a_y (G_y b_c) the convection
 // by vertex (trapezoidal) quadrature, consistent with the lumped mass (method notes 1, section 4).
+// eta_N = fluid.NewtonianViscosity(): eta_s with a modelled polymer, the whole eta without one.
 //
 // Solver: minimise J(u) = 1/2 <P^-1 T(u), T(u)> with P = (rho/dt) M_l + nu_b K (fast solver; the
 // diagonal (rho/dt) M_l when nu_b = 0) by Polak-Ribiere CG (restart when the coefficient is

@@ -4,7 +4,8 @@
 //   d_tt u - div((V.grad u) V) = 0,  u(0) = u^{n+1/4},  d_t u(0) = -(V.grad) u^{n+1/4},
 // u = u_Gamma on Dirichlet sides and (V.n)(d_t u + V.grad u) = 0 on the rest (method notes 1, end
 // of section 4). Then (rho/dt) M_l (u^{n+2/4} - u_adv) + nu_b K u^{n+2/4} = 0 with nu_b = beta
-// eta_s (one fast solve per component; skipped when beta = 0).
+// eta_N (one fast solve per component; skipped when beta = 0); eta_N = fluid.NewtonianViscosity(),
+// eta_s with a modelled polymer and the whole eta without one (core/params.h).
 //
 // Discrete method: lumped mass M_l, K_V = int (V.grad phi_i)(V.grad phi_j) with the exact P1
 // integral W_T = int_T V V^T = |T|/12 (sum_k V_k V_k^T + S S^T) per triangle (S the sum of the

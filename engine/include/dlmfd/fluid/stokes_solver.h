@@ -3,8 +3,10 @@
 // u^{n+1/4} = u_Gamma on the Dirichlet sides, nu du/dn - p n = 0 on outflow sides (do-nothing).
 //
 // Discrete method (method notes 1, sections 1-3): P1-iso-P2 velocity, P1 pressure on the 2h mesh.
-// The viscous term alpha 2 eta_s D:D is replaced by nu grad u : grad v, nu = alpha eta_s (equal
-// for solenoidal fields with Dirichlet data; it decouples u and v for the fast solver). With
+// The viscous term alpha 2 eta_N D:D is replaced by nu grad u : grad v, nu = alpha eta_N (equal
+// for solenoidal fields with Dirichlet data; it decouples u and v for the fast solver). eta_N =
+// fluid.NewtonianViscosity(): eta_s = beta eta with a modelled polymer, the whole eta without one
+// (a Newtonian liquid, lambda = 0 or beta = 1), so a Newtonian liquid has viscosity eta. With
 // A = (rho/dt) M_l + nu K per component the system is A u - B^T p = F, B u = 0, where
 // F = (rho/dt) M_l u^n + M_l f_body + (fx, fy) (the extra dual forcing: polymer stress, DLM terms).
 // Gravity does not enter: the split scheme absorbs rho_L g into the pressure.
@@ -13,13 +15,18 @@
 // P^-1 = nu M_p^-1 + (rho/dt) K_p^-1; each iteration 2 velocity fast solves (u and v side by side
 // on two OpenMP sections), 1 pressure fast solve. Warm start from the given pressure. Stopping
 // rule: sqrt(r.P^-1 r) <= tol * ref with the fixed reference
-//   ref = sqrt((rho/dt) max(|u^n|^2_M, |u^0|^2_M))    (u^0 the first velocity iterate),
-// so sqrt(r.P^-1 r)/ref measures the non-solenoidal part of the velocity relative to the velocity
-// itself; it does not depend on how good the warm start is (method notes 1, pitfall 5).
+//   ref = max(sqrt((rho/dt) max(|u^n|^2_M, |u^0|^2_M)), 1e-11 U_data sqrt((rho/dt) |Omega|))
+// (u^0 the first velocity iterate), so sqrt(r.P^-1 r)/ref measures the non-solenoidal part of the
+// velocity relative to the velocity itself; it does not depend on how good the warm start is
+// (method notes 1, pitfall 5). The floor: U_data = max(|u_Gamma|, |f_body| dt / rho, G dt /
+// (rho h)) is the data's velocity scale (boundary values, one step of the body force, one step of
+// a polymer stress of modulus G = eta_p / lambda over one cell); a flow below 1e-11 of it is at
+// rest, so a liquid at rest, whose velocity is the round-off of its data, costs no iterations
+// (issue 13 point 8). Moving flows are 1e-8 and more of U_data, where the floor does not bind.
 // Pressure: mean-free (M_p-weighted) when every side is Dirichlet or periodic; p = 0 on outflow
 // sides. Throws SolverNotConverged after stokes_max_iterations.
 //
-// Not supported: the symmetric-gradient form 2 eta_s D:D (it couples the components).
+// Not supported: the symmetric-gradient form 2 eta_N D:D (it couples the components).
 // References: Glowinski, Finite element methods for incompressible viscous flow (2003), sections
 // 21-22; Cahouet & Chabard, Int. J. Numer. Methods Fluids 8 (1988) 869-895.
 #pragma once
@@ -78,6 +85,7 @@ class StokesSolver {
   double rho_over_dt_, nu_;
   Vec2 body_force_;
   double tolerance_;
+  double reference_floor_ = 0.0;  // the floor of ref (header block)
   int max_iterations_;
   const BoundaryData& boundary_data_;
   SeparableHelmholtz velocity_solver_;            // (rho/dt) M_l + nu K

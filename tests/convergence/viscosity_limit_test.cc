@@ -1,0 +1,143 @@
+// The limit lambda -> 0 of the discrete Oldroyd-B step against the Newtonian step (issue 13 point
+// 1): at a fixed grid the two are different discretisations of the same liquid. With lambda << dt
+// the pointwise update of (35) gives A - I = 2 lambda D(u) + O(lambda^2), so the polymer force is
+// eta_p div(2 D(u)) taken explicitly, through the node-averaged P1 gradient and with A = I at the
+// nodes inside particles, while the Newtonian step carries the same eta_p in the implicit 5-point
+// Laplacian. Away from particles both are second-order consistent; next to a particle the
+// polymer's stress is cut off over a band of one cell. So the gap between the lambda -> 0 limit
+// and the lambda = 0 answer is O(h^2) without particles and O(h) with them, and vanishes as h -> 0:
+// the limit is continuous in the continuum, not bit for bit on a grid.
+// On the disk's channel lambda = 1e-4 stands for the limit: there the drag at lambda = 1e-4 and
+// 1e-5 agree to 2e-7 relative (tests/unit/viscosity_rule_test.cc), against gaps of 4 % and more.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "dlmfd/core/simulation.h"
+
+namespace dlmfd {
+namespace {
+
+constexpr double kLimitLambda = 1e-4;
+constexpr double kBeta = 0.59;
+
+Params Base(double width, double height, int cells_per_unit, double dt) {
+  Params p;
+  p.domain.size = Vec2(width, height);
+  p.domain.h = 1.0 / cells_per_unit;
+  for (auto& side : p.domain.sides)
+    side = {SideType::kWall, Profile::kUniform, Vec2::Zero(), Vec2::Zero()};
+  p.fluid.density = 1.0;
+  p.fluid.viscosity = 1.0;
+  p.time.dt = dt;
+  p.time.end = 0.5;
+  p.solvers.stokes_tolerance = 1e-9;
+  p.solvers.advection_tolerance = 1e-6;
+  p.solvers.multiplier_tolerance = 1e-9;
+  p.output.fields_every = 0.0;
+  p.output.particles_every = 0.0;
+  p.output.checkpoint_every = 0.0;
+  p.particle_mesh.h = p.domain.h * 96.0 / 70.0;
+  p.threads = 1;
+  return p;
+}
+
+void SetLiquid(Params& p, double lambda) {
+  p.fluid.relaxation_time = lambda;
+  p.fluid.solvent_ratio = lambda > 0.0 ? kBeta : 1.0;
+}
+
+// The channel and fixed disk of tests/unit/viscosity_rule_test.cc: the drag at t = 0.5.
+double ChannelDrag(int cells, double dt, double lambda) {
+  Params p = Base(2.0, 1.0, cells, dt);
+  p.domain.sides[static_cast<int>(Side::kLeft)] = {SideType::kVelocity, Profile::kPoiseuille,
+                                                   Vec2::Zero(), Vec2(1.0, 0.0)};
+  p.domain.sides[static_cast<int>(Side::kRight)] = {SideType::kOutflow, Profile::kUniform,
+                                                    Vec2::Zero(), Vec2::Zero()};
+  SetLiquid(p, lambda);
+  ParticleParams disk;
+  disk.center = Vec2(0.6, 0.5);
+  disk.diameter = 0.4;
+  disk.density = 2.0;
+  disk.motion = Motion::kFixed;
+  p.particles.push_back(disk);
+  Simulation sim(p);
+  sim.Run();
+  return sim.state().particles[0].force.x();
+}
+
+double MaxDifference(const std::vector<double>& a, const std::vector<double>& b) {
+  double m = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) m = std::max(m, std::abs(a[k] - b[k]));
+  return m;
+}
+
+// Taylor-Green vortex u = (sin 2 pi x cos 2 pi y, -cos 2 pi x sin 2 pi y) in the periodic unit box
+// (A = I at t = 0), to t = 0.02 (it decays by e^{-8 pi^2 0.02} = 0.21): the velocity field.
+std::vector<double> TaylorGreenVelocity(int cells, double dt, double lambda) {
+  Params p = Base(1.0, 1.0, cells, dt);
+  for (auto& side : p.domain.sides) side.type = SideType::kPeriodic;
+  p.time.end = 0.02;
+  SetLiquid(p, lambda);
+  Simulation sim(p);
+  FlowState start = sim.state();
+  const Grid& g = sim.grid();
+  for (int j = 0; j <= g.ny; ++j) {
+    for (int i = 0; i <= g.nx; ++i) {
+      const double x = 2.0 * M_PI * g.X(i), y = 2.0 * M_PI * g.Y(j);
+      start.u[g.Index(i, j)] = std::sin(x) * std::cos(y);
+      start.v[g.Index(i, j)] = -std::cos(x) * std::sin(y);
+    }
+  }
+  sim.Restore(start);
+  sim.Run();
+  std::vector<double> uv = sim.state().u;
+  uv.insert(uv.end(), sim.state().v.begin(), sim.state().v.end());
+  return uv;
+}
+
+// lambda = dt / 100 stands for the limit here (dt / lambda fixed as dt falls with h^2). Measured
+// max gap 0.04809 / 0.01226 / 0.00305 at h = 1/8, 1/16, 1/32 (orders 1.97, 2.01; 2.00 on to 1/64,
+// 0.00076, left out for its 30 s): second order, as both discretisations of eta_p div 2D(u) are
+// on a smooth periodic flow, the explicit lag of the polymer force being O(dt) = O(h^2) here.
+// Test: every observed order >= 1.8. (On the lid-driven cavity the max gap does not converge:
+// D(u) is unbounded at the lid's corners, where the two discretisations differ at O(1); its L2 gap
+// is first order.)
+TEST(ViscosityLimit, TaylorGreenGapOfTheLambdaToZeroLimitIsSecondOrder) {
+  const int cells[3] = {8, 16, 32};
+  double gap[3];
+  for (int k = 0; k < 3; ++k) {
+    const double dt = 5e-4 * std::pow(16.0 / cells[k], 2);  // nu dt / h^2 fixed at 0.128
+    gap[k] = MaxDifference(TaylorGreenVelocity(cells[k], dt, dt / 100.0),
+                           TaylorGreenVelocity(cells[k], dt, 0.0));
+    std::printf("Taylor-Green h = 1/%d: max |u(lambda -> 0) - u(0)| = %.4g\n", cells[k], gap[k]);
+  }
+  for (int k = 0; k + 1 < 3; ++k) {
+    const double order = std::log2(gap[k] / gap[k + 1]);
+    std::printf("order %.3f\n", order);
+    EXPECT_GE(order, 1.8) << "h = 1/" << cells[k] << " to 1/" << cells[k + 1];
+  }
+}
+
+// Measured relative drag gap 0.0924 / 0.0450 at h = 1/16, 1/32 (dt = 5e-4 on both: eta_p dt /
+// (rho h^2) = 0.21 and 0.84 for the explicit polymer force, the finest stable here), order 1.04:
+// first order, the band of one cell at the disk where A = I cuts the polymer stress off. Test:
+// observed order >= 0.8.
+TEST(ViscosityLimit, DiskGapOfTheLambdaToZeroLimitIsFirstOrder) {
+  const int cells[2] = {16, 32};
+  double gap[2];
+  for (int k = 0; k < 2; ++k) {
+    const double newtonian = ChannelDrag(cells[k], 5e-4, 0.0);
+    gap[k] = std::abs(ChannelDrag(cells[k], 5e-4, kLimitLambda) - newtonian) / newtonian;
+    std::printf("disk h = 1/%d: drag gap %.4g relative\n", cells[k], gap[k]);
+  }
+  const double order = std::log2(gap[0] / gap[1]);
+  std::printf("order %.3f\n", order);
+  EXPECT_GE(order, 0.8);
+}
+
+}  // namespace
+}  // namespace dlmfd
