@@ -20,7 +20,8 @@
 //   log_level / --log-level / DLMFD_LOG_LEVEL              "info"
 //   port_file / --port-file / DLMFD_PORT_FILE              none: write the bound port here once
 //   serving
-// Validation: a listen address that is not loopback requires a tokens file with at least one token.
+// Validation (ValidateConfig): a listen address that is not loopback requires a tokens file; a
+// tokens file must hold at least one token.
 #pragma once
 
 #include <cstdint>
@@ -62,8 +63,14 @@ using EnvLookup = std::function<const char*(const char*)>;
 // Returns false (and prints help) when --help was given.
 bool LoadConfig(int argc, const char* const* argv, const EnvLookup& env, Config& config);
 
-// Throws ConfigError when the configuration is unusable.
+// Throws ConfigError when the configuration is unusable: a listen address that is not HOST:PORT
+// with a port 0-65535 (0: pick a free one) or unix:PATH, a tokens_file without tokens, a solver
+// that is not an executable file, a value out of its range.
 void ValidateConfig(Config& config);
+
+// What is usable but unwise, one line each for the log at start: a tokens file that its group or
+// others can read.
+std::vector<std::string> ConfigWarnings(const Config& config);
 
 // True for 127.0.0.0/8, ::1, localhost and unix: addresses.
 bool IsLoopbackAddress(const std::string& listen);

@@ -49,15 +49,23 @@ void Daemon::Start() {
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  for (const auto& warning : ConfigWarnings(config_)) spdlog::warn("{}", warning);
   grpc::ServerBuilder builder;
+  // One daemon per port: gRPC sets SO_REUSEPORT by default, and then a second daemon would bind
+  // the same port and the kernel would split the clients between the two.
+  builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
   builder.AddListeningPort(config_.listen, grpc::InsecureServerCredentials(), &port_);
   builder.RegisterService(service_.get());
   builder.SetMaxReceiveMessageSize(
       static_cast<int>(std::min<int64_t>(config_.max_scene_bytes * 2 + (1 << 20), INT32_MAX)));
   server_ = builder.BuildAndStart();
   if (!server_ || port_ == 0) {
-    throw ConfigError("cannot listen on " + config_.listen);
+    throw ConfigError("cannot listen on " + config_.listen +
+                      ": the address is in use (by another dlmfdd?) or not available here "
+                      "(change listen, --listen or DLMFD_LISTEN)");
   }
+  // The health service answers for the server ("") and for the one service it serves.
+  server_->GetHealthCheckService()->SetServingStatus(v1::Jobs::service_full_name(), true);
   scheduler_->Start();
   spdlog::info("dlmfdd listening on {} (port {}), data in {}, {} concurrent jobs, solver {}",
                config_.listen, port_, config_.data_dir, config_.max_concurrent, config_.solver);
