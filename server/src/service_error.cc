@@ -41,6 +41,15 @@ std::string EscapeControl(std::string_view text, bool keep_layout) {
 
 }  // namespace
 
+void RequireNoNul(std::string_view field, std::string_view text) {
+  const size_t at = text.find('\0');
+  if (at == std::string_view::npos) return;
+  throw ServiceError(grpc::StatusCode::INVALID_ARGUMENT,
+                     std::string(field) + ": \"" + CutForMessage(text) +
+                         "\" contains a NUL byte (at byte " + std::to_string(at) +
+                         "): expected text without NUL bytes");
+}
+
 std::string CutForMessage(std::string_view value, size_t keep) {
   if (value.size() <= keep) return EscapeControl(value, false);
   return EscapeControl(value.substr(0, HeadBoundary(value, keep)), false) + "... (" +

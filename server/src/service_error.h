@@ -30,6 +30,10 @@ inline void Require(bool ok, const std::string& message) {
   if (!ok) throw ServiceError(grpc::StatusCode::INVALID_ARGUMENT, message);
 }
 
+// Throws ServiceError INVALID_ARGUMENT naming `field` when text holds a NUL byte: the C interfaces
+// a text reaches (paths, logs) would end it there, so what is checked would not be what is used.
+void RequireNoNul(std::string_view field, std::string_view text);
+
 // How many bytes of one value an error message echoes, and of a whole message: a status message
 // travels in gRPC metadata (a client refuses more than 8 KiB of it), and a megabyte of a bad value
 // helps nobody.

@@ -1,7 +1,8 @@
 // Unit tests of the daemon's parts without a process: the SQLite store, the configuration, the
-// authenticator, the watcher queue's gap rules and snapshot downsampling, the sweep expansion and
-// the checks of result-file paths.
+// authenticator, the watcher queue's gap rules and snapshot downsampling, the sweep expansion, the
+// checks of result-file paths and the cutting of error messages.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -361,6 +362,56 @@ TEST(ResultFiles, ListsSortedAndChecksRequestedPaths) {
   EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, "out/passwd"); }), StatusCode::INVALID_ARGUMENT);
   EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, "absent.h5"); }), StatusCode::NOT_FOUND);
   EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, "fields"); }), StatusCode::NOT_FOUND);
+}
+
+TEST(ResultFiles, SymbolicLinksAndNulBytesLeadNowhere) {
+  dlmfd::testing::TempDir dir;
+  const std::filesystem::path root = dir.path() + "/results";
+  std::filesystem::create_directories(root / "fields");
+  std::filesystem::create_directories(dir.path() + "/elsewhere");
+  std::ofstream(root / "summary.json") << "{}";
+  std::ofstream(dir.path() + "/elsewhere/secret") << "secret";
+  std::filesystem::create_symlink(dir.path() + "/elsewhere/secret", root / "secret");
+  std::filesystem::create_symlink(dir.path() + "/elsewhere", root / "elsewhere");
+  std::filesystem::create_symlink(root / "summary.json", root / "fields" / "summary.json");
+  EXPECT_EQ(ResultFilePaths(root), (std::vector<std::string>{"summary.json"}));
+  using grpc::StatusCode;
+  for (const std::string link : {"secret", "elsewhere/secret", "fields/summary.json"}) {
+    const grpc::Status status = Guarded([&] { CheckedResultPath(root, link); });
+    EXPECT_EQ(status.error_code(), StatusCode::INVALID_ARGUMENT) << link;
+    EXPECT_NE(status.error_message().find("symbolic link"), std::string::npos)
+        << status.error_message();
+  }
+  EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, std::string("summary.json\0x", 14)); }),
+            StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, "summary.json/x"); }),
+            StatusCode::INVALID_ARGUMENT);
+  const int fd = OpenResultFile(root, "summary.json");
+  EXPECT_GE(fd, 0);
+  close(fd);
+}
+
+TEST(ServiceError, MessagesCutLongValuesAndShowControlBytes) {
+  EXPECT_EQ(CutForMessage("0.1"), "0.1");
+  EXPECT_EQ(CutForMessage(std::string("a\0b\n", 4)), "a\\x00b\\x0a");
+  const std::string cut = CutForMessage(std::string(1000, 'x'), 10);
+  EXPECT_EQ(cut, "xxxxxxxxxx... (1000 bytes)");
+  // A cut never splits a UTF-8 character: "é" is 2 bytes, 10 bytes keep 4 of them whole.
+  std::string accents;
+  for (int i = 0; i < 20; ++i) accents += "\xc3\xa9";
+  EXPECT_EQ(CutForMessage(accents, 9), accents.substr(0, 8) + "... (40 bytes)");
+  const std::string message =
+      "fluid.viscosity = \"" + std::string(1'000'000, 'x') + "\" is not allowed: expected > 0";
+  const std::string bounded = BoundMessage(message);
+  EXPECT_LE(bounded.size(), kMessageBytes + 40);
+  EXPECT_EQ(bounded.rfind("fluid.viscosity = \"", 0), 0u);
+  const std::string allowed = "\" is not allowed: expected > 0";
+  EXPECT_EQ(bounded.substr(bounded.size() - allowed.size()), allowed);
+  EXPECT_NE(bounded.find("bytes cut"), std::string::npos);
+  EXPECT_EQ(BoundMessage("short\nmessage"), "short\nmessage");
+  const grpc::Status status = ToStatus(std::make_exception_ptr(
+      ServiceError(grpc::StatusCode::INVALID_ARGUMENT, std::string(100'000, 'm'))));
+  EXPECT_LE(status.error_message().size(), kMessageBytes + 40);
 }
 
 }  // namespace
