@@ -11,10 +11,13 @@
 
 #include <chrono>
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "dlmfd/io/atomic_file.h"
 #include "job_proto.h"
+#include "unreadable_request.h"
 
 namespace dlmfd::server {
 namespace fs = std::filesystem;
@@ -56,6 +59,9 @@ void Daemon::Start() {
   builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
   builder.AddListeningPort(config_.listen, grpc::InsecureServerCredentials(), &port_);
   builder.RegisterService(service_.get());
+  std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> interceptors;
+  interceptors.push_back(std::make_unique<UnreadableRequestFactory>());
+  builder.experimental().SetInterceptorCreators(std::move(interceptors));
   builder.SetMaxReceiveMessageSize(
       static_cast<int>(std::min<int64_t>(config_.max_scene_bytes * 2 + (1 << 20), INT32_MAX)));
   server_ = builder.BuildAndStart();

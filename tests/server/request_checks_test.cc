@@ -1,10 +1,13 @@
 // The real dlmfdd on loopback with its SQLite store: requests it must refuse and how it says so
-// (NUL bytes, huge values, a reused client_request_id, overrides over the scene size limit), what a
-// queued job reports, and result files that are symbolic links.
+// (unreadable bodies, NUL bytes, huge values, a reused client_request_id, overrides over the scene
+// size limit), what a queued job reports, and result files that are symbolic links.
+#include <grpcpp/generic/generic_stub.h>
 #include <gtest/gtest.h>
 
+#include <condition_variable>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <set>
 #include <string>
 
@@ -49,6 +52,54 @@ grpc::Status FetchStatus(v1::Jobs::Stub& stub, const std::string& job_id, const 
     if (files) (*files)[chunk.path()] += chunk.data();
   }
   return reader->Finish();
+}
+
+// Sends `body` as the raw request of `method` ("/dlmfd.v1.Jobs/Submit"); returns the status.
+grpc::Status RawCall(const DaemonProcess& daemon, const std::string& method,
+                     const std::string& body) {
+  grpc::GenericStub generic(daemon.Channel());
+  grpc::ClientContext context;
+  grpc::Slice slice(body);
+  grpc::ByteBuffer request(&slice, 1), reply;
+  std::mutex mutex;
+  std::condition_variable done;
+  bool finished = false;
+  grpc::Status status;
+  generic.UnaryCall(&context, method, grpc::StubOptions(), &request, &reply, [&](grpc::Status s) {
+    std::lock_guard lock(mutex);
+    status = std::move(s);
+    finished = true;
+    done.notify_all();
+  });
+  std::unique_lock lock(mutex);
+  done.wait(lock, [&] { return finished; });
+  return status;
+}
+
+TEST(RequestChecks, AnUnreadableRequestBodyIsInvalidArgumentNamingTheRequest) {
+  TempDir dir;
+  DaemonProcess daemon(dir.path() + "/data");
+  ASSERT_TRUE(daemon.Start()) << daemon.Log();
+  // Field 1 announced with 5 bytes and cut after 2; field 1 (a string) that is not UTF-8.
+  const std::string truncated(
+      "\x0a\x05"
+      "ab",
+      4),
+      not_utf8("\x0a\x02\xff\xfe", 4);
+  for (const auto& [method, type] :
+       std::vector<std::pair<std::string, std::string>>{{"Submit", "dlmfd.v1.SubmitRequest"},
+                                                        {"Get", "dlmfd.v1.GetRequest"},
+                                                        {"Watch", "dlmfd.v1.WatchRequest"},
+                                                        {"Fetch", "dlmfd.v1.FetchRequest"}}) {
+    for (const std::string& body : {truncated, not_utf8}) {
+      ExpectNamed(RawCall(daemon, "/dlmfd.v1.Jobs/" + method, body), StatusCode::INVALID_ARGUMENT,
+                  type);
+    }
+  }
+  // A method that does not exist stays UNIMPLEMENTED.
+  EXPECT_EQ(RawCall(daemon, "/dlmfd.v1.Jobs/NoSuchRpc", "").error_code(),
+            StatusCode::UNIMPLEMENTED);
+  EXPECT_TRUE(daemon.Healthy());
 }
 
 TEST(RequestChecks, NulBytesAreRefusedNamingTheField) {
