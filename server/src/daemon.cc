@@ -92,6 +92,8 @@ void Daemon::Shutdown() {
     server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
   }
   if (scheduler_) scheduler_->Stop();
+  // The solvers have stopped: no more events; the store learns the numbers actually issued.
+  if (hub_) hub_->RecordIssued();
   if (server_) server_->Wait();
 }
 

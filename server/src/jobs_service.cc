@@ -200,6 +200,12 @@ JobsService::JobsService(const Config& config, JobStore& store, EventHub& hub, S
       scheduler_(scheduler),
       auth_(config.tokens) {}
 
+v1::Job JobsService::Reported(const JobRecord& job) {
+  v1::Job out = ToProto(job);
+  if (auto issued = hub_.LastIssued(job.id)) out.set_last_seq(*issued);
+  return out;
+}
+
 JobRecord JobsService::OwnJob(const std::string& user, const std::string& job_id) {
   CheckJobId(job_id);
   auto job = store_.Get(job_id);
@@ -272,7 +278,7 @@ grpc::ServerUnaryReactor* JobsService::Submit(grpc::CallbackServerContext* conte
 grpc::ServerUnaryReactor* JobsService::Get(grpc::CallbackServerContext* context,
                                            const v1::GetRequest* request, v1::Job* reply) {
   return Reply(context, "Get",
-               [&] { *reply = ToProto(OwnJob(auth_.User(*context), request->job_id())); });
+               [&] { *reply = Reported(OwnJob(auth_.User(*context), request->job_id())); });
 }
 
 grpc::ServerUnaryReactor* JobsService::List(grpc::CallbackServerContext* context,
@@ -308,7 +314,7 @@ grpc::ServerUnaryReactor* JobsService::List(grpc::CallbackServerContext* context
     auto jobs = store_.List(filter);
     const bool more = static_cast<int>(jobs.size()) == filter.limit;
     if (more) jobs.pop_back();
-    for (const auto& job : jobs) *reply->add_jobs() = ToProto(job);
+    for (const auto& job : jobs) *reply->add_jobs() = Reported(job);
     if (more) reply->set_next_page_token(std::to_string(jobs.back().ordinal));
   });
 }
@@ -317,7 +323,7 @@ grpc::ServerUnaryReactor* JobsService::Cancel(grpc::CallbackServerContext* conte
                                               const v1::CancelRequest* request, v1::Job* reply) {
   return Reply(context, "Cancel", [&] {
     JobRecord job = OwnJob(auth_.User(*context), request->job_id());
-    *reply = ToProto(scheduler_.Cancel(job.id));
+    *reply = Reported(scheduler_.Cancel(job.id));
   });
 }
 

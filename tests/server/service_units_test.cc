@@ -12,6 +12,7 @@
 
 #include "auth.h"
 #include "config.h"
+#include "event_hub.h"
 #include "job_store.h"
 #include "result_files.h"
 #include "service_error.h"
@@ -253,6 +254,35 @@ TEST(WatcherQueue, StateChangesAreNeverDropped) {
   EXPECT_EQ(seqs, (std::vector<int64_t>{1, 2}));
 }
 
+TEST(WatcherQueue, AGapNamesOnlyWhatWasDroppedAndComesWhereItWas) {
+  WatchOptions options;
+  options.capacity = 3;
+  WatcherQueue queue(options);
+  auto state = [](int64_t seq) {
+    v1::WatchEvent event;
+    event.set_seq(seq);
+    event.mutable_state()->set_state(v1::RUNNING);
+    return event;
+  };
+  // State changes 1, 5, 7 are kept; progress 2, 3, 4 and 6 are dropped around them.
+  queue.Push(state(1));
+  queue.Push(Progress(2));
+  queue.Push(Progress(3));
+  queue.Push(Progress(4));
+  queue.Push(state(5));
+  queue.Push(Progress(6));
+  queue.Push(state(7));
+  std::vector<std::string> sent;
+  v1::WatchEvent out;
+  while (queue.Pop(&out) == WatcherQueue::Next::kEvent) {
+    sent.push_back(out.has_gap() ? "gap " + std::to_string(out.gap().from_seq()) + "-" +
+                                       std::to_string(out.gap().to_seq())
+                                 : std::to_string(out.seq()));
+  }
+  EXPECT_EQ(sent, (std::vector<std::string>{"1", "gap 2-4", "5", "gap 6-6", "7"}));
+  EXPECT_EQ(queue.dropped(), 4);
+}
+
 TEST(WatcherQueue, NewerSnapshotReplacesUnsentOne) {
   WatchOptions options;
   options.include_snapshots = true;
@@ -283,6 +313,41 @@ TEST(WatcherQueue, SnapshotsOnlyWhenAskedAndCancelTakesToken) {
   EXPECT_TRUE(queue.Cancel());
   EXPECT_EQ(queue.Pop(&out), WatcherQueue::Next::kClosed);
   EXPECT_FALSE(queue.Push(Progress(2)));
+}
+
+TEST(EventHub, ACleanRestartResumesRightAfterTheLastNumberIssued) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  store.InsertJobs({MakeJob("a", 0)}, "local", "");
+  store.MarkRunning("a", 1.0);
+  {
+    EventHub hub(store, 16);
+    hub.PublishState(*store.Get("a"));  // seq 1
+    for (int i = 0; i < 3; ++i) hub.Publish("a", Progress(0));
+    EXPECT_EQ(hub.LastIssued("a"), 4);
+    hub.RecordIssued();  // the daemon's clean shutdown
+  }
+  EXPECT_EQ(store.Get("a")->last_seq, 4);
+  // The next daemon: a watcher that saw everything reconnects and misses nothing.
+  EventHub hub(store, 16);
+  auto queue = std::make_shared<WatcherQueue>(WatchOptions{});
+  queue->SetWake([] {});
+  hub.Attach(*store.Get("a"), 4, queue);
+  hub.Publish("a", Progress(0));
+  store.MarkFinished("a", JobState::kCompleted, "", 2.0);
+  hub.PublishState(*store.Get("a"));
+  std::vector<int64_t> seqs;
+  v1::WatchEvent out;
+  while (queue->Pop(&out) == WatcherQueue::Next::kEvent) {
+    EXPECT_FALSE(out.has_gap()) << out.DebugString();
+    seqs.push_back(out.seq());
+    if (out.has_state()) {
+      EXPECT_EQ(out.state().job().last_seq(), out.seq());
+    }
+  }
+  EXPECT_EQ(seqs, (std::vector<int64_t>{4, 5, 6}));
+  // A finished job's record holds the last number issued, not the end of a reserved block.
+  EXPECT_EQ(store.Get("a")->last_seq, 6);
 }
 
 TEST(Downsample, KeepsCornersAndLimits) {
