@@ -1,8 +1,12 @@
 #include "config.h"
 
+#include <sys/stat.h>
 #include <toml++/toml.h>
+#include <unistd.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +14,8 @@
 #include <optional>
 #include <regex>
 #include <sstream>
+
+#include "service_error.h"
 
 namespace dlmfd::server {
 namespace fs = std::filesystem;
@@ -126,7 +132,66 @@ std::string DefaultSolver(const char* argv0) {
   return sibling.string();
 }
 
+// Throws unless listen is unix:PATH or HOST:PORT with a port from 0 (pick a free one) to 65535; an
+// IPv6 host is written in brackets. gRPC would wrap a larger port silently (99999 -> 34463).
+void ValidateListen(const std::string& listen) {
+  if (listen.rfind("unix:", 0) == 0 || listen.rfind("unix-abstract:", 0) == 0) return;
+  size_t colon = std::string::npos;
+  if (!listen.empty() && listen.front() == '[') {
+    const size_t close = listen.find(']');
+    if (close != std::string::npos && close + 1 < listen.size() && listen[close + 1] == ':') {
+      colon = close + 1;
+    }
+  } else if (listen.find(':') == listen.rfind(':')) {
+    colon = listen.find(':');
+  }
+  const std::string port = colon == std::string::npos ? "" : listen.substr(colon + 1);
+  const bool digits =
+      !port.empty() && port.size() <= 5 &&
+      std::all_of(port.begin(), port.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (colon == 0 || !digits || std::stoi(port) > 65535) {
+    throw ConfigError("listen = \"" + CutForMessage(listen) +
+                      "\" is not allowed: expected HOST:PORT (an IPv6 host in brackets) or "
+                      "unix:PATH, with a port from 0 to 65535 (0: pick a free port)");
+  }
+}
+
+// Throws unless the solver is an executable regular file: a job would otherwise fail only when it
+// first runs, long after the daemon said it was ready.
+void ValidateSolver(const std::string& solver) {
+  std::error_code error;
+  const fs::file_status status = fs::status(solver, error);
+  const char* why = nullptr;
+  if (!fs::exists(status)) {
+    why = "it does not exist";
+  } else if (fs::is_directory(status)) {
+    why = "it is a directory";
+  } else if (!fs::is_regular_file(status) || access(solver.c_str(), X_OK) != 0) {
+    why = "it is not a regular file the daemon may execute";
+  }
+  if (why) {
+    throw ConfigError("solver = \"" + CutForMessage(solver) +
+                      "\" (--solver, DLMFD_SOLVER) is not an executable file: " + why +
+                      " (expected the path of dlmfd-solve)");
+  }
+}
+
 }  // namespace
+
+std::vector<std::string> ConfigWarnings(const Config& config) {
+  std::vector<std::string> warnings;
+  if (!config.tokens_file.empty()) {
+    struct stat info {};
+    if (stat(config.tokens_file.c_str(), &info) == 0 && (info.st_mode & (S_IRWXG | S_IRWXO))) {
+      char mode[8];
+      std::snprintf(mode, sizeof mode, "%04o", static_cast<unsigned>(info.st_mode & 07777));
+      warnings.push_back("tokens_file = \"" + config.tokens_file +
+                         "\" can be read by its group or other users (mode " + mode +
+                         "): anyone who reads it can act as any user in it; chmod 600 it");
+    }
+  }
+  return warnings;
+}
 
 bool IsLoopbackAddress(const std::string& listen) {
   if (listen.rfind("unix:", 0) == 0) return true;
@@ -177,6 +242,7 @@ std::map<std::string, std::string> LoadTokens(const std::string& path) {
 
 void ValidateConfig(Config& config) {
   if (config.listen.empty()) throw ConfigError("listen must not be empty");
+  ValidateListen(config.listen);
   if (config.data_dir.empty()) throw ConfigError("data_dir must not be empty");
   if (config.max_concurrent < 1 || config.max_concurrent > kMaxConcurrentLimit) {
     throw ConfigError("max_concurrent = " + std::to_string(config.max_concurrent) +
@@ -201,7 +267,15 @@ void ValidateConfig(Config& config) {
                       " is not allowed: expected trace, debug, info, warn, error or off");
   }
   config.tokens.clear();
-  if (!config.tokens_file.empty()) config.tokens = LoadTokens(config.tokens_file);
+  if (!config.tokens_file.empty()) {
+    config.tokens = LoadTokens(config.tokens_file);
+    // An empty file must not mean "no authentication": whoever set tokens_file asked for it.
+    if (config.tokens.empty()) {
+      throw ConfigError("tokens_file = \"" + CutForMessage(config.tokens_file) +
+                        "\" has no tokens: add lines \"token user\", or leave tokens_file unset "
+                        "to run without authentication (loopback only)");
+    }
+  }
   if (!IsLoopbackAddress(config.listen) && config.tokens.empty()) {
     throw ConfigError(
         "refusing to listen on " + config.listen +
@@ -209,6 +283,7 @@ void ValidateConfig(Config& config) {
         "(set tokens_file to a file of \"token user\" lines, or listen on 127.0.0.1)");
   }
   if (config.solver.empty()) throw ConfigError("solver must not be empty");
+  ValidateSolver(config.solver);
 }
 
 bool LoadConfig(int argc, const char* const* argv, const EnvLookup& env, Config& config) {

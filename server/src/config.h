@@ -1,26 +1,25 @@
 // Config: dlmfdd's one validated configuration.
 //
 // Precedence, highest first: command-line flag > environment (DLMFD_*) > TOML config file (--config
-// or DLMFD_CONFIG) > defaults. Keys (TOML key / flag / environment):
-//   listen / --listen / DLMFD_LISTEN                       "127.0.0.1:7443" (loopback)
-//   data_dir / --data-dir / DLMFD_DATA_DIR                 "$XDG_DATA_HOME/dlmfd" or
-//   "~/.local/share/dlmfd" max_concurrent / --max-concurrent / DLMFD_MAX_CONCURRENT          2
-//   solver / --solver / DLMFD_SOLVER                       dlmfd-solve next to the dlmfdd
-//   executable tokens_file / --tokens-file / DLMFD_TOKENS_FILE        none (lines "token user")
-//   max_scene_bytes / --max-scene-bytes / DLMFD_MAX_SCENE_BYTES       1 MiB
-//   max_grid_nodes / --max-grid-nodes / DLMFD_MAX_GRID_NODES          4,000,000
-//   max_memory_mb / --max-memory-mb / DLMFD_MAX_MEMORY_MB             4096 (estimated per job)
-//   max_queued / --max-queued / DLMFD_MAX_QUEUED           10000 unfinished jobs
-//   watcher_buffer / --watcher-buffer / DLMFD_WATCHER_BUFFER          256 events per watcher
-//   event_ring / --event-ring / DLMFD_EVENT_RING           1024 recent events kept per job
-//   solver_threads / --solver-threads / DLMFD_SOLVER_THREADS          0: OMP_NUM_THREADS of each
-//   solver is
-//                                                          max(1, cores / max_concurrent) unless
-//                                                          the daemon's own environment sets it
-//   log_level / --log-level / DLMFD_LOG_LEVEL              "info"
-//   port_file / --port-file / DLMFD_PORT_FILE              none: write the bound port here once
-//   serving
-// Validation: a listen address that is not loopback requires a tokens file with at least one token.
+// or DLMFD_CONFIG) > defaults. Each TOML key has the flag --key-with-dashes and the environment
+// variable DLMFD_KEY (docs/api.md has the table). Keys and defaults:
+//   listen            "127.0.0.1:7443" (loopback); HOST:PORT with a port 0-65535 (0: a free one)
+//   data_dir          "$XDG_DATA_HOME/dlmfd" or "~/.local/share/dlmfd"
+//   max_concurrent    2
+//   solver            dlmfd-solve next to the dlmfdd executable; must be an executable file
+//   tokens_file       none (lines "token user"); when set, at least one token
+//   max_scene_bytes   1 MiB, the scene and its overrides together
+//   max_grid_nodes    4,000,000
+//   max_memory_mb     4096 (estimated per job)
+//   max_queued        10000 unfinished jobs
+//   watcher_buffer    256 events per watcher
+//   event_ring        1024 recent events kept per job
+//   solver_threads    0: OMP_NUM_THREADS of each solver is max(1, cores / max_concurrent) unless
+//                     the daemon's own environment sets it
+//   log_level         "info"
+//   port_file         none: write the bound port here once serving
+// Validation (ValidateConfig): a listen address that is not loopback requires a tokens file; a
+// tokens file must hold at least one token.
 #pragma once
 
 #include <cstdint>
@@ -62,8 +61,14 @@ using EnvLookup = std::function<const char*(const char*)>;
 // Returns false (and prints help) when --help was given.
 bool LoadConfig(int argc, const char* const* argv, const EnvLookup& env, Config& config);
 
-// Throws ConfigError when the configuration is unusable.
+// Throws ConfigError when the configuration is unusable: a listen address that is not HOST:PORT
+// with a port 0-65535 (0: pick a free one) or unix:PATH, a tokens_file without tokens, a solver
+// that is not an executable file, a value out of its range.
 void ValidateConfig(Config& config);
+
+// What is usable but unwise, one line each for the log at start: a tokens file that its group or
+// others can read.
+std::vector<std::string> ConfigWarnings(const Config& config);
 
 // True for 127.0.0.0/8, ::1, localhost and unix: addresses.
 bool IsLoopbackAddress(const std::string& listen);

@@ -11,10 +11,13 @@
 
 #include <chrono>
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "dlmfd/io/atomic_file.h"
 #include "job_proto.h"
+#include "unreadable_request.h"
 
 namespace dlmfd::server {
 namespace fs = std::filesystem;
@@ -49,15 +52,26 @@ void Daemon::Start() {
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  for (const auto& warning : ConfigWarnings(config_)) spdlog::warn("{}", warning);
   grpc::ServerBuilder builder;
+  // One daemon per port: gRPC sets SO_REUSEPORT by default, and then a second daemon would bind
+  // the same port and the kernel would split the clients between the two.
+  builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
   builder.AddListeningPort(config_.listen, grpc::InsecureServerCredentials(), &port_);
   builder.RegisterService(service_.get());
+  std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> interceptors;
+  interceptors.push_back(std::make_unique<UnreadableRequestFactory>());
+  builder.experimental().SetInterceptorCreators(std::move(interceptors));
   builder.SetMaxReceiveMessageSize(
       static_cast<int>(std::min<int64_t>(config_.max_scene_bytes * 2 + (1 << 20), INT32_MAX)));
   server_ = builder.BuildAndStart();
   if (!server_ || port_ == 0) {
-    throw ConfigError("cannot listen on " + config_.listen);
+    throw ConfigError("cannot listen on " + config_.listen +
+                      ": the address is in use (by another dlmfdd?) or not available here "
+                      "(change listen, --listen or DLMFD_LISTEN)");
   }
+  // The health service answers for the server ("") and for the one service it serves.
+  server_->GetHealthCheckService()->SetServingStatus(v1::Jobs::service_full_name(), true);
   scheduler_->Start();
   spdlog::info("dlmfdd listening on {} (port {}), data in {}, {} concurrent jobs, solver {}",
                config_.listen, port_, config_.data_dir, config_.max_concurrent, config_.solver);
@@ -78,6 +92,8 @@ void Daemon::Shutdown() {
     server_->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
   }
   if (scheduler_) scheduler_->Stop();
+  // The solvers have stopped: no more events; the store learns the numbers actually issued.
+  if (hub_) hub_->RecordIssued();
   if (server_) server_->Wait();
 }
 

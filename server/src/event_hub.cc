@@ -83,7 +83,8 @@ void EventHub::PublishState(const JobRecord& job) {
   {
     std::lock_guard lock(channel->mutex);
     channel->job = ToProto(job);
-    channel->job.set_last_seq(channel->reserved);
+    // The state event's own number: last_seq reports what was issued, never the reserved block.
+    channel->job.set_last_seq(channel->last_seq + 1);
     v1::WatchEvent event;
     auto* state = event.mutable_state();
     state->set_state(channel->job.state());
@@ -91,6 +92,9 @@ void EventHub::PublishState(const JobRecord& job) {
     *state->mutable_job() = channel->job;
     Deliver(*channel, std::move(event), wake);
     if (IsFinished(job.state)) {
+      // No number of this channel follows: the store keeps the last one issued, and a later run
+      // of the job (a retry) continues after it.
+      store_.SetLastSeq(channel->job_id, channel->last_seq);
       channel->finished = true;
       for (const auto& watcher : channel->watchers) {
         if (watcher->PushEnd()) wake.push_back(watcher);
@@ -152,6 +156,7 @@ bool EventHub::Attach(const JobRecord& job, int64_t from_seq,
   state->set_state(channel->job.state());
   state->set_reason(channel->job.reason());
   *state->mutable_job() = channel->job;
+  state->mutable_job()->set_last_seq(channel->last_seq);
   push(current);
   const int64_t first_held =
       channel->ring.empty() ? channel->last_seq + 1 : channel->ring.front().seq();
@@ -186,6 +191,24 @@ void EventHub::Detach(const std::string& job_id, const WatcherQueue* watcher) {
       break;
     }
   }
+}
+
+void EventHub::RecordIssued() {
+  std::lock_guard lock(mutex_);
+  for (auto& [id, channel] : channels_) {
+    std::lock_guard channel_lock(channel->mutex);
+    if (channel->reserved == channel->last_seq) continue;
+    store_.SetLastSeq(id, channel->last_seq);
+    // An event after this reserves a block again.
+    channel->reserved = channel->last_seq;
+  }
+}
+
+std::optional<int64_t> EventHub::LastIssued(const std::string& job_id) {
+  auto channel = Find(job_id);
+  if (!channel) return std::nullopt;
+  std::lock_guard lock(channel->mutex);
+  return channel->last_seq;
 }
 
 size_t EventHub::ChannelCount() {

@@ -4,7 +4,12 @@
 // events (snapshots excluded), the latest snapshot (a newer one replaces it), the job as of its
 // last state change, and the attached WatcherQueues. Publishing assigns the next sequence number
 // and pushes to every watcher without blocking. Sequence numbers are reserved in the store in
-// blocks of kSeqBlock, so they keep increasing across daemon restarts. A job's final state change
+// blocks of kSeqBlock, so they keep increasing across daemon restarts; the store holds the last
+// number issued once a job finishes and after a clean shutdown (RecordIssued), so numbers resume
+// right after it and a reconnecting watcher's Gap names only numbers that were issued. After a
+// kill -9 the store holds the block's end: numbers resume after it, and a Gap across the restart
+// may name numbers of that block that were never issued. A job's last_seq (Get, List, Watch) is
+// always the last number issued. A job's final state change
 // ends every watch and drops the channel; a later Watch of a finished job replays the final state
 // from the store.
 #pragma once
@@ -13,6 +18,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +45,11 @@ class EventHub {
   // first if some of those are no longer held). Returns true when the caller took the send token.
   bool Attach(const JobRecord& job, int64_t from_seq, const std::shared_ptr<WatcherQueue>& watcher);
   void Detach(const std::string& job_id, const WatcherQueue* watcher);
+
+  // Writes each channel's last issued number to the store (at shutdown, after the solvers stop).
+  void RecordIssued();
+  // The last number issued for a job with a channel (the store may hold a reserved block's end).
+  std::optional<int64_t> LastIssued(const std::string& job_id);
 
   size_t ChannelCount();
   size_t WatcherCount(const std::string& job_id);

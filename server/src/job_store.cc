@@ -342,8 +342,8 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
   for (auto& job : jobs) {
     Statement insert(db_,
                      "INSERT INTO jobs (id, name, owner, state, reason, priority, sweep_id, "
-                     "created_time, results_dir, scene, overrides, client_request_id, warnings) "
-                     "VALUES (?, ?, ?, ?, '', ?, ?, ?, ?, ?, ?, ?, ?)");
+                     "created_time, end_time, results_dir, scene, overrides, client_request_id, "
+                     "warnings) VALUES (?, ?, ?, ?, '', ?, ?, ?, ?, ?, ?, ?, ?, ?)");
     insert.Bind(job.id)
         .Bind(job.name)
         .Bind(job.owner)
@@ -351,6 +351,7 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
         .Bind(job.priority)
         .Bind(job.sweep_id)
         .Bind(job.created_time)
+        .Bind(job.end_time)
         .Bind(job.results_dir)
         .Bind(job.scene)
         .Bind(Join(job.overrides, '\n'))

@@ -42,17 +42,20 @@ std::string NewId(char kind) {
 
 void CheckJobId(const std::string& id) {
   Require(!id.empty(), "job_id: empty");
+  RequireNoNul("job_id", id);
   Require(id.size() <= kMaxJobIdBytes,
           "job_id: longer than " + std::to_string(kMaxJobIdBytes) + " bytes");
 }
 
 void CheckLabels(const std::string& name, const std::vector<std::string>& tags, int priority,
                  const std::string& request_id, size_t override_count) {
+  RequireNoNul("name", name);
   Require(name.size() <= kMaxNameBytes,
           "name: longer than " + std::to_string(kMaxNameBytes) + " bytes");
   Require(name.find('\n') == std::string::npos, "name: contains a line break");
   Require(static_cast<int>(tags.size()) <= kMaxTags, "tags: more than " + std::to_string(kMaxTags));
   for (const auto& tag : tags) {
+    RequireNoNul("tags", tag);
     Require(!tag.empty() && tag.size() <= kMaxTagBytes,
             "tags: each must have 1 to " + std::to_string(kMaxTagBytes) + " bytes");
     Require(tag.find_first_of("\n,") == std::string::npos,
@@ -61,10 +64,48 @@ void CheckLabels(const std::string& name, const std::vector<std::string>& tags, 
   Require(priority >= -kMaxPriority && priority <= kMaxPriority,
           "priority = " + std::to_string(priority) + " is not allowed: expected " +
               std::to_string(-kMaxPriority) + " to " + std::to_string(kMaxPriority));
+  RequireNoNul("client_request_id", request_id);
   Require(request_id.size() <= kMaxRequestIdBytes,
           "client_request_id: longer than " + std::to_string(kMaxRequestIdBytes) + " bytes");
   Require(static_cast<int>(override_count) <= kMaxOverrides,
           "overrides: more than " + std::to_string(kMaxOverrides));
+}
+
+// The scene text and its overrides: free of NUL bytes, and together within max_scene_bytes (the
+// overrides are part of the scene as run: a limit on the file alone would not bound it).
+void CheckSceneText(const std::string& scene, const std::vector<std::string>& overrides,
+                    int64_t max_scene_bytes) {
+  RequireNoNul("scene", scene);
+  int64_t bytes = static_cast<int64_t>(scene.size());
+  for (const auto& text : overrides) {
+    RequireNoNul("overrides", text);
+    bytes += static_cast<int64_t>(text.size());
+  }
+  if (bytes > max_scene_bytes) {
+    throw ServiceError(
+        StatusCode::RESOURCE_EXHAUSTED,
+        "scene and overrides: " + std::to_string(bytes) +
+            " bytes, over the limit of max_scene_bytes = " + std::to_string(max_scene_bytes));
+  }
+}
+
+// A retry of client_request_id must repeat the request: the same scene and, job by job, the same
+// overrides. Anything else is a new request under a used id.
+void CheckSameRequest(const std::string& request_id, const std::vector<JobRecord>& earlier,
+                      const std::string& scene,
+                      const std::vector<std::vector<std::string>>& overrides) {
+  bool same = earlier.size() == overrides.size();
+  for (size_t i = 0; same && i < earlier.size(); ++i) {
+    same = earlier[i].scene == scene && earlier[i].overrides == overrides[i];
+  }
+  if (!same) {
+    throw ServiceError(
+        StatusCode::ALREADY_EXISTS,
+        "client_request_id = \"" + CutForMessage(request_id) + "\" was used for " +
+            (earlier.empty() ? std::string("another request") : "job " + earlier.front().id) +
+            " with another scene or other overrides: a retry must repeat the "
+            "request; use a new client_request_id for a new one");
+  }
 }
 
 std::vector<std::string> ToVector(const google::protobuf::RepeatedPtrField<std::string>& field) {
@@ -159,6 +200,12 @@ JobsService::JobsService(const Config& config, JobStore& store, EventHub& hub, S
       scheduler_(scheduler),
       auth_(config.tokens) {}
 
+v1::Job JobsService::Reported(const JobRecord& job) {
+  v1::Job out = ToProto(job);
+  if (auto issued = hub_.LastIssued(job.id)) out.set_last_seq(*issued);
+  return out;
+}
+
 JobRecord JobsService::OwnJob(const std::string& user, const std::string& job_id) {
   CheckJobId(job_id);
   auto job = store_.Get(job_id);
@@ -180,6 +227,7 @@ void JobsService::CheckQueueRoom(int64_t adding) {
 JobRecord JobsService::NewJob(const std::string& user, const std::string& scene,
                               const std::vector<std::string>& overrides, const std::string& name,
                               const std::vector<std::string>& tags, int priority) {
+  CheckSceneText(scene, overrides, config_.max_scene_bytes);
   SceneEstimate estimate = AdmitScene(scene, overrides, config_);
   JobRecord job;
   job.id = NewId('j');
@@ -210,6 +258,7 @@ grpc::ServerUnaryReactor* JobsService::Submit(grpc::CallbackServerContext* conte
     if (!key.empty()) {
       auto earlier = store_.FindRequest(user, key);
       if (!earlier.empty()) {
+        CheckSameRequest(request->client_request_id(), earlier, request->scene(), {overrides});
         *reply = ToProto(earlier.front());
         return;
       }
@@ -230,7 +279,7 @@ grpc::ServerUnaryReactor* JobsService::Submit(grpc::CallbackServerContext* conte
 grpc::ServerUnaryReactor* JobsService::Get(grpc::CallbackServerContext* context,
                                            const v1::GetRequest* request, v1::Job* reply) {
   return Reply(context, "Get",
-               [&] { *reply = ToProto(OwnJob(auth_.User(*context), request->job_id())); });
+               [&] { *reply = Reported(OwnJob(auth_.User(*context), request->job_id())); });
 }
 
 grpc::ServerUnaryReactor* JobsService::List(grpc::CallbackServerContext* context,
@@ -249,6 +298,8 @@ grpc::ServerUnaryReactor* JobsService::List(grpc::CallbackServerContext* context
               "states: unknown state " + std::to_string(state));
       filter.states.push_back(static_cast<JobState>(state));
     }
+    RequireNoNul("tag", request->tag());
+    RequireNoNul("sweep_id", request->sweep_id());
     filter.tag = request->tag();
     filter.sweep_id = request->sweep_id();
     if (!request->page_token().empty()) {
@@ -264,7 +315,7 @@ grpc::ServerUnaryReactor* JobsService::List(grpc::CallbackServerContext* context
     auto jobs = store_.List(filter);
     const bool more = static_cast<int>(jobs.size()) == filter.limit;
     if (more) jobs.pop_back();
-    for (const auto& job : jobs) *reply->add_jobs() = ToProto(job);
+    for (const auto& job : jobs) *reply->add_jobs() = Reported(job);
     if (more) reply->set_next_page_token(std::to_string(jobs.back().ordinal));
   });
 }
@@ -273,7 +324,7 @@ grpc::ServerUnaryReactor* JobsService::Cancel(grpc::CallbackServerContext* conte
                                               const v1::CancelRequest* request, v1::Job* reply) {
   return Reply(context, "Cancel", [&] {
     JobRecord job = OwnJob(auth_.User(*context), request->job_id());
-    *reply = ToProto(scheduler_.Cancel(job.id));
+    *reply = Reported(scheduler_.Cancel(job.id));
   });
 }
 
@@ -317,12 +368,19 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
     const auto tags = ToVector(request->tags());
     CheckLabels(request->name(), tags, request->priority(), request->client_request_id(),
                 static_cast<size_t>(request->overrides_size() + request->axes_size()));
+    for (const auto& axis : request->axes()) {
+      RequireNoNul("axes: a key", axis.key());
+      for (const auto& value : axis.values()) RequireNoNul("axes: " + axis.key() + " value", value);
+    }
     const std::vector<SweepPoint> points = ExpandSweep(*request, config_.max_queued);
     const std::string key =
         request->client_request_id().empty() ? "" : "sweep:" + request->client_request_id();
     if (!key.empty()) {
       auto earlier = store_.FindRequest(user, key);
       if (!earlier.empty()) {
+        std::vector<std::vector<std::string>> point_overrides;
+        for (const auto& point : points) point_overrides.push_back(point.overrides);
+        CheckSameRequest(request->client_request_id(), earlier, request->scene(), point_overrides);
         reply->set_sweep_id(earlier.front().sweep_id);
         for (const auto& job : earlier) *reply->add_jobs() = ToProto(job);
         return;
@@ -364,6 +422,7 @@ grpc::ServerUnaryReactor* JobsService::CancelSweep(grpc::CallbackServerContext* 
   return Reply(context, "CancelSweep", [&] {
     const std::string user = auth_.User(*context);
     Require(!request->sweep_id().empty(), "sweep_id: empty");
+    RequireNoNul("sweep_id", request->sweep_id());
     auto jobs = store_.SweepJobs(user, request->sweep_id());
     if (jobs.empty()) {
       throw ServiceError(StatusCode::NOT_FOUND, "sweep " + request->sweep_id() + " not found");

@@ -46,6 +46,9 @@ class JobsService final : public v1::Jobs::CallbackService {
                                       v1::ListFilesResponse* reply) override;
 
  private:
+  // The job as an rpc reports it: last_seq is the last number issued (the hub's, while it has a
+  // channel), not the end of a block reserved in the store.
+  v1::Job Reported(const JobRecord& job);
   // The caller's job, or NOT_FOUND (also for another user's job).
   JobRecord OwnJob(const std::string& user, const std::string& job_id);
   // Validates and builds the record of one job to queue.

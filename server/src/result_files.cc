@@ -1,6 +1,11 @@
 #include "result_files.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <system_error>
 #include <utility>
@@ -13,15 +18,17 @@ namespace {
 
 using grpc::StatusCode;
 
-// The files under a results directory, relative paths, sorted.
+// The regular files under a results directory, relative paths, sorted. A symbolic link is not a
+// file of the job: it is skipped, and a linked directory is not entered (the iterator follows no
+// directory link by default).
 std::vector<std::pair<std::string, fs::directory_entry>> ResultFiles(const fs::path& root) {
   std::vector<std::pair<std::string, fs::directory_entry>> files;
   std::error_code error;
   if (!fs::is_directory(root, error)) return files;
   for (auto it = fs::recursive_directory_iterator(root, error);
        !error && it != fs::recursive_directory_iterator(); it.increment(error)) {
-    if (it->is_regular_file(error)) {
-      files.emplace_back(fs::relative(it->path(), root, error).generic_string(), *it);
+    if (fs::is_regular_file(it->symlink_status(error))) {
+      files.emplace_back(it->path().lexically_relative(root).generic_string(), *it);
     }
   }
   std::sort(files.begin(), files.end(),
@@ -51,27 +58,64 @@ void DescribeResultFiles(const fs::path& root, v1::ListFilesResponse* reply) {
 }
 
 std::string CheckedResultPath(const fs::path& root, const std::string& path) {
+  RequireNoNul("path", path);
   const fs::path wanted(path);
   Require(wanted.is_relative(), "path: must be relative to the results directory");
   for (const auto& part : wanted) {
     Require(part != "..", "path: must not contain \"..\"");
   }
-  std::error_code error;
-  const fs::path full = fs::weakly_canonical(root / wanted, error);
-  const fs::path base = fs::weakly_canonical(root, error);
-  const std::string full_text = full.string(), base_text = base.string() + "/";
-  Require(!error && full_text.compare(0, base_text.size(), base_text) == 0,
-          "path: leaves the results directory");
-  if (!fs::is_regular_file(full, error)) {
-    throw ServiceError(StatusCode::NOT_FOUND, "file " + path + " not found");
+  const std::string normal = wanted.lexically_normal().generic_string();
+  close(OpenResultFile(root, normal));
+  return normal;
+}
+
+int OpenResultFile(const fs::path& root, const std::string& path) {
+  const auto refuse_link = [&](const std::string& part) {
+    return ServiceError(StatusCode::INVALID_ARGUMENT,
+                        "path: " + CutForMessage(part) +
+                            " is a symbolic link or not a directory; only the files inside the "
+                            "job's results directory are served");
+  };
+  const auto not_found = [&] {
+    return ServiceError(StatusCode::NOT_FOUND, "file " + CutForMessage(path) + " not found");
+  };
+  int fd = open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) throw not_found();
+  std::vector<std::string> parts;
+  for (const auto& part : fs::path(path)) {
+    if (!part.empty() && part != ".") parts.push_back(part.string());
   }
-  return wanted.lexically_normal().generic_string();
+  std::string walked;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    walked += (walked.empty() ? "" : "/") + parts[i];
+    const bool last = i + 1 == parts.size();
+    const int flags = O_RDONLY | O_NOFOLLOW | O_CLOEXEC | (last ? O_NONBLOCK : O_DIRECTORY);
+    const int next = openat(fd, parts[i].c_str(), flags);
+    const int error = errno;
+    close(fd);
+    if (next < 0) {
+      // O_NOFOLLOW: a link fails with ELOOP; O_DIRECTORY: a file on the way with ENOTDIR.
+      if (error == ELOOP || error == ENOTDIR) throw refuse_link(walked);
+      throw not_found();
+    }
+    fd = next;
+  }
+  struct stat info {};
+  if (parts.empty() || fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+    close(fd);
+    throw not_found();
+  }
+  return fd;
 }
 
 FetchReactor::FetchReactor(fs::path root, std::vector<std::string> files)
     : root_(std::move(root)),
       files_(std::move(files)) {
   Next();
+}
+
+FetchReactor::~FetchReactor() {
+  if (fd_ >= 0) close(fd_);
 }
 
 void FetchReactor::OnWriteDone(bool ok) {
@@ -85,16 +129,15 @@ void FetchReactor::OnWriteDone(bool ok) {
 void FetchReactor::Next() {
   grpc::Status status = Guarded([&] {
     while (true) {
-      if (!in_.is_open()) {
+      if (fd_ < 0) {
         if (index_ >= files_.size()) {
           done_ = true;
           return;
         }
-        const fs::path path = root_ / files_[index_];
-        in_.open(path, std::ios::binary);
-        if (!in_) throw ServiceError(StatusCode::NOT_FOUND, files_[index_] + ": cannot be read");
-        std::error_code error;
-        size_ = static_cast<int64_t>(fs::file_size(path, error));
+        // Opened again here, link by link: what was listed may have been replaced since.
+        fd_ = OpenResultFile(root_, files_[index_]);
+        struct stat info {};
+        size_ = fstat(fd_, &info) == 0 ? static_cast<int64_t>(info.st_size) : 0;
         offset_ = 0;
       }
       const int64_t length = std::min<int64_t>(kChunkBytes, std::max<int64_t>(size_ - offset_, 0));
@@ -104,14 +147,20 @@ void FetchReactor::Next() {
       chunk_.set_size(size_);
       std::string* data = chunk_.mutable_data();
       data->resize(static_cast<size_t>(length));
-      in_.read(data->data(), length);
-      data->resize(static_cast<size_t>(in_.gcount()));
+      ssize_t got = 0;
+      while (length > 0 &&
+             (got = pread(fd_, data->data(), static_cast<size_t>(length), offset_)) < 0 &&
+             errno == EINTR) {}
+      if (got < 0) {
+        throw ServiceError(StatusCode::INTERNAL, files_[index_] + ": cannot be read");
+      }
+      data->resize(static_cast<size_t>(got));
       offset_ += static_cast<int64_t>(data->size());
       const bool last = offset_ >= size_ || data->empty();
       chunk_.set_last(last);
       if (last) {
-        in_.close();
-        in_.clear();
+        close(fd_);
+        fd_ = -1;
         ++index_;
       }
       return;

@@ -46,10 +46,35 @@ bool WatcherQueue::TakeToken() {
   return true;
 }
 
-void WatcherQueue::RecordDrop(int64_t seq) {
+void WatcherQueue::Drop(Entry victim, Entry* next) {
   ++dropped_;
-  if (gap_from_ == 0 || seq < gap_from_) gap_from_ = seq;
-  gap_to_ = std::max(gap_to_, seq);
+  const int64_t seq = victim.event.seq();
+  std::vector<Run> runs = std::move(victim.gaps);
+  // The victim's own runs lie just before it, with nothing sent in between.
+  if (!runs.empty() && runs.back().grows) {
+    runs.back().to = seq;
+  } else {
+    runs.push_back({seq, seq, true});
+  }
+  Entry& after = next ? *next : trailing_;
+  if (!after.gaps.empty() && after.gaps.front().grows) {
+    runs.back().to = after.gaps.front().to;
+    after.gaps.erase(after.gaps.begin());
+  }
+  runs.insert(runs.end(), after.gaps.begin(), after.gaps.end());
+  after.gaps = std::move(runs);
+}
+
+bool WatcherQueue::TakeGap(Entry& entry, v1::WatchEvent* out) {
+  if (entry.gaps.empty()) return false;
+  out->Clear();
+  out->set_wall_time(NowSeconds());
+  auto* gap = out->mutable_gap();
+  gap->set_from_seq(entry.gaps.front().from);
+  gap->set_to_seq(entry.gaps.front().to);
+  gap->set_reason("slow watcher: events dropped");
+  entry.gaps.erase(entry.gaps.begin());
+  return true;
 }
 
 bool WatcherQueue::Push(const v1::WatchEvent& event) {
@@ -57,25 +82,42 @@ bool WatcherQueue::Push(const v1::WatchEvent& event) {
   if (closed_ || end_) return false;
   if (event.has_snapshot()) {
     if (!options_.include_snapshots) return false;
-    if (snapshot_) RecordDrop(snapshot_->seq());
-    snapshot_ = event;
-    *snapshot_->mutable_snapshot() =
+    // A snapshot is newer than all that is queued: the trailing runs lie just before it.
+    Entry entry{event, std::move(trailing_.gaps)};
+    trailing_.gaps.clear();
+    *entry.event.mutable_snapshot() =
         DownsampleSnapshot(event.snapshot(), options_.max_width, options_.max_height);
+    if (snapshot_) {
+      // The replaced snapshot's runs, then the snapshot as a run of its own: events of the other
+      // lane may have been sent between it and the ones dropped after it.
+      ++dropped_;
+      std::vector<Run> runs = std::move(snapshot_->gaps);
+      for (auto& run : runs) run.grows = false;
+      runs.push_back({snapshot_->event.seq(), snapshot_->event.seq(), false});
+      runs.insert(runs.end(), entry.gaps.begin(), entry.gaps.end());
+      entry.gaps = std::move(runs);
+    }
+    snapshot_ = std::move(entry);
     return TakeToken();
   }
   if (queue_.size() >= options_.capacity) {
     auto victim = std::find_if(queue_.begin(), queue_.end(),
-                               [](const v1::WatchEvent& e) { return !e.has_state(); });
+                               [](const Entry& e) { return !e.event.has_state(); });
     if (!event.has_state() && victim == queue_.end()) {
-      RecordDrop(event.seq());
+      // The new event itself is dropped, after the trailing runs.
+      Entry dropped{event, std::move(trailing_.gaps)};
+      trailing_.gaps.clear();
+      Drop(std::move(dropped), nullptr);
       return TakeToken();
     }
     if (victim != queue_.end()) {
-      RecordDrop(victim->seq());
-      queue_.erase(victim);
+      Entry dropped = std::move(*victim);
+      auto next = queue_.erase(victim);
+      Drop(std::move(dropped), next == queue_.end() ? nullptr : &*next);
     }
   }
-  queue_.push_back(event);
+  queue_.push_back(Entry{event, std::move(trailing_.gaps)});
+  trailing_.gaps.clear();
   return TakeToken();
 }
 
@@ -92,6 +134,7 @@ bool WatcherQueue::Cancel() {
   cancelled_ = true;
   queue_.clear();
   snapshot_.reset();
+  trailing_.gaps.clear();
   if (sending_) return false;  // the holder sees cancelled_ at its next Pop
   sending_ = true;
   return true;
@@ -103,28 +146,21 @@ WatcherQueue::Next WatcherQueue::Pop(v1::WatchEvent* out) {
     closed_ = true;
     return Next::kClosed;
   }
-  if (gap_from_ != 0) {
-    out->Clear();
-    out->set_wall_time(NowSeconds());
-    auto* gap = out->mutable_gap();
-    gap->set_from_seq(gap_from_);
-    gap->set_to_seq(gap_to_);
-    gap->set_reason("slow watcher: events dropped");
-    gap_from_ = gap_to_ = 0;
-    return Next::kEvent;
-  }
   const bool take_snapshot =
-      snapshot_ && (queue_.empty() || snapshot_->seq() < queue_.front().seq());
+      snapshot_ && (queue_.empty() || snapshot_->event.seq() < queue_.front().event.seq());
   if (take_snapshot) {
-    *out = std::move(*snapshot_);
+    if (TakeGap(*snapshot_, out)) return Next::kEvent;
+    *out = std::move(snapshot_->event);
     snapshot_.reset();
     return Next::kEvent;
   }
   if (!queue_.empty()) {
-    *out = std::move(queue_.front());
+    if (TakeGap(queue_.front(), out)) return Next::kEvent;
+    *out = std::move(queue_.front().event);
     queue_.pop_front();
     return Next::kEvent;
   }
+  if (TakeGap(trailing_, out)) return Next::kEvent;
   if (end_) {
     closed_ = true;
     return Next::kEnd;

@@ -2,12 +2,14 @@
 //
 // The producer (the thread that reads a solver's events) never waits: Push is O(capacity) at worst
 // and never blocks on the network. When the queue is full the oldest event that is not a state
-// change is dropped; an unsent snapshot is replaced by a newer one. Either way the watcher is told:
-// the next event it receives is a Gap (seq 0) naming the first and last dropped sequence numbers.
-// State changes are never dropped. Sending is serialised by a token: whoever takes it (Push,
-// PushEnd or Cancel returning true) owns the stream until Next returns kEmpty (token given back),
-// kEnd or kClosed (stream must be finished). Snapshots are downsampled here to the watcher's
-// requested size.
+// change is dropped; an unsent snapshot is replaced by a newer one. Either way the watcher is told
+// where events went missing: Gaps (seq 0) come just before the event sent after the dropped ones,
+// each naming the first and last sequence numbers of one run of dropped events. A run holds only
+// dropped events: an event sent in between (a state change, a snapshot) ends it, so a Gap is never
+// wider than what was dropped. State changes are never dropped. Sending is serialised by a token:
+// whoever takes it (Push, PushEnd or Cancel returning true) owns the stream until Next returns
+// kEmpty (token given back), kEnd or kClosed (stream must be finished). Snapshots are downsampled
+// here to the watcher's requested size.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +17,7 @@
 #include <functional>
 #include <mutex>
 #include <optional>
+#include <vector>
 
 #include "dlmfd/v1/jobs.pb.h"
 
@@ -54,15 +57,29 @@ class WatcherQueue {
   int64_t dropped() const;
 
  private:
+  // A run of dropped events; a run of the event lane may grow, a replaced snapshot is a run alone.
+  struct Run {
+    int64_t from = 0, to = 0;
+    bool grows = true;
+  };
+  // An event to send, and the runs dropped just before it.
+  struct Entry {
+    v1::WatchEvent event;
+    std::vector<Run> gaps;
+  };
   bool TakeToken();
-  void RecordDrop(int64_t seq);
+  // Drops `victim` (an event-lane entry): its seq and its runs go before `next` (the trailing runs,
+  // which the next pushed event takes, when next is null), merged where nothing lies between.
+  void Drop(Entry victim, Entry* next);
+  // Writes the first Gap of entry into out and removes it; false when entry has none.
+  static bool TakeGap(Entry& entry, v1::WatchEvent* out);
 
   const WatchOptions options_;
   std::function<void()> wake_;
   mutable std::mutex mutex_;
-  std::deque<v1::WatchEvent> queue_;
-  std::optional<v1::WatchEvent> snapshot_;
-  int64_t gap_from_ = 0, gap_to_ = 0;  // 0: no gap pending
+  std::deque<Entry> queue_;
+  std::optional<Entry> snapshot_;
+  Entry trailing_;  // only its gaps: dropped after the last queued event
   int64_t dropped_ = 0;
   bool sending_ = false;
   bool end_ = false;

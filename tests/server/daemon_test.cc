@@ -370,6 +370,37 @@ TEST(Daemon, SubmitWatchFetchEndToEnd) {
   EXPECT_NE(text.find("completed"), std::string::npos);
 }
 
+TEST(Daemon, LastSeqIsTheLastNumberIssuedNotAReservedBlock) {
+  REQUIRE_SOLVER();
+  TempDir dir;
+  DaemonProcess daemon(dir.path() + "/data");
+  ASSERT_TRUE(daemon.Start()) << daemon.Log();
+  auto stub = daemon.Stub();
+  const v1::Job job = Submit(*stub, CavityRequest(0.1));
+  const auto events = WatchAll(*stub, job.id());
+  ASSERT_FALSE(events.empty());
+  ASSERT_TRUE(events.back().has_state());
+  const int64_t last = events.back().seq();
+  for (const auto& event : events) {
+    if (event.has_state() && event.seq() > 0) {
+      EXPECT_EQ(event.state().job().last_seq(), event.seq()) << event.DebugString();
+    }
+  }
+  v1::GetRequest get;
+  get.set_job_id(job.id());
+  v1::Job got;
+  ASSERT_TRUE(stub->Get(Context().get(), get, &got).ok());
+  EXPECT_EQ(got.last_seq(), last);
+  v1::ListResponse list;
+  ASSERT_TRUE(stub->List(Context().get(), v1::ListRequest(), &list).ok());
+  ASSERT_EQ(list.jobs_size(), 1);
+  EXPECT_EQ(list.jobs(0).last_seq(), last);
+  // A late watch of the finished job starts at that number too.
+  const auto late = WatchAll(*stub, job.id());
+  ASSERT_EQ(late.size(), 1u);
+  EXPECT_EQ(late[0].seq(), last);
+}
+
 TEST(Daemon, CancelStopsARunningJobAndKeepsPartialResults) {
   REQUIRE_SOLVER();
   TempDir dir;

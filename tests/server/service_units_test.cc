@@ -1,8 +1,9 @@
 // Unit tests of the daemon's parts without a process: the SQLite store, the configuration, the
-// authenticator, the watcher queue's gap rules and snapshot downsampling, the sweep expansion and
-// the checks of result-file paths.
+// authenticator, the watcher queue's gap rules and snapshot downsampling, the sweep expansion, the
+// checks of result-file paths and the cutting of error messages.
 #include <gtest/gtest.h>
 #include <sqlite3.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +13,7 @@
 
 #include "auth.h"
 #include "config.h"
+#include "event_hub.h"
 #include "job_store.h"
 #include "result_files.h"
 #include "service_error.h"
@@ -308,6 +310,35 @@ TEST(WatcherQueue, StateChangesAreNeverDropped) {
   EXPECT_EQ(seqs, (std::vector<int64_t>{1, 2}));
 }
 
+TEST(WatcherQueue, AGapNamesOnlyWhatWasDroppedAndComesWhereItWas) {
+  WatchOptions options;
+  options.capacity = 3;
+  WatcherQueue queue(options);
+  auto state = [](int64_t seq) {
+    v1::WatchEvent event;
+    event.set_seq(seq);
+    event.mutable_state()->set_state(v1::RUNNING);
+    return event;
+  };
+  // State changes 1, 5, 7 are kept; progress 2, 3, 4 and 6 are dropped around them.
+  queue.Push(state(1));
+  queue.Push(Progress(2));
+  queue.Push(Progress(3));
+  queue.Push(Progress(4));
+  queue.Push(state(5));
+  queue.Push(Progress(6));
+  queue.Push(state(7));
+  std::vector<std::string> sent;
+  v1::WatchEvent out;
+  while (queue.Pop(&out) == WatcherQueue::Next::kEvent) {
+    sent.push_back(out.has_gap() ? "gap " + std::to_string(out.gap().from_seq()) + "-" +
+                                       std::to_string(out.gap().to_seq())
+                                 : std::to_string(out.seq()));
+  }
+  EXPECT_EQ(sent, (std::vector<std::string>{"1", "gap 2-4", "5", "gap 6-6", "7"}));
+  EXPECT_EQ(queue.dropped(), 4);
+}
+
 TEST(WatcherQueue, NewerSnapshotReplacesUnsentOne) {
   WatchOptions options;
   options.include_snapshots = true;
@@ -338,6 +369,41 @@ TEST(WatcherQueue, SnapshotsOnlyWhenAskedAndCancelTakesToken) {
   EXPECT_TRUE(queue.Cancel());
   EXPECT_EQ(queue.Pop(&out), WatcherQueue::Next::kClosed);
   EXPECT_FALSE(queue.Push(Progress(2)));
+}
+
+TEST(EventHub, ACleanRestartResumesRightAfterTheLastNumberIssued) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  store.InsertJobs({MakeJob("a", 0)}, "local", "");
+  store.MarkRunning("a", 1.0);
+  {
+    EventHub hub(store, 16);
+    hub.PublishState(*store.Get("a"));  // seq 1
+    for (int i = 0; i < 3; ++i) hub.Publish("a", Progress(0));
+    EXPECT_EQ(hub.LastIssued("a"), 4);
+    hub.RecordIssued();  // the daemon's clean shutdown
+  }
+  EXPECT_EQ(store.Get("a")->last_seq, 4);
+  // The next daemon: a watcher that saw everything reconnects and misses nothing.
+  EventHub hub(store, 16);
+  auto queue = std::make_shared<WatcherQueue>(WatchOptions{});
+  queue->SetWake([] {});
+  hub.Attach(*store.Get("a"), 4, queue);
+  hub.Publish("a", Progress(0));
+  store.MarkFinished("a", JobState::kCompleted, "", 2.0);
+  hub.PublishState(*store.Get("a"));
+  std::vector<int64_t> seqs;
+  v1::WatchEvent out;
+  while (queue->Pop(&out) == WatcherQueue::Next::kEvent) {
+    EXPECT_FALSE(out.has_gap()) << out.DebugString();
+    seqs.push_back(out.seq());
+    if (out.has_state()) {
+      EXPECT_EQ(out.state().job().last_seq(), out.seq());
+    }
+  }
+  EXPECT_EQ(seqs, (std::vector<int64_t>{4, 5, 6}));
+  // A finished job's record holds the last number issued, not the end of a reserved block.
+  EXPECT_EQ(store.Get("a")->last_seq, 6);
 }
 
 TEST(Downsample, KeepsCornersAndLimits) {
@@ -417,6 +483,56 @@ TEST(ResultFiles, ListsSortedAndChecksRequestedPaths) {
   EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, "out/passwd"); }), StatusCode::INVALID_ARGUMENT);
   EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, "absent.h5"); }), StatusCode::NOT_FOUND);
   EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, "fields"); }), StatusCode::NOT_FOUND);
+}
+
+TEST(ResultFiles, SymbolicLinksAndNulBytesLeadNowhere) {
+  dlmfd::testing::TempDir dir;
+  const std::filesystem::path root = dir.path() + "/results";
+  std::filesystem::create_directories(root / "fields");
+  std::filesystem::create_directories(dir.path() + "/elsewhere");
+  std::ofstream(root / "summary.json") << "{}";
+  std::ofstream(dir.path() + "/elsewhere/secret") << "secret";
+  std::filesystem::create_symlink(dir.path() + "/elsewhere/secret", root / "secret");
+  std::filesystem::create_symlink(dir.path() + "/elsewhere", root / "elsewhere");
+  std::filesystem::create_symlink(root / "summary.json", root / "fields" / "summary.json");
+  EXPECT_EQ(ResultFilePaths(root), (std::vector<std::string>{"summary.json"}));
+  using grpc::StatusCode;
+  for (const std::string link : {"secret", "elsewhere/secret", "fields/summary.json"}) {
+    const grpc::Status status = Guarded([&] { CheckedResultPath(root, link); });
+    EXPECT_EQ(status.error_code(), StatusCode::INVALID_ARGUMENT) << link;
+    EXPECT_NE(status.error_message().find("symbolic link"), std::string::npos)
+        << status.error_message();
+  }
+  EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, std::string("summary.json\0x", 14)); }),
+            StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(CodeOf([&] { CheckedResultPath(root, "summary.json/x"); }),
+            StatusCode::INVALID_ARGUMENT);
+  const int fd = OpenResultFile(root, "summary.json");
+  EXPECT_GE(fd, 0);
+  close(fd);
+}
+
+TEST(ServiceError, MessagesCutLongValuesAndShowControlBytes) {
+  EXPECT_EQ(CutForMessage("0.1"), "0.1");
+  EXPECT_EQ(CutForMessage(std::string("a\0b\n", 4)), "a\\x00b\\x0a");
+  const std::string cut = CutForMessage(std::string(1000, 'x'), 10);
+  EXPECT_EQ(cut, "xxxxxxxxxx... (1000 bytes)");
+  // A cut never splits a UTF-8 character: "é" is 2 bytes, 10 bytes keep 4 of them whole.
+  std::string accents;
+  for (int i = 0; i < 20; ++i) accents += "\xc3\xa9";
+  EXPECT_EQ(CutForMessage(accents, 9), accents.substr(0, 8) + "... (40 bytes)");
+  const std::string message =
+      "fluid.viscosity = \"" + std::string(1'000'000, 'x') + "\" is not allowed: expected > 0";
+  const std::string bounded = BoundMessage(message);
+  EXPECT_LE(bounded.size(), kMessageBytes + 40);
+  EXPECT_EQ(bounded.rfind("fluid.viscosity = \"", 0), 0u);
+  const std::string allowed = "\" is not allowed: expected > 0";
+  EXPECT_EQ(bounded.substr(bounded.size() - allowed.size()), allowed);
+  EXPECT_NE(bounded.find("bytes cut"), std::string::npos);
+  EXPECT_EQ(BoundMessage("short\nmessage"), "short\nmessage");
+  const grpc::Status status = ToStatus(std::make_exception_ptr(
+      ServiceError(grpc::StatusCode::INVALID_ARGUMENT, std::string(100'000, 'm'))));
+  EXPECT_LE(status.error_message().size(), kMessageBytes + 40);
 }
 
 }  // namespace

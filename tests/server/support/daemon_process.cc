@@ -8,6 +8,7 @@
 #include <grpcpp/generic/generic_stub.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <cstdlib>
@@ -38,9 +39,11 @@ TempDir::~TempDir() {
   fs::remove_all(path_, error);
 }
 
-DaemonProcess::DaemonProcess(std::string data_dir, std::vector<std::string> extra)
+DaemonProcess::DaemonProcess(std::string data_dir, std::vector<std::string> extra,
+                             std::string listen)
     : data_dir_(std::move(data_dir)),
-      extra_(std::move(extra)) {
+      extra_(std::move(extra)),
+      listen_(std::move(listen)) {
   log_path_ = data_dir_ + ".daemon.log";
   port_file_ = data_dir_ + ".port";
 }
@@ -55,9 +58,12 @@ DaemonProcess::~DaemonProcess() {
 bool DaemonProcess::Start() {
   std::error_code error;
   fs::remove(port_file_, error);
-  std::vector<std::string> args = {kDaemonPath,  "--listen", "127.0.0.1:0",
-                                   "--data-dir", data_dir_,  "--port-file",
-                                   port_file_,   "--solver", kSolverPath};
+  std::vector<std::string> args = {kDaemonPath, "--listen",    listen_,   "--data-dir",
+                                   data_dir_,   "--port-file", port_file_};
+  // A test that names its own solver replaces this build's.
+  if (std::find(extra_.begin(), extra_.end(), "--solver") == extra_.end()) {
+    args.insert(args.end(), {"--solver", kSolverPath});
+  }
   args.insert(args.end(), extra_.begin(), extra_.end());
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -75,6 +81,7 @@ bool DaemonProcess::Start() {
     int status = 0;
     if (waitpid(pid_, &status, WNOHANG) == pid_) {
       pid_ = -1;
+      start_exit_status_ = WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status);
       return false;
     }
     std::ifstream in(port_file_);
@@ -121,12 +128,17 @@ std::shared_ptr<grpc::Channel> DaemonProcess::Channel() const {
 
 std::unique_ptr<v1::Jobs::Stub> DaemonProcess::Stub() const { return v1::Jobs::NewStub(Channel()); }
 
-bool DaemonProcess::Healthy() const {
+bool DaemonProcess::Healthy(const std::string& service) const {
   auto channel = Channel();
   grpc::ClientContext context;
-  grpc::Slice empty(std::string{});
-  grpc::ByteBuffer request_buffer(&empty, 1), reply_buffer;
-  // grpc.health.v1.HealthCheckRequest with an empty service name is an empty message.
+  // grpc.health.v1.HealthCheckRequest { service = 1 (string) }: tag 0x0a, length, bytes; an empty
+  // service name is an empty message. Names here are shorter than 128 bytes (one-byte length).
+  std::string request_bytes;
+  if (!service.empty()) {
+    request_bytes = std::string("\x0a", 1) + static_cast<char>(service.size()) + service;
+  }
+  grpc::Slice request_slice(request_bytes);
+  grpc::ByteBuffer request_buffer(&request_slice, 1), reply_buffer;
   grpc::GenericStub generic(channel);
   grpc::Status status;
   std::mutex mutex;

@@ -36,12 +36,16 @@ class TempDir {
 
 class DaemonProcess {
  public:
-  // data_dir: reused across restarts; extra: more flags ("--max-concurrent", "3", ...).
-  DaemonProcess(std::string data_dir, std::vector<std::string> extra = {});
+  // data_dir: reused across restarts; extra: more flags ("--max-concurrent", "3", ...); listen:
+  // the --listen address (a free loopback port by default).
+  DaemonProcess(std::string data_dir, std::vector<std::string> extra = {},
+                std::string listen = "127.0.0.1:0");
   ~DaemonProcess();
 
-  // Starts and waits until it serves (port file written); false if it exited first.
+  // Starts and waits until it serves (port file written); false if it exited first (its exit
+  // status is then start_exit_status()).
   bool Start();
+  int start_exit_status() const { return start_exit_status_; }
   void Kill(int signal_number);
   // Waits for the process to exit; returns its exit status (128 + signal when killed). A sanitizer
   // report the daemon wrote to its log since the last Wait fails the current test (the daemon's
@@ -54,16 +58,18 @@ class DaemonProcess {
 
   std::shared_ptr<grpc::Channel> Channel() const;
   std::unique_ptr<v1::Jobs::Stub> Stub() const;
-  // True when the standard health service answers SERVING.
-  bool Healthy() const;
+  // True when the standard health service answers SERVING for `service` ("" is the server).
+  bool Healthy(const std::string& service = "") const;
 
  private:
   std::string data_dir_;
   std::vector<std::string> extra_;
+  std::string listen_;
   std::string log_path_;
   std::string port_file_;
   pid_t pid_ = -1;
   int port_ = 0;
+  int start_exit_status_ = -1;
   std::size_t log_checked_ = 0;  // log bytes already searched for sanitizer reports
 };
 
