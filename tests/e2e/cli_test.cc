@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -61,9 +62,10 @@ struct CliRun {
   std::string err;
 };
 
-// Runs `argv` with exactly the environment `env`, capturing stdout and stderr.
-CliRun Execute(const std::vector<std::string>& argv,
-               const std::map<std::string, std::string>& env) {
+// Runs `argv` with exactly the environment `env`, capturing stdout and stderr; sets `printed` (when
+// given) once the child has written its first bytes to stdout.
+CliRun Execute(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env,
+               std::atomic<bool>* printed = nullptr) {
   // Everything the child needs is built before fork: a test may run this from a second thread.
   std::vector<std::string> env_text;
   for (const auto& [k, v] : env) env_text.push_back(k + "=" + v);
@@ -100,6 +102,7 @@ CliRun Execute(const std::vector<std::string>& argv,
         --open_fds;
       } else {
         (k == 0 ? run.out : run.err).append(buffer, std::size_t(n));
+        if (k == 0 && printed) printed->store(true);
       }
     }
   }
@@ -181,10 +184,11 @@ class CliTest : public ::testing::Test {
   }
 
   static CliRun Cli(const std::vector<std::string>& args,
-                    const std::map<std::string, std::string>& env = Env()) {
+                    const std::map<std::string, std::string>& env = Env(),
+                    std::atomic<bool>* printed = nullptr) {
     std::vector<std::string> argv(1, kClient);
     for (const std::string& a : args) argv.push_back(a);
-    return Execute(argv, env);
+    return Execute(argv, env, printed);
   }
 
   // Polls `show --json` until the job's state appears in it.
@@ -303,15 +307,23 @@ TEST_F(CliTest, CancelStopsALongJob) {
 }
 
 TEST_F(CliTest, WatchResumesAcrossADaemonRestart) {
-  // 1000 steps: long enough (about a second on a quiet machine) that the job is still running when
-  // the daemon is killed 0.3 s after the watch starts.
-  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=10"});
+  // 3000 steps (about 3 s on a quiet machine, longer under load): the job is still running when the
+  // daemon is killed, which happens only once the watch has printed its first event, so the watch
+  // is connected to the first daemon however long the client takes to start on a loaded machine.
+  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=30"});
   ASSERT_EQ(submit.code, 0) << submit.err;
   const std::string job = FirstLine(submit.out);
   AwaitState(job, "RUNNING");
   CliRun watch;
-  std::thread watcher([&] { watch = Cli({"watch", job, "--json", "--reconnect-seconds", "600"}); });
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  std::atomic<bool> printed{false};
+  std::thread watcher([&] {
+    watch = Cli({"watch", job, "--json", "--reconnect-seconds", "600"}, Env(), &printed);
+  });
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!printed.load() && std::chrono::steady_clock::now() < give_up) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(printed.load()) << "the watch printed nothing within 60 s";
   kill(daemon_, SIGKILL);
   int status = 0;
   waitpid(daemon_, &status, 0);
