@@ -10,11 +10,12 @@
 #include <vector>
 
 #include "dlmfd/conformation/conformation_step.h"
+#include "dlmfd/core/constants.h"
 
 namespace dlmfd {
 namespace {
 
-constexpr double kTwoPi = 2.0 * M_PI;
+constexpr double kTwoPi = 2.0 * kPi;
 
 double A11(double x, double y) { return 2.0 + 0.5 * std::sin(kTwoPi * x) * std::cos(kTwoPi * y); }
 double A12(double x, double y) { return 0.5 * std::cos(kTwoPi * (x + 2.0 * y)); }

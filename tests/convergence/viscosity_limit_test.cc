@@ -16,6 +16,8 @@
 #include <cstdio>
 #include <vector>
 
+#include "../support/viscous_channel.h"
+#include "dlmfd/core/constants.h"
 #include "dlmfd/core/simulation.h"
 
 namespace dlmfd {
@@ -24,27 +26,6 @@ namespace {
 constexpr double kLimitLambda = 1e-4;
 constexpr double kBeta = 0.59;
 
-Params Base(double width, double height, int cells_per_unit, double dt) {
-  Params p;
-  p.domain.size = Vec2(width, height);
-  p.domain.h = 1.0 / cells_per_unit;
-  for (auto& side : p.domain.sides)
-    side = {SideType::kWall, Profile::kUniform, Vec2::Zero(), Vec2::Zero()};
-  p.fluid.density = 1.0;
-  p.fluid.viscosity = 1.0;
-  p.time.dt = dt;
-  p.time.end = 0.5;
-  p.solvers.stokes_tolerance = 1e-9;
-  p.solvers.advection_tolerance = 1e-6;
-  p.solvers.multiplier_tolerance = 1e-9;
-  p.output.fields_every = 0.0;
-  p.output.particles_every = 0.0;
-  p.output.checkpoint_every = 0.0;
-  p.particle_mesh.h = p.domain.h * 96.0 / 70.0;
-  p.threads = 1;
-  return p;
-}
-
 void SetLiquid(Params& p, double lambda) {
   p.fluid.relaxation_time = lambda;
   p.fluid.solvent_ratio = lambda > 0.0 ? kBeta : 1.0;
@@ -52,18 +33,8 @@ void SetLiquid(Params& p, double lambda) {
 
 // The channel and fixed disk of tests/unit/viscosity_rule_test.cc: the drag at t = 0.5.
 double ChannelDrag(int cells, double dt, double lambda) {
-  Params p = Base(2.0, 1.0, cells, dt);
-  p.domain.sides[static_cast<int>(Side::kLeft)] = {SideType::kVelocity, Profile::kPoiseuille,
-                                                   Vec2::Zero(), Vec2(1.0, 0.0)};
-  p.domain.sides[static_cast<int>(Side::kRight)] = {SideType::kOutflow, Profile::kUniform,
-                                                    Vec2::Zero(), Vec2::Zero()};
+  Params p = testing::ChannelWithFixedDisk(cells, dt, 0.0, 1.0);
   SetLiquid(p, lambda);
-  ParticleParams disk;
-  disk.center = Vec2(0.6, 0.5);
-  disk.diameter = 0.4;
-  disk.density = 2.0;
-  disk.motion = Motion::kFixed;
-  p.particles.push_back(disk);
   Simulation sim(p);
   sim.Run();
   return sim.state().particles[0].force.x();
@@ -78,7 +49,7 @@ double MaxDifference(const std::vector<double>& a, const std::vector<double>& b)
 // Taylor-Green vortex u = (sin 2 pi x cos 2 pi y, -cos 2 pi x sin 2 pi y) in the periodic unit box
 // (A = I at t = 0), to t = 0.02 (it decays by e^{-8 pi^2 0.02} = 0.21): the velocity field.
 std::vector<double> TaylorGreenVelocity(int cells, double dt, double lambda) {
-  Params p = Base(1.0, 1.0, cells, dt);
+  Params p = testing::ViscousBase(1.0, 1.0, cells, dt);
   for (auto& side : p.domain.sides) side.type = SideType::kPeriodic;
   p.time.end = 0.02;
   SetLiquid(p, lambda);
@@ -87,7 +58,7 @@ std::vector<double> TaylorGreenVelocity(int cells, double dt, double lambda) {
   const Grid& g = sim.grid();
   for (int j = 0; j <= g.ny; ++j) {
     for (int i = 0; i <= g.nx; ++i) {
-      const double x = 2.0 * M_PI * g.X(i), y = 2.0 * M_PI * g.Y(j);
+      const double x = 2.0 * kPi * g.X(i), y = 2.0 * kPi * g.Y(j);
       start.u[g.Index(i, j)] = std::sin(x) * std::cos(y);
       start.v[g.Index(i, j)] = -std::cos(x) * std::sin(y);
     }

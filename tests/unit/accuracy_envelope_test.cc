@@ -2,6 +2,7 @@
 // scenes outside one give exactly that warning with the key to change and a value that brings the
 // scene inside; accuracy.strict turns a warning into an InvalidParameter naming the key.
 #include "dlmfd/scene/accuracy_envelope.h"
+#include "dlmfd/core/constants.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -146,7 +147,7 @@ diameter = 0.2
 density = 1.02
 )TOML";
   const Params p = Scene(kDisk);
-  const double inertial = std::sqrt(0.5 * M_PI * 0.02 * 981.0 * 0.2);
+  const double inertial = std::sqrt(0.5 * kPi * 0.02 * 981.0 * 0.2);
   const double viscous = 0.02 * 981.0 * 0.04 / 0.1;
   EXPECT_DOUBLE_EQ(VelocityScale(p), std::min(inertial, viscous));
   EXPECT_DOUBLE_EQ(VelocityScale(Scene(kDisk, {"fluid.viscosity=100"})), 0.02 * 981.0 * 0.04 / 100);

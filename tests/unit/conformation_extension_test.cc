@@ -18,6 +18,7 @@
 
 #include "dlmfd/conformation/conformation_step.h"
 #include "dlmfd/conformation/sym_tensor.h"
+#include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 
 namespace dlmfd {
@@ -34,7 +35,7 @@ struct Flow {
   Mat2 l;  // the uniform velocity gradient
   std::vector<double> u, v;
   Flow() {
-    const double c = std::cos(M_PI / 6.0), s = std::sin(M_PI / 6.0);
+    const double c = std::cos(kPi / 6.0), s = std::sin(kPi / 6.0);
     l = Mat2{kRate * (c * c - s * s), 2.0 * kRate * c * s, 2.0 * kRate * c * s,
              kRate * (s * s - c * c)};
     u.resize(grid.NodeCount());

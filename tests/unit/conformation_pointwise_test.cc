@@ -8,6 +8,7 @@
 #include "dlmfd/conformation/inflow_state.h"
 #include "dlmfd/conformation/pointwise_update.h"
 #include "dlmfd/conformation/sym_tensor.h"
+#include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 
 namespace dlmfd {
@@ -77,7 +78,7 @@ const std::vector<Mat2> kGradients = {
     Mat2{0.3, 0.9, -0.2, -0.1},     // general, with a trace
     Mat2{0.04, 0.02, 0.03, -0.05},  // x = q^2 s^2 just below the series switch 1e-2
     Mat2{0.06, 0.03, 0.03, -0.05},  // just above it
-    RotatedExtension(1.5, M_PI / 6.0),
+    RotatedExtension(1.5, kPi / 6.0),
 };
 
 TEST(MatrixExponential, EqualsTaylorSeriesToRoundOff) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "dlmfd/conformation/polymer_force.h"
+#include "dlmfd/core/constants.h"
 
 namespace dlmfd {
 namespace {
@@ -82,8 +83,8 @@ Field SmoothField(const Grid& g) {
   Field f{Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n)};
   for (int j = 0; j <= g.ny; ++j) {
     for (int i = 0; i <= g.nx; ++i) {
-      const double x = 2 * M_PI * (g.X(i) - g.x0) / g.Width(),
-                   y = 2 * M_PI * (g.Y(j) - g.y0) / g.Height();
+      const double x = 2 * kPi * (g.X(i) - g.x0) / g.Width(),
+                   y = 2 * kPi * (g.Y(j) - g.y0) / g.Height();
       const int k = int(g.Index(i, j));
       f.a11[k] = 3.0 + std::sin(x) * std::cos(2 * y);
       f.a12[k] = 0.7 * std::cos(x + y);

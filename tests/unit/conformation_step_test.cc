@@ -1,6 +1,7 @@
 // ConformationStep (step (35)) on simple flows with known answers: homogeneous relaxation, steady
 // simple shear, A = I inside particles, inflow data, the report columns, and the velocity gradient.
 #include "dlmfd/conformation/conformation_step.h"
+#include "dlmfd/core/constants.h"
 
 #include <gtest/gtest.h>
 
@@ -220,7 +221,7 @@ TEST(NodeVelocityGradient, SecondOrderOnAPeriodicBox) {
     const Grid grid{n, n, 1.0 / n, 0.0, 0.0};
     const std::size_t count = grid.NodeCount();
     std::vector<double> u(count), v(count), l11(count), l12(count), l21(count), l22(count);
-    const double tp = 2.0 * M_PI;
+    const double tp = 2.0 * kPi;
     for (int j = 0; j <= n; ++j) {
       for (int i = 0; i <= n; ++i) {
         const double x = grid.X(i), y = grid.Y(j);

@@ -13,50 +13,15 @@
 #include <cmath>
 #include <cstdio>
 
+#include "../support/viscous_channel.h"
 #include "dlmfd/core/simulation.h"
 
 namespace dlmfd {
 namespace {
 
-Params ChannelWithFixedDisk(double lambda, double beta) {
-  Params p;
-  p.domain.size = Vec2(2.0, 1.0);
-  p.domain.h = 1.0 / 16;
-  auto& s = p.domain.sides;
-  s[static_cast<int>(Side::kLeft)] = {SideType::kVelocity, Profile::kPoiseuille, Vec2::Zero(),
-                                      Vec2(1.0, 0.0)};
-  s[static_cast<int>(Side::kRight)] = {SideType::kOutflow, Profile::kUniform, Vec2::Zero(),
-                                       Vec2::Zero()};
-  s[static_cast<int>(Side::kBottom)] = {SideType::kWall, Profile::kUniform, Vec2::Zero(),
-                                        Vec2::Zero()};
-  s[static_cast<int>(Side::kTop)] = {SideType::kWall, Profile::kUniform, Vec2::Zero(),
-                                     Vec2::Zero()};
-  p.fluid.density = 1.0;
-  p.fluid.viscosity = 1.0;
-  p.fluid.relaxation_time = lambda;
-  p.fluid.solvent_ratio = beta;
-  p.time.dt = 2e-3;
-  p.time.end = 0.5;
-  p.solvers.stokes_tolerance = 1e-9;
-  p.solvers.advection_tolerance = 1e-6;
-  p.solvers.multiplier_tolerance = 1e-9;
-  p.output.fields_every = 0.0;
-  p.output.particles_every = 0.0;
-  p.output.checkpoint_every = 0.0;
-  p.particle_mesh.h = p.domain.h * 96.0 / 70.0;  // the paper's ratio h_p / h
-  p.threads = 1;
-  ParticleParams disk;
-  disk.center = Vec2(0.6, 0.5);
-  disk.diameter = 0.4;
-  disk.density = 2.0;
-  disk.motion = Motion::kFixed;
-  p.particles.push_back(disk);
-  return p;
-}
-
 // The x-force of the liquid on the disk at t = 0.5.
 double Drag(double lambda, double beta) {
-  Simulation sim(ChannelWithFixedDisk(lambda, beta));
+  Simulation sim(testing::ChannelWithFixedDisk(16, 2e-3, lambda, beta));
   sim.Run();
   return sim.state().particles[0].force.x();
 }
