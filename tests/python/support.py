@@ -19,9 +19,16 @@ DAEMON = os.path.join(BINARY_DIR, "server", "dlmfdd")
 SKIP = 77  # ctest's SKIP_RETURN_CODE for these tests
 
 
+def _importable(module):
+    try:
+        return importlib.util.find_spec(module) is not None
+    except ModuleNotFoundError:  # a missing parent package ("google" of google.protobuf)
+        return False
+
+
 def skip_unless_importable(*modules):
     """Exits with SKIP and names the Debian package when a module is missing."""
-    missing = [m for m in modules if importlib.util.find_spec(m) is None]
+    missing = [m for m in modules if not _importable(m)]
     if missing:
         packages = {"grpc": "python3-grpcio", "google.protobuf": "python3-protobuf",
                     "h5py": "python3-h5py", "numpy": "python3-numpy"}
