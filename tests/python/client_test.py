@@ -31,7 +31,9 @@ class ClientTest(unittest.TestCase):
     @classmethod
     def tearDownClass(cls):
         cls.client.close()
-        cls.daemon.stop()
+        reports = cls.daemon.stop()
+        if reports:
+            raise AssertionError("the daemon reported a sanitizer error:\n" + reports)
 
     def test_submit_watch_fetch_and_read_results(self):
         job = self.client.submit(support.settling_scene(), {"time.end": 0.01}, name="settling",

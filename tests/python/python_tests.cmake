@@ -1,5 +1,6 @@
 # The Python tests, run by Debian's python3 (its python3-* packages: scripts/setup.sh):
-#   python    the client package (python/) against the real daemon on loopback (client_test.py)
+#   python    the client package (python/): its own logic (client_units_test.py), and against the
+#             real daemon on loopback (client_test.py)
 #   paraview  fields.xmf in ParaView's XDMF readers, through pvbatch (paraview_test.py)
 # Each exits 77, which ctest reports as skipped, only when what it needs is not installed; the
 # message names the Debian package.
@@ -17,6 +18,11 @@ endif()
 
 set(python_tests ${CMAKE_CURRENT_SOURCE_DIR}/python)
 set(python_env "DLMFD_BINARY_DIR=${PROJECT_BINARY_DIR}" "PYTHONDONTWRITEBYTECODE=1")
+if(TARGET dlmfd_python)
+  add_test(NAME PythonClient.OwnLogic COMMAND ${DLMFD_TEST_PYTHON} ${python_tests}/client_units_test.py -v)
+  set_tests_properties(PythonClient.OwnLogic PROPERTIES LABELS python SKIP_RETURN_CODE 77
+    ENVIRONMENT "${python_env};PYTHONPATH=${DLMFD_PYTHON_DIR}")
+endif()
 if(TARGET dlmfd_python AND TARGET dlmfdd)
   add_test(NAME PythonClient.AgainstTheDaemon
            COMMAND ${DLMFD_TEST_PYTHON} ${python_tests}/client_test.py -v)

@@ -98,7 +98,12 @@ class Daemon:
             return f.read()
 
     def stop(self):
+        """Stops the daemon; returns the sanitizer reports of its log ("" when none), as the C++
+        server tests check them (tests/server/support/daemon_process.cc)."""
         self.process.terminate()
         self.process.wait()
+        log = self.log_text()
         self.log.close()
         shutil.rmtree(self.dir, ignore_errors=True)
+        markers = ("WARNING: ThreadSanitizer", "ERROR: AddressSanitizer", "runtime error:")
+        return log if any(m in log for m in markers) else ""
