@@ -8,6 +8,11 @@ packages=(
   libsqlite3-dev sqlite3 libspdlog-dev libfmt-dev
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # The Python client (python/, docs/python.md) and its test: Debian's python3 with gRPC, protobuf,
+  # h5py, numpy; pandas for its tables (tests/python/client_test.py).
+  python3 python3-grpcio python3-protobuf python3-h5py python3-numpy python3-pandas
+  # fields.xmf opened in ParaView offscreen by pvbatch (tests/python/paraview_test.py).
+  paraview python3-paraview
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -92,8 +92,9 @@ TEST(FieldSnapshot, WritesShapesAttributesAndValues) {
   EXPECT_EQ(r.step, 42);
   EXPECT_TRUE(SameBits(r.time, s.time));
   EXPECT_EQ(r.h, g.h);
-  ASSERT_EQ(r.fields.size(), 7u);
+  ASSERT_EQ(r.fields.size(), 8u);
   EXPECT_EQ(r.fields.at("u").shape, (std::vector<std::size_t>{7, 9}));
+  EXPECT_EQ(r.fields.at("velocity").shape, (std::vector<std::size_t>{7, 9, 3}));
   EXPECT_EQ(r.fields.at("p").shape, (std::vector<std::size_t>{4, 5}));
   EXPECT_EQ(r.fields.at("A12").shape, (std::vector<std::size_t>{7, 9}));
   ExpectSameBits(r.fields.at("u").values, s.u);
@@ -102,6 +103,10 @@ TEST(FieldSnapshot, WritesShapesAttributesAndValues) {
   ExpectSameBits(r.fields.at("A22").values, s.a22);
   for (std::size_t k = 0; k < g.NodeCount(); ++k) {
     EXPECT_EQ(r.fields.at("trA").values[k], s.a11[k] + s.a22[k]);
+    // The vector ParaView reads (fields.xmf): (u, v, 0) at each node, x fastest.
+    EXPECT_TRUE(SameBits(r.fields.at("velocity").values[3 * k], s.u[k])) << k;
+    EXPECT_TRUE(SameBits(r.fields.at("velocity").values[3 * k + 1], s.v[k])) << k;
+    EXPECT_TRUE(SameBits(r.fields.at("velocity").values[3 * k + 2], 0.0)) << k;
   }
 }
 
@@ -111,7 +116,7 @@ TEST(FieldSnapshot, NewtonianSnapshotHasNoConformation) {
   const FlowState s = RandomState(g, false, 0, 2);
   WriteFieldSnapshot(dir + "/s.h5", g, s);
   const FieldSnapshot r = ReadFieldSnapshot(dir + "/s.h5");
-  EXPECT_EQ(r.fields.size(), 3u);
+  EXPECT_EQ(r.fields.size(), 4u);  // u, v, velocity, p
   EXPECT_EQ(r.fields.count("trA"), 0u);
 }
 
@@ -124,12 +129,22 @@ TEST(FieldSnapshot, MismatchedStateIsAnError) {
 }
 
 TEST(FieldsXdmf, NamesEverySnapshotWithTheMeshes) {
-  const Grid g = SmallGrid();
+  const Grid g{8, 6, 0.125, 0.5, -1.0};  // an origin off zero shows the order z, y, x
   const std::string text =
       FieldsXdmfText(g, {{"fields/snap_000000.h5", 0.0}, {"fields/snap_000010.h5", 0.25}}, true);
   EXPECT_THAT(text, HasSubstr("CollectionType=\"Temporal\""));
-  EXPECT_THAT(text, HasSubstr("TopologyType=\"2DCoRectMesh\" Dimensions=\"7 9\""));
-  EXPECT_THAT(text, HasSubstr("TopologyType=\"2DCoRectMesh\" Dimensions=\"4 5\""));
+  // One layer in the X-Y plane: 3DCoRectMesh "1 ny+1 nx+1", ORIGIN_DXDYDZ z first; the pressure
+  // mesh has 2h.
+  EXPECT_THAT(text, HasSubstr("TopologyType=\"3DCoRectMesh\" Dimensions=\"1 7 9\""));
+  EXPECT_THAT(text, HasSubstr("TopologyType=\"3DCoRectMesh\" Dimensions=\"1 4 5\""));
+  EXPECT_THAT(text, HasSubstr("GeometryType=\"ORIGIN_DXDYDZ\""));
+  EXPECT_THAT(text, HasSubstr(">0 -1 0.5</DataItem>"));
+  EXPECT_THAT(text, HasSubstr(">1 0.125 0.125</DataItem>"));
+  EXPECT_THAT(text, HasSubstr(">1 0.25 0.25</DataItem>"));
+  EXPECT_THAT(text, HasSubstr("AttributeType=\"Vector\""));
+  EXPECT_THAT(text, HasSubstr("Dimensions=\"1 7 9 3\" NumberType=\"Float\" Precision=\"8\" "
+                              "Format=\"HDF\">fields/snap_000010.h5:/velocity"));
+  EXPECT_EQ(text.find("JOIN"), std::string::npos);
   EXPECT_THAT(text, HasSubstr("fields/snap_000000.h5:/u"));
   EXPECT_THAT(text, HasSubstr("fields/snap_000010.h5:/trA"));
   EXPECT_THAT(text, HasSubstr("fields/snap_000010.h5:/p"));

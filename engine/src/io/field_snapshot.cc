@@ -30,6 +30,18 @@ long StepOfSnapshotName(const std::string& name) {
   return std::stol(digits);
 }
 
+// /velocity: (u, v, 0) per node, shape (ny+1, nx+1, 3), the vector fields.xmf hands to ParaView
+// (its XDMF readers take a vector attribute only with 3 components and evaluate no JOIN).
+void WriteVelocityVector(hid_t file, const Grid& grid, const FlowState& state) {
+  std::vector<double> velocity(3 * grid.NodeCount(), 0.0);
+  for (std::size_t k = 0; k < grid.NodeCount(); ++k) {
+    velocity[3 * k] = state.u[k];
+    velocity[3 * k + 1] = state.v[k];
+  }
+  const std::vector<hsize_t> shape = {hsize_t(grid.NodesY()), hsize_t(grid.NodesX()), 3};
+  h5::WriteDoubles(file, "velocity", shape, velocity.data());
+}
+
 }  // namespace
 
 std::string SnapshotFileName(long step) {
@@ -69,6 +81,7 @@ void WriteFieldSnapshot(const std::string& path, const Grid& grid, const FlowSta
     h5::WriteAttribute(file.get(), "y0", grid.y0);
     h5::WriteDoubles(file.get(), "u", nodes, state.u.data());
     h5::WriteDoubles(file.get(), "v", nodes, state.v.data());
+    WriteVelocityVector(file.get(), grid, state);
     h5::WriteDoubles(file.get(), "p", pressure_nodes, state.p.data());
     if (!state.a11.empty()) {
       std::vector<double> trace(grid.NodeCount());
@@ -90,7 +103,7 @@ FieldSnapshot ReadFieldSnapshot(const std::string& path) {
   s.h = h5::ReadDoubleAttribute(file.get(), "h");
   s.x0 = h5::ReadDoubleAttribute(file.get(), "x0");
   s.y0 = h5::ReadDoubleAttribute(file.get(), "y0");
-  for (const char* name : {"u", "v", "p", "trA", "A11", "A12", "A22"}) {
+  for (const char* name : {"u", "v", "velocity", "p", "trA", "A11", "A12", "A22"}) {
     if (!h5::Exists(file.get(), name)) continue;
     std::vector<hsize_t> dims;
     FieldArray a;

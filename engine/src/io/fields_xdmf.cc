@@ -7,30 +7,40 @@
 namespace dlmfd {
 namespace {
 
+// The node shape of one layer, slowest first: "1 ny+1 nx+1".
 std::string Dims(const Grid& g) {
-  return std::to_string(g.NodesY()) + " " + std::to_string(g.NodesX());
+  return "1 " + std::to_string(g.NodesY()) + " " + std::to_string(g.NodesX());
 }
 
-void HeavyItem(std::ostringstream& o, const Grid& g, const std::string& file,
+void HeavyItem(std::ostringstream& o, const std::string& dims, const std::string& file,
                const std::string& set, const std::string& indent) {
-  o << indent << "<DataItem Dimensions=\"" << Dims(g)
+  o << indent << "<DataItem Dimensions=\"" << dims
     << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file << ":/" << set
     << "</DataItem>\n";
 }
 
-void Scalar(std::ostringstream& o, const Grid& g, const std::string& file, const std::string& set) {
-  o << "          <Attribute Name=\"" << set << "\" AttributeType=\"Scalar\" Center=\"Node\">\n";
-  HeavyItem(o, g, file, set, "            ");
+// A node attribute: "Scalar" of shape Dims(g), or "Vector" of shape Dims(g) plus 3 components.
+void Attribute(std::ostringstream& o, const Grid& g, const std::string& type,
+               const std::string& file, const std::string& set) {
+  const std::string dims = type == "Vector" ? Dims(g) + " 3" : Dims(g);
+  o << "          <Attribute Name=\"" << set << "\" AttributeType=\"" << type
+    << "\" Center=\"Node\">\n";
+  HeavyItem(o, dims, file, set, "            ");
   o << "          </Attribute>\n";
 }
 
+void Scalar(std::ostringstream& o, const Grid& g, const std::string& file, const std::string& set) {
+  Attribute(o, g, "Scalar", file, set);
+}
+
+// ORIGIN_DXDYDZ, z first: origin "0 y0 x0", spacing "1 h h".
 void Mesh(std::ostringstream& o, const Grid& g) {
   o.precision(17);
-  o << "        <Topology TopologyType=\"2DCoRectMesh\" Dimensions=\"" << Dims(g) << "\"/>\n";
-  o << "        <Geometry GeometryType=\"ORIGIN_DXDY\">\n";
-  o << "          <DataItem Dimensions=\"2\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">"
+  o << "        <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"" << Dims(g) << "\"/>\n";
+  o << "        <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n";
+  o << "          <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">0 "
     << g.y0 << " " << g.x0 << "</DataItem>\n";
-  o << "          <DataItem Dimensions=\"2\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">"
+  o << "          <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">1 "
     << g.h << " " << g.h << "</DataItem>\n";
   o << "        </Geometry>\n";
 }
@@ -51,13 +61,7 @@ std::string FieldsXdmfText(const Grid& grid, const std::vector<XdmfEntry>& entri
     o << "        <Time Value=\"" << e.time << "\"/>\n";
     o << "      <Grid Name=\"velocity_mesh\" GridType=\"Uniform\">\n";
     Mesh(o, grid);
-    o << "          <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n";
-    o << "            <DataItem ItemType=\"Function\" Function=\"JOIN($0, $1)\" Dimensions=\""
-      << Dims(grid) << " 2\">\n";
-    HeavyItem(o, grid, e.file, "u", "              ");
-    HeavyItem(o, grid, e.file, "v", "              ");
-    o << "            </DataItem>\n";
-    o << "          </Attribute>\n";
+    Attribute(o, grid, "Vector", e.file, "velocity");
     Scalar(o, grid, e.file, "u");
     Scalar(o, grid, e.file, "v");
     if (has_conformation) {

@@ -2,7 +2,8 @@
 //
 // Datasets /u and /v (velocity), and for a non-Newtonian run /trA, /A11, /A12, /A22 (configuration
 // tensor), all of shape (ny+1, nx+1) on the velocity mesh, x fastest; /p of shape (ny/2+1, nx/2+1)
-// on the 2h pressure mesh. Root attributes: time, step, h, x0, y0 (the mesh origin). Written to a
+// on the 2h pressure mesh; /velocity of shape (ny+1, nx+1, 3), (u, v, 0) per node, for ParaView
+// (fields_xdmf.h). Root attributes: time, step, h, x0, y0 (the mesh origin). Written to a
 // temporary name and renamed. Readers open without HDF5's file lock.
 #pragma once
 
@@ -25,7 +26,7 @@ std::vector<long> SnapshotSteps(const std::string& results_dir);
 void WriteFieldSnapshot(const std::string& path, const Grid& grid, const FlowState& state);
 
 struct FieldArray {
-  std::vector<std::size_t> shape;  // (rows, columns) = (ny+1, nx+1)
+  std::vector<std::size_t> shape;  // (rows, columns) = (ny+1, nx+1); velocity: (ny+1, nx+1, 3)
   std::vector<double> values;      // row-major, x fastest
 };
 
@@ -36,7 +37,7 @@ struct FieldSnapshot {
   double x0 = 0.0;
   double y0 = 0.0;
   std::map<std::string, FieldArray>
-      fields;  // "u", "v", "p", and "trA", "A11", "A12", "A22" when present
+      fields;  // "u", "v", "velocity", "p", and "trA", "A11", "A12", "A22" when present
 };
 
 // Reads every dataset of a snapshot file; throws dlmfd::Error when the file cannot be read.

@@ -1,0 +1,23 @@
+"""dlmfd: a Python client of the dlmfdd job daemon, and readers of its results (docs/python.md).
+
+    import dlmfd
+    client = dlmfd.Client("127.0.0.1:7443", token=None)
+    job = client.submit("cases/lid_driven_cavity.toml", {"time.end": 0.5})
+    for event in client.watch(job.id): ...
+    client.fetch(job.id, "runs/cavity")
+    p = dlmfd.read_particles("runs/cavity")
+"""
+
+from .client import FINISHED_STATES, Client, state_name
+from .errors import (DlmfdError, FailedPrecondition, InvalidArgument, NotFound, ResourceExhausted,
+                     Unauthenticated, Unavailable)
+from .results import (Particles, Snapshot, read_particles, read_snapshot, read_snapshots,
+                      snapshot_paths)
+from .v1 import events_pb2, jobs_pb2
+
+__all__ = [
+    "Client", "state_name", "FINISHED_STATES", "DlmfdError", "InvalidArgument", "NotFound",
+    "Unauthenticated", "ResourceExhausted", "FailedPrecondition", "Unavailable", "Particles",
+    "Snapshot", "read_particles", "read_snapshot", "read_snapshots", "snapshot_paths",
+    "events_pb2", "jobs_pb2",
+]

@@ -1,0 +1,177 @@
+"""The job API of dlmfdd (proto/dlmfd/v1/jobs.proto, docs/api.md) for notebooks and scripts.
+
+``Client(server, token)`` opens a plaintext gRPC channel (tunnel it to reach another machine, as
+for the CLI: docs/cli.md) and sends the token as ``authorization: Bearer TOKEN``. Each method is one
+rpc or a short composition of them; a failed rpc raises a DlmfdError subclass (errors.py). Jobs
+and events are the generated protobuf messages (``job.id``, ``job.state``, ``event.progress``);
+``state_name(job.state)`` gives "COMPLETED". The stubs are generated from proto/ at build time
+(python/CMakeLists.txt), into the build tree beside this package.
+"""
+
+import os
+import pathlib
+
+import grpc
+
+from . import errors, scene_input, table
+from .v1 import jobs_pb2, jobs_pb2_grpc
+
+FINISHED_STATES = (jobs_pb2.COMPLETED, jobs_pb2.FAILED, jobs_pb2.CANCELLED)
+
+
+def state_name(state):
+    """"COMPLETED" for jobs_pb2.COMPLETED."""
+    return jobs_pb2.JobState.Name(state)
+
+
+class Client:
+    """A connection to dlmfdd. server: "HOST:PORT" ($DLMFD_SERVER, else 127.0.0.1:7443); token:
+    the bearer token ($DLMFD_TOKEN, else none); timeout: seconds per unary rpc."""
+
+    def __init__(self, server=None, token=None, timeout=30.0):
+        self.server = server or os.environ.get("DLMFD_SERVER") or "127.0.0.1:7443"
+        self.token = token if token is not None else os.environ.get("DLMFD_TOKEN") or None
+        self.timeout = timeout
+        self._channel = grpc.insecure_channel(self.server)
+        self._stub = jobs_pb2_grpc.JobsStub(self._channel)
+
+    def close(self):
+        self._channel.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *_):
+        self.close()
+
+    def _metadata(self):
+        return (("authorization", f"Bearer {self.token}"),) if self.token else ()
+
+    def _unary(self, rpc, request):
+        try:
+            return getattr(self._stub, rpc)(request, metadata=self._metadata(),
+                                            timeout=self.timeout)
+        except grpc.RpcError as error:
+            raise errors.from_rpc_error(error, rpc) from None
+
+    def _stream(self, rpc, request):
+        try:
+            yield from getattr(self._stub, rpc)(request, metadata=self._metadata())
+        except grpc.RpcError as error:
+            raise errors.from_rpc_error(error, rpc) from None
+
+    def submit(self, scene, overrides=None, name="", tags=(), priority=0, request_id=""):
+        """Queues one job (Submit); returns the Job. scene: TOML text or a path."""
+        request = jobs_pb2.SubmitRequest(scene=scene_input.scene_text(scene),
+                                         overrides=scene_input.override_texts(overrides),
+                                         name=name, tags=list(tags), priority=priority,
+                                         client_request_id=request_id)
+        return self._unary("Submit", request)
+
+    def sweep(self, scene, axes, overrides=None, name="", tags=(), priority=0, request_id=""):
+        """Queues one job per point of the axes' Cartesian product (SubmitSweep).
+
+        axes: {"fluid.relaxation_time": [0.5, 1.4], ...}; returns (sweep_id, [Job, ...])."""
+        request = jobs_pb2.SubmitSweepRequest(
+            scene=scene_input.scene_text(scene), overrides=scene_input.override_texts(overrides),
+            axes=[jobs_pb2.SweepAxis(key=key, values=[scene_input.toml_value(v) for v in values])
+                  for key, values in axes.items()],
+            name=name, tags=list(tags), priority=priority, client_request_id=request_id)
+        response = self._unary("SubmitSweep", request)
+        return response.sweep_id, list(response.jobs)
+
+    def job(self, job_id):
+        """One job (Get)."""
+        return self._unary("Get", jobs_pb2.GetRequest(job_id=job_id))
+
+    def jobs(self, states=(), tag="", sweep_id=""):
+        """The caller's jobs, newest first, every page of List. states: JobState values or names."""
+        states = [jobs_pb2.JobState.Value(s) if isinstance(s, str) else s for s in states]
+        found, token = [], ""
+        while True:
+            page = self._unary("List", jobs_pb2.ListRequest(states=states, tag=tag,
+                                                            sweep_id=sweep_id, page_size=1000,
+                                                            page_token=token))
+            found.extend(page.jobs)
+            token = page.next_page_token
+            if not token:
+                return found
+
+    def cancel(self, job_id):
+        """Cancels a job (Cancel); returns the Job."""
+        return self._unary("Cancel", jobs_pb2.CancelRequest(job_id=job_id))
+
+    def cancel_sweep(self, sweep_id):
+        """Cancels every unfinished job of a sweep (CancelSweep); returns the jobs."""
+        return list(self._unary("CancelSweep", jobs_pb2.CancelSweepRequest(sweep_id=sweep_id)).jobs)
+
+    def watch(self, job_id, from_seq=0, snapshots=False, snapshot_max_width=0,
+              snapshot_max_height=0):
+        """The job's events (WatchEvent messages) as they come; ends after its final state."""
+        request = jobs_pb2.WatchRequest(job_id=job_id, from_seq=from_seq,
+                                        include_snapshots=snapshots,
+                                        snapshot_max_width=snapshot_max_width,
+                                        snapshot_max_height=snapshot_max_height)
+        return self._stream("Watch", request)
+
+    def wait(self, job_id):
+        """Watches the job to its end; returns the finished Job."""
+        for _ in self.watch(job_id):
+            pass
+        return self.job(job_id)
+
+    def files(self, job_id):
+        """The files of the job's results directory with their sizes (ListFiles)."""
+        return list(self._unary("ListFiles", jobs_pb2.ListFilesRequest(job_id=job_id)).files)
+
+    def read(self, job_id, path):
+        """The bytes of one result file (Fetch of one path)."""
+        data = bytearray()
+        for chunk in self._stream("Fetch", jobs_pb2.FetchRequest(job_id=job_id, path=path)):
+            data += chunk.data
+        return bytes(data)
+
+    def fetch(self, job_id, out=None, paths=()):
+        """Writes the job's result files (all, or the given relative paths) under out (default
+        ./JOB_ID); each file goes to a hidden temporary name and is renamed when complete.
+        Returns out as a pathlib.Path."""
+        out = pathlib.Path(out if out is not None else job_id)
+        requests = [jobs_pb2.FetchRequest(job_id=job_id, path=p) for p in paths] or [
+            jobs_pb2.FetchRequest(job_id=job_id)]
+        for request in requests:
+            handle, temporary = None, None
+            try:
+                for chunk in self._stream("Fetch", request):
+                    if handle is None:
+                        final = out / chunk.path
+                        final.parent.mkdir(parents=True, exist_ok=True)
+                        temporary = final.with_name(f".{final.name}.part")
+                        handle = open(temporary, "wb")
+                    handle.write(chunk.data)
+                    if chunk.last:
+                        handle.close()
+                        os.replace(temporary, final)
+                        handle = None
+            finally:
+                if handle is not None:  # the stream broke inside a file: no truncated file kept
+                    handle.close()
+                    os.remove(temporary)
+        return out
+
+    def table(self, sweep_id="", tag="", states=(), jobs=None, summaries=True, frame=None):
+        """One row per job (table.py): of the sweep, tag and states given, or of `jobs`.
+
+        summaries: fetch each finished job's summary.json for its columns. frame: True for a
+        pandas DataFrame, False for a list of dicts, None for a DataFrame when pandas imports."""
+        if jobs is None:
+            jobs = self.jobs(states=states, tag=tag, sweep_id=sweep_id)
+        rows = []
+        for job in sorted(jobs, key=lambda j: (j.created_time, j.name)):
+            summary = None
+            if summaries and job.state in FINISHED_STATES:
+                try:
+                    summary = table.parse_summary(self.read(job.id, "summary.json"))
+                except errors.NotFound:
+                    summary = None
+            rows.append(table.job_row(job, summary))
+        return table.as_table(rows, frame)

@@ -1,0 +1,146 @@
+"""The Python client (python/dlmfd, docs/python.md) against a real dlmfdd on loopback running the
+real dlmfd-solve on a tiny scene: submit, watch to the end, fetch, read particles.h5 and the
+snapshots; a sweep of two points and its table; errors as Python exceptions naming the field.
+
+Run by ctest (label python) as `python3 client_test.py`; exits 77 (skipped) when python3-grpcio,
+python3-protobuf, python3-h5py or python3-numpy is missing.
+"""
+
+import importlib.util
+import json
+import os
+import tempfile
+import unittest
+
+import support
+
+support.skip_unless_importable("grpc", "google.protobuf", "h5py", "numpy")
+
+import numpy as np  # noqa: E402
+
+import dlmfd  # noqa: E402
+
+
+class ClientTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.daemon = support.Daemon()
+        cls.client = dlmfd.Client(cls.daemon.address, token=support.Daemon.TOKEN)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.client.close()
+        reports = cls.daemon.stop()
+        if reports:
+            raise AssertionError("the daemon reported a sanitizer error:\n" + reports)
+
+    def test_submit_watch_fetch_and_read_results(self):
+        job = self.client.submit(support.settling_scene(), {"time.end": 0.01}, name="settling",
+                                 tags=["python"])
+        self.assertIn(job.state, (dlmfd.jobs_pb2.QUEUED, dlmfd.jobs_pb2.RUNNING))
+        self.assertEqual(list(job.overrides), ["time.end=0.01"])
+
+        events = list(self.client.watch(job.id))
+        kinds = [e.WhichOneof("event") for e in events]
+        self.assertEqual(kinds[0], "state")  # the current state comes first
+        self.assertIn("progress", kinds)
+        self.assertIn("particles", kinds)
+        self.assertEqual(events[-1].state.state, dlmfd.jobs_pb2.COMPLETED, events[-1])
+        seqs = [e.seq for e in events if e.seq > 0]
+        self.assertEqual(seqs, sorted(seqs))
+        self.assertEqual(dlmfd.state_name(self.client.job(job.id).state), "COMPLETED")
+        self.assertIn(job.id, [j.id for j in self.client.jobs(tag="python")])
+
+        with tempfile.TemporaryDirectory() as out:
+            self.client.fetch(job.id, out)
+            names = {f.path for f in self.client.files(job.id)}
+            for name in ("summary.json", "particles.h5", "fields.xmf", "scene.toml"):
+                self.assertIn(name, names)
+                self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
+            self.assertFalse([n for n in os.listdir(out) if n.endswith(".part")])
+            with open(os.path.join(out, "summary.json")) as f:
+                summary = json.load(f)
+            self.assertEqual(summary["status"], "completed")
+
+            # particles.h5: the initial record, then one every 0.002 up to t = 0.01.
+            p = dlmfd.read_particles(out)
+            np.testing.assert_allclose(p.time, [0.0, 0.002, 0.004, 0.006, 0.008, 0.01],
+                                       rtol=0, atol=1e-12)
+            self.assertEqual(p.position.shape, (6, 1, 2))
+            self.assertEqual(p.radius.tolist(), [0.125])
+            np.testing.assert_array_equal(p.position[0, 0], [0.5, 1.5])
+            # The last record is the run's end, as summary.json and the last particles event say,
+            # to the bit (each writes the same doubles).
+            last_event = [e for e in events if e.WhichOneof("event") == "particles"][-1].particles
+            self.assertEqual(p.position[-1, 0].tolist(), summary["particles"][0]["position"])
+            self.assertEqual(p.position[-1, 0].tolist(),
+                             [last_event.particles[0].x, last_event.particles[0].y])
+            self.assertLess(p.velocity[-1, 0, 1], 0.0)  # a denser disk falls
+
+            # Snapshots at steps 0, 5, 10 (fields_every 0.005, dt 0.001).
+            snaps = list(dlmfd.read_snapshots(out))
+            self.assertEqual([s.step for s in snaps], [0, 5, 10])
+            last = snaps[-1]
+            self.assertEqual(last["u"].shape, (33, 17))
+            self.assertEqual(last["p"].shape, (17, 9))
+            self.assertEqual(last["velocity"].shape, (33, 17, 3))
+            np.testing.assert_array_equal(last["velocity"][..., 0], last["u"])
+            np.testing.assert_array_equal(last["velocity"][..., 1], last["v"])
+            np.testing.assert_array_equal(last["trA"], last["A11"] + last["A22"])
+            np.testing.assert_allclose(last.x, np.linspace(0.0, 1.0, 17), rtol=0, atol=1e-15)
+            np.testing.assert_allclose(last.y, np.linspace(0.0, 2.0, 33), rtol=0, atol=1e-15)
+
+        self.assertEqual(self.client.read(job.id, "scene.toml").decode().count("[[particles]]"), 1)
+
+    def test_sweep_of_two_points_and_its_table(self):
+        sweep_id, jobs = self.client.sweep(support.settling_scene(),
+                                           {"fluid.relaxation_time": [0.2, 0.5]},
+                                           overrides={"time.end": 0.004}, name="lambda")
+        self.assertTrue(sweep_id)
+        self.assertEqual(len(jobs), 2)
+        self.assertEqual({j.sweep_id for j in jobs}, {sweep_id})
+        finished = [self.client.wait(j.id) for j in jobs]
+        self.assertEqual([dlmfd.state_name(j.state) for j in finished], ["COMPLETED"] * 2)
+
+        rows = self.client.table(sweep_id=sweep_id, frame=False)
+        self.assertEqual(len(rows), 2)
+        self.assertEqual(sorted(r["fluid.relaxation_time"] for r in rows), [0.2, 0.5])
+        for row in rows:
+            self.assertEqual(row["state"], "COMPLETED")
+            self.assertEqual(row["status"], "completed")
+            self.assertEqual(row["time.end"], 0.004)
+            self.assertEqual(row["steps"], 4)
+            summary = json.loads(self.client.read(row["id"], "summary.json"))
+            self.assertEqual([row["particles.0.x"], row["particles.0.y"]],
+                             summary["particles"][0]["position"])
+        if importlib.util.find_spec("pandas") is not None:
+            frame = self.client.table(sweep_id=sweep_id)
+            self.assertEqual(len(frame), 2)
+            self.assertEqual(sorted(frame["fluid.relaxation_time"]), [0.2, 0.5])
+
+    def test_errors_are_exceptions_naming_the_field(self):
+        with self.assertRaises(dlmfd.InvalidArgument) as bad_value:
+            self.client.submit(support.settling_scene(), ["fluid.viscosity=-1"])
+        self.assertEqual(bad_value.exception.key, "fluid.viscosity")
+        self.assertEqual(float(bad_value.exception.value), -1.0)
+        self.assertIn(">", bad_value.exception.allowed)
+        self.assertIn("fluid.viscosity", str(bad_value.exception))
+
+        with self.assertRaises(dlmfd.InvalidArgument) as unknown_key:
+            self.client.submit(support.settling_scene().replace("viscosity", "viscosty"))
+        self.assertIn("fluid.viscosty", str(unknown_key.exception))
+
+        with self.assertRaises(dlmfd.InvalidArgument) as bad_point:
+            self.client.sweep(support.settling_scene(), {"fluid.solvent_ratio": [0.5, 2.0]})
+        self.assertIn("fluid.solvent_ratio", str(bad_point.exception))
+
+        with self.assertRaises(dlmfd.NotFound):
+            self.client.job("no-such-job")
+        with dlmfd.Client(self.daemon.address, token="") as anonymous:
+            with self.assertRaises(dlmfd.Unauthenticated):
+                anonymous.jobs()
+
+
+if __name__ == "__main__":
+    unittest.main()

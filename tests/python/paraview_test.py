@@ -1,0 +1,115 @@
+"""fields.xmf in Debian's ParaView (issue 16 point 5, docs/results.md): a tiny real viscoelastic
+run of dlmfd-solve, opened offscreen by pvbatch with each of ParaView's XDMF readers (XDMF2 "Xdmf
+Reader", Xdmf3ReaderS, Xdmf3ReaderT). Checks, per reader: the number of time steps and their
+times (those of the snapshots), the bounds (the X-Y plane, z = 0, x and y not swapped), the
+array names and components (velocity a 3-component vector), and at one node its coordinates and
+every value against the snapshot read with h5py (the same doubles: compared exactly).
+
+Run by ctest (label paraview) as `python3 paraview_test.py`; exits 77 (skipped) only when
+ParaView's pvbatch is not installed (Debian: paraview, python3-paraview; scripts/setup.sh installs
+them).
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+import unittest
+
+import support
+
+PVBATCH = shutil.which("pvbatch")
+if PVBATCH is None:
+    print("SKIPPED: ParaView's pvbatch is not on PATH (Debian 12: apt-get install paraview "
+          "python3-paraview; scripts/setup.sh installs them)")
+    raise SystemExit(support.SKIP)
+
+import h5py  # noqa: E402  (python3-h5py: with ParaView present, its absence is a failure)
+
+READERS = ("XDMFReader", "Xdmf3ReaderS", "Xdmf3ReaderT")
+NX, NY = 16, 32          # settling_scene: 1 x 2 at h = 1/16
+NODE = (5, 21)           # (i, j) on the velocity mesh: x = 5/16, y = 21/16
+PRESSURE_NODE = (3, 7)   # on the 2h mesh
+SCALARS = ("u", "v", "trA", "A11", "A12", "A22")
+
+
+class ParaViewTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.mkdtemp(prefix="dlmfd-paraview-test-")
+        cls.results = os.path.join(cls.dir, "run")
+        support.run_solver(support.settling_scene(end=0.01, fields_every=0.005), cls.results)
+        cls.snapshots = sorted(os.listdir(os.path.join(cls.results, "fields")))
+        cls.probe()
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.dir, ignore_errors=True)
+
+    @classmethod
+    def probe(cls):
+        """What each reader sees, from one pvbatch run."""
+        out = os.path.join(cls.dir, "probe.json")
+        node = NODE[1] * (NX + 1) + NODE[0]
+        pressure_node = PRESSURE_NODE[1] * (NX // 2 + 1) + PRESSURE_NODE[0]
+        env = dict(os.environ, OMP_NUM_THREADS="1")
+        cls.pvbatch = subprocess.run([PVBATCH, "--force-offscreen-rendering",
+                                  os.path.join(os.path.dirname(__file__), "paraview_probe.py"),
+                                  ",".join(READERS), os.path.join(cls.results, "fields.xmf"),
+                                  str(node), str(pressure_node), out],
+                                 capture_output=True, text=True, env=env)
+        cls.seen = None
+        if cls.pvbatch.returncode == 0:
+            with open(out) as f:
+                cls.seen = json.load(f)
+
+    def check_reader(self, reader):
+        log = self.pvbatch.stdout + self.pvbatch.stderr
+        self.assertEqual(self.pvbatch.returncode, 0, log)
+        self.assertNotIn("Skipping unrecognized array type", log)
+        seen = self.seen[reader]
+        self.assertEqual(self.snapshots, ["snap_000000.h5", "snap_000005.h5", "snap_000010.h5"])
+        self.assertEqual(len(seen["times"]), len(self.snapshots))
+        for snapshot, step in zip(self.snapshots, seen["steps"]):
+            with h5py.File(os.path.join(self.results, "fields", snapshot), "r") as f:
+                self.assertEqual(step["time"], f.attrs["time"])
+                by_kind = {("velocity" if "velocity" in b["arrays"] else "pressure"): b
+                           for b in step["blocks"]}
+                self.assertEqual(sorted(by_kind), ["pressure", "velocity"], step["blocks"])
+                velocity, pressure = by_kind["velocity"], by_kind["pressure"]
+                # The X-Y plane at z = 0: x over the width 1, y over the height 2.
+                self.assertEqual(velocity["bounds"], [0.0, 1.0, 0.0, 2.0, 0.0, 0.0])
+                self.assertEqual(pressure["bounds"], [0.0, 1.0, 0.0, 2.0, 0.0, 0.0])
+                self.assertEqual(velocity["points"], (NX + 1) * (NY + 1))
+                self.assertEqual(pressure["points"], (NX // 2 + 1) * (NY // 2 + 1))
+                self.assertEqual(velocity["arrays"],
+                                 {"velocity": 3, **{name: 1 for name in SCALARS}})
+                self.assertEqual(pressure["arrays"], {"p": 1})
+                i, j = NODE
+                self.assertEqual(velocity["point"], [i / 16, j / 16, 0.0])
+                for name in SCALARS:
+                    self.assertEqual(velocity["values"][name], [f[name][j, i]], name)
+                self.assertEqual(velocity["values"]["velocity"],
+                                 [f["u"][j, i], f["v"][j, i], 0.0])
+                pi, pj = PRESSURE_NODE
+                self.assertEqual(pressure["point"], [pi / 8, pj / 8, 0.0])
+                self.assertEqual(pressure["values"]["p"], [f["p"][pj, pi]])
+        # The run moves: the last step's velocity at the node is not the first's (zero).
+        first = seen["steps"][0]["blocks"]
+        last = seen["steps"][-1]["blocks"]
+        self.assertNotEqual(first, last)
+
+    def test_xdmf2_reader(self):
+        self.check_reader("XDMFReader")
+
+    def test_xdmf3_reader_s(self):
+        self.check_reader("Xdmf3ReaderS")
+
+    def test_xdmf3_reader_t(self):
+        self.check_reader("Xdmf3ReaderT")
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,34 @@
+# The Python tests, run by Debian's python3 (its python3-* packages: scripts/setup.sh):
+#   python    the client package (python/): its own logic (client_units_test.py), and against the
+#             real daemon on loopback (client_test.py)
+#   paraview  fields.xmf in ParaView's XDMF readers, through pvbatch (paraview_test.py)
+# Each exits 77, which ctest reports as skipped, only when what it needs is not installed; the
+# message names the Debian package.
+if(EXISTS /usr/bin/python3)
+  set(python_default /usr/bin/python3)
+else()
+  find_program(python_default python3)
+endif()
+set(DLMFD_TEST_PYTHON ${python_default} CACHE FILEPATH
+    "the Python of the Python tests (Debian's, which sees the python3-* packages)")
+if(NOT DLMFD_TEST_PYTHON)
+  message(STATUS "dlmfd: no python3; the Python and ParaView tests are not registered")
+  return()
+endif()
+
+set(python_tests ${CMAKE_CURRENT_SOURCE_DIR}/python)
+set(python_env "DLMFD_BINARY_DIR=${PROJECT_BINARY_DIR}" "PYTHONDONTWRITEBYTECODE=1")
+if(TARGET dlmfd_python)
+  add_test(NAME PythonClient.OwnLogic COMMAND ${DLMFD_TEST_PYTHON} ${python_tests}/client_units_test.py -v)
+  set_tests_properties(PythonClient.OwnLogic PROPERTIES LABELS python SKIP_RETURN_CODE 77
+    ENVIRONMENT "${python_env};PYTHONPATH=${DLMFD_PYTHON_DIR}")
+endif()
+if(TARGET dlmfd_python AND TARGET dlmfdd)
+  add_test(NAME PythonClient.AgainstTheDaemon
+           COMMAND ${DLMFD_TEST_PYTHON} ${python_tests}/client_test.py -v)
+  set_tests_properties(PythonClient.AgainstTheDaemon PROPERTIES LABELS python SKIP_RETURN_CODE 77
+    ENVIRONMENT "${python_env};PYTHONPATH=${DLMFD_PYTHON_DIR}")
+endif()
+add_test(NAME ParaView.OpensFieldsXmf COMMAND ${DLMFD_TEST_PYTHON} ${python_tests}/paraview_test.py -v)
+set_tests_properties(ParaView.OpensFieldsXmf PROPERTIES LABELS paraview SKIP_RETURN_CODE 77
+  ENVIRONMENT "${python_env}")
