@@ -16,8 +16,8 @@
 //   pressure, L2 (M_p)              1.15e-1  3.28e-2  1.07e-2  3.68e-3   orders 1.81 1.61 1.54
 //   pressure, max over the nodes    3.55e-1  1.29e-1  5.77e-2  2.72e-2   orders 1.45 1.17 1.08
 // The pressure's largest error sits at the corner nodes (interior max 9.1e-2 -> 8.1e-3); its L2
-// order tends to 3/2, the known rate of the P1 pressure next to a no-slip wall, above the order 1
-// the P1-iso-P2 / P1 theory guarantees. Asserted on every pair: the velocity order within 2 +/- 0.3
+// order falls towards about 3/2, above the order 1 the P1-iso-P2 / P1 theory guarantees.
+// Asserted on every pair: the velocity order within 2 +/- 0.3
 // (it separates second order from first), the pressure L2 order >= 1.3 (below the 1.54 the
 // finest pair shows, above first order).
 #include <gtest/gtest.h>
