@@ -198,10 +198,24 @@ cavity_value() {
   bash "$root/cases/verification/cavity_ghia_errors.sh" "$1" |
     sed 's/.*max|u-Ghia| \([0-9.]*\).*max|v-Ghia| \([0-9.]*\).*/\1 \2/' | awk '{ print ($1 > $2 ? $1 : $2) }'
 }
+# The peer's points, a series of their own (issue 13 point 6): Basilisk, centred solver, uniform grid,
+# CFL 0.8, one thread, the same error measure (max over Ghia's points of each centre line), from
+# ../shared/reference/peers.md (measured on this machine type): h, wall seconds, max |u - Ghia|,
+# max |v - Ghia|. Its steps and time step are not recorded there (nan).
+cavity_peer_rows() {
+  local h wall eu ev
+  while read -r h wall eu ev; do
+    awk -v h="$h" -v w="$wall" -v eu="$eu" -v ev="$ev" 'BEGIN { e = eu > ev ? eu : ev
+      printf "b,Basilisk (peer),basilisk,peer,%s,nan,nan,completed,nan,%s,nan,%s,%s\n", h, w, e, e }' \
+      >> "$data/b.csv"
+  done <<< "0.015625 2.45 0.0040 0.0091
+0.0078125 18.2 0.0049 0.0094"
+}
 if [[ $only == *b* ]]; then
   sweep b "$root/cases/lid_driven_cavity.toml" cavity_value "0.0625 0.03125 0.015625 0.0078125" \
     "0.04 0.02 0.01 0.005" 2 "2 1 0.5" "2 4 6 8" cavity_sets
   finish b
+  cavity_peer_rows
   chart b "Lid-driven cavity Re 100: max |u - Ghia| against wall s"
 fi
 
