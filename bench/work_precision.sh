@@ -16,9 +16,11 @@
 #
 # Usage: bench/work_precision.sh [DLMFD_SOLVE]   (default build/solver/dlmfd-solve)
 # Env:   ONLY=a|b|c|d (or several, e.g. ONLY=ab)  WORK=runs/work_precision  WP_ERROR=<wp_error binary>
+#        WP_COST=wall_seconds|cpu_seconds (the charts' cost axis; default wall_seconds, take cpu_seconds
+#        on a loaded machine, where a one-thread run's wall time is mostly waiting)
 #        (default: bench/wp_error next to the solver's build)  DLMFD=<dlmfd CLI> (default build/client/dlmfd)
 # A run whose summary.json is in WORK already is not run again: a second call only redraws.
-# Runs use --threads 1 at nice 19, one at a time; the charts' cost axis is the run's wall-clock seconds
+# Runs use --threads 1 at nice 19, one at a time; the charts' cost axis (WP_COST) is by default the run's wall-clock seconds
 # (summary.json wall_seconds; take them on an otherwise idle machine), the CSVs also have the process's
 # CPU seconds (user + system, bash's time). Output: docs/work_precision/<problem>.csv,
 # docs/work_precision/<problem>_reference.txt (c, d), docs/figures/wp_<problem>.png.
@@ -30,6 +32,8 @@ wp_error=${WP_ERROR:-$build/bench/wp_error}
 dlmfd=${DLMFD:-$root/build/client/dlmfd}
 work=${WORK:-$root/runs/work_precision}
 only=${ONLY:-abcd}
+cost=${WP_COST:-wall_seconds}
+[[ $cost == wall_seconds || $cost == cpu_seconds ]] || { echo "work_precision.sh: WP_COST must be wall_seconds or cpu_seconds, not $cost" >&2; exit 2; }
 data=$root/docs/work_precision
 figures=$root/docs/figures
 for tool in "$solve" "$wp_error" "$dlmfd"; do
@@ -176,7 +180,7 @@ extrapolated_reference() {
 
 chart() {
   local problem=$1 title=$2
-  "$dlmfd" chart --csv "$data/$problem.csv" --xcol wall_seconds --ycol error --group series --logx --logy \
+  "$dlmfd" chart --csv "$data/$problem.csv" --xcol "$cost" --ycol error --group series --logx --logy \
     --markers --title "$title" --out "$figures/wp_$problem.png" > /dev/null
   echo "chart $figures/wp_$problem.png" >&2
 }
@@ -198,11 +202,26 @@ cavity_value() {
   bash "$root/cases/verification/cavity_ghia_errors.sh" "$1" |
     sed 's/.*max|u-Ghia| \([0-9.]*\).*max|v-Ghia| \([0-9.]*\).*/\1 \2/' | awk '{ print ($1 > $2 ? $1 : $2) }'
 }
+# The peer's points, a series of their own (issue 13 point 6): Basilisk, centred solver, uniform grid,
+# CFL 0.8, one thread, the same error measure (max over Ghia's points of each centre line), from
+# ../shared/reference/peers.md (measured on this machine type): h, wall seconds, max |u - Ghia|,
+# max |v - Ghia|. Its steps and time step are not recorded there (nan); its CPU seconds are taken
+# equal to its one-thread wall seconds (Basilisk's own end-of-run lines, on an idle machine).
+cavity_peer_rows() {
+  local h wall eu ev
+  while read -r h wall eu ev; do
+    awk -v h="$h" -v w="$wall" -v eu="$eu" -v ev="$ev" 'BEGIN { e = eu > ev ? eu : ev
+      printf "b,Basilisk (peer),basilisk,peer,%s,nan,nan,completed,%s,%s,nan,%s,%s\n", h, w, w, e, e }' \
+      >> "$data/b.csv"
+  done <<< "0.015625 2.45 0.0040 0.0091
+0.0078125 18.2 0.0049 0.0094"
+}
 if [[ $only == *b* ]]; then
   sweep b "$root/cases/lid_driven_cavity.toml" cavity_value "0.0625 0.03125 0.015625 0.0078125" \
     "0.04 0.02 0.01 0.005" 2 "2 1 0.5" "2 4 6 8" cavity_sets
   finish b
-  chart b "Lid-driven cavity Re 100: max |u - Ghia| against wall s"
+  cavity_peer_rows
+  chart b "Lid-driven cavity Re 100: max |u - Ghia|, |v - Ghia| against $cost"
 fi
 
 # --- c: sedimenting disk --------------------------------------------------------------------------------

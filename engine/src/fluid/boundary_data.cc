@@ -21,9 +21,10 @@ Vec2 SideVelocity(const BoundarySide& side, double s) {
 
 BoundaryData::BoundaryData(const Grid& grid, const DomainParams& domain) {
   const int nx = grid.nx, ny = grid.ny;
-  std::vector<int> owner(grid.NodeCount(), -1);
+  std::vector<bool> owned(grid.NodeCount(), false);
   std::vector<Vec2> value(grid.NodeCount(), Vec2::Zero());
-  // Left/right first, bottom/top second so that the latter own shared corners.
+  // Left/right first, bottom/top second. At a corner of two Dirichlet sides each side keeps the
+  // component normal to itself: x from the left/right side, y from the bottom/top side.
   const Side order[4] = {Side::kLeft, Side::kRight, Side::kBottom, Side::kTop};
   for (Side s : order) {
     const BoundarySide& side = domain.side(s);
@@ -34,13 +35,18 @@ BoundaryData::BoundaryData(const Grid& grid, const DomainParams& domain) {
       const int i = vertical ? (s == Side::kLeft ? 0 : nx) : k;
       const int j = vertical ? k : (s == Side::kBottom ? 0 : ny);
       const std::size_t id = grid.Index(i, j);
-      owner[id] = static_cast<int>(s);
       // Exact fraction k / count so that mid-side and both ends are hit exactly.
-      value[id] = SideVelocity(side, static_cast<double>(k) / count);
+      const Vec2 data = SideVelocity(side, static_cast<double>(k) / count);
+      if (!vertical && owned[id]) {
+        value[id].y() = data.y();  // a corner: the x component stays the vertical side's
+      } else {
+        value[id] = data;
+      }
+      owned[id] = true;
     }
   }
-  for (std::size_t id = 0; id < owner.size(); ++id) {
-    if (owner[id] < 0) continue;
+  for (std::size_t id = 0; id < owned.size(); ++id) {
+    if (!owned[id]) continue;
     nodes_.push_back(id);
     u_.push_back(value[id].x());
     v_.push_back(value[id].y());
