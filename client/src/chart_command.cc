@@ -409,6 +409,7 @@ int RunChart(int argc, char** argv) {
     const std::string path =
         out.empty() ? "chart_" + FileStem(y_name) + "_" + FileStem(x_name) + ".png" : out;
     ChartPicture picture;
+    std::string legend;
     try {
       FormatOfPath(path);
       const std::vector<std::string> names =
@@ -420,6 +421,7 @@ int RunChart(int argc, char** argv) {
         AddRunSeries(runs, names, chart);
       }
       picture = chart.Draw();
+      legend = chart.LegendText();
     } catch (const InvalidParameter& e) {
       throw UsageError(e.what());
     }
@@ -429,6 +431,9 @@ int RunChart(int argc, char** argv) {
       return ReportError("chart", e.what(), kExitLocalIo);
     }
     std::cout << path << "\n";
+    // The legend as text, for logs and scripts (the picture's text is not searchable in a PNG).
+    std::cerr << "legend" << (options.legend_title.empty() ? "" : " (" + options.legend_title + ")")
+              << ": " << legend << "\n";
     return kExitOk;
   });
 }

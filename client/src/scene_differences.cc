@@ -3,8 +3,10 @@
 
 #include <toml++/toml.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
+#include <utility>
 
 #include "connection.h"
 
@@ -25,7 +27,16 @@ void Flatten(const toml::node& node, const std::string& prefix, FlatScene& out) 
     return;
   }
   std::ostringstream text;
-  node.visit([&](const auto& leaf) { text << leaf; });
+  if (const auto* real = node.as_floating_point()) {
+    // 15 digits: 1.1 reads "1.1", not toml++'s round-trip "1.1000000000000001".
+    char digits[32];
+    std::snprintf(digits, sizeof(digits), "%.15g", real->get());
+    text << digits;
+  } else if (const auto* word = node.as_string()) {
+    text << word->get();
+  } else {
+    node.visit([&](const auto& leaf) { text << leaf; });
+  }
   out[prefix] = text.str();
 }
 
@@ -55,7 +66,8 @@ std::vector<std::string> DifferingKeys(const std::vector<FlatScene>& scenes) {
   for (const auto& [key, unused] : keys) {
     const auto value_in = [&](const FlatScene& s) {
       const auto it = s.find(key);
-      return it == s.end() ? std::string("\x01absent") : it->second;
+      return it == s.end() ? std::pair<bool, std::string>{false, ""}
+                           : std::pair<bool, std::string>{true, it->second};
     };
     for (const FlatScene& s : scenes) {
       if (value_in(s) != value_in(scenes.front())) {

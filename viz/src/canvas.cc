@@ -324,7 +324,11 @@ void Canvas::Write(const std::string& path) const {
   cairo_surface_destroy(target);
   if (status != CAIRO_STATUS_SUCCESS)
     throw Error("cannot write " + path + ": " + cairo_status_to_string(status));
-  WriteTextAtomically(path, bytes);
+  try {
+    WriteTextAtomically(path, bytes);
+  } catch (const Error& e) {
+    throw Error("cannot write " + path + " (" + e.what() + ")");
+  }
 }
 
 }  // namespace dlmfd

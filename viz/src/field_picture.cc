@@ -184,17 +184,17 @@ double DrawArrows(Canvas& canvas, const FieldPicture& p, const NodeVelocity& vel
   }
   if (!(longest > 0.0)) return 0.0;
   const double pixels = spacing / g.Width() * p.panel_width;
-  const double head = std::max(3.0, 0.3 * pixels);
   for (std::size_t k = 0; k < points.size(); k += 4) {
     const double length = pixels * std::hypot(points[k + 2], points[k + 3]) / longest;
     if (length < 0.5) continue;
+    const double head = std::max(2.0, 0.3 * length);  // in proportion: short arrows stay small
     const double x0 = p.PixelX(points[k]);
     const double y0 = p.PixelY(points[k + 1]);
     const double x1 = x0 + pixels * points[k + 2] / longest;
     const double y1 = y0 - pixels * points[k + 3] / longest;
     // Black under white: readable on the dark and the bright end of viridis.
-    canvas.Arrow(x0, y0, x1, y1, line_width + 2.0, std::min(head, length) + 1.5, kBlack);
-    canvas.Arrow(x0, y0, x1, y1, line_width, std::min(head, length), kWhite);
+    canvas.Arrow(x0, y0, x1, y1, line_width + 1.5, head + 1.0, kBlack);
+    canvas.Arrow(x0, y0, x1, y1, line_width, head, kWhite);
   }
   return longest;
 }
@@ -403,9 +403,24 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
               bar_label + (log_colours ? " (log scale)" : ""), fs, kAxisColour, Align::kCentre,
               Align::kCentre, 90.0);
 
+  // Caption lines fit the image: a smaller font first (down to 3/4), then cut with "..".
+  const double room = width - 2.0 * shift_x - 2.0 * margin;
   for (std::size_t k = 0; k < caption.size(); ++k) {
-    canvas.Text(shift_x + margin, shift_y + margin + k * line_height, caption[k], fs, kAxisColour,
-                Align::kStart, Align::kStart, 0.0, k == 0);
+    const bool bold = k == 0;
+    const double natural = canvas.MeasureText(caption[k], fs, bold).advance;
+    const double size = natural > room ? std::max(0.75 * fs, fs * room / natural) : fs;
+    std::string line = caption[k];
+    while (line.size() > 1 && canvas.MeasureText(line, size, bold).advance > room) {
+      line.pop_back();
+      while (line.size() > 1 && (static_cast<unsigned char>(line.back()) & 0xC0) == 0x80)
+        line.pop_back();  // never cut inside a UTF-8 sequence
+      if (canvas.MeasureText(line + "...", size, bold).advance <= room) {
+        line += "...";
+        break;
+      }
+    }
+    canvas.Text(shift_x + margin, shift_y + margin + k * line_height, line, size, kAxisColour,
+                Align::kStart, Align::kStart, 0.0, bold);
   }
   return picture;
 }

@@ -323,6 +323,12 @@ ChartPicture LineChart::Draw() const {
   return p;
 }
 
+std::string LineChart::LegendText() const {
+  std::string text;
+  for (const ChartSeries& s : series_) text += (text.empty() ? "" : "; ") + s.name;
+  return text;
+}
+
 ChartPicture LineChart::Save(const std::string& path) const {
   FormatOfPath(path);  // a bad extension fails before any drawing
   ChartPicture picture = Draw();

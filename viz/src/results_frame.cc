@@ -94,12 +94,18 @@ ResultsFrame LoadResultsFrame(const std::string& results_dir, long step,
       if (wanted == "log10(trA/2)") t = t > 0.0 ? std::log10(0.5 * t) : std::nan("");
     }
   }
-  if (snapshot.fields.count("u") > 0 && snapshot.fields.count("v") > 0 &&
-      snapshot.fields.at("u").values.size() == grid.NodeCount() &&
-      snapshot.fields.at("v").values.size() == grid.NodeCount()) {
-    frame.velocity.u = NodeField{grid, values("u"), "u"};
-    frame.velocity.v = NodeField{grid, values("v"), "v"};
-    frame.has_velocity = true;
+  if (snapshot.fields.count("u") > 0 && snapshot.fields.count("v") > 0) {
+    const FieldArray& u = snapshot.fields.at("u");
+    const Grid velocity_grid =
+        u.shape.size() == 2 && u.shape[0] >= 2 && u.shape[1] >= 2
+            ? Grid{int(u.shape[1]) - 1, int(u.shape[0]) - 1, snapshot.h, snapshot.x0, snapshot.y0}
+            : Grid{};
+    if (velocity_grid.nx > 0 && u.values.size() == velocity_grid.NodeCount() &&
+        snapshot.fields.at("v").values.size() == velocity_grid.NodeCount()) {
+      frame.velocity.u = NodeField{velocity_grid, values("u"), "u"};
+      frame.velocity.v = NodeField{velocity_grid, values("v"), "v"};
+      frame.has_velocity = true;
+    }
   }
 
   frame.particles_time = frame.time;

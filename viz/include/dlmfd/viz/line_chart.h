@@ -86,6 +86,8 @@ class LineChart {
   // Throws InvalidParameter when x and y differ in length.
   void AddSeries(ChartSeries series);
   std::size_t SeriesCount() const { return series_.size(); }
+  // The legend's entries, "; "-separated, in series order.
+  std::string LegendText() const;
   // Throws InvalidParameter when there is no series, no usable point in any series, the size
   // leaves no room for the panel, or equal_scale is asked with a log axis.
   ChartPicture Draw() const;
