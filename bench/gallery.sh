@@ -27,10 +27,14 @@ run() {  # run NAME CASE [--set ...]: one short run, skipped when its summary sa
     --threads 1 "${quick[@]}" "$@"
 }
 step_of() { awk -v t="$1" 'BEGIN { printf "%d", t / 0.001 + 0.5 }'; }
+# The settings the figures were made with, in their captions (the scene titles give the paper's).
+declare -A mesh=([5.1a]="h = 1/48, h_p = 1/35" [5.2_newtonian]="h = 1/32, h_p = 1/23.3"
+  [5.2_oldroyd_b]="h = 1/32, h_p = 1/23.3" [5.3a]="h = 1/32, h_p = 1/23.3")
 plot() {  # plot RUN T FILE [flags]: the snapshot at time T
   local run=$1 t=$2 file=$3
   shift 3
-  "$dlmfd" plot "$runs/$run" --snapshot "$(step_of "$t")" --out "$out/$file" "$@" > /dev/null
+  "$dlmfd" plot "$runs/$run" --snapshot "$(step_of "$t")" --out "$out/$file" \
+    --caption "$run, short coarse run: ${mesh[$run]}, dt = 0.001, wave advection" "$@" > /dev/null
 }
 chart() { "$dlmfd" chart --width 800 --height 500 "$@" 2> /dev/null > /dev/null; }
 
@@ -68,8 +72,9 @@ plot 5.2_oldroyd_b 2.5 5.2_oldroyd_b_trA_t2.5.png --quantity trA-2 --log --isoli
   --width 420 --height 1000
 chart "$runs/5.2_oldroyd_b" --label "Oldroyd-B pair" --y gap --logy \
   --title "5.2 Oldroyd-B: gap between the disks" -o "$out/5.2_oldroyd_b_gap.png"
-"$dlmfd" movie "$runs/5.2_oldroyd_b" --quantity trA-2 --log --window 0,4.5,2,8 --width 480 \
-  --height 720 --fps 10 --out "$out/5.2_oldroyd_b_trA.mp4" > /dev/null
+"$dlmfd" movie "$runs/5.2_oldroyd_b" --quantity trA-2 --log --isolines 8 --window 0,4.5,2,8 \
+  --width 480 --height 720 --fps 10 --out "$out/5.2_oldroyd_b_trA.mp4" \
+  --caption "5.2 Oldroyd-B pair, short coarse run: ${mesh[5.2_oldroyd_b]}, dt = 0.001" > /dev/null
 
 # 5.3a, figure 10(a): eleven disks in a wide channel (eta 0.13, lambda 1.3), h = 1/32, to t = 1.
 run 5.3a 5.3a_eleven_disks "${coarse32[@]}" --set time.end=1 --set output.fields_every=0.5

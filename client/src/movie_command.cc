@@ -128,10 +128,8 @@ int MakeMovie(const std::string& dir, const std::string& run_caption, MovieFlags
   for (const long step : steps) {
     const ResultsFrame frame = LoadResultsFrame(dir, step, plot.quantity);
     PictureOptions options = plot.options;
-    options.caption =
-        caption.empty()
-            ? run_caption + "\n" + FrameCaption(frame.field.quantity, frame.time, frame.step)
-            : caption + "\n" + "t = " + FormatLabel(frame.time);
+    options.caption = (caption.empty() ? run_caption : caption) + "\n" +
+                      FrameCaption(frame.field.quantity, frame.time, frame.step);
     if (!movie) {
       // The first frame sets the size: its natural one, rounded up to even sides.
       const FieldPicture natural = DrawFrame(frame, plot, options);

@@ -98,10 +98,9 @@ int PlotJob(const ConnectionFlags& flags, const std::string& job_id, const PlotF
   }
   PictureOptions picture_options = plot.options;
   const NodeField field = Windowed(FieldOfSnapshot(snapshot), plot.window);
-  if (picture_options.caption.empty()) {
-    picture_options.caption = JobCaption(outcome.job) + "\n" +
-                              FrameCaption(field.quantity, snapshot.time(), snapshot.step());
-  }
+  picture_options.caption =
+      (plot.options.caption.empty() ? JobCaption(outcome.job) : plot.options.caption) + "\n" +
+      FrameCaption(field.quantity, snapshot.time(), snapshot.step());
   const std::string path =
       out.empty() ? job_id + "_" + field.quantity + "_" + std::to_string(snapshot.step()) + ".png"
                   : out;
@@ -140,10 +139,9 @@ int RunPlot(int argc, char** argv) {
       if (!job_id.empty()) return PlotJob(connection_flags, job_id, plot, out);
       ResultsFrame frame = LoadResultsFrame(results_dir, snapshot, plot.quantity);
       PictureOptions options = plot.options;
-      if (options.caption.empty()) {
-        options.caption = DirectoryCaption(results_dir) + "\n" +
-                          FrameCaption(frame.field.quantity, frame.time, frame.step);
-      }
+      options.caption =
+          (options.caption.empty() ? DirectoryCaption(results_dir) : options.caption) + "\n" +
+          FrameCaption(frame.field.quantity, frame.time, frame.step);
       const std::string path =
           out.empty()
               ? (std::filesystem::path(results_dir) /

@@ -19,8 +19,10 @@ void AddPlotFlags(CLI::App& app, PlotFlags& f) {
       ->check(CLI::Range(64, 8192));
   app.add_option("--height", f.options.max_height, "largest image height in pixels")
       ->check(CLI::Range(64, 8192));
-  app.add_option("--caption", f.options.caption,
-                 "text above the picture (default: the run, quantity, time, step)");
+  app.add_option(
+      "--caption", f.options.caption,
+      "first caption line, naming the run (default: the scene title and directory, or the "
+      "job's name and overrides); quantity, time and step follow");
   app.add_flag("--log", f.options.log_colours,
                "logarithmic colour scale (ticks at 1-2-5 multiples or decades); with trA-2 it "
                "shows the stretch over decades");
