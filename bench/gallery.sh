@@ -58,7 +58,7 @@ plot 5.2_newtonian 2.5 5.2_newtonian_vorticity_t2.5.png --quantity vorticity --a
   --width 420 --height 1000
 chart "$runs/5.2_newtonian" --label "Newtonian pair" --y y --title "5.2 Newtonian: y of the centres" \
   -o "$out/5.2_newtonian_y.png"
-chart "$runs/5.2_newtonian" --label "Newtonian pair" --x x --y y --equal --markers \
+chart "$runs/5.2_newtonian" --label "Newtonian pair" --x x --y y --equal \
   --title "5.2 Newtonian: trajectories (equal scales)" -o "$out/5.2_newtonian_trajectory.png"
 
 # 5.2, figure 9: the Oldroyd-B pair dropped at y = 7.7 and 6.6, h = 1/32, to t = 2.5; and its movie.
@@ -68,17 +68,19 @@ plot 5.2_oldroyd_b 0.5 5.2_oldroyd_b_velocity_t0.5.png --quantity speed --arrows
   --width 420 --height 1000
 plot 5.2_oldroyd_b 0.5 5.2_oldroyd_b_trA_t0.5.png --isolines 12 --lines-only --width 420 \
   --height 1000
-plot 5.2_oldroyd_b 2.5 5.2_oldroyd_b_trA_t2.5.png --quantity trA-2 --log --isolines 10 \
+plot 5.2_oldroyd_b 2.5 5.2_oldroyd_b_trA_t2.5.png --quantity trA-2 --log --range 1e-4,10 --isolines 10 \
   --width 420 --height 1000
 chart "$runs/5.2_oldroyd_b" --label "Oldroyd-B pair" --y gap --logy \
   --title "5.2 Oldroyd-B: gap between the disks" -o "$out/5.2_oldroyd_b_gap.png"
-"$dlmfd" movie "$runs/5.2_oldroyd_b" --quantity trA-2 --log --isolines 8 --window 0,4.5,2,8 \
+"$dlmfd" movie "$runs/5.2_oldroyd_b" --quantity trA-2 --log --range 1e-4,10 --isolines 8 \
+  --window 0,4.5,2,8 \
   --width 480 --height 720 --fps 10 --out "$out/5.2_oldroyd_b_trA.mp4" \
   --caption "5.2 Oldroyd-B pair, short coarse run: ${mesh[5.2_oldroyd_b]}, dt = 0.001" > /dev/null
 
 # 5.3a, figure 10(a): eleven disks in a wide channel (eta 0.13, lambda 1.3), h = 1/32, to t = 1.
 run 5.3a 5.3a_eleven_disks "${coarse32[@]}" --set time.end=1 --set output.fields_every=0.5
-plot 5.3a 1 5.3a_trA_t1.png --quantity trA-2 --log --isolines 10 --width 420 --height 1000
+plot 5.3a 1 5.3a_trA_t1.png --quantity trA-2 --log --range 1e-4,10 --isolines 10 --width 420 \
+  --height 1000
 chart "$runs/5.3a" --label "5.3a" --x x --y y --equal --title "5.3a: trajectories to t = 1" \
   -o "$out/5.3a_trajectory.png"
 

@@ -98,8 +98,10 @@ int PlotJob(const ConnectionFlags& flags, const std::string& job_id, const PlotF
   }
   PictureOptions picture_options = plot.options;
   const NodeField field = Windowed(FieldOfSnapshot(snapshot), plot.window);
+  v1::Job job = outcome.job;  // as of its latest state change; the id at least
+  if (job.id().empty()) job.set_id(job_id);
   picture_options.caption =
-      (plot.options.caption.empty() ? JobCaption(outcome.job) : plot.options.caption) + "\n" +
+      (plot.options.caption.empty() ? JobCaption(job) : plot.options.caption) + "\n" +
       FrameCaption(field.quantity, snapshot.time(), snapshot.step());
   const std::string path =
       out.empty() ? job_id + "_" + field.quantity + "_" + std::to_string(snapshot.step()) + ".png"
