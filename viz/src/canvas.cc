@@ -100,6 +100,13 @@ Canvas::Canvas(int width, int height)
   recording_ = cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, &extents);
   CheckSurface(recording_, "cannot create a drawing surface");
   cr_ = cairo_create(recording_);
+  // Unhinted metrics: advances scale linearly with the size and measure what the SVG, PDF and PNG
+  // show alike.
+  cairo_font_options_t* font = cairo_font_options_create();
+  cairo_font_options_set_hint_metrics(font, CAIRO_HINT_METRICS_OFF);
+  cairo_font_options_set_hint_style(font, CAIRO_HINT_STYLE_NONE);
+  cairo_set_font_options(cr_, font);
+  cairo_font_options_destroy(font);
   FillRect(0, 0, width, height, kWhite);
 }
 
