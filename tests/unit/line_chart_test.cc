@@ -3,9 +3,14 @@
 // antialiased lines of 2 px or more, so the pixels along a line's centre are fully covered), a NaN
 // or a value <= 0 on a log axis breaking the line instead of crashing, clear errors for empty
 // input, equal axis scales, styles that tell 28 and more series apart, and a legend title.
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <limits>
 #include <set>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -342,6 +347,25 @@ TEST(LineChart, ThirtyTwoSeriesHaveDistinctStylesAndALegendTitle) {
     }
   }
   EXPECT_GT(dark, 200);
+}
+
+TEST(LineChart, SaveWritesTheFormatOfTheExtension) {
+  LineChart chart(Options());
+  chart.AddSeries({"a", {0.0, 1.0}, {0.0, 1.0}, false});
+  const std::string stem = ::testing::TempDir() + "/line_chart_save_" + std::to_string(::getpid());
+  const ChartPicture png = chart.Save(stem + ".png");
+  const RgbImage back = ReadPng(stem + ".png");
+  EXPECT_EQ(back.width, 600);
+  EXPECT_EQ(back.height, 400);
+  EXPECT_EQ(back.rgb, png.image.Rasterise().rgb);
+  chart.Save(stem + ".svg");
+  std::ifstream svg(stem + ".svg");
+  std::stringstream text;
+  text << svg.rdbuf();
+  EXPECT_NE(text.str().find("width=\"600pt\" height=\"400pt\""), std::string::npos);
+  EXPECT_THROW(chart.Save(stem + ".bmp"), InvalidParameter);
+  std::remove((stem + ".png").c_str());
+  std::remove((stem + ".svg").c_str());
 }
 
 TEST(LineChart, PaletteIsDistinctAndCycles) {

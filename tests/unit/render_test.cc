@@ -398,6 +398,17 @@ TEST(RenderTest, NanNodesAreGreyAndLeaveTheScaleFinite) {
   EXPECT_EQ(grey.value_max, 0.0);
 }
 
+TEST(RenderTest, LongCaptionsAreFittedInsideTheImage) {
+  std::string caption = "Two disks in an Oldroyd-B liquid";
+  for (int k = 0; k < 12; ++k) caption += ", fluid.relaxation_time=1.4";
+  const FieldPicture picture =
+      DrawFieldPicture(LinearField(1.0, 1.0, 0.0), {}, Sized(400, 300, caption + "\nsecond line"));
+  const RgbImage png = WrittenPng(picture, "caption");
+  // Text in the caption rows, none in the right margin (0.8 font sizes, 7 px here).
+  EXPECT_GT(DarkPixels(png, 0, 0, png.width, picture.panel_top), 100);
+  EXPECT_EQ(DarkPixels(png, png.width - 5, 0, png.width, picture.panel_top - 2), 0);
+}
+
 TEST(RenderTest, RejectsMismatchedValuesAndSizesWithoutRoom) {
   NodeField field = LinearField(0.0, 1.0, 0.0);
   EXPECT_THROW(DrawFieldPicture(field, {}, Sized(40, 25)), InvalidParameter);

@@ -403,21 +403,23 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
               bar_label + (log_colours ? " (log scale)" : ""), fs, kAxisColour, Align::kCentre,
               Align::kCentre, 90.0);
 
-  // Caption lines fit the image: a smaller font first (down to 3/4), then cut with "..".
+  // Caption lines fit the image: a smaller font first (down to 3/4), then cut with "...".
   const double room = width - 2.0 * shift_x - 2.0 * margin;
   for (std::size_t k = 0; k < caption.size(); ++k) {
     const bool bold = k == 0;
     const double natural = canvas.MeasureText(caption[k], fs, bold).advance;
-    const double size = natural > room ? std::max(0.75 * fs, fs * room / natural) : fs;
+    const double size = natural > room ? std::max(0.75 * fs, 0.995 * fs * room / natural) : fs;
     std::string line = caption[k];
-    while (line.size() > 1 && canvas.MeasureText(line, size, bold).advance > room) {
-      line.pop_back();
-      while (line.size() > 1 && (static_cast<unsigned char>(line.back()) & 0xC0) == 0x80)
-        line.pop_back();  // never cut inside a UTF-8 sequence
-      if (canvas.MeasureText(line + "...", size, bold).advance <= room) {
-        line += "...";
-        break;
+    if (canvas.MeasureText(line, size, bold).advance > room) {
+      while (line.size() > 1 && canvas.MeasureText(line + "...", size, bold).advance > room) {
+        // One character: its UTF-8 continuation bytes, then its first byte.
+        unsigned char last = 0;
+        do {
+          last = static_cast<unsigned char>(line.back());
+          line.pop_back();
+        } while (!line.empty() && (last & 0xC0) == 0x80);
       }
+      line += "...";
     }
     canvas.Text(shift_x + margin, shift_y + margin + k * line_height, line, size, kAxisColour,
                 Align::kStart, Align::kStart, 0.0, bold);
