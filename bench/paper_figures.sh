@@ -38,23 +38,23 @@ for kind in newtonian_disk disk; do
       chart "${set3[@]/#/$runs/}" "${labels[@]}" --y "$q" --title "5.1a $name: $q (figure 3)" \
         -o "$out/5.1a_${name}_$q.png"
     done
-    chart "${set3[@]/#/$runs/}" "${labels[@]}" --x x --y y --title "5.1a $name: trajectory" \
+    chart "${set3[@]/#/$runs/}" "${labels[@]}" --x x --y y --equal --title "5.1a $name: trajectory" \
       -o "$out/5.1a_${name}_trajectory.png"
   fi
 done
-# Figures 4-6: trA at t = 0.3 (the speed for the Newtonian run), close-ups with log colours (trA
-# spans decades; the paper's isovalues show the same structure).
+# Figures 4-6: trA at t = 0.3 (the speed with arrows for the Newtonian run), close-ups: trA - 2 on
+# a log scale (it spans decades near the disk) with ten isovalues, as the paper's figures show.
 near=(--window 0,1.7,1.5,4.7)
-picture 5.1a_newtonian_disk_rho1.5_h96_dt1e-3 300 5.1a_newtonian_h96_dt1e-3_speed_t0.3.png --quantity speed "${near[@]}"
-picture 5.1a_disk_rho1.5_h96_dt1e-3 300 5.1a_oldroyd_b_h96_dt1e-3_trA_t0.3.png --log "${near[@]}"
-picture 5.1a_disk_rho1.5_h128_dt4e-4 750 5.1a_oldroyd_b_h128_dt4e-4_trA_t0.3.png --log "${near[@]}"
-picture 5.1a_disk_rho1.5_h96_dt4e-4 750 5.1a_oldroyd_b_h96_dt4e-4_trA_t0.3.png --log "${near[@]}"
+picture 5.1a_newtonian_disk_rho1.5_h96_dt1e-3 300 5.1a_newtonian_h96_dt1e-3_speed_t0.3.png --quantity speed --arrows 12 "${near[@]}"
+picture 5.1a_disk_rho1.5_h96_dt1e-3 300 5.1a_oldroyd_b_h96_dt1e-3_trA_t0.3.png --quantity trA-2 --log --isolines 10 "${near[@]}"
+picture 5.1a_disk_rho1.5_h128_dt4e-4 750 5.1a_oldroyd_b_h128_dt4e-4_trA_t0.3.png --quantity trA-2 --log --isolines 10 "${near[@]}"
+picture 5.1a_disk_rho1.5_h96_dt4e-4 750 5.1a_oldroyd_b_h96_dt4e-4_trA_t0.3.png --quantity trA-2 --log --isolines 10 "${near[@]}"
 
 # 5.1b, figure 7: rho_p = 1.02, lambda = 0.3, trA at t = 3.1.
 if have 5.1b_disk_rho1.02_lambda0.3; then
   chart $runs/5.1b_disk_rho1.02_lambda0.3 --y v --title "5.1b: v" -o "$out/5.1b_v.png"
-  picture 5.1b_disk_rho1.02_lambda0.3 7750 5.1b_trA_t3.1.png --log
-  picture 5.1b_disk_rho1.02_lambda0.3 7750 5.1b_trA_t3.1_close.png --log --window 0,0.3,1.5,2.3
+  picture 5.1b_disk_rho1.02_lambda0.3 7750 5.1b_trA_t3.1.png --quantity trA-2 --log --isolines 10
+  picture 5.1b_disk_rho1.02_lambda0.3 7750 5.1b_trA_t3.1_close.png --quantity trA-2 --log --isolines 10 --window 0,0.3,1.5,2.3
 fi
 
 # 5.2, figures 8 and 9: the Newtonian and the Oldroyd-B pair.
@@ -63,15 +63,15 @@ for r in 5.2_pair_newtonian@wave 5.2_pair_oldroyd_b@wave; do
   if have "$r"; then
     label=(--label "${name#5.2_pair_} (${r#*@} advection)")
     for q in y u v omega gap; do chart "$runs/$r" "${label[@]}" --y "$q" --title "$name: $q" -o "$out/${name}_$q.png"; done
-    chart "$runs/$r" "${label[@]}" --x x --y y --title "$name: trajectories" -o "$out/${name}_trajectory.png"
+    chart "$runs/$r" "${label[@]}" --x x --y y --equal --title "$name: trajectories" -o "$out/${name}_trajectory.png"
   fi
 done
 for t in 0.5 1.5 2.5 5; do
   picture 5.2_pair_newtonian@wave "$(awk -v t=$t 'BEGIN { printf "%d", t / 0.0004 + 0.5 }')" \
-    "5.2_pair_newtonian_speed_t$t.png" --quantity speed
+    "5.2_pair_newtonian_speed_t$t.png" --quantity speed --arrows 12
 done
 for t in 0.5 9.5 25; do
-  picture 5.2_pair_oldroyd_b@wave "$(awk -v t=$t 'BEGIN { printf "%d", t / 0.0004 + 0.5 }')" "5.2_pair_oldroyd_b_trA_t$t.png" --log
+  picture 5.2_pair_oldroyd_b@wave "$(awk -v t=$t 'BEGIN { printf "%d", t / 0.0004 + 0.5 }')" "5.2_pair_oldroyd_b_trA_t$t.png" --quantity trA-2 --log --isolines 10
 done
 
 # 5.2 from figure 9's caption positions (y = 7.7 and 6.6).
@@ -79,7 +79,7 @@ r=5.2_pair_oldroyd_b_caption_start@wave
 if have "$r"; then
   for q in y v gap; do chart "$runs/$r" --label "caption start (wave advection)" --y "$q" --title "5.2 Oldroyd-B, caption start: $q" -o "$out/5.2_caption_start_$q.png"; done
 fi
-picture "$r" 23750 5.2_caption_start_trA_t9.5.png --log
+picture "$r" 23750 5.2_caption_start_trA_t9.5.png --quantity trA-2 --log --isolines 10
 
 # Single disks in Stokes flow against Faxen's law (5.2 and 5.3c liquids, Newtonian).
 if have faxen_disk_w2 faxen_disk_w1; then
@@ -98,12 +98,12 @@ for r in 5.3a_eleven_disks@wave 5.3b_eleven_disks_lambda3.5@wave 5.3c_eleven_dis
   name=${r%%_*}
   if have "$r"; then
     chart "$runs/$r" --label "$name" --y y --title "$name: y of the eleven disks" -o "$out/${name}_y.png"
-    chart "$runs/$r" --label "$name" --x x --y y --title "$name: trajectories" -o "$out/${name}_trajectory.png"
+    chart "$runs/$r" --label "$name" --x x --y y --equal --title "$name: trajectories" -o "$out/${name}_trajectory.png"
   fi
 done
-picture 5.3a_eleven_disks@wave 2500 5.3a_trA_t1.png --log
-picture 5.3a_eleven_disks@wave 39000 5.3a_trA_t15.6.png --log
-picture 5.3b_eleven_disks_lambda3.5@wave 39000 5.3b_trA_t15.6.png --log
-picture 5.3b_eleven_disks_lambda3.5@wave 45500 5.3b_trA_t18.2.png --log  # the last snapshot (t = 18.2)
-picture 5.3c_eleven_disks_narrow@wave 52500 5.3c_trA_t21.png --log  # the last snapshot (t = 21.0)
-picture 5.4_fluidized_bed_102 5000 5.4_trA_t2.png --log
+picture 5.3a_eleven_disks@wave 2500 5.3a_trA_t1.png --quantity trA-2 --log --isolines 10
+picture 5.3a_eleven_disks@wave 39000 5.3a_trA_t15.6.png --quantity trA-2 --log --isolines 10
+picture 5.3b_eleven_disks_lambda3.5@wave 39000 5.3b_trA_t15.6.png --quantity trA-2 --log --isolines 10
+picture 5.3b_eleven_disks_lambda3.5@wave 45500 5.3b_trA_t18.2.png --quantity trA-2 --log --isolines 10  # the last snapshot (t = 18.2)
+picture 5.3c_eleven_disks_narrow@wave 52500 5.3c_trA_t21.png --quantity trA-2 --log --isolines 10  # the last snapshot (t = 21.0)
+picture 5.4_fluidized_bed_102 5000 5.4_trA_t2.png --quantity trA-2 --log --isolines 10

@@ -6,7 +6,8 @@ packages=(
   libeigen3-dev libhdf5-dev hdf5-tools libfftw3-dev
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libsqlite3-dev sqlite3 libspdlog-dev libfmt-dev
-  libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev
+  libtomlplusplus-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
+  libcairo2-dev fonts-dejavu-core ffmpeg
   libgtest-dev libgmock-dev libbenchmark-dev
   # The Python client (python/, docs/python.md) and its test: Debian's python3 with gRPC, protobuf,
   # h5py, numpy; pandas for its tables (tests/python/client_test.py).

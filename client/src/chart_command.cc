@@ -1,10 +1,12 @@
 // dlmfd chart RUN_DIR... --y Q [--x Q] [--particle ID|all] [--label TEXT]... [--title T] [--logx]
-// [--logy]
-//             [--markers] [--out FILE.png] [--width W] [--height H]
+//             [--logy] [--equal] [--legend-title T] [--markers] [--out FILE.png|.svg|.pdf]
+//             [--width W] [--height H]
 // dlmfd chart --csv FILE --xcol NAME --ycol NAME [--group NAME] [--points] [same drawing flags]
 // Line charts of particle quantities (particles.h5 of results directories, design.md 3.2) against
 // time or each other, several runs overlaid, or of two columns of any CSV file with a header (one
 // series per value of a group column: work-precision charts). Local files only: no daemon.
+// Series of several runs are named by the parameters in which their scenes differ (the swept
+// parameters, scene_differences.h), the keys in the legend's title; --label names them instead.
 // `gap` is the smallest surface-to-surface distance over the pairs of particles of a run at each
 // record, min |xi - xj| - ri - rj, not taking periodic images into account.
 #include <algorithm>
@@ -24,9 +26,9 @@
 #include "dlmfd/core/errors.h"
 #include "dlmfd/io/particle_history.h"
 #include "dlmfd/viz/line_chart.h"
-#include "dlmfd/viz/png_file.h"
 #include "exit_codes.h"
 #include "rpc_status.h"
+#include "scene_differences.h"
 
 namespace dlmfd::cli {
 namespace {
@@ -151,12 +153,36 @@ std::vector<std::size_t> SelectParticles(const ParticleHistory& h, const std::st
   return selected;
 }
 
-void AddRunSeries(const RunRequest& request, LineChart& chart) {
+// The series names of the runs: --label, else the values of the parameters in which their scenes
+// differ (their keys become the legend's title), else the directory names.
+std::vector<std::string> RunNames(const RunRequest& request, std::string& legend_title) {
+  std::vector<std::string> names;
+  std::vector<FlatScene> scenes;
+  for (const std::string& dir : request.dirs) scenes.push_back(ReadFlatScene(dir));
+  const std::vector<std::string> keys =
+      request.dirs.size() > 1 ? DifferingKeys(scenes) : std::vector<std::string>{};
+  for (std::size_t n = 0; n < request.dirs.size(); ++n) {
+    if (n < request.labels.size()) {
+      names.push_back(request.labels[n]);
+    } else if (!keys.empty()) {
+      names.push_back(ValuesOf(scenes[n], keys));
+    } else {
+      names.push_back(RunName(request.dirs[n]));
+    }
+  }
+  if (legend_title.empty() && !keys.empty() && request.labels.size() < request.dirs.size()) {
+    for (const std::string& key : keys) legend_title += (legend_title.empty() ? "" : ", ") + key;
+  }
+  return names;
+}
+
+void AddRunSeries(const RunRequest& request, const std::vector<std::string>& names,
+                  LineChart& chart) {
   const bool per_run = request.x == "gap" || request.y == "gap";
   const bool particle_free = request.x == "t" && request.y == "t";
   for (std::size_t n = 0; n < request.dirs.size(); ++n) {
     const std::string& dir = request.dirs[n];
-    const std::string name = n < request.labels.size() ? request.labels[n] : RunName(dir);
+    const std::string& name = names[n];
     const ParticleHistory h = ReadRun(dir);
     if (h.records == 0) throw UsageError(dir + "/particles.h5 holds no records yet");
     if (per_run && h.particles < 2) {
@@ -299,7 +325,7 @@ std::string FileStem(const std::string& text) {
 int RunChart(int argc, char** argv) {
   CLI::App app{
       "Draw particle quantities of results directories, or columns of a CSV file, as a line chart "
-      "PNG."};
+      "(PNG, SVG or PDF)."};
   ConnectionFlags
       unused_connection;  // accepted for `dlmfd --server ... chart`; chart reads local files only
   AddConnectionFlags(app, unused_connection);
@@ -327,10 +353,15 @@ int RunChart(int argc, char** argv) {
   app.add_option("--title", options.title, "title above the chart");
   app.add_flag("--logx", log_x, "log10 x axis (points with x <= 0 are skipped)");
   app.add_flag("--logy", log_y, "log10 y axis (points with y <= 0 are skipped)");
-  app.add_flag("--markers", markers, "a dot at every point as well as the line");
+  app.add_flag("--markers", markers, "a marker at every point as well as the line");
+  app.add_flag("--equal", options.equal_scale,
+               "the same scale on both axes (trajectories keep their shape; linear axes only)");
+  app.add_option("--legend-title", options.legend_title,
+                 "title above the legend (default: the parameters in which the runs differ)");
   app.add_flag("--points", points_only,
                "with --csv: a dot at every point and no lines (scatter plot)");
-  app.add_option("--out,-o", out, "PNG file to write (default chart_<y>_<x>.png here)");
+  app.add_option("--out,-o", out,
+                 "file to write: .png, .svg or .pdf (default chart_<y>_<x>.png here)");
   app.add_option("--width", options.width, "image width in pixels")->check(CLI::Range(200, 8192));
   app.add_option("--height", options.height, "image height in pixels")
       ->check(CLI::Range(150, 8192));
@@ -350,6 +381,7 @@ int RunChart(int argc, char** argv) {
       }
       csv.markers = markers;
       csv.points_only = points_only;
+      if (options.legend_title.empty()) options.legend_title = csv.group_column;
       x_name = csv.x_column;
       y_name = csv.y_column;
       options.x_axis.title = x_name;
@@ -374,26 +406,34 @@ int RunChart(int argc, char** argv) {
     options.x_axis.scale = log_x ? AxisScale::kLog10 : AxisScale::kLinear;
     options.y_axis.scale = log_y ? AxisScale::kLog10 : AxisScale::kLinear;
     if (options.title.empty()) options.title = y_name + " against " + x_name;
-    LineChart chart(options);
-    if (csv_mode) {
-      AddCsvSeries(csv, chart);
-    } else {
-      AddRunSeries(runs, chart);
-    }
+    const std::string path =
+        out.empty() ? "chart_" + FileStem(y_name) + "_" + FileStem(x_name) + ".png" : out;
     ChartPicture picture;
+    std::string legend;
     try {
+      FormatOfPath(path);
+      const std::vector<std::string> names =
+          csv_mode ? std::vector<std::string>{} : RunNames(runs, options.legend_title);
+      LineChart chart(options);
+      if (csv_mode) {
+        AddCsvSeries(csv, chart);
+      } else {
+        AddRunSeries(runs, names, chart);
+      }
       picture = chart.Draw();
+      legend = chart.LegendText();
     } catch (const InvalidParameter& e) {
       throw UsageError(e.what());
     }
-    const std::string path =
-        out.empty() ? "chart_" + FileStem(y_name) + "_" + FileStem(x_name) + ".png" : out;
     try {
-      WritePng(picture.image, path);
+      picture.image.Write(path);
     } catch (const Error& e) {
       return ReportError("chart", e.what(), kExitLocalIo);
     }
     std::cout << path << "\n";
+    // The legend as text, for logs and scripts (the picture's text is not searchable in a PNG).
+    std::cerr << "legend" << (options.legend_title.empty() ? "" : " (" + options.legend_title + ")")
+              << ": " << legend << "\n";
     return kExitOk;
   });
 }

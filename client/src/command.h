@@ -26,6 +26,7 @@ int RunFetch(int argc, char** argv);
 int RunLogs(int argc, char** argv);
 int RunPlot(int argc, char** argv);
 int RunChart(int argc, char** argv);
+int RunMovie(int argc, char** argv);
 int RunHealth(int argc, char** argv);
 
 // Parses argv into `app`; returns an exit code when the command must stop (help: 0, error: 2).

@@ -24,8 +24,9 @@ const Command kCommands[] = {
     {"cancel", "cancel a job or a whole sweep", RunCancel},
     {"fetch", "download a job's result files", RunFetch},
     {"logs", "print a job's log lines", RunLogs},
-    {"plot", "draw trA (or the speed) with the particles as a PNG", RunPlot},
-    {"chart", "line chart PNG of particle quantities of runs, or of CSV columns", RunChart},
+    {"plot", "draw a field (trA, speed, vorticity, ...) with the particles (PNG/SVG/PDF)", RunPlot},
+    {"chart", "line chart of particle quantities of runs, or of CSV columns", RunChart},
+    {"movie", "movie (ffmpeg) of a run's snapshots with the particles and the time", RunMovie},
     {"health", "ask the daemon whether it is serving", RunHealth},
 };
 

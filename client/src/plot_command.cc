@@ -1,9 +1,10 @@
-// dlmfd plot RESULTS_DIR [--snapshot STEP] [--quantity trA|speed] [--out FILE] [--width W]
-// [--height H]
-//            [--log] [--window X0,Y0,X1,Y1]
-// dlmfd plot --job JOB [--out FILE] ...      (the next trA snapshot a running job streams)
-// Writes a PNG of trA (the speed for a Newtonian run) with the particles, prints its path.
-// --log colours by log10 of the value; --window draws only that part of the domain (a close-up).
+// dlmfd plot RESULTS_DIR [--snapshot STEP] [--quantity Q] [--out FILE.png|.svg|.pdf]
+//            [--width W] [--height H] [--log] [--range MIN,MAX] [--window X0,Y0,X1,Y1]
+//            [--isolines N] [--lines-only] [--arrows N] [--caption TEXT]
+// dlmfd plot --job JOB [--out FILE] ...      (the next snapshot a running job streams)
+// Draws a field of a snapshot (viz/field_picture.h) with axes, a colour bar, the particles and a
+// caption naming the run (scene title, directory or job name and its overrides), quantity, time
+// and step; prints the file's path. The format follows the file's extension.
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -12,18 +13,15 @@
 #include "connection.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/viz/field_picture.h"
-#include "dlmfd/viz/png_file.h"
+#include "dlmfd/viz/node_quantities.h"
 #include "dlmfd/viz/results_frame.h"
 #include "exit_codes.h"
+#include "plot_options.h"
 #include "rpc_status.h"
 #include "watch_session.h"
 
 namespace dlmfd::cli {
 namespace {
-
-std::string Caption(const std::string& quantity, double time, long step) {
-  return quantity + "  t = " + FormatLabel(time) + "  step " + std::to_string(step);
-}
 
 // A streamed snapshot as a node field on square cells. The daemon may downsample x and y by
 // different factors; the values are then resampled bilinearly onto cells of the x spacing.
@@ -58,20 +56,22 @@ NodeField FieldOfSnapshot(const v1::Snapshot& s) {
   return field;
 }
 
-// The field inside the window, or the whole field when no window was given.
-NodeField Windowed(const NodeField& field, const std::vector<double>& window) {
-  if (window.empty()) return field;
-  return CropField(field, window[0], window[1], window[2], window[3]);
-}
-
-int PlotJob(const ConnectionFlags& flags, const std::string& job_id, const PictureOptions& base,
-            const std::vector<double>& window, const std::string& out) {
+int PlotJob(const ConnectionFlags& flags, const std::string& job_id, const PlotFlags& plot,
+            const std::string& out) {
+  if (!plot.quantity.empty() && plot.quantity != "trA" && plot.quantity != "speed") {
+    throw UsageError(
+        "--job streams trA (or the speed of a Newtonian run) only; fetch the results "
+        "(dlmfd fetch " +
+        job_id + ") to draw " + plot.quantity);
+  }
+  if (plot.options.arrows > 0)
+    throw UsageError("--arrows needs the velocity: fetch the results (dlmfd fetch " + job_id + ")");
   Connection connection(flags);
   WatchOptions options;
   options.job_id = job_id;
   options.include_snapshots = true;
-  options.snapshot_max_width = base.max_width;
-  options.snapshot_max_height = base.max_height;
+  options.snapshot_max_width = plot.options.max_width;
+  options.snapshot_max_height = plot.options.max_height;
   std::vector<DiskOutline> disks;
   v1::Snapshot snapshot;
   bool have_snapshot = false;
@@ -96,14 +96,17 @@ int PlotJob(const ConnectionFlags& flags, const std::string& job_id, const Pictu
                            "(dlmfd fetch " + job_id + ") and plot the directory",
                        kExitNotFound);
   }
-  PictureOptions picture_options = base;
-  const NodeField field = Windowed(FieldOfSnapshot(snapshot), window);
-  if (picture_options.caption.empty())
-    picture_options.caption = Caption(field.quantity, snapshot.time(), snapshot.step());
+  PictureOptions picture_options = plot.options;
+  const NodeField field = Windowed(FieldOfSnapshot(snapshot), plot.window);
+  v1::Job job = outcome.job;  // as of its latest state change; the id at least
+  if (job.id().empty()) job.set_id(job_id);
+  picture_options.caption =
+      (plot.options.caption.empty() ? JobCaption(job) : plot.options.caption) + "\n" +
+      FrameCaption(field.quantity, snapshot.time(), snapshot.step());
   const std::string path =
       out.empty() ? job_id + "_" + field.quantity + "_" + std::to_string(snapshot.step()) + ".png"
                   : out;
-  WritePng(DrawFieldPicture(field, disks, picture_options).image, path);
+  DrawFieldPicture(field, disks, picture_options).image.Write(path);
   std::cout << path << "\n";
   return kExitOk;
 }
@@ -111,14 +114,12 @@ int PlotJob(const ConnectionFlags& flags, const std::string& job_id, const Pictu
 }  // namespace
 
 int RunPlot(int argc, char** argv) {
-  CLI::App app{"Draw trA (or the speed) with the particles as a PNG."};
+  CLI::App app{"Draw a field of a snapshot with axes, colour bar and particles (PNG, SVG or PDF)."};
   ConnectionFlags connection_flags;
   AddConnectionFlags(app, connection_flags);
-  std::string results_dir, job_id, quantity, out;
+  std::string results_dir, job_id, out;
   long snapshot = -1;
-  PictureOptions options;
-  options.max_width = 1000;
-  options.max_height = 1000;
+  PlotFlags plot;
   auto* dir_option =
       app.add_option("results", results_dir, "a results directory (dlmfd-solve --out, or fetched)");
   auto* job_option =
@@ -126,21 +127,8 @@ int RunPlot(int argc, char** argv) {
   dir_option->excludes(job_option);
   app.add_option("--snapshot", snapshot, "the snapshot's step (default: the latest)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--quantity", quantity, "trA or speed (default: trA when present)")
-      ->check(CLI::IsMember({"trA", "speed"}));
-  app.add_option("--out,-o", out, "PNG file to write");
-  app.add_option("--width", options.max_width, "largest image width in pixels")
-      ->check(CLI::Range(64, 8192));
-  app.add_option("--height", options.max_height, "largest image height in pixels")
-      ->check(CLI::Range(64, 8192));
-  app.add_option("--caption", options.caption,
-                 "text above the picture (default: quantity, time, step)");
-  app.add_flag("--log", options.log_colours,
-               "colour by log10 of the value (trA spans decades near particles)");
-  std::vector<double> window;
-  app.add_option("--window", window, "draw only [X0, X1] x [Y0, Y1] of the domain: X0,Y0,X1,Y1")
-      ->expected(4)
-      ->delimiter(',');
+  app.add_option("--out,-o", out, "file to write: .png, .svg or .pdf");
+  AddPlotFlags(app, plot);
   if (auto code = ParseArgs(app, argc, argv)) return *code;
   if (results_dir.empty() == job_id.empty()) {
     return ReportError("plot", "name a results directory or --job JOB", kExitUsage);
@@ -148,18 +136,22 @@ int RunPlot(int argc, char** argv) {
 
   return Guarded("plot", [&] {
     try {
-      if (!job_id.empty()) return PlotJob(connection_flags, job_id, options, window, out);
-      ResultsFrame frame = LoadResultsFrame(results_dir, snapshot, quantity);
-      frame.field = Windowed(frame.field, window);
-      if (options.caption.empty())
-        options.caption = Caption(frame.field.quantity, frame.time, frame.step);
+      CheckPlotFlags(plot);
+      if (!out.empty()) FormatOfPath(out);
+      if (!job_id.empty()) return PlotJob(connection_flags, job_id, plot, out);
+      ResultsFrame frame = LoadResultsFrame(results_dir, snapshot, plot.quantity);
+      PictureOptions options = plot.options;
+      options.caption =
+          (options.caption.empty() ? DirectoryCaption(results_dir) : options.caption) + "\n" +
+          FrameCaption(frame.field.quantity, frame.time, frame.step);
       const std::string path =
-          out.empty() ? (std::filesystem::path(results_dir) /
-                         (frame.field.quantity + "_" + std::to_string(frame.step) + ".png"))
-                            .string()
-                      : out;
+          out.empty()
+              ? (std::filesystem::path(results_dir) /
+                 (FileStemOf(frame.field.quantity) + "_" + std::to_string(frame.step) + ".png"))
+                    .string()
+              : out;
       try {
-        WritePng(DrawFieldPicture(frame.field, frame.disks, options).image, path);
+        DrawFrame(frame, plot, options).image.Write(path);
       } catch (const InvalidParameter&) {
         throw;
       } catch (const Error& e) {

@@ -1,11 +1,11 @@
 // `dlmfd chart` end to end: the real dlmfd-solve runs two tiny particle scenes (a pair and a single
 // disk settling in a 16 x 32 box for 10 steps), then the real dlmfd binary charts them: velocities
 // of several runs overlaid, a trajectory, the gap, a CSV work-precision chart; the PNGs read back
-// with libpng at the asked size and carry the series colours; bad quantities, `gap` of one
+// with cairo at the asked size and carry the series colours; series of runs that differ in a
+// parameter are named by it, the key in the legend's title; SVG and PDF by the extension; bad
+// quantities, `gap` of one
 // particle, unknown particles and CSV columns are usage errors (exit 2) that say what is allowed.
 // No daemon is involved.
-#include <png.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -18,7 +18,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "dlmfd/core/errors.h"
+#include "dlmfd/viz/canvas.h"
 #include "dlmfd/viz/line_chart.h"
+#include "support/run_process.h"
 
 namespace dlmfd {
 namespace {
@@ -46,39 +49,8 @@ std::string Disk(double x, double y) {
   return text.str();
 }
 
-struct Outcome {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
-
-// Runs `argv` (argv[0] a path) in `cwd`, capturing stdout and stderr through files.
-Outcome Execute(const std::vector<std::string>& argv, const fs::path& cwd) {
-  const fs::path out_path = cwd / "stdout.txt";
-  const fs::path err_path = cwd / "stderr.txt";
-  std::vector<char*> args;
-  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  const pid_t pid = fork();
-  if (pid == 0) {
-    if (chdir(cwd.c_str()) != 0) _exit(126);
-    if (!freopen(out_path.c_str(), "w", stdout) || !freopen(err_path.c_str(), "w", stderr))
-      _exit(126);
-    execv(args[0], args.data());
-    _exit(127);
-  }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  Outcome run;
-  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  std::ifstream out(out_path), err(err_path);
-  std::stringstream o, e;
-  o << out.rdbuf();
-  e << err.rdbuf();
-  run.out = o.str();
-  run.err = e.str();
-  return run;
-}
+using test::Execute;
+using test::Outcome;
 
 struct Picture {
   int width = 0;
@@ -94,17 +66,15 @@ struct Picture {
 
 std::uint32_t Packed(Rgb c) { return std::uint32_t(c.r) << 16 | std::uint32_t(c.g) << 8 | c.b; }
 
-// Decodes with libpng's simplified API; width 0 when the file is not a readable PNG.
-Picture ReadPng(const fs::path& path) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
+// Decodes with cairo; width 0 when the file is not a readable PNG.
+Picture ReadPicture(const fs::path& path) {
   Picture picture;
-  if (png_image_begin_read_from_file(&image, path.c_str()) == 0) return picture;
-  image.format = PNG_FORMAT_RGB;
-  picture.rgb.resize(PNG_IMAGE_SIZE(image));
-  if (png_image_finish_read(&image, nullptr, picture.rgb.data(), 0, nullptr) == 0) return picture;
-  picture.width = int(image.width);
-  picture.height = int(image.height);
+  try {
+    const RgbImage image = ReadPng(path.string());
+    picture.width = image.width;
+    picture.height = image.height;
+    picture.rgb = image.rgb;
+  } catch (const Error&) {}
   return picture;
 }
 
@@ -118,7 +88,10 @@ class ChartTest : public ::testing::Test {
     fs::create_directories(root_);
     std::ofstream(root_ / "pair.toml") << SettlingScene(Disk(0.5, 1.4) + Disk(0.5, 0.9));
     std::ofstream(root_ / "single.toml") << SettlingScene(Disk(0.5, 1.4));
-    for (const char* name : {"pair", "single"}) {
+    std::string heavy = SettlingScene(Disk(0.5, 1.4));
+    heavy.replace(heavy.find("density = 1.1"), 13, "density = 1.3");
+    std::ofstream(root_ / "heavy.toml") << heavy;
+    for (const char* name : {"pair", "single", "heavy"}) {
       const Outcome solve = Execute({kSolver, (root_ / (std::string(name) + ".toml")).string(),
                                      "--out", (root_ / name).string(), "--quiet", "--threads", "1"},
                                     root_);
@@ -137,6 +110,13 @@ class ChartTest : public ::testing::Test {
 
 fs::path ChartTest::root_;
 
+std::string Slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 TEST_F(ChartTest, OverlaysTheVelocityOfSeveralRuns) {
   // Each --label takes one value, so labels may stand before their directories.
   const Outcome run =
@@ -144,7 +124,7 @@ TEST_F(ChartTest, OverlaysTheVelocityOfSeveralRuns) {
              "settling", "--out", "v.png", "--width", "640", "--height", "480"});
   ASSERT_EQ(run.code, 0) << run.err;
   EXPECT_EQ(run.out, "v.png\n");
-  const Picture picture = ReadPng(root_ / "v.png");
+  const Picture picture = ReadPicture(root_ / "v.png");
   EXPECT_EQ(picture.width, 640);
   EXPECT_EQ(picture.height, 480);
   // Two particles of the pair and the single disk: three series in the first three colours (at
@@ -154,12 +134,35 @@ TEST_F(ChartTest, OverlaysTheVelocityOfSeveralRuns) {
   EXPECT_EQ(colours.count(Packed(SeriesColour(3))), 0u);
 }
 
+TEST_F(ChartTest, NamesTheSeriesByTheParameterInWhichTheRunsDiffer) {
+  const Outcome run = Chart(
+      {"single", "heavy", "--y", "v", "--out", "sweep.svg", "--width", "700", "--height", "500"});
+  ASSERT_EQ(run.code, 0) << run.err;
+  // The scenes as run differ only in the particle's density: it names the series.
+  EXPECT_THAT(run.err, HasSubstr("legend (particles.0.density): 1.1; 1.3"));
+  const std::string svg = Slurp(root_ / "sweep.svg");
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("width=\"700pt\" height=\"500pt\""), std::string::npos);
+  // --label names them instead; a directory alone keeps its name.
+  const Outcome labelled =
+      Chart({"--label", "light", "single", "heavy", "--y", "v", "--out", "sweep.pdf"});
+  ASSERT_EQ(labelled.code, 0) << labelled.err;
+  EXPECT_THAT(labelled.err, HasSubstr(": light; 1.3"));
+  EXPECT_EQ(Slurp(root_ / "sweep.pdf").rfind("%PDF-", 0), 0u);
+  const Outcome alone = Chart({"single", "--y", "v", "--equal", "--x", "x", "--out", "alone.png"});
+  ASSERT_EQ(alone.code, 0) << alone.err;
+  EXPECT_THAT(alone.err, HasSubstr("legend: single"));
+  const Outcome bad = Chart({"single", "--y", "v", "--out", "v.jpg"});
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_THAT(bad.err, HasSubstr(".png, .svg or .pdf"));
+}
+
 TEST_F(ChartTest, DrawsATrajectoryAndTheGapWithDefaultNames) {
   const Outcome trajectory =
       Chart({"pair", "--x", "x", "--y", "y", "--particle", "1", "--markers"});
   ASSERT_EQ(trajectory.code, 0) << trajectory.err;
   EXPECT_EQ(trajectory.out, "chart_y_x.png\n");
-  const Picture t = ReadPng(root_ / "chart_y_x.png");
+  const Picture t = ReadPicture(root_ / "chart_y_x.png");
   EXPECT_EQ(t.width, 1000);
   EXPECT_EQ(t.height, 700);
   EXPECT_EQ(t.Colours().count(Packed(SeriesColour(0))), 1u);
@@ -167,7 +170,7 @@ TEST_F(ChartTest, DrawsATrajectoryAndTheGapWithDefaultNames) {
 
   const Outcome gap = Chart({"pair/", "--y", "gap", "--logy", "--out", "gap.png"});
   ASSERT_EQ(gap.code, 0) << gap.err;
-  const Picture g = ReadPng(root_ / "gap.png");
+  const Picture g = ReadPicture(root_ / "gap.png");
   EXPECT_EQ(g.width, 1000);
   EXPECT_EQ(g.Colours().count(Packed(SeriesColour(0))), 1u);
 }
@@ -183,7 +186,7 @@ TEST_F(ChartTest, ChartsCsvColumnsGroupedIntoSeries) {
       Chart({"--csv", "wp.csv", "--xcol", "ms_per_step", "--ycol", "error", "--group", "advection",
              "--logx", "--logy", "--markers", "--out", "wp.png"});
   ASSERT_EQ(run.code, 0) << run.err;
-  const Picture picture = ReadPng(root_ / "wp.png");
+  const Picture picture = ReadPicture(root_ / "wp.png");
   EXPECT_EQ(picture.width, 1000);
   EXPECT_EQ(picture.Colours().count(Packed(SeriesColour(1))), 1u);
   EXPECT_EQ(picture.Colours().count(Packed(SeriesColour(2))), 0u);

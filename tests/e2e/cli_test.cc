@@ -24,6 +24,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "dlmfd/io/field_snapshot.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -266,6 +268,18 @@ TEST_F(CliTest, SubmitWaitListShowFetchAndPlot) {
   const CliRun missing = Cli({"plot", out.string(), "--snapshot", "999999"});
   EXPECT_EQ(missing.code, 2);
   EXPECT_THAT(missing.err, HasSubstr("snapshot"));
+
+  // A movie of the job itself: its snapshots are fetched from the daemon, one frame each.
+  const fs::path movie = root_ / "cavity.mp4";
+  const CliRun film = Cli({"movie", job, "--quantity", "speed", "--out", movie.string(), "--fps",
+                           "2", "--keep", (root_ / "movie_frames").string()});
+  ASSERT_EQ(film.code, 0) << film.err;
+  EXPECT_EQ(FirstLine(film.out), movie.string());
+  const std::size_t snapshots = dlmfd::SnapshotSteps(out.string()).size();
+  ASSERT_GE(snapshots, 2u);
+  EXPECT_THAT(film.err, HasSubstr(std::to_string(snapshots) + " frames"));
+  EXPECT_EQ(dlmfd::SnapshotSteps((root_ / "movie_frames").string()).size(), snapshots);
+  EXPECT_EQ(Slurp(movie).substr(4, 4), "ftyp");  // an MP4 (ISO base media) file
 }
 
 TEST_F(CliTest, WatchJsonYieldsProgressAndTheFinalState) {

@@ -1,56 +1,70 @@
-// Pictures of node fields (viz/): the PNG read back with libpng has the laid-out size, the
-// pixels carry the P1 value of the field through viridis exactly, particles are drawn where they
-// are, and degenerate fields (constant, NaN) give finite scales instead of dividing by zero.
-#include <png.h>
+// Pictures of node fields (viz/, drawn with cairo): PNG, SVG and PDF files of the laid-out size,
+// the PNG read back with cairo has the pixels carrying the P1 value of the field through viridis
+// exactly, a colour bar with its ends and ticks (at their logarithms on a log scale), axis tick
+// labels, isolines at the exact level sets, arrows, particles drawn where they are with their
+// rotation mark, real fonts with descenders, the derived quantities of a snapshot, and degenerate
+// fields (constant, NaN) giving finite scales instead of dividing by zero.
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
+#include "dlmfd/io/atomic_file.h"
 #include "dlmfd/io/field_snapshot.h"
 #include "dlmfd/io/particle_history.h"
-#include "dlmfd/viz/bitmap_font.h"
+#include "dlmfd/viz/canvas.h"
 #include "dlmfd/viz/colour_map.h"
 #include "dlmfd/viz/field_picture.h"
-#include "dlmfd/viz/png_file.h"
+#include "dlmfd/viz/isolines.h"
+#include "dlmfd/viz/node_quantities.h"
 #include "dlmfd/viz/results_frame.h"
 
 namespace dlmfd {
 namespace {
 
-struct DecodedPng {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> rgb;
-  Rgb At(int x, int y) const {
-    const std::size_t k = (std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3;
-    return Rgb{rgb[k], rgb[k + 1], rgb[k + 2]};
-  }
-};
-
-// Decodes with libpng's simplified API, independent of the writer under test.
-DecodedPng ReadPng(const std::string& path) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  EXPECT_NE(png_image_begin_read_from_file(&image, path.c_str()), 0) << image.message;
-  image.format = PNG_FORMAT_RGB;
-  DecodedPng out;
-  out.width = int(image.width);
-  out.height = int(image.height);
-  out.rgb.resize(PNG_IMAGE_SIZE(image));
-  EXPECT_NE(png_image_finish_read(&image, nullptr, out.rgb.data(), 0, nullptr), 0) << image.message;
-  return out;
+std::string TempFile(const std::string& stem, const std::string& extension) {
+  return ::testing::TempDir() + "/" + stem + "_" + std::to_string(::getpid()) + extension;
 }
 
-std::string TempPng(const std::string& stem) {
-  return ::testing::TempDir() + "/" + stem + "_" + std::to_string(::getpid()) + ".png";
+// The picture written as a PNG file and read back (cairo's PNG reader).
+RgbImage WrittenPng(const FieldPicture& picture, const std::string& stem) {
+  const std::string path = TempFile(stem, ".png");
+  picture.image.Write(path);
+  RgbImage png = ReadPng(path);
+  std::remove(path.c_str());
+  return png;
+}
+
+PictureOptions Sized(int width, int height, const std::string& caption = "") {
+  PictureOptions options;
+  options.max_width = width;
+  options.max_height = height;
+  options.caption = caption;
+  return options;
+}
+
+// Darker than mid grey: text, rims, ticks, and antialiased lines of 1.25 px or more (one of the
+// pixels they cross is covered to 5/8 at least).
+bool Dark(Rgb c) { return c.r < 128 && c.g < 128 && c.b < 128; }
+
+// Dark pixels in the rectangle [x0, x1) x [y0, y1).
+int DarkPixels(const RgbImage& image, int x0, int y0, int x1, int y1) {
+  int count = 0;
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) count += Dark(image.At(x, y));
+  }
+  return count;
 }
 
 // f(x, y) = a + b x + c y on a 2 x 1 domain, 16 x 8 cells.
@@ -65,35 +79,48 @@ NodeField LinearField(double a, double b, double c) {
   return f;
 }
 
-TEST(RenderTest, PngHasTheLaidOutSizeAndKeepsTheAspectRatio) {
+TEST(RenderTest, PngSvgAndPdfHaveTheLaidOutSizeAndKeepTheAspectRatio) {
   const FieldPicture picture =
-      DrawFieldPicture(LinearField(1.0, 1.0, 0.0), {}, {600, 400, "trA t = 1"});
+      DrawFieldPicture(LinearField(1.0, 1.0, 0.0), {}, Sized(600, 400, "trA t = 1"));
   EXPECT_LE(picture.image.Width(), 600);
   EXPECT_LE(picture.image.Height(), 400);
   // The panel is floor(2 s) x floor(1 s) for one scale s: the 2:1 aspect to within a pixel.
   EXPECT_NEAR(double(picture.panel_width) / picture.panel_height, 2.0, 2.0 / picture.panel_height);
-  // The panel fills the width left by the colour bar (the binding side for a 2:1 domain here).
+  // The panel fills the width left by the axes and the colour bar (the binding side here).
   EXPECT_GE(picture.panel_width, 600 / 2);
-  const std::string path = TempPng("size");
-  WritePng(picture.image, path);
-  const DecodedPng png = ReadPng(path);
+  const RgbImage png = WrittenPng(picture, "size");
   EXPECT_EQ(png.width, picture.image.Width());
   EXPECT_EQ(png.height, picture.image.Height());
-  ASSERT_EQ(png.rgb, picture.image.Bytes());
-  std::remove(path.c_str());
+  EXPECT_EQ(png.rgb, picture.image.Rasterise().rgb);
+
+  // SVG and PDF by the extension, 1 pixel = 1 pt.
+  const std::string w = std::to_string(picture.image.Width());
+  const std::string h = std::to_string(picture.image.Height());
+  const std::string svg = TempFile("size", ".svg");
+  const std::string pdf = TempFile("size", ".PDF");
+  picture.image.Write(svg);
+  picture.image.Write(pdf);
+  const std::string svg_text = ReadTextFile(svg);
+  const std::string pdf_text = ReadTextFile(pdf);
+  std::remove(svg.c_str());
+  std::remove(pdf.c_str());
+  EXPECT_NE(svg_text.find("<svg"), std::string::npos);
+  EXPECT_NE(svg_text.find("width=\"" + w + "pt\" height=\"" + h + "pt\""), std::string::npos)
+      << svg_text.substr(0, 300);
+  EXPECT_EQ(pdf_text.rfind("%PDF-", 0), 0u);
+  EXPECT_NE(pdf_text.find("/MediaBox [ 0 0 " + w + " " + h + " ]"), std::string::npos);
+  EXPECT_THROW(picture.image.Write(TempFile("size", ".jpg")), InvalidParameter);
+  EXPECT_EQ(FormatOfPath("a/b.Svg"), FileFormat::kSvg);
 }
 
 TEST(RenderTest, PixelsCarryTheLinearFieldThroughViridis) {
   // P1 reproduces a linear field exactly, so each pixel is Viridis((f(centre) - min) / (max -
   // min)).
   const NodeField field = LinearField(2.0, 3.0, -1.0);
-  const FieldPicture picture = DrawFieldPicture(field, {}, {500, 300, ""});
+  const FieldPicture picture = DrawFieldPicture(field, {}, Sized(500, 300));
   EXPECT_DOUBLE_EQ(picture.value_min, 2.0 - 1.0);
   EXPECT_DOUBLE_EQ(picture.value_max, 2.0 + 6.0);
-  const std::string path = TempPng("linear");
-  WritePng(picture.image, path);
-  const DecodedPng png = ReadPng(path);
-  std::remove(path.c_str());
+  const RgbImage png = WrittenPng(picture, "linear");
   const int probes[][2] = {{0, 0},
                            {picture.panel_width - 1, 0},
                            {0, picture.panel_height - 1},
@@ -107,28 +134,66 @@ TEST(RenderTest, PixelsCarryTheLinearFieldThroughViridis) {
     EXPECT_EQ(png.At(picture.panel_left + p[0], picture.panel_top + p[1]), Viridis(t))
         << "pixel " << p[0] << "," << p[1];
   }
-  // Colour bar: the top row is the maximum, the bottom row the minimum (inside the frame).
+  // Colour bar: the top row is the maximum, the bottom row the minimum; its frame just outside.
   const int bar_x = picture.bar_left + picture.bar_width / 2;
-  EXPECT_EQ(png.At(bar_x, picture.bar_top + 1), Viridis(1.0 - 1.5 / picture.bar_height));
-  EXPECT_EQ(png.At(bar_x, picture.bar_top + picture.bar_height - 2),
-            Viridis(1.5 / picture.bar_height));
-  EXPECT_EQ(png.At(picture.bar_left, picture.bar_top + picture.bar_height / 2), kBlack);
+  EXPECT_EQ(png.At(bar_x, picture.bar_top), Viridis(1.0 - 0.5 / picture.bar_height));
+  EXPECT_EQ(png.At(bar_x, picture.bar_top + picture.bar_height - 1),
+            Viridis(0.5 / picture.bar_height));
+  EXPECT_EQ(png.At(picture.bar_left - 1, picture.bar_top + picture.bar_height / 2), kBlack);
+  // Bar ticks: 1-2-5 values inside [1, 8] at their rows, each with its label right of the bar.
+  ASSERT_GE(picture.bar_ticks.values.size(), 3u);
+  for (std::size_t k = 0; k < picture.bar_ticks.values.size(); ++k) {
+    const double v = picture.bar_ticks.values[k];
+    EXPECT_NEAR(picture.BarY(v), picture.bar_top + (8.0 - v) / 7.0 * picture.bar_height, 1e-9);
+    const int y = int(picture.BarY(v));
+    const int right = picture.bar_left + picture.bar_width;
+    EXPECT_GT(DarkPixels(png, right + 1, y - 6, png.width, y + 6), 5)
+        << picture.bar_ticks.labels[k];
+  }
+  // Axis ticks in the domain's coordinates, x from 0 to 2, y from 0 to 1, labels below and left.
+  EXPECT_DOUBLE_EQ(picture.x_ticks.values.front(), 0.0);
+  EXPECT_DOUBLE_EQ(picture.x_ticks.values.back(), 2.0);
+  EXPECT_DOUBLE_EQ(picture.y_ticks.values.back(), 1.0);
+  const int bottom = picture.panel_top + picture.panel_height;
+  for (const double x : picture.x_ticks.values) {
+    const int px = int(picture.PixelX(x));
+    EXPECT_GT(DarkPixels(png, px - 8, bottom + 3, px + 9, bottom + 24), 5) << "x tick " << x;
+  }
+  // Nothing is drawn below the panel half way between two x ticks (the labels are centred).
+  const double gap_x = 0.5 * (picture.x_ticks.values[0] + picture.x_ticks.values[1]);
+  EXPECT_EQ(DarkPixels(png, int(picture.PixelX(gap_x)) - 1, bottom + 1,
+                       int(picture.PixelX(gap_x)) + 2, bottom + 12),
+            0);
+  for (const double y : picture.y_ticks.values) {
+    const int py = int(picture.PixelY(y));
+    EXPECT_GT(DarkPixels(png, 0, py - 6, picture.panel_left - 2, py + 7), 5) << "y tick " << y;
+  }
 }
 
 TEST(RenderTest, LogColoursMapLog10OfTheValueAndTheBottomColourToNonPositiveValues) {
   // f = 1 + 49.5 x on the 2 x 1 domain (1 at x = 0, 100 at x = 2) is reproduced exactly by P1, so
   // each pixel is Viridis(log10 f(centre) / 2): log10 of the value, not the value, sets the colour.
   NodeField field = LinearField(1.0, 49.5, 0.0);
-  PictureOptions options{500, 300, ""};
+  PictureOptions options = Sized(500, 300);
   options.log_colours = true;
   const FieldPicture picture = DrawFieldPicture(field, {}, options);
   EXPECT_DOUBLE_EQ(picture.value_min, 1.0);
   EXPECT_DOUBLE_EQ(picture.value_max, 100.0);
+  const RgbImage png = WrittenPng(picture, "log");
   for (int px : {0, picture.panel_width / 4, picture.panel_width / 2, picture.panel_width - 1}) {
     const double x = (px + 0.5) / picture.panel_width * 2.0;
     const double t = std::log10(1.0 + 49.5 * x) / 2.0;
-    EXPECT_EQ(picture.image.At(picture.panel_left + px, picture.panel_top + 3), Viridis(t))
-        << "pixel " << px;
+    EXPECT_EQ(png.At(picture.panel_left + px, picture.panel_top + 3), Viridis(t)) << "pixel " << px;
+  }
+  // The bar is logarithmic: 10 sits half way up it, and its ticks are 1-2-5 multiples or decades.
+  EXPECT_NEAR(picture.BarY(10.0), picture.bar_top + 0.5 * picture.bar_height, 1e-9);
+  EXPECT_NEAR(picture.BarY(2.0),
+              picture.bar_top + (1.0 - std::log10(2.0) / 2.0) * picture.bar_height, 1e-9);
+  for (const double v : picture.bar_ticks.values) {
+    const double mantissa = v / std::pow(10.0, std::floor(std::log10(v) + 1e-9));
+    EXPECT_TRUE(std::abs(mantissa - 1.0) < 1e-9 || std::abs(mantissa - 2.0) < 1e-9 ||
+                std::abs(mantissa - 5.0) < 1e-9)
+        << v;
   }
   // A field with zero and negative nodes: the scale is set by the positive ones, and the others
   // take the bottom colour instead of a NaN from log10.
@@ -136,7 +201,7 @@ TEST(RenderTest, LogColoursMapLog10OfTheValueAndTheBottomColourToNonPositiveValu
   const FieldPicture clipped = DrawFieldPicture(field, {}, options);
   EXPECT_DOUBLE_EQ(clipped.value_min, 0.125);
   EXPECT_DOUBLE_EQ(clipped.value_max, 1.0);
-  EXPECT_EQ(clipped.image.At(clipped.panel_left, clipped.panel_top + 3), Viridis(0.0));
+  EXPECT_EQ(clipped.image.Rasterise().At(clipped.panel_left, clipped.panel_top + 3), Viridis(0.0));
 }
 
 TEST(RenderTest, CropFieldKeepsTheWindowsNodesAndRejectsEmptyWindows) {
@@ -176,39 +241,136 @@ TEST(RenderTest, InterpolationFollowsTheSouthWestNorthEastDiagonal) {
   EXPECT_DOUBLE_EQ(InterpolateP1(hat, 5.0, -3.0), 0.0);  // clamped to the corner (2, 0)
 }
 
-TEST(RenderTest, ParticleIsAWhiteDiskWithABlackRimWhereItIs) {
+TEST(RenderTest, ParticleIsAWhiteDiskWithABlackRimAndItsRotationMark) {
   const NodeField field = LinearField(0.0, 1.0, 0.0);
-  const DiskOutline disk{1.25, 0.5, 0.2};
-  const FieldPicture picture = DrawFieldPicture(field, {disk}, {800, 500, ""});
-  const std::string path = TempPng("disk");
-  WritePng(picture.image, path);
-  const DecodedPng png = ReadPng(path);
-  std::remove(path.c_str());
+  // Two disks: one turned by 0 (mark pointing in +x), one by pi/2 (mark pointing in +y).
+  const DiskOutline disk{1.25, 0.5, 0.2, 0.0, true};
+  const DiskOutline turned{0.5, 0.5, 0.2, 0.5 * kPi, true};
+  const FieldPicture picture = DrawFieldPicture(field, {disk, turned}, Sized(800, 500));
+  const RgbImage png = WrittenPng(picture, "disk");
   const double cx = picture.PixelX(disk.x);
   const double cy = picture.PixelY(disk.y);
+  // The same scale on both axes: the circle's radius in pixels.
   const double r = disk.radius / 2.0 * picture.panel_width;
   ASSERT_GT(r, 20.0);
-  EXPECT_EQ(png.At(int(cx), int(cy)), kWhite);
-  EXPECT_EQ(png.At(int(cx + 0.5 * r), int(cy)), kWhite);
-  // The rim: the pixel whose centre is nearest to radius r on each axis.
-  EXPECT_EQ(png.At(int(std::floor(cx + r)), int(cy)), kBlack);
-  EXPECT_EQ(png.At(int(std::floor(cx - r)), int(cy)), kBlack);
-  EXPECT_EQ(png.At(int(cx), int(std::floor(cy - r))), kBlack);
-  EXPECT_EQ(png.At(int(cx), int(std::floor(cy + r))), kBlack);
+  EXPECT_NEAR(r, disk.radius * picture.panel_height, 1.0);
+  EXPECT_EQ(png.At(int(cx), int(cy - 0.5 * r)), kWhite);
+  EXPECT_EQ(png.At(int(cx - 0.5 * r), int(cy)), kWhite);
+  // The rim: dark pixels within a pixel of radius r on each axis, none just inside.
+  const auto rim_at = [&](double dx, double dy) {
+    bool dark = false;
+    for (double s = r - 1.5; s <= r + 1.5; s += 0.5)
+      dark = dark || Dark(png.At(int(std::floor(cx + s * dx)), int(std::floor(cy + s * dy))));
+    return dark;
+  };
+  EXPECT_TRUE(rim_at(1, 0));
+  EXPECT_TRUE(rim_at(-1, 0));
+  EXPECT_TRUE(rim_at(0, 1));
+  EXPECT_TRUE(rim_at(0, -1));
+  // The mark of the first disk runs from the centre towards +x; the turned one's towards +y (up).
+  EXPECT_TRUE(Dark(png.At(int(cx + 0.5 * r), int(cy))));
+  const double tx = picture.PixelX(turned.x);
+  EXPECT_TRUE(Dark(png.At(int(tx), int(cy - 0.5 * r))));
+  EXPECT_EQ(png.At(int(tx + 0.5 * r), int(cy)), kWhite);
   // Outside the rim the field shows again.
   const int outside = int(std::floor(cx + r + 4));
   const double x = (outside - picture.panel_left + 0.5) / picture.panel_width * 2.0;
   EXPECT_EQ(png.At(outside, int(cy)), Viridis(x / 2.0));
 }
 
+TEST(RenderTest, IsolinesAreTheExactLevelSetsOfTheP1Field) {
+  // f = x + y on the 2 x 1 domain: P1 reproduces it, so {f = c} is the straight segment of the
+  // line x + y = c inside the domain, and the marched segments must add up to its length.
+  const NodeField field = LinearField(0.0, 1.0, 1.0);
+  for (const double c : {0.7, 1.0, 1.55, 2.5}) {
+    const std::vector<double> segments = IsolineSegments(field, c);
+    double length = 0.0;
+    for (std::size_t k = 0; k < segments.size(); k += 4) {
+      EXPECT_NEAR(segments[k] + segments[k + 1], c, 1e-12);
+      EXPECT_NEAR(segments[k + 2] + segments[k + 3], c, 1e-12);
+      length += std::hypot(segments[k + 2] - segments[k], segments[k + 3] - segments[k + 1]);
+    }
+    // x from max(0, c - 1) to min(2, c), a chord of slope -1.
+    const double expected = std::sqrt(2.0) * (std::min(2.0, c) - std::max(0.0, c - 1.0));
+    EXPECT_NEAR(length, expected, 1e-12) << c;
+  }
+  EXPECT_TRUE(IsolineSegments(field, 5.0).empty());
+  const std::vector<double> levels = Isovalues(1.0, 100.0, 3, true);
+  ASSERT_EQ(levels.size(), 3u);
+  EXPECT_NEAR(levels[0], std::pow(10.0, 0.5), 1e-12);
+  EXPECT_NEAR(levels[1], 10.0, 1e-12);
+
+  // Lines only (the paper's figures): f = x has isovalues 0.5, 1, 1.5 on [0, 2]: black vertical
+  // lines at those x on white, marked on the colour bar too.
+  PictureOptions options = Sized(600, 400);
+  options.isolines = 3;
+  options.fill = false;
+  const FieldPicture picture = DrawFieldPicture(LinearField(0.0, 1.0, 0.0), {}, options);
+  ASSERT_EQ(picture.isovalues.size(), 3u);
+  EXPECT_DOUBLE_EQ(picture.isovalues[1], 1.0);
+  const RgbImage png = WrittenPng(picture, "isolines");
+  const int mid = picture.panel_top + picture.panel_height / 2;
+  for (const double x : {0.5, 1.0, 1.5}) {
+    const int px = int(picture.PixelX(x));
+    EXPECT_GT(DarkPixels(png, px - 1, mid, px + 2, mid + 1), 0) << x;
+  }
+  EXPECT_EQ(png.At(int(picture.PixelX(0.75)), mid), kWhite);
+  EXPECT_EQ(png.At(int(picture.PixelX(1.25)), mid), kWhite);
+}
+
+TEST(RenderTest, ArrowsShowTheVelocityWithTheSpeedOfOneSpacing) {
+  const NodeField field = LinearField(1.0, 0.0, 0.0);  // constant: Viridis(0.5) everywhere
+  NodeVelocity velocity{LinearField(0.0, 0.5, 0.0), LinearField(0.0, 0.0, 0.0)};  // u = x / 2
+  PictureOptions options = Sized(800, 500);
+  options.arrows = 4;
+  EXPECT_THROW(DrawFieldPicture(field, {}, options), InvalidParameter);  // no velocity given
+  const FieldPicture picture = DrawFieldPicture(field, {}, options, &velocity);
+  // Lattice of spacing 0.5: centres at x = 0.25 ... 1.75; the fastest one has u = 0.875.
+  EXPECT_DOUBLE_EQ(picture.arrow_speed, 0.875);
+  const RgbImage png = WrittenPng(picture, "arrows");
+  // The fastest arrow starts at (1.75, 0.25) and points in +x; its shaft covers the field colour.
+  const int y = int(picture.PixelY(0.25));
+  const int shaft = int(picture.PixelX(1.75 + 0.2));
+  bool covered = false;
+  for (int dy = -1; dy <= 1; ++dy) covered = covered || png.At(shaft, y + dy) != Viridis(0.5);
+  EXPECT_TRUE(covered);
+  // Left of the arrow's tail, between lattice columns, the field shows.
+  EXPECT_EQ(png.At(int(picture.PixelX(1.75 - 0.1)), y), Viridis(0.5));
+}
+
+TEST(RenderTest, TextUsesARealFontWithDescendersThatScales) {
+  Canvas canvas(200, 60);
+  // p, g and y descend below the baseline; P and a do not; lower case is shorter than capitals.
+  for (const char* descending : {"p", "g", "y"})
+    EXPECT_GT(canvas.MeasureText(descending, 20).ink_bottom, 2.0) << descending;
+  for (const char* sitting : {"P", "a", "steP"})
+    EXPECT_LT(canvas.MeasureText(sitting, 20).ink_bottom, 0.6) << sitting;
+  EXPECT_GT(canvas.MeasureText("s", 20).ink_top, canvas.MeasureText("P", 20).ink_top + 2.0);
+  // Outlines scale: twice the size, twice the advance.
+  EXPECT_NEAR(canvas.MeasureText("against", 24).advance,
+              2.0 * canvas.MeasureText("against", 12).advance, 1.0);
+  // Drawn: "gyp" with its baseline at y = 30 leaves ink below row 31; "PAE" leaves none there.
+  canvas.Text(10, 30, "gyp", 20, kBlack, Align::kStart, Align::kCentre);
+  const TextMetrics m = canvas.MeasureText("gyp", 20);
+  const double baseline = 30 + 0.5 * (m.ascent - m.descent);
+  canvas.Text(110, 30, "PAE", 20, kBlack, Align::kStart, Align::kCentre);
+  const RgbImage image = canvas.Rasterise();
+  const int below = int(std::ceil(baseline)) + 1;
+  EXPECT_GT(DarkPixels(image, 0, below, 100, 60), 10);
+  EXPECT_EQ(DarkPixels(image, 100, below, 200, 60), 0);
+  EXPECT_GT(DarkPixels(image, 100, 0, 200, below), 50);
+  EXPECT_EQ(FormatLabel(0.000123456), "0.0001235");
+}
+
 TEST(RenderTest, ConstantFieldTakesTheMiddleColourWithoutDividingByZero) {
   NodeField field = LinearField(2.0, 0.0, 0.0);
-  const FieldPicture picture = DrawFieldPicture(field, {}, {400, 300, "constant"});
+  const FieldPicture picture = DrawFieldPicture(field, {}, Sized(400, 300, "constant"));
   EXPECT_EQ(picture.value_min, 2.0);
   EXPECT_EQ(picture.value_max, 2.0);
+  const RgbImage png = WrittenPng(picture, "constant");
   for (int py = 0; py < picture.panel_height; py += 7) {
     for (int px = 0; px < picture.panel_width; px += 7) {
-      ASSERT_EQ(picture.image.At(picture.panel_left + px, picture.panel_top + py), Viridis(0.5));
+      ASSERT_EQ(png.At(picture.panel_left + px, picture.panel_top + py), Viridis(0.5));
     }
   }
 }
@@ -217,38 +379,41 @@ TEST(RenderTest, NanNodesAreGreyAndLeaveTheScaleFinite) {
   NodeField field = LinearField(0.0, 1.0, 0.0);
   field.values[field.grid.Index(8, 4)] = std::numeric_limits<double>::quiet_NaN();
   field.values[field.grid.Index(0, 0)] = std::numeric_limits<double>::infinity();
-  const FieldPicture picture = DrawFieldPicture(field, {}, {400, 300, ""});
+  const FieldPicture picture = DrawFieldPicture(field, {}, Sized(400, 300));
   EXPECT_TRUE(std::isfinite(picture.value_min));
   EXPECT_TRUE(std::isfinite(picture.value_max));
   EXPECT_DOUBLE_EQ(picture.value_max, 2.0);
-  EXPECT_EQ(picture.image.At(int(picture.PixelX(1.0)), int(picture.PixelY(0.5))), kNanColour);
+  const RgbImage png = WrittenPng(picture, "nan");
+  EXPECT_EQ(png.At(int(picture.PixelX(1.0)), int(picture.PixelY(0.5))), kNanColour);
   // Far from the bad nodes the field is drawn as usual.
   const int px = picture.panel_width * 7 / 8;
   const double x = (px + 0.5) / picture.panel_width * 2.0;
-  EXPECT_EQ(picture.image.At(picture.panel_left + px, picture.panel_top + picture.panel_height / 2),
+  EXPECT_EQ(png.At(picture.panel_left + px, picture.panel_top + picture.panel_height / 2),
             Viridis(x / 2.0));
 
   NodeField all_nan = field;
   all_nan.values.assign(all_nan.values.size(), std::numeric_limits<double>::quiet_NaN());
-  const FieldPicture grey = DrawFieldPicture(all_nan, {}, {400, 300, ""});
+  const FieldPicture grey = DrawFieldPicture(all_nan, {}, Sized(400, 300));
   EXPECT_EQ(grey.value_min, 0.0);
   EXPECT_EQ(grey.value_max, 0.0);
 }
 
-TEST(RenderTest, RejectsMismatchedValuesAndSizesWithoutRoom) {
-  NodeField field = LinearField(0.0, 1.0, 0.0);
-  EXPECT_THROW(DrawFieldPicture(field, {}, {40, 25, ""}), InvalidParameter);
-  field.values.pop_back();
-  EXPECT_THROW(DrawFieldPicture(field, {}, {400, 300, ""}), InvalidParameter);
+TEST(RenderTest, LongCaptionsAreFittedInsideTheImage) {
+  std::string caption = "Two disks in an Oldroyd-B liquid";
+  for (int k = 0; k < 12; ++k) caption += ", fluid.relaxation_time=1.4";
+  const FieldPicture picture =
+      DrawFieldPicture(LinearField(1.0, 1.0, 0.0), {}, Sized(400, 300, caption + "\nsecond line"));
+  const RgbImage png = WrittenPng(picture, "caption");
+  // Text in the caption rows, none in the right margin (0.8 font sizes, 7 px here).
+  EXPECT_GT(DarkPixels(png, 0, 0, png.width, picture.panel_top), 100);
+  EXPECT_EQ(DarkPixels(png, png.width - 5, 0, png.width, picture.panel_top - 2), 0);
 }
 
-TEST(RenderTest, FontHasEveryLabelCharacterAndMarksMissingOnes) {
-  const Glyph& missing = GlyphFor('\x01');
-  for (char c : std::string("0123456789.-+e trAspedtimx=:")) EXPECT_NE(GlyphFor(c), missing) << c;
-  EXPECT_EQ(GlyphFor('~'), missing);
-  EXPECT_EQ(TextWidth("1.5e-03"), 7 * kGlyphAdvance - 1);
-  EXPECT_EQ(TextWidth(""), 0);
-  EXPECT_EQ(FormatLabel(0.000123456), "0.0001235");
+TEST(RenderTest, RejectsMismatchedValuesAndSizesWithoutRoom) {
+  NodeField field = LinearField(0.0, 1.0, 0.0);
+  EXPECT_THROW(DrawFieldPicture(field, {}, Sized(40, 25)), InvalidParameter);
+  field.values.pop_back();
+  EXPECT_THROW(DrawFieldPicture(field, {}, Sized(400, 300)), InvalidParameter);
 }
 
 // A results directory written by the io writers: two snapshots (Oldroyd-B: trA present) and a
@@ -276,6 +441,7 @@ class ResultsFrameTest : public ::testing::Test {
       state.step = step;
       state.time = 0.01 * step;
       state.particles[0].position = Vec2(0.5 + 0.1 * step, 0.5);
+      state.particles[0].angular_velocity = 2.0 + 10.0 * state.time;  // linear in t
       history->Append(state);
       if (step != 5) WriteFieldSnapshot(dir_ + "/fields/" + SnapshotFileName(step), grid_, state);
     }
@@ -298,6 +464,48 @@ TEST_F(ResultsFrameTest, LatestSnapshotWithItsParticles) {
   EXPECT_DOUBLE_EQ(frame.disks[0].x, 1.5);
   EXPECT_DOUBLE_EQ(frame.disks[0].radius, 0.125);
   EXPECT_DOUBLE_EQ(frame.particles_time, frame.time);
+  // The rotation angle integrates omega = 2 + 10 t from 0 to 0.1 (the trapezoidal rule is exact
+  // for a linear omega): 0.2 + 0.05.
+  EXPECT_TRUE(frame.disks[0].has_angle);
+  EXPECT_NEAR(frame.disks[0].angle, 0.25, 1e-12);
+}
+
+TEST_F(ResultsFrameTest, DerivedQuantitiesOfTheSnapshot) {
+  // trA = 1 + 1.5 = 2.5 at every node.
+  EXPECT_DOUBLE_EQ(LoadResultsFrame(dir_, 10, "trA-2").field.values[4], 0.5);
+  EXPECT_DOUBLE_EQ(LoadResultsFrame(dir_, 10, "log10(trA/2)").field.values[4], std::log10(1.25));
+  EXPECT_DOUBLE_EQ(LoadResultsFrame(dir_, 10, "A22").field.values[4], 1.5);
+  EXPECT_DOUBLE_EQ(LoadResultsFrame(dir_, 10, "A12").field.values[4], 0.0);
+  EXPECT_DOUBLE_EQ(LoadResultsFrame(dir_, 10, "vorticity").field.values[4], 0.0);  // uniform flow
+  const ResultsFrame pressure = LoadResultsFrame(dir_, 10, "pressure");
+  EXPECT_EQ(pressure.field.grid.nx, grid_.nx / 2);  // the 2h mesh
+  EXPECT_DOUBLE_EQ(pressure.field.grid.h, 2.0 * grid_.h);
+  EXPECT_EQ(pressure.field.values.size(), grid_.Coarse().NodeCount());
+  EXPECT_TRUE(LoadResultsFrame(dir_, 10, "speed").has_velocity);
+  try {
+    LoadResultsFrame(dir_, 10, "stream");
+    FAIL() << "an unknown quantity must throw";
+  } catch (const InvalidParameter& e) {
+    EXPECT_THAT(std::string(e.what()), ::testing::HasSubstr(PictureQuantityList()));
+  }
+}
+
+TEST(NodeQuantities, VorticityIsExactForQuadraticVelocities) {
+  // Second-order differences (centred inside, one-sided three-point on the sides) are exact for
+  // quadratics: u = -y + y^2, v = x + 3 x^2 gives omega = 1 + 6x + 1 - 2y.
+  const Grid g{6, 4, 0.25, -0.5, 0.25};
+  std::vector<double> u(g.NodeCount()), v(g.NodeCount());
+  for (int j = 0; j <= g.ny; ++j) {
+    for (int i = 0; i <= g.nx; ++i) {
+      u[g.Index(i, j)] = -g.Y(j) + g.Y(j) * g.Y(j);
+      v[g.Index(i, j)] = g.X(i) + 3.0 * g.X(i) * g.X(i);
+    }
+  }
+  const std::vector<double> omega = NodeVorticity(g, u, v);
+  for (int j = 0; j <= g.ny; ++j) {
+    for (int i = 0; i <= g.nx; ++i)
+      EXPECT_NEAR(omega[g.Index(i, j)], 2.0 + 6.0 * g.X(i) - 2.0 * g.Y(j), 1e-12) << i << "," << j;
+  }
 }
 
 TEST_F(ResultsFrameTest, ChosenSnapshotSpeedAndErrors) {
@@ -308,12 +516,16 @@ TEST_F(ResultsFrameTest, ChosenSnapshotSpeedAndErrors) {
   EXPECT_DOUBLE_EQ(frame.disks[0].x, 0.5);
   EXPECT_THROW(LoadResultsFrame(dir_, 5),
                InvalidParameter);  // particles at step 5, no field snapshot
-  EXPECT_THROW(LoadResultsFrame(dir_, -1, "pressure"), InvalidParameter);
+  EXPECT_THROW(LoadResultsFrame(dir_, -1, "no such quantity"), InvalidParameter);
   EXPECT_THROW(LoadResultsFrame(dir_ + "/nothing"), InvalidParameter);
   // And the frame draws: the disk at x = 1.5 is white at its centre.
   const FieldPicture picture =
-      DrawFieldPicture(LoadResultsFrame(dir_).field, LoadResultsFrame(dir_).disks, {400, 300, ""});
-  EXPECT_EQ(picture.image.At(int(picture.PixelX(1.5)), int(picture.PixelY(0.5))), kWhite);
+      DrawFieldPicture(LoadResultsFrame(dir_).field, LoadResultsFrame(dir_).disks, Sized(400, 300));
+  // (Left of the centre: the rotation mark, at 0.25 rad, points right.)
+  const double r = 0.125 / picture.grid.Width() * picture.panel_width;
+  EXPECT_EQ(
+      WrittenPng(picture, "frame").At(int(picture.PixelX(1.5) - 0.5 * r), int(picture.PixelY(0.5))),
+      kWhite);
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
-// DrawFieldPicture: layout, P1 sampling of the field, colour bar, labels, particles.
+// DrawFieldPicture: layout, P1 sampling of the field, isolines, arrows, particles, axes, colour
+// bar.
 #include "dlmfd/viz/field_picture.h"
 
 #include <algorithm>
@@ -6,8 +7,8 @@
 #include <cstdio>
 
 #include "dlmfd/core/errors.h"
-#include "dlmfd/viz/bitmap_font.h"
 #include "dlmfd/viz/colour_map.h"
+#include "dlmfd/viz/isolines.h"
 
 namespace dlmfd {
 namespace {
@@ -84,6 +85,15 @@ NodeField CropField(const NodeField& field, double x_min, double y_min, double x
   return crop;
 }
 
+Rgb ColourOf(double v, double lo, double hi, bool log_colours) {
+  if (!std::isfinite(v)) return kNanColour;
+  if (log_colours && !(v > 0.0)) return Viridis(0.0);
+  const double bottom = log_colours ? std::log10(lo) : lo;
+  const double span = (log_colours ? std::log10(hi) : hi) - bottom;
+  const double c = log_colours ? std::log10(v) : v;
+  return Viridis(span > 0.0 ? std::clamp((c - bottom) / span, 0.0, 1.0) : 0.5);
+}
+
 double FieldPicture::PixelX(double x) const {
   return panel_left + (x - grid.x0) / grid.Width() * panel_width;
 }
@@ -92,110 +102,328 @@ double FieldPicture::PixelY(double y) const {
   return panel_top + (1.0 - (y - grid.y0) / grid.Height()) * panel_height;
 }
 
-FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutline>& disks,
-                              const PictureOptions& options) {
-  CheckField(field);
-  const Grid& g = field.grid;
+double FieldPicture::BarY(double value) const {
+  const double bottom = log_colours ? std::log10(value_min) : value_min;
+  const double span = (log_colours ? std::log10(value_max) : value_max) - bottom;
+  const double c = log_colours ? std::log10(value) : value;
+  const double fraction = span > 0.0 ? (c - bottom) / span : 0.5;
+  return bar_top + (1.0 - fraction) * bar_height;
+}
 
-  const bool log_colours = options.log_colours;
-  double lo = HUGE_VAL;
-  double hi = -HUGE_VAL;
+namespace {
+
+constexpr Rgb kAxisColour{0, 0, 0};
+
+// The colour range: fixed, or the finite (positive, on a log scale) extremes of the values.
+void ColourRange(const NodeField& field, const PictureOptions& options, double& lo, double& hi) {
+  if (options.fixed_range) {
+    lo = options.range_min;
+    hi = options.range_max;
+    if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo <= hi) ||
+        (options.log_colours && !(lo > 0.0))) {
+      throw InvalidParameter(
+          "colour range", FormatLabel(lo) + "," + FormatLabel(hi),
+          options.log_colours ? "finite 0 < min <= max for log colours" : "finite min <= max");
+    }
+    return;
+  }
+  lo = HUGE_VAL;
+  hi = -HUGE_VAL;
   for (double v : field.values) {
-    if (std::isfinite(v) && (!log_colours || v > 0.0)) {
+    if (std::isfinite(v) && (!options.log_colours || v > 0.0)) {
       lo = std::min(lo, v);
       hi = std::max(hi, v);
     }
   }
-  if (lo > hi) lo = hi = log_colours ? 1.0 : 0.0;  // no usable value: grey (or the bottom colour)
-  const std::string max_label = FormatLabel(hi);
-  const std::string min_label = FormatLabel(lo);
-  const std::string mid_label = log_colours ? FormatLabel(std::sqrt(lo * hi)) : std::string();
+  if (lo > hi) lo = hi = options.log_colours ? 1.0 : 0.0;  // no usable value
+}
 
-  // Layout in pixels; the font scale grows with the picture so labels stay legible.
-  const int scale = std::clamp(std::min(options.max_width, options.max_height) / 400, 1, 4);
-  const int margin = 6 * scale;
-  const int caption_height = options.caption.empty() ? 0 : (kGlyphHeight + 5) * scale;
-  const int gap = 8 * scale;
-  const int bar_width = 14 * scale;
-  const int label_width =
-      (std::max({TextWidth(max_label), TextWidth(min_label), TextWidth(mid_label)}) + 4) * scale;
-  const int min_bar_height = 3 * kGlyphHeight * scale;
-  const int room_x = options.max_width - 2 * margin - gap - bar_width - label_width;
-  const int room_y = options.max_height - 2 * margin - caption_height;
-  if (room_x < 8 || room_y < std::max(8, min_bar_height)) {
-    throw InvalidParameter(
-        "picture size",
-        std::to_string(options.max_width) + "x" + std::to_string(options.max_height),
-        "room for the field, the colour bar and its labels (try 400x300 or more)");
+double WidestLabel(const Canvas& canvas, const AxisTicks& ticks, double size) {
+  double width = 0.0;
+  for (const std::string& label : ticks.labels)
+    width = std::max(width, canvas.MeasureText(label, size).advance);
+  return width;
+}
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::size_t start = 0;
+  while (start <= text.size() && !text.empty()) {
+    const std::size_t end = text.find('\n', start);
+    lines.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return lines;
+}
+
+AxisTicks BarTicks(double lo, double hi, int wanted, bool log) {
+  if (!(lo < hi)) return AxisTicks{{lo}, {FormatLabel(lo)}};
+  return ScaleTicks(lo, hi, wanted, log ? AxisScale::kLog10 : AxisScale::kLinear);
+}
+
+// The arrows of the velocity on a lattice of `columns` columns; returns the speed of one spacing.
+double DrawArrows(Canvas& canvas, const FieldPicture& p, const NodeVelocity& velocity, int columns,
+                  double line_width) {
+  const Grid& g = p.grid;
+  const double spacing = g.Width() / columns;
+  const int rows = std::max(1, int(std::floor(g.Height() / spacing)));
+  const double y_start = g.y0 + 0.5 * (g.Height() - rows * spacing);
+  double longest = 0.0;
+  std::vector<double> points;  // x, y, u, v
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < columns; ++i) {
+      const double x = g.x0 + (i + 0.5) * spacing;
+      const double y = y_start + (j + 0.5) * spacing;
+      const double u = InterpolateP1(velocity.u, x, y);
+      const double v = InterpolateP1(velocity.v, x, y);
+      if (!std::isfinite(u) || !std::isfinite(v)) continue;
+      longest = std::max(longest, std::hypot(u, v));
+      points.insert(points.end(), {x, y, u, v});
+    }
+  }
+  if (!(longest > 0.0)) return 0.0;
+  const double pixels = spacing / g.Width() * p.panel_width;
+  for (std::size_t k = 0; k < points.size(); k += 4) {
+    const double length = pixels * std::hypot(points[k + 2], points[k + 3]) / longest;
+    if (length < 0.5) continue;
+    const double head = std::max(2.0, 0.3 * length);  // in proportion: short arrows stay small
+    const double x0 = p.PixelX(points[k]);
+    const double y0 = p.PixelY(points[k + 1]);
+    const double x1 = x0 + pixels * points[k + 2] / longest;
+    const double y1 = y0 - pixels * points[k + 3] / longest;
+    // Black under white: readable on the dark and the bright end of viridis.
+    canvas.Arrow(x0, y0, x1, y1, line_width + 1.5, head + 1.0, kBlack);
+    canvas.Arrow(x0, y0, x1, y1, line_width, head, kWhite);
+  }
+  return longest;
+}
+
+}  // namespace
+
+FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutline>& disks,
+                              const PictureOptions& options, const NodeVelocity* velocity) {
+  CheckField(field);
+  if (options.arrows > 0) {
+    if (velocity == nullptr) {
+      throw InvalidParameter("arrows", std::to_string(options.arrows),
+                             "0 for a field without velocity (the snapshot's u and v)");
+    }
+    CheckField(velocity->u);
+    CheckField(velocity->v);
+  }
+  const Grid& g = field.grid;
+  const bool log_colours = options.log_colours;
+  double lo = 0.0, hi = 0.0;
+  ColourRange(field, options, lo, hi);
+  const std::string bar_label =
+      options.colour_label.empty() ? field.quantity : options.colour_label;
+
+  const int max_width = options.exact_width > 0 ? options.exact_width : options.max_width;
+  const int max_height = options.exact_height > 0 ? options.exact_height : options.max_height;
+  Canvas measure(1, 1);
+  // Text sizes in pixels grow with the picture: 18 px labels in 1000 x 1000.
+  const double fs = std::clamp(std::min(max_width, max_height) / 55.0, 9.0, 24.0);
+  const double margin = 0.8 * fs;
+  const double tick = 0.4 * fs;
+  const double line_height = 1.3 * fs;
+  const std::vector<std::string> caption = Lines(options.caption);
+  const double caption_height = caption.empty() ? 0.0 : caption.size() * line_height + 0.3 * fs;
+  const double bar_width = 1.2 * fs;
+  const double min_bar_height = 6.0 * fs;
+
+  // A first guess of the ticks, for the widths of their labels.
+  const double top = margin + caption_height + 0.5 * fs;
+  const double bottom = tick + 0.2 * fs + 2.0 * line_height + margin;
+  const double room_y_guess = max_height - top - bottom;
+  const int y_wanted = std::clamp(int(room_y_guess / (3.0 * fs)), 2, 8);
+  const AxisTicks y_guess = LinearTicks(g.y0, g.y0 + g.Height(), y_wanted);
+  const AxisTicks bar_guess = BarTicks(lo, hi, y_wanted, log_colours);
+  const double left =
+      margin + line_height + WidestLabel(measure, y_guess, fs) + 0.3 * fs + tick + 1.0;
+  const double right = 1.2 * fs + bar_width + tick + 0.3 * fs +
+                       WidestLabel(measure, bar_guess, fs) + 0.6 * fs + line_height + margin;
+  const double room_x = max_width - left - right;
+  const double room_y = max_height - top - bottom;
+  if (room_x < 16 || room_y < std::max(16.0, min_bar_height)) {
+    throw InvalidParameter("picture size",
+                           std::to_string(max_width) + "x" + std::to_string(max_height),
+                           "room for the field, its axes, the colour bar and its labels (try "
+                           "400x300 or more)");
   }
   const double pixels_per_unit = std::min(room_x / g.Width(), room_y / g.Height());
   const int panel_width = std::max(1, int(std::floor(g.Width() * pixels_per_unit)));
   const int panel_height = std::max(1, int(std::floor(g.Height() * pixels_per_unit)));
-  const int body_height = std::max(panel_height, min_bar_height);
-  const int width = 2 * margin + panel_width + gap + bar_width + label_width;
-  const int height = 2 * margin + caption_height + body_height;
+  const int body_height = std::max(panel_height, int(min_bar_height));
+  int width = int(std::ceil(left + panel_width + right));
+  int height = int(std::ceil(top + body_height + bottom));
+  int shift_x = 0, shift_y = 0;
+  if (options.exact_width > 0) {
+    shift_x = std::max(0, (options.exact_width - width) / 2);
+    shift_y = std::max(0, (options.exact_height - height) / 2);
+    width = options.exact_width;
+    height = options.exact_height;
+  }
 
   FieldPicture picture;
-  picture.image = RasterImage(width, height, kWhite);
-  picture.panel_left = margin;
-  picture.panel_top = margin + caption_height;
+  picture.image = Canvas(width, height);
+  picture.panel_left = shift_x + int(std::ceil(left));
+  picture.panel_top = shift_y + int(std::ceil(top));
   picture.panel_width = panel_width;
   picture.panel_height = panel_height;
-  picture.bar_left = margin + panel_width + gap;
+  picture.bar_left = picture.panel_left + panel_width + int(std::round(1.2 * fs));
   picture.bar_top = picture.panel_top;
-  picture.bar_width = bar_width;
+  picture.bar_width = int(std::round(bar_width));
   picture.bar_height = body_height;
   picture.value_min = lo;
   picture.value_max = hi;
+  picture.log_colours = log_colours;
   picture.grid = g;
-  RasterImage& image = picture.image;
+  Canvas& canvas = picture.image;
 
-  // The colour coordinate: the value, or its log10, mapped from [lo, hi] onto [0, 1].
-  const double bottom = log_colours ? std::log10(lo) : lo;
-  const double span = (log_colours ? std::log10(hi) : hi) - bottom;
-  const auto colour_of = [&](double v) {
-    if (!std::isfinite(v)) return kNanColour;
-    if (log_colours && !(v > 0.0)) return Viridis(0.0);
-    const double c = log_colours ? std::log10(v) : v;
-    return Viridis(span > 0.0 ? std::clamp((c - bottom) / span, 0.0, 1.0) : 0.5);
-  };
-  for (int py = 0; py < panel_height; ++py) {
-    const double y = g.y0 + (1.0 - (py + 0.5) / panel_height) * g.Height();
-    for (int px = 0; px < panel_width; ++px) {
-      const double x = g.x0 + (px + 0.5) / panel_width * g.Width();
-      image.Set(picture.panel_left + px, picture.panel_top + py,
-                colour_of(InterpolateP1(field, x, y)));
+  // The field, pixel by pixel, at the pixel centres.
+  if (options.fill) {
+    RgbImage raster;
+    raster.width = panel_width;
+    raster.height = panel_height;
+    raster.rgb.resize(std::size_t(panel_width) * std::size_t(panel_height) * 3);
+    for (int py = 0; py < panel_height; ++py) {
+      const double y = g.y0 + (1.0 - (py + 0.5) / panel_height) * g.Height();
+      for (int px = 0; px < panel_width; ++px) {
+        const double x = g.x0 + (px + 0.5) / panel_width * g.Width();
+        const Rgb c = ColourOf(InterpolateP1(field, x, y), lo, hi, log_colours);
+        const std::size_t k = (std::size_t(py) * std::size_t(panel_width) + std::size_t(px)) * 3;
+        raster.rgb[k] = c.r;
+        raster.rgb[k + 1] = c.g;
+        raster.rgb[k + 2] = c.b;
+      }
     }
+    canvas.Raster(picture.panel_left, picture.panel_top, raster);
   }
 
-  const double rim = std::max(1.0, 0.75 * scale);
+  canvas.Clip(picture.panel_left, picture.panel_top, panel_width, panel_height);
+  const double thin = std::max(1.25, fs / 12.0);
+  picture.isovalues = Isovalues(lo, hi, options.isolines, log_colours);
+  for (const double level : picture.isovalues) {
+    const std::vector<double> segments = IsolineSegments(field, level);
+    std::vector<double> pixels(segments.size());
+    for (std::size_t k = 0; k < segments.size(); k += 2) {
+      pixels[k] = picture.PixelX(segments[k]);
+      pixels[k + 1] = picture.PixelY(segments[k + 1]);
+    }
+    canvas.Segments(pixels, thin, options.fill ? Rgb{255, 255, 255} : kBlack);
+  }
+  if (options.arrows > 0)
+    picture.arrow_speed = DrawArrows(canvas, picture, *velocity, options.arrows, thin);
+  const double rim = std::max(1.0, fs / 10.0);
+  const double scale = panel_width / g.Width();
   for (const DiskOutline& disk : disks) {
     const double cx = picture.PixelX(disk.x);
     const double cy = picture.PixelY(disk.y);
-    const double r = disk.radius / g.Width() * panel_width;
-    image.FillDisk(cx, cy, r, kWhite);
-    image.DrawCircle(cx, cy, r, rim, kBlack);
+    const double r = disk.radius * scale;
+    canvas.FillCircle(cx, cy, r, kWhite);
+    canvas.StrokeCircle(cx, cy, r, rim, kBlack);
+    if (disk.has_angle)
+      canvas.Line(cx, cy, cx + r * std::cos(disk.angle), cy - r * std::sin(disk.angle), rim,
+                  kBlack);
   }
-  // Particles reaching past a wall are clipped to the panel, not drawn over the margin.
-  image.FillRect(0, 0, width, picture.panel_top, kWhite);
-  image.FillRect(0, picture.panel_top, picture.panel_left, height, kWhite);
-  image.FillRect(picture.panel_left + panel_width, picture.panel_top, width, height, kWhite);
-  image.FillRect(0, picture.panel_top + panel_height, width, height, kWhite);
+  canvas.Unclip();
 
+  // Axes: frame, ticks outwards, labels in the domain's coordinates.
+  const double panel_bottom = picture.panel_top + panel_height;
+  canvas.StrokeRect(picture.panel_left - 0.5, picture.panel_top - 0.5, panel_width + 1.0,
+                    panel_height + 1.0, 1.0, kAxisColour);
+  picture.y_ticks =
+      LinearTicks(g.y0, g.y0 + g.Height(), std::clamp(int(panel_height / (3.0 * fs)), 2, 8));
+  for (int wanted = std::clamp(int(panel_width / (3.5 * fs)), 2, 8);; --wanted) {
+    picture.x_ticks = LinearTicks(g.x0, g.x0 + g.Width(), wanted);
+    const double needed =
+        picture.x_ticks.values.size() * (WidestLabel(canvas, picture.x_ticks, fs) + fs);
+    if (needed <= panel_width || wanted == 2) break;
+  }
+  for (std::size_t k = 0; k < picture.x_ticks.values.size(); ++k) {
+    const double px = picture.PixelX(picture.x_ticks.values[k]);
+    canvas.FillRect(std::floor(px), panel_bottom + 1.0, 1.0, tick, kAxisColour);
+    canvas.Text(px, panel_bottom + tick + 0.2 * fs, picture.x_ticks.labels[k], fs, kAxisColour,
+                Align::kCentre, Align::kStart);
+  }
+  for (std::size_t k = 0; k < picture.y_ticks.values.size(); ++k) {
+    const double py = picture.PixelY(picture.y_ticks.values[k]);
+    canvas.FillRect(picture.panel_left - 1.0 - tick, std::floor(py), tick, 1.0, kAxisColour);
+    canvas.Text(picture.panel_left - tick - 0.3 * fs, py, picture.y_ticks.labels[k], fs,
+                kAxisColour, Align::kEnd, Align::kCentre);
+  }
+  canvas.Text(picture.panel_left + 0.5 * panel_width, panel_bottom + tick + 0.2 * fs + line_height,
+              "x", fs, kAxisColour, Align::kCentre, Align::kStart);
+  canvas.Text(shift_x + margin, picture.panel_top + 0.5 * panel_height, "y", fs, kAxisColour,
+              Align::kCentre, Align::kStart, 90.0);
+  if (picture.arrow_speed > 0.0) {
+    const double pixels = panel_width / double(options.arrows);
+    const double ky = panel_bottom + tick + 0.2 * fs + 1.5 * line_height;
+    const double kx = picture.panel_left + panel_width;
+    canvas.Arrow(kx - pixels, ky, kx, ky, thin, std::max(3.0, 0.3 * pixels), kBlack);
+    canvas.Text(kx - pixels - 0.4 * fs, ky, "|u| = " + FormatLabel(picture.arrow_speed), fs,
+                kAxisColour, Align::kEnd, Align::kCentre);
+  }
+
+  // The colour bar: viridis from bottom to top, its ticks and label, the isovalues marked.
+  RgbImage bar;
+  bar.width = picture.bar_width;
+  bar.height = body_height;
+  bar.rgb.resize(std::size_t(bar.width) * std::size_t(bar.height) * 3);
   for (int r = 0; r < body_height; ++r) {
-    const Rgb colour = span > 0.0 ? Viridis(1.0 - (r + 0.5) / body_height) : Viridis(0.5);
-    image.FillRect(picture.bar_left, picture.bar_top + r, bar_width, 1, colour);
+    const Rgb colour = hi > lo ? Viridis(1.0 - (r + 0.5) / body_height) : Viridis(0.5);
+    for (int c = 0; c < bar.width; ++c) {
+      const std::size_t k = (std::size_t(r) * std::size_t(bar.width) + std::size_t(c)) * 3;
+      bar.rgb[k] = colour.r;
+      bar.rgb[k + 1] = colour.g;
+      bar.rgb[k + 2] = colour.b;
+    }
   }
-  image.FrameRect(picture.bar_left, picture.bar_top, bar_width, body_height, kBlack);
-  const int label_left = picture.bar_left + bar_width + 3 * scale;
-  image.DrawText(label_left, picture.bar_top, max_label, scale, kBlack);
-  image.DrawText(label_left, picture.bar_top + body_height - kGlyphHeight * scale, min_label, scale,
-                 kBlack);
-  if (!mid_label.empty()) {
-    image.DrawText(label_left, picture.bar_top + (body_height - kGlyphHeight * scale) / 2,
-                   mid_label, scale, kBlack);
+  canvas.Raster(picture.bar_left, picture.bar_top, bar);
+  canvas.StrokeRect(picture.bar_left - 0.5, picture.bar_top - 0.5, bar.width + 1.0,
+                    body_height + 1.0, 1.0, kAxisColour);
+  for (const double level : picture.isovalues) {
+    const double y = picture.BarY(level);
+    canvas.Line(picture.bar_left, y, picture.bar_left + bar.width, y, thin,
+                options.fill ? Rgb{255, 255, 255} : kBlack);
   }
-  if (!options.caption.empty()) image.DrawText(margin, margin, options.caption, scale, kBlack);
+  picture.bar_ticks =
+      BarTicks(lo, hi, std::clamp(int(body_height / (3.0 * fs)), 2, 8), log_colours);
+  const double bar_right = picture.bar_left + bar.width;
+  for (std::size_t k = 0; k < picture.bar_ticks.values.size(); ++k) {
+    const double y = picture.BarY(picture.bar_ticks.values[k]);
+    canvas.FillRect(bar_right + 1.0, std::floor(y), tick, 1.0, kAxisColour);
+    canvas.Text(bar_right + tick + 0.3 * fs, y, picture.bar_ticks.labels[k], fs, kAxisColour,
+                Align::kStart, Align::kCentre);
+  }
+  const double label_x =
+      bar_right + tick + 0.9 * fs + WidestLabel(canvas, picture.bar_ticks, fs) + 0.5 * line_height;
+  canvas.Text(label_x, picture.bar_top + 0.5 * body_height,
+              bar_label + (log_colours ? " (log scale)" : ""), fs, kAxisColour, Align::kCentre,
+              Align::kCentre, 90.0);
+
+  // Caption lines fit the image: a smaller font first (down to 3/4), then cut with "...".
+  const double room = width - 2.0 * shift_x - 2.0 * margin;
+  for (std::size_t k = 0; k < caption.size(); ++k) {
+    const bool bold = k == 0;
+    const double natural = canvas.MeasureText(caption[k], fs, bold).advance;
+    const double size = natural > room ? std::max(0.75 * fs, 0.995 * fs * room / natural) : fs;
+    std::string line = caption[k];
+    if (canvas.MeasureText(line, size, bold).advance > room) {
+      while (line.size() > 1 && canvas.MeasureText(line + "...", size, bold).advance > room) {
+        // One character: its UTF-8 continuation bytes, then its first byte.
+        unsigned char last = 0;
+        do {
+          last = static_cast<unsigned char>(line.back());
+          line.pop_back();
+        } while (!line.empty() && (last & 0xC0) == 0x80);
+      }
+      line += "...";
+    }
+    canvas.Text(shift_x + margin, shift_y + margin + k * line_height, line, size, kAxisColour,
+                Align::kStart, Align::kStart, 0.0, bold);
+  }
   return picture;
 }
 

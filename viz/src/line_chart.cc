@@ -1,5 +1,5 @@
 // LineChart: axis ranges and ticks from the usable points, then layout, grid, frame, labels,
-// series and legend drawn into a RasterImage.
+// series and legend drawn on a Canvas.
 #include "dlmfd/viz/line_chart.h"
 
 #include <algorithm>
@@ -8,7 +8,6 @@
 #include <limits>
 
 #include "dlmfd/core/errors.h"
-#include "dlmfd/viz/bitmap_font.h"
 
 namespace dlmfd {
 namespace {
@@ -20,37 +19,9 @@ constexpr Rgb kPalette[kPaletteSize] = {{0, 114, 178},   {213, 94, 0},  {0, 158,
                                         {0, 0, 0}};
 constexpr Rgb kGridColour{225, 225, 225};
 constexpr Rgb kAxisColour{0, 0, 0};
-// Relative slack when deciding whether a computed tick lies inside the range.
-constexpr double kRoundOff = 1e-9;
 
 double Transform(double value, AxisScale scale) {
   return scale == AxisScale::kLog10 ? std::log10(value) : value;
-}
-
-std::string Printf(const char* format, int digits, double value) {
-  char text[48];
-  std::snprintf(text, sizeof(text), format, digits, value);
-  return text;
-}
-
-// A label for a multiple of `step` on an axis reaching `magnitude`: fixed decimals as the step
-// needs, or scientific notation when the axis values are all very large or very small.
-std::string LinearLabel(double value, double step, double magnitude) {
-  const int step_exponent = int(std::floor(std::log10(step) + kRoundOff));
-  if (magnitude >= 1e6 || magnitude < 1e-3) {
-    if (std::abs(value) < kRoundOff * step) return "0";
-    const int exponent = int(std::floor(std::log10(magnitude)));
-    return Printf("%.*e", std::max(0, exponent - step_exponent), value);
-  }
-  return Printf("%.*f", std::max(0, -step_exponent), value);
-}
-
-// m * 10^k (m in 1, 2, 5): plain digits for moderate k, "me" k otherwise.
-std::string LogLabel(int mantissa, int exponent) {
-  if (exponent >= -3 && exponent <= 4) {
-    return Printf("%.*f", std::max(0, -exponent), mantissa * std::pow(10.0, exponent));
-  }
-  return std::to_string(mantissa) + "e" + std::to_string(exponent);
 }
 
 // The widened range [lo, hi] of the usable values of one axis.
@@ -79,89 +50,17 @@ double PixelAlong(double value, double lo, double hi, AxisScale scale, int first
   return first + 0.5 + (reversed ? 1.0 - fraction : fraction) * (count - 1);
 }
 
-int LabelsWidth(const AxisTicks& ticks) {
-  int width = 0;
-  for (const std::string& label : ticks.labels) width = std::max(width, TextWidth(label));
-  return width;
-}
-
-// A legend entry no wider than `max_chars` characters.
-std::string Shortened(const std::string& name, int max_chars) {
-  if (int(name.size()) <= max_chars) return name;
-  return name.substr(0, std::size_t(std::max(1, max_chars - 2))) + "..";
-}
-
 }  // namespace
 
 Rgb SeriesColour(std::size_t index) { return kPalette[index % kPaletteSize]; }
 
-bool Usable(double value, AxisScale scale) {
-  return std::isfinite(value) && (scale == AxisScale::kLinear || value > 0.0);
+Dash SeriesDash(std::size_t index) {
+  static const Dash kDashes[kDashCount] = {{}, {5.0, 2.5}, {1.0, 2.0}, {5.0, 2.0, 1.0, 2.0}};
+  return kDashes[(index / kPaletteSize) % kDashCount];
 }
 
-AxisTicks LinearTicks(double lo, double hi, int wanted) {
-  if (!(std::isfinite(lo) && std::isfinite(hi) && lo < hi)) {
-    throw InvalidParameter("axis range", "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]",
-                           "finite ends with lo < hi");
-  }
-  wanted = std::max(2, wanted);
-  const double raw = (hi - lo) / wanted;
-  const double base = std::pow(10.0, std::floor(std::log10(raw)));
-  double step = 10.0 * base;
-  for (const double m : {1.0, 2.0, 5.0}) {
-    if (m * base >= raw * (1.0 - kRoundOff)) {
-      step = m * base;
-      break;
-    }
-  }
-  AxisTicks ticks;
-  const double magnitude = std::max(std::abs(lo), std::abs(hi));
-  for (double k = std::ceil(lo / step - kRoundOff); k <= std::floor(hi / step + kRoundOff);
-       k += 1.0) {
-    const double value = std::abs(k) < 0.5 ? 0.0 : k * step;
-    ticks.values.push_back(value);
-    ticks.labels.push_back(LinearLabel(value, step, magnitude));
-  }
-  return ticks;
-}
-
-AxisTicks LogTicks(double lo, double hi, int wanted) {
-  if (!(std::isfinite(lo) && std::isfinite(hi) && lo > 0.0 && lo < hi)) {
-    throw InvalidParameter("log axis range",
-                           "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]",
-                           "finite ends with 0 < lo < hi");
-  }
-  wanted = std::max(2, wanted);
-  const int k_lo = int(std::ceil(std::log10(lo) - kRoundOff));
-  const int k_hi = int(std::floor(std::log10(hi) + kRoundOff));
-  const int decades = k_hi - k_lo + 1;
-  if (decades < 3) {
-    AxisTicks multiples;
-    for (int k = k_lo - 2; k <= k_hi + 1; ++k) {
-      for (const int m : {1, 2, 5}) {
-        const double value = m * std::pow(10.0, k);
-        if (value >= lo * (1.0 - kRoundOff) && value <= hi * (1.0 + kRoundOff)) {
-          multiples.values.push_back(value);
-          multiples.labels.push_back(LogLabel(m, k));
-        }
-      }
-    }
-    const std::size_t count = multiples.values.size();
-    if (count >= 2 && (count <= std::size_t(wanted) + 1 || decades < 2)) return multiples;
-  }
-  AxisTicks ticks;
-  if (decades >= 2) {
-    const int every = std::max(1, (k_hi - k_lo + wanted - 1) / wanted);
-    // Decades that are multiples of `every` when that leaves two or more, else from k_lo.
-    int first = int(std::ceil(double(k_lo) / every)) * every;
-    if (first + every > k_hi) first = k_lo;
-    for (int k = first; k <= k_hi; k += every) {
-      ticks.values.push_back(std::pow(10.0, k));
-      ticks.labels.push_back(LogLabel(1, k));
-    }
-    return ticks;
-  }
-  return LinearTicks(lo, hi, wanted);
+int SeriesMarker(std::size_t index) {
+  return int((index / (kPaletteSize * kDashCount)) % (kMarkerShapes + 1));
 }
 
 double ChartPicture::PixelX(double x) const {
@@ -182,11 +81,69 @@ void LineChart::AddSeries(ChartSeries series) {
   series_.push_back(std::move(series));
 }
 
+namespace {
+
+// A marker of shape 1 (disk), 2 (square), 3 (triangle) or 4 (diamond) of half-size r.
+void DrawMarker(Canvas& canvas, int shape, double x, double y, double r, Rgb colour) {
+  switch (shape) {
+    case 2:
+      canvas.FillRect(x - 0.85 * r, y - 0.85 * r, 1.7 * r, 1.7 * r, colour);
+      break;
+    case 3:
+      canvas.FillPolygon({x, y - 1.15 * r, x + r, y + 0.65 * r, x - r, y + 0.65 * r}, colour);
+      break;
+    case 4:
+      canvas.FillPolygon({x, y - 1.2 * r, x + r, y, x, y + 1.2 * r, x - r, y}, colour);
+      break;
+    default:
+      canvas.FillCircle(x, y, r, colour);
+  }
+}
+
+double LabelsWidth(const Canvas& canvas, const AxisTicks& ticks, double size) {
+  double width = 0.0;
+  for (const std::string& label : ticks.labels)
+    width = std::max(width, canvas.MeasureText(label, size).advance);
+  return width;
+}
+
+// `name` cut (with "..") to fit in `width` pixels.
+std::string Fitted(const Canvas& canvas, const std::string& name, double size, double width) {
+  if (canvas.MeasureText(name, size).advance <= width) return name;
+  std::string cut = name;
+  while (cut.size() > 1 && canvas.MeasureText(cut + "..", size).advance > width) cut.pop_back();
+  return cut + "..";
+}
+
+// Widens the range of the axis with fewer data units per pixel about its centre so that both
+// show the same units per pixel.
+void EqualiseScales(ChartPicture& p) {
+  const double x_per_pixel = (p.x_hi - p.x_lo) / std::max(1, p.panel_width - 1);
+  const double y_per_pixel = (p.y_hi - p.y_lo) / std::max(1, p.panel_height - 1);
+  if (x_per_pixel < y_per_pixel) {
+    const double half = 0.5 * y_per_pixel * std::max(1, p.panel_width - 1);
+    const double centre = 0.5 * (p.x_lo + p.x_hi);
+    p.x_lo = centre - half;
+    p.x_hi = centre + half;
+  } else {
+    const double half = 0.5 * x_per_pixel * std::max(1, p.panel_height - 1);
+    const double centre = 0.5 * (p.y_lo + p.y_hi);
+    p.y_lo = centre - half;
+    p.y_hi = centre + half;
+  }
+}
+
+}  // namespace
+
 ChartPicture LineChart::Draw() const {
   const AxisScale xs = options_.x_axis.scale;
   const AxisScale ys = options_.y_axis.scale;
   if (series_.empty())
     throw InvalidParameter("chart", "no series", "at least one series of points");
+  if (options_.equal_scale && (xs != AxisScale::kLinear || ys != AxisScale::kLinear)) {
+    throw InvalidParameter("chart axes", "equal scales with a log axis",
+                           "equal scales on two linear axes only");
+  }
   double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min;
   double y_min = x_min, y_max = -x_min;
   for (const ChartSeries& s : series_) {
@@ -212,128 +169,171 @@ ChartPicture LineChart::Draw() const {
   AxisRange(x_min, x_max, xs, p.x_lo, p.x_hi);
   AxisRange(y_min, y_max, ys, p.y_lo, p.y_hi);
 
-  // Vertical layout first: it does not depend on the tick labels.
   const int width = options_.width;
   const int height = options_.height;
-  const int s = std::clamp(std::min(width, height) / 300, 1, 4);
-  const int margin = 8 * s;
-  const int tick = 4 * s;
-  const int line_height = (kGlyphHeight + 5) * s;
-  const int title_scale = TextWidth(options_.title) * (s + 1) <= width - 2 * margin ? s + 1 : s;
-  const int title_height = options_.title.empty() ? 0 : (kGlyphHeight + 6) * title_scale;
-  const int y_title_height = options_.y_axis.title.empty() ? 4 * s : line_height;
-  const int x_title_height = options_.x_axis.title.empty() ? 0 : line_height;
-  p.panel_top = margin + title_height + y_title_height;
-  p.panel_height = height - p.panel_top - margin - x_title_height - line_height - tick - 1;
+  p.image = Canvas(width, height);
+  Canvas& canvas = p.image;
+  // Text sizes in pixels grow with the picture: 15 px labels on a 1000 x 700 chart.
+  const double fs = std::clamp(std::min(width, height) / 46.0, 9.0, 28.0);
+  const double title_fs = 1.2 * fs;
+  const double margin = 0.8 * fs;
+  const double tick = 0.4 * fs;
+  const double line_height = 1.35 * fs;
+
+  // Vertical layout first: it does not depend on the tick labels.
+  const double title_height = options_.title.empty() ? 0.0 : 1.6 * title_fs;
+  const double x_title_height = options_.x_axis.title.empty() ? 0.0 : line_height;
+  p.panel_top = int(std::ceil(margin + title_height + 0.5 * fs));
+  p.panel_height = int(height - p.panel_top - margin - x_title_height - line_height - tick - 1);
   if (p.panel_height < 32) {
     throw InvalidParameter("chart height", std::to_string(height),
                            "room for a panel of at least 32 pixels");
   }
-  p.y_ticks = ys == AxisScale::kLog10
-                  ? LogTicks(p.y_lo, p.y_hi, std::clamp(p.panel_height / (40 * s), 2, 8))
-                  : LinearTicks(p.y_lo, p.y_hi, std::clamp(p.panel_height / (40 * s), 2, 8));
+  const int y_wanted = std::clamp(int(p.panel_height / (3.0 * fs)), 2, 8);
+  p.y_ticks = ScaleTicks(p.y_lo, p.y_hi, y_wanted, ys);
 
-  // Horizontal layout: y labels on the left, the legend on the right.
-  const int swatch = 16 * s;
-  const int max_name_chars = std::max(4, (width * 2 / 5) / (kGlyphAdvance * s));
-  int name_width = 0;
+  // Horizontal layout: y title and labels on the left, the legend on the right, in columns.
+  const double swatch = 2.4 * fs;
+  const double name_room = 0.3 * width;
+  double name_width = options_.legend_title.empty()
+                          ? 0.0
+                          : canvas.MeasureText(options_.legend_title, fs, true).advance - swatch;
   for (const ChartSeries& series : series_) {
-    name_width = std::max(name_width, TextWidth(Shortened(series.name, max_name_chars)));
+    name_width = std::max(
+        name_width, canvas.MeasureText(Fitted(canvas, series.name, fs, name_room), fs).advance);
   }
-  const int legend_width = swatch + 4 * s + name_width * s + margin;
-  p.panel_left = margin + LabelsWidth(p.y_ticks) * s + 3 * s + tick + 1;
-  p.panel_width = width - p.panel_left - margin - legend_width - 1;
+  const double legend_title_height = options_.legend_title.empty() ? 0.0 : line_height;
+  const int rows_per_column =
+      std::max(1, int((p.panel_height - legend_title_height) / line_height));
+  const int columns = int((series_.size() + rows_per_column - 1) / rows_per_column);
+  const double column_width = swatch + 0.5 * fs + name_width + margin;
+  const double legend_width = columns * column_width;
+  const double y_title_width = options_.y_axis.title.empty() ? 0.0 : line_height;
+  const double y_labels = LabelsWidth(canvas, p.y_ticks, fs);
+  p.panel_left = int(std::ceil(margin + y_title_width + y_labels + 0.4 * fs + tick + 1));
+  p.panel_width = int(width - p.panel_left - margin - legend_width - 1);
   if (p.panel_width < 32) {
-    throw InvalidParameter("chart width", std::to_string(width),
-                           "room for a panel of at least 32 pixels");
+    throw InvalidParameter(
+        "chart width", std::to_string(width),
+        "room for a panel of at least 32 pixels (fewer series or a wider chart)");
+  }
+  if (options_.equal_scale) {
+    EqualiseScales(p);
+    p.y_ticks = ScaleTicks(p.y_lo, p.y_hi, y_wanted, ys);
   }
   // The most x ticks whose labels do not collide.
-  for (int wanted = std::clamp(p.panel_width / (60 * s), 2, 10);; --wanted) {
-    p.x_ticks = xs == AxisScale::kLog10 ? LogTicks(p.x_lo, p.x_hi, wanted)
-                                        : LinearTicks(p.x_lo, p.x_hi, wanted);
-    const int needed = int(p.x_ticks.values.size()) * (LabelsWidth(p.x_ticks) + 4) * s;
+  for (int wanted = std::clamp(int(p.panel_width / (4.0 * fs)), 2, 10);; --wanted) {
+    p.x_ticks = ScaleTicks(p.x_lo, p.x_hi, wanted, xs);
+    const double needed = p.x_ticks.values.size() * (LabelsWidth(canvas, p.x_ticks, fs) + fs);
     if (needed <= p.panel_width || wanted == 2) break;
   }
 
-  p.image = RasterImage(width, height);
-  RasterImage& image = p.image;
-  const int panel_bottom = p.panel_top + p.panel_height;  // the frame row
-  const int panel_right = p.panel_left + p.panel_width;   // the frame column
+  const double panel_bottom = p.panel_top + p.panel_height;
+  const double panel_right = p.panel_left + p.panel_width;
+  // Grid lines and ticks on whole pixels: crisp, and never reaching into the panel's neighbours.
   for (const double v : p.x_ticks.values)
-    image.FillRect(int(p.PixelX(v)), p.panel_top, 1, p.panel_height, kGridColour);
+    canvas.FillRect(std::floor(p.PixelX(v)), p.panel_top, 1.0, p.panel_height, kGridColour);
   for (const double v : p.y_ticks.values)
-    image.FillRect(p.panel_left, int(p.PixelY(v)), p.panel_width, 1, kGridColour);
-  image.FrameRect(p.panel_left - 1, p.panel_top - 1, p.panel_width + 2, p.panel_height + 2,
-                  kAxisColour);
+    canvas.FillRect(p.panel_left, std::floor(p.PixelY(v)), p.panel_width, 1.0, kGridColour);
+  canvas.StrokeRect(p.panel_left - 0.5, p.panel_top - 0.5, p.panel_width + 1.0,
+                    p.panel_height + 1.0, 1.0, kAxisColour);
   for (std::size_t k = 0; k < p.x_ticks.values.size(); ++k) {
-    const int px = int(p.PixelX(p.x_ticks.values[k]));
-    image.FillRect(px, panel_bottom + 1, 1, tick, kAxisColour);
-    const int label_width = TextWidth(p.x_ticks.labels[k]) * s;
-    image.DrawText(px - label_width / 2, panel_bottom + 1 + tick + 2 * s, p.x_ticks.labels[k], s,
-                   kAxisColour);
+    const double px = p.PixelX(p.x_ticks.values[k]);
+    canvas.FillRect(std::floor(px), panel_bottom + 1.0, 1.0, tick, kAxisColour);
+    canvas.Text(px, panel_bottom + tick + 0.2 * fs, p.x_ticks.labels[k], fs, kAxisColour,
+                Align::kCentre, Align::kStart);
   }
   for (std::size_t k = 0; k < p.y_ticks.values.size(); ++k) {
-    const int py = int(p.PixelY(p.y_ticks.values[k]));
-    image.FillRect(p.panel_left - 1 - tick, py, tick, 1, kAxisColour);
-    const int label_width = TextWidth(p.y_ticks.labels[k]) * s;
-    image.DrawText(p.panel_left - 1 - tick - 2 * s - label_width, py - kGlyphHeight * s / 2,
-                   p.y_ticks.labels[k], s, kAxisColour);
+    const double py = p.PixelY(p.y_ticks.values[k]);
+    canvas.FillRect(p.panel_left - 1.0 - tick, std::floor(py), tick, 1.0, kAxisColour);
+    canvas.Text(p.panel_left - tick - 0.3 * fs, py, p.y_ticks.labels[k], fs, kAxisColour,
+                Align::kEnd, Align::kCentre);
   }
   if (!options_.title.empty()) {
-    image.DrawText((width - TextWidth(options_.title) * title_scale) / 2, margin, options_.title,
-                   title_scale, kAxisColour);
+    canvas.Text(0.5 * width, margin, options_.title, title_fs, kAxisColour, Align::kCentre,
+                Align::kStart, 0.0, true);
   }
   if (!options_.y_axis.title.empty()) {
-    image.DrawText(margin, p.panel_top - line_height, options_.y_axis.title, s, kAxisColour);
+    canvas.Text(margin, p.panel_top + 0.5 * p.panel_height, options_.y_axis.title, fs, kAxisColour,
+                Align::kCentre, Align::kStart, 90.0);
   }
   if (!options_.x_axis.title.empty()) {
-    image.DrawText(p.panel_left + (p.panel_width - TextWidth(options_.x_axis.title) * s) / 2,
-                   height - margin - kGlyphHeight * s, options_.x_axis.title, s, kAxisColour);
+    canvas.Text(p.panel_left + 0.5 * p.panel_width, height - margin, options_.x_axis.title, fs,
+                kAxisColour, Align::kCentre, Align::kEnd);
   }
 
-  // Series: runs of consecutive usable points joined; an unusable point breaks the run.
-  const double line_width = s;
-  const double marker_radius = 2.0 * s + 1.0;
+  // Series, clipped to the panel: runs of consecutive usable points joined; an unusable point
+  // breaks the run.
+  const double line_width = std::max(2.0, fs / 6.0);  // 2 px or more: a full pixel on the line
+  const double marker_radius = 0.3 * fs;
+  canvas.Clip(p.panel_left, p.panel_top, p.panel_width, p.panel_height);
   for (std::size_t n = 0; n < series_.size(); ++n) {
     const ChartSeries& series = series_[n];
     const Rgb colour = SeriesColour(n);
-    const std::size_t count = series.x.size();
-    for (std::size_t k = 0; k < count; ++k) {
+    const Dash dash = SeriesDash(n);
+    const int own_marker = SeriesMarker(n);
+    const int marker = (series.markers || !series.lines) ? std::max(1, own_marker) : own_marker;
+    std::vector<double> run;
+    const auto flush = [&] {
+      if (run.size() == 2) canvas.FillCircle(run[0], run[1], std::max(1.5, line_width), colour);
+      canvas.Polyline(run, line_width, colour, dash);
+      run.clear();
+    };
+    // Style markers (not asked for) at about a dozen points along the series.
+    const std::size_t every =
+        series.markers || !series.lines ? 1 : std::max<std::size_t>(1, series.x.size() / 12);
+    for (std::size_t k = 0; k < series.x.size(); ++k) {
       const double px = p.PixelX(series.x[k]);
       const double py = p.PixelY(series.y[k]);
-      if (!std::isfinite(px) || !std::isfinite(py)) continue;
-      if (!series.lines) {
-        image.FillDisk(px, py, marker_radius, colour);
+      if (!std::isfinite(px) || !std::isfinite(py)) {
+        if (series.lines) flush();
         continue;
       }
-      const bool next_usable = k + 1 < count && std::isfinite(p.PixelX(series.x[k + 1])) &&
-                               std::isfinite(p.PixelY(series.y[k + 1]));
-      const bool previous_usable = k > 0 && std::isfinite(p.PixelX(series.x[k - 1])) &&
-                                   std::isfinite(p.PixelY(series.y[k - 1]));
-      if (next_usable) {
-        image.DrawLine(px, py, p.PixelX(series.x[k + 1]), p.PixelY(series.y[k + 1]), line_width,
-                       colour);
-      } else if (!previous_usable) {
-        image.FillDisk(px, py, std::max(1.5, line_width), colour);
+      if (series.lines) {
+        run.push_back(px);
+        run.push_back(py);
       }
-      if (series.markers) image.FillDisk(px, py, marker_radius, colour);
+      if (marker > 0 && k % every == 0) DrawMarker(canvas, marker, px, py, marker_radius, colour);
     }
+    if (series.lines) flush();
   }
+  canvas.Unclip();
 
   // Legend, to the right of the panel, top aligned with it.
-  const int legend_left = panel_right + 1 + margin;
+  const double legend_left = panel_right + 1 + margin;
+  if (!options_.legend_title.empty()) {
+    canvas.Text(legend_left, p.panel_top, options_.legend_title, fs, kAxisColour, Align::kStart,
+                Align::kStart, 0.0, true);
+  }
   for (std::size_t n = 0; n < series_.size(); ++n) {
-    const int row_top = p.panel_top + int(n) * line_height;
-    const double mid = row_top + 0.5 * kGlyphHeight * s;
+    const double left = legend_left + double(n / rows_per_column) * column_width;
+    const double mid =
+        p.panel_top + legend_title_height + (double(n % rows_per_column) + 0.5) * line_height;
     const Rgb colour = SeriesColour(n);
+    const int own_marker = SeriesMarker(n);
+    const bool asked = series_[n].markers || !series_[n].lines;
     if (series_[n].lines)
-      image.DrawLine(legend_left, mid, legend_left + swatch, mid, line_width, colour);
-    if (series_[n].markers || !series_[n].lines)
-      image.FillDisk(legend_left + 0.5 * swatch, mid, marker_radius, colour);
-    image.DrawText(legend_left + swatch + 4 * s, row_top,
-                   Shortened(series_[n].name, max_name_chars), s, kAxisColour);
+      canvas.Line(left, mid, left + swatch, mid, line_width, colour, SeriesDash(n));
+    if (asked || own_marker > 0)
+      DrawMarker(canvas, std::max(asked ? 1 : 0, own_marker), left + 0.5 * swatch, mid,
+                 marker_radius, colour);
+    canvas.Text(left + swatch + 0.5 * fs, mid, Fitted(canvas, series_[n].name, fs, name_room), fs,
+                kAxisColour, Align::kStart, Align::kCentre);
   }
   return p;
+}
+
+std::string LineChart::LegendText() const {
+  std::string text;
+  for (const ChartSeries& s : series_) text += (text.empty() ? "" : "; ") + s.name;
+  return text;
+}
+
+ChartPicture LineChart::Save(const std::string& path) const {
+  FormatOfPath(path);  // a bad extension fails before any drawing
+  ChartPicture picture = Draw();
+  picture.image.Write(path);
+  return picture;
 }
 
 }  // namespace dlmfd

@@ -1,27 +1,38 @@
-// A picture of a scalar node field (trA, or the speed |u| of a Newtonian run) with the particles
-// drawn as disks: a frame of a results directory, or a snapshot that a running job streams.
+// A picture of a scalar node field (trA, the speed, the vorticity, a component of A, the pressure)
+// with axes in the domain's coordinates, a colour bar with ticks and a label, optional isolines
+// and velocity arrows, and the particles drawn exactly: a frame of a results directory, a snapshot
+// that a running job streams, or a frame of a movie.
 //
-// Discrete method: each pixel takes the value of the field's own finite-element representation at
-// the pixel centre: P1 on the triangles of the velocity mesh (squares of side h cut by the SW-NE
-// diagonal, paper section 3), so the picture shows exactly what the solver computed, with no
-// smoothing across the diagonal. Values map linearly from [min, max] of the finite node values to
-// viridis, or, with log_colours, log10 of the value from [min, max] of the positive finite node
-// values (a value <= 0 takes the bottom colour; the bar then also labels its middle, the geometric
-// mean): trA spans decades near a particle, and a linear scale shows only the hottest spot. A
-// constant field takes the middle colour (no division by zero); NaN/Inf pixels are grey.
+// Discrete method: each pixel of the field panel takes the value of the field's own
+// finite-element representation at the pixel centre: P1 on the triangles of its mesh (squares of
+// side h cut by the SW-NE diagonal, paper section 3), so the picture shows exactly what the solver
+// computed, with no smoothing across the diagonal. Values map linearly from [min, max] of the
+// finite node values to viridis, or, with log_colours, log10 of the value from [min, max] of the
+// positive finite node values (a value <= 0 takes the bottom colour); the bar's ticks are then
+// placed at their logarithm (axis_ticks.h: 1-2-5 multiples or decades), so a log scale shows as
+// one. A fixed range (a movie's, over all its frames) replaces the field's extremes. A constant
+// field takes the middle colour (no division by zero); NaN/Inf pixels are grey.
+// Isolines: the exact level sets of the P1 field (isolines.h) at `isolines` values evenly spaced
+// inside the colour range (in log10 with log_colours), marked on the colour bar too; with
+// fill = false only the isolines are drawn, in black on white, as in the paper's figures
+// ("isovalues of trA"). Arrows: the P1 velocity at the centres of a regular lattice of
+// `arrows` columns, the longest arrow one lattice spacing; the caption's key gives the speed of
+// that length. Particles: circles of their radius at their centres (the same scale on both axes),
+// white with a black rim, with a radius drawn at their rotation angle (the angle the record's
+// angular velocity integrates to, results_frame.h), clipped to the panel.
 // CropField cuts a field down to the nodes of a window, for close-ups of particles.
-// Particles are filled white with a black rim. A colour bar on the right carries the max (top) and
-// min (bottom) labels; an optional caption runs above the field.
-// Layout: the field panel keeps the domain's aspect ratio (to within one pixel) and is as large as
-// fits in max_width x max_height together with the bar and margins; the image is no larger.
-// Not supported: periodic images of particles that cross a periodic side, vector arrows, contours.
+// Layout: the panel keeps the domain's aspect ratio (to within one pixel) and is as large as fits
+// in max_width x max_height with the caption above, the axes' labels and the colour bar; the image
+// is no larger. Text in DejaVu Sans (canvas.h), sized with the picture.
+// Not supported: periodic images of particles that cross a periodic side, streamlines.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "dlmfd/core/grid.h"
-#include "dlmfd/viz/raster_image.h"
+#include "dlmfd/viz/axis_ticks.h"
+#include "dlmfd/viz/canvas.h"
 
 namespace dlmfd {
 
@@ -36,17 +47,34 @@ struct DiskOutline {
   double x = 0.0;
   double y = 0.0;
   double radius = 0.0;
+  double angle = 0.0;      // rotation since t = 0, radians, counter-clockwise
+  bool has_angle = false;  // draw the rotation mark
+};
+
+// The velocity at the nodes, for arrows (u and v on the same grid).
+struct NodeVelocity {
+  NodeField u;
+  NodeField v;
 };
 
 struct PictureOptions {
   int max_width = 1000;      // pixels, whole image
   int max_height = 1000;     // pixels, whole image
-  std::string caption;       // drawn above the field when not empty
+  std::string caption;       // drawn above the field when not empty; '\n' starts a second line
   bool log_colours = false;  // colour by log10 of the value (see the header)
+  std::string colour_label;  // the colour bar's label (default: the field's quantity)
+  bool fixed_range = false;  // colour range [range_min, range_max] instead of the field's
+  double range_min = 0.0;
+  double range_max = 1.0;
+  int isolines = 0;      // number of isovalues drawn (0: none)
+  bool fill = true;      // false: isolines only, black on white
+  int arrows = 0;        // columns of velocity arrows (0: none; needs a NodeVelocity)
+  int exact_width = 0;   // > 0: the image is exactly this wide and high (movie frames),
+  int exact_height = 0;  // the panel centred in the room it leaves
 };
 
 struct FieldPicture {
-  RasterImage image{1, 1};
+  Canvas image{1, 1};
   int panel_left = 0;  // the field panel inside the image, pixels
   int panel_top = 0;
   int panel_width = 0;
@@ -55,24 +83,36 @@ struct FieldPicture {
   int bar_top = 0;
   int bar_width = 0;
   int bar_height = 0;
-  double value_min = 0.0;  // the finite extremes that set the colour scale
+  double value_min = 0.0;  // the colour range (the field's finite extremes unless fixed)
   double value_max = 0.0;
+  std::vector<double> isovalues;
+  AxisTicks x_ticks;  // of the axes, in domain coordinates
+  AxisTicks y_ticks;
+  AxisTicks bar_ticks;       // of the colour bar, in field values
+  double arrow_speed = 0.0;  // the speed drawn as one lattice spacing
   Grid grid;
   // Image pixel coordinates (continuous, y down) of a point of the domain.
   double PixelX(double x) const;
   double PixelY(double y) const;
+  // The row of the colour bar (continuous, y down) that shows `value`.
+  double BarY(double value) const;
+  bool log_colours = false;
 };
 
-// Throws InvalidParameter when the values do not match the grid or the size leaves no room.
+// Throws InvalidParameter when the values do not match the grid, the size leaves no room, arrows
+// are asked without a velocity, or a fixed range is empty or not finite.
 FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutline>& disks,
-                              const PictureOptions& options = {});
+                              const PictureOptions& options = {},
+                              const NodeVelocity* velocity = nullptr);
 // The nodes of `field` inside [x_min, x_max] x [y_min, y_max], widened outwards to whole cells and
 // clipped to the domain. Throws InvalidParameter when the window is empty, inverted, not finite or
 // misses the domain.
 NodeField CropField(const NodeField& field, double x_min, double y_min, double x_max, double y_max);
 // The value of the P1 interpolant at (x, y); (x, y) is clamped into the domain.
 double InterpolateP1(const NodeField& field, double x, double y);
-// "%.4g" of a value, the form of the colour bar labels.
+// "%.4g" of a value, the form of the caption's numbers.
 std::string FormatLabel(double value);
+// The colour of `value` on a scale [lo, hi] (log10 with log_colours), as the picture draws it.
+Rgb ColourOf(double value, double lo, double hi, bool log_colours);
 
 }  // namespace dlmfd

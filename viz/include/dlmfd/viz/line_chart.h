@@ -9,19 +9,17 @@
 // segments; a point with a non-finite coordinate, or a value <= 0 on a log axis, is not usable and
 // breaks the line (it is skipped, never drawn and never an error). An isolated usable point is
 // drawn as a dot. A series without lines is drawn as markers only (scatter).
-// Ticks: on a linear axis the multiples of a 1-2-5 step (1, 2 or 5 times a power of ten) inside the
-// range, the step the smallest giving no more than the wanted count; on a log axis the 1, 2 and 5
-// multiples of the decades when the range holds fewer than three decades and those are not too
-// many, else the decades inside the range (every k-th decade when there are many), or linear
-// 1-2-5 ticks when the range holds fewer than two of either. Series colours come from the
-// Okabe-Ito palette (distinguishable with the common colour-vision deficiencies) in a fixed order
-// and repeat after kPaletteSize series.
-// Layout: title on top, y-axis title above the y tick labels, x tick labels and x title below the
-// panel, legend to the right of the panel; the font scale grows with the picture.
-// Not supported: minor ticks, dashed lines, user-set axis ranges, a second y axis, rotated text,
-// legends taller than the panel (the entries that do not fit are cut off at the image edge).
-// References: P. Heckbert, "Nice numbers for graph labels", Graphics Gems (1990); M. Okabe,
-// K. Ito, "Color Universal Design" (2008), https://jfly.uni-koeln.de/color/.
+// Ticks: axis_ticks.h. Series styles: colour from the Okabe-Ito palette (distinguishable with the
+// common colour-vision deficiencies) in a fixed order, then, after kPaletteSize series, the same
+// colours with another dash pattern (solid, dashed, dotted, dash-dot), then with markers of
+// another shape as well: kPaletteSize x kDashCount x (1 + kMarkerShapes) distinct styles.
+// With equal_scale both axes show the same data length per pixel (trajectories keep their
+// shape): the range of the axis with fewer units per pixel is widened about its centre.
+// Layout: title on top, y-axis title written upwards left of the y tick labels, x tick labels and
+// x title below the panel, legend (with its title) to the right of the panel, in as many columns
+// as the panel's height needs; text in DejaVu Sans (canvas.h) sized with the picture.
+// Not supported: minor ticks, user-set axis ranges, a second y axis.
+// References: M. Okabe, K. Ito, "Color Universal Design" (2008), https://jfly.uni-koeln.de/color/.
 #pragma once
 
 #include <cstddef>
@@ -29,18 +27,17 @@
 #include <utility>
 #include <vector>
 
+#include "dlmfd/viz/axis_ticks.h"
+#include "dlmfd/viz/canvas.h"
 #include "dlmfd/viz/colour_map.h"
-#include "dlmfd/viz/raster_image.h"
 
 namespace dlmfd {
-
-enum class AxisScale { kLinear, kLog10 };
 
 struct ChartSeries {
   std::string name;  // the legend entry
   std::vector<double> x;
   std::vector<double> y;
-  bool markers = false;  // a filled disk at every usable point as well as the line
+  bool markers = false;  // a marker at every usable point as well as the line
   bool lines = true;     // false: markers only, no line (a scatter plot; implies markers)
 };
 
@@ -49,23 +46,20 @@ struct ChartAxis {
   AxisScale scale = AxisScale::kLinear;
 };
 
-struct AxisTicks {
-  std::vector<double> values;  // increasing, inside the axis range
-  std::vector<std::string> labels;
-};
-
 struct LineChartOptions {
   int width = 1000;  // pixels, whole image
   int height = 700;
   std::string title;
   ChartAxis x_axis;
   ChartAxis y_axis;
+  std::string legend_title;  // above the legend entries (e.g. the swept parameter)
+  bool equal_scale = false;  // the same data length per pixel on both axes (linear axes only)
 };
 
 // The drawn chart and the mapping from data to image pixels (continuous coordinates, y down; the
 // pixel containing (px, py) is (floor(px), floor(py))).
 struct ChartPicture {
-  RasterImage image{1, 1};
+  Canvas image{1, 1};
   int panel_left = 0;  // the plot panel inside the image, pixels; the frame is drawn just outside
   int panel_top = 0;
   int panel_width = 0;
@@ -81,6 +75,8 @@ struct ChartPicture {
 };
 
 inline constexpr std::size_t kPaletteSize = 7;
+inline constexpr std::size_t kDashCount = 4;
+inline constexpr std::size_t kMarkerShapes = 4;
 inline constexpr double kPadding = 0.04;
 
 class LineChart {
@@ -90,9 +86,13 @@ class LineChart {
   // Throws InvalidParameter when x and y differ in length.
   void AddSeries(ChartSeries series);
   std::size_t SeriesCount() const { return series_.size(); }
-  // Throws InvalidParameter when there is no series, no usable point in any series, or the size
-  // leaves no room for the panel.
+  // The legend's entries, "; "-separated, in series order.
+  std::string LegendText() const;
+  // Throws InvalidParameter when there is no series, no usable point in any series, the size
+  // leaves no room for the panel, or equal_scale is asked with a log axis.
   ChartPicture Draw() const;
+  // Draws and writes PNG, SVG or PDF by the extension of `path` (Canvas::Write).
+  ChartPicture Save(const std::string& path) const;
 
  private:
   LineChartOptions options_;
@@ -101,11 +101,9 @@ class LineChart {
 
 // The colour of series `index` (cycles through the palette).
 Rgb SeriesColour(std::size_t index);
-// Whether a value can be placed on an axis of this scale (finite, and > 0 on a log axis).
-bool Usable(double value, AxisScale scale);
-// 1-2-5 ticks inside [lo, hi] (lo < hi, finite), at most max(2, wanted) + 1 of them.
-AxisTicks LinearTicks(double lo, double hi, int wanted);
-// Ticks of a log axis on [lo, hi] (0 < lo < hi, finite), see the header block.
-AxisTicks LogTicks(double lo, double hi, int wanted);
+// The dash pattern of series `index` (changes after each kPaletteSize series; empty: solid).
+Dash SeriesDash(std::size_t index);
+// The marker shape of series `index`: 0 none unless asked (circle then), 1..kMarkerShapes.
+int SeriesMarker(std::size_t index);
 
 }  // namespace dlmfd

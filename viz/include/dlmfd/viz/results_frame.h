@@ -1,11 +1,14 @@
-// A frame of a results directory (design.md 3.2): the field snapshot picked, the node field taken
-// from it and the particles as they were at that step, ready for DrawFieldPicture.
+// A frame of a results directory (design.md 3.2): the field snapshot picked, the node field of a
+// quantity taken from it (node_quantities.h), the velocity for arrows, and the particles as they
+// were at that step, ready for DrawFieldPicture.
 //
-// The snapshot is fields/snap_NNNNNN.h5 of the requested step, or the latest one. The field is
-// trA when the snapshot has it (an Oldroyd-B run), else the speed |u| = sqrt(u^2 + v^2) at the
-// nodes. Particles come from particles.h5: the record of the snapshot's step, else the record
-// nearest in time (the particle cadence need not include every field snapshot).
-// Not supported: the pressure (it lives on the 2h mesh), tensor components other than trA.
+// The snapshot is fields/snap_NNNNNN.h5 of the requested step, or the latest one. The default
+// quantity is trA when the snapshot has it (an Oldroyd-B run), else the speed. Particles come from
+// particles.h5: the record of the snapshot's step, else the record nearest in time (the particle
+// cadence need not include every field snapshot). A particle's rotation angle is the integral of
+// its recorded angular velocity from the first record (trapezoidal rule over the records; its
+// error is O(dt_record^2) times the angular acceleration).
+// The scene's title comes from scene.toml (line `title = "..."`) when the directory has one.
 #pragma once
 
 #include <string>
@@ -17,6 +20,8 @@ namespace dlmfd {
 
 struct ResultsFrame {
   NodeField field;
+  NodeVelocity velocity;  // empty grids when the snapshot has no u, v
+  bool has_velocity = false;
   std::vector<DiskOutline> disks;
   double time = 0.0;
   long step = 0;
@@ -24,12 +29,13 @@ struct ResultsFrame {
   double particles_time = 0.0;  // time of the particle record used (== time when they match)
 };
 
-// step < 0: the latest snapshot. quantity: "" (trA if present, else speed), "trA" or "speed".
-// Throws InvalidParameter (bad quantity, no such snapshot: the message lists what exists) or
-// dlmfd::Error (unreadable files).
+// step < 0: the latest snapshot. quantity: "" (trA if present, else speed) or one of
+// PictureQuantities(). Throws InvalidParameter (bad quantity, a quantity the snapshot does not
+// hold: the message says which datasets it has, no such snapshot: the message lists what exists)
+// or dlmfd::Error (unreadable files).
 ResultsFrame LoadResultsFrame(const std::string& results_dir, long step = -1,
                               const std::string& quantity = "");
-// |u| at each node.
-std::vector<double> NodeSpeed(const std::vector<double>& u, const std::vector<double>& v);
+// The title of the scene as run (results_dir/scene.toml), "" when there is none.
+std::string SceneTitle(const std::string& results_dir);
 
 }  // namespace dlmfd

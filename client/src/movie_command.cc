@@ -1,0 +1,208 @@
+// dlmfd movie JOB | RESULTS_DIR [--quantity Q] [--out FILE.mp4] [--fps F] [--every K]
+//             [--from T] [--to T] [--keep DIR] [--ffmpeg PATH] [plot's drawing flags]
+// A movie of a run from its field snapshots (design.md 3.2): one frame per snapshot, each a field
+// picture (viz/field_picture.h) with the particles, the time and the colour bar, encoded by
+// Debian's ffmpeg (viz/movie_encoder.h). The colour range is the same in every frame: --range, or
+// the extremes over all the frames drawn (inside --window), so colours compare across time. The
+// frame size is the first frame's, rounded up to even sides (H.264 needs them).
+// JOB (not an existing directory) is a job of the daemon: its scene.toml, particles.h5 and
+// snapshots are fetched first (into --keep DIR, or a temporary folder removed afterwards), and the
+// caption names the job and its overrides.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <vector>
+
+#include "command.h"
+#include "connection.h"
+#include "dlmfd/core/errors.h"
+#include "dlmfd/io/field_snapshot.h"
+#include "dlmfd/viz/movie_encoder.h"
+#include "dlmfd/viz/results_frame.h"
+#include "exit_codes.h"
+#include "plot_options.h"
+#include "rpc_status.h"
+
+namespace dlmfd::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct MovieFlags {
+  std::string source;
+  std::string out;
+  double fps = 10.0;
+  int every = 1;
+  double from = -HUGE_VAL;
+  double to = HUGE_VAL;
+  std::string keep;
+  std::string ffmpeg = "ffmpeg";
+};
+
+// Fetches what a movie needs of job `job_id` into `dir` (dlmfd fetch, one --path per file) and
+// returns the job's caption line.
+std::string FetchJob(const ConnectionFlags& flags, const std::string& job_id, const fs::path& dir) {
+  Connection connection(flags);
+  v1::Job job;
+  {
+    v1::GetRequest request;
+    request.set_job_id(job_id);
+    auto context = connection.UnaryContext();
+    const grpc::Status status = connection.jobs().Get(context.get(), request, &job);
+    if (!status.ok()) throw UsageError("job " + job_id + ": " + status.error_message());
+  }
+  v1::ListFilesRequest request;
+  request.set_job_id(job_id);
+  v1::ListFilesResponse files;
+  auto context = connection.UnaryContext();
+  const grpc::Status status = connection.jobs().ListFiles(context.get(), request, &files);
+  if (!status.ok()) throw UsageError("job " + job_id + ": " + status.error_message());
+  std::vector<std::string> args = {"dlmfd fetch", job_id, "--out", dir.string()};
+  if (!flags.server.empty()) args.insert(args.end(), {"--server", flags.server});
+  if (!flags.token.empty()) args.insert(args.end(), {"--token", flags.token});
+  int snapshots = 0;
+  for (const v1::FileInfo& f : files.files()) {
+    const bool snapshot = f.path().rfind("fields/snap_", 0) == 0;
+    if (snapshot || f.path() == "particles.h5" || f.path() == "scene.toml") {
+      args.insert(args.end(), {"--path", f.path()});
+      snapshots += snapshot;
+    }
+  }
+  if (snapshots == 0) {
+    throw UsageError("job " + job_id +
+                     " has no field snapshots (output.fields_every = 0, or no "
+                     "snapshot written yet)");
+  }
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  if (RunFetch(int(args.size()), argv.data()) != kExitOk)
+    throw Error("fetching the snapshots of job " + job_id + " failed (see above)");
+  return JobCaption(job);
+}
+
+// The steps of the snapshots inside [from, to], every k-th.
+std::vector<long> ChosenSteps(const std::string& dir, const MovieFlags& m) {
+  std::vector<long> chosen;
+  std::size_t seen = 0;
+  for (const long step : SnapshotSteps(dir)) {
+    const double time =
+        ReadFieldSnapshot((fs::path(dir) / "fields" / SnapshotFileName(step)).string()).time;
+    if (time < m.from || time > m.to) continue;
+    if (seen++ % std::size_t(m.every) == 0) chosen.push_back(step);
+  }
+  return chosen;
+}
+
+// The colour range over the frames (inside the window; positive values for a log scale).
+void CommonRange(const std::string& dir, const std::vector<long>& steps, PlotFlags& plot) {
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (const long step : steps) {
+    const NodeField field = Windowed(LoadResultsFrame(dir, step, plot.quantity).field, plot.window);
+    for (const double v : field.values) {
+      if (!std::isfinite(v) || (plot.options.log_colours && !(v > 0.0))) continue;
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  }
+  if (!(lo <= hi)) return;  // no usable value anywhere: each frame's own (grey) scale
+  plot.options.fixed_range = true;
+  plot.options.range_min = lo;
+  plot.options.range_max = hi;
+}
+
+int MakeMovie(const std::string& dir, const std::string& run_caption, MovieFlags& m,
+              PlotFlags& plot) {
+  const std::vector<long> steps = ChosenSteps(dir, m);
+  if (steps.empty()) {
+    throw UsageError(dir + " has no field snapshots" +
+                     (std::isfinite(m.from) || std::isfinite(m.to) ? " inside --from/--to" : "") +
+                     " (output.fields_every > 0 writes them)");
+  }
+  if (!plot.options.fixed_range) CommonRange(dir, steps, plot);
+  const std::string caption = plot.options.caption;
+  std::unique_ptr<MovieEncoder> movie;
+  for (const long step : steps) {
+    const ResultsFrame frame = LoadResultsFrame(dir, step, plot.quantity);
+    PictureOptions options = plot.options;
+    options.caption = (caption.empty() ? run_caption : caption) + "\n" +
+                      FrameCaption(frame.field.quantity, frame.time, frame.step);
+    if (!movie) {
+      // The first frame sets the size: its natural one, rounded up to even sides.
+      const FieldPicture natural = DrawFrame(frame, plot, options);
+      plot.options.exact_width = natural.image.Width() + natural.image.Width() % 2;
+      plot.options.exact_height = natural.image.Height() + natural.image.Height() % 2;
+      movie = std::make_unique<MovieEncoder>(m.out, plot.options.exact_width,
+                                             plot.options.exact_height, m.fps, m.ffmpeg);
+      options.exact_width = plot.options.exact_width;
+      options.exact_height = plot.options.exact_height;
+    }
+    movie->AddFrame(DrawFrame(frame, plot, options).image.Rasterise());
+  }
+  const long frames = movie->Finish();
+  std::cout << m.out << "\n";
+  std::cerr << "movie: " << frames << " frames, " << plot.options.exact_width << "x"
+            << plot.options.exact_height << ", " << FormatLabel(frames / m.fps) << " s at "
+            << FormatLabel(m.fps) << " frames/s\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+int RunMovie(int argc, char** argv) {
+  CLI::App app{
+      "Make a movie of a run from its field snapshots (ffmpeg): particles, time, colour bar."};
+  ConnectionFlags connection_flags;
+  AddConnectionFlags(app, connection_flags);
+  MovieFlags m;
+  PlotFlags plot;
+  app.add_option("source", m.source, "a results directory, or a job id of the daemon")->required();
+  app.add_option("--out,-o", m.out,
+                 "movie file: .mp4 (default <source>_<quantity>.mp4), .mkv, "
+                 ".mov, .webm or .gif");
+  app.add_option("--fps", m.fps, "frames per second (default 10)")->check(CLI::Range(0.1, 240.0));
+  app.add_option("--every", m.every, "use every k-th snapshot (default 1)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--from", m.from, "first simulated time drawn (default: the first snapshot)");
+  app.add_option("--to", m.to, "last simulated time drawn (default: the last snapshot)");
+  app.add_option("--keep", m.keep, "for a job: fetch its snapshots into this folder and keep them");
+  app.add_option("--ffmpeg", m.ffmpeg, "the ffmpeg program (default: ffmpeg from PATH)");
+  AddPlotFlags(app, plot);
+  plot.options.max_width = 800;
+  plot.options.max_height = 800;
+  if (auto code = ParseArgs(app, argc, argv)) return *code;
+
+  return Guarded("movie", [&] {
+    try {
+      CheckPlotFlags(plot);
+      std::error_code ec;
+      const bool local = fs::is_directory(m.source, ec);
+      if (m.out.empty()) {
+        std::string stem = fs::path(m.source).lexically_normal().filename().string();
+        if (stem.empty() || stem == ".") stem = "movie";
+        m.out = stem + "_" + FileStemOf(plot.quantity.empty() ? "trA" : plot.quantity) + ".mp4";
+      }
+      if (local) return MakeMovie(m.source, DirectoryCaption(m.source), m, plot);
+      const bool temporary = m.keep.empty();
+      const fs::path dir =
+          temporary ? fs::temp_directory_path() / ("dlmfd_movie_" + std::to_string(::getpid()))
+                    : fs::path(m.keep);
+      struct Cleanup {
+        fs::path dir;
+        ~Cleanup() {
+          std::error_code ignored;
+          if (!dir.empty()) fs::remove_all(dir, ignored);
+        }
+      } cleanup{temporary ? dir : fs::path()};
+      const std::string caption = FetchJob(connection_flags, m.source, dir);
+      return MakeMovie(dir.string(), caption, m, plot);
+    } catch (const InvalidParameter& e) {
+      throw UsageError(e.what());
+    }
+  });
+}
+
+}  // namespace dlmfd::cli

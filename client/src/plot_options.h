@@ -1,0 +1,42 @@
+// The drawing flags that `dlmfd plot` and `dlmfd movie` share (quantity, size, colour scale,
+// window, isolines, arrows) and the captions that name a run: its scene title and directory, or a
+// job's name and overrides (the swept parameters of a sweep's job), then quantity, time and step.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "CLI/CLI.hpp"
+#include "dlmfd/v1/jobs.pb.h"
+#include "dlmfd/viz/field_picture.h"
+#include "dlmfd/viz/results_frame.h"
+
+namespace dlmfd::cli {
+
+struct PlotFlags {
+  std::string quantity;        // "" : trA when present, else the speed
+  PictureOptions options;      // size, caption, log, isolines, arrows
+  std::vector<double> window;  // X0, Y0, X1, Y1 or empty
+  std::vector<double> range;   // MIN, MAX or empty
+  bool lines_only = false;
+};
+
+void AddPlotFlags(CLI::App& app, PlotFlags& flags);
+// Applies --range and --lines-only to the options; throws UsageError for inconsistent flags.
+void CheckPlotFlags(PlotFlags& flags);
+// The field (and the velocity) inside the window, or the whole field when no window was given.
+NodeField Windowed(const NodeField& field, const std::vector<double>& window);
+// Draws a results frame with the flags (window applied to the field and the arrows).
+FieldPicture DrawFrame(const ResultsFrame& frame, const PlotFlags& flags,
+                       const PictureOptions& options);
+
+// "trA  t = 1.5  step 3750".
+std::string FrameCaption(const std::string& quantity, double time, long step);
+// "<scene title>  |  <directory name>" (the title only when the scene has one).
+std::string DirectoryCaption(const std::string& results_dir);
+// "<job name>  |  key=value, ..." (the overrides as submitted; a sweep's point is among them).
+std::string JobCaption(const v1::Job& job);
+// The quantity as a file-name part: letters, digits, '-' and '_' ("log10(trA/2)" -> "log10_trA_2").
+std::string FileStemOf(const std::string& quantity);
+
+}  // namespace dlmfd::cli

@@ -1,0 +1,31 @@
+// The quantities a field picture can show, derived from the datasets of a snapshot (design.md
+// 3.2): trA, trA - 2 (the polymer's stretch above its rest state, trA = 2 for A = I in 2-D),
+// log10(trA / 2), the speed |u|, the vorticity, the components A11, A12, A22, and the pressure
+// (on the 2h mesh).
+//
+// Method: the vorticity omega = dv/dx - du/dy at the nodes by second-order finite differences on
+// the uniform mesh (centred inside, the one-sided three-point formula on the sides), the other
+// quantities node by node. log10(trA / 2) of a non-positive trA (never, for an SPD A) is NaN.
+// Not supported: the stream function, polymer stress components.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "dlmfd/core/grid.h"
+
+namespace dlmfd {
+
+// The names accepted, in the order of the help text.
+const std::vector<std::string>& PictureQuantities();
+// "trA, trA-2, ..." for messages.
+std::string PictureQuantityList();
+// The snapshot datasets a quantity needs ("trA"; "u", "v"; "p"; "A11" ...).
+std::vector<std::string> DatasetsOf(const std::string& quantity);
+// omega = dv/dx - du/dy at the nodes of `grid` (at least 2 x 2 cells).
+std::vector<double> NodeVorticity(const Grid& grid, const std::vector<double>& u,
+                                  const std::vector<double>& v);
+// |u| at each node.
+std::vector<double> NodeSpeed(const std::vector<double>& u, const std::vector<double>& v);
+
+}  // namespace dlmfd
