@@ -23,9 +23,15 @@ const Command kCommands[] = {
     {"watch", "follow a job: live progress line, or NDJSON with --json", RunWatch},
     {"cancel", "cancel a job or a whole sweep", RunCancel},
     {"fetch", "download a job's result files", RunFetch},
-    {"logs", "print a job's log lines", RunLogs},
+    {"logs", "print a job's solver log (--follow: until it ends)", RunLogs},
+    {"inputs", "print the scene a job was submitted with (--as-run: as it ran)", RunInputs},
+    {"table", "one row per job of a sweep: parameters and summary quantities", RunTable},
+    {"delete", "delete jobs or a sweep: records and results", RunDelete},
+    {"priority", "change the priority of a queued job", RunPriority},
+    {"hold", "keep a queued job from starting", RunHold},
+    {"release", "let a held job start", RunRelease},
     {"plot", "draw trA (or the speed) with the particles as a PNG", RunPlot},
-    {"chart", "line chart PNG of particle quantities of runs, or of CSV columns", RunChart},
+    {"chart", "line chart PNG of runs, of CSV columns, or of a sweep (--sweep)", RunChart},
     {"health", "ask the daemon whether it is serving", RunHealth},
 };
 
