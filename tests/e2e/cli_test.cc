@@ -507,8 +507,9 @@ TEST_F(CliTest, TableChartLogsInputsAndDeleteOfASweep) {
   EXPECT_EQ(Cli({"show", job}).code, 3);
 }
 
-// logs without --follow prints what the running job has logged and returns; hold and release.
-TEST_F(CliTest, LogsOfARunningJobReturnAndHoldRelease) {
+// logs without --follow prints what the running job has logged and returns; hold refuses a
+// running job; delete of a running job needs --force.
+TEST_F(CliTest, LogsOfARunningJobReturnAndItsDeleteNeedsForce) {
   const CliRun submit =
       Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=100000"});
   ASSERT_EQ(submit.code, 0) << submit.err;
