@@ -33,6 +33,7 @@
 #include "dlmfd/io/atomic_file.h"
 #include "dlmfd/io/checkpoint.h"
 #include "dlmfd/io/results_writer.h"
+#include "dlmfd/io/run_statistics.h"
 #include "dlmfd/scene/accuracy_envelope.h"
 #include "dlmfd/scene/scene_file.h"
 #include "dlmfd/solver/exit_codes.h"
@@ -138,6 +139,7 @@ dlmfd::solver::RunSummary Summary(const dlmfd::Params& params, const dlmfd::Flow
   for (const dlmfd::ParticleState& q : state.particles) {
     dlmfd::solver::RunSummary::Particle p;
     p.id = q.id;
+    p.radius = q.radius;
     p.position = {q.position.x(), q.position.y()};
     p.velocity = {q.velocity.x(), q.velocity.y()};
     p.angular_velocity = q.angular_velocity;
@@ -151,6 +153,24 @@ dlmfd::solver::RunSummary Summary(const dlmfd::Params& params, const dlmfd::Flow
         {w.setting, w.value, w.allowed, w.key, w.current, w.suggested, w.source});
   }
   return summary;
+}
+
+// The statistics of the whole run, read back from the closed results files.
+void AddStatistics(const dlmfd::RunStatistics& r, dlmfd::solver::RunSummary& summary) {
+  summary.fall_window = {r.fall_window_start, r.fall_window_end};
+  summary.fall_speed = r.mean_fall_speed;
+  summary.diameter = r.diameter;
+  summary.min_gap = r.min_gap;
+  summary.min_wall_gap = r.min_wall_gap;
+  summary.max_trA = r.max_trA;
+  summary.min_eig_A = r.min_eig_A;
+  summary.reynolds = r.reynolds;
+  summary.deborah = r.deborah;
+  summary.mach = r.mach;
+  summary.elasticity = r.elasticity;
+  for (std::size_t p = 0; p < summary.particles.size(); ++p) {
+    if (p < r.fall_speed.size()) summary.particles[p].fall_speed = r.fall_speed[p];
+  }
 }
 
 int Run(const Options& opt, dlmfd::solver::EventStream& events) {
@@ -278,6 +298,7 @@ int Run(const Options& opt, dlmfd::solver::EventStream& events) {
   summary.ms_per_step = steps_here > 0 ? 1e3 * wall / static_cast<double>(steps_here) : 0.0;
   try {
     results->Finish();
+    AddStatistics(ReadRunStatistics(params, results->dir()), summary);
     WriteRunSummary(results->dir() + "/" + kRunSummaryFile, summary);
   } catch (const Error& e) {
     spdlog::error("cannot write the summary: {}", e.what());

@@ -323,6 +323,7 @@ std::string FileStem(const std::string& text) {
 }  // namespace
 
 int RunChart(int argc, char** argv) {
+  if (IsSweepChart(argc, argv)) return RunSweepChart(argc, argv);  // chart_sweep.cc
   CLI::App app{
       "Draw particle quantities of results directories, or columns of a CSV file, as a line chart "
       "(PNG, SVG or PDF)."};

@@ -28,6 +28,15 @@ int RunPlot(int argc, char** argv);
 int RunChart(int argc, char** argv);
 int RunMovie(int argc, char** argv);
 int RunHealth(int argc, char** argv);
+int RunTable(int argc, char** argv);
+int RunInputs(int argc, char** argv);
+int RunDelete(int argc, char** argv);
+int RunPriority(int argc, char** argv);
+int RunHold(int argc, char** argv);
+int RunRelease(int argc, char** argv);
+// `dlmfd chart --sweep ...`: a quantity of a sweep against a parameter (chart_sweep.cc).
+bool IsSweepChart(int argc, char** argv);
+int RunSweepChart(int argc, char** argv);
 
 // Parses argv into `app`; returns an exit code when the command must stop (help: 0, error: 2).
 std::optional<int> ParseArgs(CLI::App& app, int argc, char** argv);

@@ -94,9 +94,10 @@ std::string JobTable(const std::vector<v1::Job>& jobs) {
                                            "TIME/END", "PRIO", "TAGS",  "CREATED"};
   std::vector<std::vector<std::string>> rows = {header};
   for (const v1::Job& job : jobs) {
-    rows.push_back({job.id(), job.name(), StateName(job.state()), std::to_string(job.step()),
-                    Progress(job), std::to_string(job.priority()), Join(job.tags(), ","),
-                    FormatTimestamp(job.created_time())});
+    const bool held = job.held() && job.state() == v1::QUEUED;
+    rows.push_back({job.id(), job.name(), held ? "held" : StateName(job.state()),
+                    std::to_string(job.step()), Progress(job), std::to_string(job.priority()),
+                    Join(job.tags(), ","), FormatTimestamp(job.created_time())});
   }
   std::vector<std::size_t> width(header.size(), 0);
   for (const auto& row : rows) {
@@ -119,7 +120,8 @@ std::string JobDetails(const v1::Job& job) {
   out << "id:          " << job.id() << "\n"
       << "name:        " << job.name() << "\n"
       << "owner:       " << job.owner() << "\n"
-      << "state:       " << StateName(job.state()) << "\n";
+      << "state:       " << StateName(job.state())
+      << (job.held() && job.state() == v1::QUEUED ? " (held)" : "") << "\n";
   if (!job.reason().empty()) out << "reason:      " << job.reason() << "\n";
   out << "priority:    " << job.priority() << "\n"
       << "tags:        " << Join(job.tags(), ", ") << "\n";
@@ -134,6 +136,7 @@ std::string JobDetails(const v1::Job& job) {
   }
   out << "attempts:    " << job.attempts() << "\n"
       << "results:     " << job.results_dir() << "\n";
+  if (job.disk_bytes() > 0) out << "disk:        " << job.disk_bytes() << " bytes\n";
   // Settings outside the accuracy envelope: what to change, and to what (docs/scenes.md).
   for (const v1::AccuracyWarning& w : job.warnings()) {
     char value[32];

@@ -14,6 +14,7 @@
 #include <optional>
 #include <regex>
 #include <sstream>
+#include <utility>
 
 #include "service_error.h"
 
@@ -64,6 +65,10 @@ std::vector<Setting> Settings() {
       {"max_grid_nodes", integer("max_grid_nodes", &Config::max_grid_nodes)},
       {"max_memory_mb", integer("max_memory_mb", &Config::max_memory_mb)},
       {"max_queued", integer("max_queued", &Config::max_queued)},
+      {"max_user_disk_mb", integer("max_user_disk_mb", &Config::max_user_disk_mb)},
+      {"max_steps", integer("max_steps", &Config::max_steps)},
+      {"max_snapshots", integer("max_snapshots", &Config::max_snapshots)},
+      {"max_wall_seconds", integer("max_wall_seconds", &Config::max_wall_seconds)},
       {"watcher_buffer", small("watcher_buffer", &Config::watcher_buffer)},
       {"event_ring", small("event_ring", &Config::event_ring)},
       {"solver_threads", small("solver_threads", &Config::solver_threads)},
@@ -255,6 +260,13 @@ void ValidateConfig(Config& config) {
   positive("max_grid_nodes", config.max_grid_nodes);
   positive("max_memory_mb", config.max_memory_mb);
   positive("max_queued", config.max_queued);
+  for (const auto& [key, value] :
+       {std::pair<const char*, int64_t>{"max_user_disk_mb", config.max_user_disk_mb},
+        {"max_steps", config.max_steps},
+        {"max_snapshots", config.max_snapshots},
+        {"max_wall_seconds", config.max_wall_seconds}}) {
+    if (value < 0) throw ConfigError(std::string(key) + " must be >= 0 (0: no limit)");
+  }
   auto at_least = [](const char* key, int value, int least) {
     if (value < least) throw ConfigError(std::string(key) + " must be >= " + std::to_string(least));
   };

@@ -12,6 +12,12 @@
 //   max_grid_nodes    4,000,000
 //   max_memory_mb     4096 (estimated per job)
 //   max_queued        10000 unfinished jobs
+//   max_user_disk_mb  0 (no quota): a user whose jobs' directories hold this many MiB or more
+//                     can submit no job (RESOURCE_EXHAUSTED) until they delete some
+//   max_steps         0 (no limit): steps of one job, round(time.end / time.dt)
+//   max_snapshots     0 (no limit): field snapshots of one job, the initial one included
+//   max_wall_seconds  0 (no limit): wall time of one solver start; past it the solver is stopped
+//                     (it checkpoints) and the job ends FAILED naming the limit
 //   watcher_buffer    256 events per watcher
 //   event_ring        1024 recent events kept per job
 //   solver_threads    0: OMP_NUM_THREADS of each solver is max(1, cores / max_concurrent) unless
@@ -46,6 +52,10 @@ struct Config {
   int64_t max_grid_nodes = 4'000'000;
   int64_t max_memory_mb = 4096;
   int64_t max_queued = 10000;
+  int64_t max_user_disk_mb = 0;  // 0: none
+  int64_t max_steps = 0;         // 0: none
+  int64_t max_snapshots = 0;     // 0: none
+  int64_t max_wall_seconds = 0;  // 0: none
   int watcher_buffer = 256;
   int event_ring = 1024;
   int solver_threads = 0;

@@ -25,6 +25,8 @@ v1::Job ToProto(const JobRecord& job) {
   for (const auto& o : job.overrides) out.add_overrides(o);
   out.set_client_request_id(job.client_request_id);
   out.set_last_seq(job.last_seq);
+  out.set_held(job.held);
+  out.set_disk_bytes(job.disk_bytes);
   for (const AccuracyWarning& w : job.warnings) {
     v1::AccuracyWarning* o = out.add_warnings();
     o->set_setting(w.setting);

@@ -2,6 +2,7 @@
 
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -9,9 +10,14 @@
 namespace dlmfd::server {
 namespace {
 
-// Ordered migrations: entry i brings the schema from version i to i + 1. Append, never edit.
-const char* const kMigrations[] = {
-    R"sql(
+// Ordered migrations: each brings the schema to its version from the one before (a version that a
+// branch does not have is skipped: "if version < N apply it, set N"). Append, never edit.
+struct Migration {
+  int version;
+  const char* sql;
+};
+const Migration kMigrations[] = {
+    {1, R"sql(
     CREATE TABLE jobs (
       ordinal INTEGER PRIMARY KEY AUTOINCREMENT,
       id TEXT NOT NULL UNIQUE,
@@ -47,17 +53,23 @@ const char* const kMigrations[] = {
       request_key TEXT NOT NULL,
       job_ids TEXT NOT NULL,
       PRIMARY KEY (owner, request_key));
-    )sql",
+    )sql"},
     // Schema 2: the accuracy warnings of a job's scene, one per line (EncodeWarnings).
-    R"sql(
+    {2, R"sql(
     ALTER TABLE jobs ADD COLUMN warnings TEXT NOT NULL DEFAULT '';
-    )sql",
+    )sql"},
+    // Schema 4: a queued job held from starting, and the bytes of a finished job's directory
+    // (the disk quota).
+    {4, R"sql(
+    ALTER TABLE jobs ADD COLUMN held INTEGER NOT NULL DEFAULT 0;
+    ALTER TABLE jobs ADD COLUMN disk_bytes INTEGER NOT NULL DEFAULT 0;
+    )sql"},
 };
 
 const char kColumns[] =
     "ordinal, id, name, owner, state, reason, priority, sweep_id, created_time, started_time, "
     "finished_time, step, time, end_time, attempts, results_dir, scene, overrides, "
-    "client_request_id, last_seq, cancel_requested, warnings";
+    "client_request_id, last_seq, cancel_requested, warnings, held, disk_bytes";
 
 std::string Join(const std::vector<std::string>& parts, char sep) {
   std::string out;
@@ -246,7 +258,7 @@ JobStore::JobStore(const std::string& path) {
 
 JobStore::~JobStore() { sqlite3_close(db_); }
 
-int JobStore::SchemaVersion() { return static_cast<int>(std::size(kMigrations)); }
+int JobStore::SchemaVersion() { return std::end(kMigrations)[-1].version; }
 
 void JobStore::Exec(const char* sql) {
   char* message = nullptr;
@@ -273,9 +285,11 @@ void JobStore::Migrate() {
     throw StoreError("jobs.db has schema version " + std::to_string(version) +
                      ", newer than this daemon's " + std::to_string(SchemaVersion()));
   }
-  for (int64_t v = version; v < SchemaVersion(); ++v) {
-    Exec(kMigrations[v]);
-    Statement(db_, "UPDATE schema_version SET version = ?").Bind(v + 1).Run();
+  for (const Migration& migration : kMigrations) {
+    if (version >= migration.version) continue;
+    Exec(migration.sql);
+    version = migration.version;
+    Statement(db_, "UPDATE schema_version SET version = ?").Bind(version).Run();
   }
   transaction.Commit();
 }
@@ -307,6 +321,8 @@ std::vector<JobRecord> JobStore::Query(Statement& statement) {
     job.last_seq = statement.Int(c++);
     job.cancel_requested = statement.Int(c++) != 0;
     job.warnings = DecodeWarnings(statement.Text(c++));
+    job.held = statement.Int(c++) != 0;
+    job.disk_bytes = statement.Int(c++);
     jobs.push_back(std::move(job));
   }
   for (auto& job : jobs) LoadTags(job);
@@ -446,8 +462,9 @@ std::vector<JobRecord> JobStore::SweepJobs(const std::string& owner, const std::
 
 std::optional<JobRecord> JobStore::NextQueued() {
   std::lock_guard lock(mutex_);
-  Statement select(db_, std::string("SELECT ") + kColumns +
-                            " FROM jobs WHERE state = ? ORDER BY priority DESC, ordinal LIMIT 1");
+  Statement select(
+      db_, std::string("SELECT ") + kColumns +
+               " FROM jobs WHERE state = ? AND held = 0 ORDER BY priority DESC, ordinal LIMIT 1");
   select.Bind(static_cast<int>(JobState::kQueued));
   auto jobs = Query(select);
   if (jobs.empty()) return std::nullopt;
@@ -545,6 +562,69 @@ std::vector<std::string> JobStore::RequeueRunning(double now) {
   update.Bind(static_cast<int>(JobState::kQueued)).Bind(static_cast<int>(JobState::kRunning)).Run();
   transaction.Commit();
   return ids;
+}
+
+bool JobStore::SetHeld(const std::string& id, bool held) {
+  std::lock_guard lock(mutex_);
+  Statement update(db_, "UPDATE jobs SET held = ? WHERE id = ? AND state = ?");
+  update.Bind(held ? 1 : 0).Bind(id).Bind(static_cast<int>(JobState::kQueued)).Run();
+  return update.Changes() == 1;
+}
+
+bool JobStore::SetPriority(const std::string& id, int priority) {
+  std::lock_guard lock(mutex_);
+  Statement update(db_, "UPDATE jobs SET priority = ? WHERE id = ? AND state IN (?, ?)");
+  update.Bind(priority)
+      .Bind(id)
+      .Bind(static_cast<int>(JobState::kQueued))
+      .Bind(static_cast<int>(JobState::kRunning))
+      .Run();
+  return update.Changes() == 1;
+}
+
+void JobStore::SetDiskBytes(const std::string& id, int64_t bytes) {
+  std::lock_guard lock(mutex_);
+  Statement(db_, "UPDATE jobs SET disk_bytes = ? WHERE id = ?").Bind(bytes).Bind(id).Run();
+}
+
+void JobStore::Delete(const std::vector<std::string>& ids) {
+  std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  for (const std::string& id : ids) {
+    Statement(db_, "DELETE FROM job_tags WHERE job_id = ?").Bind(id).Run();
+    Statement(db_, "DELETE FROM jobs WHERE id = ?").Bind(id).Run();
+  }
+  // A request keeps the jobs it made that still exist; one with none left is forgotten, so that
+  // its client_request_id makes new jobs rather than answer with deleted ones.
+  std::vector<std::pair<int64_t, std::string>> requests;
+  {
+    Statement select(db_, "SELECT rowid, job_ids FROM requests");
+    while (select.Step()) requests.emplace_back(select.Int(0), select.Text(1));
+  }
+  for (const auto& [rowid, job_ids] : requests) {
+    std::vector<std::string> kept;
+    for (const std::string& id : Split(job_ids, ',')) {
+      if (std::find(ids.begin(), ids.end(), id) == ids.end()) kept.push_back(id);
+    }
+    if (kept.size() == Split(job_ids, ',').size()) continue;
+    if (kept.empty()) {
+      Statement(db_, "DELETE FROM requests WHERE rowid = ?").Bind(rowid).Run();
+    } else {
+      Statement(db_, "UPDATE requests SET job_ids = ? WHERE rowid = ?")
+          .Bind(Join(kept, ','))
+          .Bind(rowid)
+          .Run();
+    }
+  }
+  transaction.Commit();
+}
+
+std::vector<JobRecord> JobStore::OwnerJobs(const std::string& owner) {
+  std::lock_guard lock(mutex_);
+  Statement select(
+      db_, std::string("SELECT ") + kColumns + " FROM jobs WHERE owner = ? ORDER BY ordinal");
+  select.Bind(owner);
+  return Query(select);
 }
 
 }  // namespace dlmfd::server

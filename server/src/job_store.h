@@ -51,7 +51,9 @@ struct JobRecord {
   int64_t last_seq = 0;
   std::vector<AccuracyWarning> warnings;  // found at admission (scene/accuracy_envelope.h)
   bool cancel_requested = false;
-  int64_t ordinal = 0;  // insertion order, set by the store
+  bool held = false;       // a queued job kept from starting
+  int64_t disk_bytes = 0;  // bytes of the job directory, counted when the job finished
+  int64_t ordinal = 0;     // insertion order, set by the store
 };
 
 struct ListFilter {
@@ -88,7 +90,10 @@ class JobStore {
   int64_t CountUnfinished();
   std::vector<JobRecord> SweepJobs(const std::string& owner, const std::string& sweep_id);
 
-  // Highest priority, then oldest, among QUEUED jobs.
+  // Every job of the owner, oldest first.
+  std::vector<JobRecord> OwnerJobs(const std::string& owner);
+
+  // Highest priority, then oldest, among QUEUED jobs that are not held.
   std::optional<JobRecord> NextQueued();
   void MarkRunning(const std::string& id, double started_time);
   // Sets a finished state; returns false when the job had already finished (nothing changed).
@@ -102,6 +107,14 @@ class JobStore {
   // cancel was requested, which become CANCELLED.
   std::vector<std::string> RequeueRunning(double now);
   int CountRunning();
+  // Holds or releases a QUEUED job; false when the job is not QUEUED.
+  bool SetHeld(const std::string& id, bool held);
+  // Sets the priority of a QUEUED or RUNNING job; false when it has finished (or does not exist).
+  bool SetPriority(const std::string& id, int priority);
+  void SetDiskBytes(const std::string& id, int64_t bytes);
+  // Removes the jobs, their tags and their ids from the requests that made them (a request left
+  // with no job is forgotten).
+  void Delete(const std::vector<std::string>& ids);
 
  private:
   class Statement;

@@ -8,6 +8,7 @@
 
 #include "job_proto.h"
 #include "result_files.h"
+#include "rpc_reply.h"
 #include "scene_admission.h"
 #include "service_error.h"
 #include "sweep_expansion.h"
@@ -19,13 +20,11 @@ namespace {
 
 using grpc::StatusCode;
 
-constexpr size_t kMaxJobIdBytes = 64;
 constexpr size_t kMaxNameBytes = 256;
 constexpr int kMaxTags = 32;
 constexpr size_t kMaxTagBytes = 64;
 constexpr size_t kMaxRequestIdBytes = 128;
 constexpr int kMaxOverrides = 256;
-constexpr int kMaxPriority = 1000;
 constexpr int kDefaultPageSize = 100;
 constexpr int kMaxPageSize = 1000;
 constexpr int kMaxSnapshotSize = 4096;
@@ -38,13 +37,6 @@ std::string NewId(char kind) {
   uint64_t bits = random();
   for (int i = 0; i < 16; ++i, bits >>= 4) id += kHex[bits & 15];
   return id;
-}
-
-void CheckJobId(const std::string& id) {
-  Require(!id.empty(), "job_id: empty");
-  RequireNoNul("job_id", id);
-  Require(id.size() <= kMaxJobIdBytes,
-          "job_id: longer than " + std::to_string(kMaxJobIdBytes) + " bytes");
 }
 
 void CheckLabels(const std::string& name, const std::vector<std::string>& tags, int priority,
@@ -61,9 +53,7 @@ void CheckLabels(const std::string& name, const std::vector<std::string>& tags, 
     Require(tag.find_first_of("\n,") == std::string::npos,
             "tags: \"" + tag + "\" contains a comma or a line break");
   }
-  Require(priority >= -kMaxPriority && priority <= kMaxPriority,
-          "priority = " + std::to_string(priority) + " is not allowed: expected " +
-              std::to_string(-kMaxPriority) + " to " + std::to_string(kMaxPriority));
+  CheckPriority(priority);
   RequireNoNul("client_request_id", request_id);
   Require(request_id.size() <= kMaxRequestIdBytes,
           "client_request_id: longer than " + std::to_string(kMaxRequestIdBytes) + " bytes");
@@ -110,19 +100,6 @@ void CheckSameRequest(const std::string& request_id, const std::vector<JobRecord
 
 std::vector<std::string> ToVector(const google::protobuf::RepeatedPtrField<std::string>& field) {
   return {field.begin(), field.end()};
-}
-
-// A unary reply: runs body under Guarded and finishes the default reactor with its status.
-template <class Body>
-grpc::ServerUnaryReactor* Reply(grpc::CallbackServerContext* context, const char* rpc,
-                                Body&& body) {
-  auto* reactor = context->DefaultReactor();
-  grpc::Status status = Guarded(std::forward<Body>(body));
-  if (!status.ok() && status.error_code() == StatusCode::INTERNAL) {
-    spdlog::error("{}: {}", rpc, status.error_message());
-  }
-  reactor->Finish(status);
-  return reactor;
 }
 
 // Streams a WatcherQueue to one client.
@@ -264,6 +241,7 @@ grpc::ServerUnaryReactor* JobsService::Submit(grpc::CallbackServerContext* conte
       }
     }
     CheckQueueRoom(1);
+    CheckDiskQuota(user);
     JobRecord job =
         NewJob(user, request->scene(), overrides, request->name(), tags, request->priority());
     job.client_request_id = request->client_request_id();
@@ -387,6 +365,7 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
       }
     }
     CheckQueueRoom(static_cast<int64_t>(points.size()));
+    CheckDiskQuota(user);
     const std::string sweep_id = NewId('s');
     std::vector<JobRecord> jobs;
     for (const SweepPoint& point : points) {

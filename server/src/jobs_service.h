@@ -9,6 +9,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "auth.h"
 #include "config.h"
@@ -44,8 +45,34 @@ class JobsService final : public v1::Jobs::CallbackService {
   grpc::ServerUnaryReactor* ListFiles(grpc::CallbackServerContext* context,
                                       const v1::ListFilesRequest* request,
                                       v1::ListFilesResponse* reply) override;
+  // Housekeeping and study rpcs (jobs_service_housekeeping.cc).
+  grpc::ServerUnaryReactor* Table(grpc::CallbackServerContext* context,
+                                  const v1::TableRequest* request,
+                                  v1::TableResponse* reply) override;
+  grpc::ServerUnaryReactor* ReadLog(grpc::CallbackServerContext* context,
+                                    const v1::ReadLogRequest* request,
+                                    v1::LogChunk* reply) override;
+  grpc::ServerUnaryReactor* GetInputs(grpc::CallbackServerContext* context,
+                                      const v1::GetInputsRequest* request,
+                                      v1::JobInputs* reply) override;
+  grpc::ServerUnaryReactor* Delete(grpc::CallbackServerContext* context,
+                                   const v1::DeleteRequest* request,
+                                   v1::DeleteResponse* reply) override;
+  grpc::ServerUnaryReactor* SetPriority(grpc::CallbackServerContext* context,
+                                        const v1::SetPriorityRequest* request,
+                                        v1::Job* reply) override;
+  grpc::ServerUnaryReactor* Hold(grpc::CallbackServerContext* context,
+                                 const v1::HoldRequest* request, v1::Job* reply) override;
+  grpc::ServerUnaryReactor* Release(grpc::CallbackServerContext* context,
+                                    const v1::HoldRequest* request, v1::Job* reply) override;
 
  private:
+  // The jobs a Table or Delete request names: the sweep's, or each of job_ids (NOT_FOUND for one
+  // that is not the caller's).
+  std::vector<JobRecord> SelectedJobs(const std::string& user, const std::string& sweep_id,
+                                      const google::protobuf::RepeatedPtrField<std::string>& ids);
+  // RESOURCE_EXHAUSTED when the user's jobs hold max_user_disk_mb or more.
+  void CheckDiskQuota(const std::string& user);
   // The job as an rpc reports it: last_seq is the last number issued (the hub's, while it has a
   // channel), not the end of a block reserved in the store.
   v1::Job Reported(const JobRecord& job);

@@ -3,11 +3,37 @@
 #include <cmath>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/core/time_stepping.h"
 #include "dlmfd/scene/scene_file.h"
 #include "dlmfd/scene/scene_footprint.h"
 #include "service_error.h"
 
 namespace dlmfd::server {
+namespace {
+
+// The daemon's limits on one run: its steps and its field snapshots (config max_steps,
+// max_snapshots; 0: none). Counted in double, as ValidateScene holds them below 2^53.
+void CheckRunLimits(const Params& params, const Config& config) {
+  using grpc::StatusCode;
+  const double steps = static_cast<double>(StepCount(params.time));
+  if (config.max_steps > 0 && steps > static_cast<double>(config.max_steps)) {
+    throw ServiceError(StatusCode::RESOURCE_EXHAUSTED,
+                       "time.end: the run makes " + std::to_string(static_cast<int64_t>(steps)) +
+                           " steps (time.end / time.dt), over the limit of max_steps = " +
+                           std::to_string(config.max_steps));
+  }
+  const double every = params.output.fields_every;
+  const double snapshots = every > 0.0 ? std::floor(params.time.end / every + 1e-9) + 1.0 : 0.0;
+  if (config.max_snapshots > 0 && snapshots > static_cast<double>(config.max_snapshots)) {
+    throw ServiceError(StatusCode::RESOURCE_EXHAUSTED,
+                       "output.fields_every: the run writes " +
+                           std::to_string(static_cast<int64_t>(snapshots)) +
+                           " field snapshots, over the limit of max_snapshots = " +
+                           std::to_string(config.max_snapshots));
+  }
+}
+
+}  // namespace
 
 SceneEstimate AdmitScene(const std::string& scene, const std::vector<std::string>& overrides,
                          const Config& config) {
@@ -46,6 +72,7 @@ SceneEstimate AdmitScene(const std::string& scene, const std::vector<std::string
                            " MiB, over the limit of " + std::to_string(config.max_memory_mb) +
                            " MiB");
   }
+  CheckRunLimits(params, config);
   SceneEstimate estimate;
   estimate.end_time = params.time.end;
   estimate.nodes = static_cast<int64_t>(footprint.velocity_nodes);

@@ -12,6 +12,7 @@
 #include <optional>
 #include <sstream>
 
+#include "disk_usage.h"
 #include "dlmfd/io/atomic_file.h"
 #include "dlmfd/io/results_writer.h"
 #include "dlmfd/solver/exit_codes.h"
@@ -19,6 +20,7 @@
 #include "job_proto.h"
 #include "service_error.h"
 #include "solver_process.h"
+#include "wall_time_limit.h"
 
 namespace dlmfd::server {
 namespace fs = std::filesystem;
@@ -136,6 +138,8 @@ void Scheduler::Loop() {
 }
 
 void Scheduler::FinishJob(const std::string& job_id, JobState state, const std::string& reason) {
+  // Counted first, so that a finished job always has its bytes: the solver has exited.
+  store_.SetDiskBytes(job_id, DirectoryBytes(JobDir(job_id)));
   if (!store_.MarkFinished(job_id, state, reason, NowSeconds())) return;
   auto job = store_.Get(job_id);
   if (!job) return;
@@ -192,6 +196,7 @@ void Scheduler::RunJob(JobRecord job) {
         throw std::runtime_error("cannot execute the solver " + spec.solver);
       }
       process->Start(spec);
+      WallTimeLimit wall_limit(config_.max_wall_seconds, [&] { process->Signal(SIGTERM); });
       spdlog::info("job {}: solver pid {} started{}", job.id, process->pid(),
                    resume ? " with --resume" : "");
       hub_.Publish(job.id, LogEvent("info", resume ? "solver resumed from results/checkpoint.h5"
@@ -279,10 +284,17 @@ void Scheduler::RunJob(JobRecord job) {
         hub_.Publish(job.id, std::move(out));
       });
       const SolverExit exit = process->Wait();
+      const bool over_wall_time = wall_limit.End();
       const bool cancelled = cancel_requested();
       const std::string reported = finished ? finished->reason() : std::string();
       const auto exited = [&exit](int code) { return !exit.signalled && exit.code == code; };
-      if (Stopping() && (exited(solver::kExitCancelled) || exit.signalled)) {
+      if (over_wall_time && !cancelled && !exited(solver::kExitCompleted) &&
+          !exited(solver::kExitFailed)) {
+        outcome.emplace(JobState::kFailed,
+                        "wall time limit: the solver ran longer than max_wall_seconds = " +
+                            std::to_string(config_.max_wall_seconds) +
+                            " and was stopped (its checkpoint is kept)");
+      } else if (Stopping() && (exited(solver::kExitCancelled) || exit.signalled)) {
         spdlog::info("job {}: solver stopped for the daemon's shutdown; stays RUNNING to resume",
                      job.id);
       } else if (exited(solver::kExitCompleted)) {
@@ -318,6 +330,14 @@ void Scheduler::RunJob(JobRecord job) {
   running_[job.id].done = true;
   dirty_ = true;
   changed_.notify_all();
+}
+
+void Scheduler::WaitUntilStopped(const std::string& job_id) {
+  std::unique_lock lock(mutex_);
+  changed_.wait(lock, [&] {
+    auto it = running_.find(job_id);
+    return it == running_.end() || it->second.done;
+  });
 }
 
 JobRecord Scheduler::Cancel(const std::string& job_id) {

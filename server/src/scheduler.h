@@ -9,6 +9,8 @@
 // exit:
 //   0 COMPLETED; 1 FAILED (the reason from the finished event or results/summary.json); 2 FAILED
 //   (invalid scene); 130 CANCELLED; killed by signal N: FAILED "solver killed by signal N".
+// Limits: a solver start that runs longer than max_wall_seconds gets SIGTERM (it checkpoints) and
+// the job ends FAILED naming the limit. A job's directory is counted (disk_bytes) when it ends.
 // Cancel: a QUEUED job is cancelled in the store at once; a RUNNING one gets SIGTERM (the solver
 // checkpoints and exits 130 at a step boundary). Stop (daemon shutdown) sends SIGTERM too but
 // leaves the jobs RUNNING in the store, so that the next start resumes them; a solver still alive
@@ -53,6 +55,10 @@ class Scheduler {
   // As Cancel, but a job that has already finished is left as it is: returns its record, or
   // nothing when it had finished. Throws ServiceError NOT_FOUND.
   std::optional<JobRecord> CancelUnlessFinished(const std::string& job_id);
+
+  // Blocks until no solver of the job runs (a cancelled one stops at a step boundary) and its end
+  // is recorded.
+  void WaitUntilStopped(const std::string& job_id);
 
   std::string JobDir(const std::string& job_id) const;
   std::string ResultsDir(const std::string& job_id) const;

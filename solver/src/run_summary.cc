@@ -55,6 +55,11 @@ double ReadNumber(const Json& j, const char* key) {
   return value.get<double>();
 }
 
+// A key an older solver did not write reads as NaN.
+double OptionalNumber(const Json& j, const char* key) {
+  return j.contains(key) ? ReadNumber(j, key) : std::numeric_limits<double>::quiet_NaN();
+}
+
 std::array<double, 2> NumberPair(const Json& j, const char* key) {
   const Json& value = j.at(key);
   if (!value.is_array() || value.size() != 2) {
@@ -82,15 +87,28 @@ std::string RunSummaryJson(const RunSummary& s) {
   j["resumed_from_step"] = s.resumed_from_step;
   j["title"] = s.title;
   j["version"] = s.version;
+  j["fall_window"] = Pair(s.fall_window);
+  j["fall_speed"] = Number(s.fall_speed);
+  j["diameter"] = Number(s.diameter);
+  j["min_gap"] = Number(s.min_gap);
+  j["min_wall_gap"] = Number(s.min_wall_gap);
+  j["max_trA"] = Number(s.max_trA);
+  j["min_eig_A"] = Number(s.min_eig_A);
+  j["reynolds"] = Number(s.reynolds);
+  j["deborah"] = Number(s.deborah);
+  j["mach"] = Number(s.mach);
+  j["elasticity"] = Number(s.elasticity);
   Json particles = Json::array();
   for (const RunSummary::Particle& q : s.particles) {
     Json p;
     p["id"] = q.id;
+    p["radius"] = Number(q.radius);
     p["position"] = Pair(q.position);
     p["velocity"] = Pair(q.velocity);
     p["angular_velocity"] = Number(q.angular_velocity);
     p["force"] = Pair(q.force);
     p["torque"] = Number(q.torque);
+    p["fall_speed"] = Number(q.fall_speed);
     particles.push_back(std::move(p));
   }
   j["particles"] = std::move(particles);
@@ -143,9 +161,22 @@ RunSummary ParseRunSummary(const std::string& text) {
     s.resumed_from_step = j.at("resumed_from_step").get<long>();
     s.title = j.at("title").get<std::string>();
     s.version = j.at("version").get<std::string>();
+    if (j.contains("fall_window")) s.fall_window = NumberPair(j, "fall_window");
+    s.fall_speed = OptionalNumber(j, "fall_speed");
+    s.diameter = OptionalNumber(j, "diameter");
+    s.min_gap = OptionalNumber(j, "min_gap");
+    s.min_wall_gap = OptionalNumber(j, "min_wall_gap");
+    s.max_trA = OptionalNumber(j, "max_trA");
+    s.min_eig_A = OptionalNumber(j, "min_eig_A");
+    s.reynolds = OptionalNumber(j, "reynolds");
+    s.deborah = OptionalNumber(j, "deborah");
+    s.mach = OptionalNumber(j, "mach");
+    s.elasticity = OptionalNumber(j, "elasticity");
     for (const Json& p : j.at("particles")) {
       RunSummary::Particle q;
       q.id = p.at("id").get<long>();
+      q.radius = OptionalNumber(p, "radius");
+      q.fall_speed = OptionalNumber(p, "fall_speed");
       q.position = NumberPair(p, "position");
       q.velocity = NumberPair(p, "velocity");
       q.angular_velocity = ReadNumber(p, "angular_velocity");

@@ -418,4 +418,131 @@ TEST_F(CliTest, ConfigPrecedenceIsFlagThenEnvironmentThenFile) {
   EXPECT_THAT(typo.err, HasSubstr("servr"));
 }
 
+// Two disks settling in a closed box, 20 steps: the table's particle columns and fall speed.
+const char* kPair = R"toml(title = "two disks settling (cli e2e)"
+gravity = [0.0, -981.0]
+[domain]
+size = [1.0, 2.0]
+h = 0.0625
+[domain.boundary]
+left = { type = "wall" }
+right = { type = "wall" }
+bottom = { type = "wall" }
+top = { type = "wall" }
+[fluid]
+density = 1.0
+viscosity = 0.1
+[time]
+dt = 0.002
+end = 0.04
+[[particles]]
+center = [0.5, 1.5]
+diameter = 0.25
+density = 1.5
+[[particles]]
+center = [0.5, 1.0]
+diameter = 0.25
+density = 1.5
+[particle_mesh]
+h = 0.0625
+[output]
+fields_every = 0
+particles_every = 0
+checkpoint_every = 0
+)toml";
+
+// A study end to end: sweep, table (CSV, JSON, chosen columns), chart against the parameter, the
+// log and inputs of a point, then delete of the whole sweep.
+TEST_F(CliTest, TableChartLogsInputsAndDeleteOfASweep) {
+  std::ofstream(root_ / "pair.toml") << kPair;
+  const CliRun sweep = Cli({"sweep", (root_ / "pair.toml").string(), "--grid",
+                            "fluid.viscosity=0.1,0.2", "--name", "pair"});
+  ASSERT_EQ(sweep.code, 0) << sweep.err;
+  const std::string first = FirstLine(sweep.out);  // "sweep s-...: 2 jobs"
+  const std::string id = first.substr(6, first.find(':') - 6);
+  ASSERT_EQ(id.rfind("s-", 0), 0u) << sweep.out;
+  CliRun table;
+  for (;;) {
+    table = Cli({"table", "--sweep", id, "--columns", "status"});
+    ASSERT_EQ(table.code, 0) << table.err;
+    if (table.out == "status\ncompleted\ncompleted\n") break;
+    ASSERT_THAT(table.out, Not(HasSubstr("failed")));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  const CliRun csv = Cli({"table", "--sweep", id});
+  ASSERT_EQ(csv.code, 0) << csv.err;
+  EXPECT_THAT(FirstLine(csv.out),
+              HasSubstr("job,name,state,fluid.viscosity,status,reason,steps,time,wall_seconds,"
+                        "fall_speed,min_gap,min_wall_gap,max_trA,min_eig_A,Re,De,E,M,p0.radius,"));
+  EXPECT_THAT(csv.out, HasSubstr(",completed,0.1,completed,,20,0.04,"));
+  EXPECT_THAT(csv.out, HasSubstr(",completed,0.2,completed,,20,0.04,"));
+  const CliRun json = Cli({"table", "--sweep", id, "--format", "json", "--columns",
+                           "fluid.viscosity,steps,max_trA,p1.radius"});
+  ASSERT_EQ(json.code, 0) << json.err;
+  // Typed values: the parameter a number, steps an integer, a Newtonian max_trA null.
+  EXPECT_THAT(json.out, HasSubstr("\"fluid.viscosity\": 0.1,\n    \"steps\": 20,\n"
+                                  "    \"max_trA\": null,\n    \"p1.radius\": 0.125"));
+  const CliRun unknown = Cli({"table", "--sweep", id, "--columns", "nope"});
+  EXPECT_EQ(unknown.code, 2);
+  EXPECT_THAT(unknown.err, HasSubstr("--columns nope: no such column"));
+
+  const fs::path png = root_ / "sweep.png";
+  const CliRun chart = Cli({"chart", "--sweep", id, "--x", "fluid.viscosity", "--y", "fall_speed",
+                            "--out", png.string(), "--width", "400", "--height", "300"});
+  ASSERT_EQ(chart.code, 0) << chart.err;
+  EXPECT_EQ(FirstLine(chart.out), png.string());
+  EXPECT_EQ(Slurp(png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+
+  const std::string job = csv.out.substr(
+      csv.out.find('\n') + 1, csv.out.find(',', csv.out.find('\n')) - csv.out.find('\n') - 1);
+  const CliRun logs = Cli({"logs", job});
+  ASSERT_EQ(logs.code, 0) << logs.err;
+  EXPECT_THAT(logs.out, HasSubstr("completed after 20 steps"));
+  const CliRun follow = Cli({"logs", job, "--follow", "--level", "warn"});
+  ASSERT_EQ(follow.code, 0) << follow.err;  // a finished job: follow returns at the end
+  EXPECT_THAT(follow.out, Not(HasSubstr("[info]")));
+  EXPECT_THAT(follow.out, HasSubstr("[warning] accuracy"));
+  const CliRun inputs = Cli({"inputs", job});
+  ASSERT_EQ(inputs.code, 0) << inputs.err;
+  EXPECT_THAT(inputs.out, HasSubstr("#   fluid.viscosity=0.1\n"));
+  EXPECT_THAT(inputs.out, HasSubstr(kPair));
+  const CliRun as_run = Cli({"inputs", job, "--as-run"});
+  ASSERT_EQ(as_run.code, 0) << as_run.err;
+  EXPECT_THAT(as_run.out, HasSubstr("viscosity = 0.1"));
+  EXPECT_THAT(as_run.out, HasSubstr("[collisions]"));  // the defaults filled in
+
+  const CliRun late = Cli({"priority", job, "3"});
+  EXPECT_EQ(late.code, 6) << late.err;  // finished: FAILED_PRECONDITION
+  const CliRun remove = Cli({"delete", "--sweep", id});
+  ASSERT_EQ(remove.code, 0) << remove.err;
+  EXPECT_THAT(remove.err, HasSubstr("2 jobs deleted"));
+  const CliRun gone = Cli({"table", "--sweep", id});
+  EXPECT_EQ(gone.code, 3) << gone.err;
+  EXPECT_EQ(Cli({"show", job}).code, 3);
+}
+
+// logs without --follow prints what the running job has logged and returns; hold refuses a
+// running job; delete of a running job needs --force.
+TEST_F(CliTest, LogsOfARunningJobReturnAndItsDeleteNeedsForce) {
+  const CliRun submit =
+      Cli({"submit", (root_ / "cavity.toml").string(), "--set", "time.end=100000"});
+  ASSERT_EQ(submit.code, 0) << submit.err;
+  const std::string job = FirstLine(submit.out);
+  AwaitState(job, "RUNNING");
+  for (;;) {  // the solver has written its first line
+    const CliRun logs = Cli({"logs", job});
+    ASSERT_EQ(logs.code, 0) << logs.err;
+    if (logs.out.find("running") != std::string::npos) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  const CliRun hold = Cli({"hold", job});
+  EXPECT_EQ(hold.code, 6) << hold.err;  // running: only a queued job is held
+  const CliRun refused = Cli({"delete", job});
+  EXPECT_EQ(refused.code, 6) << refused.err;
+  EXPECT_THAT(refused.err, HasSubstr("--force"));
+  const CliRun forced = Cli({"delete", job, "--force"});
+  ASSERT_EQ(forced.code, 0) << forced.err;
+  EXPECT_THAT(forced.out, HasSubstr(job + " deleted"));
+}
+
 }  // namespace

@@ -274,6 +274,15 @@ TEST(SolveApp, ResumeAfterSigkillEqualsAnUninterruptedRun) {
   EXPECT_EQ(names_a, names_b);
   EXPECT_THAT(ReadTextFile(resumed + "/summary.json"),
               HasSubstr("\"resumed_from_step\": " + std::to_string(checkpoint_step)));
+  // The statistics of the whole run (io/run_statistics.h) are those of the uninterrupted run.
+  auto statistics = [](const std::string& out) {
+    const solver::RunSummary s = solver::ReadRunSummary(out + "/summary.json");
+    std::vector<double> v = {s.min_gap,    s.min_wall_gap, s.max_trA,        s.min_eig_A,
+                             s.fall_speed, s.reynolds,     s.fall_window[0], s.fall_window[1]};
+    for (const auto& p : s.particles) v.push_back(p.fall_speed);
+    return v;
+  };
+  ExpectSameDoubles(statistics(whole), statistics(resumed), "summary.json statistics");
 
   // A different scene is refused on resume.
   EXPECT_EQ(RunToEnd({scene, "--out", resumed, "--resume", "--set", "fluid.viscosity=0.02"},

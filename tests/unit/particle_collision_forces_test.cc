@@ -108,5 +108,42 @@ TEST(CollisionForces, PeriodicPairInteractsAcrossTheSide) {
   EXPECT_NEAR(forces.MinGap(x), 0.01, 1e-12);
 }
 
+// The gaps are true surface gaps, never capped at the cell size (issue 14: 0.231 reported where
+// the gap was 0.202): every pair is examined when the cell lists find none near enough.
+TEST(CollisionForces, GapsAreTrueSurfaceGapsBeyondTheCellSize) {
+  const Params params = Box(2.0, 8.0, 1.0 / 96, false, false);
+  const Grid grid = params.domain.VelocityGrid();
+  CollisionForces forces(params, grid, {0.1, 0.1, 0.05});
+  // Centres 0.6 apart in y: surface gap 0.4, beyond the cell size 0.2 + 1.5 h = 0.2156, where the
+  // cell-list search alone stops.
+  const std::vector<Vec2> x = {Vec2(1.0, 6.8), Vec2(1.0, 7.4), Vec2(0.3, 2.0)};
+  ASSERT_GT(0.4, forces.CellSize());
+  const CollisionForces::SurfaceGaps gaps = forces.Gaps(x);
+  // Pairs: (0,1) 0.4; (0,2) and (1,2) about 4.8 apart.
+  EXPECT_NEAR(gaps.pair, 0.4, 1e-12);
+  EXPECT_EQ(gaps.first, 0);
+  EXPECT_EQ(gaps.second, 1);
+  // Walls: particle 2 is 0.3 - 0.05 = 0.25 from the left side; particles 0 and 1 are 0.9 from the
+  // sides and particle 1 is 8 - 7.4 - 0.1 = 0.5 from the top.
+  EXPECT_NEAR(gaps.wall, 0.25, 1e-12);
+  EXPECT_EQ(gaps.wall_particle, 2);
+  EXPECT_EQ(gaps.wall_side, static_cast<int>(Side::kLeft));
+  EXPECT_NEAR(gaps.Min(), 0.25, 1e-12);
+  int first = 0, second = 0;
+  EXPECT_NEAR(forces.MinGap(x, &first, &second), 0.25, 1e-12);
+  EXPECT_EQ(first, 2);
+  EXPECT_EQ(second, -1 - static_cast<int>(Side::kLeft));
+}
+
+TEST(CollisionForces, GapsWithNothingToMeasureAreNaN) {
+  const Params params = Box(1.0, 1.0, 1.0 / 48, true, true);
+  const Grid grid = params.domain.VelocityGrid();
+  CollisionForces forces(params, grid, {0.1});
+  const CollisionForces::SurfaceGaps gaps = forces.Gaps({Vec2(0.5, 0.5)});
+  EXPECT_TRUE(std::isnan(gaps.pair));  // one particle: no pair
+  EXPECT_TRUE(std::isnan(gaps.wall));  // periodic box: no wall
+  EXPECT_TRUE(std::isnan(gaps.Min()));
+}
+
 }  // namespace
 }  // namespace dlmfd

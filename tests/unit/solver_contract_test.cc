@@ -97,11 +97,25 @@ TEST(RunSummary, TextKeepsTheLayoutOfTheResultsDirectory) {
   s.ms_per_step = 49.2;
   s.title = "pair";
   s.version = "0.1.0";
+  s.fall_window = {0.5, 1.0};
+  s.fall_speed = 0.135;
+  s.diameter = 0.2;
+  s.min_gap = 0.202;
+  s.min_wall_gap = 0.9;
+  s.max_trA = 3.25;
+  s.min_eig_A = 0.5;
+  s.reynolds = 0.225;
+  s.deborah = 0.945;
+  s.mach = 0.5;
+  s.elasticity = 4.2;
   RunSummary::Particle q;
+  q.radius = 0.1;
   q.position = {0.5, 7.25};
   q.velocity = {-0.0014494669113040463, 1e-05};
+  q.fall_speed = 0.125;
   s.particles = {q, q};
   s.particles[1].id = 1;
+  s.particles[1].fall_speed = RunSummary::kNone;
   s.diagnostics = {{"stokes_iterations", 11.0}, {"divergence", 0.0011162864979271413}};
   EXPECT_EQ(
       RunSummaryJson(s),
@@ -117,11 +131,24 @@ TEST(RunSummary, TextKeepsTheLayoutOfTheResultsDirectory) {
       "  \"resumed_from_step\": -1,\n"
       "  \"title\": \"pair\",\n"
       "  \"version\": \"0.1.0\",\n"
+      "  \"fall_window\": [0.5, 1],\n"
+      "  \"fall_speed\": 0.135,\n"
+      "  \"diameter\": 0.2,\n"
+      "  \"min_gap\": 0.202,\n"
+      "  \"min_wall_gap\": 0.9,\n"
+      "  \"max_trA\": 3.25,\n"
+      "  \"min_eig_A\": 0.5,\n"
+      "  \"reynolds\": 0.225,\n"
+      "  \"deborah\": 0.945,\n"
+      "  \"mach\": 0.5,\n"
+      "  \"elasticity\": 4.2,\n"
       "  \"particles\": [\n"
-      "    {\"id\": 0, \"position\": [0.5, 7.25], \"velocity\": [-0.0014494669113040463, 1e-05], "
-      "\"angular_velocity\": 0, \"force\": [0, 0], \"torque\": 0},\n"
-      "    {\"id\": 1, \"position\": [0.5, 7.25], \"velocity\": [-0.0014494669113040463, 1e-05], "
-      "\"angular_velocity\": 0, \"force\": [0, 0], \"torque\": 0}\n"
+      "    {\"id\": 0, \"radius\": 0.1, \"position\": [0.5, 7.25], \"velocity\": "
+      "[-0.0014494669113040463, 1e-05], \"angular_velocity\": 0, \"force\": [0, 0], \"torque\": 0, "
+      "\"fall_speed\": 0.125},\n"
+      "    {\"id\": 1, \"radius\": 0.1, \"position\": [0.5, 7.25], \"velocity\": "
+      "[-0.0014494669113040463, 1e-05], \"angular_velocity\": 0, \"force\": [0, 0], \"torque\": 0, "
+      "\"fall_speed\": null}\n"
       "  ],\n"
       "  \"diagnostics\": {\"stokes_iterations\": 11, \"divergence\": 0.0011162864979271413},\n"
       "  \"warnings\": []\n"
@@ -183,6 +210,50 @@ TEST(RunSummary, ReadsBackWhatWasWritten) {
   EXPECT_EQ(p.force[1], 2.0);
   EXPECT_EQ(p.torque, in.particles[0].torque);
   EXPECT_EQ(out.diagnostics, in.diagnostics);
+}
+
+// The statistics of the whole run read back bit for bit; an older summary without them reads NaN.
+TEST(RunSummary, StatisticsReadBackAndAnOlderSummaryHasNaN) {
+  RunSummary in = FailedRun();
+  in.fall_window = {12.5, 25.0};
+  in.fall_speed = 0.13512345678901234;
+  in.diameter = 0.2;
+  in.min_gap = 0.0202;
+  in.min_wall_gap = 0.7;
+  in.max_trA = 31.5;
+  in.min_eig_A = 0.01;
+  in.reynolds = 0.225;
+  in.deborah = 0.945;
+  in.mach = 0.46;
+  in.elasticity = 4.2;
+  in.particles[0].radius = 0.1;
+  in.particles[0].fall_speed = 0.14;
+  const RunSummary out = ParseRunSummary(RunSummaryJson(in));
+  EXPECT_EQ(out.fall_window, in.fall_window);
+  EXPECT_EQ(out.fall_speed, in.fall_speed);
+  EXPECT_EQ(out.diameter, in.diameter);
+  EXPECT_EQ(out.min_gap, in.min_gap);
+  EXPECT_EQ(out.min_wall_gap, in.min_wall_gap);
+  EXPECT_EQ(out.max_trA, in.max_trA);
+  EXPECT_EQ(out.min_eig_A, in.min_eig_A);
+  EXPECT_EQ(out.reynolds, in.reynolds);
+  EXPECT_EQ(out.deborah, in.deborah);
+  EXPECT_EQ(out.mach, in.mach);
+  EXPECT_EQ(out.elasticity, in.elasticity);
+  ASSERT_EQ(out.particles.size(), 1u);
+  EXPECT_EQ(out.particles[0].radius, 0.1);
+  EXPECT_EQ(out.particles[0].fall_speed, 0.14);
+  const RunSummary older = ParseRunSummary(
+      "{\"status\": \"completed\", \"reason\": \"\", \"exit_code\": 0, \"steps\": 1, \"time\": 1, "
+      "\"end_time\": 1, \"wall_seconds\": 1, \"ms_per_step\": 1, \"resumed_from_step\": -1, "
+      "\"title\": \"\", \"version\": \"0.1.0\", \"particles\": [{\"id\": 0, \"position\": [0, 0], "
+      "\"velocity\": [0, 0], \"angular_velocity\": 0, \"force\": [0, 0], \"torque\": 0}], "
+      "\"diagnostics\": {}}");
+  EXPECT_TRUE(std::isnan(older.min_gap));
+  EXPECT_TRUE(std::isnan(older.fall_speed));
+  EXPECT_TRUE(std::isnan(older.fall_window[0]));
+  EXPECT_TRUE(std::isnan(older.particles[0].radius));
+  EXPECT_TRUE(std::isnan(older.particles[0].fall_speed));
 }
 
 TEST(RunSummary, FileRoundTripAndErrors) {

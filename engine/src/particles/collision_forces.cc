@@ -1,7 +1,9 @@
 // Collision forces (14)-(15) with cell lists; see particles/collision_forces.h.
 #include "dlmfd/particles/collision_forces.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace dlmfd {
@@ -111,34 +113,61 @@ int CollisionForces::Compute(const std::vector<Vec2>& positions, std::vector<Vec
   return contacts;
 }
 
-double CollisionForces::MinGap(const std::vector<Vec2>& positions, int* first, int* second) {
-  double gap = cell_size_;
-  int a = -10, b = -10;
-  ForEachNearPair(positions, [&](int i, int j, const Vec2& delta) {
+double CollisionForces::SurfaceGaps::Min() const {
+  if (std::isnan(pair)) return wall;
+  if (std::isnan(wall)) return pair;
+  return std::min(pair, wall);
+}
+
+CollisionForces::SurfaceGaps CollisionForces::Gaps(const std::vector<Vec2>& positions) {
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  SurfaceGaps gaps;
+  gaps.pair = gaps.wall = kNone;
+  const std::size_t n = positions.size();
+  auto consider = [&](int i, int j, const Vec2& delta) {
     const double g = delta.norm() - radii_[i] - radii_[j];
-    if (g < gap) {
-      gap = g;
-      a = i;
-      b = j;
+    if (std::isnan(gaps.pair) || g < gaps.pair) {
+      gaps.pair = g;
+      gaps.first = i;
+      gaps.second = j;
     }
-  });
-  for (std::size_t i = 0; i < positions.size(); ++i) {
+  };
+  ForEachNearPair(positions, consider);
+  // A pair outside neighbouring cells has d >= CellSize(), so its gap is >= CellSize() - 2 R_max.
+  double r_max = 0.0;
+  for (double r : radii_) r_max = std::max(r_max, r);
+  if (n >= 2 && !(gaps.pair < cell_size_ - 2.0 * r_max)) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i + 1; j < n; ++j) {
+        consider(static_cast<int>(i), static_cast<int>(j),
+                 MinimumImage(positions[i] - positions[j]));
+      }
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
     const Vec2& x = positions[i];
     const double dist[4] = {x.x() - grid_.x0, grid_.x0 + grid_.Width() - x.x(), x.y() - grid_.y0,
                             grid_.y0 + grid_.Height() - x.y()};
     for (int s = 0; s < 4; ++s) {
       if (!wall_[s]) continue;
       const double g = dist[s] - radii_[i];
-      if (g < gap) {
-        gap = g;
-        a = static_cast<int>(i);
-        b = -1 - s;
+      if (std::isnan(gaps.wall) || g < gaps.wall) {
+        gaps.wall = g;
+        gaps.wall_particle = static_cast<int>(i);
+        gaps.wall_side = s;
       }
     }
   }
-  if (first) *first = a;
-  if (second) *second = b;
-  return gap;
+  return gaps;
+}
+
+double CollisionForces::MinGap(const std::vector<Vec2>& positions, int* first, int* second) {
+  const SurfaceGaps gaps = Gaps(positions);
+  const bool wall_closer = std::isnan(gaps.pair) || gaps.wall < gaps.pair;
+  if (first) *first = wall_closer ? gaps.wall_particle : gaps.first;
+  if (second)
+    *second = wall_closer ? (gaps.wall_side >= 0 ? -1 - gaps.wall_side : -10) : gaps.second;
+  return gaps.Min();
 }
 
 }  // namespace dlmfd

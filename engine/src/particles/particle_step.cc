@@ -111,7 +111,7 @@ void ParticleStep::CheckSeparated(double time, const std::vector<ParticleState>&
   int first = -10, second = -10;
   for (std::size_t p = 0; p < particles.size(); ++p) x_[p] = particles[p].position;
   const double gap = collisions_.MinGap(x_, &first, &second);
-  if (gap >= 0.0) return;
+  if (!(gap < 0.0)) return;  // NaN: nothing to measure
   std::ostringstream what;
   what.precision(10);
   if (second >= 0) {
@@ -153,7 +153,10 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
   report.Set("multiplier_residual", outcome.residual);
   report.Set("multiplier_warm_start", outcome.warm_start ? 1.0 : 0.0);
   report.Set("collision_contacts", max_contacts_);
-  report.Set("particle_min_gap", n > 0 ? collisions_.MinGap(x_) : 0.0);
+  const CollisionForces::SurfaceGaps gaps = collisions_.Gaps(x_);
+  report.Set("particle_min_gap", gaps.Min());
+  report.Set("particle_pair_gap", gaps.pair);
+  report.Set("particle_wall_gap", gaps.wall);
   CheckSeparated(time + dt, particles);
 }
 

@@ -31,10 +31,24 @@ class CollisionForces {
   // contacts.
   int Compute(const std::vector<Vec2>& positions, std::vector<Vec2>& forces);
 
-  // Smallest surface gap d - R_i - R_j over neighbour pairs and R-to-wall distance over particles;
-  // pairs farther apart than the cell size are not examined, so the result is capped at CellSize().
-  // Sets *first and *second to the particle indices (second = -1 - side index for a wall, -10 if
-  // nothing was closer than the cap).
+  // The true smallest surface gaps at the given centres: over every pair, d - R_i - R_j (minimum
+  // image across periodic sides), and over every particle and non-periodic side, the distance to
+  // the side minus R_i. The cell lists find the closest pair when it is nearer than
+  // CellSize() - 2 R_max (no pair outside neighbouring cells can be nearer); otherwise every pair
+  // is examined, so the result is never capped. A gap with nothing to measure (fewer than two
+  // particles, or no wall) is NaN, and its indices are -10.
+  struct SurfaceGaps {
+    double pair = 0.0;
+    int first = -10, second = -10;  // the closest pair
+    double wall = 0.0;
+    int wall_particle = -10, wall_side = -10;  // the particle closest to a side, and the side
+    // The smaller of the two (NaN only when both are).
+    double Min() const;
+  };
+  SurfaceGaps Gaps(const std::vector<Vec2>& positions);
+
+  // Gaps(positions).Min(); sets *first and *second to the particle indices (second = -1 - side
+  // index for a wall, -10 if there was nothing to measure).
   double MinGap(const std::vector<Vec2>& positions, int* first = nullptr, int* second = nullptr);
 
   // Visits every unordered pair (i < j) whose centres lie in neighbouring cells (a superset of the

@@ -23,7 +23,9 @@
 // Positions are wrapped into the domain across periodic sides after (38).
 // Report columns: multiplier_iterations, multiplier_residual (max |E u - U - omega r_perp| at the
 // multiplier nodes), multiplier_warm_start, collision_contacts (max over the predictor sub-steps),
-// particle_min_gap (capped at 2 R_max + rho).
+// particle_pair_gap (the true smallest surface gap d - R_i - R_j over every pair),
+// particle_wall_gap (the smallest distance of a particle's surface to a non-periodic side) and
+// particle_min_gap (the smaller of the two); NaN where there is nothing to measure.
 // Neutrally buoyant free particles (rho_d = rho_L, m_e = 0): gravity and buoyancy cancel, so (36)
 //   keeps U^{n+2/4} = U^n (X^{n+2/4} = X^n + U^n dt), (38) has no push term, and the collision
 //   force F'_avg of the predictor goes to the fluid through the constraint sum_k nu_k = F'_avg of

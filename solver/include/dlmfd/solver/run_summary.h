@@ -3,11 +3,15 @@
 // failed run). This header is the one definition of the file, writer and reader.
 //
 // Keys, in this order: status (completed | failed | cancelled), reason, exit_code, steps, time,
-// end_time, wall_seconds, ms_per_step, resumed_from_step, title, version, particles [{id, position,
-// velocity, angular_velocity, force, torque}], diagnostics {the last StepReport's columns},
+// end_time, wall_seconds, ms_per_step, resumed_from_step, title, version, then the statistics of
+// the whole run (dlmfd/io/run_statistics.h): fall_window [t_a, t_b], fall_speed, diameter, min_gap,
+// min_wall_gap, max_trA, min_eig_A, reynolds, deborah, mach, elasticity; particles [{id, radius,
+// position, velocity, angular_velocity, force, torque, fall_speed}], diagnostics {the last
+// StepReport's columns},
 // warnings [{setting, value, allowed, key, current, suggested, source}] (the scene's settings
 // outside the accuracy envelope, dlmfd/scene/accuracy_envelope.h; a summary without the key, from
-// an older solver, reads as none).
+// an older solver, reads as none; the statistics and the particles' radius and fall_speed of an
+// older solver read as NaN).
 // One key per line, one line per particle. Integers stay JSON integers; a double is written as the
 // shortest text that reads back as the same double (an integral one without ".0"); non-finite
 // numbers are written as null (JSON has no NaN) and read back as NaN. Written through a temporary
@@ -15,6 +19,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -26,12 +31,15 @@ namespace dlmfd::solver {
 inline constexpr const char* kRunSummaryFile = "summary.json";
 
 struct RunSummary {
+  static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   struct Particle {
     long id = 0;
+    double radius = kNone;
     std::array<double, 2> position{}, velocity{};
     double angular_velocity = 0.0;
     std::array<double, 2> force{};  // what the fluid exerts over the last step
     double torque = 0.0;
+    double fall_speed = kNone;  // mean speed along gravity over the fall window
   };
 
   std::string status;  // completed, failed, cancelled
@@ -45,6 +53,13 @@ struct RunSummary {
   long resumed_from_step = -1;  // -1: not resumed
   std::string title;
   std::string version;
+  // The whole run (dlmfd/io/run_statistics.h); NaN where undefined.
+  std::array<double, 2> fall_window{kNone, kNone};
+  double fall_speed = kNone;  // U: mean over the free particles
+  double diameter = kNone;    // D: mean over the free particles
+  double min_gap = kNone, min_wall_gap = kNone;
+  double max_trA = kNone, min_eig_A = kNone;
+  double reynolds = kNone, deborah = kNone, mach = kNone, elasticity = kNone;
   std::vector<Particle> particles;
   std::vector<std::pair<std::string, double>> diagnostics;
   // A setting outside the accuracy envelope: which key to change, and to what.
