@@ -117,7 +117,7 @@ enum class BoundaryInterpolation { kQuadratic, kLinear };
 struct ParticleMeshParams {
   ParticleMeshKind kind = ParticleMeshKind::kRing;
   double h = 1.0 / 70;   // ring: multiplier mesh size > 0
-  double spacing = 1.5;  // collocation: boundary point spacing in units of domain.h, in [0.5, 4]
+  double spacing = 2.0;  // collocation: boundary point spacing in units of domain.h, in [0.5, 4]
   BoundaryInterpolation interpolation = BoundaryInterpolation::kQuadratic;  // collocation
 };
 
