@@ -72,8 +72,7 @@ struct SceneRun {
 class ParticleStepOnEachMesh : public ::testing::TestWithParam<ParticleMeshKind> {};
 
 INSTANTIATE_TEST_SUITE_P(Meshes, ParticleStepOnEachMesh,
-                         ::testing::Values(ParticleMeshKind::kRing,
-                                           ParticleMeshKind::kCollocation),
+                         ::testing::Values(ParticleMeshKind::kRing, ParticleMeshKind::kCollocation),
                          [](const ::testing::TestParamInfo<ParticleMeshKind>& mesh) {
                            return mesh.param == ParticleMeshKind::kRing ? "ring" : "collocation";
                          });
@@ -93,7 +92,8 @@ TEST_P(ParticleStepOnEachMesh, DiskAtRestInLiquidAtRestStaysAtRest) {
 }
 
 TEST_P(ParticleStepOnEachMesh, UniformTranslationOfFluidAndDiskIsLeftUnchanged) {
-  Params params = Scene(1.0, 1.0 / 48, true, GetParam());  // periodic: the uniform field is admissible
+  Params params =
+      Scene(1.0, 1.0 / 48, true, GetParam());  // periodic: the uniform field is admissible
   const Vec2 velocity(0.3, -0.1);
   params.particles.push_back(Disk(Vec2(0.5137, 0.4871), 1.5, velocity));
   SceneRun run(params);
