@@ -9,13 +9,20 @@
 #      about 0.7): |mean v over t in [0.6, 1] - Richardson limit of the study's own finest runs|
 #   d  a fixed disk in a channel (cases/verification/schaefer_turek_2d1.toml, channel 2.255 long so that
 #      D/h = 9.76, 19.5, 39, 78 fit): |Cd(t = 1.5) - Richardson limit of the study's own finest runs|
+#   e  the same flow run to its steady state (t = 5) against the Schaefer-Turek reference Cd = 5.57953523384:
+#      the ring multiplier mesh (particle_mesh.kind = ring, h_p / h = 96 / 70) and the collocation points
+#      (kind = collocation, quadratic) as series, wave advection, dt = h, D/h = 9.76 ... 78, and the peer's
+#      three points (Basilisk, ../shared/reference/peers.md: C_D and 1-thread ms per step on this machine
+#      type) as a third series; cost axis ms per step (the peer's table gives no step counts): ours as CPU
+#      ms per step (user + system over steps: a loaded machine stretches wall time far more than CPU time),
+#      the CSV also has our wall seconds and wall ms per step. Lift coefficients in docs/work_precision/e_lift.txt.
 # Each problem: an h ladder (dt proportional to h), a dt ladder and a tolerance ladder on the middle
 # grid, each for advection = least_squares and wave. Tolerance level L sets solvers.stokes_tolerance =
 # solvers.multiplier_tolerance = 1e-L and solvers.advection_tolerance = 1e-(L/2); the h and dt ladders use L = 6
 # (solver error far below discretisation error); the engine's defaults are L = 4, chosen from these ladders.
 #
 # Usage: bench/work_precision.sh [DLMFD_SOLVE]   (default build/solver/dlmfd-solve)
-# Env:   ONLY=a|b|c|d (or several, e.g. ONLY=ab)  WORK=runs/work_precision  WP_ERROR=<wp_error binary>
+# Env:   ONLY=a|b|c|d|e (or several, e.g. ONLY=ab)  E_SKIP="ring_h0.00128125 ..." (e: runs not to start)  WORK=runs/work_precision  WP_ERROR=<wp_error binary>
 #        WP_COST=wall_seconds|cpu_seconds (the charts' cost axis; default wall_seconds, take cpu_seconds
 #        on a loaded machine, where a one-thread run's wall time is mostly waiting)
 #        (default: bench/wp_error next to the solver's build)  DLMFD=<dlmfd CLI> (default build/client/dlmfd)
@@ -31,7 +38,7 @@ build=$(dirname "$(dirname "$solve")")
 wp_error=${WP_ERROR:-$build/bench/wp_error}
 dlmfd=${DLMFD:-$root/build/client/dlmfd}
 work=${WORK:-$root/runs/work_precision}
-only=${ONLY:-abcd}
+only=${ONLY:-abcde}
 cost=${WP_COST:-wall_seconds}
 [[ $cost == wall_seconds || $cost == cpu_seconds ]] || { echo "work_precision.sh: WP_COST must be wall_seconds or cpu_seconds, not $cost" >&2; exit 2; }
 data=$root/docs/work_precision
@@ -250,4 +257,50 @@ if [[ $only == *d* ]]; then
     "0.01025 0.005125 0.0025625 0.00128125" 1 "2 1 0.5" "2 4 6 8" st_sets
   finish d "$(extrapolated_reference d "Cd at t = 1.5")"
   chart d "Fixed disk in a channel: |Cd - extrapolated Cd| against wall s"
+fi
+
+# --- e: Schaefer-Turek drag against the reference, ring and collocation multipliers, and the peer -------
+st_steady_sets() {
+  echo "--set domain.h=$1 --set particle_mesh.h=$(awk -v h="$1" 'BEGIN { printf "%.12g", h * 96 / 70 }')" \
+       "--set domain.size=[2.255,0.41] --set time.end=5 --set output.fields_every=0 --set output.particles_every=0.1" \
+       "--set splitting.advection=wave"
+}
+if [[ $only == *e* ]]; then
+  raw=$data/e.csv
+  lift=$data/e_lift.txt
+  echo "problem,series,particle_mesh,ladder,h,dt,tolerance,status,cpu_seconds,wall_seconds,steps,ms_per_step,cpu_ms_per_step,value,error" > "$raw"
+  echo "# Cl = 2 Fy / (rho 0.2^2 0.1) at t = 5 (reference 0.010618948146)" > "$lift"
+  for kind in ring collocation; do
+    for h in 0.01025 0.005125 0.0025625 0.00128125; do
+      dir=$work/e/${kind}_h${h}
+      # E_SKIP="kind_hH ...": runs not to start (a finest run that this machine cannot afford now).
+      [[ " ${E_SKIP:-} " == *" ${kind}_h${h} "* && ! -f $dir/summary.json ]] && continue
+      # shellcheck disable=SC2046
+      run_case "$dir" "$root/cases/verification/schaefer_turek_2d1.toml" $(st_steady_sets "$h") --set time.dt="$h" \
+        --set particle_mesh.kind=$kind $(tolerance_sets 6) --set output.checkpoint_every=0
+      status=$(json_string "$dir" status)
+      value=nan
+      error=nan
+      if [[ $status == completed ]]; then
+        read -r value cl < <("$wp_error" particle "$dir" | awk '{ printf "%.10g %.6g\n", 2 * $7 / (0.2 * 0.2 * 0.1), 2 * $8 / (0.2 * 0.2 * 0.1) }')
+        error=$(awk -v v="$value" 'BEGIN { e = (v - 5.57953523384) / 5.57953523384; if (e < 0) e = -e; printf "%.6e", e }')
+        echo "$kind h=$h Cl=$cl" >> "$lift"
+      fi
+      steps=$(json_number "$dir" steps)
+      cpu_ms=$(awk -v c="$(cat "$dir.cpu")" -v n="$steps" 'BEGIN { printf "%.4g", 1e3 * c / n }')
+      echo "e,$kind,$kind,h+dt,$h,$h,1e-6,$status,$(cat "$dir.cpu"),$(json_number "$dir" wall_seconds),$steps,$(json_number "$dir" ms_per_step),$cpu_ms,$value,$error" >> "$raw"
+    done
+  done
+  # The peer (../shared/reference/peers.md, DFG 2D-1 table): grid, C_D, 1-thread ms per step.
+  while read -r h cd ms; do
+    error=$(awk -v v="$cd" 'BEGIN { e = (v - 5.57953523384) / 5.57953523384; if (e < 0) e = -e; printf "%.6e", e }')
+    echo "e,Basilisk (peers.md),embed,h,$h,nan,nan,completed,nan,nan,nan,$ms,$ms,$cd,$error" >> "$raw"
+  done <<'PEER'
+0.01025 5.5815 5.85
+0.005125 5.5613 21.1
+0.0025625 5.5698 62.1
+PEER
+  "$dlmfd" chart --csv "$raw" --xcol cpu_ms_per_step --ycol error --group series --logx --logy --markers \
+    --title "Schaefer-Turek 2D-1: |Cd - 5.5795| / 5.5795 against CPU ms per step" --out "$figures/wp_e.png" > /dev/null
+  echo "chart $figures/wp_e.png" >&2
 fi

@@ -37,8 +37,9 @@ struct Drag {
   double last_change = 0.0;  // |F_x(end) - F_x(end - 10 dt)|
 };
 
-Drag SteadyDrag(int cells) {
+Drag SteadyDrag(int cells, ParticleMeshKind kind) {
   Params params;
+  params.particle_mesh.kind = kind;
   params.domain.size = Vec2(1.0, 1.0);
   params.domain.h = 1.0 / cells;
   params.domain.sides[0].type = params.domain.sides[1].type = SideType::kPeriodic;
@@ -89,16 +90,18 @@ double ObservedOrder(double h1, double h2, double h3, double d12, double d23) {
   return 0.5 * (lo + hi);
 }
 
-TEST(ParticleDrag, FixedDiskInAChannelConvergesAtFirstOrder) {
-  const std::vector<int> cells = {16, 24, 32};  // 1/48 (in the study) costs 3x the three together
+// Monotone convergence at an observed order in [0.8, 1.2] on these grids, each run steady to
+// steady_bound (the drag change over its last 10 steps).
+void CheckFirstOrder(const std::vector<int>& cells, ParticleMeshKind kind, double steady_bound,
+                     const char* label) {
   std::vector<double> h, force;
   for (int n : cells) {
-    const Drag drag = SteadyDrag(n);
+    const Drag drag = SteadyDrag(n, kind);
     h.push_back(1.0 / n);
     force.push_back(drag.force);
-    std::printf("h = 1/%-3d F_x = %.6f  (change over the last 10 steps %.1e)\n", n, drag.force,
-                drag.last_change);
-    EXPECT_LT(drag.last_change, 1e-5);
+    std::printf("%s: h = 1/%-3d F_x = %.6f  (change over the last 10 steps %.1e)\n", label, n,
+                drag.force, drag.last_change);
+    EXPECT_LT(drag.last_change, steady_bound);
   }
   for (std::size_t k = 1; k < force.size(); ++k) {
     EXPECT_GT(force[k], force[k - 1]) << "refinement " << k;
@@ -108,11 +111,29 @@ TEST(ParticleDrag, FixedDiskInAChannelConvergesAtFirstOrder) {
                                    force[k] - force[k - 1]);
     const double limit =
         force[k] + (force[k] - force[k - 1]) / (std::pow(h[k - 1] / h[k], p) - 1.0);
-    std::printf("grids 1/%d, 1/%d, 1/%d: observed order %.3f, extrapolated F_x %.5f\n",
+    std::printf("%s: grids 1/%d, 1/%d, 1/%d: observed order %.3f, extrapolated F_x %.5f\n", label,
                 cells[k - 2], cells[k - 1], cells[k], p, limit);
     EXPECT_GE(p, 0.8);
     EXPECT_LE(p, 1.2);
   }
+}
+
+TEST(ParticleDrag, FixedDiskInAChannelConvergesAtFirstOrder) {
+  // 1/48 (in the study) costs 3x the three together.
+  CheckFirstOrder({16, 24, 32}, ParticleMeshKind::kRing, 1e-5, "ring");
+}
+
+// The collocation points (quadratic boundary interpolation, spacing 2 h) at the same diffusion
+// number 2. Study (Release, this scene): F_x = 0.294388, 0.392136, 0.436654, 0.481829, 0.506085 on
+// h = 1/16, 1/24, 1/32, 1/48, 1/64 (R / h = 2 to 8); observed orders 1.2 (16-24-32, R / h <= 4:
+// not yet asymptotic), 0.97 (24-32-48) and 0.9 (32-48-64). The same first order as the ring mesh
+// here: at eta dt / (rho h^2) = 2 the drag is limited by the split of the constraint (37) from the
+// viscous step (33) (particle-coupling.md section 2), not by where the points sit; at 0.25 the
+// grids 1/24 ... 1/48 give 0.516, 0.521, 0.532 (ring 0.538, 0.541, 0.544), a different limit. Hence
+// the same bounds as the ring mesh on the grids past R / h = 2, and steadiness to 1e-3 of the
+// smallest grid-to-grid difference (0.045), as for the ring: 4.5e-5 (measured 1.0e-5 on 1/48).
+TEST(ParticleDrag, FixedDiskInAChannelConvergesAtFirstOrderWithCollocationPoints) {
+  CheckFirstOrder({24, 32, 48}, ParticleMeshKind::kCollocation, 4.5e-5, "collocation");
 }
 
 }  // namespace

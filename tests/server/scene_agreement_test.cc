@@ -104,6 +104,15 @@ std::vector<SceneCase> Cases() {
       {"HugeGrid", "", {"domain.h=0.0001"}, "domain.h"},
       {"TinyGrid", "", {"domain.h=1e-300"}, "domain.h"},
       {"TinyParticleMesh", Disk(0.5, 0.5, 1.5), {"particle_mesh.h=1e-300"}, "particle_mesh.h"},
+      {"CollocationSpacingTooSmall",
+       Disk(0.5, 0.5, 1.5),
+       {"particle_mesh.kind=collocation", "particle_mesh.spacing=0.1"},
+       "particle_mesh.spacing"},
+      {"CollocationPoints", Disk(0.5, 0.5, 1.5), {"particle_mesh.kind=collocation"}, ""},
+      {"ParticleMeshKindUnknown",
+       Disk(0.5, 0.5, 1.5),
+       {"particle_mesh.kind=cut_cell"},
+       "particle_mesh.kind"},
       // The accuracy envelope (scene/accuracy_envelope.h): a warning for both, a rejection for
       // both with accuracy.strict = true.
       // U dt / h = 0.8 > 0.64; D / h = 3.2 < 120.

@@ -128,6 +128,12 @@ TEST(AccuracyEnvelope, SettingsAreTheDimensionlessNumbersOfTheScene) {
   EXPECT_EQ(st[4].name, "D / h_p (particles.0)");
   EXPECT_NEAR(st[4].value, 0.1 / 0.006857142857142857, 1e-12);
   EXPECT_DOUBLE_EQ(st[2].value, 0.3);  // the inflow's peak
+
+  // Collocation points: h_p is their boundary spacing c h (c = 2 by default), not particle_mesh.h.
+  const std::vector<AccuracySetting> sc =
+      AccuracySettings(Scene(kSchaeferTurek, {"particle_mesh.kind=\"collocation\""}));
+  ASSERT_EQ(sc.size(), 5u);
+  EXPECT_NEAR(sc[4].value, 0.1 / (2.0 * 0.005), 1e-12);
 }
 
 TEST(AccuracyEnvelope, FallSpeedEstimateIsTheSmallerOfTheInertialAndViscousScales) {

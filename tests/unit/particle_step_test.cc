@@ -18,8 +18,10 @@
 namespace dlmfd {
 namespace {
 
-Params Scene(double size, double h, bool periodic) {
+Params Scene(double size, double h, bool periodic,
+             ParticleMeshKind kind = ParticleMeshKind::kRing) {
   Params params;
+  params.particle_mesh.kind = kind;
   params.domain.size = Vec2(size, size);
   params.domain.h = h;
   for (auto& side : params.domain.sides)
@@ -65,8 +67,18 @@ struct SceneRun {
   }
 };
 
-TEST(ParticleStep, DiskAtRestInLiquidAtRestStaysAtRest) {
-  Params params = Scene(1.0, 1.0 / 48, false);
+// The properties that hold for both multiplier point sets: the ring mesh and the collocation points
+// (quadratic at the boundary points).
+class ParticleStepOnEachMesh : public ::testing::TestWithParam<ParticleMeshKind> {};
+
+INSTANTIATE_TEST_SUITE_P(Meshes, ParticleStepOnEachMesh,
+                         ::testing::Values(ParticleMeshKind::kRing, ParticleMeshKind::kCollocation),
+                         [](const ::testing::TestParamInfo<ParticleMeshKind>& mesh) {
+                           return mesh.param == ParticleMeshKind::kRing ? "ring" : "collocation";
+                         });
+
+TEST_P(ParticleStepOnEachMesh, DiskAtRestInLiquidAtRestStaysAtRest) {
+  Params params = Scene(1.0, 1.0 / 48, false, GetParam());
   params.particles.push_back(Disk(Vec2(0.5137, 0.4871), 1.01));
   SceneRun run(params);
   for (int k = 0; k < 50; ++k) run.Advance();
@@ -79,8 +91,9 @@ TEST(ParticleStep, DiskAtRestInLiquidAtRestStaysAtRest) {
   EXPECT_EQ(*std::min_element(run.v.begin(), run.v.end()), 0.0);
 }
 
-TEST(ParticleStep, UniformTranslationOfFluidAndDiskIsLeftUnchanged) {
-  Params params = Scene(1.0, 1.0 / 48, true);  // periodic: the uniform field is admissible
+TEST_P(ParticleStepOnEachMesh, UniformTranslationOfFluidAndDiskIsLeftUnchanged) {
+  Params params =
+      Scene(1.0, 1.0 / 48, true, GetParam());  // periodic: the uniform field is admissible
   const Vec2 velocity(0.3, -0.1);
   params.particles.push_back(Disk(Vec2(0.5137, 0.4871), 1.5, velocity));
   SceneRun run(params);
@@ -100,9 +113,9 @@ TEST(ParticleStep, UniformTranslationOfFluidAndDiskIsLeftUnchanged) {
   EXPECT_NEAR((p.position - expected).norm(), 0.0, 1e-12);
 }
 
-TEST(ParticleStep, HydrodynamicForceSatisfiesTheMomentumIdentity) {
+TEST_P(ParticleStepOnEachMesh, HydrodynamicForceSatisfiesTheMomentumIdentity) {
   // Two disks inside each other's collision range, under gravity, in a non-rigid liquid.
-  Params params = Scene(1.0, 1.0 / 48, false);
+  Params params = Scene(1.0, 1.0 / 48, false, GetParam());
   params.gravity = Vec2(0.0, -981.0);
   params.particles.push_back(Disk(Vec2(0.4, 0.45), 1.01, Vec2(0.2, 0.0)));
   params.particles.push_back(Disk(Vec2(0.4 + 0.2 + 0.02, 0.47), 1.5, Vec2(-0.1, 0.1)));
@@ -138,10 +151,10 @@ TEST(ParticleStep, HydrodynamicForceSatisfiesTheMomentumIdentity) {
   }
 }
 
-TEST(ParticleStep, NeutrallyBuoyantDiskFloatsWithAUniformFlowUnderGravity) {
+TEST_P(ParticleStepOnEachMesh, NeutrallyBuoyantDiskFloatsWithAUniformFlowUnderGravity) {
   // rho_d = rho_L: gravity is balanced by buoyancy, the disk is carried by the flow, and the
   // hydrodynamic force is the buoyancy -rho_L Vp g = -M g.
-  Params params = Scene(1.0, 1.0 / 48, true);
+  Params params = Scene(1.0, 1.0 / 48, true, GetParam());
   params.gravity = Vec2(0.0, -981.0);
   const Vec2 velocity(0.3, -0.1);
   params.particles.push_back(Disk(Vec2(0.5137, 0.4871), 1.0, velocity));
@@ -164,9 +177,9 @@ TEST(ParticleStep, NeutrallyBuoyantDiskFloatsWithAUniformFlowUnderGravity) {
   EXPECT_NEAR((p.position - expected).norm(), 0.0, 1e-12);
 }
 
-TEST(ParticleStep, NeutrallyBuoyantDiskSatisfiesTheMomentumIdentityInContact) {
+TEST_P(ParticleStepOnEachMesh, NeutrallyBuoyantDiskSatisfiesTheMomentumIdentityInContact) {
   // A neutral disk (its collision force goes to the fluid through (37)) next to a heavy one.
-  Params params = Scene(1.0, 1.0 / 48, false);
+  Params params = Scene(1.0, 1.0 / 48, false, GetParam());
   params.gravity = Vec2(0.0, -981.0);
   params.particles.push_back(Disk(Vec2(0.4, 0.45), 1.0, Vec2(0.2, 0.0)));
   params.particles.push_back(Disk(Vec2(0.4 + 0.2 + 0.02, 0.47), 1.5, Vec2(-0.1, 0.1)));
@@ -199,8 +212,8 @@ TEST(ParticleStep, NeutrallyBuoyantDiskSatisfiesTheMomentumIdentityInContact) {
   }
 }
 
-TEST(ParticleStep, FixedDiskFeelsMinusTheNodalForceSum) {
-  Params params = Scene(1.0, 1.0 / 48, false);
+TEST_P(ParticleStepOnEachMesh, FixedDiskFeelsMinusTheNodalForceSum) {
+  Params params = Scene(1.0, 1.0 / 48, false, GetParam());
   params.particles.push_back(Disk(Vec2(0.5137, 0.4871), 1.5));
   params.particles[0].motion = Motion::kFixed;
   SceneRun run(params);
@@ -232,13 +245,13 @@ double MinGapOfRun(const Params& params, int steps, const char* label) {
   return min_gap;
 }
 
-TEST(ParticleStep, TwoDisksPushedTogetherNeverTouch) {
+TEST_P(ParticleStepOnEachMesh, TwoDisksPushedTogetherNeverTouch) {
   const double h = 1.0 / 96;
   // At rho_d = 1.01 and speed 0.5 the disks stop before the range (momentum goes to the liquid).
   const std::pair<double, double> cases[] = {{1.01, 2.0}, {1.5, 0.5}, {1.5, 2.0}};
   for (const auto& [density, speed] : cases) {
     {
-      Params params = Scene(1.0, h, false);
+      Params params = Scene(1.0, h, false, GetParam());
       params.particles.push_back(Disk(Vec2(0.4 - h, 0.5), density, Vec2(speed, 0.0)));
       params.particles.push_back(Disk(Vec2(0.6 + h, 0.5), density, Vec2(-speed, 0.0)));
       char label[96];
@@ -251,13 +264,13 @@ TEST(ParticleStep, TwoDisksPushedTogetherNeverTouch) {
   }
 }
 
-TEST(ParticleStep, DisksStackedUnderGravityNeverTouch) {
+TEST_P(ParticleStepOnEachMesh, DisksStackedUnderGravityNeverTouch) {
   // A sustained push: the lower disk settles on the bottom wall and the upper one on it. Only
   // rho_d = 1.01 (the paper's pairs): without viscous drag a rho_d = 1.5 disk reaches the wall at
   // about 5 cm/s, where the notes (1.7) predict, and the engine reports, an overlap.
   const double h = 1.0 / 96;
   for (double density : {1.01}) {
-    Params params = Scene(1.0, h, false);
+    Params params = Scene(1.0, h, false, GetParam());
     params.gravity = Vec2(0.0, -981.0);
     params.particles.push_back(Disk(Vec2(0.5, 0.1 + 3 * h), density));
     params.particles.push_back(Disk(Vec2(0.5, 0.3 + 6 * h), density));
@@ -269,12 +282,12 @@ TEST(ParticleStep, DisksStackedUnderGravityNeverTouch) {
   }
 }
 
-TEST(ParticleStep, DiskPushedAtAWallNeverTouches) {
+TEST_P(ParticleStepOnEachMesh, DiskPushedAtAWallNeverTouches) {
   const double h = 1.0 / 96;
   // rho_d = 1.01 stops before the range from these speeds; the stack test pushes it onto the wall.
   for (double density : {1.5}) {
     for (double speed : {0.5, 2.0}) {
-      Params params = Scene(1.0, h, false);
+      Params params = Scene(1.0, h, false, GetParam());
       params.particles.push_back(Disk(Vec2(0.5, 0.1 + 2 * h), density, Vec2(0.0, -speed)));
       char label[96];
       std::snprintf(label, sizeof label, "wall, rho_d = %.2f, approach speed %.1f", density, speed);

@@ -176,6 +176,14 @@ const BadScene kBadScenes[] = {
      "solvers.multiplier_max_iterations", "10.5"},
     {"WaveCourantZero", "[solvers]\nwave_max_courant = 0.0\n", "solvers.wave_max_courant", "0.0"},
     {"ParticleMeshHZero", "[particle_mesh]\nh = 0.0\n", "particle_mesh.h", "0.0"},
+    {"ParticleMeshKindUnknown", "[particle_mesh]\nkind = \"cut_cell\"\n", "particle_mesh.kind",
+     "\"cut_cell\""},
+    {"CollocationSpacingBelowHalf", "[particle_mesh]\nkind = \"collocation\"\nspacing = 0.25\n",
+     "particle_mesh.spacing", "0.25"},
+    {"CollocationSpacingAboveFour", "[particle_mesh]\nspacing = 5.0\n", "particle_mesh.spacing",
+     "5.0"},
+    {"BoundaryInterpolationUnknown", "[particle_mesh]\ninterpolation = \"cubic\"\n",
+     "particle_mesh.interpolation", "\"cubic\""},
     {"ParticleMeshTiny",
      "[particle_mesh]\nh = 1e-300\n[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n",
      "particle_mesh.h", "1e-300"},
@@ -545,7 +553,10 @@ void ExpectSameParams(const Params& a, const Params& b) {
     EXPECT_EQ(a.particles[i].angular_velocity, b.particles[i].angular_velocity);
     EXPECT_EQ(a.particles[i].motion, b.particles[i].motion);
   }
+  EXPECT_EQ(a.particle_mesh.kind, b.particle_mesh.kind);
   EXPECT_EQ(a.particle_mesh.h, b.particle_mesh.h);
+  EXPECT_EQ(a.particle_mesh.spacing, b.particle_mesh.spacing);
+  EXPECT_EQ(a.particle_mesh.interpolation, b.particle_mesh.interpolation);
   EXPECT_EQ(a.collisions.range, b.collisions.range);
   EXPECT_EQ(a.collisions.wall_stiffness, b.collisions.wall_stiffness);
   EXPECT_EQ(a.collisions.particle_stiffness, b.collisions.particle_stiffness);
@@ -587,6 +598,9 @@ TEST(SceneFile, WriteSceneRoundTripsAwkwardValues) {
   p.splitting.beta = 0.0;
   p.splitting.advection = AdvectionScheme::kWave;
   p.collisions.substeps = 7;
+  p.particle_mesh.kind = ParticleMeshKind::kCollocation;
+  p.particle_mesh.spacing = 1.0 / 0.7;
+  p.particle_mesh.interpolation = BoundaryInterpolation::kLinear;
   ParticleParams q;
   q.center = Vec2(p.domain.size.x() / 2.0, p.domain.size.y() / 2.0);
   q.diameter = 0.1 / 3.0;

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string>
 
+#include "../mesh/macro_triangle_stencil.h"
 #include "../mesh/point_location.h"
 #include "dlmfd/core/errors.h"
 
@@ -30,11 +31,13 @@ CouplingOperator::CouplingOperator(const Params& params, const Grid& grid, std::
     dirichlet_[s] = type == SideType::kWall || type == SideType::kVelocity;
     neumann_[s] = type == SideType::kOutflow;
   }
-  stencil_node_.assign(3 * max_points, 0);
-  stencil_slot_.assign(3 * max_points, 0);
-  stencil_weight_.assign(3 * max_points, 0.0);
-  stencil_scatter_.assign(3 * max_points, 0.0);
   const std::size_t max_slots = MaxSlots();
+  stencil_start_.assign(max_points + 1, 0);
+  stencil_node_.assign(max_slots, 0);
+  stencil_slot_.assign(max_slots, 0);
+  stencil_point_.assign(max_slots, 0);
+  stencil_weight_.assign(max_slots, 0.0);
+  stencil_scatter_.assign(max_slots, 0.0);
   touched_.assign(max_slots + 1, 0);
   stamp_.assign(grid.NodeCount(), -1);
   slot_of_.assign(grid.NodeCount(), 0);
@@ -61,55 +64,76 @@ double CouplingOperator::InverseNodeMass(int i, int j) const {
   return 1.0 / (fluid_density_ * grid_.h * grid_.h * factor);
 }
 
+void CouplingOperator::AddEntry(std::size_t point, int i, int j, double weight) {
+  const std::size_t entry = entries_++;
+  stencil_point_[entry] = static_cast<std::uint32_t>(point);
+  const std::size_t node = grid_.Index(i, j);
+  const double scatter = weight * InverseNodeMass(i, j);
+  stencil_node_[entry] = static_cast<std::uint32_t>(node);
+  stencil_weight_[entry] = weight;
+  stencil_scatter_[entry] = scatter;
+  stencil_slot_[entry] = 0;
+  if (scatter != 0.0) {
+    if (stamp_[node] != stamp_counter_) {
+      stamp_[node] = stamp_counter_;
+      slot_of_[node] = static_cast<std::uint32_t>(++slot_count_);
+      touched_[slot_count_] = static_cast<std::uint32_t>(node);
+    }
+    stencil_slot_[entry] = slot_of_[node];
+  }
+}
+
+void CouplingOperator::ThrowCrossing(double time, const MultiplierPoints& points,
+                                     const ParticleState& particle, std::size_t p, int side) const {
+  const bool low = side == 0 || side == 2;
+  const bool along_x = side < 2;
+  const double extent = along_x ? grid_.Width() : grid_.Height();
+  const double origin = along_x ? grid_.x0 : grid_.y0;
+  const double coordinate = along_x ? particle.position.x() : particle.position.y();
+  const double distance = low ? coordinate - origin : origin + extent - coordinate;
+  std::ostringstream what;
+  what << "particle " << particle.id << " crosses the " << SideName(side) << " side at t = " << time
+       << " (gap = " << distance - points.Radius(p) << ")";
+  throw ParticlesOverlap(what.str());
+}
+
 void CouplingOperator::Build(double time, double dt, const MultiplierPoints& points,
                              const std::vector<ParticleState>& particles) {
   ++stamp_counter_;
   slot_count_ = 0;
+  entries_ = 0;
   for (std::size_t p = 0; p < particles.size(); ++p) {
     const std::vector<Vec2>& relative = points.Points(p);
     const Vec2& centre = particles[p].position;
     for (int k = 0; k < points.Count(p); ++k) {
       const Vec2 y = centre + relative[k];
-      kernels::P1Stencil stencil;
       int side = 0;
-      if (!kernels::LocatePoint(grid_, periodic_x_, periodic_y_, y.x(), y.y(), &stencil, &side)) {
-        const bool low = side == 0 || side == 2;
-        const bool along_x = side < 2;
-        const double extent = along_x ? grid_.Width() : grid_.Height();
-        const double origin = along_x ? grid_.x0 : grid_.y0;
-        const double coordinate = along_x ? centre.x() : centre.y();
-        const double distance = low ? coordinate - origin : origin + extent - coordinate;
-        std::ostringstream what;
-        what << "particle " << particles[p].id << " crosses the " << SideName(side)
-             << " side at t = " << time << " (gap = " << distance - points.Radius(p) << ")";
-        throw ParticlesOverlap(what.str());
-      }
-      for (int q = 0; q < 3; ++q) {
-        const std::size_t entry = 3 * (points.Begin(p) + k) + q;
-        const std::size_t node = grid_.Index(stencil.i[q], stencil.j[q]);
-        const double weight = stencil.weight[q];
-        const double scatter = weight * InverseNodeMass(stencil.i[q], stencil.j[q]);
-        stencil_node_[entry] = static_cast<std::uint32_t>(node);
-        stencil_weight_[entry] = weight;
-        stencil_scatter_[entry] = scatter;
-        stencil_slot_[entry] = 0;
-        if (scatter != 0.0) {
-          if (stamp_[node] != stamp_counter_) {
-            stamp_[node] = stamp_counter_;
-            slot_of_[node] = static_cast<std::uint32_t>(++slot_count_);
-            touched_[slot_count_] = static_cast<std::uint32_t>(node);
-          }
-          stencil_slot_[entry] = slot_of_[node];
+      stencil_start_[points.Begin(p) + k] = entries_;
+      if (points.Quadratic(p, k)) {
+        kernels::P2Stencil stencil;
+        if (!kernels::LocatePointQuadratic(grid_, periodic_x_, periodic_y_, y.x(), y.y(), &stencil,
+                                           &side)) {
+          ThrowCrossing(time, points, particles[p], p, side);
         }
+        for (int q = 0; q < 6; ++q)
+          AddEntry(points.Begin(p) + k, stencil.i[q], stencil.j[q], stencil.weight[q]);
+      } else {
+        kernels::P1Stencil stencil;
+        if (!kernels::LocatePoint(grid_, periodic_x_, periodic_y_, y.x(), y.y(), &stencil, &side)) {
+          ThrowCrossing(time, points, particles[p], p, side);
+        }
+        for (int q = 0; q < 3; ++q)
+          AddEntry(points.Begin(p) + k, stencil.i[q], stencil.j[q], stencil.weight[q]);
       }
     }
   }
+  stencil_start_[points.Total()] = entries_;
   BuildSpreading(dt);
 }
 
 void CouplingOperator::BuildSpreading(double dt) {
   // Counting sort of the stencil entries by slot; entries stay in stacked point order per slot.
-  const std::size_t entries = 3 * max_points_;
+  const std::size_t entries = entries_;
   std::fill(spread_start_.begin(), spread_start_.begin() + slot_count_ + 2, 0);
   for (std::size_t q = 0; q < entries; ++q) {
     if (stencil_slot_[q] != 0) ++spread_start_[stencil_slot_[q] + 1];
@@ -121,7 +145,7 @@ void CouplingOperator::BuildSpreading(double dt) {
   for (std::size_t q = 0; q < entries; ++q) {
     if (stencil_slot_[q] == 0) continue;
     const std::size_t at = spread_cursor_[stencil_slot_[q]]++;
-    spread_source_[at] = static_cast<std::uint32_t>(q / 3);
+    spread_source_[at] = stencil_point_[q];
     spread_weight_[at] = dt * stencil_scatter_[q];
   }
 }

@@ -1,22 +1,56 @@
-// The stacked ring-mesh multiplier points; see particles/multiplier_points.h.
+// The stacked multiplier points (ring mesh or collocation); see particles/multiplier_points.h.
 #include "dlmfd/particles/multiplier_points.h"
+
+#include <algorithm>
 
 namespace dlmfd {
 
-void MultiplierPoints::Add(double radius, double mesh_size) {
+MultiplierPoints::MultiplierPoints(const ParticleMeshParams& mesh, double fluid_h)
+    : mesh_(mesh),
+      fluid_h_(fluid_h) {}
+
+MultiplierPoints MultiplierPoints::ForScene(const Params& params) {
+  MultiplierPoints points(params.particle_mesh, params.domain.h);
+  for (const ParticleParams& p : params.particles) points.Add(p.Radius());
+  return points;
+}
+
+void MultiplierPoints::Add(double radius) {
   int found = -1;
-  for (std::size_t m = 0; m < meshes_.size(); ++m) {
-    if (meshes_[m].radius() == radius) found = static_cast<int>(m);
+  for (std::size_t m = 0; m < radius_.size(); ++m) {
+    if (radius_[m] == radius) found = static_cast<int>(m);
   }
   if (found < 0) {
-    meshes_.emplace_back(radius, mesh_size);
-    found = static_cast<int>(meshes_.size()) - 1;
+    if (mesh_.kind == ParticleMeshKind::kRing) {
+      meshes_.emplace_back(radius, mesh_.h);
+    } else {
+      collocation_.emplace_back(radius, fluid_h_, mesh_.spacing, mesh_.interpolation);
+    }
+    radius_.push_back(radius);
+    found = static_cast<int>(radius_.size()) - 1;
   }
-  mesh_of_.push_back(found);
-  offset_.push_back(offset_.back() + meshes_[found].NodeCount());
+  set_of_.push_back(found);
+  offset_.push_back(offset_.back() + SetCount(found));
+}
+
+int MultiplierPoints::SetCount(std::size_t m) const {
+  return mesh_.kind == ParticleMeshKind::kRing ? meshes_[m].NodeCount() : collocation_[m].Count();
+}
+
+const std::vector<Vec2>& MultiplierPoints::SetPoints(std::size_t m) const {
+  return mesh_.kind == ParticleMeshKind::kRing ? meshes_[m].nodes() : collocation_[m].points();
+}
+
+void MultiplierPoints::ApplySetProduct(std::size_t m, const double* in, double* out) const {
+  if (mesh_.kind == ParticleMeshKind::kRing) {
+    meshes_[m].ApplyGram2(in, out);
+  } else {
+    std::copy(in, in + 2 * collocation_[m].Count(), out);
+  }
 }
 
 double MultiplierPoints::RoundOffWeight(std::size_t p) const {
+  if (mesh_.kind == ParticleMeshKind::kCollocation) return 2.0 * Count(p);
   const ParticleMesh& mesh = Mesh(p);
   const double ratio =
       mesh.radius() /

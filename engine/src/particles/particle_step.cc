@@ -9,7 +9,7 @@
 
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
-#include "dlmfd/particles/particle_mesh.h"
+#include "dlmfd/particles/multiplier_points.h"
 #include "dlmfd/particles/particle_rules.h"
 
 namespace dlmfd {
@@ -163,7 +163,7 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
 std::vector<ParticleState> ParticleStep::InitialStates(const Params& params) {
   std::vector<ParticleState> states;
   const Grid grid = params.domain.VelocityGrid();
-  std::vector<ParticleMesh> meshes;
+  const MultiplierPoints points = MultiplierPoints::ForScene(params);
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
     const ParticleParams& pp = params.particles[p];
     ParticleState s;
@@ -174,15 +174,7 @@ std::vector<ParticleState> ParticleStep::InitialStates(const Params& params) {
     s.radius = pp.Radius();
     s.density = pp.density;
     s.motion = pp.motion;
-    const ParticleMesh* mesh = nullptr;
-    for (const auto& m : meshes) {
-      if (m.radius() == s.radius) mesh = &m;
-    }
-    if (!mesh) {
-      meshes.emplace_back(s.radius, params.particle_mesh.h);
-      mesh = &meshes.back();
-    }
-    s.multiplier.assign(2 * mesh->NodeCount(), 0.0);
+    s.multiplier.assign(2 * static_cast<std::size_t>(points.Count(p)), 0.0);
     states.push_back(std::move(s));
   }
   // The scene rules of the particles (inside the domain, apart, DLM well posed), defined once in

@@ -26,11 +26,12 @@ RigidBodyConstraint::RigidBodyConstraint(const Params& params, const Grid& grid)
   RequireIndexableGrid(params, grid);
   const double fluid_density = params.fluid.density;
   const std::size_t n = params.particles.size();
+  points_ = MultiplierPoints(params.particle_mesh, params.domain.h);
   std::vector<RigidModes::Body> bodies(n);
   for (std::size_t p = 0; p < n; ++p) {
     const ParticleParams& pp = params.particles[p];
     const double radius = pp.Radius();
-    points_.Add(radius, params.particle_mesh.h);
+    points_.Add(radius);
     const double excess_mass = (pp.density - fluid_density) * kPi * radius * radius;
     const bool free = pp.motion == Motion::kFree;
     const bool neutral = free && pp.density == fluid_density;

@@ -99,7 +99,11 @@ std::vector<AccuracySetting> AccuracySettings(const Params& p) {
   for (std::size_t i = 0; i < p.particles.size(); ++i) {
     const std::string which = " (particles." + std::to_string(i) + ")";
     s.push_back({"D / h" + which, p.particles[i].diameter / h});
-    s.push_back({"D / h_p" + which, p.particles[i].diameter / p.particle_mesh.h});
+    // The multiplier point spacing: h_p of the ring mesh, c h on the collocation circle.
+    const double point_spacing = p.particle_mesh.kind == ParticleMeshKind::kRing
+                                     ? p.particle_mesh.h
+                                     : p.particle_mesh.spacing * h;
+    s.push_back({"D / h_p" + which, p.particles[i].diameter / point_spacing});
   }
   return s;
 }

@@ -127,8 +127,17 @@ void ReadSolvers(TableReader& top, Params& p) {
 
 void ReadMeshCollisionsConformationOutput(TableReader& top, Params& p) {
   TableReader mesh(top.Table("particle_mesh"), "particle_mesh");
-  p.particle_mesh.h = mesh.Real("h", p.particle_mesh.h);
-  mesh.RejectUnknown("h");
+  ParticleMeshParams& pm = p.particle_mesh;
+  pm.kind = Choose<ParticleMeshKind>(
+      "particle_mesh.kind", mesh.String("kind", "ring"),
+      {{"ring", ParticleMeshKind::kRing}, {"collocation", ParticleMeshKind::kCollocation}});
+  pm.h = mesh.Real("h", pm.h);
+  pm.spacing = mesh.Real("spacing", pm.spacing);
+  pm.interpolation = Choose<BoundaryInterpolation>(
+      "particle_mesh.interpolation", mesh.String("interpolation", "quadratic"),
+      {{"quadratic", BoundaryInterpolation::kQuadratic},
+       {"linear", BoundaryInterpolation::kLinear}});
+  mesh.RejectUnknown("kind, h, spacing, interpolation");
 
   TableReader col(top.Table("collisions"), "collisions");
   CollisionParams& c = p.collisions;

@@ -19,7 +19,14 @@ SceneFootprint EstimateFootprint(const Params& params) {
   const double nx = std::round(d.size.x() / d.h);
   const double ny = std::round(d.size.y() / d.h);
   f.velocity_nodes = Saturated((nx + 1.0) * (ny + 1.0));
+  const bool collocation = params.particle_mesh.kind == ParticleMeshKind::kCollocation;
   for (const ParticleParams& q : params.particles) {
+    if (collocation) {
+      const double r = q.Radius() / d.h;
+      f.multiplier_nodes = Saturated(f.multiplier_nodes + kPi * r * r +
+                                     2.0 * kPi * r / params.particle_mesh.spacing + 4.0);
+      continue;
+    }
     const double r = q.Radius() / params.particle_mesh.h;
     f.multiplier_nodes = Saturated(f.multiplier_nodes + kPi * r * (r + 2.0) + 3.0 * r + 4.0);
   }

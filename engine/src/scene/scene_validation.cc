@@ -12,6 +12,7 @@
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/number_text.h"
 #include "dlmfd/core/time_stepping.h"
+#include "dlmfd/particles/collocation_points.h"
 #include "dlmfd/particles/particle_rules.h"
 #include "dlmfd/scene/accuracy_envelope.h"
 #include "dlmfd/scene/scene_footprint.h"
@@ -106,6 +107,13 @@ void ValidateSolvers(const SolverParams& s) {
 
 void ValidateMeshCollisionsConformation(const Params& p) {
   RequirePositive("particle_mesh.h", p.particle_mesh.h);
+  const double spacing = p.particle_mesh.spacing;
+  if (!(spacing >= kMinCollocationSpacing && spacing <= kMaxCollocationSpacing)) {
+    throw InvalidParameter("particle_mesh.spacing", ExactText(spacing),
+                           "a number in [" + ShortText(kMinCollocationSpacing) + ", " +
+                               ShortText(kMaxCollocationSpacing) +
+                               "] (boundary point spacing in units of domain.h)");
+  }
   const CollisionParams& c = p.collisions;
   RequirePositive("collisions.range", c.range);
   RequirePositive("collisions.wall_stiffness", c.wall_stiffness);
@@ -123,12 +131,13 @@ void ValidateParticleRangesAndMeshes(const Params& p) {
   }
   const SceneFootprint footprint = EstimateFootprint(p);
   if (!(footprint.multiplier_nodes <= kMaxMultiplierNodes)) {
-    throw InvalidParameter("particle_mesh.h", ExactText(p.particle_mesh.h),
-                           "multiplier meshes of at most " + ShortText(kMaxMultiplierNodes) +
-                               " nodes over all particles (these have about " +
-                               ShortText(footprint.multiplier_nodes) + ", about " +
-                               ShortText(kBytesPerNode * footprint.multiplier_nodes / kGiB) +
-                               " GiB of memory)");
+    const bool ring = p.particle_mesh.kind == ParticleMeshKind::kRing;
+    throw InvalidParameter(
+        ring ? "particle_mesh.h" : "domain.h", ExactText(ring ? p.particle_mesh.h : p.domain.h),
+        "multiplier meshes of at most " + ShortText(kMaxMultiplierNodes) +
+            " nodes over all particles (these have about " + ShortText(footprint.multiplier_nodes) +
+            ", about " + ShortText(kBytesPerNode * footprint.multiplier_nodes / kGiB) +
+            " GiB of memory)");
   }
 }
 

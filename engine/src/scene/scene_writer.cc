@@ -96,7 +96,13 @@ std::string WriteScene(const Params& p) {
   o << "multiplier_max_iterations = " << s.multiplier_max_iterations << "\n";
 
   o << "\n[particle_mesh]\n";
+  o << "kind = \""
+    << (p.particle_mesh.kind == ParticleMeshKind::kCollocation ? "collocation" : "ring") << "\"\n";
   o << "h = " << ExactText(p.particle_mesh.h) << "\n";
+  o << "spacing = " << ExactText(p.particle_mesh.spacing) << "\n";
+  o << "interpolation = \""
+    << (p.particle_mesh.interpolation == BoundaryInterpolation::kLinear ? "linear" : "quadratic")
+    << "\"\n";
 
   o << "\n[collisions]\n";
   o << "range = " << ExactText(p.collisions.range) << "\n";

@@ -106,8 +106,19 @@ struct ParticleParams {
   double Radius() const { return 0.5 * diameter; }
 };
 
+// The multiplier points of the DLM step (37): the H1 ring mesh of each disk (paper (24), method
+// notes 2, section 1.1) or collocation points on the true circle plus interior points
+// (particle-coupling.md section 3; particles/collocation_points.h).
+enum class ParticleMeshKind { kRing, kCollocation };
+// How E evaluates the fluid velocity at a collocation boundary point: the 6-node P2 basis of the
+// 2h macro-triangle that holds it, or P1 on the h-triangle.
+enum class BoundaryInterpolation { kQuadratic, kLinear };
+
 struct ParticleMeshParams {
-  double h = 1.0 / 70;  // multiplier mesh size > 0
+  ParticleMeshKind kind = ParticleMeshKind::kRing;
+  double h = 1.0 / 70;   // ring: multiplier mesh size > 0
+  double spacing = 2.0;  // collocation: boundary point spacing in units of domain.h, in [0.5, 4]
+  BoundaryInterpolation interpolation = BoundaryInterpolation::kQuadratic;  // collocation
 };
 
 struct CollisionParams {

@@ -1,22 +1,24 @@
-// The coupling operators of the DLM step (37): E, the P1 interpolation of the fluid velocity at the
+// The coupling operators of the DLM step (37): E, the interpolation of the fluid velocity at the
 // multiplier points, and its transpose E^T, the spreading of nodal forces onto the fluid nodes,
 // scaled by dt M^-1.
 //
-// Discrete method (method notes 2, section 1.1): each point is located in the SW-NE h-mesh
-// (mesh/point_location.h: the square, the triangle, periodic wrap) and E takes the three P1 weights
-// of its triangle; E is rebuilt each step from the point positions (the particle centres plus the
-// points of a MultiplierPoints set, of whatever kind). M is the lumped fluid mass, rho_L h^2 times
-// the trapezoid edge factors (1/2 on outflow sides); E^T only reaches fluid nodes that are unknowns
-// (Dirichlet nodes keep their data: their weight / mass is 0).
-// Layout, for a cost per CG iteration proportional to the points: the distinct fluid nodes that
-// E^T reaches get compact slots 1 .. SlotCount() (slot 0 is a slot always zero, the target of the
-// Dirichlet entries), E keeps for every point its three fluid nodes, slots and weights, and E^T is
-// stored by slot (the transposed list, built by a counting sort once per step, each slot's
-// contributions in increasing stacked point order), so a slot gathers its sum without atomics and a
-// fluid-sized array is touched only when the response is added to u.
-// Errors: Build throws ParticlesOverlap when a point leaves a non-periodic domain (the particle
-// crosses a side). Not supported: grids of more than 2^32 - 1 nodes (32-bit node indices;
-// RigidBodyConstraint rejects them).
+// Discrete method: each point is located in the SW-NE h-mesh and E takes, by the point's rule
+// (MultiplierPoints::Quadratic), either the three P1 weights of its h-triangle
+// (mesh/point_location.h; method notes 2, section 1.1) or the six P2 weights of the 2h
+// macro-triangle that holds it (mesh/macro_triangle_stencil.h; particle-coupling.md section 3); E
+// is rebuilt each step from the point positions (the particle centres plus the points of a
+// MultiplierPoints set, of whatever kind). M is the lumped fluid mass, rho_L h^2 times the
+// trapezoid edge factors (1/2 on outflow sides); E^T only reaches fluid nodes that are unknowns
+// (Dirichlet nodes keep their data: their weight / mass is 0). Layout, for a cost per CG iteration
+// proportional to the points: the distinct fluid nodes that E^T reaches get compact slots 1 ..
+// SlotCount() (slot 0 is a slot always zero, the target of the Dirichlet entries), E keeps for
+// every point its stencil (3 or 6 entries from stencil_start_[q]: fluid nodes, slots and weights),
+// and E^T is stored by slot (the transposed list, built by a counting sort once per step, each
+// slot's contributions in increasing stacked point order), so a slot gathers its sum without
+// atomics and a fluid-sized array is touched only when the response is added to u. Errors: Build
+// throws ParticlesOverlap when a point leaves a non-periodic domain (the particle crosses a side).
+// Not supported: grids of more than 2^32 - 1 nodes (32-bit node indices; RigidBodyConstraint
+// rejects them).
 #pragma once
 
 #include <cstddef>
@@ -33,6 +35,9 @@ namespace dlmfd {
 class CouplingOperator {
  public:
   CouplingOperator() = default;
+  // The most entries of one point's stencil (P2).
+  static constexpr std::size_t kMaxStencil = 6;
+
   // For at most max_points stacked points on this grid and domain.
   CouplingOperator(const Params& params, const Grid& grid, std::size_t max_points);
 
@@ -42,16 +47,14 @@ class CouplingOperator {
              const std::vector<ParticleState>& particles);
 
   std::size_t SlotCount() const { return slot_count_; }  // slots 1 .. SlotCount() in use
-  std::size_t MaxSlots() const { return 3 * max_points_; }
+  std::size_t MaxSlots() const { return kMaxStencil * max_points_; }
 
   // (eu, ev) = (E u, E v) at stacked point q.
   void Interpolate(std::size_t q, const double* u, const double* v, double& eu, double& ev) const {
-    const std::uint32_t* at = &stencil_node_[3 * q];
-    const double* weight = &stencil_weight_[3 * q];
     double su = 0.0, sv = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      su += weight[k] * u[at[k]];
-      sv += weight[k] * v[at[k]];
+    for (std::size_t e = stencil_start_[q]; e < stencil_start_[q + 1]; ++e) {
+      su += stencil_weight_[e] * u[stencil_node_[e]];
+      sv += stencil_weight_[e] * v[stencil_node_[e]];
     }
     eu = su;
     ev = sv;
@@ -59,12 +62,10 @@ class CouplingOperator {
   // The same for a field (ub, vb) given by slot (0 at slot 0).
   void InterpolateSlots(std::size_t q, const double* ub, const double* vb, double& eu,
                         double& ev) const {
-    const std::uint32_t* slot = &stencil_slot_[3 * q];
-    const double* weight = &stencil_weight_[3 * q];
     double su = 0.0, sv = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      su += weight[k] * ub[slot[k]];
-      sv += weight[k] * vb[slot[k]];
+    for (std::size_t e = stencil_start_[q]; e < stencil_start_[q + 1]; ++e) {
+      su += stencil_weight_[e] * ub[stencil_slot_[e]];
+      sv += stencil_weight_[e] * vb[stencil_slot_[e]];
     }
     eu = su;
     ev = sv;
@@ -85,6 +86,10 @@ class CouplingOperator {
 
  private:
   void BuildSpreading(double dt);
+  // Appends the stencil entry of fluid node (i, j) with this weight to stacked point `point`.
+  void AddEntry(std::size_t point, int i, int j, double weight);
+  [[noreturn]] void ThrowCrossing(double time, const MultiplierPoints& points,
+                                  const ParticleState& particle, std::size_t p, int side) const;
   // 1 / the lumped mass of fluid node (i, j), 0 at Dirichlet nodes.
   double InverseNodeMass(int i, int j) const;
 
@@ -95,10 +100,12 @@ class CouplingOperator {
   double fluid_density_ = 0.0;
   std::size_t max_points_ = 0;
 
-  // E, 3 entries per stacked point: the fluid node, its compact response slot (0, a slot always
-  // zero, at Dirichlet nodes), the P1 weight and the weight / lumped node mass (0 at Dirichlet
-  // nodes).
-  std::vector<std::uint32_t> stencil_node_, stencil_slot_;
+  // E, entries stencil_start_[q] .. stencil_start_[q + 1] - 1 of stacked point q (3 or 6): the
+  // fluid node, its compact response slot (0, a slot always zero, at Dirichlet nodes), the weight
+  // and the weight / lumped node mass (0 at Dirichlet nodes).
+  std::vector<std::size_t> stencil_start_;
+  std::size_t entries_ = 0;
+  std::vector<std::uint32_t> stencil_node_, stencil_slot_, stencil_point_;
   std::vector<double> stencil_weight_, stencil_scatter_;
   std::size_t slot_count_ = 0;
   std::vector<std::uint32_t> touched_;  // per slot: its fluid node (touched_[0] unused)

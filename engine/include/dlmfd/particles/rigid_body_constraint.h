@@ -7,10 +7,11 @@
 // with nu = G lambda the nodal forces, G = M_p + R^2 K_p the H1 Gram matrix of (24), m_e = (rho_d -
 // rho_L) pi R^2, j_e = m_e R^2 / 2. Fixed and prescribed particles keep U and omega.
 // The room, by concept (each header says its part):
-//   particles/multiplier_points.h  the multiplier points (the ring mesh of each disk) and G;
-//   particles/coupling_operator.h  E, the P1 interpolation at the points (rebuilt each step), and
-//                                  dt M^-1 E^T, the spreading onto the fluid nodes that are
-//                                  unknowns (mesh/point_location.h locates the points);
+//   particles/multiplier_points.h  the multiplier points (the ring mesh of each disk, or
+//                                  collocation points on the circle) and G;
+//   particles/coupling_operator.h  E, the P1 (or P2) interpolation at the points (rebuilt each
+//                                  step), and dt M^-1 E^T, the spreading onto the fluid nodes
+//                                  that are unknowns (mesh/point_location.h locates the points);
 //   particles/rigid_modes.h        C = [e_x, e_y, r_perp], the excess-mass response and the
 //                                  projector P of neutral particles;
 //   particles/multiplier_cg.h      the CG on the Schur complement in <a, b>_G = a^T G b, all
@@ -95,10 +96,13 @@ class RigidBodyConstraint {
   // True for a free particle with rho_d = rho_L (solved by the projected CG).
   bool IsNeutral(std::size_t particle) const { return modes_.IsNeutral(particle); }
 
+  // The ring mesh of a particle (particle_mesh.kind = "ring").
   const ParticleMesh& MeshOf(std::size_t particle) const { return points_.Mesh(particle); }
-  // The nodal multiplier count (2 per node) of a particle.
+  // The multiplier points of every particle (either kind).
+  const MultiplierPoints& Points() const { return points_; }
+  // The nodal multiplier count (2 per point) of a particle.
   std::size_t MultiplierSize(std::size_t particle) const {
-    return 2 * MeshOf(particle).NodeCount();
+    return 2 * static_cast<std::size_t>(points_.Count(particle));
   }
   // sum_k nu_k and sum_k r_perp_k . nu_k of the last Enforce (the force and torque the particle
   // exerts on the fluid nodes).

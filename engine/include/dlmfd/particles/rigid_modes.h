@@ -10,11 +10,11 @@
 // particles (their motion is not moved by the forces).
 // Neutrally buoyant free particles (rho_d = rho_L): the momentum equations become C^T nu = f
 // (method notes in particles/rigid_body_constraint.h), solved with the G-orthogonal projector
-// P = I - C S^-1 C^T G, S = C^T G C (3x3 per mesh, constant: the mesh translates without rotating).
-// Here: S^-1 and G C per mesh, the G-weighted rigid part S^-1 (G C)^T a of a nodal field, P on
-// mismatches (a -= C S^-1 (G C)^T a), its transpose on forces (f -= G C S^-1 C^T f) and the
-// particular forces G C S^-1 (F, 0) whose net force is F and net torque 0.
-// Not supported: free particles lighter than the liquid (RigidBodyConstraint rejects them).
+// P = I - C S^-1 C^T G, S = C^T G C (3x3 per point set, constant: the points translate without
+// rotating). Here: S^-1 and G C per point set, the G-weighted rigid part S^-1 (G C)^T a of a nodal
+// field, P on mismatches (a -= C S^-1 (G C)^T a), its transpose on forces (f -= G C S^-1 C^T f) and
+// the particular forces G C S^-1 (F, 0) whose net force is F and net torque 0. Not supported: free
+// particles lighter than the liquid (RigidBodyConstraint rejects them).
 #pragma once
 
 #include <cstddef>
@@ -88,8 +88,8 @@ class RigidModes {
   std::vector<double> inv_excess_mass_, inv_excess_inertia_;  // per particle: D^-1
   std::vector<char> neutral_;
   bool any_neutral_ = false;
-  std::vector<std::vector<double>> gram_rigid_;      // per mesh: G C, column c at [c * 2 N + q]
-  std::vector<Eigen::Matrix3d> rigid_gram_inverse_;  // per mesh: S^-1
+  std::vector<std::vector<double>> gram_rigid_;  // per point set: G C, column c at [c * 2 N + q]
+  std::vector<Eigen::Matrix3d> rigid_gram_inverse_;  // per point set: S^-1
 };
 
 }  // namespace dlmfd

@@ -9,7 +9,9 @@
 // Velocity nodes: (nx + 1)(ny + 1) with nx = round(width / h), ny = round(height / h).
 // Multiplier nodes of a disk of radius R, r = R / h_p: the ring mesh of particles/particle_mesh.h
 // has K = ceil(r) <= r + 1 rings of max(3, round(2 pi r k / K)) nodes and a centre, at most
-// pi r (r + 2) + 3 r + 4 nodes.
+// pi r (r + 2) + 3 r + 4 nodes. Collocation points (particles/collocation_points.h), r = R / h: at
+// most floor(2 pi r / c) + 3 boundary points and pi r^2 + O(r) interior lattice points inside the
+// circle less a band of sqrt(2) h, counted as pi r^2 + 2 pi r / c + 4.
 // Memory: kBytesPerNode per node of either kind. Measured (max RSS, 1 and 2 threads, h = 1/96,
 // 1/192, 1/288): 630 bytes per velocity node for the paper's 5.2 pair (Oldroyd-B, least-squares
 // advection), 570 with the wave-like advection; a Newtonian liquid needs less, and a multiplier

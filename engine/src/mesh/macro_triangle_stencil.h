@@ -1,0 +1,89 @@
+// Quadratic evaluation of a velocity field at a point: the 6-node P2 basis of the 2h macro-triangle
+// (a triangle of the pressure mesh) that holds the point. The P1-iso-P2 velocity nodes are exactly
+// the P2 nodes of the pressure triangles, so this is the P2 interpolant of the nodal values
+// (particle-coupling.md section 3; Basilisk's DLMFD uses the biquadratic 3x3 stencil instead).
+//
+// Macro square (I, J) of side 2h has its south-west node at velocity node (2I, 2J) (domain.size / h
+// is even, so the pressure nodes are the even velocity nodes); local coordinates (xi, eta) in
+// [0, 1]^2 in units of 2h. Its SW-NE diagonal splits it as the h-squares are split (the four
+// h-triangles of a macro-triangle are h-triangles of the velocity mesh). With barycentric
+// coordinates (l0, l1, l2) of the macro-triangle, the weights are l_k (2 l_k - 1) at the vertices
+// and 4 l_a l_b at the edge midpoints: T1 (xi >= eta) = (a, b, c) with l = (1 - xi, xi - eta, eta),
+// T2 = (a, c, d) with l = (1 - eta, xi, eta - xi), a = (0, 0), b = (1, 0), c = (1, 1), d = (0, 1).
+// P2 reproduces every polynomial of degree <= 2, so a rigid motion (linear) exactly.
+// On a periodic axis the macro-square index wraps (the velocity node line 2I + 2 of the last square
+// is line 0); a point on the far side of a non-periodic axis belongs to the last square at t = 1.
+#pragma once
+
+#include <cmath>
+
+#include "dlmfd/core/grid.h"
+#include "point_location.h"
+
+namespace dlmfd::kernels {
+
+// The 6 velocity nodes (i[q], j[q]) of the P2 stencil of a point and their weights.
+struct P2Stencil {
+  int i[6];
+  int j[6];
+  double weight[6];
+};
+
+// The velocity node line at offset k = 0, 1, 2 (in h) from node line 2c of macro cell c on an axis
+// of `cells` velocity cells: 2c + k, wrapped on a periodic axis.
+inline int MacroLine(int c, int k, int cells, bool periodic) {
+  const int line = 2 * c + k;
+  return (periodic && line >= cells) ? line - cells : line;
+}
+
+// The stencil at local coordinates (xi, eta) of macro square (ci, cj) (units of 2h).
+inline P2Stencil P2StencilInMacroSquare(const Grid& grid, bool periodic_x, bool periodic_y, int ci,
+                                        int cj, double xi, double eta) {
+  auto x = [&](int k) { return MacroLine(ci, k, grid.nx, periodic_x); };
+  auto y = [&](int k) { return MacroLine(cj, k, grid.ny, periodic_y); };
+  // Vertices v0, v1, v2 (offsets in h) with barycentric coordinates l0, l1, l2, then the edge
+  // midpoints v0v1, v1v2, v0v2.
+  int vi[3], vj[3];
+  double l[3];
+  if (xi >= eta) {
+    vi[0] = 0, vj[0] = 0, vi[1] = 2, vj[1] = 0, vi[2] = 2, vj[2] = 2;
+    l[0] = 1.0 - xi, l[1] = xi - eta, l[2] = eta;
+  } else {
+    vi[0] = 0, vj[0] = 0, vi[1] = 2, vj[1] = 2, vi[2] = 0, vj[2] = 2;
+    l[0] = 1.0 - eta, l[1] = xi, l[2] = eta - xi;
+  }
+  P2Stencil s;
+  static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {0, 2}};
+  for (int q = 0; q < 3; ++q) {
+    s.i[q] = x(vi[q]);
+    s.j[q] = y(vj[q]);
+    s.weight[q] = l[q] * (2.0 * l[q] - 1.0);
+    const int a = kEdge[q][0], b = kEdge[q][1];
+    s.i[3 + q] = x((vi[a] + vi[b]) / 2);
+    s.j[3 + q] = y((vj[a] + vj[b]) / 2);
+    s.weight[3 + q] = 4.0 * l[a] * l[b];
+  }
+  return s;
+}
+
+// Locates point (x, y) in the macro mesh: true with its P2 stencil; false when it lies beyond a
+// non-periodic side, with *side that side (as LocatePoint: 0 left, 1 right, 2 bottom, 3 top).
+// Requires even grid.nx and grid.ny.
+inline bool LocatePointQuadratic(const Grid& grid, bool periodic_x, bool periodic_y, double x,
+                                 double y, P2Stencil* stencil, int* side) {
+  int ci = 0, cj = 0;
+  double xi = 0.0, eta = 0.0;
+  const double macro = 2.0 * grid.h;
+  if (!LocateOnAxis((x - grid.x0) / macro, grid.nx / 2, periodic_x, &ci, &xi)) {
+    *side = ci < 0 ? 0 : 1;
+    return false;
+  }
+  if (!LocateOnAxis((y - grid.y0) / macro, grid.ny / 2, periodic_y, &cj, &eta)) {
+    *side = cj < 0 ? 2 : 3;
+    return false;
+  }
+  *stencil = P2StencilInMacroSquare(grid, periodic_x, periodic_y, ci, cj, xi, eta);
+  return true;
+}
+
+}  // namespace dlmfd::kernels

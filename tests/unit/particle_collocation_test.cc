@@ -1,0 +1,241 @@
+// Collocation multiplier points (particles/collocation_points.h) and the quadratic coupling of the
+// sharp-boundary DLM variant (particle_mesh.kind = "collocation"): the points lie where the method
+// note puts them, the P2 macro-triangle stencil reproduces quadratics (so rigid motions exactly) at
+// every point, the constraint holds at the points after (37), and momentum is conserved.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "../../engine/src/mesh/macro_triangle_stencil.h"
+#include "dlmfd/core/constants.h"
+#include "dlmfd/core/errors.h"
+#include "dlmfd/particles/collocation_points.h"
+#include "dlmfd/particles/rigid_body_constraint.h"
+
+namespace dlmfd {
+namespace {
+
+TEST(CollocationPoints, BoundaryPointsOnTheCircleAndInteriorPointsClearOfThem) {
+  const double radius = 0.1, h = 1.0 / 48;
+  for (double spacing : {1.0, 1.5, 2.0}) {
+    const CollocationPoints points(radius, h, spacing, BoundaryInterpolation::kQuadratic);
+    const int nb = static_cast<int>(std::floor(2 * kPi * radius / (spacing * h)));
+    ASSERT_EQ(points.BoundaryCount(), nb);
+    ASSERT_GT(points.Count(), nb);
+    for (int k = 0; k < points.Count(); ++k) {
+      const Vec2 r = points.points()[k];
+      if (k < nb) {
+        EXPECT_NEAR(r.norm(), radius, 1e-15);
+        EXPECT_TRUE(points.Quadratic(k));
+        continue;
+      }
+      EXPECT_FALSE(points.Quadratic(k));
+      EXPECT_LT(r.norm(), radius);
+      // On the lattice of spacing h through the centre.
+      EXPECT_NEAR(r.x() / h, std::round(r.x() / h), 1e-12);
+      EXPECT_NEAR(r.y() / h, std::round(r.y() / h), 1e-12);
+      for (int b = 0; b < nb; ++b) {
+        EXPECT_GE((r - points.points()[b]).norm(), std::sqrt(2.0) * h * (1 - 1e-12));
+      }
+    }
+  }
+  const CollocationPoints linear(radius, h, 1.5, BoundaryInterpolation::kLinear);
+  for (int k = 0; k < linear.Count(); ++k) EXPECT_FALSE(linear.Quadratic(k));
+  EXPECT_THROW(CollocationPoints(radius, h, 0.0, BoundaryInterpolation::kQuadratic),
+               InvalidParameter);
+}
+
+// The P2 stencil: weights sum to 1 and reproduce x, y, x^2, x y, y^2 at points anywhere, also in
+// the last macro square of a periodic axis (whose third node line wraps to line 0).
+TEST(MacroTriangleStencil, ReproducesQuadraticsExactly) {
+  const Grid grid{16, 12, 0.125, -0.3, 0.2};
+  for (const bool periodic : {false, true}) {
+    for (int n = 0; n < 200; ++n) {
+      const double x = grid.x0 + grid.Width() * std::fmod(0.6180339887 * n, 1.0);
+      const double y = grid.y0 + grid.Height() * std::fmod(0.7548776662 * n + 0.1, 1.0);
+      kernels::P2Stencil s;
+      int side = -1;
+      ASSERT_TRUE(kernels::LocatePointQuadratic(grid, periodic, periodic, x, y, &s, &side));
+      double sum[6] = {};
+      for (int q = 0; q < 6; ++q) {
+        double xq = grid.X(s.i[q]), yq = grid.Y(s.j[q]);
+        // A wrapped node stands for the node one period on.
+        if (periodic && xq < x - 2.5 * grid.h) xq += grid.Width();
+        if (periodic && yq < y - 2.5 * grid.h) yq += grid.Height();
+        const double monomials[6] = {1.0, xq, yq, xq * xq, xq * yq, yq * yq};
+        for (int m = 0; m < 6; ++m) sum[m] += s.weight[q] * monomials[m];
+      }
+      const double exact[6] = {1.0, x, y, x * x, x * y, y * y};
+      for (int m = 0; m < 6; ++m) EXPECT_NEAR(sum[m], exact[m], 1e-14) << "monomial " << m;
+    }
+  }
+  kernels::P2Stencil s;
+  int side = -1;
+  EXPECT_FALSE(kernels::LocatePointQuadratic(grid, false, false, grid.x0 - 1e-9, 0.5, &s, &side));
+  EXPECT_EQ(side, 0);
+}
+
+// Unit box of walls, h = 1/48, one disk D = 0.2 off the grid lines, collocation points.
+struct CollocationScene {
+  Params params;
+  Grid grid{48, 48, 1.0 / 48, 0.0, 0.0};
+  std::vector<ParticleState> particles;
+  std::vector<double> u, v;
+
+  CollocationScene(double density, BoundaryInterpolation interpolation) {
+    params.domain.size = Vec2(1.0, 1.0);
+    params.domain.h = 1.0 / 48;
+    params.particle_mesh.kind = ParticleMeshKind::kCollocation;
+    params.particle_mesh.interpolation = interpolation;
+    params.fluid.density = 1.0;
+    ParticleParams pp;
+    pp.center = Vec2(0.5137, 0.4871);
+    pp.diameter = 0.2;
+    pp.density = density;
+    params.particles.push_back(pp);
+    ParticleState s;
+    s.position = pp.center;
+    s.radius = 0.1;
+    s.density = density;
+    s.velocity = Vec2(0.1, -0.2);
+    s.angular_velocity = 0.5;
+    particles.push_back(s);
+    u.assign(grid.NodeCount(), 0.0);
+    v.assign(grid.NodeCount(), 0.0);
+  }
+  void Rigid(Vec2 velocity, double omega) {
+    for (int j = 1; j < grid.ny; ++j) {
+      for (int i = 1; i < grid.nx; ++i) {
+        const Vec2 r = Vec2(grid.X(i), grid.Y(j)) - particles[0].position;
+        u[grid.Index(i, j)] = velocity.x() - omega * r.y();
+        v[grid.Index(i, j)] = velocity.y() + omega * r.x();
+      }
+    }
+  }
+  void Vortical() {
+    for (int j = 1; j < grid.ny; ++j) {
+      for (int i = 1; i < grid.nx; ++i) {
+        const double x = grid.X(i), y = grid.Y(j);
+        u[grid.Index(i, j)] = std::sin(2 * kPi * x) * std::cos(2 * kPi * y) + 0.3;
+        v[grid.Index(i, j)] = -std::cos(2 * kPi * x) * std::sin(2 * kPi * y) + 0.2 * x;
+      }
+    }
+  }
+  // The fluid velocity at point k by the point's own stencil (quadratic or linear), written from
+  // the stencil kernels.
+  Vec2 AtPoint(const MultiplierPoints& points, int k) const {
+    const Vec2 y = particles[0].position + points.Points(0)[k];
+    Vec2 out = Vec2::Zero();
+    int side = 0;
+    if (points.Quadratic(0, k)) {
+      kernels::P2Stencil s;
+      EXPECT_TRUE(kernels::LocatePointQuadratic(grid, false, false, y.x(), y.y(), &s, &side));
+      for (int q = 0; q < 6; ++q) {
+        const std::size_t n = grid.Index(s.i[q], s.j[q]);
+        out += s.weight[q] * Vec2(u[n], v[n]);
+      }
+    } else {
+      kernels::P1Stencil s;
+      EXPECT_TRUE(kernels::LocatePoint(grid, false, false, y.x(), y.y(), &s, &side));
+      for (int q = 0; q < 3; ++q) {
+        const std::size_t n = grid.Index(s.i[q], s.j[q]);
+        out += s.weight[q] * Vec2(u[n], v[n]);
+      }
+    }
+    return out;
+  }
+  double MaxMismatch(const MultiplierPoints& points) const {
+    const ParticleState& p = particles[0];
+    double worst = 0.0;
+    for (int k = 0; k < points.Count(0); ++k) {
+      const Vec2 r = points.Points(0)[k];
+      const Vec2 rigid = p.velocity + p.angular_velocity * Vec2(-r.y(), r.x());
+      worst = std::max(worst, (AtPoint(points, k) - rigid).norm());
+    }
+    return worst;
+  }
+};
+
+// A fluid in rigid motion (translation + rotation) is interpolated exactly, to round-off, at every
+// collocation point, so the constraint step has nothing to do and leaves it untouched.
+TEST(CollocationConstraint, RigidMotionIsReproducedExactlyAtThePoints) {
+  for (const auto interpolation :
+       {BoundaryInterpolation::kQuadratic, BoundaryInterpolation::kLinear}) {
+    CollocationScene s(1.5, interpolation);
+    s.Rigid(s.particles[0].velocity, s.particles[0].angular_velocity);
+    RigidBodyConstraint dlm(s.params, s.grid);
+    EXPECT_LT(s.MaxMismatch(dlm.Points()), 1e-15);
+    const std::vector<double> u0 = s.u, v0 = s.v;
+    const RigidBodyConstraint::Outcome out =
+        dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
+    EXPECT_LT(out.cold_residual, 1e-15);
+    double change = 0.0;
+    for (std::size_t n = 0; n < u0.size(); ++n) {
+      change = std::max({change, std::abs(s.u[n] - u0[n]), std::abs(s.v[n] - v0[n])});
+    }
+    EXPECT_LT(change, 1e-14);
+    EXPECT_NEAR(s.particles[0].velocity.x(), 0.1, 1e-14);
+    EXPECT_NEAR(s.particles[0].angular_velocity, 0.5, 1e-13);
+  }
+}
+
+// After (37) the fluid velocity is rigid at every collocation point to the CG tolerance (the
+// Euclidean product: |g|_2 <= tol |g0|_2), and the linear and angular momentum of fluid plus
+// excess particle are those before (E reproduces constants and linears: a round-off identity).
+TEST(CollocationConstraint, ConstraintHoldsAtThePointsAndMomentumIsConserved) {
+  for (const auto interpolation :
+       {BoundaryInterpolation::kQuadratic, BoundaryInterpolation::kLinear}) {
+    const double tol = 1e-10;
+    CollocationScene s(1.01, interpolation);
+    s.params.solvers.multiplier_tolerance = tol;
+    s.Vortical();
+    RigidBodyConstraint dlm(s.params, s.grid);
+    const MultiplierPoints& points = dlm.Points();
+    double g0 = 0.0;
+    {
+      const ParticleState& p = s.particles[0];
+      for (int k = 0; k < points.Count(0); ++k) {
+        const Vec2 r = points.Points(0)[k];
+        g0 += (s.AtPoint(points, k) - p.velocity - p.angular_velocity * Vec2(-r.y(), r.x()))
+                  .squaredNorm();
+      }
+    }
+    const double m = s.params.fluid.density * s.grid.h * s.grid.h;
+    const double me = 0.01 * kPi * 0.01, je = me * 0.01 / 2;
+    auto momentum = [&](Vec2* linear, double* angular) {
+      const ParticleState& p = s.particles[0];
+      *linear = me * p.velocity;
+      *angular = je * p.angular_velocity;
+      for (int j = 1; j < s.grid.ny; ++j) {
+        for (int i = 1; i < s.grid.nx; ++i) {
+          const std::size_t n = s.grid.Index(i, j);
+          const Vec2 r = Vec2(s.grid.X(i), s.grid.Y(j)) - p.position;
+          *linear += m * Vec2(s.u[n], s.v[n]);
+          *angular += m * (r.x() * s.v[n] - r.y() * s.u[n]);
+        }
+      }
+    };
+    Vec2 l0, l1;
+    double a0, a1;
+    momentum(&l0, &a0);
+    const double before = s.MaxMismatch(points);
+    const RigidBodyConstraint::Outcome out =
+        dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
+    const double after = s.MaxMismatch(points);
+    momentum(&l1, &a1);
+    std::printf("%s: %d points, %d iterations, mismatch %.3e -> %.3e\n",
+                interpolation == BoundaryInterpolation::kQuadratic ? "quadratic" : "linear",
+                points.Count(0), out.iterations, before, after);
+    EXPECT_GT(before, 0.1);
+    EXPECT_LE(after, tol * std::sqrt(g0) + 1e-13);
+    EXPECT_NEAR(out.residual, after, 1e-12);
+    EXPECT_NEAR((l1 - l0).norm(), 0.0, 1e-15);
+    EXPECT_NEAR(a1 - a0, 0.0, 1e-15);
+  }
+}
+
+}  // namespace
+}  // namespace dlmfd
