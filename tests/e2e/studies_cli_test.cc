@@ -109,7 +109,7 @@ TEST_F(StudiesCliTest, AStudyIsListedShownWatchedFetchedAndSelected) {
   const CliRun by_value =
       Cli({"list", "--sweep", id, "--where", "fluid.viscosity=0.02", "--where", "time.dt=0.02"});
   ASSERT_EQ(by_value.code, 0) << by_value.err;
-  EXPECT_THAT(by_value.out, HasSubstr("[fluid.viscosity=0.02,time.end=0.2,time.dt=0.02]"));
+  EXPECT_THAT(by_value.out, HasSubstr("[time.dt=0.02,fluid.viscosity=0.02,time.end=0.2]"));
   EXPECT_EQ(std::count(by_value.out.begin(), by_value.out.end(), '\n'), 2);  // header + 1
   const CliRun from_file = Cli({"list", "--label", "project=cavity", "--where", "fluid.density=1"});
   EXPECT_EQ(std::count(from_file.out.begin(), from_file.out.end(), '\n'), 5);
@@ -118,14 +118,14 @@ TEST_F(StudiesCliTest, AStudyIsListedShownWatchedFetchedAndSelected) {
   EXPECT_THAT(unknown.err, HasSubstr("sweep s-unknown not found"));
   EXPECT_EQ(Cli({"show", "--tag", "no-such-tag"}).code, 3);
 
-  // One folder per point, named by its parameters.
+  // One folder per point, named by its parameters (axes in the order --grid, --range, --zip).
   const fs::path out = root_ / "fetched";
   const CliRun fetch =
       Cli({"fetch", "--sweep", id, "--out", out.string(), "--path", "summary.json"});
   ASSERT_EQ(fetch.code, 0) << fetch.err;
-  EXPECT_TRUE(fs::exists(out / "fluid.viscosity=0.01,time.end=0.1,time.dt=0.01" / "summary.json"));
-  EXPECT_TRUE(fs::exists(out / "fluid.viscosity=0.02,time.end=0.2,time.dt=0.02" / "summary.json"));
-  EXPECT_THAT(Slurp(out / "fluid.viscosity=0.02,time.end=0.2,time.dt=0.02" / "summary.json"),
+  EXPECT_TRUE(fs::exists(out / "time.dt=0.01,fluid.viscosity=0.01,time.end=0.1" / "summary.json"));
+  EXPECT_TRUE(fs::exists(out / "time.dt=0.02,fluid.viscosity=0.02,time.end=0.2" / "summary.json"));
+  EXPECT_THAT(Slurp(out / "time.dt=0.02,fluid.viscosity=0.02,time.end=0.2" / "summary.json"),
               HasSubstr("\"completed\""));
   int folders = 0;
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(out)) ++folders;
