@@ -45,6 +45,22 @@ std::string ReadInputFile(const std::string& path) {
   return text.str();
 }
 
+std::pair<std::string, std::string> SplitKeyValue(const std::string& flag,
+                                                  const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw UsageError(flag + " " + text + ": expected key=value");
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+void AddLabels(const std::vector<std::string>& texts,
+               google::protobuf::Map<std::string, std::string>* labels) {
+  for (const std::string& text : texts) {
+    const auto [key, value] = SplitKeyValue("--label", text);
+    (*labels)[key] = value;
+  }
+}
+
 std::string NewRequestId() {
   std::random_device device;
   char text[33];

@@ -5,6 +5,10 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include <google/protobuf/map.h>
 
 #include "CLI/CLI.hpp"
 
@@ -37,6 +41,8 @@ int RunRelease(int argc, char** argv);
 // `dlmfd chart --sweep ...`: a quantity of a sweep against a parameter (chart_sweep.cc).
 bool IsSweepChart(int argc, char** argv);
 int RunSweepChart(int argc, char** argv);
+int RunSweeps(int argc, char** argv);
+int RunRetry(int argc, char** argv);
 
 // Parses argv into `app`; returns an exit code when the command must stop (help: 0, error: 2).
 std::optional<int> ParseArgs(CLI::App& app, int argc, char** argv);
@@ -50,6 +56,11 @@ namespace dlmfd::cli {
 
 // The whole file; throws UsageError naming the path when it cannot be read.
 std::string ReadInputFile(const std::string& path);
+// "key=value" split at the first '='; throws UsageError naming the flag when there is none.
+std::pair<std::string, std::string> SplitKeyValue(const std::string& flag, const std::string& text);
+// Adds each "key=value" of --label to `labels`.
+void AddLabels(const std::vector<std::string>& texts,
+               google::protobuf::Map<std::string, std::string>* labels);
 // A random 128-bit hex id that makes a retried Submit or SubmitSweep idempotent.
 std::string NewRequestId();
 // How `watch` prints on this stdout: live line on a terminal, plain otherwise, or JSON.

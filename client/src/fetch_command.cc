@@ -1,16 +1,25 @@
 // dlmfd fetch JOB [--out DIR] [--path FILE]...
+// dlmfd fetch --sweep S | --tag T... [--out DIR] [--path FILE]...
+// A study arrives as one folder per point, named by its parameter values
+// (DIR/fluid.relaxation_time=0.5,particles.*.density=1.02/), a job without parameters under its
+// name; characters outside [A-Za-z0-9._=,+*-] become '_', and a name taken twice gets the job id.
 // Writes each file to DIR/<its path in the results directory> through a temporary name
 // (dlmfd/io/atomic_file.h), renamed when its last chunk has arrived, so an interrupted fetch never
 // leaves a truncated file under the final name. Paths from the server are checked: absolute ones or
 // ones with ".." are refused.
+#include <cctype>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <set>
 
 #include "command.h"
 #include "connection.h"
 #include "dlmfd/io/atomic_file.h"
 #include "exit_codes.h"
+#include "job_selection.h"
+#include "job_text.h"
 #include "rpc_status.h"
 
 namespace dlmfd::cli {
@@ -92,6 +101,45 @@ int Receive(Connection& connection, const std::string& job_id, const std::string
   return kExitOk;
 }
 
+// The folder of one job of a study: its point's "key=value,..." (or its name), made safe.
+std::string PointFolder(const v1::Job& job) {
+  std::string name;
+  for (const v1::ParameterValue& p : job.parameters()) {
+    name += (name.empty() ? "" : ",") + p.key() + "=" + p.text();
+  }
+  if (name.empty()) name = job.name().empty() ? job.id() : job.name();
+  for (char& c : name) {
+    const bool safe =
+        std::isalnum(static_cast<unsigned char>(c)) || std::strchr("._=,+*-", c) != nullptr;
+    if (!safe) c = '_';
+  }
+  if (name == "." || name == "..") name = job.id();
+  return name.substr(0, 200);
+}
+
+// Every file of every job of the selection into DIR/<point folder>/.
+int FetchSelection(Connection& connection, const JobSelection& selection, const fs::path& dir,
+                   const std::vector<std::string>& paths, int& files, long long& bytes) {
+  std::vector<v1::Job> jobs;
+  const grpc::Status status = SelectJobs(connection, selection, jobs);
+  if (!status.ok()) return ReportRpcError("fetch", status);
+  if (jobs.empty()) {
+    return ReportError("fetch", "no job carries " + SelectionName(selection), kExitNotFound);
+  }
+  std::set<std::string> taken;
+  for (auto it = jobs.rbegin(); it != jobs.rend(); ++it) {  // oldest first: points in order
+    std::string folder = PointFolder(*it);
+    if (!taken.insert(folder).second) folder += "." + it->id();
+    taken.insert(folder);
+    std::cout << folder << "  " << it->id() << "  " << StateName(it->state()) << "\n";
+    for (const std::string& p : paths) {
+      const int code = Receive(connection, it->id(), p, dir / folder, files, bytes);
+      if (code != kExitOk) return code;
+    }
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 int RunFetch(int argc, char** argv) {
@@ -101,14 +149,22 @@ int RunFetch(int argc, char** argv) {
   std::string job_id;
   std::string out_dir;
   std::vector<std::string> paths;
-  app.add_option("job", job_id, "job id")->required();
-  app.add_option("--out,-o", out_dir, "directory to write into (default: ./<job id>)");
+  JobSelection selection;
+  auto* job_option = app.add_option("job", job_id, "job id");
+  AddSelectionFlags(app, selection, job_option);
+  app.add_option("--out,-o", out_dir,
+                 "directory to write into (default: ./<job id>, ./<sweep id> or ./<tag>)");
   app.add_option("--path", paths,
                  "one file, relative to the results directory (repeatable; default: all)");
   if (auto code = ParseArgs(app, argc, argv)) return *code;
+  if (job_id.empty() && selection.empty())
+    return ReportError("fetch", "name a job id, --sweep ID or --tag T", kExitUsage);
 
   return Guarded("fetch", [&] {
-    const fs::path dir = out_dir.empty() ? fs::path(job_id) : fs::path(out_dir);
+    const std::string fallback =
+        !job_id.empty() ? job_id
+                        : (!selection.sweep.empty() ? selection.sweep : selection.tags.front());
+    const fs::path dir = out_dir.empty() ? fs::path(fallback) : fs::path(out_dir);
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec)
@@ -122,7 +178,12 @@ int RunFetch(int argc, char** argv) {
     int files = 0;
     long long bytes = 0;
     if (paths.empty()) paths.emplace_back();
+    if (!selection.empty()) {
+      const int code = FetchSelection(connection, selection, dir, paths, files, bytes);
+      if (code != kExitOk) return code;
+    }
     for (const std::string& p : paths) {
+      if (job_id.empty()) break;
       const int code = Receive(connection, job_id, p, dir, files, bytes);
       if (code != kExitOk) return code;
     }

@@ -3,11 +3,15 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <map>
 #include <sstream>
 
 #include "connection.h"
@@ -62,6 +66,10 @@ std::string FormatDuration(double seconds) {
   return text;
 }
 
+double NowEpochSeconds() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
 std::string FormatTimestamp(double epoch_seconds) {
   if (epoch_seconds <= 0) return "-";
   const std::time_t t = static_cast<std::time_t>(epoch_seconds);
@@ -74,13 +82,6 @@ std::string FormatTimestamp(double epoch_seconds) {
 
 namespace {
 
-std::string Join(const google::protobuf::RepeatedPtrField<std::string>& items,
-                 const char* separator) {
-  std::string out;
-  for (const std::string& item : items) out += (out.empty() ? "" : separator) + item;
-  return out;
-}
-
 std::string Progress(const v1::Job& job) {
   char text[64];
   std::snprintf(text, sizeof(text), "%.4g/%.4g", job.time(), job.end_time());
@@ -88,6 +89,22 @@ std::string Progress(const v1::Job& job) {
 }
 
 }  // namespace
+
+std::string JoinText(const google::protobuf::RepeatedPtrField<std::string>& items,
+                     const char* separator) {
+  std::string out;
+  for (const std::string& item : items) out += (out.empty() ? "" : separator) + item;
+  return out;
+}
+
+std::string LabelsText(const google::protobuf::Map<std::string, std::string>& labels) {
+  std::string out;
+  for (const auto& [key, value] :
+       std::map<std::string, std::string>(labels.begin(), labels.end())) {
+    out += (out.empty() ? "" : ", ") + key + "=" + value;
+  }
+  return out;
+}
 
 std::string JobTable(const std::vector<v1::Job>& jobs) {
   const std::vector<std::string> header = {"ID",       "NAME", "STATE", "STEP",
@@ -97,10 +114,15 @@ std::string JobTable(const std::vector<v1::Job>& jobs) {
     const bool held = job.held() && job.state() == v1::QUEUED;
     rows.push_back({job.id(), job.name(), held ? "held" : StateName(job.state()),
                     std::to_string(job.step()), Progress(job), std::to_string(job.priority()),
-                    Join(job.tags(), ","), FormatTimestamp(job.created_time())});
+                    JoinText(job.tags(), ","), FormatTimestamp(job.created_time())});
   }
-  std::vector<std::size_t> width(header.size(), 0);
+  return TextTable(rows);
+}
+
+std::string TextTable(const std::vector<std::vector<std::string>>& rows) {
+  std::vector<std::size_t> width;
   for (const auto& row : rows) {
+    width.resize(std::max(width.size(), row.size()), 0);
     for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
   }
   std::ostringstream out;
@@ -124,9 +146,9 @@ std::string JobDetails(const v1::Job& job) {
       << (job.held() && job.state() == v1::QUEUED ? " (held)" : "") << "\n";
   if (!job.reason().empty()) out << "reason:      " << job.reason() << "\n";
   out << "priority:    " << job.priority() << "\n"
-      << "tags:        " << Join(job.tags(), ", ") << "\n";
+      << "tags:        " << JoinText(job.tags(), ", ") << "\n";
   if (!job.sweep_id().empty()) out << "sweep:       " << job.sweep_id() << "\n";
-  out << "overrides:   " << Join(job.overrides(), " ") << "\n"
+  out << "overrides:   " << JoinText(job.overrides(), " ") << "\n"
       << "progress:    step " << job.step() << ", time " << Progress(job) << "\n"
       << "created:     " << FormatTimestamp(job.created_time()) << "\n"
       << "started:     " << FormatTimestamp(job.started_time()) << "\n"
@@ -134,8 +156,20 @@ std::string JobDetails(const v1::Job& job) {
   if (job.started_time() > 0 && job.finished_time() > 0) {
     out << "ran for:     " << FormatDuration(job.finished_time() - job.started_time()) << "\n";
   }
-  out << "attempts:    " << job.attempts() << "\n"
-      << "results:     " << job.results_dir() << "\n";
+  if (!job.labels().empty()) out << "labels:      " << LabelsText(job.labels()) << "\n";
+  for (const v1::ParameterValue& p : job.parameters()) {
+    out << "parameter:   " << p.key() << " = " << p.text() << " (" << p.type() << ")\n";
+  }
+  out << "attempt:     " << std::max(1, job.attempt()) << " (solver starts: " << job.attempts()
+      << ")\n";
+  for (const v1::AttemptRecord& a : job.previous_attempts()) {
+    char time[32];
+    std::snprintf(time, sizeof(time), "%.6g", a.time());
+    out << "  attempt " << a.attempt() << ": " << StateName(a.state())
+        << (a.reason().empty() ? "" : " (" + a.reason() + ")") << ", step " << a.step()
+        << ", t = " << time << ", ended " << FormatTimestamp(a.finished_time()) << "\n";
+  }
+  out << "results:     " << job.results_dir() << "\n";
   if (job.disk_bytes() > 0) out << "disk:        " << job.disk_bytes() << " bytes\n";
   // Settings outside the accuracy envelope: what to change, and to what (docs/scenes.md).
   for (const v1::AccuracyWarning& w : job.warnings()) {
@@ -148,6 +182,43 @@ std::string JobDetails(const v1::Job& job) {
   return out.str();
 }
 
+namespace {
+
+bool IsInt64(google::protobuf::FieldDescriptor::CppType type) {
+  using F = google::protobuf::FieldDescriptor;
+  return type == F::CPPTYPE_INT64 || type == F::CPPTYPE_UINT64;
+}
+
+// The proto3 JSON mapping writes 64-bit integers as strings (for JavaScript's doubles); scripts
+// expect numbers (issue 14), so each 64-bit integer field of `descriptor` becomes a number again.
+void Int64AsNumbers(nlohmann::ordered_json& json, const google::protobuf::Descriptor* descriptor) {
+  if (!json.is_object()) return;
+  for (int k = 0; k < descriptor->field_count(); ++k) {
+    const google::protobuf::FieldDescriptor* field = descriptor->field(k);
+    auto it = json.find(field->name());
+    if (it == json.end() || field->is_map()) continue;
+    auto convert = [&](nlohmann::ordered_json& value) {
+      if (IsInt64(field->cpp_type()) && value.is_string()) {
+        const std::string text = value.get<std::string>();
+        if (field->cpp_type() == google::protobuf::FieldDescriptor::CPPTYPE_UINT64) {
+          value = std::stoull(text);
+        } else {
+          value = std::stoll(text);
+        }
+      } else if (field->cpp_type() == google::protobuf::FieldDescriptor::CPPTYPE_MESSAGE) {
+        Int64AsNumbers(value, field->message_type());
+      }
+    };
+    if (it->is_array()) {
+      for (auto& element : *it) convert(element);
+    } else {
+      convert(*it);
+    }
+  }
+}
+
+}  // namespace
+
 std::string ToJsonLine(const google::protobuf::Message& message) {
   google::protobuf::util::JsonPrintOptions options;
   options.add_whitespace = false;
@@ -155,9 +226,12 @@ std::string ToJsonLine(const google::protobuf::Message& message) {
   options.always_print_primitive_fields = true;
   std::string out;
   if (!google::protobuf::util::MessageToJsonString(message, &out, options).ok()) {
-    out = "{\"error\":\"cannot convert " + message.GetTypeName() + " to JSON\"}";
+    return "{\"error\":\"cannot convert " + message.GetTypeName() + " to JSON\"}";
   }
-  return out;
+  nlohmann::ordered_json json = nlohmann::ordered_json::parse(out, nullptr, false);
+  if (json.is_discarded()) return out;
+  Int64AsNumbers(json, message.GetDescriptor());
+  return json.dump();
 }
 
 }  // namespace dlmfd::cli

@@ -17,8 +17,16 @@ v1::JobState ParseState(const std::string& name);
 bool IsFinal(v1::JobState state);
 // "45s", "3m05s", "2h10m", "3d04h"; "-" for a negative or non-finite value.
 std::string FormatDuration(double seconds);
+// Seconds since the Unix epoch, now.
+double NowEpochSeconds();
 // Local time "YYYY-MM-DD HH:MM:SS" of seconds since the epoch; "-" for 0.
 std::string FormatTimestamp(double epoch_seconds);
+// Rows as columns padded to their widest cell, two spaces apart.
+std::string TextTable(const std::vector<std::vector<std::string>>& rows);
+std::string JoinText(const google::protobuf::RepeatedPtrField<std::string>& items,
+                     const char* separator);
+// "k=v, k=v" in key order.
+std::string LabelsText(const google::protobuf::Map<std::string, std::string>& labels);
 // The list table: one header line and one line per job.
 std::string JobTable(const std::vector<v1::Job>& jobs);
 // "key: value" lines describing one job.

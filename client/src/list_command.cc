@@ -1,5 +1,7 @@
-// dlmfd list [--state S]... [--tag T] [--sweep ID] [--page-size N] [--page-token T | --all]
-// [--json]
+// dlmfd list [--state S]... [--tag T]... [--label k=v]... [--where KEY=VALUE]... [--sweep ID]
+//            [--page-size N] [--page-token T | --all] [--json | -q]
+// Every filter given must hold. --where matches the effective scene (the scene file, the overrides
+// and the defaults, as the solver runs it): `--where particles.*.density=1.5`.
 #include <iostream>
 
 #include "command.h"
@@ -14,25 +16,34 @@ int RunList(int argc, char** argv) {
   CLI::App app{"List your jobs, newest first."};
   ConnectionFlags connection_flags;
   AddConnectionFlags(app, connection_flags);
-  std::vector<std::string> states;
-  std::string tag, sweep, page_token;
+  std::vector<std::string> states, tags, labels, where;
+  std::string sweep, page_token;
   int page_size = 50;
-  bool all = false, json = false;
+  bool all = false, json = false, quiet = false;
   app.add_option("--state", states,
                  "queued|running|completed|failed|cancelled (repeatable or comma list)")
       ->delimiter(',');
-  app.add_option("--tag", tag, "only jobs with this tag");
+  app.add_option("--tag", tags, "only jobs with this tag (repeatable: every one)");
+  app.add_option("--label", labels, "only jobs with this key=value label (repeatable)");
+  app.add_option("--where", where,
+                 "only jobs whose effective scene has KEY=VALUE (repeatable; * for any index)");
   app.add_option("--sweep", sweep, "only jobs of this sweep");
   app.add_option("--page-size", page_size, "jobs per page, 1..1000")->check(CLI::Range(1, 1000));
   app.add_option("--page-token", page_token, "continue from a previous page");
   app.add_flag("--all", all, "fetch every page");
   app.add_flag("--json", json, "one JSON line per job");
+  app.add_flag("-q,--quiet", quiet, "only the job ids, one per line");
   if (auto code = ParseArgs(app, argc, argv)) return *code;
 
   return Guarded("list", [&] {
     v1::ListRequest request;
     for (const std::string& s : states) request.add_states(ParseState(s));
-    request.set_tag(tag);
+    for (const std::string& t : tags) request.add_tags(t);
+    AddLabels(labels, request.mutable_labels());
+    for (const std::string& w : where) {
+      SplitKeyValue("--where", w);
+      request.add_where(w);
+    }
     request.set_sweep_id(sweep);
     request.set_page_size(page_size);
     request.set_page_token(page_token);
@@ -49,8 +60,8 @@ int RunList(int argc, char** argv) {
       if (!all || next.empty()) break;
       request.set_page_token(next);
     }
-    if (json) {
-      for (const v1::Job& job : jobs) std::cout << ToJsonLine(job) << "\n";
+    if (json || quiet) {
+      for (const v1::Job& job : jobs) std::cout << (json ? ToJsonLine(job) : job.id()) << "\n";
     } else {
       std::cout << JobTable(jobs);
     }

@@ -7,6 +7,7 @@
 #include "exit_codes.h"
 #include "job_text.h"
 #include "rpc_status.h"
+#include "terminal_width.h"
 
 namespace dlmfd::cli {
 
@@ -15,15 +16,23 @@ ProgressPrinter::ProgressPrinter(std::string job_id, PrintMode mode, std::ostrea
       mode_(mode),
       out_(out) {}
 
-std::string ProgressPrinter::StatusLine() const {
-  char text[256];
-  std::snprintf(text, sizeof(text), "%s %-9s step %lld  t %.4g/%.4g  %.1f steps/s  ETA %s",
-                job_id_.c_str(), state_.c_str(), static_cast<long long>(step_), time_, end_time_,
-                steps_per_second_, FormatDuration(eta_seconds_).c_str());
-  std::string line = text;
+std::vector<LineField> ProgressPrinter::StatusFields() const {
+  char state[64], step[48], time[64], rate[48];
+  std::snprintf(state, sizeof(state), "%s %-9s", job_id_.c_str(), state_.c_str());
+  std::snprintf(step, sizeof(step), "step %lld", static_cast<long long>(step_));
+  std::snprintf(time, sizeof(time), "t %.4g/%.4g", time_, end_time_);
+  std::snprintf(rate, sizeof(rate), "%.1f steps/s", steps_per_second_);
+  std::string particles;
   if (particles_ >= 0)
-    line += "  " + std::to_string(particles_) + (particles_ == 1 ? " particle" : " particles");
-  return line;
+    particles = std::to_string(particles_) + (particles_ == 1 ? " particle" : " particles");
+  // What matters most survives a narrow terminal: the state, the time, the ETA.
+  return {
+      {state, 10},   {step, 4}, {time, 8}, {rate, 3}, {"ETA " + FormatDuration(eta_seconds_), 7},
+      {particles, 2}};
+}
+
+std::string ProgressPrinter::StatusLine() const {
+  return FitToWidth(StatusFields(), std::string::npos);
 }
 
 void ProgressPrinter::PrintAbove(const std::string& line) {
@@ -35,7 +44,8 @@ void ProgressPrinter::PrintAbove(const std::string& line) {
 }
 
 void ProgressPrinter::Redraw() {
-  out_ << "\r\033[K" << StatusLine() << std::flush;
+  const std::size_t columns = static_cast<std::size_t>(TerminalColumns() - 1);
+  out_ << "\r\033[K" << FitToWidth(StatusFields(), columns) << std::flush;
   line_shown_ = true;
   last_redraw_ = std::chrono::steady_clock::now();
 }

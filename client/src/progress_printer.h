@@ -1,7 +1,7 @@
 // What `watch` and `submit --wait` print while a job runs.
 //   live (stdout is a terminal): one status line rewritten in place -- state, step, simulated time
-//   /
-//     end, steps/s, ETA, particle count -- with state changes, warnings and gaps on lines above it;
+//     / end, steps/s, ETA, particle count, held to the terminal's width (terminal_width.h) -- with
+//     state changes, warnings and gaps on lines above it;
 //   plain (a pipe or file): state changes, warnings and a progress line at most every 10 s;
 //   json: every event as one JSON line (NDJSON), nothing else on stdout.
 #pragma once
@@ -10,7 +10,9 @@
 #include <cstdint>
 #include <ostream>
 #include <string>
+#include <vector>
 
+#include "terminal_width.h"
 #include "watch_session.h"
 
 namespace dlmfd::cli {
@@ -26,7 +28,8 @@ class ProgressPrinter {
   int Finish(const WatchOutcome& outcome, const std::string& command);
 
  private:
-  std::string StatusLine() const;
+  std::vector<LineField> StatusFields() const;
+  std::string StatusLine() const;  // every field, for plain output
   void PrintAbove(const std::string& line);
   void Redraw();
 

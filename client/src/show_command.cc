@@ -1,33 +1,68 @@
-// dlmfd show JOB [--json]
+// dlmfd show JOB [--json]  |  dlmfd show --sweep S [--json]  |  dlmfd show --tag T... [--json]
+// A study shows its axes, limit and counts, then its jobs; a tag its counts, then its jobs.
 #include <iostream>
 
 #include "command.h"
 #include "connection.h"
 #include "exit_codes.h"
+#include "job_selection.h"
 #include "job_text.h"
 #include "rpc_status.h"
+#include "study_text.h"
 
 namespace dlmfd::cli {
 
 int RunShow(int argc, char** argv) {
-  CLI::App app{"Show one job."};
+  CLI::App app{"Show one job, or a study."};
   ConnectionFlags connection_flags;
   AddConnectionFlags(app, connection_flags);
   std::string job_id;
+  JobSelection selection;
   bool json = false;
-  app.add_option("job", job_id, "job id")->required();
-  app.add_flag("--json", json, "the job as one JSON line");
+  auto* job_option = app.add_option("job", job_id, "job id");
+  AddSelectionFlags(app, selection, job_option);
+  app.add_flag("--json", json, "the job (or the study, then its jobs) as JSON lines");
   if (auto code = ParseArgs(app, argc, argv)) return *code;
+  if (job_id.empty() && selection.empty())
+    return ReportError("show", "name a job id, --sweep ID or --tag T", kExitUsage);
 
   return Guarded("show", [&] {
     Connection connection(connection_flags);
-    auto context = connection.UnaryContext();
-    v1::GetRequest request;
-    request.set_job_id(job_id);
-    v1::Job job;
-    const grpc::Status status = connection.jobs().Get(context.get(), request, &job);
+    if (!job_id.empty()) {
+      auto context = connection.UnaryContext();
+      v1::GetRequest request;
+      request.set_job_id(job_id);
+      v1::Job job;
+      const grpc::Status status = connection.jobs().Get(context.get(), request, &job);
+      if (!status.ok()) return ReportRpcError("show", status);
+      std::cout << (json ? ToJsonLine(job) + "\n" : JobDetails(job));
+      return kExitOk;
+    }
+    if (!selection.sweep.empty()) {
+      auto context = connection.UnaryContext();
+      v1::GetSweepRequest request;
+      request.set_sweep_id(selection.sweep);
+      v1::Sweep sweep;
+      const grpc::Status status = connection.jobs().GetSweep(context.get(), request, &sweep);
+      if (!status.ok()) return ReportRpcError("show", status);
+      std::cout << (json ? ToJsonLine(sweep) + "\n" : SweepDetails(sweep));
+    }
+    std::vector<v1::Job> jobs;
+    const grpc::Status status = SelectJobs(connection, selection, jobs);
     if (!status.ok()) return ReportRpcError("show", status);
-    std::cout << (json ? ToJsonLine(job) + "\n" : JobDetails(job));
+    if (jobs.empty() && selection.sweep.empty()) {
+      return ReportError("show", "no job carries " + SelectionName(selection), kExitNotFound);
+    }
+    if (json) {
+      for (const v1::Job& job : jobs) std::cout << ToJsonLine(job) << "\n";
+      return kExitOk;
+    }
+    if (selection.sweep.empty()) {
+      const StudyCounts counts = CountJobs(jobs);
+      std::cout << FitToWidth(StudyFields(SelectionName(selection), counts, -1), std::string::npos)
+                << "\n";
+    }
+    std::cout << JobTable(jobs);
     return kExitOk;
   });
 }

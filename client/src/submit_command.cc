@@ -1,6 +1,6 @@
-// dlmfd submit SCENE [--set key=value]... [--tag T]... [--priority P] [--name N] [--wait [--json]]
-// Prints the job id on stdout (first line). Submit is retried on UNAVAILABLE with the same client
-// request id, so a retry never queues the job twice.
+// dlmfd submit SCENE [--set key=value]... [--tag T]... [--label k=v]... [--priority P] [--name N]
+// [--wait [--json]] Prints the job id on stdout (first line). Submit is retried on UNAVAILABLE with
+// the same client request id, so a retry never queues the job twice.
 #include <filesystem>
 #include <iostream>
 #include <thread>
@@ -20,13 +20,14 @@ int RunSubmit(int argc, char** argv) {
   ConnectionFlags connection_flags;
   AddConnectionFlags(app, connection_flags);
   std::string scene_path, name, request_id;
-  std::vector<std::string> overrides, tags;
+  std::vector<std::string> overrides, tags, labels;
   int priority = 0;
   bool wait = false, json = false;
   app.add_option("scene", scene_path, "scene file (TOML)")->required();
   app.add_option("--set", overrides,
                  "override a scene key: --set fluid.relaxation_time=2 (repeatable)");
-  app.add_option("--tag", tags, "label the job (repeatable)");
+  app.add_option("--tag", tags, "tag the job (repeatable)");
+  app.add_option("--label", labels, "a key=value label (repeatable)");
   app.add_option("--priority", priority, "higher runs first, -1000..1000")
       ->check(CLI::Range(-1000, 1000));
   app.add_option("--name", name, "job name (default: the scene file's stem)");
@@ -43,6 +44,7 @@ int RunSubmit(int argc, char** argv) {
       request.add_overrides(o);
     }
     for (const std::string& t : tags) request.add_tags(t);
+    AddLabels(labels, request.mutable_labels());
     request.set_priority(priority);
     request.set_name(name.empty() ? std::filesystem::path(scene_path).stem().string() : name);
     request.set_client_request_id(request_id.empty() ? NewRequestId() : request_id);

@@ -37,6 +37,60 @@ v1::Job ToProto(const JobRecord& job) {
     o->set_suggested(w.suggested);
     o->set_source(w.source);
   }
+  for (const auto& [key, value] : job.labels) (*out.mutable_labels())[key] = value;
+  for (const ParameterValue& p : job.parameters) {
+    v1::ParameterValue* o = out.add_parameters();
+    o->set_key(p.key);
+    o->set_text(p.text);
+    o->set_type(p.type);
+    o->set_number(p.number);
+  }
+  out.set_attempt(job.attempt);
+  for (const AttemptRecord& a : job.previous_attempts) {
+    v1::AttemptRecord* o = out.add_previous_attempts();
+    o->set_attempt(a.attempt);
+    o->set_state(static_cast<v1::JobState>(a.state));
+    o->set_reason(a.reason);
+    o->set_started_time(a.started_time);
+    o->set_finished_time(a.finished_time);
+    o->set_step(a.step);
+    o->set_time(a.time);
+    for (const auto& text : a.overrides) o->add_overrides(text);
+  }
+  return out;
+}
+
+v1::Sweep ToProto(const SweepRecord& sweep, const SweepStats& stats) {
+  v1::Sweep out;
+  out.set_id(sweep.id);
+  out.set_name(sweep.name);
+  out.set_owner(sweep.owner);
+  for (const auto& tag : sweep.tags) out.add_tags(tag);
+  for (const auto& [key, value] : sweep.labels) (*out.mutable_labels())[key] = value;
+  for (const StoredAxis& a : sweep.axes) {
+    v1::SweepAxis* o = out.add_axes();
+    o->set_key(a.key);
+    o->set_zip(a.zip);
+    for (const auto& value : a.values) o->add_values(value);
+    if (a.is_range) {
+      o->mutable_range()->set_start(a.start);
+      o->mutable_range()->set_stop(a.stop);
+      o->mutable_range()->set_count(a.count);
+      o->mutable_range()->set_logarithmic(a.logarithmic);
+    }
+  }
+  for (const auto& text : sweep.overrides) out.add_overrides(text);
+  out.set_max_running(sweep.max_running);
+  out.set_created_time(sweep.created_time);
+  out.set_jobs(stats.jobs);
+  out.set_queued(stats.count[static_cast<size_t>(JobState::kQueued)]);
+  out.set_running(stats.count[static_cast<size_t>(JobState::kRunning)]);
+  out.set_completed(stats.count[static_cast<size_t>(JobState::kCompleted)]);
+  out.set_failed(stats.count[static_cast<size_t>(JobState::kFailed)]);
+  out.set_cancelled(stats.count[static_cast<size_t>(JobState::kCancelled)]);
+  out.set_progress(stats.jobs > 0 ? stats.progress_sum / stats.jobs : 0.0);
+  out.set_first_started_time(stats.first_started_time);
+  out.set_last_finished_time(stats.last_finished_time);
   return out;
 }
 

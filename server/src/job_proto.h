@@ -7,6 +7,8 @@
 namespace dlmfd::server {
 
 v1::Job ToProto(const JobRecord& job);
+// A study and where its jobs stand.
+v1::Sweep ToProto(const SweepRecord& sweep, const SweepStats& stats);
 double NowSeconds();
 
 }  // namespace dlmfd::server

@@ -58,6 +58,41 @@ const Migration kMigrations[] = {
     {2, R"sql(
     ALTER TABLE jobs ADD COLUMN warnings TEXT NOT NULL DEFAULT '';
     )sql"},
+    // Schema 3: studies as objects, labels, the effective scene's values, retries. Sweeps of
+    // schema 2 become rows of their own (no axes recorded).
+    {3, R"sql(
+    CREATE TABLE sweeps (
+      ordinal INTEGER PRIMARY KEY AUTOINCREMENT,
+      id TEXT NOT NULL UNIQUE,
+      owner TEXT NOT NULL,
+      name TEXT NOT NULL DEFAULT '',
+      tags TEXT NOT NULL DEFAULT '',
+      labels TEXT NOT NULL DEFAULT '',
+      axes TEXT NOT NULL DEFAULT '',
+      overrides TEXT NOT NULL DEFAULT '',
+      max_running INTEGER NOT NULL DEFAULT 0,
+      created_time REAL NOT NULL DEFAULT 0);
+    CREATE INDEX sweeps_owner ON sweeps (owner, ordinal DESC);
+    INSERT INTO sweeps (id, owner, created_time)
+      SELECT sweep_id, owner, MIN(created_time) FROM jobs WHERE sweep_id != ''
+      GROUP BY sweep_id, owner ORDER BY MIN(ordinal);
+    CREATE TABLE job_labels (
+      job_id TEXT NOT NULL,
+      key TEXT NOT NULL,
+      value TEXT NOT NULL,
+      PRIMARY KEY (job_id, key));
+    CREATE INDEX job_labels_key ON job_labels (key, value);
+    CREATE TABLE job_values (
+      job_id TEXT NOT NULL,
+      key TEXT NOT NULL,
+      value TEXT NOT NULL,
+      PRIMARY KEY (job_id, key));
+    CREATE INDEX job_values_key ON job_values (key, value);
+    ALTER TABLE jobs ADD COLUMN parameters TEXT NOT NULL DEFAULT '';
+    ALTER TABLE jobs ADD COLUMN attempt INTEGER NOT NULL DEFAULT 1;
+    ALTER TABLE jobs ADD COLUMN previous_attempts TEXT NOT NULL DEFAULT '';
+    ALTER TABLE jobs ADD COLUMN fresh_start INTEGER NOT NULL DEFAULT 0;
+    )sql"},
     // Schema 4: a queued job held from starting, and the bytes of a finished job's directory
     // (the disk quota).
     {4, R"sql(
@@ -69,7 +104,11 @@ const Migration kMigrations[] = {
 const char kColumns[] =
     "ordinal, id, name, owner, state, reason, priority, sweep_id, created_time, started_time, "
     "finished_time, step, time, end_time, attempts, results_dir, scene, overrides, "
-    "client_request_id, last_seq, cancel_requested, warnings, held, disk_bytes";
+    "client_request_id, last_seq, cancel_requested, warnings, held, disk_bytes, parameters, "
+    "attempt, previous_attempts, fresh_start";
+
+const char kSweepColumns[] =
+    "ordinal, id, owner, name, tags, labels, axes, overrides, max_running, created_time";
 
 std::string Join(const std::vector<std::string>& parts, char sep) {
   std::string out;
@@ -119,6 +158,162 @@ std::vector<AccuracyWarning> DecodeWarnings(const std::string& text) {
     w.suggested = f[5];
     w.source = f[6];
     out.push_back(std::move(w));
+  }
+  return out;
+}
+
+// Records of fields for the columns of schema 3: fields joined by tabs, records by line breaks,
+// with backslash, tab and line break escaped inside a field, so any text reads back as written.
+std::string EscapeField(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '\\') {
+      out += "\\\\";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c == '\n') {
+      out += "\\n";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string UnescapeField(const std::string& text) {
+  std::string out;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\\' && i + 1 < text.size()) {
+      const char c = text[++i];
+      out += c == 't' ? '\t' : c == 'n' ? '\n' : c;
+    } else {
+      out += text[i];
+    }
+  }
+  return out;
+}
+
+std::string EncodeRecords(const std::vector<std::vector<std::string>>& records) {
+  std::vector<std::string> lines;
+  for (const auto& fields : records) {
+    std::vector<std::string> escaped;
+    for (const auto& f : fields) escaped.push_back(EscapeField(f));
+    lines.push_back(Join(escaped, '\t'));
+  }
+  return Join(lines, '\n');
+}
+
+std::vector<std::vector<std::string>> DecodeRecords(const std::string& text, size_t min_fields,
+                                                    const char* column) {
+  std::vector<std::vector<std::string>> out;
+  for (const std::string& line : Split(text, '\n')) {
+    std::vector<std::string> fields;
+    for (const std::string& f : Split(line, '\t')) fields.push_back(UnescapeField(f));
+    if (line.empty() || line.back() == '\t') fields.emplace_back();  // a trailing empty field
+    if (fields.size() < min_fields) {
+      throw StoreError(std::string(column) + ": a record with " + std::to_string(fields.size()) +
+                       " fields, expected at least " + std::to_string(min_fields));
+    }
+    out.push_back(std::move(fields));
+  }
+  return out;
+}
+
+std::string Exact(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+double ReadDouble(const std::string& text) { return std::strtod(text.c_str(), nullptr); }
+
+std::string EncodeParameters(const std::vector<ParameterValue>& parameters) {
+  std::vector<std::vector<std::string>> records;
+  for (const auto& p : parameters) records.push_back({p.key, p.text, p.type, Exact(p.number)});
+  return EncodeRecords(records);
+}
+
+std::vector<ParameterValue> DecodeParameters(const std::string& text) {
+  std::vector<ParameterValue> out;
+  for (const auto& f : DecodeRecords(text, 4, "jobs.parameters")) {
+    out.push_back({f[0], f[1], f[2], ReadDouble(f[3])});
+  }
+  return out;
+}
+
+std::string EncodeAttempts(const std::vector<AttemptRecord>& attempts) {
+  std::vector<std::vector<std::string>> records;
+  for (const auto& a : attempts) {
+    std::vector<std::string> fields = {std::to_string(a.attempt),
+                                       std::to_string(static_cast<int>(a.state)),
+                                       a.reason,
+                                       Exact(a.started_time),
+                                       Exact(a.finished_time),
+                                       std::to_string(a.step),
+                                       Exact(a.time)};
+    fields.insert(fields.end(), a.overrides.begin(), a.overrides.end());
+    records.push_back(std::move(fields));
+  }
+  return EncodeRecords(records);
+}
+
+std::vector<AttemptRecord> DecodeAttempts(const std::string& text) {
+  std::vector<AttemptRecord> out;
+  for (const auto& f : DecodeRecords(text, 7, "jobs.previous_attempts")) {
+    AttemptRecord a;
+    a.attempt = std::atoi(f[0].c_str());
+    a.state = static_cast<JobState>(std::atoi(f[1].c_str()));
+    a.reason = f[2];
+    a.started_time = ReadDouble(f[3]);
+    a.finished_time = ReadDouble(f[4]);
+    a.step = std::atoll(f[5].c_str());
+    a.time = ReadDouble(f[6]);
+    for (size_t k = 7; k < f.size(); ++k) {
+      if (!f[k].empty()) a.overrides.push_back(f[k]);
+    }
+    out.push_back(std::move(a));
+  }
+  return out;
+}
+
+std::string EncodeLabels(const std::map<std::string, std::string>& labels) {
+  std::vector<std::vector<std::string>> records;
+  for (const auto& [k, v] : labels) records.push_back({k, v});
+  return EncodeRecords(records);
+}
+
+std::map<std::string, std::string> DecodeLabels(const std::string& text) {
+  std::map<std::string, std::string> out;
+  for (const auto& f : DecodeRecords(text, 2, "sweeps.labels")) out[f[0]] = f[1];
+  return out;
+}
+
+// One axis per record: key, zip, range ("" or "lin"/"log"), start, stop, count, then the values.
+std::string EncodeAxes(const std::vector<StoredAxis>& axes) {
+  std::vector<std::vector<std::string>> records;
+  for (const auto& a : axes) {
+    std::vector<std::string> fields = {
+        a.key,          a.zip,         a.is_range ? (a.logarithmic ? "log" : "lin") : "",
+        Exact(a.start), Exact(a.stop), std::to_string(a.count)};
+    fields.insert(fields.end(), a.values.begin(), a.values.end());
+    records.push_back(std::move(fields));
+  }
+  return EncodeRecords(records);
+}
+
+std::vector<StoredAxis> DecodeAxes(const std::string& text) {
+  std::vector<StoredAxis> out;
+  for (const auto& f : DecodeRecords(text, 6, "sweeps.axes")) {
+    StoredAxis a;
+    a.key = f[0];
+    a.zip = f[1];
+    a.is_range = !f[2].empty();
+    a.logarithmic = f[2] == "log";
+    a.start = ReadDouble(f[3]);
+    a.stop = ReadDouble(f[4]);
+    a.count = std::atoi(f[5].c_str());
+    a.values.assign(f.begin() + 6, f.end());
+    out.push_back(std::move(a));
   }
   return out;
 }
@@ -323,10 +518,54 @@ std::vector<JobRecord> JobStore::Query(Statement& statement) {
     job.warnings = DecodeWarnings(statement.Text(c++));
     job.held = statement.Int(c++) != 0;
     job.disk_bytes = statement.Int(c++);
+    job.parameters = DecodeParameters(statement.Text(c++));
+    job.attempt = static_cast<int>(statement.Int(c++));
+    job.previous_attempts = DecodeAttempts(statement.Text(c++));
+    job.fresh_start = statement.Int(c++) != 0;
     jobs.push_back(std::move(job));
   }
-  for (auto& job : jobs) LoadTags(job);
+  for (auto& job : jobs) {
+    LoadTags(job);
+    LoadLabels(job);
+  }
   return jobs;
+}
+
+void JobStore::LoadLabels(JobRecord& job) {
+  Statement select(db_, "SELECT key, value FROM job_labels WHERE job_id = ? ORDER BY key");
+  select.Bind(job.id);
+  job.labels.clear();
+  while (select.Step()) job.labels[select.Text(0)] = select.Text(1);
+}
+
+void JobStore::WriteSceneValues(const std::string& id,
+                                const std::vector<std::pair<std::string, std::string>>& values) {
+  Statement(db_, "DELETE FROM job_values WHERE job_id = ?").Bind(id).Run();
+  for (const auto& [key, value] : values) {
+    Statement insert(db_,
+                     "INSERT OR REPLACE INTO job_values (job_id, key, value) VALUES (?, ?, ?)");
+    insert.Bind(id).Bind(key).Bind(value).Run();
+  }
+}
+
+std::vector<SweepRecord> JobStore::QuerySweeps(Statement& statement) {
+  std::vector<SweepRecord> sweeps;
+  while (statement.Step()) {
+    SweepRecord sweep;
+    int c = 0;
+    sweep.ordinal = statement.Int(c++);
+    sweep.id = statement.Text(c++);
+    sweep.owner = statement.Text(c++);
+    sweep.name = statement.Text(c++);
+    sweep.tags = Split(statement.Text(c++), ',');
+    sweep.labels = DecodeLabels(statement.Text(c++));
+    sweep.axes = DecodeAxes(statement.Text(c++));
+    sweep.overrides = Split(statement.Text(c++), '\n');
+    sweep.max_running = static_cast<int>(statement.Int(c++));
+    sweep.created_time = statement.Real(c++);
+    sweeps.push_back(std::move(sweep));
+  }
+  return sweeps;
 }
 
 void JobStore::LoadTags(JobRecord& job) {
@@ -337,7 +576,8 @@ void JobStore::LoadTags(JobRecord& job) {
 }
 
 JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const std::string& owner,
-                                            const std::string& request_key) {
+                                            const std::string& request_key,
+                                            const SweepRecord* sweep) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
   InsertResult result;
@@ -354,12 +594,28 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
       return result;
     }
   }
+  if (sweep != nullptr) {
+    Statement insert(db_,
+                     "INSERT INTO sweeps (id, owner, name, tags, labels, axes, overrides, "
+                     "max_running, created_time) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
+    insert.Bind(sweep->id)
+        .Bind(sweep->owner)
+        .Bind(sweep->name)
+        .Bind(Join(sweep->tags, ','))
+        .Bind(EncodeLabels(sweep->labels))
+        .Bind(EncodeAxes(sweep->axes))
+        .Bind(Join(sweep->overrides, '\n'))
+        .Bind(sweep->max_running)
+        .Bind(sweep->created_time)
+        .Run();
+  }
   std::vector<std::string> ids;
   for (auto& job : jobs) {
     Statement insert(db_,
                      "INSERT INTO jobs (id, name, owner, state, reason, priority, sweep_id, "
                      "created_time, end_time, results_dir, scene, overrides, client_request_id, "
-                     "warnings) VALUES (?, ?, ?, ?, '', ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+                     "warnings, parameters, attempt) "
+                     "VALUES (?, ?, ?, ?, '', ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
     insert.Bind(job.id)
         .Bind(job.name)
         .Bind(job.owner)
@@ -372,13 +628,20 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
         .Bind(job.scene)
         .Bind(Join(job.overrides, '\n'))
         .Bind(job.client_request_id)
-        .Bind(EncodeWarnings(job.warnings));
+        .Bind(EncodeWarnings(job.warnings))
+        .Bind(EncodeParameters(job.parameters))
+        .Bind(job.attempt);
     insert.Run();
     job.ordinal = sqlite3_last_insert_rowid(db_);
     for (const auto& tag : job.tags) {
       Statement tag_insert(db_, "INSERT OR IGNORE INTO job_tags (job_id, tag) VALUES (?, ?)");
       tag_insert.Bind(job.id).Bind(tag).Run();
     }
+    for (const auto& [key, value] : job.labels) {
+      Statement label_insert(db_, "INSERT INTO job_labels (job_id, key, value) VALUES (?, ?, ?)");
+      label_insert.Bind(job.id).Bind(key).Bind(value).Run();
+    }
+    WriteSceneValues(job.id, job.scene_values);
     ids.push_back(job.id);
   }
   if (!request_key.empty()) {
@@ -422,14 +685,38 @@ std::vector<JobRecord> JobStore::List(const ListFilter& filter) {
     for (size_t i = 0; i < filter.states.size(); ++i) sql += i ? ", ?" : "?";
     sql += ")";
   }
-  if (!filter.tag.empty()) sql += " AND id IN (SELECT job_id FROM job_tags WHERE tag = ?)";
+  std::vector<std::string> tags = filter.tags;
+  if (!filter.tag.empty()) tags.push_back(filter.tag);
+  for (size_t i = 0; i < tags.size(); ++i) {
+    sql += " AND id IN (SELECT job_id FROM job_tags WHERE tag = ?)";
+  }
+  for (size_t i = 0; i < filter.labels.size(); ++i) {
+    sql += " AND id IN (SELECT job_id FROM job_labels WHERE key = ? AND value = ?)";
+  }
+  // GLOB: '*' of a key pattern matches any index; the key's other GLOB characters ('?', '[')
+  // are escaped as one-character classes.
+  for (size_t i = 0; i < filter.values.size(); ++i) {
+    sql += " AND id IN (SELECT job_id FROM job_values WHERE key GLOB ? AND value = ?)";
+  }
   if (!filter.sweep_id.empty()) sql += " AND sweep_id = ?";
   if (filter.before_ordinal > 0) sql += " AND ordinal < ?";
   sql += " ORDER BY ordinal DESC LIMIT ?";
   Statement select(db_, sql);
   select.Bind(filter.owner);
   for (JobState state : filter.states) select.Bind(static_cast<int>(state));
-  if (!filter.tag.empty()) select.Bind(filter.tag);
+  for (const auto& tag : tags) select.Bind(tag);
+  for (const auto& [key, value] : filter.labels) select.Bind(key).Bind(value);
+  for (const auto& [pattern, value] : filter.values) {
+    std::string glob;
+    for (char c : pattern) {
+      if (c == '?' || c == '[') {
+        glob += std::string("[") + c + "]";
+      } else {
+        glob += c;
+      }
+    }
+    select.Bind(glob).Bind(value);
+  }
   if (!filter.sweep_id.empty()) select.Bind(filter.sweep_id);
   if (filter.before_ordinal > 0) select.Bind(filter.before_ordinal);
   select.Bind(filter.limit);
@@ -460,12 +747,119 @@ std::vector<JobRecord> JobStore::SweepJobs(const std::string& owner, const std::
   return Query(select);
 }
 
-std::optional<JobRecord> JobStore::NextQueued() {
+std::optional<SweepRecord> JobStore::GetSweep(const std::string& owner,
+                                              const std::string& sweep_id) {
   std::lock_guard lock(mutex_);
   Statement select(
-      db_, std::string("SELECT ") + kColumns +
-               " FROM jobs WHERE state = ? AND held = 0 ORDER BY priority DESC, ordinal LIMIT 1");
-  select.Bind(static_cast<int>(JobState::kQueued));
+      db_, std::string("SELECT ") + kSweepColumns + " FROM sweeps WHERE owner = ? AND id = ?");
+  select.Bind(owner).Bind(sweep_id);
+  auto sweeps = QuerySweeps(select);
+  if (sweeps.empty()) return std::nullopt;
+  return std::move(sweeps.front());
+}
+
+std::vector<SweepRecord> JobStore::ListSweeps(const std::string& owner, const std::string& tag,
+                                              int64_t before_ordinal, int limit) {
+  std::lock_guard lock(mutex_);
+  std::string sql = std::string("SELECT ") + kSweepColumns + " FROM sweeps WHERE owner = ?";
+  if (!tag.empty()) sql += " AND instr(',' || tags || ',', ',' || ? || ',') > 0";
+  if (before_ordinal > 0) sql += " AND ordinal < ?";
+  sql += " ORDER BY ordinal DESC LIMIT ?";
+  Statement select(db_, sql);
+  select.Bind(owner);
+  if (!tag.empty()) select.Bind(tag);
+  if (before_ordinal > 0) select.Bind(before_ordinal);
+  select.Bind(limit);
+  return QuerySweeps(select);
+}
+
+SweepStats JobStore::StatsOfSweep(const std::string& owner, const std::string& sweep_id) {
+  std::lock_guard lock(mutex_);
+  Statement select(db_,
+                   "SELECT state, COUNT(*), "
+                   "SUM(CASE WHEN state IN (?, ?, ?) THEN 1.0 WHEN end_time > 0 "
+                   "THEN MIN(1.0, MAX(0.0, time / end_time)) ELSE 0.0 END), "
+                   "MIN(NULLIF(started_time, 0)), MAX(finished_time) "
+                   "FROM jobs WHERE owner = ? AND sweep_id = ? GROUP BY state");
+  select.Bind(static_cast<int>(JobState::kCompleted))
+      .Bind(static_cast<int>(JobState::kFailed))
+      .Bind(static_cast<int>(JobState::kCancelled))
+      .Bind(owner)
+      .Bind(sweep_id);
+  SweepStats stats;
+  while (select.Step()) {
+    const int64_t state = select.Int(0);
+    const int count = static_cast<int>(select.Int(1));
+    if (state >= 1 && state <= 5) stats.count[static_cast<size_t>(state)] += count;
+    stats.jobs += count;
+    stats.progress_sum += select.Real(2);
+    const double started = select.Real(3);  // NULL reads 0
+    if (started > 0 && (stats.first_started_time == 0 || started < stats.first_started_time)) {
+      stats.first_started_time = started;
+    }
+    stats.last_finished_time = std::max(stats.last_finished_time, select.Real(4));
+  }
+  return stats;
+}
+
+void JobStore::Requeue(const std::vector<RequeueChange>& changes) {
+  std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  for (const RequeueChange& change : changes) {
+    std::vector<JobRecord> found;
+    {
+      Statement get(db_, std::string("SELECT ") + kColumns + " FROM jobs WHERE id = ?");
+      get.Bind(change.id);
+      found = Query(get);
+    }
+    if (found.empty() || !IsFinished(found.front().state)) {
+      throw StoreError("job " + change.id + " is not finished");
+    }
+    const JobRecord& job = found.front();
+    std::vector<AttemptRecord> attempts = job.previous_attempts;
+    attempts.push_back({job.attempt, job.state, job.reason, job.started_time, job.finished_time,
+                        job.step, job.time, job.overrides});
+    Statement update(db_,
+                     "UPDATE jobs SET state = ?, reason = '', started_time = 0, finished_time = 0, "
+                     "cancel_requested = 0, attempt = attempt + 1, previous_attempts = ?, "
+                     "overrides = ?, parameters = ?, warnings = ?, end_time = ?, fresh_start = ?, "
+                     "step = CASE WHEN ? THEN 0 ELSE step END, "
+                     "time = CASE WHEN ? THEN 0 ELSE time END WHERE id = ? AND state IN (?, ?, ?)");
+    update.Bind(static_cast<int>(JobState::kQueued))
+        .Bind(EncodeAttempts(attempts))
+        .Bind(Join(change.overrides, '\n'))
+        .Bind(EncodeParameters(change.parameters))
+        .Bind(EncodeWarnings(change.warnings))
+        .Bind(change.end_time)
+        .Bind(change.fresh_start ? 1 : 0)
+        .Bind(change.fresh_start ? 1 : 0)
+        .Bind(change.fresh_start ? 1 : 0)
+        .Bind(change.id)
+        .Bind(static_cast<int>(JobState::kCompleted))
+        .Bind(static_cast<int>(JobState::kFailed))
+        .Bind(static_cast<int>(JobState::kCancelled));
+    update.Run();
+    if (update.Changes() != 1) throw StoreError("job " + change.id + " is not finished");
+    WriteSceneValues(change.id, change.scene_values);
+  }
+  transaction.Commit();
+}
+
+void JobStore::ClearFreshStart(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  Statement(db_, "UPDATE jobs SET fresh_start = 0 WHERE id = ?").Bind(id).Run();
+}
+
+std::optional<JobRecord> JobStore::NextQueued() {
+  std::lock_guard lock(mutex_);
+  // A study at its max_running holds its queued jobs back; others may start meanwhile; a held job
+  // waits for its Release.
+  Statement select(db_, std::string("SELECT ") + kColumns +
+                            " FROM jobs j WHERE state = ? AND held = 0 AND NOT EXISTS (SELECT 1 "
+                            "FROM sweeps s WHERE s.id = j.sweep_id AND s.max_running > 0 AND "
+                            "s.max_running <= (SELECT COUNT(*) FROM jobs r WHERE r.sweep_id = "
+                            "j.sweep_id AND r.state = ?)) ORDER BY priority DESC, ordinal LIMIT 1");
+  select.Bind(static_cast<int>(JobState::kQueued)).Bind(static_cast<int>(JobState::kRunning));
   auto jobs = Query(select);
   if (jobs.empty()) return std::nullopt;
   return std::move(jobs.front());
@@ -592,6 +986,8 @@ void JobStore::Delete(const std::vector<std::string>& ids) {
   Transaction transaction(db_);
   for (const std::string& id : ids) {
     Statement(db_, "DELETE FROM job_tags WHERE job_id = ?").Bind(id).Run();
+    Statement(db_, "DELETE FROM job_labels WHERE job_id = ?").Bind(id).Run();
+    Statement(db_, "DELETE FROM job_values WHERE job_id = ?").Bind(id).Run();
     Statement(db_, "DELETE FROM jobs WHERE id = ?").Bind(id).Run();
   }
   // A request keeps the jobs it made that still exist; one with none left is forgotten, so that

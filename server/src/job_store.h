@@ -6,9 +6,17 @@
 // never reused. Watch sequence numbers are handed out in blocks: last_seq is the reserved
 // high-water mark, so after a crash the next daemon starts above any number it may have issued. Not
 // supported: several daemons on one data directory (the daemon holds an flock on it).
+//
+// Studies (schema 3): a sweeps table holds each study (name, tags, labels, axes, base overrides,
+// max_running); job_labels the key=value labels of each job; job_values the effective scene of
+// each job flattened to dotted keys with normalised value texts (scene_values.h), which List's
+// `where` filter matches in SQL; jobs gain the point's typed parameters, the attempt number, the
+// earlier attempts and a fresh-start flag (a retry with a changed scene must not resume).
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
@@ -30,6 +38,25 @@ class StoreError : public std::runtime_error {
 enum class JobState { kQueued = 1, kRunning = 2, kCompleted = 3, kFailed = 4, kCancelled = 5 };
 bool IsFinished(JobState state);
 const char* JobStateName(JobState state);
+
+// One coordinate of a job's point in its study (dlmfd.v1.ParameterValue).
+struct ParameterValue {
+  std::string key;
+  std::string text;  // TOML value text
+  std::string type;  // integer, float, boolean, string, array
+  double number = 0;
+};
+
+// How an earlier attempt of a job ended (dlmfd.v1.AttemptRecord).
+struct AttemptRecord {
+  int attempt = 0;
+  JobState state = JobState::kFailed;
+  std::string reason;
+  double started_time = 0, finished_time = 0;
+  int64_t step = 0;
+  double time = 0;
+  std::vector<std::string> overrides;
+};
 
 struct JobRecord {
   std::string id;
@@ -54,14 +81,70 @@ struct JobRecord {
   bool held = false;       // a queued job kept from starting
   int64_t disk_bytes = 0;  // bytes of the job directory, counted when the job finished
   int64_t ordinal = 0;     // insertion order, set by the store
+  std::map<std::string, std::string> labels;
+  std::vector<ParameterValue> parameters;  // the point of its study
+  int attempt = 1;                         // 1 + the number of retries
+  std::vector<AttemptRecord> previous_attempts;
+  bool fresh_start = false;  // set by a retry with another scene: the next run must not resume
+  // The effective scene as (dotted key, normalised value) pairs: written at insert and retry, not
+  // read back into records (List's `where` matches it in SQL).
+  std::vector<std::pair<std::string, std::string>> scene_values;
+};
+
+// A study axis as stored: its values (a range already expanded) and how it was given.
+struct StoredAxis {
+  std::string key;
+  std::string zip;  // axes with the same non-empty name step together
+  std::vector<std::string> values;
+  bool is_range = false;
+  double start = 0, stop = 0;
+  int count = 0;
+  bool logarithmic = false;
+};
+
+struct SweepRecord {
+  std::string id;
+  std::string owner;
+  std::string name;
+  std::vector<std::string> tags;
+  std::map<std::string, std::string> labels;
+  std::vector<StoredAxis> axes;
+  std::vector<std::string> overrides;
+  int max_running = 0;
+  double created_time = 0;
+  int64_t ordinal = 0;
+};
+
+// Where a study's jobs stand, from one aggregate query.
+struct SweepStats {
+  std::array<int, 6> count{};  // indexed by JobState (0 unused)
+  int jobs = 0;
+  double progress_sum = 0;  // sum over jobs of min(1, time / end_time), finished jobs 1
+  double first_started_time = 0, last_finished_time = 0;
+};
+
+// A retry of one finished job: what changes (JobStore::Requeue).
+struct RequeueChange {
+  std::string id;
+  std::vector<std::string> overrides;
+  std::vector<ParameterValue> parameters;
+  std::vector<std::pair<std::string, std::string>> scene_values;
+  std::vector<AccuracyWarning> warnings;
+  double end_time = 0;
+  bool fresh_start = false;
 };
 
 struct ListFilter {
   std::string owner;
-  std::vector<JobState> states;  // empty: any
-  std::string tag;               // empty: any
-  std::string sweep_id;          // empty: any
-  int64_t before_ordinal = 0;    // 0: from the newest
+  std::vector<JobState> states;               // empty: any
+  std::string tag;                            // empty: any
+  std::string sweep_id;                       // empty: any
+  std::vector<std::string> tags;              // every one of them
+  std::map<std::string, std::string> labels;  // every one of them
+  // (key pattern, normalised value) pairs of the effective scene, every one of them; '*' in a key
+  // matches any index.
+  std::vector<std::pair<std::string, std::string>> values;
+  int64_t before_ordinal = 0;  // 0: from the newest
   int limit = 100;
 };
 
@@ -80,8 +163,9 @@ class JobStore {
     std::vector<JobRecord> jobs;
     bool existed = false;
   };
+  // With `sweep`, the study's row is inserted in the same transaction.
   InsertResult InsertJobs(std::vector<JobRecord> jobs, const std::string& owner,
-                          const std::string& request_key);
+                          const std::string& request_key, const SweepRecord* sweep = nullptr);
 
   // The jobs created by an earlier request with this key, or empty.
   std::vector<JobRecord> FindRequest(const std::string& owner, const std::string& request_key);
@@ -89,11 +173,21 @@ class JobStore {
   std::vector<JobRecord> List(const ListFilter& filter);
   int64_t CountUnfinished();
   std::vector<JobRecord> SweepJobs(const std::string& owner, const std::string& sweep_id);
+  std::optional<SweepRecord> GetSweep(const std::string& owner, const std::string& sweep_id);
+  // The owner's studies, newest first; tag empty: any.
+  std::vector<SweepRecord> ListSweeps(const std::string& owner, const std::string& tag,
+                                      int64_t before_ordinal, int limit);
+  SweepStats StatsOfSweep(const std::string& owner, const std::string& sweep_id);
+  // Finished jobs back to QUEUED in one transaction, each with attempt + 1 and its ending recorded
+  // in previous_attempts. Throws StoreError (nothing changed) when one is no longer finished.
+  void Requeue(const std::vector<RequeueChange>& changes);
+  void ClearFreshStart(const std::string& id);
 
   // Every job of the owner, oldest first.
   std::vector<JobRecord> OwnerJobs(const std::string& owner);
 
-  // Highest priority, then oldest, among QUEUED jobs that are not held.
+  // Highest priority, then oldest, among QUEUED jobs that are not held and whose study is below
+  // its max_running.
   std::optional<JobRecord> NextQueued();
   void MarkRunning(const std::string& id, double started_time);
   // Sets a finished state; returns false when the job had already finished (nothing changed).
@@ -122,6 +216,10 @@ class JobStore {
   void Migrate();
   std::vector<JobRecord> Query(Statement& statement);
   void LoadTags(JobRecord& job);
+  void LoadLabels(JobRecord& job);
+  void WriteSceneValues(const std::string& id,
+                        const std::vector<std::pair<std::string, std::string>>& values);
+  std::vector<SweepRecord> QuerySweeps(Statement& statement);
 
   std::mutex mutex_;
   sqlite3* db_ = nullptr;

@@ -3,13 +3,18 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cstring>
 #include <filesystem>
 #include <random>
+#include <set>
 
 #include "job_proto.h"
 #include "result_files.h"
+#include "retry_plan.h"
 #include "rpc_reply.h"
 #include "scene_admission.h"
+#include "scene_values.h"
 #include "service_error.h"
 #include "sweep_expansion.h"
 #include "watcher_queue.h"
@@ -28,6 +33,10 @@ constexpr int kMaxOverrides = 256;
 constexpr int kDefaultPageSize = 100;
 constexpr int kMaxPageSize = 1000;
 constexpr int kMaxSnapshotSize = 4096;
+constexpr int kMaxLabels = 32;
+constexpr size_t kMaxLabelKeyBytes = 64;
+constexpr size_t kMaxLabelValueBytes = 256;
+constexpr int kMaxFilters = 32;
 
 std::string NewId(char kind) {
   static thread_local std::mt19937_64 random(std::random_device{}());
@@ -59,6 +68,50 @@ void CheckLabels(const std::string& name, const std::vector<std::string>& tags, 
           "client_request_id: longer than " + std::to_string(kMaxRequestIdBytes) + " bytes");
   Require(static_cast<int>(override_count) <= kMaxOverrides,
           "overrides: more than " + std::to_string(kMaxOverrides));
+}
+
+// Labels: keys of letters, digits and "_-./" (so `list --label k=v` needs no quoting), values
+// without line breaks or NUL bytes.
+void CheckJobLabels(const google::protobuf::Map<std::string, std::string>& labels) {
+  Require(labels.size() <= static_cast<size_t>(kMaxLabels),
+          "labels: more than " + std::to_string(kMaxLabels));
+  for (const auto& [key, value] : labels) {
+    const bool key_ok =
+        !key.empty() && key.size() <= kMaxLabelKeyBytes &&
+        std::all_of(key.begin(), key.end(), [](char c) {
+          return std::isalnum(static_cast<unsigned char>(c)) || std::strchr("_-./", c) != nullptr;
+        });
+    Require(key_ok, "labels: key \"" + CutForMessage(key) + "\" is not allowed: expected 1 to " +
+                        std::to_string(kMaxLabelKeyBytes) +
+                        " letters, digits, '_', '-', '.' or '/'");
+    RequireNoNul("labels: " + key, value);
+    Require(value.size() <= kMaxLabelValueBytes && value.find('\n') == std::string::npos,
+            "labels: " + key + " value must have at most " + std::to_string(kMaxLabelValueBytes) +
+                " bytes and no line break");
+  }
+}
+
+std::map<std::string, std::string> ToMap(
+    const google::protobuf::Map<std::string, std::string>& labels) {
+  return {labels.begin(), labels.end()};
+}
+
+// "KEY=VALUE" of a List filter split at the first '='; INVALID_ARGUMENT naming the field.
+std::pair<std::string, std::string> SplitFilter(const std::string& field, const std::string& text) {
+  RequireNoNul(field, text);
+  const auto eq = text.find('=');
+  Require(eq != std::string::npos && eq > 0,
+          field + ": \"" + CutForMessage(text) + "\" is not allowed: expected KEY=VALUE");
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+// Runs body; an error it throws keeps its status code and gains `where` ("sweep point ...").
+template <class Body>
+void Naming(const std::string& where, Body&& body) {
+  const grpc::Status status = Guarded(std::forward<Body>(body));
+  if (!status.ok()) {
+    throw ServiceError(status.error_code(), status.error_message() + " (" + where + ")");
+  }
 }
 
 // The scene text and its overrides: free of NUL bytes, and together within max_scene_bytes (the
@@ -201,9 +254,20 @@ void JobsService::CheckQueueRoom(int64_t adding) {
   }
 }
 
+SweepRecord JobsService::OwnSweep(const std::string& user, const std::string& sweep_id) {
+  Require(!sweep_id.empty(), "sweep_id: empty");
+  RequireNoNul("sweep_id", sweep_id);
+  Require(sweep_id.size() <= kMaxJobIdBytes,
+          "sweep_id: longer than " + std::to_string(kMaxJobIdBytes) + " bytes");
+  auto sweep = store_.GetSweep(user, sweep_id);
+  if (!sweep) throw ServiceError(StatusCode::NOT_FOUND, "sweep " + sweep_id + " not found");
+  return *sweep;
+}
+
 JobRecord JobsService::NewJob(const std::string& user, const std::string& scene,
                               const std::vector<std::string>& overrides, const std::string& name,
-                              const std::vector<std::string>& tags, int priority) {
+                              const std::vector<std::string>& tags, int priority,
+                              const std::map<std::string, std::string>& labels) {
   CheckSceneText(scene, overrides, config_.max_scene_bytes);
   SceneEstimate estimate = AdmitScene(scene, overrides, config_);
   JobRecord job;
@@ -219,6 +283,8 @@ JobRecord JobsService::NewJob(const std::string& user, const std::string& scene,
   job.scene = scene;
   job.overrides = overrides;
   job.warnings = std::move(estimate.warnings);
+  job.scene_values = std::move(estimate.scene_values);
+  job.labels = labels;
   return job;
 }
 
@@ -230,6 +296,7 @@ grpc::ServerUnaryReactor* JobsService::Submit(grpc::CallbackServerContext* conte
     const auto tags = ToVector(request->tags());
     CheckLabels(request->name(), tags, request->priority(), request->client_request_id(),
                 overrides.size());
+    CheckJobLabels(request->labels());
     const std::string key =
         request->client_request_id().empty() ? "" : "submit:" + request->client_request_id();
     if (!key.empty()) {
@@ -242,8 +309,8 @@ grpc::ServerUnaryReactor* JobsService::Submit(grpc::CallbackServerContext* conte
     }
     CheckQueueRoom(1);
     CheckDiskQuota(user);
-    JobRecord job =
-        NewJob(user, request->scene(), overrides, request->name(), tags, request->priority());
+    JobRecord job = NewJob(user, request->scene(), overrides, request->name(), tags,
+                           request->priority(), ToMap(request->labels()));
     job.client_request_id = request->client_request_id();
     auto result = store_.InsertJobs({job}, user, key);
     *reply = ToProto(result.jobs.front());
@@ -280,6 +347,24 @@ grpc::ServerUnaryReactor* JobsService::List(grpc::CallbackServerContext* context
     RequireNoNul("sweep_id", request->sweep_id());
     filter.tag = request->tag();
     filter.sweep_id = request->sweep_id();
+    Require(
+        request->tags_size() + static_cast<int>(request->labels().size()) + request->where_size() <=
+            kMaxFilters,
+        "tags, labels, where: more than " + std::to_string(kMaxFilters) + " filters");
+    for (const auto& tag : request->tags()) {
+      RequireNoNul("tags", tag);
+      filter.tags.push_back(tag);
+    }
+    for (const auto& [key, value] : request->labels()) {
+      RequireNoNul("labels", key);
+      RequireNoNul("labels: " + key, value);
+      filter.labels[key] = value;
+    }
+    for (const auto& text : request->where()) {
+      const auto [key, value] = SplitFilter("where", text);
+      filter.values.emplace_back(key, NormalizedValue(value));
+    }
+    if (!filter.sweep_id.empty()) OwnSweep(filter.owner, filter.sweep_id);  // NOT_FOUND
     if (!request->page_token().empty()) {
       const std::string& token = request->page_token();
       Require(token.size() <= 18 && std::all_of(token.begin(), token.end(),
@@ -346,11 +431,16 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
     const auto tags = ToVector(request->tags());
     CheckLabels(request->name(), tags, request->priority(), request->client_request_id(),
                 static_cast<size_t>(request->overrides_size() + request->axes_size()));
+    CheckJobLabels(request->labels());
+    Require(request->max_running() >= 0, "max_running = " + std::to_string(request->max_running()) +
+                                             " is not allowed: expected 0 (no limit) or more");
     for (const auto& axis : request->axes()) {
       RequireNoNul("axes: a key", axis.key());
+      RequireNoNul("axes: " + axis.key() + " zip", axis.zip());
       for (const auto& value : axis.values()) RequireNoNul("axes: " + axis.key() + " value", value);
     }
-    const std::vector<SweepPoint> points = ExpandSweep(*request, config_.max_queued);
+    const SweepPlan plan = ExpandSweep(*request, config_.max_queued);
+    const std::vector<SweepPoint>& points = plan.points;
     const std::string key =
         request->client_request_id().empty() ? "" : "sweep:" + request->client_request_id();
     if (!key.empty()) {
@@ -367,6 +457,7 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
     CheckQueueRoom(static_cast<int64_t>(points.size()));
     CheckDiskQuota(user);
     const std::string sweep_id = NewId('s');
+    const auto labels = ToMap(request->labels());
     std::vector<JobRecord> jobs;
     for (const SweepPoint& point : points) {
       std::vector<std::string> job_tags = tags;
@@ -374,18 +465,25 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
       const std::string name =
           (request->name().empty() ? sweep_id : request->name()) + "[" + point.label + "]";
       // Whatever the point's admission throws keeps its status (ToStatus) and names the point.
-      const grpc::Status admitted = Guarded([&] {
-        jobs.push_back(
-            NewJob(user, request->scene(), point.overrides, name, job_tags, request->priority()));
+      Naming("sweep point " + point.label, [&] {
+        jobs.push_back(NewJob(user, request->scene(), point.overrides, name, job_tags,
+                              request->priority(), labels));
       });
-      if (!admitted.ok()) {
-        throw ServiceError(admitted.error_code(),
-                           admitted.error_message() + " (sweep point " + point.label + ")");
-      }
       jobs.back().sweep_id = sweep_id;
       jobs.back().client_request_id = request->client_request_id();
+      jobs.back().parameters = point.parameters;
     }
-    auto result = store_.InsertJobs(std::move(jobs), user, key);
+    SweepRecord sweep;
+    sweep.id = sweep_id;
+    sweep.owner = user;
+    sweep.name = request->name().empty() ? sweep_id : request->name();
+    sweep.tags = tags;
+    sweep.labels = labels;
+    sweep.axes = plan.axes;
+    sweep.overrides.assign(request->overrides().begin(), request->overrides().end());
+    sweep.max_running = request->max_running();
+    sweep.created_time = NowSeconds();
+    auto result = store_.InsertJobs(std::move(jobs), user, key, &sweep);
     reply->set_sweep_id(result.jobs.front().sweep_id);
     for (const auto& job : result.jobs) *reply->add_jobs() = ToProto(job);
     if (!result.existed) {
@@ -412,6 +510,136 @@ grpc::ServerUnaryReactor* JobsService::CancelSweep(grpc::CallbackServerContext* 
     for (const auto& job : store_.SweepJobs(user, request->sweep_id())) {
       *reply->add_jobs() = ToProto(job);
     }
+  });
+}
+
+grpc::ServerUnaryReactor* JobsService::ListSweeps(grpc::CallbackServerContext* context,
+                                                  const v1::ListSweepsRequest* request,
+                                                  v1::ListSweepsResponse* reply) {
+  return Reply(context, "ListSweeps", [&] {
+    const std::string user = auth_.User(*context);
+    Require(request->page_size() >= 0 && request->page_size() <= kMaxPageSize,
+            "page_size = " + std::to_string(request->page_size()) +
+                " is not allowed: expected 0 to " + std::to_string(kMaxPageSize));
+    RequireNoNul("tag", request->tag());
+    int64_t before = 0;
+    if (!request->page_token().empty()) {
+      const std::string& token = request->page_token();
+      Require(token.size() <= 18 && std::all_of(token.begin(), token.end(),
+                                                [](char c) { return c >= '0' && c <= '9'; }),
+              "page_token: malformed");
+      before = std::stoll(token);
+      Require(before > 0, "page_token: malformed");
+    }
+    const int limit = request->page_size() == 0 ? kDefaultPageSize : request->page_size();
+    auto sweeps = store_.ListSweeps(user, request->tag(), before, limit + 1);
+    const bool more = static_cast<int>(sweeps.size()) == limit + 1;
+    if (more) sweeps.pop_back();
+    for (const auto& sweep : sweeps) {
+      *reply->add_sweeps() = ToProto(sweep, store_.StatsOfSweep(user, sweep.id));
+    }
+    if (more) reply->set_next_page_token(std::to_string(sweeps.back().ordinal));
+  });
+}
+
+grpc::ServerUnaryReactor* JobsService::GetSweep(grpc::CallbackServerContext* context,
+                                                const v1::GetSweepRequest* request,
+                                                v1::Sweep* reply) {
+  return Reply(context, "GetSweep", [&] {
+    const std::string user = auth_.User(*context);
+    const SweepRecord sweep = OwnSweep(user, request->sweep_id());
+    *reply = ToProto(sweep, store_.StatsOfSweep(user, sweep.id));
+  });
+}
+
+std::vector<JobRecord> JobsService::RetryTargets(const std::string& user,
+                                                 const v1::RetryRequest& request) {
+  Require((request.job_ids_size() > 0) != !request.sweep_id().empty(),
+          "job_ids, sweep_id: give job ids or a sweep id, not both and not neither");
+  std::vector<JobRecord> jobs;
+  if (request.job_ids_size() > 0) {
+    Require(request.states_size() == 0, "states: only with sweep_id");
+    Require(request.job_ids_size() <= kMaxPageSize,
+            "job_ids: more than " + std::to_string(kMaxPageSize));
+    std::set<std::string> seen;
+    for (const auto& id : request.job_ids()) {
+      JobRecord job = OwnJob(user, id);
+      Require(seen.insert(id).second, "job_ids: " + id + " appears twice");
+      if (!IsFinished(job.state)) {
+        throw ServiceError(StatusCode::FAILED_PRECONDITION,
+                           "job " + id + " is " + JobStateName(job.state) +
+                               ": only a finished job (COMPLETED, FAILED, CANCELLED) is retried");
+      }
+      jobs.push_back(std::move(job));
+    }
+    return jobs;
+  }
+  const SweepRecord sweep = OwnSweep(user, request.sweep_id());
+  std::set<JobState> states;
+  for (int state : request.states()) {
+    Require(state >= static_cast<int>(JobState::kQueued) &&
+                state <= static_cast<int>(JobState::kCancelled),
+            "states: unknown state " + std::to_string(state));
+    Require(IsFinished(static_cast<JobState>(state)),
+            std::string("states: ") + JobStateName(static_cast<JobState>(state)) +
+                " is not allowed: expected COMPLETED, FAILED or CANCELLED");
+    states.insert(static_cast<JobState>(state));
+  }
+  if (states.empty()) states = {JobState::kFailed, JobState::kCancelled};
+  for (auto& job : store_.SweepJobs(user, sweep.id)) {
+    if (states.count(job.state)) jobs.push_back(std::move(job));
+  }
+  if (jobs.empty()) {
+    std::string names;
+    for (JobState state : states)
+      names += (names.empty() ? "" : ", ") + std::string(JobStateName(state));
+    throw ServiceError(StatusCode::FAILED_PRECONDITION,
+                       "sweep " + sweep.id + " has no job in the states " + names);
+  }
+  return jobs;
+}
+
+grpc::ServerUnaryReactor* JobsService::Retry(grpc::CallbackServerContext* context,
+                                             const v1::RetryRequest* request,
+                                             v1::RetryResponse* reply) {
+  return Reply(context, "Retry", [&] {
+    const std::string user = auth_.User(*context);
+    const auto changes = ToVector(request->overrides());
+    Require(static_cast<int>(changes.size()) <= kMaxOverrides,
+            "overrides: more than " + std::to_string(kMaxOverrides));
+    for (const auto& text : changes) {
+      RequireNoNul("overrides", text);
+      Require(text.find('=') != std::string::npos && text.find('=') > 0,
+              "overrides: \"" + CutForMessage(text) + "\" is not allowed: expected key=value");
+    }
+    const std::vector<JobRecord> jobs = RetryTargets(user, *request);
+    CheckQueueRoom(static_cast<int64_t>(jobs.size()));
+    std::vector<RequeueChange> plan;
+    for (const JobRecord& job : jobs) {
+      RequeueChange change;
+      change.id = job.id;
+      change.overrides = MergeOverrides(job.overrides, changes);
+      Naming("job " + job.id, [&] {
+        CheckSceneText(job.scene, change.overrides, config_.max_scene_bytes);
+        SceneEstimate estimate = AdmitScene(job.scene, change.overrides, config_);
+        change.warnings = std::move(estimate.warnings);
+        change.scene_values = std::move(estimate.scene_values);
+        change.end_time = estimate.end_time;
+      });
+      change.parameters = UpdatedParameters(job.parameters, changes);
+      change.fresh_start = !ResumesFromCheckpoint(job, change.overrides);
+      plan.push_back(std::move(change));
+    }
+    store_.Requeue(plan);
+    for (const RequeueChange& change : plan) {
+      auto job = store_.Get(change.id);
+      if (!job) continue;
+      spdlog::info("job {}: QUEUED again by {} (attempt {}, {})", job->id, user, job->attempt,
+                   change.fresh_start ? "fresh start" : "resumes from its checkpoint");
+      hub_.PublishState(*job);
+      *reply->add_jobs() = Reported(*job);
+    }
+    scheduler_.Wake();
   });
 }
 

@@ -8,6 +8,7 @@
 // of another user is NOT_FOUND, never PERMISSION_DENIED.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,14 @@ class JobsService final : public v1::Jobs::CallbackService {
   grpc::ServerUnaryReactor* CancelSweep(grpc::CallbackServerContext* context,
                                         const v1::CancelSweepRequest* request,
                                         v1::CancelSweepResponse* reply) override;
+  grpc::ServerUnaryReactor* ListSweeps(grpc::CallbackServerContext* context,
+                                       const v1::ListSweepsRequest* request,
+                                       v1::ListSweepsResponse* reply) override;
+  grpc::ServerUnaryReactor* GetSweep(grpc::CallbackServerContext* context,
+                                     const v1::GetSweepRequest* request, v1::Sweep* reply) override;
+  grpc::ServerUnaryReactor* Retry(grpc::CallbackServerContext* context,
+                                  const v1::RetryRequest* request,
+                                  v1::RetryResponse* reply) override;
   grpc::ServerWriteReactor<v1::FileChunk>* Fetch(grpc::CallbackServerContext* context,
                                                  const v1::FetchRequest* request) override;
   grpc::ServerUnaryReactor* ListFiles(grpc::CallbackServerContext* context,
@@ -81,7 +90,12 @@ class JobsService final : public v1::Jobs::CallbackService {
   // Validates and builds the record of one job to queue.
   JobRecord NewJob(const std::string& user, const std::string& scene,
                    const std::vector<std::string>& overrides, const std::string& name,
-                   const std::vector<std::string>& tags, int priority);
+                   const std::vector<std::string>& tags, int priority,
+                   const std::map<std::string, std::string>& labels);
+  // The caller's study, or NOT_FOUND.
+  SweepRecord OwnSweep(const std::string& user, const std::string& sweep_id);
+  // The jobs a Retry names, each finished; throws as jobs.proto says.
+  std::vector<JobRecord> RetryTargets(const std::string& user, const v1::RetryRequest& request);
   void CheckQueueRoom(int64_t adding);
 
   const Config& config_;

@@ -6,6 +6,7 @@
 #include "dlmfd/core/time_stepping.h"
 #include "dlmfd/scene/scene_file.h"
 #include "dlmfd/scene/scene_footprint.h"
+#include "scene_values.h"
 #include "service_error.h"
 
 namespace dlmfd::server {
@@ -78,6 +79,7 @@ SceneEstimate AdmitScene(const std::string& scene, const std::vector<std::string
   estimate.nodes = static_cast<int64_t>(footprint.velocity_nodes);
   estimate.memory_mb = static_cast<int64_t>(std::ceil(mib));
   estimate.warnings = AccuracyWarnings(params);
+  estimate.scene_values = FlattenScene(WriteScene(params));
   return estimate;
 }
 

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "config.h"
@@ -23,6 +24,8 @@ struct SceneEstimate {
   int64_t memory_mb = 0;  // estimated peak memory of dlmfd-solve
   double end_time = 0;
   std::vector<AccuracyWarning> warnings;  // settings outside the accuracy envelope
+  // The effective scene (WriteScene of the validated Params), flattened (scene_values.h).
+  std::vector<std::pair<std::string, std::string>> scene_values;
 };
 
 // Throws ServiceError INVALID_ARGUMENT (scene or override invalid, the key first in the message) or

@@ -111,6 +111,9 @@ void Scheduler::Loop() {
         spdlog::error("scheduler: {}", e.what());
         break;
       }
+      // A retried job whose previous run's thread has not ended yet: wait for it (its end wakes
+      // this loop), so one job never has two runners.
+      if (running_.count(next->id)) break;
       try {
         store_.MarkRunning(next->id, NowSeconds());
         next = store_.Get(next->id);
@@ -172,9 +175,11 @@ void Scheduler::RunJob(JobRecord job) {
     if (lock_fd < 0) {
       if (!Stopping()) outcome.emplace(JobState::kCancelled, "cancelled before the solver started");
     } else {
-      const bool resume = fs::exists(results / ResultsWriter::kCheckpoint);
+      // A retry with another scene starts afresh: its old checkpoint must not be resumed.
+      const bool resume = !job.fresh_start && fs::exists(results / ResultsWriter::kCheckpoint);
       if (!resume) fs::remove_all(results);
       fs::create_directories(results);
+      if (job.fresh_start) store_.ClearFreshStart(job.id);
       WriteTextAtomically((dir / "scene.in.toml").string(), job.scene);
       LaunchSpec spec;
       spec.solver = config_.solver;

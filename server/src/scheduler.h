@@ -1,8 +1,11 @@
-// Scheduler: runs queued jobs, highest priority first, then oldest, at most max_concurrent at once.
+// Scheduler: runs queued jobs, highest priority first, then oldest, at most max_concurrent at once,
+// and at most a study's max_running of that study's jobs (JobStore::NextQueued skips a study at its
+// limit, so other jobs start meanwhile; a job's end wakes the loop).
 //
 // A scheduler thread takes the next QUEUED job from the store, marks it RUNNING (one transaction,
 // attempts + 1) and gives it a runner thread. The runner writes DIR/scene.in.toml, resumes from
-// results/checkpoint.h5 when one exists (else clears results/), takes the job directory's flock (so
+// results/checkpoint.h5 when one exists and the job is not marked for a fresh start (a retry with
+// another scene; else clears results/), takes the job directory's flock (so
 // a job never runs twice at once), runs dlmfd-solve (SolverProcess; OMP_NUM_THREADS = cores /
 // max_concurrent unless configured, since oversubscribed OpenMP teams crawl), turns its events into
 // Watch events for the EventHub, records progress in the store at most once a second, and maps the

@@ -25,16 +25,13 @@
 #include <gtest/gtest.h>
 
 #include "dlmfd/io/field_snapshot.h"
+#include "support/cli_harness.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
-
-const std::string kClient = DLMFD_BINARY_DIR "/client/dlmfd";
-const std::string kDaemon = DLMFD_BINARY_DIR "/server/dlmfdd";
-const std::string kSolver = DLMFD_BINARY_DIR "/solver/dlmfd-solve";
 
 const char* kCavity = R"toml(title = "lid-driven cavity (cli e2e)"
 [domain]
@@ -58,70 +55,13 @@ particles_every = 0.05
 checkpoint_every = 0.05
 )toml";
 
-struct CliRun {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
-
-// Runs `argv` with exactly the environment `env`, capturing stdout and stderr; sets `printed` (when
-// given) once the child has written its first bytes to stdout.
-CliRun Execute(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env,
-               std::atomic<bool>* printed = nullptr) {
-  // Everything the child needs is built before fork: a test may run this from a second thread.
-  std::vector<std::string> env_text;
-  for (const auto& [k, v] : env) env_text.push_back(k + "=" + v);
-  std::vector<char*> args, envp;
-  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  for (auto& e : env_text) envp.push_back(e.data());
-  args.push_back(nullptr);
-  envp.push_back(nullptr);
-  int out_pipe[2], err_pipe[2];
-  if (pipe(out_pipe) != 0 || pipe(err_pipe) != 0) return {};
-  const pid_t pid = fork();
-  if (pid == 0) {
-    dup2(out_pipe[1], STDOUT_FILENO);
-    dup2(err_pipe[1], STDERR_FILENO);
-    close(out_pipe[0]);
-    close(err_pipe[0]);
-    execve(args[0], args.data(), envp.data());
-    _exit(127);
-  }
-  close(out_pipe[1]);
-  close(err_pipe[1]);
-  CliRun run;
-  pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
-  int open_fds = 2;
-  char buffer[4096];
-  while (open_fds > 0) {
-    if (poll(fds, 2, -1) < 0) break;
-    for (int k = 0; k < 2; ++k) {
-      if (fds[k].fd < 0 || fds[k].revents == 0) continue;
-      const ssize_t n = read(fds[k].fd, buffer, sizeof(buffer));
-      if (n <= 0) {
-        close(fds[k].fd);
-        fds[k].fd = -1;
-        --open_fds;
-      } else {
-        (k == 0 ? run.out : run.err).append(buffer, std::size_t(n));
-        if (k == 0 && printed) printed->store(true);
-      }
-    }
-  }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return run;
-}
-
-std::string Slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::string FirstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
+using dlmfd::testing::CliRun;
+using dlmfd::testing::Execute;
+using dlmfd::testing::FirstLine;
+using dlmfd::testing::kClient;
+using dlmfd::testing::kDaemon;
+using dlmfd::testing::kSolver;
+using dlmfd::testing::Slurp;
 
 class CliTest : public ::testing::Test {
  protected:
@@ -131,58 +71,27 @@ class CliTest : public ::testing::Test {
       ASSERT_TRUE(fs::exists(*binary)) << *binary << " is not built";
     root_ = fs::path(::testing::TempDir()) / ("dlmfd_cli_e2e_" + std::to_string(getpid()));
     fs::remove_all(root_);
-    fs::create_directories(root_ / "data");
-    fs::create_directories(root_ / "home");
-    std::ofstream(root_ / "tokens") << "alice-token-0123456789 alice\nbob-token-0123456789 bob\n";
+    daemon_ = new dlmfd::testing::CliDaemon(root_);
     std::ofstream(root_ / "cavity.toml") << kCavity;
     StartDaemon("127.0.0.1:0");
   }
 
   // Starts dlmfdd on `listen` with the suite's data directory; waits until it has written its port.
   static void StartDaemon(const std::string& listen) {
-    const fs::path port_file = root_ / "port";
-    fs::remove(port_file);
-    const std::string log_path = (root_ / "dlmfdd.log").string();
-    const std::string data = (root_ / "data").string();
-    const std::string tokens = (root_ / "tokens").string();
-    daemon_ = fork();
-    if (daemon_ == 0) {
-      const int log = open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-      dup2(log, STDOUT_FILENO);
-      dup2(log, STDERR_FILENO);
-      execl(kDaemon.c_str(), kDaemon.c_str(), "--listen", listen.c_str(), "--port-file",
-            port_file.c_str(), "--data-dir", data.c_str(), "--solver", kSolver.c_str(),
-            "--tokens-file", tokens.c_str(), "--max-concurrent", "2", static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    while (!fs::exists(port_file) || fs::file_size(port_file) == 0) {
-      int status = 0;
-      ASSERT_EQ(waitpid(daemon_, &status, WNOHANG), 0)
-          << "dlmfdd exited: " << Slurp(root_ / "dlmfdd.log");
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    std::string port = Slurp(port_file);
-    port.erase(port.find_last_not_of(" \n\r\t") + 1);
-    server_ = "127.0.0.1:" + port;
+    std::string error;
+    ASSERT_TRUE(daemon_->Start(listen, error)) << error;
+    server_ = daemon_->server();
   }
 
   static void TearDownTestSuite() {
-    if (daemon_ > 0) {
-      kill(daemon_, SIGTERM);
-      int status = 0;
-      waitpid(daemon_, &status, 0);
-      daemon_ = -1;
-    }
+    delete daemon_;
+    daemon_ = nullptr;
     fs::remove_all(root_);
   }
 
   // The environment of a user with no config file, unless a test writes one into home/.
   static std::map<std::string, std::string> Env(bool with_server = true, bool with_token = true) {
-    std::map<std::string, std::string> env = {{"HOME", (root_ / "home").string()},
-                                              {"PATH", "/usr/bin:/bin"}};
-    if (with_server) env["DLMFD_SERVER"] = server_;
-    if (with_token) env["DLMFD_TOKEN"] = "alice-token-0123456789";
-    return env;
+    return daemon_->Env(with_server, with_token);
   }
 
   static CliRun Cli(const std::vector<std::string>& args,
@@ -204,12 +113,12 @@ class CliTest : public ::testing::Test {
   }
 
   static fs::path root_;
-  static pid_t daemon_;
+  static dlmfd::testing::CliDaemon* daemon_;
   static std::string server_;
 };
 
 fs::path CliTest::root_;
-pid_t CliTest::daemon_ = -1;
+dlmfd::testing::CliDaemon* CliTest::daemon_ = nullptr;
 std::string CliTest::server_;
 
 TEST_F(CliTest, HealthServesAndAClosedPortIsUnavailable) {
@@ -338,9 +247,7 @@ TEST_F(CliTest, WatchResumesAcrossADaemonRestart) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   ASSERT_TRUE(printed.load()) << "the watch printed nothing within 60 s";
-  kill(daemon_, SIGKILL);
-  int status = 0;
-  waitpid(daemon_, &status, 0);
+  daemon_->Kill(SIGKILL);
   StartDaemon(server_);  // the same port, the same store
   watcher.join();
   EXPECT_EQ(watch.code, 0) << watch.err;

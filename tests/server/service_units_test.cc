@@ -439,7 +439,7 @@ v1::SubmitSweepRequest SweepOf(std::vector<std::pair<std::string, std::vector<st
 grpc::StatusCode CodeOf(const std::function<void()>& body) { return Guarded(body).error_code(); }
 
 TEST(SweepExpansion, CartesianProductWithTheLastAxisFastest) {
-  const auto points = ExpandSweep(SweepOf({{"a", {"1", "2"}}, {"b", {"x", "y", "z"}}}), 6);
+  const auto points = ExpandSweep(SweepOf({{"a", {"1", "2"}}, {"b", {"x", "y", "z"}}}), 6).points;
   ASSERT_EQ(points.size(), 6u);
   EXPECT_EQ(points[0].label, "a=1,b=x");
   EXPECT_EQ(points[1].label, "a=1,b=y");

@@ -504,6 +504,34 @@ TEST(SceneFile, OverrideOfAMissingParticleNamesTheIndex) {
   }
 }
 
+// issue 14: `*` in place of an index sets every entry of the array; a scene without the array
+// (or with an empty one) is an error naming the key, not a silent no-op.
+TEST(SceneFile, WildcardOverrideSetsEveryParticle) {
+  const std::string two =
+      "[[particles]]\ncenter = [0.3, 0.5]\ndensity = 1.5\n"
+      "[[particles]]\ncenter = [0.7, 0.5]\ndensity = 1.5\n";
+  const Params p = ParseScene(two, {ParseOverride("particles.*.density=1.02")});
+  ASSERT_EQ(p.particles.size(), 2u);
+  EXPECT_EQ(p.particles[0].density, 1.02);
+  EXPECT_EQ(p.particles[1].density, 1.02);
+  const Params q = ParseScene(two, {ParseOverride("particles.*.center.1=0.25")});
+  EXPECT_EQ(q.particles[0].center, Vec2(0.3, 0.25));
+  EXPECT_EQ(q.particles[1].center, Vec2(0.7, 0.25));
+  try {
+    ParseScene("", {ParseOverride("particles.*.density=1.02")});
+    FAIL();
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.key(), "particles.*.density");
+    EXPECT_THAT(e.allowed(), HasSubstr("non-empty array"));
+  }
+  try {
+    ParseScene(two, {ParseOverride("particles.*.densty=1.02")});
+    FAIL();
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.key(), "particles.0.densty");  // the first concrete key names the typo
+  }
+}
+
 TEST(SceneFile, OverrideThroughAValueIsAnError) {
   try {
     ParseScene("[fluid]\nviscosity = 1.0\n", {ParseOverride("fluid.viscosity.x=2")});

@@ -2,6 +2,8 @@
 
 #include <cctype>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "dlmfd/core/errors.h"
 #include "toml_reader.h"
@@ -99,10 +101,57 @@ void ApplyOne(toml::table& root, const SceneOverride& o) {
   }
 }
 
+// The node a part of a key names under `node` (a table by name, an array by index), or null.
+const toml::node* Child(const toml::node* node, const std::string& part) {
+  if (node == nullptr) return nullptr;
+  if (const auto* table = node->as_table()) return table->get(part);
+  if (const auto* array = node->as_array()) {
+    if (IsIndex(part) && std::stoul(part) < array->size()) return array->get(std::stoul(part));
+  }
+  return nullptr;
+}
+
+// The concrete keys an override's key stands for: each `*` in place of an index becomes every
+// index of the array found there (`particles.*.density` -> particles.0.density, ...).
+std::vector<std::string> ExpandWildcards(const toml::table& root, const SceneOverride& o) {
+  const std::vector<std::string> parts = SplitKey(o.key);
+  std::vector<std::pair<const toml::node*, std::string>> frontier = {{&root, ""}};
+  for (const std::string& part : parts) {
+    std::vector<std::pair<const toml::node*, std::string>> next;
+    for (const auto& [node, walked] : frontier) {
+      const std::string prefix = walked.empty() ? "" : walked + ".";
+      if (part != "*") {
+        next.emplace_back(Child(node, part), prefix + part);
+        continue;
+      }
+      const toml::array* array = node ? node->as_array() : nullptr;
+      if (array == nullptr || array->empty()) {
+        throw InvalidParameter(o.key, o.value,
+                               "'*' in place of an index of a non-empty array (" +
+                                   (walked.empty() ? std::string("the scene") : walked) +
+                                   " is not one)");
+      }
+      for (std::size_t i = 0; i < array->size(); ++i) {
+        next.emplace_back(array->get(i), prefix + std::to_string(i));
+      }
+    }
+    frontier = std::move(next);
+  }
+  std::vector<std::string> keys;
+  for (const auto& entry : frontier) keys.push_back(entry.second);
+  return keys;
+}
+
 }  // namespace
 
 void ApplyOverrides(toml::table& root, const std::vector<SceneOverride>& overrides) {
-  for (const auto& o : overrides) ApplyOne(root, o);
+  for (const auto& o : overrides) {
+    if (o.key.find('*') == std::string::npos) {
+      ApplyOne(root, o);
+      continue;
+    }
+    for (const std::string& key : ExpandWildcards(root, o)) ApplyOne(root, {key, o.value});
+  }
 }
 
 }  // namespace scene

@@ -1,0 +1,56 @@
+#include "retry_plan.h"
+
+#include "scene_values.h"
+
+namespace dlmfd::server {
+namespace {
+
+std::string Trimmed(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  return text.substr(first, text.find_last_not_of(" \t") - first + 1);
+}
+
+std::string KeyOf(const std::string& override_text) {
+  return Trimmed(override_text.substr(0, override_text.find('=')));
+}
+
+std::string ValueOf(const std::string& override_text) {
+  const auto eq = override_text.find('=');
+  return eq == std::string::npos ? "" : Trimmed(override_text.substr(eq + 1));
+}
+
+}  // namespace
+
+std::vector<std::string> MergeOverrides(const std::vector<std::string>& current,
+                                        const std::vector<std::string>& changes) {
+  std::vector<std::string> out = current;
+  for (const std::string& change : changes) {
+    bool replaced = false;
+    for (std::string& existing : out) {
+      if (KeyOf(existing) == KeyOf(change)) {
+        existing = change;
+        replaced = true;
+      }
+    }
+    if (!replaced) out.push_back(change);
+  }
+  return out;
+}
+
+std::vector<ParameterValue> UpdatedParameters(const std::vector<ParameterValue>& parameters,
+                                              const std::vector<std::string>& changes) {
+  std::vector<ParameterValue> out = parameters;
+  for (ParameterValue& p : out) {
+    for (const std::string& change : changes) {
+      if (KeyOf(change) == p.key) p = TypedValue(p.key, ValueOf(change));
+    }
+  }
+  return out;
+}
+
+bool ResumesFromCheckpoint(const JobRecord& job, const std::vector<std::string>& next_overrides) {
+  return job.state != JobState::kCompleted && next_overrides == job.overrides;
+}
+
+}  // namespace dlmfd::server

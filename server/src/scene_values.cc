@@ -1,0 +1,105 @@
+#include "scene_values.h"
+
+#include <toml++/toml.h>
+
+#include <charconv>
+#include <sstream>
+#include <system_error>
+
+namespace dlmfd::server {
+namespace {
+
+// The value text read as TOML ("v = TEXT"); a text that is not one is a string.
+toml::table ReadValue(const std::string& text) {
+  try {
+    toml::table wrapper = toml::parse("v = " + text);
+    if (wrapper.size() == 1 && wrapper.contains("v")) return wrapper;
+  } catch (const toml::parse_error&) {}
+  toml::table wrapper;
+  wrapper.insert_or_assign("v", text);
+  return wrapper;
+}
+
+std::string ShortestText(double value) {
+  char text[64];
+  const auto result = std::to_chars(text, text + sizeof text, value);
+  return result.ec == std::errc() ? std::string(text, result.ptr) : std::string("nan");
+}
+
+std::string Normalized(const toml::node& node) {
+  if (node.is_integer()) return ShortestText(static_cast<double>(*node.value<int64_t>()));
+  if (node.is_floating_point()) return ShortestText(*node.value<double>());
+  if (node.is_boolean()) return *node.value<bool>() ? "true" : "false";
+  if (node.is_string()) return *node.value<std::string>();
+  if (const auto* array = node.as_array()) {
+    std::string out = "[";
+    for (size_t i = 0; i < array->size(); ++i) {
+      out += (i ? ", " : "") + Normalized(*array->get(i));
+    }
+    return out + "]";
+  }
+  if (node.is_table()) return "{table}";
+  std::ostringstream text;  // a date or a time
+  node.visit([&text](const auto& v) { text << v; });
+  return text.str();
+}
+
+void Flatten(const toml::node& node, const std::string& key,
+             std::vector<std::pair<std::string, std::string>>& out) {
+  const std::string prefix = key.empty() ? "" : key + ".";
+  if (const auto* table = node.as_table()) {
+    for (const auto& [name, child] : *table) Flatten(child, prefix + std::string(name.str()), out);
+    return;
+  }
+  if (const auto* array = node.as_array()) {
+    if (!array->is_array_of_tables() || array->empty()) out.emplace_back(key, Normalized(node));
+    for (size_t i = 0; i < array->size(); ++i) {
+      Flatten(*array->get(i), prefix + std::to_string(i), out);
+    }
+    return;
+  }
+  out.emplace_back(key, Normalized(node));
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> FlattenScene(const std::string& scene_as_run) {
+  std::vector<std::pair<std::string, std::string>> out;
+  try {
+    Flatten(toml::parse(scene_as_run), "", out);
+  } catch (const toml::parse_error& e) {
+    throw StoreError(std::string("the scene as run cannot be read: ") +
+                     std::string(e.description()));
+  }
+  return out;
+}
+
+std::string NormalizedValue(const std::string& value_text) {
+  return Normalized(*ReadValue(value_text).get("v"));
+}
+
+ParameterValue TypedValue(const std::string& key, const std::string& value_text) {
+  const toml::table wrapper = ReadValue(value_text);
+  const toml::node& node = *wrapper.get("v");
+  ParameterValue out;
+  out.key = key;
+  out.text = value_text;
+  if (node.is_integer()) {
+    out.type = "integer";
+    out.number = static_cast<double>(*node.value<int64_t>());
+  } else if (node.is_floating_point()) {
+    out.type = "float";
+    out.number = *node.value<double>();
+  } else if (node.is_boolean()) {
+    out.type = "boolean";
+  } else if (node.is_array()) {
+    out.type = "array";
+  } else if (node.is_table()) {
+    out.type = "table";
+  } else {
+    out.type = "string";
+  }
+  return out;
+}
+
+}  // namespace dlmfd::server

@@ -1,0 +1,31 @@
+// Scene values: the effective scene of a job as (dotted key, value) pairs, and the typed value of
+// a study axis.
+//
+// A job's effective scene is what the solver runs: the scene file with the overrides applied and
+// every default filled in (dlmfd::WriteScene of the Params that ParseScene returned at admission).
+// Flattened, every scalar and every array has its dotted key (`fluid.viscosity`,
+// `particles.0.center`, `particles.0.center.1`, `domain.boundary.left.type`), so `list --where
+// KEY=VALUE` finds a value whether the scene file or an override set it. Values are normalised so
+// that equal values compare equal as text: numbers (integer or float) as the shortest text that
+// reads back as the same double ("1" for 1 and 1.0), booleans as true/false, strings as their
+// characters, arrays as "[a, b]" of normalised elements. A text that is not a TOML value is a
+// string, as in overrides (`splitting.advection=wave`).
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "job_store.h"
+
+namespace dlmfd::server {
+
+// The flattened effective scene of a scene-as-run text; throws StoreError on unreadable TOML.
+std::vector<std::pair<std::string, std::string>> FlattenScene(const std::string& scene_as_run);
+// The normalised form of a TOML value text (an override's or a `where` filter's value).
+std::string NormalizedValue(const std::string& value_text);
+// An axis value with its type: integer, float, boolean, string or array (a number for the first
+// two).
+ParameterValue TypedValue(const std::string& key, const std::string& value_text);
+
+}  // namespace dlmfd::server

@@ -1,0 +1,347 @@
+// Unit tests of the study parts of the daemon without a process (issue 14 points 1-3): the axes of
+// a sweep (zipped, ranges, wildcard keys, typed values), the effective scene's values that `list
+// --where` matches, the store's studies (schema 3: sweeps, labels, scene values, the per-study
+// limit of the scheduler's queue, requeue of a retry) and the retry plan.
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <cmath>
+#include <functional>
+
+#include "dlmfd/scene/scene_file.h"
+#include "job_store.h"
+#include "retry_plan.h"
+#include "scene_values.h"
+#include "service_error.h"
+#include "support/daemon_process.h"
+#include "sweep_expansion.h"
+
+namespace dlmfd::server {
+namespace {
+
+grpc::Status StatusOf(const std::function<void()>& body) { return Guarded(body); }
+
+v1::SweepAxis Values(const std::string& key, std::vector<std::string> values,
+                     const std::string& zip = "") {
+  v1::SweepAxis axis;
+  axis.set_key(key);
+  for (const auto& v : values) axis.add_values(v);
+  axis.set_zip(zip);
+  return axis;
+}
+
+v1::SweepAxis Range(const std::string& key, double start, double stop, int count, bool log) {
+  v1::SweepAxis axis;
+  axis.set_key(key);
+  axis.mutable_range()->set_start(start);
+  axis.mutable_range()->set_stop(stop);
+  axis.mutable_range()->set_count(count);
+  axis.mutable_range()->set_logarithmic(log);
+  return axis;
+}
+
+v1::SubmitSweepRequest Request(std::vector<v1::SweepAxis> axes) {
+  v1::SubmitSweepRequest request;
+  for (auto& a : axes) *request.add_axes() = a;
+  return request;
+}
+
+TEST(StudyAxes, ZippedAxesStepTogetherAndCrossTheGrid) {
+  const SweepPlan plan =
+      ExpandSweep(Request({Values("a", {"1", "2", "3"}, "z"), Values("g", {"x", "y"}),
+                           Values("b", {"10", "20", "30"}, "z")}),
+                  100);
+  ASSERT_EQ(plan.points.size(), 6u);  // 3 zipped x 2
+  EXPECT_EQ(plan.points[0].label, "a=1,g=x,b=10");
+  EXPECT_EQ(plan.points[1].label, "a=1,g=y,b=10");
+  EXPECT_EQ(plan.points[2].label, "a=2,g=x,b=20");
+  EXPECT_EQ(plan.points[5].label, "a=3,g=y,b=30");
+  const grpc::Status unequal = StatusOf([] {
+    ExpandSweep(Request({Values("a", {"1", "2"}, "z"), Values("b", {"1"}, "z")}), 9);
+  });
+  EXPECT_EQ(unequal.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(unequal.error_message().find("equal lengths"), std::string::npos)
+      << unequal.error_message();
+}
+
+TEST(StudyAxes, LinearAndLogarithmicRangesIncludeBothEndsAsFloats) {
+  const SweepPlan lin = ExpandSweep(Request({Range("fluid.viscosity", 0.1, 0.5, 5, false)}), 10);
+  ASSERT_EQ(lin.points.size(), 5u);
+  EXPECT_EQ(lin.points[0].label, "fluid.viscosity=0.1");
+  EXPECT_EQ(lin.points[4].label, "fluid.viscosity=0.5");
+  EXPECT_EQ(lin.points[2].parameters[0].type, "float");
+  EXPECT_EQ(lin.points[2].parameters[0].text, "0.3");  // 12 digits, not 0.30000000000000004
+  EXPECT_EQ(lin.points[2].parameters[0].number, 0.3);
+  const SweepPlan log = ExpandSweep(Request({Range("k", 1e-3, 1e1, 5, true)}), 10);
+  ASSERT_EQ(log.points.size(), 5u);
+  EXPECT_EQ(log.points[0].overrides.back(), "k=0.001");
+  EXPECT_EQ(log.points[4].overrides.back(), "k=10.0");  // a TOML float, not the integer 10
+  for (int k = 1; k < 4; ++k) {
+    EXPECT_NEAR(log.points[static_cast<size_t>(k)].parameters[0].number, std::pow(10.0, k - 3),
+                1e-15 * std::pow(10.0, k - 3));
+  }
+  ASSERT_TRUE(lin.axes[0].is_range);
+  EXPECT_EQ(lin.axes[0].values.size(), 5u);
+  using grpc::StatusCode;
+  EXPECT_EQ(StatusOf([] { ExpandSweep(Request({Range("k", 0, 1, 5, true)}), 10); }).error_code(),
+            StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(StatusOf([] { ExpandSweep(Request({Range("k", -1, 1, 5, true)}), 10); }).error_code(),
+            StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(StatusOf([] { ExpandSweep(Request({Range("k", 0, 1, 1, false)}), 10); }).error_code(),
+            StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(StatusOf([] { ExpandSweep(Request({Range("k", 0, 1, 3, false)}), 2); }).error_code(),
+            StatusCode::RESOURCE_EXHAUSTED);
+  v1::SweepAxis both = Range("k", 0, 1, 3, false);
+  both.add_values("1");
+  EXPECT_EQ(StatusOf([&] { ExpandSweep(Request({both}), 10); }).error_code(),
+            StatusCode::INVALID_ARGUMENT);
+}
+
+TEST(StudyAxes, ValuesAreTypedWithTheJob) {
+  const SweepPlan plan = ExpandSweep(
+      Request({Values("particles.*.density", {"1.02"}), Values("collisions.substeps", {"4"}),
+               Values("splitting.advection", {"wave"}), Values("gravity", {"[0.0, -981.0]"}),
+               Values("accuracy.strict", {"true"})}),
+      10);
+  ASSERT_EQ(plan.points.size(), 1u);
+  const auto& p = plan.points[0].parameters;
+  ASSERT_EQ(p.size(), 5u);
+  EXPECT_EQ(p[0].key, "particles.*.density");
+  EXPECT_EQ(p[0].type, "float");
+  EXPECT_EQ(p[0].number, 1.02);
+  EXPECT_EQ(p[1].type, "integer");
+  EXPECT_EQ(p[1].number, 4.0);
+  EXPECT_EQ(p[2].type, "string");
+  EXPECT_EQ(p[3].type, "array");
+  EXPECT_EQ(p[4].type, "boolean");
+}
+
+// The effective scene holds what the file set as well as the overrides; numbers compare as numbers.
+TEST(SceneValues, TheEffectiveSceneIsFlattenedWithNormalisedNumbers) {
+  const Params params =
+      ParseScene("[fluid]\nviscosity = 0.25\n[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n",
+                 {ParseOverride("time.end=2")});
+  const auto values = FlattenScene(WriteScene(params));
+  auto find = [&](const std::string& key) {
+    for (const auto& [k, v] : values) {
+      if (k == key) return v;
+    }
+    return std::string("<absent>");
+  };
+  EXPECT_EQ(find("fluid.viscosity"), NormalizedValue("0.25"));
+  EXPECT_EQ(find("time.end"), NormalizedValue("2"));
+  EXPECT_EQ(find("time.end"), NormalizedValue("2.0"));
+  EXPECT_EQ(find("particles.0.density"), NormalizedValue("1.5"));
+  EXPECT_EQ(find("particles.0.center"), NormalizedValue("[0.5, 0.5]"));
+  EXPECT_EQ(find("particles.0.center.1"), NormalizedValue("0.5"));
+  EXPECT_EQ(find("domain.boundary.left.type"), "wall");
+  EXPECT_NE(NormalizedValue("0.1"), NormalizedValue("0.10000000000000002"));
+}
+
+JobRecord Job(const std::string& id, const std::string& sweep, int priority = 0) {
+  JobRecord job;
+  job.id = id;
+  job.name = id;
+  job.owner = "local";
+  job.priority = priority;
+  job.sweep_id = sweep;
+  job.results_dir = "/tmp/" + id;
+  job.scene = "scene text";
+  job.overrides = {"time.end=1"};
+  return job;
+}
+
+SweepRecord Sweep(const std::string& id, int max_running) {
+  SweepRecord sweep;
+  sweep.id = id;
+  sweep.owner = "local";
+  sweep.name = "study";
+  sweep.tags = {"t"};
+  sweep.labels = {{"project", "pair"}};
+  StoredAxis axis;
+  axis.key = "a";
+  axis.values = {"1", "2\tstill one value", ""};
+  axis.is_range = true;
+  axis.start = 0.1;
+  axis.count = 3;
+  sweep.axes = {axis};
+  sweep.max_running = max_running;
+  sweep.created_time = 5;
+  return sweep;
+}
+
+// The scheduler's queue skips a study at its max_running and takes other jobs meanwhile.
+TEST(StudyStore, AStudyAtItsLimitHoldsBackItsQueuedJobs) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  const SweepRecord sweep = Sweep("s-1", 1);
+  store.InsertJobs({Job("a", "s-1", 5), Job("b", "s-1", 5)}, "local", "", &sweep);
+  store.InsertJobs({Job("c", "", 0)}, "local", "");
+  auto next = store.NextQueued();
+  ASSERT_TRUE(next);
+  EXPECT_EQ(next->id, "a");
+  store.MarkRunning("a", 1);
+  next = store.NextQueued();
+  ASSERT_TRUE(next);
+  EXPECT_EQ(next->id, "c");  // b waits, though its priority is higher
+  store.MarkFinished("a", JobState::kCompleted, "", 2);
+  next = store.NextQueued();
+  ASSERT_TRUE(next);
+  EXPECT_EQ(next->id, "b");
+}
+
+TEST(StudyStore, StudiesRoundTripWithTheirAxesAndCounts) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  const SweepRecord sweep = Sweep("s-1", 2);
+  JobRecord a = Job("a", "s-1");
+  a.parameters = {{"a", "1", "integer", 1.0}};
+  a.labels = {{"project", "pair"}};
+  JobRecord b = Job("b", "s-1");
+  b.end_time = 4;
+  store.InsertJobs({a, b}, "local", "", &sweep);
+  store.MarkRunning("a", 10);
+  store.MarkFinished("a", JobState::kFailed, "blow-up", 11);
+  store.MarkRunning("b", 12);
+  store.UpdateProgress("b", 5, 1.0, 4.0);
+  auto back = store.GetSweep("local", "s-1");
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->name, "study");
+  EXPECT_EQ(back->tags, sweep.tags);
+  EXPECT_EQ(back->labels, sweep.labels);
+  ASSERT_EQ(back->axes.size(), 1u);
+  EXPECT_EQ(back->axes[0].values, sweep.axes[0].values);  // a tab and an empty value survive
+  EXPECT_TRUE(back->axes[0].is_range);
+  EXPECT_EQ(back->axes[0].start, 0.1);
+  EXPECT_EQ(back->max_running, 2);
+  EXPECT_FALSE(store.GetSweep("bob", "s-1"));
+  const SweepStats stats = store.StatsOfSweep("local", "s-1");
+  EXPECT_EQ(stats.jobs, 2);
+  EXPECT_EQ(stats.count[static_cast<size_t>(JobState::kFailed)], 1);
+  EXPECT_EQ(stats.count[static_cast<size_t>(JobState::kRunning)], 1);
+  EXPECT_DOUBLE_EQ(stats.progress_sum, 1.25);  // a finished: 1; b at t = 1 of 4
+  EXPECT_EQ(stats.first_started_time, 10);
+  EXPECT_EQ(stats.last_finished_time, 11);
+  auto job = store.Get("a");
+  ASSERT_TRUE(job);
+  ASSERT_EQ(job->parameters.size(), 1u);
+  EXPECT_EQ(job->parameters[0].type, "integer");
+  EXPECT_EQ(job->labels, a.labels);
+  EXPECT_EQ(store.ListSweeps("local", "t", 0, 10).size(), 1u);
+  EXPECT_EQ(store.ListSweeps("local", "other", 0, 10).size(), 0u);
+}
+
+TEST(StudyStore, ListSelectsOnTagsLabelsAndSceneValues) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  JobRecord a = Job("a", "");
+  a.tags = {"x", "y"};
+  a.labels = {{"case", "pair"}};
+  a.scene_values = {{"particles.0.density", NormalizedValue("1.5")},
+                    {"particles.1.density", NormalizedValue("1.02")},
+                    {"fluid.viscosity", NormalizedValue("0.1")}};
+  JobRecord b = Job("b", "");
+  b.tags = {"x"};
+  b.scene_values = {{"particles.0.density", NormalizedValue("1.02")},
+                    {"fluid.viscosity", NormalizedValue("0.2")}};
+  store.InsertJobs({a, b}, "local", "");
+  auto ids = [&](const ListFilter& filter) {
+    std::vector<std::string> out;
+    for (const auto& job : store.List(filter)) out.push_back(job.id);
+    return out;
+  };
+  ListFilter filter;
+  filter.owner = "local";
+  filter.tags = {"x"};
+  EXPECT_EQ(ids(filter), (std::vector<std::string>{"b", "a"}));
+  filter.tags = {"x", "y"};
+  EXPECT_EQ(ids(filter), (std::vector<std::string>{"a"}));
+  filter.tags = {};
+  filter.labels = {{"case", "pair"}};
+  EXPECT_EQ(ids(filter), (std::vector<std::string>{"a"}));
+  filter.labels = {};
+  filter.values = {{"fluid.viscosity", NormalizedValue("0.10")}};
+  EXPECT_EQ(ids(filter), (std::vector<std::string>{"a"}));
+  filter.values = {{"particles.*.density", NormalizedValue("1.02")}};
+  EXPECT_EQ(ids(filter), (std::vector<std::string>{"b", "a"}));
+  filter.values = {{"particles.*.density", NormalizedValue("1.02")},
+                   {"fluid.viscosity", NormalizedValue("0.2")}};
+  EXPECT_EQ(ids(filter), (std::vector<std::string>{"b"}));
+}
+
+TEST(StudyStore, RequeueRecordsTheAttemptAndRefusesAnUnfinishedJob) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  store.InsertJobs({Job("a", "")}, "local", "");
+  EXPECT_THROW(store.Requeue({{"a", {"time.end=1"}, {}, {}, {}, 1, false}}), StoreError);
+  store.MarkRunning("a", 10);
+  store.UpdateProgress("a", 7, 0.7, 1.0);
+  store.MarkFinished("a", JobState::kCancelled, "cancelled", 11);
+  store.Requeue({{"a", {"time.end=1", "time.dt=0.01"}, {}, {}, {}, 1, true}});
+  auto job = store.Get("a");
+  ASSERT_TRUE(job);
+  EXPECT_EQ(job->state, JobState::kQueued);
+  EXPECT_EQ(job->attempt, 2);
+  EXPECT_TRUE(job->fresh_start);
+  EXPECT_EQ(job->step, 0);  // a fresh start begins at step 0
+  EXPECT_EQ(job->overrides, (std::vector<std::string>{"time.end=1", "time.dt=0.01"}));
+  ASSERT_EQ(job->previous_attempts.size(), 1u);
+  const AttemptRecord& first = job->previous_attempts[0];
+  EXPECT_EQ(first.attempt, 1);
+  EXPECT_EQ(first.state, JobState::kCancelled);
+  EXPECT_EQ(first.reason, "cancelled");
+  EXPECT_EQ(first.step, 7);
+  EXPECT_EQ(first.started_time, 10);
+  EXPECT_EQ(first.finished_time, 11);
+  EXPECT_EQ(first.overrides, (std::vector<std::string>{"time.end=1"}));
+  store.ClearFreshStart("a");
+  EXPECT_FALSE(store.Get("a")->fresh_start);
+}
+
+// A store of schema 2 with a sweep gains the sweeps table with a row for that sweep.
+TEST(StudyStore, ASchemaTwoStoreGainsItsSweepsAsStudies) {
+  dlmfd::testing::TempDir dir;
+  const std::string path = dir.path() + "/jobs.db";
+  {
+    JobStore store(path);
+    store.InsertJobs({Job("a", "s-old")}, "local", "");
+  }
+  {
+    // Back to schema 2, as an older daemon left it.
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(db,
+                           "DROP TABLE sweeps; DROP TABLE job_labels; DROP TABLE job_values;"
+                           "ALTER TABLE jobs DROP COLUMN parameters;"
+                           "ALTER TABLE jobs DROP COLUMN attempt;"
+                           "ALTER TABLE jobs DROP COLUMN previous_attempts;"
+                           "ALTER TABLE jobs DROP COLUMN fresh_start;"
+                           "UPDATE schema_version SET version = 2;",
+                           nullptr, nullptr, nullptr),
+              SQLITE_OK);
+    sqlite3_close(db);
+  }
+  JobStore store(path);
+  auto sweep = store.GetSweep("local", "s-old");
+  ASSERT_TRUE(sweep);
+  EXPECT_TRUE(sweep->axes.empty());
+  EXPECT_EQ(store.StatsOfSweep("local", "s-old").jobs, 1);
+  EXPECT_EQ(store.Get("a")->attempt, 1);
+}
+
+TEST(RetryPlan, SetReplacesTheSameKeyAndResumesOnlyTheSameUnfinishedScene) {
+  EXPECT_EQ(MergeOverrides({"a=1", "b=2"}, {"b = 3", "c=4"}),
+            (std::vector<std::string>{"a=1", "b = 3", "c=4"}));
+  const auto parameters = UpdatedParameters({{"b", "2", "integer", 2}}, {"b=0.5"});
+  EXPECT_EQ(parameters[0].text, "0.5");
+  EXPECT_EQ(parameters[0].type, "float");
+  JobRecord job = Job("a", "");
+  job.state = JobState::kCancelled;
+  EXPECT_TRUE(ResumesFromCheckpoint(job, job.overrides));
+  EXPECT_FALSE(ResumesFromCheckpoint(job, MergeOverrides(job.overrides, {"time.dt=1"})));
+  job.state = JobState::kCompleted;
+  EXPECT_FALSE(ResumesFromCheckpoint(job, job.overrides));
+}
+
+}  // namespace
+}  // namespace dlmfd::server
