@@ -3,7 +3,9 @@
 // field like a disk of diameter 0.2 falling at 1.5 (a divergence-free vortex dipole around the
 // disk, no slip on the walls) with A = I inside the disk. Run with 1 and 2 threads:
 //   build/bench/conformation_step_bench --benchmark_counters_tabular=true
-// Reports wall time per step (ms), node updates per second and the sub-step count.
+// Reports wall time per step (ms), node updates per second and the sub-step count. The second
+// argument is the variant: 0 Oldroyd-B standard (the paper's), 1 Oldroyd-B log, 2 Oldroyd-B sqrt,
+// 3 Giesekus (alpha 0.1) standard, 4 FENE-P (L^2 100) standard (fluid.model, fluid.conformation).
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
@@ -21,7 +23,7 @@ struct PaperCase {
   std::vector<double> u, v, a11, a12, a22;
   std::vector<unsigned char> inside;
 
-  PaperCase() {
+  explicit PaperCase(int variant) {
     params.domain.size = Vec2(2.0, 8.0);
     params.domain.h = 1.0 / 96.0;
     params.domain.sides[int(Side::kTop)].type = SideType::kOutflow;  // walls elsewhere
@@ -29,6 +31,16 @@ struct PaperCase {
     params.fluid.relaxation_time = 1.4;
     params.fluid.solvent_ratio = 0.5;
     params.time.dt = 4e-4;
+    if (variant == 1) params.fluid.conformation = ConformationRepresentation::kLog;
+    if (variant == 2) params.fluid.conformation = ConformationRepresentation::kSqrt;
+    if (variant == 3) {
+      params.fluid.model = ConstitutiveModel::kGiesekus;
+      params.fluid.mobility = 0.1;
+    }
+    if (variant == 4) {
+      params.fluid.model = ConstitutiveModel::kFeneP;
+      params.fluid.extensibility = 100.0;
+    }
     const std::size_t n = grid.NodeCount();
     u.assign(n, 0.0);
     v.assign(n, 0.0);
@@ -55,7 +67,7 @@ struct PaperCase {
 
 void BM_ConformationStep(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(0)));
-  PaperCase c;
+  PaperCase c(static_cast<int>(state.range(1)));
   ConformationStep step(c.params, c.grid);
   StepReport report;
   const double dt = c.params.time.dt;
@@ -75,8 +87,12 @@ void BM_ConformationStep(benchmark::State& state) {
   state.counters["substeps"] = report.Get("conformation_substeps");
   state.counters["max_trA"] = report.Get("max_trA");
   state.counters["threads"] = static_cast<double>(state.range(0));
+  state.counters["variant"] = static_cast<double>(state.range(1));
 }
-BENCHMARK(BM_ConformationStep)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ConformationStep)
+    ->ArgsProduct({{1, 2}, {0, 1, 2, 3, 4}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace dlmfd

@@ -6,7 +6,9 @@
 #include <sstream>
 
 #include "../mesh/grid_kernels.h"
+#include "dlmfd/conformation/conformation_representation.h"
 #include "dlmfd/conformation/inflow_state.h"
+#include "dlmfd/conformation/model_pointwise_update.h"
 #include "dlmfd/conformation/pointwise_update.h"
 #include "dlmfd/conformation/velocity_gradient.h"
 #include "dlmfd/core/errors.h"
@@ -33,6 +35,9 @@ double CheckedRelaxationTime(const Params& params) {
 ConformationStep::ConformationStep(const Params& params, const Grid& grid)
     : grid_(grid),
       lambda_(CheckedRelaxationTime(params)),
+      model_(MakeRelaxationModel(params.fluid)),
+      oldroyd_b_(params.fluid.model == ConstitutiveModel::kOldroydB),
+      representation_(params.fluid.conformation),
       max_courant_(params.conformation.max_courant),
       periodic_x_(params.domain.PeriodicX()),
       periodic_y_(params.domain.PeriodicY()),
@@ -51,8 +56,9 @@ ConformationStep::ConformationStep(const Params& params, const Grid& grid)
   for (const SideWalk& w : walks) {
     if (domain.side(w.side).type != SideType::kVelocity) continue;
     for (int k = 0; k < w.count; ++k) {
-      boundary_.push_back(BoundaryNode{w.i0 + k * w.di, w.j0 + k * w.dj, w.nx, w.ny,
-                                       InflowConformation(grid, domain, w.side, k, lambda_)});
+      const SymTensor inflow = InflowConformation(grid, domain, w.side, k, lambda_, *model_);
+      boundary_.push_back(BoundaryNode{w.i0 + k * w.di, w.j0 + k * w.dj, w.nx, w.ny, inflow,
+                                       ToRepresentation(representation_, inflow)});
     }
   }
   const std::size_t n = grid.NodeCount();
@@ -61,6 +67,13 @@ ConformationStep::ConformationStep(const Params& params, const Grid& grid)
   l12_.assign(n, 0.0);
   l21_.assign(n, 0.0);
   l22_.assign(n, 0.0);
+  if (representation_ != ConformationRepresentation::kStandard) {
+    // Psi or B need not be SPD: exp(Psi) and B^2 are, so the advection runs without the blend.
+    advection_.SetSpdBlend(false);
+    r11_.assign(n, 0.0);
+    r12_.assign(n, 0.0);
+    r22_.assign(n, 0.0);
+  }
 }
 
 void ConformationStep::FindInflow(const double* u, const double* v) {
@@ -161,28 +174,59 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
   FindInflow(u, v);
   advection_.ClearFixed();
   for (const BoundaryNode& b : boundary_) {
-    if (b.active) advection_.AddFixed(b.i, b.j, b.inflow);
+    if (b.active) advection_.AddFixed(b.i, b.j, b.inflow_advected);
   }
-  advection_.Load(a11, a12, a22);
+  const bool standard = representation_ == ConformationRepresentation::kStandard;
+  if (standard) {
+    advection_.Load(a11, a12, a22);
+  } else {
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      const SymTensor x = ToRepresentation(representation_, SymTensor{a11[k], a12[k], a22[k]});
+      r11_[k] = x.a11;
+      r12_[k] = x.a12;
+      r22_[k] = x.a22;
+    }
+    advection_.Load(r11_.data(), r12_.data(), r22_.data());
+  }
   long blended = 0;
   for (int s = 0; s < substeps; ++s) blended += advection_.SubStep(tau, u, v);
+  if (!standard) {
+    // Back to A at every node: the advected A of the pointwise update.
+#pragma omp parallel for schedule(static)
+    for (int j = 0; j <= grid_.ny; ++j) {
+      for (int i = 0; i <= grid_.nx; ++i) {
+        const std::size_t k = grid_.Index(i, j);
+        const SymTensor a = FromRepresentation(representation_, advection_.At(i, j));
+        r11_[k] = a.a11;
+        r12_[k] = a.a12;
+        r22_[k] = a.a22;
+      }
+    }
+  }
 
   // 2. The exact pointwise update (a vectorised one-panel row kernel, the general rule where it
   // does not apply); 3. A = I inside particles. Then the result is checked row by row.
   const int nx = grid_.nx, ny = grid_.ny;
   const ExponentialIntegrator integrator(dt, lambda_);
   const OnePanelConstants constants = integrator.Constants();
-  long first_bad = n;
+  long first_bad = n, first_outside = n;
   double min_eig = std::numeric_limits<double>::infinity();
   double max_trace = -std::numeric_limits<double>::infinity();
-#pragma omp parallel for schedule(static) reduction(min                                 \
-                                                    : first_bad, min_eig) reduction(max \
-                                                                                    : max_trace)
+#pragma omp parallel for schedule(static) reduction(min                                  \
+                                                    : first_bad, first_outside, min_eig) \
+    reduction(max                                                                        \
+              : max_trace)
   for (int j = 0; j <= ny; ++j) {
     const std::size_t row = grid_.Index(0, j);
-    OnePanelRow(nx + 1, constants, advection_.Row(0, j), advection_.Row(1, j), advection_.Row(2, j),
-                l11_.data() + row, l12_.data() + row, l21_.data() + row, l22_.data() + row,
-                a11 + row, a12 + row, a22 + row);
+    // The advected A of row j (the advection's own rows in the standard representation).
+    const double* adv11 = standard ? advection_.Row(0, j) : r11_.data() + row;
+    const double* adv12 = standard ? advection_.Row(1, j) : r12_.data() + row;
+    const double* adv22 = standard ? advection_.Row(2, j) : r22_.data() + row;
+    if (oldroyd_b_) {
+      OnePanelRow(nx + 1, constants, adv11, adv12, adv22, l11_.data() + row, l12_.data() + row,
+                  l21_.data() + row, l22_.data() + row, a11 + row, a12 + row, a22 + row);
+    }
     for (int i = 0; i <= nx; ++i) {
       const std::size_t k = row + i;
       if (inflow_[k]) continue;  // A_L, set below
@@ -190,8 +234,14 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
       const Mat2 l{l11_[k], l12_[k], l21_[k], l22_[k]};
       if (inside_particle != nullptr && inside_particle[k] != 0) {
         a = SymTensor{};
+      } else if (!oldroyd_b_) {
+        const SymTensor advected{adv11[i], adv12[i], adv22[i]};
+        if (!model_->Admits(advected) ||
+            !ModelPointwiseStep(*model_, advected, l, dt, lambda_, &a)) {
+          first_outside = std::min(first_outside, static_cast<long>(k));
+        }
       } else if (!OnePanelApplies(constants, l)) {
-        a = integrator.Apply(advection_.At(i, j), l);
+        a = integrator.Apply(SymTensor{adv11[i], adv12[i], adv22[i]}, l);
       }
       a11[k] = a.a11;
       a12[k] = a.a12;
@@ -205,6 +255,20 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
       }
       max_trace = std::max(max_trace, Trace(a));
     }
+  }
+  if (first_outside < n) {
+    const auto [i, j] = kernels::NodeAt(grid_, static_cast<std::size_t>(first_outside));
+    const std::size_t k = static_cast<std::size_t>(first_outside);
+    const SymTensor advected =
+        standard ? advection_.At(i, j) : SymTensor{r11_[k], r12_[k], r22_[k]};
+    std::ostringstream msg;
+    msg << "conformation tensor A left the states of the " << model_->Name()
+        << " model in step (35) at t = " << time << ": node (" << i << ", " << j
+        << ") at (x, y) = (" << grid_.X(i) << ", " << grid_.Y(j)
+        << "): after advection A11 = " << advected.a11 << ", A12 = " << advected.a12
+        << ", A22 = " << advected.a22
+        << " (fene_p: tr A < fluid.extensibility; ptt_linear: 1 + epsilon tr(A - I) > 0)";
+    throw NumericalBlowUp(msg.str());
   }
   if (first_bad < n) {
     ThrowBadNode(time + dt, "after", first_bad,

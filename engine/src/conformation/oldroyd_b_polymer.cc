@@ -16,6 +16,11 @@ OldroydBPolymer::OldroydBPolymer(const Params& params, const Grid& grid)
   // After step_: its constructor rejects a Newtonian liquid (lambda = 0) first.
   modulus_ = params.fluid.PolymerViscosity() / params.fluid.relaxation_time;
   if (!params.particles.empty()) inside_particle_.assign(grid.NodeCount(), 0);
+  if (!step_.model().StressIsAMinusI()) {
+    s11_.assign(grid.NodeCount(), 1.0);
+    s12_.assign(grid.NodeCount(), 0.0);
+    s22_.assign(grid.NodeCount(), 1.0);
+  }
 }
 
 void OldroydBPolymer::SetInitialState(FlowState& state) {
@@ -29,8 +34,23 @@ void OldroydBPolymer::SetInitialState(FlowState& state) {
 NodeForce OldroydBPolymer::MomentumForce(const FlowState& state) {
   std::fill(fx_.begin(), fx_.end(), 0.0);
   std::fill(fy_.begin(), fy_.end(), 0.0);
-  AddPolymerForce(grid_, domain_, modulus_, state.a11.data(), state.a12.data(), state.a22.data(),
-                  fx_.data(), fy_.data());
+  const RelaxationModel& model = step_.model();
+  if (model.StressIsAMinusI()) {
+    AddPolymerForce(grid_, domain_, modulus_, state.a11.data(), state.a12.data(), state.a22.data(),
+                    fx_.data(), fy_.data());
+  } else {
+    // tau_p = G T(A) = G (S - I) with S = T(A) + I, which the force reads as it reads A.
+    const long n = static_cast<long>(grid_.NodeCount());
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      const SymTensor t = model.Stress(SymTensor{state.a11[k], state.a12[k], state.a22[k]});
+      s11_[k] = t.a11 + 1.0;
+      s12_[k] = t.a12;
+      s22_[k] = t.a22 + 1.0;
+    }
+    AddPolymerForce(grid_, domain_, modulus_, s11_.data(), s12_.data(), s22_.data(), fx_.data(),
+                    fy_.data());
+  }
   return NodeForce{fx_.data(), fy_.data()};
 }
 

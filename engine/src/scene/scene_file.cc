@@ -75,8 +75,29 @@ void ReadFluid(TableReader& top, Params& p) {
   f.relaxation_time = fluid.Real("relaxation_time", f.relaxation_time);
   f.solvent_ratio = fluid.Real("solvent_ratio", f.solvent_ratio);
   f.body_force = fluid.Vector("body_force", f.body_force);
+  f.model = Choose<ConstitutiveModel>("fluid.model", fluid.String("model", "oldroyd_b"),
+                                      {{"oldroyd_b", ConstitutiveModel::kOldroydB},
+                                       {"giesekus", ConstitutiveModel::kGiesekus},
+                                       {"fene_p", ConstitutiveModel::kFeneP},
+                                       {"ptt_linear", ConstitutiveModel::kPttLinear},
+                                       {"ptt_exponential", ConstitutiveModel::kPttExponential}});
+  f.conformation = Choose<ConformationRepresentation>(
+      "fluid.conformation", fluid.String("conformation", "standard"),
+      {{"standard", ConformationRepresentation::kStandard},
+       {"log", ConformationRepresentation::kLog},
+       {"sqrt", ConformationRepresentation::kSqrt}});
+  // Model parameters: present only when given (ValidateScene checks them against fluid.model).
+  auto optional_real = [&fluid](const char* name) -> std::optional<double> {
+    if (!fluid.Has(name)) return std::nullopt;
+    return fluid.Real(name, std::nullopt);
+  };
+  f.mobility = optional_real("mobility");
+  f.extensibility = optional_real("extensibility");
+  f.ptt_epsilon = optional_real("ptt_epsilon");
   fluid.Vector("gravity", Vec2::Zero());  // read by ReadGravity
-  fluid.RejectUnknown("density, viscosity, relaxation_time, solvent_ratio, body_force, gravity");
+  fluid.RejectUnknown(
+      "density, viscosity, relaxation_time, solvent_ratio, body_force, model, conformation, "
+      "mobility, extensibility, ptt_epsilon, gravity");
 }
 
 // gravity is a top-level key; `fluid.gravity` is accepted too, because a `gravity = ...` line

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dlmfd/conformation/inflow_state.h"
+#include "dlmfd/conformation/relaxation_model.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/number_text.h"
@@ -93,6 +94,7 @@ void ValidateFluid(const FluidParams& f) {
   RequirePositive("fluid.viscosity", f.viscosity);
   RequireNonNegative("fluid.relaxation_time", f.relaxation_time);
   RequireHalfOpenUnit("fluid.solvent_ratio", f.solvent_ratio);
+  ValidateConstitutiveModel(f);
 }
 
 void ValidateSolvers(const SolverParams& s) {

@@ -2,6 +2,7 @@
 // text that reads back exactly, so that ParseScene(WriteScene(p)) gives p again.
 #include <sstream>
 
+#include "dlmfd/conformation/relaxation_model.h"
 #include "dlmfd/core/number_text.h"
 #include "dlmfd/scene/scene_file.h"
 #include "toml_reader.h"
@@ -74,6 +75,11 @@ std::string WriteScene(const Params& p) {
   o << "relaxation_time = " << ExactText(p.fluid.relaxation_time) << "\n";
   o << "solvent_ratio = " << ExactText(p.fluid.solvent_ratio) << "\n";
   o << "body_force = " << Vec(p.fluid.body_force) << "\n";
+  o << "model = \"" << ModelName(p.fluid.model) << "\"\n";
+  o << "conformation = \"" << RepresentationName(p.fluid.conformation) << "\"\n";
+  if (p.fluid.mobility) o << "mobility = " << ExactText(*p.fluid.mobility) << "\n";
+  if (p.fluid.extensibility) o << "extensibility = " << ExactText(*p.fluid.extensibility) << "\n";
+  if (p.fluid.ptt_epsilon) o << "ptt_epsilon = " << ExactText(*p.fluid.ptt_epsilon) << "\n";
 
   o << "\n[time]\n";
   o << "dt = " << ExactText(p.time.dt) << "\n";

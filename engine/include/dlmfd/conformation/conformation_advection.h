@@ -53,8 +53,11 @@ class ConformationAdvection {
   }
 
   // Comparison option, for tests only: the unlimited third-order scheme (no SPD blend), which is
-  // what construction A guards against. Never used by the solver.
+  // what construction A guards against.
   void DisableBlendForComparison() { blend_enabled_ = false; }
+  // The blend on or off: off for the log and sqrt representations, whose advected variables need
+  // not be SPD (conformation_representation.h).
+  void SetSpdBlend(bool enabled) { blend_enabled_ = enabled; }
 
  private:
   std::size_t Padded(int i, int j) const {

@@ -7,13 +7,17 @@
 // Discrete method (a first-order Lie splitting of (35) into advection and a pointwise ODE):
 //   1. advection dA/dt + u . grad A = 0 over dt: SSP-RK3 of third-order upwind-biased differences,
 //      blended per node with first-order upwind to keep A SPD (conformation_advection.h), in n_sub
-//      sub-steps, n_sub = ceil(dt max(|u| + |v|) / (h conformation.max_courant));
-//   2. the pointwise ODE dA/dt = L A + A L^T - (A - I)/lambda over dt with L frozen at each node
-//      (average of the 6 P1 triangle gradients, velocity_gradient.h), solved exactly by the
-//      exponential integrator (pointwise_update.h);
+//      sub-steps, n_sub = ceil(dt max(|u| + |v|) / (h conformation.max_courant)); with
+//      fluid.conformation = log or sqrt the same scheme advects log A or A^(1/2) without the
+//      blend, and A = exp(Psi) or B^2 enters step 2 (conformation_representation.h);
+//   2. the pointwise ODE dA/dt = L A + A L^T - R(A)/lambda over dt with L frozen at each node
+//      (average of the 6 P1 triangle gradients, velocity_gradient.h), R of the relaxation model
+//      (fluid.model, relaxation_model.h): Oldroyd-B (R = A - I) solved exactly by the exponential
+//      integrator (pointwise_update.h), the other models by the predictor-corrector of their
+//      frozen linear form (model_pointwise_update.h: second order in dt, SPD for any dt);
 //   3. A = I at nodes inside particles; A = A_L at the inflow nodes (inflow_state.h: the fully
-//      developed Oldroyd-B state of a poiseuille profile, I for a uniform one), also held during
-//      step 1; walls and outflow sides get nothing (constant extrapolation).
+//      developed state of the model for a poiseuille profile, I for a uniform one), also held
+//      during step 1; walls and outflow sides get nothing (constant extrapolation).
 // Inflow rule (one rule, applied to u^0 for the initial state and to u^{n+2/4} at every step): a
 //   node of a velocity side s is an inflow node of s where u . n_s < 0 (n_s the outward normal) and
 //   takes the A_L of s; a corner node of two velocity sides takes the A_L of the last of left,
@@ -36,14 +40,17 @@
 //   NumericalBlowUp.
 // Report columns: min_eig_A, max_trA, elastic_courant = lambda dt max |L|_F, blended_nodes (summed
 //   over sub-steps), conformation_substeps.
-// Not supported: the log-conformation form; time-dependent inflow data.
+// Not supported: the full Fattal-Kupferman integration of the Psi equation (conformation
+//   _representation.h says what the log and sqrt representations do); time-dependent inflow data.
 // References: paper section 4 (35) and remark 3; method notes 2, part 2; Shu & Osher (1988).
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "dlmfd/conformation/conformation_advection.h"
+#include "dlmfd/conformation/relaxation_model.h"
 #include "dlmfd/conformation/sym_tensor.h"
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/params.h"
@@ -66,15 +73,19 @@ class ConformationStep {
   // left as they are.
   void SetInflowState(const double* u, const double* v, double* a11, double* a12, double* a22);
 
+  // The relaxation model of the scene (fluid.model).
+  const RelaxationModel& model() const { return *model_; }
+
   // Comparison option for tests only: the unlimited advection (no SPD blend).
   void DisableBlendForComparison() { advection_.DisableBlendForComparison(); }
 
  private:
   struct BoundaryNode {
     int i, j;
-    double nx, ny;        // outward normal
-    SymTensor inflow;     // A_L
-    bool active = false;  // an inflow node of this side for the last velocity seen
+    double nx, ny;              // outward normal
+    SymTensor inflow;           // A_L
+    SymTensor inflow_advected;  // A_L in the representation (log A_L, A_L^(1/2))
+    bool active = false;        // an inflow node of this side for the last velocity seen
   };
   // Applies the inflow rule to (u, v): BoundaryNode::active and the per-node flags inflow_.
   void FindInflow(const double* u, const double* v);
@@ -86,12 +97,16 @@ class ConformationStep {
 
   Grid grid_;
   double lambda_;
+  std::unique_ptr<RelaxationModel> model_;
+  bool oldroyd_b_;  // the vectorised exponential integrator applies (pointwise_update.h)
+  ConformationRepresentation representation_;
   double max_courant_;
   bool periodic_x_, periodic_y_;
   ConformationAdvection advection_;
   std::vector<BoundaryNode> boundary_;  // nodes of velocity sides
   std::vector<unsigned char> inflow_;   // per node: 1 where A = A_L this step
   std::vector<double> l11_, l12_, l21_, l22_;
+  std::vector<double> r11_, r12_, r22_;  // log and sqrt: the advected variable, then A
 };
 
 }  // namespace dlmfd

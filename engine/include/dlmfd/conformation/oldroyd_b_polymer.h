@@ -1,20 +1,23 @@
-// The Oldroyd-B polymer of a viscoelastic liquid: everything the model adds to the Marchuk-Yanenko
-// scheme, in one place (the shape of Basilisk's log-conform.h: parameters, initial state, force on
-// the momentum equation, substep).
+// The polymer of a viscoelastic liquid: everything the model adds to the Marchuk-Yanenko scheme,
+// in one place (the shape of Basilisk's log-conform.h: parameters, initial state, force on the
+// momentum equation, substep). Named for the paper's model; it carries every model of
+// fluid.model (relaxation_model.h: Oldroyd-B, Giesekus, FENE-P, linear and exponential PTT).
 //
 // Parameters: relaxation time lambda = fluid.relaxation_time, polymer viscosity eta_p = (1 - beta)
-//   eta, modulus G = eta_p / lambda; tau_p = G (A - I) (design.md 4).
+//   eta, modulus G = eta_p / lambda; tau_p = G T(A), T(A) = A - I but for FENE-P (f A - a I)
+//   (design.md 4; relaxation_model.h).
 // Initial state: A^0 = I, and A^0 = A_L on the inflow nodes of u^0 (the inflow rule of
 //   conformation_step.h, the same rule that every step applies to u^{n+2/4}).
-// Force on the momentum equation (33): f_i = -int grad phi_i : G (A^n - I) (polymer_force.h),
-//   passed to the Stokes solver as its dual forcing (the solver adds the body force itself).
-// Step (35): A^n -> A^{n+1} with u^{n+2/4} frozen (conformation_step.h), with A = I at the velocity
-//   nodes strictly inside the particles at X^n (across periodic sides by the minimum image) and
-//   A = A_L on the inflow nodes.
-// A itself is FlowState::a11, a12, a22 (checkpoints and observers read it there); this object holds
-//   the force arrays, and the particle marks when the scene has particles.
-// Not supported: a Newtonian liquid (lambda = 0 or beta = 1: the run builds no polymer at all);
-//   other constitutive models.
+// Force on the momentum equation (33): f_i = -int grad phi_i : G T(A^n) (polymer_force.h, which
+//   reads S = T(A) + I as it reads A), passed to the Stokes solver as its dual forcing (the solver
+//   adds the body force itself).
+// Step (35): A^n -> A^{n+1} with u^{n+2/4} frozen (conformation_step.h), with A = I (the rest
+//   state of every model) at the velocity nodes strictly inside the particles at X^n (across
+//   periodic sides by the minimum image) and A = A_L on the inflow nodes.
+// A itself is FlowState::a11, a12, a22 (checkpoints and observers read it there, so tr A is in
+//   the events and snapshots for every model); this object holds the force arrays, and the
+//   particle marks when the scene has particles.
+// Not supported: a Newtonian liquid (lambda = 0 or beta = 1: the run builds no polymer at all).
 // References: paper (5), (33), (35); Basilisk src/log-conform.h (the module layout).
 #pragma once
 
@@ -57,6 +60,7 @@ class OldroydBPolymer {
   double modulus_;
   ConformationStep step_;
   std::vector<double> fx_, fy_;                 // the force of (33)
+  std::vector<double> s11_, s12_, s22_;         // T(A) + I where T(A) != A - I (FENE-P)
   std::vector<unsigned char> inside_particle_;  // nodes where A = I; scenes with particles only
 };
 

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace dlmfd {
@@ -72,6 +73,26 @@ inline SymTensor GramOf(const Mat2& f) {
 
 inline double FrobeniusNorm(const Mat2& l) {
   return std::sqrt(l.m11 * l.m11 + l.m12 * l.m12 + l.m21 * l.m21 + l.m22 * l.m22);
+}
+
+// x of m x = b for a 3x3 system in (A11, A12, A22), by Cramer's rule.
+inline std::array<double, 3> SolveThreeByThree(const double m[3][3],
+                                               const std::array<double, 3>& b) {
+  auto det3 = [](const double a[3][3]) {
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+           a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  };
+  const double det = det3(m);
+  std::array<double, 3> x{};
+  for (int col = 0; col < 3; ++col) {
+    double mc[3][3];
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) mc[r][c] = (c == col) ? b[r] : m[r][c];
+    }
+    x[col] = det3(mc) / det;
+  }
+  return x;
 }
 
 }  // namespace dlmfd

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,12 @@ struct DomainParams {
   }
 };
 
+// The constitutive model of the polymer (conformation/relaxation_model.h has the equations).
+enum class ConstitutiveModel { kOldroydB, kGiesekus, kFeneP, kPttLinear, kPttExponential };
+// How step (35) carries the conformation tensor through its advection: A itself (standard), its
+// matrix logarithm (log) or its symmetric square root (sqrt).
+enum class ConformationRepresentation { kStandard, kLog, kSqrt };
+
 struct FluidParams {
   double density = 1.0;          // rho_L > 0
   double viscosity = 0.01;       // zero-shear eta = eta_s + eta_p > 0
@@ -48,6 +55,13 @@ struct FluidParams {
   double solvent_ratio = 1.0;    // beta = eta_s / eta in (0, 1]
   Vec2 body_force =
       Vec2::Zero();  // force per unit volume on the liquid (e.g. a mean pressure gradient)
+  ConstitutiveModel model = ConstitutiveModel::kOldroydB;
+  ConformationRepresentation conformation = ConformationRepresentation::kStandard;
+  // Model parameters, each given only for its model (scene validation): Giesekus mobility alpha in
+  // [0, 0.5]; FENE-P extensibility L^2 > 2 (tr A < L^2); PTT epsilon >= 0.
+  std::optional<double> mobility;
+  std::optional<double> extensibility;
+  std::optional<double> ptt_epsilon;
   // The one viscosity rule (design.md 4): the polymer is modelled only when lambda > 0 and
   // beta < 1; then the Newtonian part of the momentum equation carries eta_s = beta eta and the
   // polymer stress carries eta_p = (1 - beta) eta. A Newtonian liquid has no polymer stress, so
