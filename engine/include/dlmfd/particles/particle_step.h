@@ -35,6 +35,7 @@
 // part 1.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "dlmfd/core/grid.h"
@@ -42,6 +43,7 @@
 #include "dlmfd/core/state.h"
 #include "dlmfd/particles/collision_forces.h"
 #include "dlmfd/particles/rigid_body_constraint.h"
+#include "dlmfd/particles/viscous_constraint.h"
 
 namespace dlmfd {
 
@@ -59,6 +61,16 @@ class ParticleStep {
   // The particles of params at t = 0, with zero multipliers of the right size. Throws
   // InvalidParameter when two particles overlap or one crosses a non-periodic side.
   static std::vector<ParticleState> InitialStates(const Params& params);
+
+  // True with splitting.constraint = "viscous": Simulation solves step (33) by CoupleStokes.
+  bool CouplesStokes() const { return viscous_ != nullptr; }
+  // Step (33) with the particles in it (particles/viscous_constraint.h); particles hold (X^n, U^n,
+  // omega^n) on entry and the coupled velocities of the free particles on return, which the
+  // following Advance takes as U^{n+1/4}; Advance's force then includes this step's C^T nu.
+  ViscousConstraint::Outcome CoupleStokes(double time, double dt, StokesSolver& stokes,
+                                          const double* fx, const double* fy,
+                                          std::vector<ParticleState>& particles, double* u,
+                                          double* v, double* p);
 
   // The sub-step average F'_avg of the collision force in the last predictor (36).
   const std::vector<Vec2>& CollisionForceAverage() const { return collision_average_; }
@@ -83,6 +95,10 @@ class ParticleStep {
   std::vector<Vec2> x_old_, u_old_, x_, x_star_, u_, u_star_, f0_, f1_, collision_average_;
   std::vector<double> omega_old_;
   int max_contacts_ = 0;
+  std::unique_ptr<ViscousConstraint> viscous_;  // splitting.constraint = "viscous" only
+  bool coupled_ = false;                        // CoupleStokes ran in this step
+  std::vector<Vec2> u_start_;                   // U^n, omega^n before CoupleStokes
+  std::vector<double> omega_start_;
 };
 
 }  // namespace dlmfd
