@@ -67,10 +67,10 @@ ViscousConstraint::Outcome ParticleStep::CoupleStokes(double time, double dt, St
     omega_start_[k] = particles[k].angular_velocity;
   }
   coupled_ = true;
-  return viscous_->Solve(time, dt, stokes, fx, fy, particles, u, v, p);
+  return viscous_->Solve(time, dt, gravity_, stokes, fx, fy, particles, u, v, p);
 }
 
-void ParticleStep::Predict(double dt, std::vector<ParticleState>& particles) {
+void ParticleStep::Predict(double dt, const Vec2& gravity, std::vector<ParticleState>& particles) {
   const std::size_t n = particles.size();
   const double tau = dt / substeps_;
   for (std::size_t p = 0; p < n; ++p) {
@@ -83,7 +83,7 @@ void ParticleStep::Predict(double dt, std::vector<ParticleState>& particles) {
     max_contacts_ = std::max(max_contacts_, collisions_.Compute(x_, f0_));
     for (std::size_t p = 0; p < n; ++p) {
       u_star_[p] =
-          predicted_[p] ? Vec2(u_[p] + (gravity_ + inv_excess_mass_[p] * f0_[p]) * tau) : u_[p];
+          predicted_[p] ? Vec2(u_[p] + (gravity + inv_excess_mass_[p] * f0_[p]) * tau) : u_[p];
       x_star_[p] = x_[p] + 0.5 * (u_[p] + u_star_[p]) * tau;
     }
     collisions_.Compute(x_star_, f1_);
@@ -91,7 +91,7 @@ void ParticleStep::Predict(double dt, std::vector<ParticleState>& particles) {
       const Vec2 average = 0.5 * (f0_[p] + f1_[p]);
       collision_average_[p] += average / substeps_;
       const Vec2 previous = u_[p];
-      if (predicted_[p]) u_[p] += (gravity_ + inv_excess_mass_[p] * average) * tau;
+      if (predicted_[p]) u_[p] += (gravity + inv_excess_mass_[p] * average) * tau;
       x_[p] += 0.5 * (previous + u_[p]) * tau;
     }
   }
@@ -150,7 +150,9 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
     u_old_[p] = coupled_ ? u_start_[p] : particles[p].velocity;
     omega_old_[p] = coupled_ ? omega_start_[p] : particles[p].angular_velocity;
   }
-  Predict(dt, particles);
+  // Gravity acts in the coupled Stokes step when there is one, so that the excess weight meets
+  // the viscous drag in the same solve; the predictor then carries the collision forces only.
+  Predict(dt, coupled_ ? Vec2(Vec2::Zero()) : gravity_, particles);
   const RigidBodyConstraint::Outcome outcome =
       constraint_.Enforce(time + dt, dt, particles, u, v, collision_average_.data());
   Correct(dt, particles);

@@ -39,7 +39,11 @@ ViscousConstraint::ViscousConstraint(const Params& params, const Grid& grid)
       zero_data_(grid, zero_domain_),
       tolerance_(params.solvers.multiplier_tolerance),
       max_iterations_(params.solvers.multiplier_max_iterations) {
-  for (std::size_t p = 0; p < params.particles.size(); ++p) RequireCoupledInStokes(params, p);
+  for (std::size_t p = 0; p < params.particles.size(); ++p) {
+    RequireCoupledInStokes(params, p);
+    const ParticleParams& q = params.particles[p];
+    heavy_free_.push_back(q.motion == Motion::kFree && q.density != params.fluid.density ? 1 : 0);
+  }
   response_solver_ = std::make_unique<StokesSolver>(
       grid, zero_domain_, WithoutBodyForce(params.fluid), params.time.dt, params.splitting.alpha,
       params.solvers, zero_data_);
@@ -104,8 +108,9 @@ double ViscousConstraint::Dot(const double* a, const double* b) const {
   return s;
 }
 
-ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, StokesSolver& stokes,
-                                                    const double* fx, const double* fy,
+ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, const Vec2& gravity,
+                                                    StokesSolver& stokes, const double* fx,
+                                                    const double* fy,
                                                     std::vector<ParticleState>& particles,
                                                     double* u, double* v, double* p) {
   Outcome outcome;
@@ -118,6 +123,7 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, Stok
   for (std::size_t k = 0; k < n; ++k) {
     velocity_[k] = particles[k].velocity;
     omega_[k] = particles[k].angular_velocity;
+    if (heavy_free_[k]) velocity_[k] += dt * gravity;
   }
 
   // The warm start nu of the last step enters as the velocity increment dt M^-1 E^T nu (and the

@@ -64,9 +64,10 @@ class ParticleStep {
 
   // True with splitting.constraint = "viscous": Simulation solves step (33) by CoupleStokes.
   bool CouplesStokes() const { return viscous_ != nullptr; }
-  // Step (33) with the particles in it (particles/viscous_constraint.h); particles hold (X^n, U^n,
-  // omega^n) on entry and the coupled velocities of the free particles on return, which the
-  // following Advance takes as U^{n+1/4}; Advance's force then includes this step's C^T nu.
+  // Step (33) with the particles in it (particles/viscous_constraint.h), their excess weight
+  // included; particles hold (X^n, U^n, omega^n) on entry and the coupled velocities of the free
+  // particles on return, which the following Advance takes as U^{n+1/4} (its predictor then adds
+  // the collision forces only); Advance's force then includes this step's C^T nu.
   ViscousConstraint::Outcome CoupleStokes(double time, double dt, StokesSolver& stokes,
                                           const double* fx, const double* fy,
                                           std::vector<ParticleState>& particles, double* u,
@@ -78,7 +79,8 @@ class ParticleStep {
   CollisionForces& collisions() { return collisions_; }
 
  private:
-  void Predict(double dt, std::vector<ParticleState>& particles);
+  // (36) with this gravity on the heavy free particles (zero after a coupled Stokes step).
+  void Predict(double dt, const Vec2& gravity, std::vector<ParticleState>& particles);
   void Correct(double dt, std::vector<ParticleState>& particles);
   void CheckSeparated(double time, const std::vector<ParticleState>& particles);
 

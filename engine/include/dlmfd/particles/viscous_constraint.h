@@ -6,11 +6,14 @@
 // Equations, for the particles at X^n (free heavy particles with the unknown xi = (U, omega),
 // fixed and prescribed ones with xi given), nu the nodal forces at the multiplier points:
 //   (rho/dt) M (u - u^n) + nu_N K u - B^T p = f + E^T nu,   B u = 0,
-//   D (xi - xi^n)/dt = -C^T nu,   E u = C xi   (rigid at every multiplier point),
+//   D (xi - xi^n)/dt = (m_e g, 0) - C^T nu,   E u = C xi   (rigid at every multiplier point),
 // with M, K, B of step (33) (fluid/stokes_solver.h), E, C, D = diag(m_e, m_e, j_e) of step (37)
-// (particles/rigid_body_constraint.h). Steps (34)-(38) then follow as in the paper: the DLM step
-// (37) with gamma = 0 corrects what advection and gravity changed, with no viscous leak left to
-// correct. The hydrodynamic force adds -C^T nu of this step to that of (37) (ParticleStep).
+// (particles/rigid_body_constraint.h). The excess weight m_e g of the heavy free particles acts
+// here, where the drag resists it (ParticleStep's predictor (36) then carries the collision forces
+// only): a particle at its terminal speed meets no gravity kick that (37) would share with the
+// liquid around it without viscosity. Steps (34)-(38) then follow as in the paper: the DLM step
+// (37) with gamma = 0 corrects what advection and the collisions changed. The hydrodynamic force
+// adds -C^T nu of this step to that of (37) (ParticleStep).
 //
 // Solve: (u, p) depend on nu through the Stokes solution operator, u = L(u^n + dt M^-1 E^T nu)
 // (rho M^-1 E^T nu enters as a velocity increment). The mismatch g = E u - C xi is affine in nu
@@ -69,8 +72,10 @@ class ViscousConstraint {
   // U^n, omega^n); on return u, v, p solve the coupled problem and the free particles hold xi.
   // stokes: the solver of (33) (data of t^{n+1}); fx, fy: its extra dual forcing (the polymer's)
   // or nullptr. time = t^{n+1} for errors. Throws SolverNotConverged, ParticlesOverlap.
-  Outcome Solve(double time, double dt, StokesSolver& stokes, const double* fx, const double* fy,
-                std::vector<ParticleState>& particles, double* u, double* v, double* p);
+  // gravity: g, acting on the excess mass of the heavy free particles.
+  Outcome Solve(double time, double dt, const Vec2& gravity, StokesSolver& stokes, const double* fx,
+                const double* fy, std::vector<ParticleState>& particles, double* u, double* v,
+                double* p);
 
   // C^T nu of the last Solve for particle p: the force and torque it exerted on the fluid nodes.
   Vec2 NodalForceSum(std::size_t p) const { return force_sum_[p]; }
@@ -102,6 +107,7 @@ class ViscousConstraint {
   std::vector<Vec2> force_sum_;
   std::vector<double> torque_sum_;
   bool have_warm_ = false;
+  std::vector<char> heavy_free_;  // per particle: free and heavier than the liquid (gets m_e g)
 };
 
 }  // namespace dlmfd
