@@ -29,6 +29,10 @@
 //   force F'_avg of the predictor goes to the fluid through the constraint sum_k nu_k = F'_avg of
 //   (37) (m_e (U - U^n)/dt = m_e g + F'_avg - sum nu with m_e = 0); the force identity below still
 //   holds.
+// With splitting.constraint = "viscous" the particles also enter the Stokes step (33)
+// (CoupleStokes, particles/viscous_constraint.h), which carries their excess weight: then (36)
+// has no g, the corrector's U^n is the velocity before (33), and the force adds the C^T nu of (33):
+//   F_h = -C^T nu_(33) - C^T nu_(37) + rho_L V [(U^{n+1} - U^n)/dt - g]   (same identity).
 // Not supported: free particles with rho_d < rho_L; gamma != 0; non-circular particles.
 // References: Glowinski et al., J. Comput. Phys. 169 (2001) 363-426; Singh, Joseph, Hesla,
 // Glowinski, Pan, J. Non-Newtonian Fluid Mech. 91 (2000) 165-188 (the paper); method notes 2,
