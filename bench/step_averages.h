@@ -50,7 +50,7 @@ class StepAverages : public Observer {
 };
 
 // The entries of a full Oldroyd-B step with particles: the four substeps' milliseconds and the
-// Uzawa, wave and DLM CG counts.
+// Uzawa, wave and DLM CG counts (and the outer iterations of splitting.constraint = "viscous").
 inline std::vector<std::pair<std::string, std::string>> FullStepEntries() {
   return {{"ms_stokes", "ms_stokes"},
           {"ms_advection", "ms_advection"},
@@ -58,7 +58,8 @@ inline std::vector<std::pair<std::string, std::string>> FullStepEntries() {
           {"ms_particles", "ms_particles"},
           {"stokes_iterations", "stokes_its"},
           {"wave_substeps", "wave_substeps"},
-          {"multiplier_iterations", "dlm_its"}};
+          {"multiplier_iterations", "dlm_its"},
+          {"coupling_iterations", "coupling_its"}};
 }
 
 // Runs `set_up_steps` steps of a simulation of `params` untimed, then times one step per benchmark

@@ -180,6 +180,25 @@ TEST(AccuracyEnvelope, ViscousNumberWithParticlesAboveTheBoundWarnsOnTheTimeStep
   EXPECT_THAT(w[0].Message(), HasSubstr("set time.dt = " + w[0].suggested));
 }
 
+TEST(AccuracyEnvelope, ViscousCouplingHasTheBoundItWasMeasuredTo) {
+  // Schaefer-Turek at nu = 0.1: nu dt / h^2 = 20 at dt = 5e-3 warns with the paper's coupling,
+  // not with the constraint in the Stokes step (measured to 40); 80 at dt = 2e-2 warns with both.
+  const std::vector<std::string> viscous = {"fluid.viscosity=0.1",
+                                            "splitting.constraint=\"viscous\"", "splitting.alpha=1",
+                                            "splitting.beta=0"};
+  EXPECT_THAT(Settings(AccuracyWarnings(Scene(kSchaeferTurek, {"fluid.viscosity=0.1"}))),
+              ::testing::Contains(std::string("nu dt / h^2")));
+  const Params inside = Scene(kSchaeferTurek, viscous);
+  for (const AccuracyWarning& w : AccuracyWarnings(inside)) EXPECT_NE(w.setting, "nu dt / h^2");
+  std::vector<std::string> coarse = viscous;
+  coarse.push_back("time.dt=0.02");
+  const std::vector<AccuracyWarning> w = AccuracyWarnings(Scene(kSchaeferTurek, coarse));
+  ASSERT_FALSE(w.empty());
+  EXPECT_EQ(w[0].setting, "nu dt / h^2");
+  EXPECT_EQ(w[0].allowed, "<= 40");
+  EXPECT_THAT(w[0].source, HasSubstr("Coupling the constraint with viscosity"));
+}
+
 TEST(AccuracyEnvelope, ViscousNumberWithoutParticlesHasTheLargerMeasuredBound) {
   // 20.48 > 10.24 (Waters-King at h = 1/64, dt = 0.005 was not measured; 0.0025 was).
   const std::vector<AccuracyWarning> w =

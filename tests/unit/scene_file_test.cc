@@ -168,6 +168,14 @@ const BadScene kBadScenes[] = {
     {"AlphaZero", "[splitting]\nalpha = 0.0\nbeta = 1.0\n", "splitting.alpha", "0.0"},
     {"AdvectionUnknown", "[splitting]\nadvection = \"upwind\"\n", "splitting.advection",
      "\"upwind\""},
+    {"ConstraintUnknown", "[splitting]\nconstraint = \"implicit\"\n", "splitting.constraint",
+     "\"implicit\""},
+    {"ViscousConstraintWithViscosityInAdvection", "[splitting]\nconstraint = \"viscous\"\n",
+     "splitting.beta", "0.5"},
+    {"ViscousConstraintWithNeutralParticle",
+     "[splitting]\nalpha = 1.0\nbeta = 0.0\nconstraint = \"viscous\"\n[[particles]]\ncenter = "
+     "[0.5, 0.5]\ndensity = 1.0\n",
+     "particles.0.density", "1.0"},
     {"StokesToleranceOne", "[solvers]\nstokes_tolerance = 1.0\n", "solvers.stokes_tolerance",
      "1.0"},
     {"StokesMaxIterationsZero", "[solvers]\nstokes_max_iterations = 0\n",
@@ -376,6 +384,7 @@ TEST(SceneFile, PaperSceneGivesItsValues) {
   EXPECT_EQ(p.time.dt, 0.0004);
   EXPECT_EQ(p.time.end, 25.0);
   EXPECT_EQ(p.splitting.advection, AdvectionScheme::kLeastSquares);
+  EXPECT_EQ(p.splitting.constraint, ConstraintCoupling::kPaper);
   ASSERT_EQ(p.particles.size(), 2u);
   EXPECT_EQ(p.particles[0].center, Vec2(1.0, 7.7));
   EXPECT_EQ(p.particles[1].center, Vec2(1.0, 7.3));

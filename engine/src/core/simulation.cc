@@ -1,6 +1,8 @@
 // Simulation: the Marchuk-Yanenko loop (paper section 4). This file owns the state and the substep
 // objects (built once, sized once); Step() runs the paper's list of substeps, one member each:
-//   SolveStokes (33)        StokesSolver, with the polymer's force on the momentum equation;
+//   SolveStokes (33)        StokesSolver, with the polymer's force on the momentum equation (and
+//                           with splitting.constraint = "viscous" the particles in it, through
+//                           ParticleStep::CoupleStokes);
 //   AdvectVelocity (34)     the VelocityAdvection scheme of splitting.advection;
 //   UpdateConformation (35) OldroydBPolymer (conformation module: modulus, A^0, inflow A_L, force);
 //   MoveParticles (36)-(38) ParticleStep (predictor, DLM multiplier, corrector), in place on u.
@@ -73,15 +75,28 @@ struct Simulation::Impl {
     }
   }
 
-  // Step (33): u^n -> u^{n+1/4}, p^{n+1/4}, with the polymer stress of A^n on the right side.
+  // Step (33): u^n -> u^{n+1/4}, p^{n+1/4}, with the polymer stress of A^n on the right side;
+  // with splitting.constraint = "viscous" the particles at X^n are in it (their constraint and
+  // velocities: particles/viscous_constraint.h).
   void SolveStokes(StepReport& report) {
     const auto t0 = Clock::now();
     const NodeForce force = polymer ? polymer->MomentumForce(state) : NodeForce{};
-    const StokesReport r =
-        stokes.Solve(force.x, force.y, state.u.data(), state.v.data(), state.p.data());
-    report.Set("stokes_iterations", r.iterations);
-    report.Set("stokes_residual", r.residual);
-    report.Set("divergence", r.divergence);
+    if (particle_step && particle_step->CouplesStokes()) {
+      const ViscousConstraint::Outcome r = particle_step->CoupleStokes(
+          state.time + params.time.dt, params.time.dt, stokes, force.x, force.y, state.particles,
+          state.u.data(), state.v.data(), state.p.data());
+      report.Set("stokes_iterations", r.stokes_iterations);
+      report.Set("stokes_residual", r.stokes_residual);
+      report.Set("divergence", r.divergence);
+      report.Set("coupling_iterations", r.iterations);
+      report.Set("coupling_residual", r.residual);
+    } else {
+      const StokesReport r =
+          stokes.Solve(force.x, force.y, state.u.data(), state.v.data(), state.p.data());
+      report.Set("stokes_iterations", r.iterations);
+      report.Set("stokes_residual", r.residual);
+      report.Set("divergence", r.divergence);
+    }
     report.Set("ms_stokes", Milliseconds(t0, Clock::now()));
   }
 

@@ -40,6 +40,12 @@ void ValidateSplitting(const SplittingParams& s) {
                            "a number in (0, 1] (the Stokes step (33) carries viscosity for its "
                            "fast solver; with alpha = 0 it has none)");
   }
+  if (s.constraint == ConstraintCoupling::kViscous && s.beta != 0.0) {
+    throw InvalidParameter("splitting.beta", ExactText(s.beta),
+                           "0 (and splitting.alpha = 1) with splitting.constraint = \"viscous\": "
+                           "the advection step (34) does not see the particles, so viscosity there "
+                           "would leak through them; or splitting.constraint = \"paper\"");
+  }
 }
 
 void ValidateTimeSteps(const TimeParams& time) {

@@ -90,11 +90,26 @@ void RequireIndexableGrid(const Params& params, const Grid& grid) {
   }
 }
 
+void RequireCoupledInStokes(const Params& params, std::size_t p) {
+  const ParticleParams& q = params.particles[p];
+  if (params.splitting.constraint != ConstraintCoupling::kViscous || q.motion != Motion::kFree ||
+      q.density != params.fluid.density) {
+    return;
+  }
+  throw InvalidParameter(
+      "particles." + std::to_string(p) + ".density", ExactText(q.density),
+      "a density != fluid.density = " + ExactText(params.fluid.density) +
+          " with splitting.constraint = \"viscous\" (a neutrally buoyant free particle has no "
+          "excess mass to carry its velocity through the Stokes step (33)), or "
+          "splitting.constraint = \"paper\"");
+}
+
 void ValidateParticles(const Params& params, const Grid& grid) {
   if (params.particles.empty()) return;
   RequireIndexableGrid(params, grid);
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
     RequireNotLighterThanLiquid(params, p);
+    RequireCoupledInStokes(params, p);
     RequireInside(params.domain, p, params.particles[p]);
   }
   RequireApart(params);

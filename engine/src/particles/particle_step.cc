@@ -51,9 +51,26 @@ ParticleStep::ParticleStep(const Params& params, const Grid& grid)
     a->assign(n, Vec2::Zero());
   }
   omega_old_.assign(n, 0.0);
+  if (params.splitting.constraint == ConstraintCoupling::kViscous && n > 0) {
+    viscous_ = std::make_unique<ViscousConstraint>(params, grid);
+    u_start_.assign(n, Vec2::Zero());
+    omega_start_.assign(n, 0.0);
+  }
 }
 
-void ParticleStep::Predict(double dt, std::vector<ParticleState>& particles) {
+ViscousConstraint::Outcome ParticleStep::CoupleStokes(double time, double dt, StokesSolver& stokes,
+                                                      const double* fx, const double* fy,
+                                                      std::vector<ParticleState>& particles,
+                                                      double* u, double* v, double* p) {
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    u_start_[k] = particles[k].velocity;
+    omega_start_[k] = particles[k].angular_velocity;
+  }
+  coupled_ = true;
+  return viscous_->Solve(time, dt, gravity_, stokes, fx, fy, particles, u, v, p);
+}
+
+void ParticleStep::Predict(double dt, const Vec2& gravity, std::vector<ParticleState>& particles) {
   const std::size_t n = particles.size();
   const double tau = dt / substeps_;
   for (std::size_t p = 0; p < n; ++p) {
@@ -66,7 +83,7 @@ void ParticleStep::Predict(double dt, std::vector<ParticleState>& particles) {
     max_contacts_ = std::max(max_contacts_, collisions_.Compute(x_, f0_));
     for (std::size_t p = 0; p < n; ++p) {
       u_star_[p] =
-          predicted_[p] ? Vec2(u_[p] + (gravity_ + inv_excess_mass_[p] * f0_[p]) * tau) : u_[p];
+          predicted_[p] ? Vec2(u_[p] + (gravity + inv_excess_mass_[p] * f0_[p]) * tau) : u_[p];
       x_star_[p] = x_[p] + 0.5 * (u_[p] + u_star_[p]) * tau;
     }
     collisions_.Compute(x_star_, f1_);
@@ -74,7 +91,7 @@ void ParticleStep::Predict(double dt, std::vector<ParticleState>& particles) {
       const Vec2 average = 0.5 * (f0_[p] + f1_[p]);
       collision_average_[p] += average / substeps_;
       const Vec2 previous = u_[p];
-      if (predicted_[p]) u_[p] += (gravity_ + inv_excess_mass_[p] * average) * tau;
+      if (predicted_[p]) u_[p] += (gravity + inv_excess_mass_[p] * average) * tau;
       x_[p] += 0.5 * (previous + u_[p]) * tau;
     }
   }
@@ -127,12 +144,15 @@ void ParticleStep::CheckSeparated(double time, const std::vector<ParticleState>&
 void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& particles, double* u,
                            double* v, StepReport& report) {
   const std::size_t n = particles.size();
+  // U^n, omega^n: the velocities at the start of the step (before a coupled Stokes step).
   for (std::size_t p = 0; p < n; ++p) {
     x_old_[p] = particles[p].position;
-    u_old_[p] = particles[p].velocity;
-    omega_old_[p] = particles[p].angular_velocity;
+    u_old_[p] = coupled_ ? u_start_[p] : particles[p].velocity;
+    omega_old_[p] = coupled_ ? omega_start_[p] : particles[p].angular_velocity;
   }
-  Predict(dt, particles);
+  // Gravity acts in the coupled Stokes step when there is one, so that the excess weight meets
+  // the viscous drag in the same solve; the predictor then carries the collision forces only.
+  Predict(dt, coupled_ ? Vec2(Vec2::Zero()) : gravity_, particles);
   const RigidBodyConstraint::Outcome outcome =
       constraint_.Enforce(time + dt, dt, particles, u, v, collision_average_.data());
   Correct(dt, particles);
@@ -141,12 +161,19 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
     ParticleState& particle = particles[p];
     const double displaced_mass = fluid_density_ * kPi * particle.radius * particle.radius;
     const double inertia = 0.5 * particle.density * kPi * std::pow(particle.radius, 4);
-    particle.force = -constraint_.NodalForceSum(p) +
-                     displaced_mass * ((particle.velocity - u_old_[p]) / dt - gravity_);
-    particle.torque =
-        -constraint_.NodalTorqueSum(p) + (fluid_density_ / particle.density) * inertia *
-                                             (particle.angular_velocity - omega_old_[p]) / dt;
+    // The forces the particle exerted on the fluid nodes in (37), and in (33) when coupled there.
+    Vec2 nodal_force = constraint_.NodalForceSum(p);
+    double nodal_torque = constraint_.NodalTorqueSum(p);
+    if (coupled_) {
+      nodal_force += viscous_->NodalForceSum(p);
+      nodal_torque += viscous_->NodalTorqueSum(p);
+    }
+    particle.force =
+        -nodal_force + displaced_mass * ((particle.velocity - u_old_[p]) / dt - gravity_);
+    particle.torque = -nodal_torque + (fluid_density_ / particle.density) * inertia *
+                                          (particle.angular_velocity - omega_old_[p]) / dt;
   }
+  coupled_ = false;
 
   for (std::size_t p = 0; p < n; ++p) x_[p] = particles[p].position;
   report.Set("multiplier_iterations", outcome.iterations);

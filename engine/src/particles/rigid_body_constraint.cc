@@ -106,4 +106,24 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
   return outcome;
 }
 
+void RigidBodyConstraint::Locate(double time, double dt,
+                                 const std::vector<ParticleState>& particles) {
+  coupling_.Build(time, dt, points_, particles);
+}
+
+int RigidBodyConstraint::SolveResponse(double time, double dt,
+                                       const std::vector<ParticleState>& particles,
+                                       const double* mismatch, double tolerance, double* forces,
+                                       double* scratch_u, double* scratch_v) {
+  const ConstraintOperators op{points_, coupling_, modes_};
+  cg_.Start(particles);
+  cg_.SetMismatch(mismatch);
+  cg_.ProjectMismatch(op);
+  double gg = cg_.MismatchNorm2(op);
+  const int iterations =
+      cg_.Solve(op, time, dt, tolerance * tolerance * gg, gg, scratch_u, scratch_v);
+  std::copy(cg_.Forces(), cg_.Forces() + 2 * points_.Total(), forces);
+  return iterations;
+}
+
 }  // namespace dlmfd

@@ -13,6 +13,8 @@ namespace {
 constexpr const char* kSourceD = "docs/work_precision.md (d), Which settings 3";
 constexpr const char* kSourceViscous = "docs/work_precision.md (d) dt ladder";
 constexpr const char* kSourceViscousFluid = "docs/work_precision.md (a), (b)";
+constexpr const char* kSourceViscousCoupling =
+    "docs/work_precision.md, Coupling the constraint with viscosity";
 constexpr const char* kSourceCourant = "docs/work_precision.md (b), Which settings 1";
 constexpr const char* kSourceElastic = "docs/work_precision.md (a)";
 
@@ -115,11 +117,14 @@ std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
 
   const bool particles = !p.particles.empty();
   const double viscous = KinematicViscosity(p) * dt / (h * h);
-  const double viscous_bound =
-      particles ? kMaxViscousNumberWithParticles : kMaxViscousNumberWithoutParticles;
+  const bool coupled = p.splitting.constraint == ConstraintCoupling::kViscous;
+  const double viscous_bound = !particles ? kMaxViscousNumberWithoutParticles
+                               : coupled  ? kMaxViscousNumberViscousCoupling
+                                          : kMaxViscousNumberWithParticles;
   if (Above(viscous, viscous_bound)) {
-    out.push_back(TimeStepWarning(p, "nu dt / h^2", viscous, viscous_bound,
-                                  particles ? kSourceViscous : kSourceViscousFluid));
+    out.push_back(TimeStepWarning(
+        p, "nu dt / h^2", viscous, viscous_bound,
+        !particles ? kSourceViscousFluid : (coupled ? kSourceViscousCoupling : kSourceViscous)));
   }
 
   const double courant = VelocityScale(p) * dt / h;

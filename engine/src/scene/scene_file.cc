@@ -127,7 +127,10 @@ void ReadTimeAndSplitting(TableReader& top, Params& p) {
   s.advection = Choose<AdvectionScheme>(
       "splitting.advection", splitting.String("advection", "least_squares"),
       {{"least_squares", AdvectionScheme::kLeastSquares}, {"wave", AdvectionScheme::kWave}});
-  splitting.RejectUnknown("alpha, beta, advection");
+  s.constraint = Choose<ConstraintCoupling>(
+      "splitting.constraint", splitting.String("constraint", "paper"),
+      {{"paper", ConstraintCoupling::kPaper}, {"viscous", ConstraintCoupling::kViscous}});
+  splitting.RejectUnknown("alpha, beta, advection, constraint");
 }
 
 void ReadSolvers(TableReader& top, Params& p) {

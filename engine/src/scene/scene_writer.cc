@@ -90,6 +90,8 @@ std::string WriteScene(const Params& p) {
   o << "beta = " << ExactText(p.splitting.beta) << "\n";
   o << "advection = \""
     << (p.splitting.advection == AdvectionScheme::kWave ? "wave" : "least_squares") << "\"\n";
+  o << "constraint = \""
+    << (p.splitting.constraint == ConstraintCoupling::kViscous ? "viscous" : "paper") << "\"\n";
 
   const SolverParams& s = p.solvers;
   o << "\n[solvers]\n";

@@ -85,12 +85,19 @@ struct TimeParams {
 
 enum class AdvectionScheme { kLeastSquares, kWave };
 
+// Where the rigid-body constraint meets the fluid: kPaper, only in the DLM step (37), without
+// viscosity (gamma = 0); kViscous, also in the Stokes step (33), which is then solved with the
+// particles in it (particles/viscous_constraint.h), so the constraint meets the implicit viscosity.
+enum class ConstraintCoupling { kPaper, kViscous };
+
 // Marchuk-Yanenko weights of the viscous term: alpha in (33), beta in (34), gamma = 1 - alpha -
-// beta in (37). The engine supports gamma = 0 only (the paper's choice), which validation enforces.
+// beta in (37). The engine supports gamma = 0 only (the paper's choice), which validation enforces;
+// with constraint = kViscous also beta = 0 (all the viscosity in the step that sees the particles).
 struct SplittingParams {
   double alpha = 0.5;
   double beta = 0.5;
   AdvectionScheme advection = AdvectionScheme::kLeastSquares;
+  ConstraintCoupling constraint = ConstraintCoupling::kPaper;
 };
 
 // Stopping rules and limits of the iterative solvers. The defaults are the loosest level of the

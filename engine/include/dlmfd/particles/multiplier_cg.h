@@ -23,6 +23,7 @@
 // particles in a fixed order, so the result does not depend on the thread count (no atomics).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -57,6 +58,8 @@ class MultiplierCg {
   void Start(const std::vector<ParticleState>& particles);
   // g = E u - C (U, omega) of the iterate at every point.
   void Mismatch(const ConstraintOperators& op, const double* u, const double* v);
+  // g = a given mismatch (stacked, two per point): the right side of a response solve.
+  void SetMismatch(const double* g) { std::copy(g, g + g_.size(), g_.begin()); }
   // max over the points of |g_k|.
   double MaxMismatch() const;
   // g = P g.

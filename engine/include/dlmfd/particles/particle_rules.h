@@ -6,6 +6,7 @@
 // - A free particle is not lighter than the liquid: its excess mass (rho_d - rho_L) V in (36)-(38)
 //   is positive, or zero (neutrally buoyant: the rigid-mode projector handles it); a negative one
 //   makes the multiplier problem (37) indefinite, and its solver is CG.
+// - With splitting.constraint = "viscous", no free particle is neutrally buoyant.
 // - The velocity grid has at most 2^32 - 1 nodes: E and E^T store 32-bit node indices.
 // - At t = 0 every disk lies inside the domain (crossing periodic sides only) and no two disks
 //   overlap (centre distances by the nearest periodic image).
@@ -21,6 +22,10 @@ namespace dlmfd {
 // Throws InvalidParameter (particles.P.density) when free particle p is lighter than the liquid,
 // (particles.P.diameter) when its excess mass is too small for a double.
 void RequireNotLighterThanLiquid(const Params& params, std::size_t p);
+// Throws InvalidParameter (particles.P.density) when free particle p is neutrally buoyant and
+// splitting.constraint = "viscous" (the coupled Stokes step (33) solves for heavy free, fixed and
+// prescribed particles; particles/viscous_constraint.h).
+void RequireCoupledInStokes(const Params& params, std::size_t p);
 // Throws InvalidParameter (domain.h) when `grid` has more nodes than 32-bit indices count.
 void RequireIndexableGrid(const Params& params, const Grid& grid);
 // Every rule above, for every particle of the scene (none: the grid rule does not apply).

@@ -31,12 +31,17 @@
 //   force F'_avg of the predictor goes to the fluid through the constraint sum_k nu_k = F'_avg of
 //   (37) (m_e (U - U^n)/dt = m_e g + F'_avg - sum nu with m_e = 0); the force identity below still
 //   holds.
+// With splitting.constraint = "viscous" the particles also enter the Stokes step (33)
+// (CoupleStokes, particles/viscous_constraint.h), which carries their excess weight: then (36)
+// has no g, the corrector's U^n is the velocity before (33), and the force adds the C^T nu of (33):
+//   F_h = -C^T nu_(33) - C^T nu_(37) + rho_L V [(U^{n+1} - U^n)/dt - g]   (same identity).
 // Not supported: free particles with rho_d < rho_L; gamma != 0; non-circular particles.
 // References: Glowinski et al., J. Comput. Phys. 169 (2001) 363-426; Singh, Joseph, Hesla,
 // Glowinski, Pan, J. Non-Newtonian Fluid Mech. 91 (2000) 165-188 (the paper); method notes 2,
 // part 1.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "dlmfd/core/grid.h"
@@ -44,6 +49,7 @@
 #include "dlmfd/core/state.h"
 #include "dlmfd/particles/collision_forces.h"
 #include "dlmfd/particles/rigid_body_constraint.h"
+#include "dlmfd/particles/viscous_constraint.h"
 
 namespace dlmfd {
 
@@ -62,13 +68,25 @@ class ParticleStep {
   // InvalidParameter when two particles overlap or one crosses a non-periodic side.
   static std::vector<ParticleState> InitialStates(const Params& params);
 
+  // True with splitting.constraint = "viscous": Simulation solves step (33) by CoupleStokes.
+  bool CouplesStokes() const { return viscous_ != nullptr; }
+  // Step (33) with the particles in it (particles/viscous_constraint.h), their excess weight
+  // included; particles hold (X^n, U^n, omega^n) on entry and the coupled velocities of the free
+  // particles on return, which the following Advance takes as U^{n+1/4} (its predictor then adds
+  // the collision forces only); Advance's force then includes this step's C^T nu.
+  ViscousConstraint::Outcome CoupleStokes(double time, double dt, StokesSolver& stokes,
+                                          const double* fx, const double* fy,
+                                          std::vector<ParticleState>& particles, double* u,
+                                          double* v, double* p);
+
   // The sub-step average F'_avg of the collision force in the last predictor (36).
   const std::vector<Vec2>& CollisionForceAverage() const { return collision_average_; }
   const RigidBodyConstraint& constraint() const { return constraint_; }
   CollisionForces& collisions() { return collisions_; }
 
  private:
-  void Predict(double dt, std::vector<ParticleState>& particles);
+  // (36) with this gravity on the heavy free particles (zero after a coupled Stokes step).
+  void Predict(double dt, const Vec2& gravity, std::vector<ParticleState>& particles);
   void Correct(double dt, std::vector<ParticleState>& particles);
   void CheckSeparated(double time, const std::vector<ParticleState>& particles);
 
@@ -85,6 +103,10 @@ class ParticleStep {
   std::vector<Vec2> x_old_, u_old_, x_, x_star_, u_, u_star_, f0_, f1_, collision_average_;
   std::vector<double> omega_old_;
   int max_contacts_ = 0;
+  std::unique_ptr<ViscousConstraint> viscous_;  // splitting.constraint = "viscous" only
+  bool coupled_ = false;                        // CoupleStokes ran in this step
+  std::vector<Vec2> u_start_;                   // U^n, omega^n before CoupleStokes
+  std::vector<double> omega_start_;
 };
 
 }  // namespace dlmfd

@@ -93,6 +93,22 @@ class RigidBodyConstraint {
   Outcome Enforce(double time, double dt, std::vector<ParticleState>& particles, double* u,
                   double* v, const Vec2* net_force);
 
+  // The inviscid Schur complement of (37) as an operator, for the viscous coupling of the Stokes
+  // step (particles/viscous_constraint.h), in two calls: Locate builds E at the particles'
+  // positions; SolveResponse then finds the nodal forces nu with P nu = -mismatch, P = dt E M^-1
+  // E^T
+  // + dt C D^-1 C^T (its CG stopped at <g, g>_G <= tolerance^2 <g0, g0>_G), touching neither the
+  // fluid nor the particles (scratch_u, scratch_v: fluid-sized arrays whose values it spoils).
+  // Returns the CG iterations. Throws ParticlesOverlap (Locate), SolverNotConverged.
+  void Locate(double time, double dt, const std::vector<ParticleState>& particles);
+  int SolveResponse(double time, double dt, const std::vector<ParticleState>& particles,
+                    const double* mismatch, double tolerance, double* forces, double* scratch_u,
+                    double* scratch_v);
+  // The operators of the last Locate or Enforce.
+  const MultiplierPoints& points() const { return points_; }
+  const RigidModes& modes() const { return modes_; }
+  const CouplingOperator& coupling() const { return coupling_; }
+
   // True for a free particle with rho_d = rho_L (solved by the projected CG).
   bool IsNeutral(std::size_t particle) const { return modes_.IsNeutral(particle); }
 

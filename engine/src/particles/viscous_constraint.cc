@@ -1,0 +1,216 @@
+// The Stokes step (33) with the rigid-body constraint in it; see particles/viscous_constraint.h.
+#include "dlmfd/particles/viscous_constraint.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "dlmfd/core/errors.h"
+#include "dlmfd/particles/particle_rules.h"
+
+namespace dlmfd {
+namespace {
+
+// The sides of the scene with every boundary value zero: the data of the response problems.
+DomainParams WithZeroData(DomainParams domain) {
+  for (BoundarySide& side : domain.sides) {
+    side.value = Vec2::Zero();
+    side.max = Vec2::Zero();
+  }
+  return domain;
+}
+
+FluidParams WithoutBodyForce(FluidParams fluid) {
+  fluid.body_force = Vec2::Zero();
+  return fluid;
+}
+
+double MaxSpeed(const double* u, const double* v, std::size_t n) {
+  double m = 0.0;
+  for (std::size_t k = 0; k < n; ++k) m = std::max(m, u[k] * u[k] + v[k] * v[k]);
+  return std::sqrt(m);
+}
+
+}  // namespace
+
+ViscousConstraint::ViscousConstraint(const Params& params, const Grid& grid)
+    : inviscid_(params, grid),
+      zero_domain_(WithZeroData(params.domain)),
+      zero_data_(grid, zero_domain_),
+      tolerance_(params.solvers.multiplier_tolerance),
+      max_iterations_(params.solvers.multiplier_max_iterations) {
+  for (std::size_t p = 0; p < params.particles.size(); ++p) {
+    RequireCoupledInStokes(params, p);
+    const ParticleParams& q = params.particles[p];
+    heavy_free_.push_back(q.motion == Motion::kFree && q.density != params.fluid.density ? 1 : 0);
+  }
+  response_solver_ = std::make_unique<StokesSolver>(
+      grid, zero_domain_, WithoutBodyForce(params.fluid), params.time.dt, params.splitting.alpha,
+      params.solvers, zero_data_);
+  const std::size_t n = params.particles.size();
+  const std::size_t stacked = 2 * inviscid_.points().Total();
+  for (auto* a : {&nu_, &r_, &r_old_, &z_, &d_, &sd_}) a->assign(stacked, 0.0);
+  const std::size_t slots = inviscid_.coupling().MaxSlots() + 1;
+  slot_u_.assign(slots, 0.0);
+  slot_v_.assign(slots, 0.0);
+  for (auto* a : {&du_, &dv_, &su_, &sv_}) a->assign(grid.NodeCount(), 0.0);
+  dp_.assign(grid.Coarse().NodeCount(), 0.0);
+  velocity_.assign(n, Vec2::Zero());
+  dvelocity_.assign(n, Vec2::Zero());
+  omega_.assign(n, 0.0);
+  domega_.assign(n, 0.0);
+  force_sum_.assign(n, Vec2::Zero());
+  torque_sum_.assign(n, 0.0);
+}
+
+ViscousConstraint::~ViscousConstraint() = default;
+
+double ViscousConstraint::MismatchOf(const double* u, const double* v, const std::vector<Vec2>& vel,
+                                     const std::vector<double>& omega, double* r) const {
+  const MultiplierPoints& points = inviscid_.points();
+  const CouplingOperator& coupling = inviscid_.coupling();
+  double largest = 0.0;
+  for (std::size_t p = 0; p < points.ParticleCount(); ++p) {
+    const std::vector<Vec2>& at = points.Points(p);
+    for (int k = 0; k < points.Count(p); ++k) {
+      const std::size_t q = points.Begin(p) + k;
+      double eu, ev;
+      coupling.Interpolate(q, u, v, eu, ev);
+      const Vec2 rigid = vel[p] + omega[p] * RigidModes::Perp(at[k]);
+      r[2 * q] = eu - rigid.x();
+      r[2 * q + 1] = ev - rigid.y();
+      largest = std::max(largest, std::hypot(r[2 * q], r[2 * q + 1]));
+    }
+  }
+  return largest;
+}
+
+int ViscousConstraint::Respond(double dt, const double* dir) {
+  const MultiplierPoints& points = inviscid_.points();
+  const CouplingOperator& coupling = inviscid_.coupling();
+  coupling.Spread(dir, slot_u_.data(), slot_v_.data());
+  std::fill(du_.begin(), du_.end(), 0.0);
+  std::fill(dv_.begin(), dv_.end(), 0.0);
+  std::fill(dp_.begin(), dp_.end(), 0.0);
+  coupling.AddAtSlots(slot_u_.data(), slot_v_.data(), du_.data(), dv_.data());
+  coupling.CopyPeriodicDuplicates(du_.data(), dv_.data());
+  const StokesReport r =
+      response_solver_->Solve(nullptr, nullptr, du_.data(), dv_.data(), dp_.data());
+  for (std::size_t p = 0; p < points.ParticleCount(); ++p) {
+    inviscid_.modes().Response(points, p, dt, dir + 2 * points.Begin(p), dvelocity_[p], domega_[p]);
+  }
+  return r.iterations;
+}
+
+double ViscousConstraint::Dot(const double* a, const double* b) const {
+  double s = 0.0;
+  for (std::size_t q = 0; q < nu_.size(); ++q) s += a[q] * b[q];
+  return s;
+}
+
+ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, const Vec2& gravity,
+                                                    StokesSolver& stokes, const double* fx,
+                                                    const double* fy,
+                                                    std::vector<ParticleState>& particles,
+                                                    double* u, double* v, double* p) {
+  Outcome outcome;
+  const std::size_t n = particles.size();
+  const std::size_t nodes = du_.size(), pnodes = dp_.size();
+  inviscid_.Locate(time, dt, particles);
+  const MultiplierPoints& points = inviscid_.points();
+  const CouplingOperator& coupling = inviscid_.coupling();
+  const RigidModes& modes = inviscid_.modes();
+  for (std::size_t k = 0; k < n; ++k) {
+    velocity_[k] = particles[k].velocity;
+    omega_[k] = particles[k].angular_velocity;
+    if (heavy_free_[k]) velocity_[k] += dt * gravity;
+  }
+
+  // The warm start nu of the last step enters as the velocity increment dt M^-1 E^T nu (and the
+  // particles' -dt D^-1 C^T nu); then the Stokes solve of (33) with the scene's data and forcing.
+  if (have_warm_) {
+    coupling.Spread(nu_.data(), slot_u_.data(), slot_v_.data());
+    coupling.AddAtSlots(slot_u_.data(), slot_v_.data(), u, v);
+    coupling.CopyPeriodicDuplicates(u, v);
+    for (std::size_t k = 0; k < n; ++k) {
+      Vec2 dvel;
+      double dom;
+      modes.Response(points, k, dt, nu_.data() + 2 * points.Begin(k), dvel, dom);
+      velocity_[k] += dvel;
+      omega_[k] += dom;
+    }
+  } else {
+    std::fill(nu_.begin(), nu_.end(), 0.0);
+  }
+  const StokesReport first = stokes.Solve(fx, fy, u, v, p);
+  outcome.stokes_iterations = first.iterations;
+  outcome.stokes_residual = first.residual;
+
+  double scale = MaxSpeed(u, v, nodes);
+  for (std::size_t k = 0; k < n; ++k) {
+    scale = std::max(scale, velocity_[k].norm() + std::abs(omega_[k]) * points.Radius(k));
+  }
+  const double target = tolerance_ * scale;
+  double mismatch = MismatchOf(u, v, velocity_, omega_, r_.data());
+
+  // PCG on S nu = -g with P^-1 (the inner CG of (37)); Polak-Ribiere directions.
+  double rz = 0.0;
+  int it = 0;
+  while (mismatch > target) {
+    if (it == max_iterations_) {
+      std::ostringstream what;
+      what << "DLM viscous coupling (33) did not converge at t = " << time << " after " << it
+           << " iterations: rigid-motion mismatch " << mismatch << " > " << target
+           << " (raise solvers.multiplier_max_iterations or solvers.multiplier_tolerance)";
+      throw SolverNotConverged(what.str());
+    }
+    inviscid_.SolveResponse(time, dt, particles, r_.data(), kInnerTolerance, z_.data(), su_.data(),
+                            sv_.data());
+    for (double& x : z_) x = -x;  // P z = r
+    const double rz_new = Dot(r_.data(), z_.data());
+    const double beta =
+        it == 0 ? 0.0 : std::max(0.0, (rz_new - Dot(r_old_.data(), z_.data())) / rz);
+    rz = rz_new;
+    for (std::size_t q = 0; q < d_.size(); ++q) d_[q] = z_[q] + beta * d_[q];
+
+    outcome.stokes_iterations += Respond(dt, d_.data());
+    MismatchOf(du_.data(), dv_.data(), dvelocity_, domega_, sd_.data());
+    const double curvature = Dot(d_.data(), sd_.data());
+    if (!(curvature > 0.0)) {
+      std::ostringstream what;
+      what << "DLM viscous coupling (33) broke down at t = " << time << " (curvature " << curvature
+           << " after " << it << " iterations)";
+      throw SolverNotConverged(what.str());
+    }
+    const double step = -rz / curvature;  // g(nu + step d) = g + step S d
+    for (std::size_t q = 0; q < nu_.size(); ++q) nu_[q] += step * d_[q];
+    for (std::size_t k = 0; k < nodes; ++k) {
+      u[k] += step * du_[k];
+      v[k] += step * dv_[k];
+    }
+    for (std::size_t k = 0; k < pnodes; ++k) p[k] += step * dp_[k];
+    for (std::size_t k = 0; k < n; ++k) {
+      velocity_[k] += step * dvelocity_[k];
+      omega_[k] += step * domega_[k];
+    }
+    ++it;
+    std::swap(r_, r_old_);
+    mismatch = MismatchOf(u, v, velocity_, omega_, r_.data());
+  }
+  outcome.iterations = it;
+  outcome.residual = scale > 0.0 ? mismatch / scale : 0.0;
+  outcome.divergence = stokes.DivergenceNorm(u, v);
+
+  for (std::size_t k = 0; k < n; ++k) {
+    if (particles[k].motion == Motion::kFree) {
+      particles[k].velocity = velocity_[k];
+      particles[k].angular_velocity = omega_[k];
+    }
+    modes.NetForceAndTorque(points, k, nu_.data() + 2 * points.Begin(k), force_sum_[k],
+                            torque_sum_[k]);
+  }
+  have_warm_ = true;
+  return outcome;
+}
+
+}  // namespace dlmfd
