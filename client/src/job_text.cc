@@ -134,6 +134,7 @@ std::string JobDetails(const v1::Job& job) {
   }
   out << "attempts:    " << job.attempts() << "\n"
       << "results:     " << job.results_dir() << "\n";
+  if (!job.slurm_job_id().empty()) out << "slurm job:   " << job.slurm_job_id() << "\n";
   // Settings outside the accuracy envelope: what to change, and to what (docs/scenes.md).
   for (const v1::AccuracyWarning& w : job.warnings()) {
     char value[32];
