@@ -49,6 +49,15 @@ class ConfigError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The slurm executor's settings (slurm_* keys; slurm_executor.h).
+struct SlurmSettings {
+  std::string partition, account, qos, sbatch_options, shared_dir, solver, jobcomp_file;
+  int poll_seconds = 10;
+  int max_submitted = 100;
+  int time_limit_minutes = 0;
+  int signal_seconds = 120;
+};
+
 struct Config {
   std::string listen = "127.0.0.1:7443";
   std::string data_dir;
@@ -67,15 +76,6 @@ struct Config {
   std::map<std::string, std::string> tokens;  // token -> user, loaded from tokens_file
   std::string executor = "local";
   SlurmSettings slurm;
-};
-
-// The slurm executor's settings (slurm_* keys; slurm_executor.h).
-struct SlurmSettings {
-  std::string partition, account, qos, sbatch_options, shared_dir, solver, jobcomp_file;
-  int poll_seconds = 10;
-  int max_submitted = 100;
-  int time_limit_minutes = 0;
-  int signal_seconds = 120;
 };
 
 using EnvLookup = std::function<const char*(const char*)>;
