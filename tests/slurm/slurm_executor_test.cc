@@ -27,9 +27,13 @@ void UseDevSlurm() {
   }
 }
 
+// Asked once: sinfo takes about 9 s to give up when no slurmctld answers.
 bool SlurmRunning() {
-  UseDevSlurm();
-  return std::system("sinfo -h > /dev/null 2>&1") == 0;
+  static const bool running = [] {
+    UseDevSlurm();
+    return std::system("sinfo -h > /dev/null 2>&1") == 0;
+  }();
+  return running;
 }
 
 std::string JobCompFile() {
