@@ -1,8 +1,10 @@
 // The daemon's slurm executor against a real Slurm (scripts/slurm-dev.sh start): one job end to
 // end with its events streamed through the shared job directory (progress, particle states and
-// trA snapshots, as for a local job), `dlmfd show`'s Slurm id, and cancel as scancel. Skipped,
+// trA snapshots, as for a local job), `dlmfd show`'s Slurm id, cancel as scancel, and a daemon
+// killed with SIGKILL that adopts its Slurm job on restart. Skipped,
 // naming scripts/slurm-dev.sh, when no Slurm answers sinfo.
 #include <gtest/gtest.h>
+#include <signal.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -182,6 +184,46 @@ TEST(SlurmExecutor, CancelIsScancelAndTheSolverCheckpoints) {
   std::ifstream in(state);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(text, "");
+}
+
+TEST(SlurmExecutor, ADaemonKilledWithSigkillAdoptsItsSlurmJobOnRestart) {
+  REQUIRE_SLURM();
+  TempDir dir;
+  std::string id, slurm_id;
+  {
+    DaemonProcess daemon(dir.path() + "/data", SlurmFlags(dir.path()));
+    ASSERT_TRUE(daemon.Start()) << daemon.Log();
+    auto stub = daemon.Stub();
+    id = Submit(*stub, CavityScene(20.0)).id();
+    auto context = Context();
+    v1::WatchRequest watch;
+    watch.set_job_id(id);
+    auto reader = stub->Watch(context.get(), watch);
+    v1::WatchEvent event;
+    while (reader->Read(&event) && !(event.has_progress() && event.progress().step() > 0)) {}
+    context->TryCancel();
+    reader->Finish();
+    slurm_id = Get(*stub, id).slurm_job_id();
+    daemon.Kill(SIGKILL);
+    daemon.Wait();
+  }
+  ASSERT_FALSE(slurm_id.empty());
+  DaemonProcess daemon(dir.path() + "/data", SlurmFlags(dir.path()));
+  ASSERT_TRUE(daemon.Start()) << daemon.Log();
+  auto stub = daemon.Stub();
+  const v1::Job done = WaitFinished(*stub, id);
+  EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon.Log();
+  EXPECT_EQ(done.slurm_job_id(), slurm_id);  // the same Slurm job: not submitted again
+  EXPECT_EQ(done.step(), 2000);
+  EXPECT_NE(daemon.Log().find("Slurm job " + slurm_id + " adopted"), std::string::npos)
+      << daemon.Log();
+  // Slurm ran one job of that name.
+  std::ifstream jobcomp(JobCompFile());
+  int runs = 0;
+  for (std::string line; std::getline(jobcomp, line);) {
+    if (line.find(" Name=dlmfd-" + id + " ") != std::string::npos) ++runs;
+  }
+  EXPECT_EQ(runs, 1);
 }
 
 }  // namespace
