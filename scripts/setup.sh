@@ -14,6 +14,11 @@ packages=(
   python3 python3-grpcio python3-protobuf python3-h5py python3-numpy python3-pandas
   # fields.xmf opened in ParaView offscreen by pvbatch (tests/python/paraview_test.py).
   paraview python3-paraview
+  # A real single-node Slurm for the tests labelled slurm (scripts/slurm-dev.sh, docs/cluster.md).
+  slurmctld
+  slurmd
+  slurm-client
+  munge
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -8,6 +8,18 @@ jobs=$(nproc)
 # ctest runs the tests side by side on every core: one OpenMP thread each, and no spin-waiting.
 export OMP_NUM_THREADS=1 OMP_WAIT_POLICY=passive
 
+# The tests labelled slurm run against a real single-node Slurm (scripts/slurm-dev.sh, as root):
+# started here when it is not running, and then stopped on exit; without root they skip.
+if [ "$(id -u)" -eq 0 ]; then
+  slurm_started=0
+  if ! scripts/slurm-dev.sh status > /dev/null 2>&1; then
+    scripts/slurm-dev.sh start
+    slurm_started=1
+  fi
+  trap 'if [ "$slurm_started" = 1 ]; then scripts/slurm-dev.sh stop; fi' EXIT
+  eval "$(scripts/slurm-dev.sh env)"
+fi
+
 echo "== release build and tests"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDLMFD_WERROR=ON > /dev/null
 cmake --build build -j"$jobs"

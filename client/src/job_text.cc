@@ -171,6 +171,7 @@ std::string JobDetails(const v1::Job& job) {
   }
   out << "results:     " << job.results_dir() << "\n";
   if (job.disk_bytes() > 0) out << "disk:        " << job.disk_bytes() << " bytes\n";
+  if (!job.slurm_job_id().empty()) out << "slurm job:   " << job.slurm_job_id() << "\n";
   // Settings outside the accuracy envelope: what to change, and to what (docs/scenes.md).
   for (const v1::AccuracyWarning& w : job.warnings()) {
     char value[32];

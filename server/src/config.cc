@@ -55,6 +55,14 @@ std::vector<Setting> Settings() {
       c.*member = static_cast<int>(ParseInteger(key, v));
     };
   };
+  auto slurm_text = [](std::string SlurmSettings::*member) {
+    return [member](Config& c, const std::string& v) { c.slurm.*member = v; };
+  };
+  auto slurm_small = [](const char* key, int SlurmSettings::*member) {
+    return [key, member](Config& c, const std::string& v) {
+      c.slurm.*member = static_cast<int>(ParseInteger(key, v));
+    };
+  };
   return {
       {"listen", text(&Config::listen)},
       {"data_dir", text(&Config::data_dir)},
@@ -74,6 +82,19 @@ std::vector<Setting> Settings() {
       {"solver_threads", small("solver_threads", &Config::solver_threads)},
       {"log_level", text(&Config::log_level)},
       {"port_file", text(&Config::port_file)},
+      {"executor", text(&Config::executor)},
+      {"slurm_partition", slurm_text(&SlurmSettings::partition)},
+      {"slurm_account", slurm_text(&SlurmSettings::account)},
+      {"slurm_qos", slurm_text(&SlurmSettings::qos)},
+      {"slurm_sbatch_options", slurm_text(&SlurmSettings::sbatch_options)},
+      {"slurm_shared_dir", slurm_text(&SlurmSettings::shared_dir)},
+      {"slurm_solver", slurm_text(&SlurmSettings::solver)},
+      {"slurm_jobcomp_file", slurm_text(&SlurmSettings::jobcomp_file)},
+      {"slurm_poll_seconds", slurm_small("slurm_poll_seconds", &SlurmSettings::poll_seconds)},
+      {"slurm_max_submitted", slurm_small("slurm_max_submitted", &SlurmSettings::max_submitted)},
+      {"slurm_time_limit_minutes",
+       slurm_small("slurm_time_limit_minutes", &SlurmSettings::time_limit_minutes)},
+      {"slurm_signal_seconds", slurm_small("slurm_signal_seconds", &SlurmSettings::signal_seconds)},
   };
 }
 
@@ -179,6 +200,27 @@ void ValidateSolver(const std::string& solver) {
                       "\" (--solver, DLMFD_SOLVER) is not an executable file: " + why +
                       " (expected the path of dlmfd-solve)");
   }
+}
+
+// Throws unless executor is local or slurm and the slurm_* values are in their ranges. The slurm
+// solver is not checked here: it is a path on the nodes, which the daemon's machine may not have.
+void ValidateExecutor(Config& config) {
+  if (config.executor != "local" && config.executor != "slurm") {
+    throw ConfigError("executor = \"" + CutForMessage(config.executor) +
+                      "\" is not allowed: expected local or slurm");
+  }
+  auto range = [](const char* key, int value, int least, int most) {
+    if (value < least || value > most) {
+      throw ConfigError(std::string(key) + " = " + std::to_string(value) +
+                        " is not allowed: expected " + std::to_string(least) + " to " +
+                        std::to_string(most));
+    }
+  };
+  range("slurm_poll_seconds", config.slurm.poll_seconds, 1, 3600);
+  range("slurm_max_submitted", config.slurm.max_submitted, 1, 100000);
+  range("slurm_time_limit_minutes", config.slurm.time_limit_minutes, 0, 525600);
+  range("slurm_signal_seconds", config.slurm.signal_seconds, 1, 65535);
+  if (config.slurm.solver.empty()) config.slurm.solver = config.solver;
 }
 
 }  // namespace
@@ -296,6 +338,7 @@ void ValidateConfig(Config& config) {
   }
   if (config.solver.empty()) throw ConfigError("solver must not be empty");
   ValidateSolver(config.solver);
+  ValidateExecutor(config);
 }
 
 bool LoadConfig(int argc, const char* const* argv, const EnvLookup& env, Config& config) {

@@ -24,6 +24,19 @@
 //                     the daemon's own environment sets it
 //   log_level         "info"
 //   port_file         none: write the bound port here once serving
+//   executor          "local" (child processes) or "slurm" (batch jobs; the slurm_* keys below)
+//   slurm_partition, slurm_account, slurm_qos   none: Slurm's defaults
+//   slurm_sbatch_options  none: more sbatch options, separated by spaces ("--constraint=x86")
+//   slurm_shared_dir  none: data_dir/jobs; else the job directories live here (it must be on a
+//                     filesystem the nodes share with the daemon's machine)
+//   slurm_solver      the solver setting: dlmfd-solve's path on the nodes
+//   slurm_poll_seconds    10: how often squeue is asked (1-3600)
+//   slurm_max_submitted   100: the most jobs handed to Slurm at once (1-100000)
+//   slurm_time_limit_minutes  0: none; else each job's --time
+//   slurm_signal_seconds  120: with a time limit, Slurm warns the solver this long before it
+//                     (--signal=B:USR1@N) so that it checkpoints
+//   slurm_jobcomp_file    none: Slurm's JobCompLoc (jobcomp/filetxt), read for the end of jobs
+//                     that have left squeue
 // Validation (ValidateConfig): a listen address that is not loopback requires a tokens file; a
 // tokens file must hold at least one token.
 #pragma once
@@ -40,6 +53,15 @@ namespace dlmfd::server {
 class ConfigError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// The slurm executor's settings (slurm_* keys; slurm_executor.h).
+struct SlurmSettings {
+  std::string partition, account, qos, sbatch_options, shared_dir, solver, jobcomp_file;
+  int poll_seconds = 10;
+  int max_submitted = 100;
+  int time_limit_minutes = 0;
+  int signal_seconds = 120;
 };
 
 struct Config {
@@ -62,6 +84,8 @@ struct Config {
   std::string log_level = "info";
   std::string port_file;
   std::map<std::string, std::string> tokens;  // token -> user, loaded from tokens_file
+  std::string executor = "local";
+  SlurmSettings slurm;
 };
 
 using EnvLookup = std::function<const char*(const char*)>;

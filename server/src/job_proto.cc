@@ -1,6 +1,10 @@
 #include "job_proto.h"
 
 #include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include "slurm_commands.h"
 
 namespace dlmfd::server {
 
@@ -56,6 +60,12 @@ v1::Job ToProto(const JobRecord& job) {
     o->set_step(a.step);
     o->set_time(a.time);
     for (const auto& text : a.overrides) o->add_overrides(text);
+  }
+  // The slurm executor writes the id into the job directory, results_dir's parent.
+  if (!job.results_dir.empty()) {
+    std::ifstream slurm_id(std::filesystem::path(job.results_dir).parent_path() / kSlurmIdFile);
+    std::string id;
+    if (slurm_id >> id) out.set_slurm_job_id(id);
   }
   return out;
 }

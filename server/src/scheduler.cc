@@ -17,6 +17,7 @@
 #include "dlmfd/io/results_writer.h"
 #include "dlmfd/solver/exit_codes.h"
 #include "dlmfd/solver/run_summary.h"
+#include "executor.h"
 #include "job_proto.h"
 #include "service_error.h"
 #include "solver_process.h"
@@ -71,6 +72,9 @@ Scheduler::Scheduler(const Config& config, JobStore& store, EventHub& hub)
 Scheduler::~Scheduler() { Stop(std::chrono::seconds(5)); }
 
 std::string Scheduler::JobDir(const std::string& job_id) const {
+  if (config_.executor == "slurm" && !config_.slurm.shared_dir.empty()) {
+    return (fs::path(config_.slurm.shared_dir) / job_id).string();
+  }
   return (fs::path(config_.data_dir) / "jobs" / job_id).string();
 }
 
@@ -102,7 +106,9 @@ void Scheduler::Loop() {
         ++it;
       }
     }
-    while (static_cast<int>(running_.size()) < config_.max_concurrent && !Stopping()) {
+    const int most =
+        config_.executor == "slurm" ? config_.slurm.max_submitted : config_.max_concurrent;
+    while (static_cast<int>(running_.size()) < most && !Stopping()) {
       std::optional<JobRecord> next;
       try {
         next = store_.NextQueued();
@@ -134,7 +140,7 @@ void Scheduler::Loop() {
                    next->priority);
       hub_.PublishState(*next);
       auto& entry = running_[next->id];
-      entry.process = std::make_shared<SolverProcess>();
+      entry.process = MakeJobRun(config_);
       entry.thread = std::thread([this, job = *next] { RunJob(job); });
     }
   }
@@ -156,7 +162,7 @@ void Scheduler::FinishJob(const std::string& job_id, JobState state, const std::
 }
 
 void Scheduler::RunJob(JobRecord job) {
-  std::shared_ptr<SolverProcess> process;
+  std::shared_ptr<JobRun> process;
   {
     std::lock_guard lock(mutex_);
     process = running_[job.id].process;
@@ -175,9 +181,12 @@ void Scheduler::RunJob(JobRecord job) {
     if (lock_fd < 0) {
       if (!Stopping()) outcome.emplace(JobState::kCancelled, "cancelled before the solver started");
     } else {
-      // A retry with another scene starts afresh: its old checkpoint must not be resumed.
-      const bool resume = !job.fresh_start && fs::exists(results / ResultsWriter::kCheckpoint);
-      if (!resume) fs::remove_all(results);
+      // A run that outlived the daemon (a Slurm job) is followed, not started again; a retry with
+      // another scene starts afresh: its old checkpoint must not be resumed.
+      const bool adopted = process->Adopt(dir.string());
+      const bool resume =
+          !adopted && !job.fresh_start && fs::exists(results / ResultsWriter::kCheckpoint);
+      if (!resume && !adopted) fs::remove_all(results);
       fs::create_directories(results);
       if (job.fresh_start) store_.ClearFreshStart(job.id);
       WriteTextAtomically((dir / "scene.in.toml").string(), job.scene);
@@ -200,12 +209,18 @@ void Scheduler::RunJob(JobRecord job) {
       if (access(spec.solver.c_str(), X_OK) != 0) {
         throw std::runtime_error("cannot execute the solver " + spec.solver);
       }
-      process->Start(spec);
+      if (adopted) {
+        spdlog::info("job {}: {} adopted (it outlived the daemon's previous run)", job.id,
+                     process->Describe());
+        hub_.Publish(job.id, LogEvent("info", process->Describe() + " adopted"));
+      } else {
+        process->Start(spec);
+        spdlog::info("job {}: {} started{}", job.id, process->Describe(),
+                     resume ? " with --resume" : "");
+        hub_.Publish(job.id, LogEvent("info", resume ? "solver resumed from results/checkpoint.h5"
+                                                     : "solver started"));
+      }
       WallTimeLimit wall_limit(config_.max_wall_seconds, [&] { process->Signal(SIGTERM); });
-      spdlog::info("job {}: solver pid {} started{}", job.id, process->pid(),
-                   resume ? " with --resume" : "");
-      hub_.Publish(job.id, LogEvent("info", resume ? "solver resumed from results/checkpoint.h5"
-                                                   : "solver started"));
       if (cancel_requested()) process->Signal(SIGTERM);
 
       std::optional<v1::Finished> finished;
@@ -302,6 +317,8 @@ void Scheduler::RunJob(JobRecord job) {
       } else if (Stopping() && (exited(solver::kExitCancelled) || exit.signalled)) {
         spdlog::info("job {}: solver stopped for the daemon's shutdown; stays RUNNING to resume",
                      job.id);
+      } else if (auto ended = process->Outcome()) {
+        outcome = std::move(ended);
       } else if (exited(solver::kExitCompleted)) {
         outcome.emplace(JobState::kCompleted, "");
       } else if (exited(solver::kExitFailed)) {

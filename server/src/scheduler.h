@@ -18,6 +18,9 @@
 // checkpoints and exits 130 at a step boundary). Stop (daemon shutdown) sends SIGTERM too but
 // leaves the jobs RUNNING in the store, so that the next start resumes them; a solver still alive
 // after the grace period gets SIGKILL.
+// The run itself is the configured executor's (executor.h: local child processes or Slurm jobs);
+// with the slurm executor at most slurm_max_submitted jobs are handed to Slurm at once and the job
+// directories live in slurm_shared_dir when it is set.
 #pragma once
 
 #include <atomic>
@@ -37,7 +40,7 @@
 
 namespace dlmfd::server {
 
-class SolverProcess;
+class JobRun;
 
 class Scheduler {
  public:
@@ -69,7 +72,7 @@ class Scheduler {
  private:
   struct Running {
     std::thread thread;
-    std::shared_ptr<SolverProcess> process;
+    std::shared_ptr<JobRun> process;
     bool cancel = false;
     bool done = false;
   };

@@ -1,0 +1,275 @@
+// The slurm executor's parts without a Slurm: the state map (every state of slurm 22.05), the
+// batch script and sbatch's arguments, the parsing of sbatch --parsable, of squeue --json (a real
+// output of slurm 22.05, OpenAPI v0.0.38, captured from scripts/slurm-dev.sh's Slurm) and of the
+// jobcomp file (real lines of jobcomp/filetxt), the tail of a growing event file, and the
+// executor's configuration.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "config.h"
+#include "dlmfd/solver/event_file.h"
+#include "event_file_tail.h"
+#include "slurm_commands.h"
+#include "slurm_states.h"
+
+namespace dlmfd::server {
+namespace {
+namespace fs = std::filesystem;
+
+std::string ReadFixture(const std::string& name) {
+  std::ifstream in(std::string(DLMFD_SOURCE_DIR) + "/tests/server/data/" + name);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(SlurmStates, EveryStateMapsOntoOursWithItsReason) {
+  struct Case {
+    const char* slurm;
+    bool finished;
+    JobState state;
+    bool retryable;
+  };
+  const Case cases[] = {
+      {"PENDING", false, JobState::kRunning, false},
+      {"RUNNING", false, JobState::kRunning, false},
+      {"SUSPENDED", false, JobState::kRunning, false},
+      {"COMPLETING", false, JobState::kRunning, false},
+      {"CONFIGURING", false, JobState::kRunning, false},
+      {"REQUEUED", false, JobState::kRunning, false},
+      {"REQUEUE_HOLD", false, JobState::kRunning, false},
+      {"REQUEUE_FED", false, JobState::kRunning, false},
+      {"RESV_DEL_HOLD", false, JobState::kRunning, false},
+      {"RESIZING", false, JobState::kRunning, false},
+      {"SIGNALING", false, JobState::kRunning, false},
+      {"STAGE_OUT", false, JobState::kRunning, false},
+      {"STOPPED", false, JobState::kRunning, false},
+      {"COMPLETED", true, JobState::kCompleted, false},
+      {"CANCELLED", true, JobState::kCancelled, false},
+      {"FAILED", true, JobState::kFailed, false},
+      {"TIMEOUT", true, JobState::kFailed, true},
+      {"NODE_FAIL", true, JobState::kFailed, true},
+      {"PREEMPTED", true, JobState::kFailed, true},
+      {"BOOT_FAIL", true, JobState::kFailed, true},
+      {"OUT_OF_MEMORY", true, JobState::kFailed, false},
+      {"DEADLINE", true, JobState::kFailed, false},
+  };
+  std::set<std::string> reasons;
+  for (const Case& c : cases) {
+    const SlurmStateMeaning m = MapSlurmState(c.slurm, "");
+    EXPECT_EQ(m.finished, c.finished) << c.slurm;
+    EXPECT_EQ(m.state, c.state) << c.slurm;
+    EXPECT_EQ(m.retryable, c.retryable) << c.slurm;
+    EXPECT_EQ(m.reason.rfind(std::string("Slurm: ") + c.slurm + ": ", 0), 0u) << m.reason;
+    EXPECT_EQ(m.reason.find("does not know"), std::string::npos) << m.reason;
+    reasons.insert(m.reason);
+  }
+  EXPECT_EQ(reasons.size(), std::size(cases));  // each state says something of its own
+}
+
+TEST(SlurmStates, ReasonsFlagsAndUnknownStates) {
+  EXPECT_EQ(MapSlurmState("PENDING", "Priority").reason,
+            "Slurm: PENDING: waiting for resources or priority (Priority)");
+  EXPECT_EQ(MapSlurmState("RUNNING", "None").reason, "Slurm: RUNNING: running");
+  // sacct and the jobcomp file write "CANCELLED by 0"; squeue may append '+'.
+  EXPECT_EQ(MapSlurmState("CANCELLED by 0", "").state, JobState::kCancelled);
+  EXPECT_TRUE(MapSlurmState("CANCELLED+", "").finished);
+  const SlurmStateMeaning unknown = MapSlurmState("POWER_UP_NODE", "");
+  EXPECT_FALSE(unknown.finished);
+  EXPECT_NE(unknown.reason.find("POWER_UP_NODE"), std::string::npos);
+}
+
+BatchJob Job() {
+  BatchJob job;
+  job.name = "dlmfd-j1";
+  job.job_dir = "/shared/jobs/j1";
+  job.solver = "/opt/dlmfd/bin/dlmfd-solve";
+  job.scene_path = "/shared/jobs/j1/scene.in.toml";
+  job.results_dir = "/shared/jobs/j1/results";
+  job.log_path = "/shared/jobs/j1/solver.log";
+  job.overrides = {"fluid.relaxation_time=2", "title=it's"};
+  job.resume = true;
+  job.threads = 4;
+  job.memory_mb = 300;
+  return job;
+}
+
+TEST(SlurmCommands, SbatchArgumentsCarryTheJobAndTheSettings) {
+  SlurmSettings settings;
+  auto args = SbatchArguments(Job(), settings, "/shared/jobs/j1/slurm.sh");
+  const std::vector<std::string> plain = {"--parsable",
+                                          "--job-name=dlmfd-j1",
+                                          "--cpus-per-task=4",
+                                          "--ntasks=1",
+                                          "--mem=300M",
+                                          "--output=/shared/jobs/j1/solver.log",
+                                          "--open-mode=append",
+                                          "--chdir=/shared/jobs/j1",
+                                          "/shared/jobs/j1/slurm.sh"};
+  EXPECT_EQ(args, plain);
+  settings.time_limit_minutes = 90;
+  settings.signal_seconds = 120;
+  settings.partition = "short";
+  settings.account = "lab";
+  settings.qos = "normal";
+  settings.sbatch_options = " --constraint=avx2  --exclusive ";
+  args = SbatchArguments(Job(), settings, "S");
+  const std::vector<std::string> tail = {
+      "--time=90",    "--signal=B:USR1@120", "--partition=short", "--account=lab",
+      "--qos=normal", "--constraint=avx2",   "--exclusive",       "S"};
+  ASSERT_GE(args.size(), tail.size());
+  EXPECT_EQ(std::vector<std::string>(args.end() - static_cast<long>(tail.size()), args.end()),
+            tail);
+}
+
+TEST(SlurmCommands, BatchScriptRunsTheSolverWithItsEventFileAndRecordsItsExit) {
+  const std::string script = BatchScript(Job());
+  EXPECT_EQ(script.rfind("#!/bin/bash\n", 0), 0u);
+  EXPECT_NE(script.find("exec 3>>events.bin\n"), std::string::npos);
+  EXPECT_NE(script.find("'/opt/dlmfd/bin/dlmfd-solve' '/shared/jobs/j1/scene.in.toml' --out "
+                        "'/shared/jobs/j1/results' --set 'fluid.relaxation_time=2' --set "
+                        "'title=it'\\''s' --events 3 --resume &\n"),
+            std::string::npos)
+      << script;
+  EXPECT_NE(script.find("trap 'touch slurm.warned; kill -TERM $solver 2>/dev/null' USR1"),
+            std::string::npos);
+  EXPECT_NE(script.find("mv solver.exit.tmp solver.exit"), std::string::npos);
+  EXPECT_EQ(ShellQuote("a'b"), "'a'\\''b'");
+}
+
+TEST(SlurmCommands, ParsesSbatchParsable) {
+  EXPECT_EQ(ParseSbatchId("12345\n"), "12345");
+  EXPECT_EQ(ParseSbatchId("678;cluster2\n"), "678");
+  EXPECT_THROW(ParseSbatchId(""), std::runtime_error);
+  EXPECT_THROW(ParseSbatchId("sbatch: error: Batch job submission failed\n"), std::runtime_error);
+}
+
+TEST(SlurmCommands, ParsesARealSqueueJson) {
+  const std::string json = ReadFixture("squeue_v0.0.38.json");
+  ASSERT_FALSE(json.empty());
+  const auto running = FindInSqueueJson(json, "3");
+  ASSERT_TRUE(running);
+  EXPECT_EQ(running->state, "RUNNING");
+  EXPECT_EQ(running->reason, "None");
+  const auto pending = FindInSqueueJson(json, "4");
+  ASSERT_TRUE(pending);
+  EXPECT_EQ(pending->state, "PENDING");
+  EXPECT_EQ(pending->reason, "Dependency");
+  EXPECT_EQ(FindInSqueueJson(json, "1")->reason, "BadConstraints");
+  EXPECT_FALSE(FindInSqueueJson(json, "5"));
+  EXPECT_FALSE(FindInSqueueJson(json, "33"));
+  // Newer releases write job_state as an array.
+  const auto array = FindInSqueueJson(
+      R"({"jobs": [{"job_id": 9, "job_state": ["TIMEOUT"], "restart_cnt": 2}]})", "9");
+  ASSERT_TRUE(array);
+  EXPECT_EQ(array->state, "TIMEOUT");
+  EXPECT_EQ(array->restarts, 2);
+  EXPECT_THROW(FindInSqueueJson("squeue: error: slurm_load_jobs", "1"), std::runtime_error);
+  EXPECT_THROW(FindInSqueueJson(R"({"errors": []})", "1"), std::runtime_error);
+}
+
+TEST(SlurmCommands, ParsesARealJobCompFile) {
+  const std::string text = ReadFixture("jobcomp_filetxt.txt");
+  const auto completed = FindInJobComp(text, "2");
+  ASSERT_TRUE(completed);
+  EXPECT_EQ(completed->state, "COMPLETED");
+  EXPECT_EQ(completed->exit_code, "0:0");
+  EXPECT_EQ(FindInJobComp(text, "1")->state, "FAILED");
+  EXPECT_EQ(FindInJobComp(text, "3")->state, "CANCELLED");
+  EXPECT_FALSE(FindInJobComp(text, "22"));  // "JobId=2" must not match "JobId=22"
+  // A requeued job has one line per end: the last one counts.
+  const auto last = FindInJobComp(
+      "JobId=7 JobState=NODE_FAIL ExitCode=0:0\nJobId=7 JobState=COMPLETED "
+      "ExitCode=0:0\n",
+      "7");
+  EXPECT_EQ(last->state, "COMPLETED");
+}
+
+TEST(SlurmCommands, RunCommandCollectsOutputAndStatus) {
+  const CommandResult ok = RunCommand({"sh", "-c", "echo out; echo err >&2; exit 3"});
+  EXPECT_EQ(ok.status, 3);
+  EXPECT_EQ(ok.out, "out\n");
+  EXPECT_EQ(ok.err, "err\n");
+  EXPECT_EQ(RunCommand({"/nonexistent/sbatch"}).status, 127);
+}
+
+TEST(EventFileTail, DeliversEachCompleteEventOnceWhileTheFileGrows) {
+  const fs::path path = fs::temp_directory_path() / ("tail_test_" + std::to_string(getpid()));
+  fs::remove(path);
+  EventFileTail tail(path.string());
+  std::vector<int64_t> steps;
+  auto collect = [&](const v1::SolverEvent& e) {
+    steps.push_back(e.has_log() ? -1 : e.progress().step());
+  };
+  EXPECT_EQ(tail.ReadNew(collect), 0);  // no file yet
+  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  ASSERT_GE(fd, 0);
+  {
+    solver::EventFileWriter writer(fd);
+    for (int step = 1; step <= 3; ++step) {
+      v1::SolverEvent e;
+      e.mutable_progress()->set_step(step);
+      ASSERT_TRUE(writer.Write(e));
+    }
+  }
+  EXPECT_EQ(tail.ReadNew(collect), 3);
+  EXPECT_EQ(tail.ReadNew(collect), 0);
+  // Half of an event: nothing yet; its other half: the event, once.
+  v1::SolverEvent big;  // over 127 bytes: a two-byte length
+  big.mutable_log()->set_text(std::string(300, 'x'));
+  const std::string body = big.SerializeAsString();
+  ASSERT_GT(body.size(), 127u);
+  ASSERT_LT(body.size(), 16384u);
+  std::string framed(1, static_cast<char>(0x80 | (body.size() & 0x7f)));
+  framed += static_cast<char>(body.size() >> 7);
+  framed += body;
+  ASSERT_EQ(write(fd, framed.data(), 100), 100);
+  EXPECT_EQ(tail.ReadNew(collect), 0);
+  ASSERT_EQ(write(fd, framed.data() + 100, framed.size() - 100),
+            static_cast<ssize_t>(framed.size() - 100));
+  EXPECT_EQ(tail.ReadNew(collect), 1);
+  close(fd);
+  fs::remove(path);
+  ASSERT_EQ(steps.size(), 4u);
+  EXPECT_EQ(steps, (std::vector<int64_t>{1, 2, 3, -1}));
+}
+
+Config Load(const std::vector<std::string>& args) {
+  std::vector<const char*> argv = {"dlmfdd", "--solver", "/bin/true"};
+  for (const auto& a : args) argv.push_back(a.c_str());
+  Config config;
+  LoadConfig(
+      static_cast<int>(argv.size()), argv.data(), [](const char*) { return nullptr; }, config);
+  return config;
+}
+
+TEST(SlurmConfig, ExecutorAndItsSettings) {
+  EXPECT_EQ(Load({"--data-dir", "/tmp/d"}).executor, "local");
+  const Config slurm = Load({"--data-dir", "/tmp/d", "--executor", "slurm", "--slurm-partition",
+                             "short", "--slurm-poll-seconds", "5", "--slurm-max-submitted", "20"});
+  EXPECT_EQ(slurm.executor, "slurm");
+  EXPECT_EQ(slurm.slurm.partition, "short");
+  EXPECT_EQ(slurm.slurm.poll_seconds, 5);
+  EXPECT_EQ(slurm.slurm.max_submitted, 20);
+  EXPECT_EQ(slurm.slurm.solver, "/bin/true");  // the daemon's solver unless slurm_solver is set
+  try {
+    Load({"--data-dir", "/tmp/d", "--executor", "pbs"});
+    ADD_FAILURE() << "executor pbs accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected local or slurm"), std::string::npos);
+  }
+  try {
+    Load({"--data-dir", "/tmp/d", "--slurm-poll-seconds", "0"});
+    ADD_FAILURE() << "slurm_poll_seconds 0 accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("slurm_poll_seconds = 0 is not allowed: expected 1 to "
+                                         "3600"),
+              std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace dlmfd::server
