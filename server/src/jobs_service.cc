@@ -255,10 +255,7 @@ void JobsService::CheckQueueRoom(int64_t adding) {
 }
 
 SweepRecord JobsService::OwnSweep(const std::string& user, const std::string& sweep_id) {
-  Require(!sweep_id.empty(), "sweep_id: empty");
-  RequireNoNul("sweep_id", sweep_id);
-  Require(sweep_id.size() <= kMaxJobIdBytes,
-          "sweep_id: longer than " + std::to_string(kMaxJobIdBytes) + " bytes");
+  CheckJobId(sweep_id, "sweep_id");
   auto sweep = store_.GetSweep(user, sweep_id);
   if (!sweep) throw ServiceError(StatusCode::NOT_FOUND, "sweep " + sweep_id + " not found");
   return *sweep;

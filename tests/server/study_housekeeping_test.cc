@@ -108,10 +108,14 @@ TEST(JobStoreSchemaFour, AppliesOverSchemaTwoAndHoldsPriorityAndDelete) {
     store.InsertJobs({StoreJob("old")}, "local", "");
     sqlite3* db = nullptr;
     ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-    // Back to schema 2: a store written before this version.
+    // Back to schema 2: a store written before schemas 3 and 4.
     ASSERT_EQ(sqlite3_exec(db,
                            "ALTER TABLE jobs DROP COLUMN held; ALTER TABLE jobs DROP COLUMN "
-                           "disk_bytes; UPDATE schema_version SET version = 2;",
+                           "disk_bytes; DROP TABLE sweeps; DROP TABLE job_labels; DROP TABLE "
+                           "job_values; ALTER TABLE jobs DROP COLUMN parameters; ALTER TABLE "
+                           "jobs DROP COLUMN attempt; ALTER TABLE jobs DROP COLUMN "
+                           "previous_attempts; ALTER TABLE jobs DROP COLUMN fresh_start; "
+                           "UPDATE schema_version SET version = 2;",
                            nullptr, nullptr, nullptr),
               SQLITE_OK)
         << sqlite3_errmsg(db);

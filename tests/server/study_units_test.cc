@@ -316,6 +316,8 @@ TEST(StudyStore, ASchemaTwoStoreGainsItsSweepsAsStudies) {
                            "ALTER TABLE jobs DROP COLUMN attempt;"
                            "ALTER TABLE jobs DROP COLUMN previous_attempts;"
                            "ALTER TABLE jobs DROP COLUMN fresh_start;"
+                           "ALTER TABLE jobs DROP COLUMN held;"
+                           "ALTER TABLE jobs DROP COLUMN disk_bytes;"
                            "UPDATE schema_version SET version = 2;",
                            nullptr, nullptr, nullptr),
               SQLITE_OK);
