@@ -22,28 +22,6 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-const char* kCavity = R"toml(title = "lid-driven cavity (studies e2e)"
-[domain]
-size = [1.0, 1.0]
-h = 0.0625
-[domain.boundary]
-left = { type = "wall" }
-right = { type = "wall" }
-bottom = { type = "wall" }
-top = { type = "velocity", profile = "uniform", value = [1.0, 0.0] }
-[fluid]
-density = 1.0
-viscosity = 0.01
-relaxation_time = 0.0
-[time]
-dt = 0.01
-end = 0.1
-[output]
-fields_every = 0.05
-particles_every = 0.05
-checkpoint_every = 0.05
-)toml";
-
 class StudiesCliTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {

@@ -17,6 +17,29 @@ inline const std::string kClient = DLMFD_BINARY_DIR "/client/dlmfd";
 inline const std::string kDaemon = DLMFD_BINARY_DIR "/server/dlmfdd";
 inline const std::string kSolver = DLMFD_BINARY_DIR "/solver/dlmfd-solve";
 
+// A small lid-driven cavity (10 steps, snapshots and checkpoints) the e2e tests submit.
+inline constexpr char kCavity[] = R"toml(title = "lid-driven cavity (e2e)"
+[domain]
+size = [1.0, 1.0]
+h = 0.0625
+[domain.boundary]
+left = { type = "wall" }
+right = { type = "wall" }
+bottom = { type = "wall" }
+top = { type = "velocity", profile = "uniform", value = [1.0, 0.0] }
+[fluid]
+density = 1.0
+viscosity = 0.01
+relaxation_time = 0.0
+[time]
+dt = 0.01
+end = 0.1
+[output]
+fields_every = 0.05
+particles_every = 0.05
+checkpoint_every = 0.05
+)toml";
+
 struct CliRun {
   int code = -1;
   std::string out;
