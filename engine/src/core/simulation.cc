@@ -2,7 +2,8 @@
 // objects (built once, sized once); Step() runs the paper's list of substeps, one member each:
 //   SolveStokes (33)        StokesSolver, with the polymer's force on the momentum equation (and
 //                           with splitting.constraint = "viscous" the particles in it, through
-//                           ParticleStep::CoupleStokes);
+//                           ParticleStep::CoupleStokes; with "incremental" the last step's
+//                           multiplier, through ParticleStep::LagMultiplier);
 //   AdvectVelocity (34)     the VelocityAdvection scheme of splitting.advection;
 //   UpdateConformation (35) OldroydBPolymer (conformation module: modulus, A^0, inflow A_L, force);
 //   MoveParticles (36)-(38) ParticleStep (predictor, DLM multiplier, corrector), in place on u.
@@ -40,7 +41,7 @@ double Milliseconds(Clock::time_point a, Clock::time_point b) {
 
 // The rules of the time stepping (core/time_stepping.h), which the scene validation applies too.
 void ValidateSupported(const Params& p) {
-  ValidateSplitting(p.splitting);
+  ValidateSplitting(p.splitting, !p.particles.empty());
   ValidateTimeSteps(p.time);
   ValidateOutputPeriods(p.time, p.output);
 }
@@ -81,6 +82,10 @@ struct Simulation::Impl {
   void SolveStokes(StepReport& report) {
     const auto t0 = Clock::now();
     const NodeForce force = polymer ? polymer->MomentumForce(state) : NodeForce{};
+    if (particle_step && particle_step->LagsMultiplier()) {
+      particle_step->LagMultiplier(state.time, params.time.dt, state.particles, state.u.data(),
+                                   state.v.data());
+    }
     if (particle_step && particle_step->CouplesStokes()) {
       const ViscousConstraint::Outcome r = particle_step->CoupleStokes(
           state.time + params.time.dt, params.time.dt, stokes, force.x, force.y, state.particles,

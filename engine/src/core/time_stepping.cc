@@ -26,7 +26,7 @@ void RequireCountable(const std::string& key, double period, double end, const s
 
 }  // namespace
 
-void ValidateSplitting(const SplittingParams& s) {
+void ValidateSplitting(const SplittingParams& s, bool with_particles) {
   RequireClosedUnit("splitting.alpha", s.alpha);
   RequireClosedUnit("splitting.beta", s.beta);
   if (std::abs(s.alpha + s.beta - 1.0) > 1e-12) {
@@ -40,11 +40,13 @@ void ValidateSplitting(const SplittingParams& s) {
                            "a number in (0, 1] (the Stokes step (33) carries viscosity for its "
                            "fast solver; with alpha = 0 it has none)");
   }
-  if (s.constraint == ConstraintCoupling::kViscous && s.beta != 0.0) {
-    throw InvalidParameter("splitting.beta", ExactText(s.beta),
-                           "0 (and splitting.alpha = 1) with splitting.constraint = \"viscous\": "
-                           "the advection step (34) does not see the particles, so viscosity there "
-                           "would leak through them; or splitting.constraint = \"paper\"");
+  if (with_particles && s.constraint != ConstraintCoupling::kPaper && s.beta != 0.0) {
+    throw InvalidParameter(
+        "splitting.beta", ExactText(s.beta),
+        std::string("0 (and splitting.alpha = 1) with splitting.constraint = \"") +
+            (s.constraint == ConstraintCoupling::kViscous ? "viscous" : "incremental") +
+            "\": the advection step (34) does not see the particles, so viscosity there "
+            "would leak through them; or splitting.constraint = \"paper\"");
   }
 }
 

@@ -56,6 +56,16 @@ ParticleStep::ParticleStep(const Params& params, const Grid& grid)
     u_start_.assign(n, Vec2::Zero());
     omega_start_.assign(n, 0.0);
   }
+  if (params.splitting.constraint == ConstraintCoupling::kIncremental && n > 0) {
+    lagged_ = std::make_unique<LaggedMultiplier>(constraint_);
+  }
+}
+
+void ParticleStep::LagMultiplier(double time, double dt,
+                                 const std::vector<ParticleState>& particles, double* u,
+                                 double* v) {
+  lagged_->Apply(time, dt, constraint_, particles, u, v);
+  lag_applied_ = true;
 }
 
 ViscousConstraint::Outcome ParticleStep::CoupleStokes(double time, double dt, StokesSolver& stokes,
@@ -150,11 +160,21 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
     u_old_[p] = coupled_ ? u_start_[p] : particles[p].velocity;
     omega_old_[p] = coupled_ ? omega_start_[p] : particles[p].angular_velocity;
   }
+  // The reaction of the lagged multiplier nu^n, which acted on the fluid in (33): U* starts from
+  // U^n - dt D^-1 C^T nu^n (D^-1 = 0 but for the heavy free particles).
+  if (lag_applied_) {
+    for (std::size_t p = 0; p < n; ++p) {
+      const double inv_inertia =
+          2.0 * inv_excess_mass_[p] / (particles[p].radius * particles[p].radius);
+      particles[p].velocity -= dt * inv_excess_mass_[p] * lagged_->ForceSum(p);
+      particles[p].angular_velocity -= dt * inv_inertia * lagged_->TorqueSum(p);
+    }
+  }
   // Gravity acts in the coupled Stokes step when there is one, so that the excess weight meets
   // the viscous drag in the same solve; the predictor then carries the collision forces only.
   Predict(dt, coupled_ ? Vec2(Vec2::Zero()) : gravity_, particles);
   const RigidBodyConstraint::Outcome outcome =
-      constraint_.Enforce(time + dt, dt, particles, u, v, collision_average_.data());
+      constraint_.Enforce(time + dt, dt, particles, u, v, collision_average_.data(), lag_applied_);
   Correct(dt, particles);
 
   for (std::size_t p = 0; p < n; ++p) {
@@ -168,12 +188,17 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
       nodal_force += viscous_->NodalForceSum(p);
       nodal_torque += viscous_->NodalTorqueSum(p);
     }
+    if (lag_applied_) {
+      nodal_force += lagged_->ForceSum(p);
+      nodal_torque += lagged_->TorqueSum(p);
+    }
     particle.force =
         -nodal_force + displaced_mass * ((particle.velocity - u_old_[p]) / dt - gravity_);
     particle.torque = -nodal_torque + (fluid_density_ / particle.density) * inertia *
                                           (particle.angular_velocity - omega_old_[p]) / dt;
   }
   coupled_ = false;
+  lag_applied_ = false;
 
   for (std::size_t p = 0; p < n; ++p) x_[p] = particles[p].position;
   report.Set("multiplier_iterations", outcome.iterations);

@@ -58,7 +58,7 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
 RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt,
                                                           std::vector<ParticleState>& particles,
                                                           double* u, double* v,
-                                                          const Vec2* net_force) {
+                                                          const Vec2* net_force, bool increment) {
   Outcome outcome;
   const std::size_t n = particles.size();
   if (n == 0) return outcome;
@@ -85,7 +85,10 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
                                     kRoundOffFloor * kRoundOffFloor * scale * scale * floor_weight);
 
   double gg = cold;
-  if (cold > threshold) outcome.warm_start = cg_.WarmStart(op, dt, particles, u, v, gg);
+  // The stored multiplier is a warm start for nu, not for an increment of it.
+  if (cold > threshold && !increment) {
+    outcome.warm_start = cg_.WarmStart(op, dt, particles, u, v, gg);
+  }
   outcome.iterations = cg_.Solve(op, time, dt, threshold, gg, u, v);
   coupling_.CopyPeriodicDuplicates(u, v);
   cg_.RecoverNeutralMotion(op, u, v);
@@ -100,7 +103,11 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
       particle.angular_velocity = cg_.AngularVelocity(p);
     }
     const double* nu = cg_.Forces() + 2 * points_.Begin(p);
-    particle.multiplier.assign(nu, nu + MultiplierSize(p));  // allocates only on the first step
+    if (increment && !IsNeutral(p) && particle.multiplier.size() == MultiplierSize(p)) {
+      for (std::size_t k = 0; k < MultiplierSize(p); ++k) particle.multiplier[k] += nu[k];
+    } else {
+      particle.multiplier.assign(nu, nu + MultiplierSize(p));  // allocates only on the first step
+    }
     modes_.NetForceAndTorque(points_, p, nu, force_sum_[p], torque_sum_[p]);
   }
   return outcome;

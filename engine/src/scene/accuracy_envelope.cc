@@ -117,14 +117,17 @@ std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
 
   const bool particles = !p.particles.empty();
   const double viscous = KinematicViscosity(p) * dt / (h * h);
-  const bool coupled = p.splitting.constraint == ConstraintCoupling::kViscous;
-  const double viscous_bound = !particles ? kMaxViscousNumberWithoutParticles
-                               : coupled  ? kMaxViscousNumberViscousCoupling
-                                          : kMaxViscousNumberWithParticles;
+  const ConstraintCoupling coupling = p.splitting.constraint;
+  const double viscous_bound =
+      !particles                                     ? kMaxViscousNumberWithoutParticles
+      : coupling == ConstraintCoupling::kViscous     ? kMaxViscousNumberViscousCoupling
+      : coupling == ConstraintCoupling::kIncremental ? kMaxViscousNumberIncrementalCoupling
+                                                     : kMaxViscousNumberWithParticles;
   if (Above(viscous, viscous_bound)) {
-    out.push_back(TimeStepWarning(
-        p, "nu dt / h^2", viscous, viscous_bound,
-        !particles ? kSourceViscousFluid : (coupled ? kSourceViscousCoupling : kSourceViscous)));
+    out.push_back(TimeStepWarning(p, "nu dt / h^2", viscous, viscous_bound,
+                                  !particles || coupling == ConstraintCoupling::kPaper
+                                      ? (!particles ? kSourceViscousFluid : kSourceViscous)
+                                      : kSourceViscousCoupling));
   }
 
   const double courant = VelocityScale(p) * dt / h;

@@ -122,14 +122,17 @@ void ReadTimeAndSplitting(TableReader& top, Params& p) {
 
   TableReader splitting(top.Table("splitting"), "splitting");
   SplittingParams& s = p.splitting;
+  // The constraint first: the defaults of alpha and beta follow it.
+  s = SplittingParams::DefaultWeights(Choose<ConstraintCoupling>(
+      "splitting.constraint", splitting.String("constraint", "incremental"),
+      {{"incremental", ConstraintCoupling::kIncremental},
+       {"paper", ConstraintCoupling::kPaper},
+       {"viscous", ConstraintCoupling::kViscous}}));
   s.alpha = splitting.Real("alpha", s.alpha);
   s.beta = splitting.Real("beta", s.beta);
   s.advection = Choose<AdvectionScheme>(
       "splitting.advection", splitting.String("advection", "least_squares"),
       {{"least_squares", AdvectionScheme::kLeastSquares}, {"wave", AdvectionScheme::kWave}});
-  s.constraint = Choose<ConstraintCoupling>(
-      "splitting.constraint", splitting.String("constraint", "paper"),
-      {{"paper", ConstraintCoupling::kPaper}, {"viscous", ConstraintCoupling::kViscous}});
   splitting.RejectUnknown("alpha, beta, advection, constraint");
 }
 

@@ -162,7 +162,7 @@ void ValidateScene(const Params& params) {
   ValidateDomain(params);
   ValidateFluid(params.fluid);
   ValidateTimeSteps(params.time);
-  ValidateSplitting(params.splitting);
+  ValidateSplitting(params.splitting, !params.particles.empty());
   ValidateSolvers(params.solvers);
   ValidateMeshCollisionsConformation(params);
   ValidateOutputPeriods(params.time, params.output);

@@ -52,6 +52,18 @@ const char* MotionName(Motion m) {
   return "free";
 }
 
+const char* ConstraintCouplingName(ConstraintCoupling coupling) {
+  switch (coupling) {
+    case ConstraintCoupling::kViscous:
+      return "viscous";
+    case ConstraintCoupling::kIncremental:
+      return "incremental";
+    case ConstraintCoupling::kPaper:
+      break;
+  }
+  return "paper";
+}
+
 }  // namespace
 
 std::string WriteScene(const Params& p) {
@@ -90,8 +102,7 @@ std::string WriteScene(const Params& p) {
   o << "beta = " << ExactText(p.splitting.beta) << "\n";
   o << "advection = \""
     << (p.splitting.advection == AdvectionScheme::kWave ? "wave" : "least_squares") << "\"\n";
-  o << "constraint = \""
-    << (p.splitting.constraint == ConstraintCoupling::kViscous ? "viscous" : "paper") << "\"\n";
+  o << "constraint = \"" << ConstraintCouplingName(p.splitting.constraint) << "\"\n";
 
   const SolverParams& s = p.solvers;
   o << "\n[solvers]\n";

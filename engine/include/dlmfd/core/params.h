@@ -87,17 +87,30 @@ enum class AdvectionScheme { kLeastSquares, kWave };
 
 // Where the rigid-body constraint meets the fluid: kPaper, only in the DLM step (37), without
 // viscosity (gamma = 0); kViscous, also in the Stokes step (33), which is then solved with the
-// particles in it (particles/viscous_constraint.h), so the constraint meets the implicit viscosity.
-enum class ConstraintCoupling { kPaper, kViscous };
+// particles in it (particles/viscous_constraint.h), so the constraint meets the implicit viscosity;
+// kIncremental, the last step's multiplier in (33) and its increment in (37)
+// (particles/lagged_multiplier.h).
+enum class ConstraintCoupling { kPaper, kViscous, kIncremental };
 
 // Marchuk-Yanenko weights of the viscous term: alpha in (33), beta in (34), gamma = 1 - alpha -
 // beta in (37). The engine supports gamma = 0 only (the paper's choice), which validation enforces;
-// with constraint = kViscous also beta = 0 (all the viscosity in the step that sees the particles).
+// with constraint = kViscous or kIncremental also beta = 0 (all the viscosity in the step that sees
+// the particles). The defaults are kIncremental with alpha = 1, beta = 0 (docs/work_precision.md,
+// "Coupling the constraint with viscosity"); the scene file's defaults of alpha and beta follow its
+// constraint: 1 and 0, or the paper's 1/2 and 1/2 with constraint = "paper" (DefaultWeights).
 struct SplittingParams {
-  double alpha = 0.5;
-  double beta = 0.5;
+  double alpha = 1.0;
+  double beta = 0.0;
   AdvectionScheme advection = AdvectionScheme::kLeastSquares;
-  ConstraintCoupling constraint = ConstraintCoupling::kPaper;
+  ConstraintCoupling constraint = ConstraintCoupling::kIncremental;
+
+  // alpha and beta of a scene that names only its constraint.
+  static SplittingParams DefaultWeights(ConstraintCoupling constraint) {
+    SplittingParams s;
+    s.constraint = constraint;
+    if (constraint == ConstraintCoupling::kPaper) s.alpha = s.beta = 0.5;
+    return s;
+  }
 };
 
 // Stopping rules and limits of the iterative solvers. The defaults are the loosest level of the

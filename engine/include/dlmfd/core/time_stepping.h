@@ -5,13 +5,14 @@
 //
 // Splitting: the viscous term is shared as alpha in (33), beta in (34) and gamma = 1 - alpha - beta
 // in (37). Supported: gamma = 0 (the paper's choice: no viscosity in the DLM step (37)) with
-// alpha > 0 (the Stokes step (33) needs viscosity for its fast Helmholtz solver); with
-// splitting.constraint = "viscous" also beta = 0, alpha = 1: the constraint meets the viscosity
-// in (33) (particles/viscous_constraint.h), and viscosity in (34), which does not see the
-// particles, would leak through them as in the paper's scheme. Steps: the run makes n = round(end /
-// dt) steps and computes t_n = n dt and the output period index n dt / every in double, which
-// counts integers exactly only up to 2^53 (kMaxStepCount); a longer count would be rounded, or
-// overflow the long that holds it, so it is refused.
+// alpha > 0 (the Stokes step (33) needs viscosity for its fast Helmholtz solver); with particles
+// and splitting.constraint = "viscous" or "incremental" also beta = 0, alpha = 1: the constraint
+// meets the viscosity in (33) (particles/viscous_constraint.h, particles/lagged_multiplier.h), and
+// viscosity in (34), which does not see the particles, would leak through them as in the paper's
+// scheme (a scene without particles has no constraint, and any weights). Steps: the run makes n =
+// round(end / dt) steps and computes t_n = n dt and the output period index n dt / every in double,
+// which counts integers exactly only up to 2^53 (kMaxStepCount); a longer count would be rounded,
+// or overflow the long that holds it, so it is refused.
 #pragma once
 
 #include <cmath>
@@ -29,8 +30,9 @@ inline long StepCount(const TimeParams& time) {
   return static_cast<long>(std::llround(time.end / time.dt));
 }
 
-// alpha and beta in [0, 1], gamma = 0, alpha > 0; beta = 0 with the viscous constraint coupling.
-void ValidateSplitting(const SplittingParams& splitting);
+// alpha and beta in [0, 1], gamma = 0, alpha > 0; with particles, beta = 0 unless the constraint
+// coupling is the paper's.
+void ValidateSplitting(const SplittingParams& splitting, bool with_particles);
 // dt > 0, end >= 0, dt <= end unless end = 0, end / dt <= kMaxStepCount.
 void ValidateTimeSteps(const TimeParams& time);
 // Each period >= 0 (0: none, or every step for particles), end / period <= kMaxStepCount.

@@ -35,6 +35,11 @@
 // (CoupleStokes, particles/viscous_constraint.h), which carries their excess weight: then (36)
 // has no g, the corrector's U^n is the velocity before (33), and the force adds the C^T nu of (33):
 //   F_h = -C^T nu_(33) - C^T nu_(37) + rho_L V [(U^{n+1} - U^n)/dt - g]   (same identity).
+// With splitting.constraint = "incremental" the last step's multiplier nu^n acts in (33)
+// (LagMultiplier, particles/lagged_multiplier.h; not a neutral particle's) and (37) solves for its
+// increment: (36) starts from U^n - dt D^-1 C^T nu^n (heavy free particles), and the force adds
+// C^T nu^n:
+//   F_h = -C^T nu^n - C^T d nu_(37) + rho_L V [(U^{n+1} - U^n)/dt - g]   (same identity).
 // Not supported: free particles with rho_d < rho_L; gamma != 0; non-circular particles.
 // References: Glowinski et al., J. Comput. Phys. 169 (2001) 363-426; Singh, Joseph, Hesla,
 // Glowinski, Pan, J. Non-Newtonian Fluid Mech. 91 (2000) 165-188 (the paper); method notes 2,
@@ -48,6 +53,7 @@
 #include "dlmfd/core/params.h"
 #include "dlmfd/core/state.h"
 #include "dlmfd/particles/collision_forces.h"
+#include "dlmfd/particles/lagged_multiplier.h"
 #include "dlmfd/particles/rigid_body_constraint.h"
 #include "dlmfd/particles/viscous_constraint.h"
 
@@ -79,6 +85,13 @@ class ParticleStep {
                                           std::vector<ParticleState>& particles, double* u,
                                           double* v, double* p);
 
+  // True with splitting.constraint = "incremental": Simulation calls LagMultiplier before (33).
+  bool LagsMultiplier() const { return lagged_ != nullptr; }
+  // Before (33): the particles' stored multipliers nu^n at X^n onto u, v as dt M^-1 E^T nu^n
+  // (particles/lagged_multiplier.h); the following Advance adds their reaction and force.
+  void LagMultiplier(double time, double dt, const std::vector<ParticleState>& particles, double* u,
+                     double* v);
+
   // The sub-step average F'_avg of the collision force in the last predictor (36).
   const std::vector<Vec2>& CollisionForceAverage() const { return collision_average_; }
   const RigidBodyConstraint& constraint() const { return constraint_; }
@@ -107,6 +120,8 @@ class ParticleStep {
   bool coupled_ = false;                        // CoupleStokes ran in this step
   std::vector<Vec2> u_start_;                   // U^n, omega^n before CoupleStokes
   std::vector<double> omega_start_;
+  std::unique_ptr<LaggedMultiplier> lagged_;  // splitting.constraint = "incremental" only
+  bool lag_applied_ = false;                  // LagMultiplier ran in this step
 };
 
 }  // namespace dlmfd

@@ -90,8 +90,11 @@ class RigidBodyConstraint {
                   double* v);
   // The same, with net_force[p] the force a neutrally buoyant free particle p passes to the fluid
   // (its predictor collision force F'_avg); ignored for the other particles. nullptr means zero.
+  // With increment (splitting.constraint = "incremental", particles/lagged_multiplier.h) the
+  // stored multiplier has acted already: the CG finds its increment nu from a zero start and the
+  // particles hold multiplier += nu on return (a neutral particle, not lagged: multiplier = nu).
   Outcome Enforce(double time, double dt, std::vector<ParticleState>& particles, double* u,
-                  double* v, const Vec2* net_force);
+                  double* v, const Vec2* net_force, bool increment = false);
 
   // The inviscid Schur complement of (37) as an operator, for the viscous coupling of the Stokes
   // step (particles/viscous_constraint.h), in two calls: Locate builds E at the particles'
@@ -121,7 +124,7 @@ class RigidBodyConstraint {
     return 2 * static_cast<std::size_t>(points_.Count(particle));
   }
   // sum_k nu_k and sum_k r_perp_k . nu_k of the last Enforce (the force and torque the particle
-  // exerts on the fluid nodes).
+  // exerts on the fluid nodes in (37); of the increment after an Enforce with increment).
   Vec2 NodalForceSum(std::size_t particle) const { return force_sum_[particle]; }
   double NodalTorqueSum(std::size_t particle) const { return torque_sum_[particle]; }
 

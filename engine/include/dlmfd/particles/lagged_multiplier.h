@@ -1,0 +1,64 @@
+// The incremental coupling of the rigid-body constraint with viscosity (splitting.constraint =
+// "incremental", issue 13 point 2): the multiplier of the last DLM step (37) acts in the Stokes
+// step (33) of this one, and (37) solves only for its increment, as an incremental projection
+// lags the pressure (Van Kan 1986) where the paper's scheme is non-incremental.
+//
+// Why: with gamma = 0 the paper's steps (33)-(34) diffuse momentum through a particle for a whole
+// step before (37) resets its velocity, so the drag falls as nu dt / h^2 grows
+// (particle-coupling.md, section 1). Here (33) carries the force nu^n that held the particles rigid
+// at the end of the last step:
+//   (rho/dt) M (u - u^n) + alpha eta K u - B^T p = f + E(X^n)^T nu^n,   B u = 0,
+// (entered as the velocity increment dt M^-1 E^T nu^n on u^n, the fast solver's data), and the
+// heavy free particles its reaction, U* += -dt D^-1 C^T nu^n at the start of (36). Then (34)-(36)
+// as in the paper, and (37) finds the increment d nu with the same CG from a zero start; the
+// particles store nu^{n+1} = nu^n + d nu for the next step (and in the checkpoint), and the
+// hydrodynamic force is that of nu^{n+1}.
+// Error: at a steady state d nu = 0, so the flow solves the coupled steady problem whatever dt: the
+// leak is gone, and what remains is the advection splitting's O(dt). In a transient nu lags one
+// step: the lag e^n = nu^n - nu_coupled obeys e^{n+1} = (I - P^-1 S) e^n with P the inviscid Schur
+// complement of (37) and S the viscous one of particles/viscous_constraint.h, whose spectrum lies
+// in (0, 1]: no oscillation, and the force modes of wavelength l converge in about 1 + nu dt / l^2
+// steps (the net force and torque of a free particle at once: D^-1 dominates both).
+// Cost: one E at X^n and one spreading a step (no extra fast solve).
+// Neutrally buoyant free particles are not lagged: their stored multiplier stays the paper's nu of
+// (37) (RigidBodyConstraint::Enforce assigns it), so they keep the paper's coupling. Lagged, their
+// rotation drifted without end (a disk in Couette flow, h = 1/32: omega / g from -0.480 at t = 0.2
+// to -0.473 at t = 1.5 and still moving, where the paper's is steady at -0.482): (37) leaves the
+// rigid part of their mismatch to their motion, so nothing corrects what the lag does to it.
+// Not supported: the viscous coupling's fully coupled solve (this is its first iterate, warm
+// started by the total multiplier, without the PCG that follows).
+// References: J. van Kan, SIAM J. Sci. Stat. Comput. 7 (1986) 870-891 (incremental pressure
+// correction); Guermond, Minev, Shen, CMAME 195 (2006) 6011-6045 (its error analysis); Glowinski,
+// Pan, Hesla, Joseph, Periaux, J. Comput. Phys. 169 (2001) 363-426 (the DLM step).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "dlmfd/core/state.h"
+#include "dlmfd/particles/rigid_body_constraint.h"
+
+namespace dlmfd {
+
+class LaggedMultiplier {
+ public:
+  explicit LaggedMultiplier(const RigidBodyConstraint& constraint);
+
+  // Before (33): locates E at the particles' positions X^n (constraint.Locate) and adds dt M^-1
+  // E^T nu^n to u, v (nu^n: each particle's stored multiplier); records C^T nu^n per particle.
+  // time names the step in errors. Throws ParticlesOverlap.
+  void Apply(double time, double dt, RigidBodyConstraint& constraint,
+             const std::vector<ParticleState>& particles, double* u, double* v);
+
+  // C^T nu^n of the last Apply for particle p: the force and torque it put on the fluid in (33).
+  Vec2 ForceSum(std::size_t p) const { return force_sum_[p]; }
+  double TorqueSum(std::size_t p) const { return torque_sum_[p]; }
+
+ private:
+  std::vector<double> stacked_;          // nu^n of every particle, stacked
+  std::vector<double> slot_u_, slot_v_;  // the spreading, by slot
+  std::vector<Vec2> force_sum_;
+  std::vector<double> torque_sum_;
+};
+
+}  // namespace dlmfd

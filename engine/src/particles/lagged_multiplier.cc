@@ -1,0 +1,38 @@
+// The last step's multiplier in the Stokes step (33); see particles/lagged_multiplier.h.
+#include "dlmfd/particles/lagged_multiplier.h"
+
+#include <algorithm>
+
+namespace dlmfd {
+
+LaggedMultiplier::LaggedMultiplier(const RigidBodyConstraint& constraint) {
+  const MultiplierPoints& points = constraint.Points();
+  stacked_.assign(2 * points.Total(), 0.0);
+  const std::size_t slots = constraint.coupling().MaxSlots() + 1;
+  slot_u_.assign(slots, 0.0);
+  slot_v_.assign(slots, 0.0);
+  force_sum_.assign(points.ParticleCount(), Vec2::Zero());
+  torque_sum_.assign(points.ParticleCount(), 0.0);
+}
+
+void LaggedMultiplier::Apply(double time, double dt, RigidBodyConstraint& constraint,
+                             const std::vector<ParticleState>& particles, double* u, double* v) {
+  constraint.Locate(time, dt, particles);
+  const MultiplierPoints& points = constraint.Points();
+  const CouplingOperator& coupling = constraint.coupling();
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    double* block = stacked_.data() + 2 * points.Begin(p);
+    const std::vector<double>& nu = particles[p].multiplier;
+    if (constraint.IsNeutral(p)) {
+      std::fill(block, block + nu.size(), 0.0);  // not lagged (see the header)
+    } else {
+      std::copy(nu.begin(), nu.end(), block);
+    }
+    constraint.modes().NetForceAndTorque(points, p, block, force_sum_[p], torque_sum_[p]);
+  }
+  coupling.Spread(stacked_.data(), slot_u_.data(), slot_v_.data());
+  coupling.AddAtSlots(slot_u_.data(), slot_v_.data(), u, v);
+  coupling.CopyPeriodicDuplicates(u, v);
+}
+
+}  // namespace dlmfd
