@@ -208,7 +208,7 @@ class JobStore {
   bool SetPriority(const std::string& id, int priority);
   void SetDiskBytes(const std::string& id, int64_t bytes);
   // Removes the jobs, their tags and their ids from the requests that made them (a request left
-  // with no job is forgotten).
+  // with no job is forgotten), and each study left with no job.
   void Delete(const std::vector<std::string>& ids);
 
  private:
