@@ -168,6 +168,10 @@ TEST_F(CliTest, SubmitWaitListShowFetchAndPlot) {
   EXPECT_THAT(film.err, HasSubstr(std::to_string(snapshots) + " frames"));
   EXPECT_EQ(dlmfd::SnapshotSteps((root_ / "movie_frames").string()).size(), snapshots);
   EXPECT_EQ(Slurp(movie).substr(4, 4), "ftyp");  // an MP4 (ISO base media) file
+  // A job the daemon does not know is NOT_FOUND, exit 3, as for every command naming a job.
+  const CliRun unknown = Cli({"movie", "j-0123456789abcdef", "--out", movie.string()});
+  EXPECT_EQ(unknown.code, 3) << unknown.err;
+  EXPECT_THAT(unknown.err, HasSubstr("dlmfd movie: not found: "));
 }
 
 TEST_F(CliTest, WatchJsonYieldsProgressAndTheFinalState) {
