@@ -2,7 +2,8 @@
 //             [--width W] [--height H]
 // A quantity of a study against one of its parameters: one point per job of the sweep that has the
 // column, from the Table rpc (study_table.h names the columns); --group draws one line per value of
-// a second parameter. Points are joined in increasing x.
+// a second parameter, named by its values under a legend titled by its key (printed on stderr too),
+// in increasing value. Points are joined in increasing x.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -20,13 +21,28 @@
 namespace dlmfd::cli {
 namespace {
 
-std::string GroupName(const std::string& key, const TableCell& cell) {
-  if (const auto* s = std::get_if<std::string>(&cell)) return key + "=" + *s;
+// A line of the chart: the jobs with one value of the --group parameter, named by that value (the
+// legend's title names the parameter), in increasing value (then text) order.
+struct Group {
+  double order = 0.0;
+  std::string name;
+  std::vector<std::pair<double, double>> xy;
+};
+
+Group GroupOf(const TableCell& cell) {
+  if (const auto* s = std::get_if<std::string>(&cell)) return {std::nan(""), *s, {}};
   const double x = CellNumber(cell);
-  if (std::isnan(x)) return key + " not set";
+  if (std::isnan(x)) return {x, "not set", {}};
   char text[40];
-  std::snprintf(text, sizeof text, "%s=%.6g", key.c_str(), x);
-  return text;
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return {x, text, {}};
+}
+
+bool GroupBefore(const Group& a, const Group& b) {
+  // Numbers first, by value; then texts (and "not set") by name.
+  if (std::isnan(a.order) != std::isnan(b.order)) return !std::isnan(a.order);
+  if (!std::isnan(a.order) && a.order != b.order) return a.order < b.order;
+  return a.name < b.name;
 }
 
 }  // namespace
@@ -72,13 +88,17 @@ int RunSweepChart(int argc, char** argv) {
     const size_t yc = table.Column(y_column, "--y");
     const bool grouped = !group_key.empty();
     const size_t gc = grouped ? table.Column(group_key, "--group") : 0;
-    std::map<std::string, std::vector<std::pair<double, double>>> points;
+    std::vector<Group> groups;
+    std::map<std::string, size_t> group_index;
     for (const auto& row : table.rows) {
       const double x = CellNumber(row[xc]), y = CellNumber(row[yc]);
       if (std::isnan(x) || std::isnan(y)) continue;
-      points[grouped ? GroupName(group_key, row[gc]) : y_column].emplace_back(x, y);
+      Group group = grouped ? GroupOf(row[gc]) : Group{0.0, y_column, {}};
+      const auto [at, added] = group_index.emplace(group.name, groups.size());
+      if (added) groups.push_back(std::move(group));
+      groups[at->second].xy.emplace_back(x, y);
     }
-    if (points.empty()) {
+    if (groups.empty()) {
       throw UsageError("no job of sweep " + sweep + " has both " + x_key + " and " + y_column +
                        " (dlmfd table --sweep " + sweep + " shows them)");
     }
@@ -87,13 +107,20 @@ int RunSweepChart(int argc, char** argv) {
     options.x_axis.scale = log_x ? AxisScale::kLog10 : AxisScale::kLinear;
     options.y_axis.scale = log_y ? AxisScale::kLog10 : AxisScale::kLinear;
     if (options.title.empty()) options.title = y_column + " against " + x_key + " (" + sweep + ")";
+    std::sort(groups.begin(), groups.end(), GroupBefore);
+    if (grouped) {
+      options.legend_title = group_key;
+      std::string names;
+      for (const Group& group : groups) names += (names.empty() ? "" : "; ") + group.name;
+      std::cerr << "legend (" << group_key << "): " << names << "\n";
+    }
     LineChart chart(options);
-    for (auto& [name, xy] : points) {
-      std::sort(xy.begin(), xy.end());
+    for (Group& group : groups) {
+      std::sort(group.xy.begin(), group.xy.end());
       ChartSeries series;
-      series.name = name;
+      series.name = group.name;
       series.markers = true;
-      for (const auto& [x, y] : xy) {
+      for (const auto& [x, y] : group.xy) {
         series.x.push_back(x);
         series.y.push_back(y);
       }

@@ -43,8 +43,10 @@ struct MovieFlags {
 };
 
 // Fetches what a movie needs of job `job_id` into `dir` (dlmfd fetch, one --path per file) and
-// returns the job's caption line.
-std::string FetchJob(const ConnectionFlags& flags, const std::string& job_id, const fs::path& dir) {
+// sets the job's caption line; returns the status of an rpc that failed (its exit code is the
+// status's, docs/cli.md), else OK.
+grpc::Status FetchJob(const ConnectionFlags& flags, const std::string& job_id, const fs::path& dir,
+                      std::string* caption) {
   Connection connection(flags);
   v1::Job job;
   {
@@ -52,14 +54,14 @@ std::string FetchJob(const ConnectionFlags& flags, const std::string& job_id, co
     request.set_job_id(job_id);
     auto context = connection.UnaryContext();
     const grpc::Status status = connection.jobs().Get(context.get(), request, &job);
-    if (!status.ok()) throw UsageError("job " + job_id + ": " + status.error_message());
+    if (!status.ok()) return status;
   }
   v1::ListFilesRequest request;
   request.set_job_id(job_id);
   v1::ListFilesResponse files;
   auto context = connection.UnaryContext();
   const grpc::Status status = connection.jobs().ListFiles(context.get(), request, &files);
-  if (!status.ok()) throw UsageError("job " + job_id + ": " + status.error_message());
+  if (!status.ok()) return status;
   std::vector<std::string> args = {"dlmfd fetch", job_id, "--out", dir.string()};
   if (!flags.server.empty()) args.insert(args.end(), {"--server", flags.server});
   if (!flags.token.empty()) args.insert(args.end(), {"--token", flags.token});
@@ -81,7 +83,8 @@ std::string FetchJob(const ConnectionFlags& flags, const std::string& job_id, co
   argv.push_back(nullptr);
   if (RunFetch(int(args.size()), argv.data()) != kExitOk)
     throw Error("fetching the snapshots of job " + job_id + " failed (see above)");
-  return JobCaption(job);
+  *caption = JobCaption(job);
+  return grpc::Status::OK;
 }
 
 // The steps of the snapshots inside [from, to], every k-th.
@@ -197,7 +200,9 @@ int RunMovie(int argc, char** argv) {
           if (!dir.empty()) fs::remove_all(dir, ignored);
         }
       } cleanup{temporary ? dir : fs::path()};
-      const std::string caption = FetchJob(connection_flags, m.source, dir);
+      std::string caption;
+      const grpc::Status status = FetchJob(connection_flags, m.source, dir, &caption);
+      if (!status.ok()) return ReportRpcError("movie", status);
       return MakeMovie(dir.string(), caption, m, plot);
     } catch (const InvalidParameter& e) {
       throw UsageError(e.what());

@@ -1,6 +1,7 @@
 #include "study_text.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <map>
 #include <sstream>
@@ -88,14 +89,18 @@ std::string SweepTable(const std::vector<v1::Sweep>& sweeps, double now) {
 }
 
 std::string AxisText(const v1::SweepAxis& axis) {
+  std::string text = axis.key() + "=" + JoinText(axis.values(), ",");
   if (axis.has_range()) {
-    char text[128];
-    std::snprintf(text, sizeof(text), "%s:%.17g:%.17g:%d",
-                  axis.range().logarithmic() ? "log" : "lin", axis.range().start(),
-                  axis.range().stop(), axis.range().count());
-    return axis.key() + "=" + text;
+    // The range as given, each bound as the shortest text that reads back as it.
+    auto shortest = [](double x) {
+      char digits[40];
+      return std::string(digits, std::to_chars(digits, digits + sizeof digits, x).ptr);
+    };
+    text += std::string("  (") + (axis.range().logarithmic() ? "log" : "linear") + " range " +
+            shortest(axis.range().start()) + ":" + shortest(axis.range().stop()) + ":" +
+            std::to_string(axis.range().count()) + ")";
   }
-  return axis.key() + "=" + JoinText(axis.values(), ",");
+  return text;
 }
 
 std::string SweepDetails(const v1::Sweep& s) {
@@ -107,7 +112,7 @@ std::string SweepDetails(const v1::Sweep& s) {
   if (!s.labels().empty()) out << "labels:      " << LabelsText(s.labels()) << "\n";
   for (const v1::SweepAxis& axis : s.axes()) {
     out << "axis:        " << AxisText(axis)
-        << (axis.zip().empty() ? "" : "  (zip " + axis.zip() + ")") << "\n";
+        << (axis.zip().empty() ? "" : "  (zipped: " + axis.zip() + ")") << "\n";
   }
   if (s.overrides_size() > 0) out << "overrides:   " << JoinText(s.overrides(), " ") << "\n";
   out << "max running: " << (s.max_running() > 0 ? std::to_string(s.max_running()) : "no limit")

@@ -8,6 +8,7 @@
     p = dlmfd.read_particles("runs/cavity")
 """
 
+from .axes import Range
 from .client import FINISHED_STATES, Client, state_name
 from .errors import (DlmfdError, FailedPrecondition, InvalidArgument, NotFound, ResourceExhausted,
                      Unauthenticated, Unavailable)
@@ -16,7 +17,7 @@ from .results import (Particles, Snapshot, read_particles, read_snapshot, read_s
 from .v1 import events_pb2, jobs_pb2
 
 __all__ = [
-    "Client", "state_name", "FINISHED_STATES", "DlmfdError", "InvalidArgument", "NotFound",
+    "Client", "Range", "state_name", "FINISHED_STATES", "DlmfdError", "InvalidArgument", "NotFound",
     "Unauthenticated", "ResourceExhausted", "FailedPrecondition", "Unavailable", "Particles",
     "Snapshot", "read_particles", "read_snapshot", "read_snapshots", "snapshot_paths",
     "events_pb2", "jobs_pb2",

@@ -14,6 +14,7 @@ import pathlib
 import grpc
 
 from . import errors, scene_input, table
+from .axes import sweep_axes
 from .v1 import jobs_pb2, jobs_pb2_grpc
 
 FINISHED_STATES = (jobs_pb2.COMPLETED, jobs_pb2.FAILED, jobs_pb2.CANCELLED)
@@ -60,41 +61,71 @@ class Client:
         except grpc.RpcError as error:
             raise errors.from_rpc_error(error, rpc) from None
 
-    def submit(self, scene, overrides=None, name="", tags=(), priority=0, request_id=""):
-        """Queues one job (Submit); returns the Job. scene: TOML text or a path."""
+    def submit(self, scene, overrides=None, name="", tags=(), priority=0, request_id="",
+               labels=None):
+        """Queues one job (Submit); returns the Job. scene: TOML text or a path; labels: a dict
+        of key=value labels."""
         request = jobs_pb2.SubmitRequest(scene=scene_input.scene_text(scene),
                                          overrides=scene_input.override_texts(overrides),
                                          name=name, tags=list(tags), priority=priority,
-                                         client_request_id=request_id)
+                                         client_request_id=request_id, labels=labels or {})
         return self._unary("Submit", request)
 
-    def sweep(self, scene, axes, overrides=None, name="", tags=(), priority=0, request_id=""):
-        """Queues one job per point of the axes' Cartesian product (SubmitSweep).
+    def sweep(self, scene, axes=None, overrides=None, name="", tags=(), priority=0,
+              request_id="", zip=None, labels=None, max_running=0):
+        """Queues a study, one job per point (SubmitSweep); returns (sweep_id, [Job, ...]).
 
-        axes: {"fluid.relaxation_time": [0.5, 1.4], ...}; returns (sweep_id, [Job, ...])."""
+        axes: {"fluid.relaxation_time": [0.5, 1.4], "time.dt": dlmfd.Range(1e-3, 1e-2, 3,
+        log=True), "particles.*.density": [...]}, a full grid; zip: {key: [values], ...} of equal
+        lengths, stepping together as one axis of the grid (axes.py); labels: a dict;
+        max_running: at most this many of its jobs run at once (0: no limit)."""
         request = jobs_pb2.SubmitSweepRequest(
             scene=scene_input.scene_text(scene), overrides=scene_input.override_texts(overrides),
-            axes=[jobs_pb2.SweepAxis(key=key, values=[scene_input.toml_value(v) for v in values])
-                  for key, values in axes.items()],
-            name=name, tags=list(tags), priority=priority, client_request_id=request_id)
+            axes=sweep_axes(axes, zip), name=name, tags=list(tags), priority=priority,
+            client_request_id=request_id, labels=labels or {}, max_running=max_running)
         response = self._unary("SubmitSweep", request)
         return response.sweep_id, list(response.jobs)
+
+    def sweeps(self, tag=""):
+        """The caller's studies (Sweep messages: axes, counts per state, progress), newest first."""
+        found, token = [], ""
+        while True:
+            page = self._unary("ListSweeps", jobs_pb2.ListSweepsRequest(tag=tag, page_size=1000,
+                                                                        page_token=token))
+            found.extend(page.sweeps)
+            token = page.next_page_token
+            if not token:
+                return found
+
+    def study(self, sweep_id):
+        """One study (GetSweep): its axes, labels, limit on running jobs and counts per state."""
+        return self._unary("GetSweep", jobs_pb2.GetSweepRequest(sweep_id=sweep_id))
+
+    def retry(self, job_ids=(), sweep_id="", states=(), overrides=None):
+        """Reruns finished jobs (Retry): the ones named, or the sweep's in `states` (default
+        FAILED and CANCELLED); overrides replace or add to each job's. Returns the requeued jobs."""
+        request = jobs_pb2.RetryRequest(job_ids=list(job_ids), sweep_id=sweep_id,
+                                        states=_state_values(states),
+                                        overrides=scene_input.override_texts(overrides))
+        return list(self._unary("Retry", request).jobs)
 
     def job(self, job_id):
         """One job (Get)."""
         return self._unary("Get", jobs_pb2.GetRequest(job_id=job_id))
 
-    def jobs(self, states=(), tag="", sweep_id=""):
-        """The caller's jobs, newest first, every page of List. states: JobState values or names."""
-        states = [jobs_pb2.JobState.Value(s) if isinstance(s, str) else s for s in states]
-        found, token = [], ""
+    def jobs(self, states=(), tag="", sweep_id="", tags=(), labels=None, where=None):
+        """The caller's jobs, newest first, every page of List; every filter given must hold.
+        states: JobState values or names; tags: jobs carrying each; labels: a dict; where: the
+        effective scene's values, a dict {"particles.*.density": 1.01} or "KEY=VALUE" texts."""
+        request = jobs_pb2.ListRequest(states=_state_values(states), tag=tag, sweep_id=sweep_id,
+                                       tags=list(tags), labels=labels or {},
+                                       where=scene_input.override_texts(where), page_size=1000)
+        found = []
         while True:
-            page = self._unary("List", jobs_pb2.ListRequest(states=states, tag=tag,
-                                                            sweep_id=sweep_id, page_size=1000,
-                                                            page_token=token))
+            page = self._unary("List", request)
             found.extend(page.jobs)
-            token = page.next_page_token
-            if not token:
+            request.page_token = page.next_page_token
+            if not request.page_token:
                 return found
 
     def cancel(self, job_id):
@@ -158,20 +189,30 @@ class Client:
                     os.remove(temporary)
         return out
 
-    def table(self, sweep_id="", tag="", states=(), jobs=None, summaries=True, frame=None):
-        """One row per job (table.py): of the sweep, tag and states given, or of `jobs`.
+    def table(self, sweep_id="", jobs=None, tag="", states=(), frame=None):
+        """One row per job, from the Table rpc (the columns of `dlmfd table`, table.py): the
+        sweep's jobs, oldest first; or `jobs` (ids or Job messages), in that order; or the jobs
+        with the tag, states (and sweep) given, oldest first.
 
-        summaries: fetch each finished job's summary.json for its columns. frame: True for a
-        pandas DataFrame, False for a list of dicts, None for a DataFrame when pandas imports."""
-        if jobs is None:
-            jobs = self.jobs(states=states, tag=tag, sweep_id=sweep_id)
-        rows = []
-        for job in sorted(jobs, key=lambda j: (j.created_time, j.name)):
-            summary = None
-            if summaries and job.state in FINISHED_STATES:
-                try:
-                    summary = table.parse_summary(self.read(job.id, "summary.json"))
-                except errors.NotFound:
-                    summary = None
-            rows.append(table.job_row(job, summary))
-        return table.as_table(rows, frame)
+        frame: True for a pandas DataFrame, False for a list of dicts, None for a DataFrame when
+        pandas imports."""
+        if jobs is None and sweep_id and not tag and not states:
+            rows = list(self._unary("Table", jobs_pb2.TableRequest(sweep_id=sweep_id)).rows)
+        else:
+            if jobs is None:
+                jobs = sorted(self.jobs(states=states, tag=tag, sweep_id=sweep_id),
+                              key=lambda j: (j.created_time, j.id))
+            ids = [j if isinstance(j, str) else j.id for j in jobs]
+            rows = []
+            for start in range(0, len(ids), _TABLE_IDS):
+                request = jobs_pb2.TableRequest(job_ids=ids[start:start + _TABLE_IDS])
+                rows.extend(self._unary("Table", request).rows)
+        return table.as_table(table.rows_of(rows), frame)
+
+
+_TABLE_IDS = 1000  # the most job ids one Table rpc takes
+
+
+def _state_values(states):
+    """JobState values from values or names ("RUNNING")."""
+    return [jobs_pb2.JobState.Value(s) if isinstance(s, str) else s for s in states]

@@ -1,58 +1,64 @@
-"""A table of jobs (a study): one row per job, as dicts, or a pandas DataFrame when pandas is
-importable.
+"""A table of a study: one row per job, as dicts, or a pandas DataFrame when pandas is importable.
 
-Columns, in this order: the job's fields (id, name, state, sweep_id, reason, step, time,
-end_time, attempts, created_time, started_time, finished_time), then one column per override key
-(the swept parameters and the base overrides, values read as TOML: 1.4, not "1.4"), then, for a job
-whose summary.json was fetched, the run's end (status, steps, wall_seconds, ms_per_step) and each
-particle's final state: particles.ID.x, .y, .u, .v, .angular_velocity, .fx, .fy, .torque.
-A job whose results hold no summary.json yet (queued, running, or killed before writing it) has
-none of the summary columns (None in a DataFrame).
+The rows are the daemon's (the Table rpc, docs/api.md), with the columns of ``dlmfd table``
+(docs/cli.md), in this order: ``job``, ``name``, ``state``; one column per override key (the swept
+parameters and the base overrides, typed as TOML reads them: 1.4, not "1.4"); from the job's
+summary.json (docs/results.md) ``status``, ``reason``, ``steps``, ``time``, ``wall_seconds``,
+``fall_speed``, ``min_gap`` (the true smallest surface gap over the run), ``min_wall_gap``,
+``max_trA``, ``min_eig_A``, ``Re``, ``De``, ``E``, ``M``; and per particle N ``pN.radius``, ``pN.x``,
+``pN.y`` (final position), ``pN.u``, ``pN.v``, ``pN.omega``, ``pN.fx``, ``pN.fy``, ``pN.torque``,
+``pN.fall_speed``. None where there is no value: a job without a summary yet (queued, running), a
+Newtonian run's trA, a parameter or a particle another job has not.
 """
 
-import json
-import tomllib
+import math
 
 from .v1 import jobs_pb2
 
-_JOB_FIELDS = ("id", "name", "state", "sweep_id", "reason", "step", "time", "end_time", "attempts",
-               "created_time", "started_time", "finished_time")
-_SUMMARY_FIELDS = ("status", "steps", "wall_seconds", "ms_per_step")
+SUMMARY_COLUMNS = (("status", "status"), ("reason", "reason"), ("steps", "steps"),
+                   ("time", "time"), ("wall_seconds", "wall_seconds"),
+                   ("fall_speed", "fall_speed"), ("min_gap", "min_gap"),
+                   ("min_wall_gap", "min_wall_gap"), ("max_trA", "max_tra"),
+                   ("min_eig_A", "min_eig_a"), ("Re", "reynolds"), ("De", "deborah"),
+                   ("E", "elasticity"), ("M", "mach"))
+PARTICLE_COLUMNS = (("radius", "radius"), ("x", "x"), ("y", "y"), ("u", "u"), ("v", "v"),
+                    ("omega", "angular_velocity"), ("fx", "force_x"), ("fy", "force_y"),
+                    ("torque", "torque"), ("fall_speed", "fall_speed"))
 
 
-def override_value(text):
-    """The value of an override's TOML value text (the text itself when it is not TOML)."""
-    try:
-        return tomllib.loads("v = " + text)["v"]
-    except tomllib.TOMLDecodeError:
-        return text
+def _value(value):
+    """None for the rpc's NaN (no value), else the value."""
+    return None if isinstance(value, float) and math.isnan(value) else value
 
 
-def job_row(job, summary=None):
-    """One row: the job's fields, its overrides, and the summary's (a dict parsed from JSON)."""
-    row = {}
-    for name in _JOB_FIELDS:
-        value = getattr(job, name)
-        row[name] = jobs_pb2.JobState.Name(value) if name == "state" else value
-    for override in job.overrides:
-        key, _, text = override.partition("=")
-        row[key] = override_value(text)
-    if summary is not None:
-        for name in _SUMMARY_FIELDS:
-            row[name] = summary.get(name)
-        for p in summary.get("particles", []):
-            prefix = f"particles.{p['id']}."
-            (row[prefix + "x"], row[prefix + "y"]) = p["position"]
-            (row[prefix + "u"], row[prefix + "v"]) = p["velocity"]
-            row[prefix + "angular_velocity"] = p["angular_velocity"]
-            (row[prefix + "fx"], row[prefix + "fy"]) = p["force"]
-            row[prefix + "torque"] = p["torque"]
-    return row
+def parameter_value(parameter):
+    """The typed value of a Parameter: int, float, bool or str; None when it has none."""
+    kind = parameter.WhichOneof("value")
+    return None if kind is None else _value(getattr(parameter, kind))
 
 
-def parse_summary(data):
-    """summary.json bytes as a dict."""
-    return json.loads(data.decode("utf-8"))
+def rows_of(table_rows):
+    """Dicts, one per TableRow, every row with the same columns (in the order above)."""
+    keys, particles = {}, 0
+    for row in table_rows:
+        for parameter in row.parameters:
+            keys.setdefault(parameter.key, None)
+        particles = max(particles, len(row.particles))
+    rows = []
+    for row in table_rows:
+        out = {"job": row.job_id, "name": row.name, "state": jobs_pb2.JobState.Name(row.state)}
+        values = {p.key: parameter_value(p) for p in row.parameters}
+        for key in keys:
+            out[key] = values.get(key)
+        for column, field in SUMMARY_COLUMNS:
+            out[column] = _value(getattr(row, field)) if row.has_summary else None
+        for n in range(particles):
+            particle = row.particles[n] if n < len(row.particles) else None
+            for column, field in PARTICLE_COLUMNS:
+                value = None if particle is None else _value(getattr(particle, field))
+                out[f"p{n}.{column}"] = value
+        rows.append(out)
+    return rows
 
 
 def as_table(rows, frame=None):

@@ -1,5 +1,7 @@
 #include "event_hub.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <deque>
 #include <optional>
@@ -48,6 +50,12 @@ void EventHub::Deliver(Channel& channel, v1::WatchEvent event, WakeList& wake) {
     store_.SetLastSeq(channel.job_id, channel.reserved);
   }
   event.set_seq(++channel.last_seq);
+  if (!journal_.Record(channel.job_id, channel.last_seq)) {
+    spdlog::warn(
+        "job {}: watch number {} not journaled; after a kill -9 a reconnecting watcher "
+        "may be told of a Gap over numbers never issued",
+        channel.job_id, channel.last_seq);
+  }
   if (event.wall_time() == 0) event.set_wall_time(NowSeconds());
   if (event.has_snapshot()) {
     channel.snapshot = event;
@@ -95,6 +103,7 @@ void EventHub::PublishState(const JobRecord& job) {
       // No number of this channel follows: the store keeps the last one issued, and a later run
       // of the job (a retry) continues after it.
       store_.SetLastSeq(channel->job_id, channel->last_seq);
+      journal_.Remove(channel->job_id);
       channel->finished = true;
       for (const auto& watcher : channel->watchers) {
         if (watcher->PushEnd()) wake.push_back(watcher);
@@ -190,6 +199,19 @@ void EventHub::Detach(const std::string& job_id, const WatcherQueue* watcher) {
       list.erase(it);
       break;
     }
+  }
+}
+
+void EventHub::Recover() {
+  for (const auto& [id, seq] : journal_.ReadAll()) {
+    // The file outlives the store's exact number only when the daemon died in between; a job
+    // deleted since has neither.
+    if (auto job = store_.Get(id); job && job->last_seq != seq) {
+      spdlog::info("job {}: last watch number issued {} (the store held {})", id, seq,
+                   job->last_seq);
+      store_.SetLastSeq(id, seq);
+    }
+    journal_.Remove(id);
   }
 }
 

@@ -4,12 +4,12 @@
 // events (snapshots excluded), the latest snapshot (a newer one replaces it), the job as of its
 // last state change, and the attached WatcherQueues. Publishing assigns the next sequence number
 // and pushes to every watcher without blocking. Sequence numbers are reserved in the store in
-// blocks of kSeqBlock, so they keep increasing across daemon restarts; the store holds the last
-// number issued once a job finishes and after a clean shutdown (RecordIssued), so numbers resume
-// right after it and a reconnecting watcher's Gap names only numbers that were issued. After a
-// kill -9 the store holds the block's end: numbers resume after it, and a Gap across the restart
-// may name numbers of that block that were never issued. A job's last_seq (Get, List, Watch) is
-// always the last number issued. A job's final state change
+// blocks of kSeqBlock, so they keep increasing across daemon restarts, and each number issued is
+// written to the SeqJournal before any watcher sees it. The store holds the last number issued
+// once a job finishes and after a clean shutdown (RecordIssued); after a kill -9 the next daemon
+// learns it from the journal (Recover, before it serves). Either way numbers resume right after the
+// last one issued and a reconnecting watcher's Gap names only numbers that were issued. A job's
+// last_seq (Get, List, Watch) is always the last number issued. A job's final state change
 // ends every watch and drops the channel; a later Watch of a finished job replays the final state
 // from the store.
 #pragma once
@@ -24,6 +24,7 @@
 
 #include "dlmfd/v1/jobs.pb.h"
 #include "job_store.h"
+#include "seq_journal.h"
 #include "watcher_queue.h"
 
 namespace dlmfd::server {
@@ -32,9 +33,14 @@ class EventHub {
  public:
   static constexpr int64_t kSeqBlock = 1000;
 
-  EventHub(JobStore& store, size_t ring_size)
+  EventHub(JobStore& store, SeqJournal& journal, size_t ring_size)
       : store_(store),
+        journal_(journal),
         ring_size_(ring_size) {}
+
+  // At start, before any event: the store takes each job's last number issued from the journal
+  // that an earlier daemon left (after a kill -9 the store holds a reserved block's end).
+  void Recover();
 
   // A state change of a job (the record as now in the store). A finished state ends the watches.
   void PublishState(const JobRecord& job);
@@ -62,6 +68,7 @@ class EventHub {
   void Deliver(Channel& channel, v1::WatchEvent event, WakeList& wake);
 
   JobStore& store_;
+  SeqJournal& journal_;
   const size_t ring_size_;
   std::mutex mutex_;  // guards channels_ and serialises channel creation with final state changes
   std::map<std::string, std::shared_ptr<Channel>> channels_;

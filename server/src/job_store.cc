@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <set>
 #include <sstream>
 
 namespace dlmfd::server {
@@ -984,11 +985,23 @@ void JobStore::SetDiskBytes(const std::string& id, int64_t bytes) {
 void JobStore::Delete(const std::vector<std::string>& ids) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
+  std::set<std::string> sweeps;
   for (const std::string& id : ids) {
+    Statement sweep(db_, "SELECT sweep_id FROM jobs WHERE id = ? AND sweep_id != ''");
+    sweep.Bind(id);
+    if (sweep.Step()) sweeps.insert(sweep.Text(0));
     Statement(db_, "DELETE FROM job_tags WHERE job_id = ?").Bind(id).Run();
     Statement(db_, "DELETE FROM job_labels WHERE job_id = ?").Bind(id).Run();
     Statement(db_, "DELETE FROM job_values WHERE job_id = ?").Bind(id).Run();
     Statement(db_, "DELETE FROM jobs WHERE id = ?").Bind(id).Run();
+  }
+  // A study whose last job went is gone too: it is no longer listed, shown or found.
+  for (const std::string& sweep : sweeps) {
+    Statement(db_,
+              "DELETE FROM sweeps WHERE id = ? AND NOT EXISTS "
+              "(SELECT 1 FROM jobs WHERE jobs.sweep_id = sweeps.id)")
+        .Bind(sweep)
+        .Run();
   }
   // A request keeps the jobs it made that still exist; one with none left is forgotten, so that
   // its client_request_id makes new jobs rather than answer with deleted ones.

@@ -3,8 +3,9 @@
 // One connection in serialized use (a mutex), WAL journal, a busy timeout, a schema_version table
 // and ordered migrations applied at open. Every statement is prepared and parameterised; every
 // state change is one transaction. An accepted job is committed before Submit returns; a job id is
-// never reused. Watch sequence numbers are handed out in blocks: last_seq is the reserved
-// high-water mark, so after a crash the next daemon starts above any number it may have issued. Not
+// never reused. Watch sequence numbers are handed out in blocks: while a job has a channel in the
+// EventHub last_seq is the reserved high-water mark, else the last number issued (EventHub::Recover
+// takes it from the SeqJournal after a crash). Not
 // supported: several daemons on one data directory (the daemon holds an flock on it).
 //
 // Studies (schema 3): a sweeps table holds each study (name, tags, labels, axes, base overrides,
@@ -207,7 +208,7 @@ class JobStore {
   bool SetPriority(const std::string& id, int priority);
   void SetDiskBytes(const std::string& id, int64_t bytes);
   // Removes the jobs, their tags and their ids from the requests that made them (a request left
-  // with no job is forgotten).
+  // with no job is forgotten), and each study left with no job.
   void Delete(const std::vector<std::string>& ids);
 
  private:

@@ -168,6 +168,10 @@ TEST_F(CliTest, SubmitWaitListShowFetchAndPlot) {
   EXPECT_THAT(film.err, HasSubstr(std::to_string(snapshots) + " frames"));
   EXPECT_EQ(dlmfd::SnapshotSteps((root_ / "movie_frames").string()).size(), snapshots);
   EXPECT_EQ(Slurp(movie).substr(4, 4), "ftyp");  // an MP4 (ISO base media) file
+  // A job the daemon does not know is NOT_FOUND, exit 3, as for every command naming a job.
+  const CliRun unknown = Cli({"movie", "j-0123456789abcdef", "--out", movie.string()});
+  EXPECT_EQ(unknown.code, 3) << unknown.err;
+  EXPECT_THAT(unknown.err, HasSubstr("dlmfd movie: not found: "));
 }
 
 TEST_F(CliTest, WatchJsonYieldsProgressAndTheFinalState) {
@@ -378,6 +382,12 @@ TEST_F(CliTest, TableChartLogsInputsAndDeleteOfASweep) {
   ASSERT_EQ(chart.code, 0) << chart.err;
   EXPECT_EQ(FirstLine(chart.out), png.string());
   EXPECT_EQ(Slurp(png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  // One line per value of --group, named by the value under a legend titled by the key.
+  const CliRun grouped =
+      Cli({"chart", "--sweep", id, "--x", "fluid.viscosity", "--y", "steps", "--group",
+           "fluid.viscosity", "--out", png.string(), "--width", "400", "--height", "300"});
+  ASSERT_EQ(grouped.code, 0) << grouped.err;
+  EXPECT_THAT(grouped.err, HasSubstr("legend (fluid.viscosity): 0.1; 0.2\n"));
 
   const std::string job = csv.out.substr(
       csv.out.find('\n') + 1, csv.out.find(',', csv.out.find('\n')) - csv.out.find('\n') - 1);

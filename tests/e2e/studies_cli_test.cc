@@ -74,8 +74,8 @@ TEST_F(StudiesCliTest, AStudyIsListedShownWatchedFetchedAndSelected) {
 
   const CliRun show = Cli({"show", "--sweep", id});
   ASSERT_EQ(show.code, 0) << show.err;
-  EXPECT_THAT(show.out, HasSubstr("axis:        fluid.viscosity=0.01,0.02  (zip zip)"));
-  EXPECT_THAT(show.out, HasSubstr("axis:        time.dt=lin:0.01:0.02:2"));
+  EXPECT_THAT(show.out, HasSubstr("axis:        fluid.viscosity=0.01,0.02  (zipped: zip)"));
+  EXPECT_THAT(show.out, HasSubstr("axis:        time.dt=0.01,0.02  (linear range 0.01:0.02:2)"));
   EXPECT_THAT(show.out, HasSubstr("max running: 1"));
   EXPECT_THAT(show.out, HasSubstr("labels:      project=cavity"));
   EXPECT_THAT(show.out, HasSubstr("jobs:        4: 0 queued, 0 running, 4 completed"));

@@ -1,7 +1,8 @@
 // docs/studies.md stays runnable (issue 14 point 9): every ```sh block of the page, in order, is
 // one bash script (set -euo pipefail) run against the real dlmfdd, dlmfd-solve and dlmfd, in a
 // fresh directory where `cases/` is the repository's. The script must exit 0, and the steps the
-// page explains must have happened: a failed point, its retry in the study, one folder per point.
+// page explains must have happened: a failed point, its retry in the study, one folder per point,
+// the table and the chart.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -66,6 +67,17 @@ TEST(StudiesDoc, TheWorkedStudyRunsAsWritten) {
         "fluid.relaxation_time=3,time.dt=0.005", "fluid.relaxation_time=3,time.dt=0.01"}) {
     EXPECT_TRUE(fs::exists(work / "runs/waters-king" / point / "summary.json")) << point;
   }
+  // The table: a row per point with its typed parameters, the retried point with its new dt.
+  EXPECT_THAT(run.out, HasSubstr("fluid.relaxation_time,time.dt,status,steps,time,max_trA,"
+                                 "min_eig_A\n1,0.005,completed,600,3,"));
+  EXPECT_THAT(run.out, HasSubstr("\n1,0.04,completed,75,3,"));
+  EXPECT_THAT(run.out, HasSubstr("\n3,0.01,completed,300,3,"));
+  const std::string json = Slurp(work / "waters-king.json");
+  EXPECT_THAT(json, HasSubstr("\"fluid.relaxation_time\": 3,\n    \"time.dt\": 0.01,\n"));
+  // The chart: one line per relaxation time, under a legend naming it.
+  EXPECT_THAT(run.err, HasSubstr("legend (fluid.relaxation_time): 1; 3"));
+  EXPECT_EQ(Slurp(work / "waters-king-max-trA.png").substr(0, 8),
+            std::string("\x89PNG\r\n\x1a\n", 8));
   fs::remove_all(root);
 }
 

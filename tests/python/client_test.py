@@ -96,28 +96,51 @@ class ClientTest(unittest.TestCase):
     def test_sweep_of_two_points_and_its_table(self):
         sweep_id, jobs = self.client.sweep(support.settling_scene(),
                                            {"fluid.relaxation_time": [0.2, 0.5]},
-                                           overrides={"time.end": 0.004}, name="lambda")
+                                           overrides={"time.end": 0.004}, name="lambda",
+                                           labels={"project": "py"}, max_running=1)
         self.assertTrue(sweep_id)
         self.assertEqual(len(jobs), 2)
         self.assertEqual({j.sweep_id for j in jobs}, {sweep_id})
+        self.assertEqual(self.client.study(sweep_id).max_running, 1)
+        self.assertIn(sweep_id, [s.id for s in self.client.sweeps()])
         finished = [self.client.wait(j.id) for j in jobs]
         self.assertEqual([dlmfd.state_name(j.state) for j in finished], ["COMPLETED"] * 2)
+        found = self.client.jobs(labels={"project": "py"}, where={"fluid.relaxation_time": 0.5})
+        self.assertEqual([j.id for j in found], [jobs[1].id])
 
         rows = self.client.table(sweep_id=sweep_id, frame=False)
-        self.assertEqual(len(rows), 2)
-        self.assertEqual(sorted(r["fluid.relaxation_time"] for r in rows), [0.2, 0.5])
+        self.assertEqual([r["job"] for r in rows], [j.id for j in jobs])
+        self.assertEqual([r["fluid.relaxation_time"] for r in rows], [0.2, 0.5])
         for row in rows:
             self.assertEqual(row["state"], "COMPLETED")
             self.assertEqual(row["status"], "completed")
             self.assertEqual(row["time.end"], 0.004)
             self.assertEqual(row["steps"], 4)
-            summary = json.loads(self.client.read(row["id"], "summary.json"))
-            self.assertEqual([row["particles.0.x"], row["particles.0.y"]],
-                             summary["particles"][0]["position"])
+            self.assertIsNone(row["min_gap"])  # one particle: no pair
+            summary = json.loads(self.client.read(row["job"], "summary.json"))
+            self.assertEqual([row["p0.x"], row["p0.y"]], summary["particles"][0]["position"])
+            self.assertEqual(row["p0.radius"], 0.125)
+        self.assertEqual(self.client.table(jobs=[jobs[1].id], frame=False), rows[1:])
         if importlib.util.find_spec("pandas") is not None:
             frame = self.client.table(sweep_id=sweep_id)
             self.assertEqual(len(frame), 2)
-            self.assertEqual(sorted(frame["fluid.relaxation_time"]), [0.2, 0.5])
+            self.assertEqual(list(frame["fluid.relaxation_time"]), [0.2, 0.5])
+
+        retried = self.client.retry([jobs[0].id], overrides={"time.end": 0.006})
+        self.assertEqual([(j.id, j.attempt) for j in retried], [(jobs[0].id, 2)])
+        self.client.wait(jobs[0].id)
+        again = self.client.table(sweep_id=sweep_id, frame=False)
+        self.assertEqual((again[0]["time.end"], again[0]["steps"]), (0.006, 6))
+
+    def test_zipped_axes_and_a_range(self):
+        sweep_id, jobs = self.client.sweep(
+            support.settling_scene(), {"time.dt": dlmfd.Range(1e-3, 2e-3, 2)},
+            zip={"fluid.relaxation_time": [0.2, 0.5], "particles.*.density": [1.1, 1.2]},
+            overrides={"time.end": 0.002, "output.fields_every": 0}, name="zip")
+        self.assertEqual(len(jobs), 4)  # 2 time steps x 2 zipped points
+        self.assertEqual(jobs[1].name, "zip[time.dt=0.001,fluid.relaxation_time=0.5,"
+                                       "particles.*.density=1.2]")
+        self.client.cancel_sweep(sweep_id)
 
     def test_errors_are_exceptions_naming_the_field(self):
         with self.assertRaises(dlmfd.InvalidArgument) as bad_value:

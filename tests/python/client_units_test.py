@@ -1,5 +1,5 @@
 """The Python client's own logic, without a daemon: scene and override input, TOML values, the
-parts of an InvalidArgument message, and table rows from a Job and a summary.
+parts of an InvalidArgument message, table rows from the Table rpc's rows, and sweep axes.
 
 Run by ctest (label python) as `python3 client_units_test.py`; exits 77 (skipped) when
 python3-grpcio or python3-protobuf is missing.
@@ -16,7 +16,8 @@ support.skip_unless_importable("grpc", "google.protobuf", "h5py", "numpy")
 
 import grpc  # noqa: E402
 
-from dlmfd import errors, scene_input, table  # noqa: E402
+from dlmfd import Range, errors, scene_input, table  # noqa: E402
+from dlmfd.axes import sweep_axes  # noqa: E402
 from dlmfd.v1 import jobs_pb2  # noqa: E402
 
 
@@ -99,27 +100,54 @@ class ErrorsTest(unittest.TestCase):
 
 class TableTest(unittest.TestCase):
 
-    def test_row_of_job_overrides_and_summary(self):
-        job = jobs_pb2.Job(id="j1", name="s[fluid.relaxation_time=1.4]", state=jobs_pb2.COMPLETED,
-                           sweep_id="s1", step=10, overrides=["fluid.relaxation_time=1.4",
-                                                              "splitting.advection=\"wave\"",
-                                                              "odd=not toml"])
-        summary = {"status": "completed", "steps": 10, "wall_seconds": 0.5, "ms_per_step": 50.0,
-                   "particles": [{"id": 0, "position": [0.5, 1.25], "velocity": [0.0, -0.5],
-                                  "angular_velocity": 0.25, "force": [0.125, 2.0],
-                                  "torque": -0.5}]}
-        row = table.job_row(job, summary)
-        self.assertEqual(row["state"], "COMPLETED")
-        self.assertEqual(row["fluid.relaxation_time"], 1.4)
-        self.assertEqual(row["splitting.advection"], "wave")
-        self.assertEqual(row["odd"], "not toml")
-        self.assertEqual((row["particles.0.x"], row["particles.0.y"]), (0.5, 1.25))
-        self.assertEqual((row["particles.0.u"], row["particles.0.v"]), (0.0, -0.5))
-        self.assertEqual((row["particles.0.fx"], row["particles.0.fy"]), (0.125, 2.0))
-        self.assertEqual(row["particles.0.angular_velocity"], 0.25)
-        self.assertEqual(row["particles.0.torque"], -0.5)
-        self.assertEqual(row["ms_per_step"], 50.0)
-        self.assertNotIn("status", table.job_row(job))  # no summary: no summary columns
+    def test_rows_of_table_rows_have_typed_parameters_and_none_for_no_value(self):
+        nan = float("nan")
+        done = jobs_pb2.TableRow(
+            job_id="j1", name="s[fluid.relaxation_time=1.4]", state=jobs_pb2.COMPLETED,
+            parameters=[jobs_pb2.Parameter(key="fluid.relaxation_time", double_value=1.4),
+                        jobs_pb2.Parameter(key="n", int_value=3),
+                        jobs_pb2.Parameter(key="splitting.advection", text_value="wave")],
+            has_summary=True, status="completed", steps=10, time=0.5, wall_seconds=0.25,
+            fall_speed=-0.5, min_gap=nan, max_tra=2.5, reynolds=0.125,
+            particles=[jobs_pb2.ParticleRow(id=0, radius=0.1, x=0.5, y=1.25, u=0.0, v=-0.5,
+                                            angular_velocity=0.25, force_x=0.125, force_y=2.0,
+                                            torque=-0.5, fall_speed=-0.5)])
+        queued = jobs_pb2.TableRow(
+            job_id="j2", name="s[other=true]", state=jobs_pb2.QUEUED,
+            parameters=[jobs_pb2.Parameter(key="other", bool_value=True)])
+        rows = table.rows_of([done, queued])
+        self.assertEqual(list(rows[0])[:7], ["job", "name", "state", "fluid.relaxation_time", "n",
+                                             "splitting.advection", "other"])
+        self.assertEqual(list(rows[0]), list(rows[1]))  # every row has every column
+        self.assertEqual(rows[0]["state"], "COMPLETED")
+        self.assertEqual(rows[0]["fluid.relaxation_time"], 1.4)
+        self.assertIs(type(rows[0]["n"]), int)
+        self.assertEqual(rows[0]["splitting.advection"], "wave")
+        self.assertIsNone(rows[0]["other"])
+        self.assertIs(rows[1]["other"], True)
+        self.assertEqual((rows[0]["status"], rows[0]["steps"], rows[0]["Re"]),
+                         ("completed", 10, 0.125))
+        self.assertIsNone(rows[0]["min_gap"])  # NaN: the summary has none
+        self.assertEqual(rows[0]["max_trA"], 2.5)
+        self.assertEqual((rows[0]["p0.x"], rows[0]["p0.y"], rows[0]["p0.omega"]), (0.5, 1.25, 0.25))
+        self.assertEqual((rows[0]["p0.fx"], rows[0]["p0.fy"], rows[0]["p0.radius"]),
+                         (0.125, 2.0, 0.1))
+        self.assertIsNone(rows[1]["status"])  # no summary yet
+        self.assertIsNone(rows[1]["p0.x"])
+
+    def test_axes_of_a_grid_a_range_and_a_zip(self):
+        axes = sweep_axes({"fluid.relaxation_time": [0.5, 1.4],
+                           "time.dt": Range(1e-3, 1e-2, 3, log=True)},
+                          zip={"particles.0.density": [1.01, 1.02],
+                               "particles.1.density": [1.02, 1.05]})
+        self.assertEqual([a.key for a in axes], ["fluid.relaxation_time", "time.dt",
+                                                 "particles.0.density", "particles.1.density"])
+        self.assertEqual(list(axes[0].values), ["0.5", "1.4"])
+        self.assertEqual((axes[1].range.start, axes[1].range.count, axes[1].range.logarithmic),
+                         (1e-3, 3, True))
+        self.assertEqual([a.zip for a in axes], ["", "", "zip", "zip"])
+        with self.assertRaises(TypeError):
+            sweep_axes({"fluid.relaxation_time": "0.5,1.4"})
 
     def test_list_of_dicts_unless_a_frame_is_asked_for(self):
         rows = [{"a": 1}]

@@ -624,5 +624,86 @@ TEST(Daemon, KillNineAndRestartResumesRunningAndKeepsQueued) {
   EXPECT_GE(compared, 3);
 }
 
+v1::Job GetJob(v1::Jobs::Stub& stub, const std::string& id) {
+  v1::GetRequest request;
+  request.set_job_id(id);
+  v1::Job job;
+  auto context = Context();
+  const grpc::Status status = stub.Get(context.get(), request, &job);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return job;
+}
+
+// The daemon reserves watch numbers in blocks; after a kill -9 the next one must still know the
+// last number it issued: a watcher that saw every event reconnects and is told of no Gap, Get
+// reports that number, and the next event takes the number right after it.
+TEST(Daemon, AfterKillNineAWatcherThatSawEverythingIsToldOfNoGap) {
+  REQUIRE_SOLVER();
+  TempDir dir;
+  const std::string data = dir.path() + "/data";
+  std::string blocker_id, queued_id;
+  int64_t seen = 0;
+  {
+    DaemonProcess daemon(data, {"--max-concurrent", "1"});
+    ASSERT_TRUE(daemon.Start()) << daemon.Log();
+    auto stub = daemon.Stub();
+    queued_id = Submit(*stub, CavityRequest(0.05, "retried")).id();
+    const int64_t first_run = WaitFinished(*stub, queued_id).last_seq();
+    auto blocker = CavityRequest(1.0e4, "blocker");
+    blocker.set_priority(10);  // runs first again after the restart
+    blocker_id = Submit(*stub, blocker).id();
+    while (GetJob(*stub, blocker_id).state() != v1::RUNNING) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    // Retried behind the blocker, the job stays queued: its one new event (QUEUED again) took a
+    // number of a freshly reserved block, and the watcher can see every event before the kill.
+    v1::RetryRequest retry;
+    retry.add_job_ids(queued_id);
+    v1::RetryResponse retried;
+    ASSERT_TRUE(stub->Retry(Context().get(), retry, &retried).ok());
+    const int64_t issued = GetJob(*stub, queued_id).last_seq();
+    ASSERT_EQ(issued, first_run + 1);
+    auto context = Context();
+    v1::WatchRequest watch;
+    watch.set_job_id(queued_id);
+    auto reader = stub->Watch(context.get(), watch);
+    v1::WatchEvent event;
+    while (seen < issued && reader->Read(&event)) seen = std::max(seen, event.seq());
+    ASSERT_EQ(seen, issued);
+    daemon.Kill(SIGKILL);
+    EXPECT_EQ(daemon.Wait(), 128 + SIGKILL);
+    context->TryCancel();
+    reader->Finish();
+  }
+  DaemonProcess daemon(data, {"--max-concurrent", "1"});
+  ASSERT_TRUE(daemon.Start()) << daemon.Log();
+  auto stub = daemon.Stub();
+  EXPECT_EQ(GetJob(*stub, queued_id).last_seq(), seen);
+  auto context = Context();
+  v1::WatchRequest watch;
+  watch.set_job_id(queued_id);
+  watch.set_from_seq(seen);
+  auto reader = stub->Watch(context.get(), watch);
+  std::vector<int64_t> seqs;
+  v1::WatchEvent event;
+  ASSERT_TRUE(reader->Read(&event));  // attached: later events reach this watcher
+  EXPECT_FALSE(event.has_gap()) << event.DebugString();
+  seqs.push_back(event.seq());
+  for (const std::string& id : {queued_id, blocker_id}) {
+    v1::CancelRequest cancel;
+    cancel.set_job_id(id);
+    v1::Job reply;
+    ASSERT_TRUE(stub->Cancel(Context().get(), cancel, &reply).ok());
+  }
+  while (reader->Read(&event)) {
+    EXPECT_FALSE(event.has_gap()) << event.DebugString();
+    seqs.push_back(event.seq());
+  }
+  EXPECT_TRUE(reader->Finish().ok());
+  // The current state at the watcher's position, then the cancel with the next number.
+  EXPECT_EQ(seqs, (std::vector<int64_t>{seen, seen + 1}));
+  EXPECT_EQ(WaitFinished(*stub, blocker_id).state(), v1::CANCELLED);
+}
+
 }  // namespace
 }  // namespace dlmfd::testing

@@ -371,13 +371,37 @@ TEST(WatcherQueue, SnapshotsOnlyWhenAskedAndCancelTakesToken) {
   EXPECT_FALSE(queue.Push(Progress(2)));
 }
 
+// A watcher attached to the hub at from_seq (woken by nothing: the test pops it).
+std::shared_ptr<WatcherQueue> AttachedWatcher(EventHub& hub, const JobRecord& job,
+                                              int64_t from_seq) {
+  auto queue = std::make_shared<WatcherQueue>(WatchOptions{});
+  queue->SetWake([] {});
+  hub.Attach(job, from_seq, queue);
+  return queue;
+}
+
+// The sequence numbers the watcher got; no Gap, and each state event's job has its own number.
+std::vector<int64_t> SeqsWithoutGaps(WatcherQueue& queue) {
+  std::vector<int64_t> seqs;
+  v1::WatchEvent out;
+  while (queue.Pop(&out) == WatcherQueue::Next::kEvent) {
+    EXPECT_FALSE(out.has_gap()) << out.DebugString();
+    seqs.push_back(out.seq());
+    if (out.has_state()) {
+      EXPECT_EQ(out.state().job().last_seq(), out.seq());
+    }
+  }
+  return seqs;
+}
+
 TEST(EventHub, ACleanRestartResumesRightAfterTheLastNumberIssued) {
   dlmfd::testing::TempDir dir;
   JobStore store(dir.path() + "/jobs.db");
+  SeqJournal journal(dir.path() + "/watch_seq");
   store.InsertJobs({MakeJob("a", 0)}, "local", "");
   store.MarkRunning("a", 1.0);
   {
-    EventHub hub(store, 16);
+    EventHub hub(store, journal, 16);
     hub.PublishState(*store.Get("a"));  // seq 1
     for (int i = 0; i < 3; ++i) hub.Publish("a", Progress(0));
     EXPECT_EQ(hub.LastIssued("a"), 4);
@@ -385,25 +409,54 @@ TEST(EventHub, ACleanRestartResumesRightAfterTheLastNumberIssued) {
   }
   EXPECT_EQ(store.Get("a")->last_seq, 4);
   // The next daemon: a watcher that saw everything reconnects and misses nothing.
-  EventHub hub(store, 16);
-  auto queue = std::make_shared<WatcherQueue>(WatchOptions{});
-  queue->SetWake([] {});
-  hub.Attach(*store.Get("a"), 4, queue);
+  EventHub hub(store, journal, 16);
+  hub.Recover();
+  auto queue = AttachedWatcher(hub, *store.Get("a"), 4);
   hub.Publish("a", Progress(0));
   store.MarkFinished("a", JobState::kCompleted, "", 2.0);
   hub.PublishState(*store.Get("a"));
-  std::vector<int64_t> seqs;
-  v1::WatchEvent out;
-  while (queue->Pop(&out) == WatcherQueue::Next::kEvent) {
-    EXPECT_FALSE(out.has_gap()) << out.DebugString();
-    seqs.push_back(out.seq());
-    if (out.has_state()) {
-      EXPECT_EQ(out.state().job().last_seq(), out.seq());
-    }
-  }
-  EXPECT_EQ(seqs, (std::vector<int64_t>{4, 5, 6}));
+  EXPECT_EQ(SeqsWithoutGaps(*queue), (std::vector<int64_t>{4, 5, 6}));
   // A finished job's record holds the last number issued, not the end of a reserved block.
   EXPECT_EQ(store.Get("a")->last_seq, 6);
+}
+
+// A daemon killed with SIGKILL writes nothing at the end: the store holds the end of the block it
+// reserved, and the journal the last number it issued. The next daemon resumes right after that
+// number, so a watcher that saw everything is told of no Gap, and Get reports no reserved number.
+TEST(EventHub, AfterAKillNumbersResumeRightAfterTheLastOneIssued) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  store.InsertJobs({MakeJob("a", 0), MakeJob("b", 0)}, "local", "");
+  store.MarkRunning("a", 1.0);
+  {
+    SeqJournal journal(dir.path() + "/watch_seq");
+    EventHub hub(store, journal, 16);
+    hub.PublishState(*store.Get("a"));  // seq 1
+    hub.PublishState(*store.Get("b"));  // seq 1 of b
+    for (int i = 0; i < 3; ++i) hub.Publish("a", Progress(0));
+    EXPECT_EQ(hub.LastIssued("a"), 4);
+    // Killed here: no RecordIssued.
+  }
+  EXPECT_EQ(store.Get("a")->last_seq, EventHub::kSeqBlock);  // reserved, not issued
+  // A job deleted while the daemon was down leaves a journal entry without a record.
+  SeqJournal journal(dir.path() + "/watch_seq");
+  ASSERT_TRUE(journal.Record("gone", 7));
+  EventHub hub(store, journal, 16);
+  hub.Recover();
+  EXPECT_EQ(store.Get("a")->last_seq, 4);
+  EXPECT_EQ(store.Get("b")->last_seq, 1);
+  EXPECT_FALSE(store.Get("gone"));
+  EXPECT_TRUE(journal.ReadAll().empty());  // the store holds every number now
+  auto queue = AttachedWatcher(hub, *store.Get("a"), 4);
+  hub.Publish("a", Progress(0));
+  EXPECT_EQ(store.Get("a")->last_seq, 4 + EventHub::kSeqBlock);  // a new block, after 4
+  EXPECT_EQ(journal.ReadAll(), (std::map<std::string, int64_t>{{"a", 5}}));
+  store.MarkFinished("a", JobState::kCompleted, "", 2.0);
+  hub.PublishState(*store.Get("a"));
+  EXPECT_EQ(SeqsWithoutGaps(*queue), (std::vector<int64_t>{4, 5, 6}));
+  EXPECT_EQ(store.Get("a")->last_seq, 6);
+  // A finished job's number is exact in the store: its journal entry is gone.
+  EXPECT_TRUE(journal.ReadAll().empty());
 }
 
 TEST(Downsample, KeepsCornersAndLimits) {

@@ -231,6 +231,22 @@ TEST(StudyStore, StudiesRoundTripWithTheirAxesAndCounts) {
   EXPECT_EQ(store.ListSweeps("local", "other", 0, 10).size(), 0u);
 }
 
+// `dlmfd delete --sweep S` removes the study with its jobs: `dlmfd sweeps` no longer lists it and
+// `list --sweep S` no longer finds it. A study that keeps a job stays.
+TEST(StudyStore, AStudyGoesWithItsLastJob) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  const SweepRecord sweep = Sweep("s-1", 0);
+  store.InsertJobs({Job("a", "s-1"), Job("b", "s-1")}, "local", "", &sweep);
+  store.InsertJobs({Job("c", "")}, "local", "");
+  store.Delete({"a", "c"});
+  EXPECT_TRUE(store.GetSweep("local", "s-1"));
+  EXPECT_EQ(store.StatsOfSweep("local", "s-1").jobs, 1);
+  store.Delete({"b"});
+  EXPECT_FALSE(store.GetSweep("local", "s-1"));
+  EXPECT_TRUE(store.ListSweeps("local", "", 0, 10).empty());
+}
+
 TEST(StudyStore, ListSelectsOnTagsLabelsAndSceneValues) {
   dlmfd::testing::TempDir dir;
   JobStore store(dir.path() + "/jobs.db");

@@ -92,14 +92,18 @@ TEST(LogTicks, DecadesInsideTheRange) {
   // Twelve decades, at most 4 wanted: every third decade, on multiples of three.
   const AxisTicks b = LogTicks(2e-7, 3e5, 4);
   ExpectValues(b, {1e-6, 1e-3, 1.0, 1e3});
-  EXPECT_THAT(b.labels, ElementsAre("1e-6", "0.001", "1", "1000"));
+  // One notation on the whole axis: never "1e-6" beside "0.001".
+  EXPECT_THAT(b.labels, ElementsAre("1e-6", "1e-3", "1e0", "1e3"));
+  const AxisTicks b2 = LogTicks(20.0, 2e7, 6);
+  ExpectValues(b2, {1e2, 1e3, 1e4, 1e5, 1e6, 1e7});
+  EXPECT_THAT(b2.labels, ElementsAre("1e2", "1e3", "1e4", "1e5", "1e6", "1e7"));
 
   // Less than three decades: 1-2-5 multiples, unless they are more than wanted + 1.
   const AxisTicks c = LogTicks(1.5, 60.0, 6);
   ExpectValues(c, {2.0, 5.0, 10.0, 20.0, 50.0});
   const AxisTicks c2 = LogTicks(3e-4, 2e-2, 8);
   ExpectValues(c2, {5e-4, 1e-3, 2e-3, 5e-3, 1e-2, 2e-2});
-  EXPECT_THAT(c2.labels, ElementsAre("5e-4", "0.001", "0.002", "0.005", "0.01", "0.02"));
+  EXPECT_THAT(c2.labels, ElementsAre("5e-4", "1e-3", "2e-3", "5e-3", "1e-2", "2e-2"));
   const AxisTicks c3 = LogTicks(3e-4, 2e-2, 4);
   ExpectValues(c3, {1e-3, 1e-2});
 

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
+#include <vector>
 
 #include "dlmfd/core/errors.h"
 
@@ -31,12 +33,19 @@ std::string LinearLabel(double value, double step, double magnitude) {
   return Printf("%.*f", std::max(0, -step_exponent), value);
 }
 
-// m * 10^k (m in 1, 2, 5): plain digits for moderate k, "me" k otherwise.
-std::string LogLabel(int mantissa, int exponent) {
-  if (exponent >= -3 && exponent <= 4) {
-    return Printf("%.*f", std::max(0, -exponent), mantissa * std::pow(10.0, exponent));
+// Ticks m * 10^k of a log axis (m in 1, 2, 5), labelled in one notation for the whole axis: plain
+// digits when every k is moderate (0.001 to 50000), else "me" k for every tick, so that an axis
+// never reads "10000, 1e5".
+AxisTicks LogLabelled(const std::vector<std::pair<int, int>>& marks) {
+  bool plain = true;
+  for (const auto& [m, k] : marks) plain = plain && k >= -3 && k <= 4;
+  AxisTicks ticks;
+  for (const auto& [m, k] : marks) {
+    ticks.values.push_back(m * std::pow(10.0, k));
+    ticks.labels.push_back(plain ? Printf("%.*f", std::max(0, -k), ticks.values.back())
+                                 : std::to_string(m) + "e" + std::to_string(k));
   }
-  return std::to_string(mantissa) + "e" + std::to_string(exponent);
+  return ticks;
 }
 
 }  // namespace
@@ -82,32 +91,28 @@ AxisTicks LogTicks(double lo, double hi, int wanted) {
   const int k_hi = int(std::floor(std::log10(hi) + kRoundOff));
   const int decades = k_hi - k_lo + 1;
   if (decades < 3) {
-    AxisTicks multiples;
+    std::vector<std::pair<int, int>> multiples;
     for (int k = k_lo - 2; k <= k_hi + 1; ++k) {
       for (const int m : {1, 2, 5}) {
         const double value = m * std::pow(10.0, k);
         if (value >= lo * (1.0 - kRoundOff) && value <= hi * (1.0 + kRoundOff)) {
-          multiples.values.push_back(value);
-          multiples.labels.push_back(LogLabel(m, k));
+          multiples.emplace_back(m, k);
         }
       }
     }
-    const std::size_t count = multiples.values.size();
+    const std::size_t count = multiples.size();
     // Two marks over less than two decades read poorly: linear ticks give three or more.
     const bool enough = count >= 3 || (count == 2 && decades >= 2);
-    if (enough && (count <= std::size_t(wanted) + 1 || decades < 2)) return multiples;
+    if (enough && (count <= std::size_t(wanted) + 1 || decades < 2)) return LogLabelled(multiples);
   }
-  AxisTicks ticks;
   if (decades >= 2) {
     const int every = std::max(1, (k_hi - k_lo + wanted - 1) / wanted);
     // Decades that are multiples of `every` when that leaves two or more, else from k_lo.
     int first = int(std::ceil(double(k_lo) / every)) * every;
     if (first + every > k_hi) first = k_lo;
-    for (int k = first; k <= k_hi; k += every) {
-      ticks.values.push_back(std::pow(10.0, k));
-      ticks.labels.push_back(LogLabel(1, k));
-    }
-    return ticks;
+    std::vector<std::pair<int, int>> marks;
+    for (int k = first; k <= k_hi; k += every) marks.emplace_back(1, k);
+    return LogLabelled(marks);
   }
   return LinearTicks(lo, hi, wanted);
 }

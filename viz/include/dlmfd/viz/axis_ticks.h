@@ -6,7 +6,8 @@
 // too many, else the decades inside the range (every k-th decade when there are many), or linear
 // 1-2-5 ticks when the range holds fewer than two decades and fewer than three 1-2-5 multiples
 // (a range of less than a decade still gets three or more readable marks, never one or two).
-// Labels: fixed decimals as the step needs, scientific notation for very large or small values.
+// Labels: fixed decimals as the step needs, scientific notation for very large or small values;
+// on a log axis one notation for every tick (plain digits from 0.001 to 50000, else "1e5").
 // References: P. Heckbert, "Nice numbers for graph labels", Graphics Gems (1990).
 #pragma once
 
