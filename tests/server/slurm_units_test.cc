@@ -1,8 +1,9 @@
 // The slurm executor's parts without a Slurm: the state map (every state of slurm 22.05), the
 // batch script and sbatch's arguments, the parsing of sbatch --parsable, of squeue --json (a real
 // output of slurm 22.05, OpenAPI v0.0.38, captured from scripts/slurm-dev.sh's Slurm) and of the
-// jobcomp file (real lines of jobcomp/filetxt), the tail of a growing event file, and the
-// executor's configuration.
+// jobcomp file (real lines of jobcomp/filetxt), of a throttled job array and of a slurmctld that
+// does not answer, the job array's script and arguments, the tail of a growing event file, the
+// executor's configuration and the cluster config example of deploy/.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -397,6 +398,34 @@ TEST(SlurmConfig, ExecutorAndItsSettings) {
                                          "3600"),
               std::string::npos);
   }
+}
+
+// deploy/dlmfdd-slurm.toml.example loads (with a tokens file of this machine, since it listens
+// beyond loopback) and sets every slurm_* key of docs/api.md's table.
+TEST(SlurmConfig, TheClusterExampleLoadsAndSetsEverySlurmKey) {
+  const std::string example = std::string(DLMFD_SOURCE_DIR) + "/deploy/dlmfdd-slurm.toml.example";
+  const fs::path tokens = fs::temp_directory_path() / ("tokens_" + std::to_string(getpid()));
+  std::ofstream(tokens) << "0123456789abcdef0123 alice\n";
+  fs::permissions(tokens, fs::perms::owner_read | fs::perms::owner_write);
+  const Config config =
+      Load({"--config", example, "--data-dir", "/tmp/d", "--tokens-file", tokens.string()});
+  fs::remove(tokens);
+  EXPECT_EQ(config.executor, "slurm");
+  EXPECT_EQ(config.slurm.shared_dir, "/shared/dlmfd/jobs");
+  EXPECT_EQ(config.slurm.solver, "/shared/dlmfd/bin/dlmfd-solve");
+  EXPECT_EQ(config.slurm.max_attempts, 3);
+  EXPECT_EQ(config.slurm.time_limit_minutes, 1440);
+  std::ifstream api(std::string(DLMFD_SOURCE_DIR) + "/docs/api.md");
+  std::ifstream in(example);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  int keys = 0;
+  for (std::string line; std::getline(api, line);) {
+    if (line.rfind("| slurm_", 0) != 0) continue;
+    const std::string key = line.substr(2, line.find(' ', 2) - 2);
+    ++keys;
+    EXPECT_NE(text.find("\n" + key + " = "), std::string::npos) << key << " is not in " << example;
+  }
+  EXPECT_EQ(keys, 12);
 }
 
 }  // namespace
