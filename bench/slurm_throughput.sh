@@ -9,8 +9,8 @@
 # --slurm-max-submitted 1 takes a blocker job (it runs until cancelled) and queues the others,
 # then stops (it leaves the blocker in Slurm); the blocker is cancelled in Slurm; a second daemon
 # with the defaults adopts the blocker and submits the queued jobs, at most 100 at once. Each job
-# is a 16 x 16 cavity of one step (the solver's start and end, no output): Slurm's own cost
-# dominates. Measured on the second daemon:
+# is the cavity case on 16 x 16 cells for one step (the solver's start and end, no output):
+# Slurm's own cost dominates. Measured on the second daemon:
 #   submission rate   jobs handed to Slurm per second over the first burst (the daemon's log
 #                     lines "Slurm job N started": one sbatch each)
 #   end -> COMPLETED  per job, the store's finished_time minus the mtime of DIR/solver.exit
@@ -44,36 +44,21 @@ rm -rf "${WORK:?}"
 mkdir -p "$WORK"
 WORK="$(realpath "$WORK")"
 SHARED="$WORK/shared"
-cat >"$WORK/tiny.toml" <<'EOF'
-title = "a 16 x 16 cavity, one step"
-[domain]
-size = [1.0, 1.0]
-h = 0.0625
-[domain.boundary]
-left = { type = "wall" }
-right = { type = "wall" }
-bottom = { type = "wall" }
-top = { type = "velocity", profile = "uniform", value = [1.0, 0.0] }
-[fluid]
-viscosity = 0.01
-[time]
-dt = 0.01
-end = 0.01
-[output]
-fields_every = 0
-particles_every = 0
-checkpoint_every = 0
-EOF
+# The repository's cavity case on 16 x 16 cells, one step, no output.
+SCENE=cases/lid_driven_cavity.toml
+TINY=(--set domain.h=0.0625 --set time.end=0.01 --set output.fields_every=0
+      --set output.checkpoint_every=0)
 SLURM_FLAGS=(--executor slurm --slurm-shared-dir "$SHARED" --slurm-jobcomp-file "$JOBCOMP")
 
 # 1. Queue the jobs behind a blocker.
 start_dlmfdd "$WORK/data" "$WORK/queue.log" "${SLURM_FLAGS[@]}" --slurm-max-submitted 1 >/dev/null
 # `dlmfd submit` prints "submitted NAME as job ID (queued)".
-blocker=$("$DLMFD" submit "$WORK/tiny.toml" --set time.end=1e4 --name blocker | grep -o 'j-[0-9a-f]*')
+blocker=$("$DLMFD" submit "$SCENE" "${TINY[@]}" --set time.end=1e4 --name blocker |
+  grep -o 'j-[0-9a-f]*')
 for _ in $(seq 1 300); do [ -s "$SHARED/$blocker/slurm.id" ] && break; sleep 0.2; done
 queue_start=$(date +%s.%N)
 for k in $(seq 1 "$JOBS"); do
-  "$DLMFD" submit "$WORK/tiny.toml" --name "tiny-$k" --tag slurm-bench >/dev/null
+  "$DLMFD" submit "$SCENE" "${TINY[@]}" --name "tiny-$k" --tag slurm-bench >/dev/null
 done
 queue_end=$(date +%s.%N)
 stop_dlmfdd

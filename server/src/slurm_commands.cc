@@ -160,6 +160,13 @@ std::vector<int> TaskIndices(std::string text) {
   return out;
 }
 
+std::optional<SlurmJobStatus> Lookup(const std::map<std::string, SlurmJobStatus>& jobs,
+                                     const std::string& id) {
+  const auto it = jobs.find(id);
+  if (it == jobs.end()) return std::nullopt;
+  return it->second;
+}
+
 int64_t IntegerOr(const nlohmann::json& job, const char* key, int64_t otherwise) {
   return job.contains(key) && job[key].is_number_integer() ? job[key].get<int64_t>() : otherwise;
 }
@@ -226,10 +233,7 @@ std::map<std::string, SlurmJobStatus> ParseSqueueJson(const std::string& json) {
 }
 
 std::optional<SlurmJobStatus> FindInSqueueJson(const std::string& json, const std::string& id) {
-  const auto jobs = ParseSqueueJson(json);
-  const auto it = jobs.find(id);
-  if (it == jobs.end()) return std::nullopt;
-  return it->second;
+  return Lookup(ParseSqueueJson(json), id);
 }
 
 std::map<std::string, SlurmJobStatus> ParseJobComp(const std::string& text) {
@@ -254,10 +258,7 @@ std::map<std::string, SlurmJobStatus> ParseJobComp(const std::string& text) {
 }
 
 std::optional<SlurmJobStatus> FindInJobComp(const std::string& text, const std::string& id) {
-  const auto jobs = ParseJobComp(text);
-  const auto it = jobs.find(id);
-  if (it == jobs.end()) return std::nullopt;
-  return it->second;
+  return Lookup(ParseJobComp(text), id);
 }
 
 bool TransientSlurmError(const std::string& err) {

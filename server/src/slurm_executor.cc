@@ -296,6 +296,8 @@ void SlurmRun::Signal(int signal_number) {
   std::string id;
   {
     std::lock_guard lock(mutex_);
+    // Detached for the daemon's shutdown: the Slurm job is left to run and be adopted.
+    if (detached_) return;
     if (slurm_id_.empty()) {
       pending_signal_ = signal_number;
       signalled_.notify_all();

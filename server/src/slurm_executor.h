@@ -31,10 +31,11 @@
 // While squeue does not answer (slurmctld restarting) the run carries on with the last state it
 // knew. Signal: SIGTERM is scancel (the solver checkpoints and exits 130), SIGKILL scancel
 // --signal=KILL; a run not submitted yet is not submitted. Detach (the daemon shuts down) stops
-// following and leaves the Slurm job running. Adopt: a job whose Slurm job the store marks live
-// (slurm_live: submitted, its end not recorded, after a crash or a shutdown) is followed again
-// instead of submitted: no duplicate run, and a job that ended meanwhile is recorded from its exit
-// file or Slurm's state, with its results; its events are replayed from the start of events.bin.
+// following and leaves the Slurm job running (signals after it are not sent on). Adopt: a job whose
+// Slurm job the store marks live (slurm_live: submitted, its end not recorded, after a crash or a
+// shutdown) is followed again instead of submitted: no duplicate run, and a job that ended
+// meanwhile is recorded from its exit file or Slurm's state, with its results; its events are
+// replayed from the start of events.bin.
 #pragma once
 
 #include <sys/types.h>

@@ -22,6 +22,8 @@ namespace dlmfd::testing {
 namespace {
 namespace fs = std::filesystem;
 
+class SlurmDurability : public SlurmTest {};
+
 const std::string kSlurmDev = std::string(DLMFD_SOURCE_DIR) + "/scripts/slurm-dev.sh";
 
 // How many of the jobs have ended in Slurm (the jobcomp file).
@@ -31,18 +33,14 @@ int EndedInSlurm(const std::vector<std::string>& ids) {
   return ended;
 }
 
-TEST(SlurmDurability, ADaemonKilledWithTwentyJobsInSlurmAdoptsThemAllOnRestart) {
-  REQUIRE_SLURM();
-  TempDir dir;
-  SlurmCleanup cleanup(dir.path());
+TEST_F(SlurmDurability, ADaemonKilledWithTwentyJobsInSlurmAdoptsThemAllOnRestart) {
   constexpr int kJobs = 20;
   std::vector<std::string> ids;
   std::map<std::string, std::string> slurm_ids;
   int ended_before = 0;
   {
-    DaemonProcess daemon(dir.path() + "/data", SlurmFlags(dir.path()));
-    ASSERT_TRUE(daemon.Start()) << daemon.Log();
-    auto stub = daemon.Stub();
+    ASSERT_TRUE(StartDaemon()) << daemon().Log();
+    auto* stub = this->stub();
     for (int k = 0; k < kJobs; ++k) ids.push_back(Submit(*stub, CavityScene(2.0)).id());
     // All in Slurm's hands (2 run on the node's 2 CPUs, the others wait), one has run.
     ASSERT_TRUE(WaitUntil([&] {
@@ -50,23 +48,22 @@ TEST(SlurmDurability, ADaemonKilledWithTwentyJobsInSlurmAdoptsThemAllOnRestart) 
         if (Get(*stub, id).slurm_job_id().empty()) return false;
       }
       return true;
-    })) << daemon.Log();
+    })) << daemon().Log();
     WaitForProgress(*stub, ids.front());
     for (const auto& id : ids) slurm_ids[id] = Get(*stub, id).slurm_job_id();
-    daemon.Kill(SIGKILL);
-    daemon.Wait();
+    daemon().Kill(SIGKILL);
+    daemon().Wait();
     ended_before = EndedInSlurm(ids);
   }
   ASSERT_LT(ended_before, kJobs - 2) << "the jobs ended before the daemon was killed";
   // Slurm goes on without the daemon: two more jobs end meanwhile.
   ASSERT_TRUE(WaitUntil([&] { return EndedInSlurm(ids) >= ended_before + 2; }));
-  DaemonProcess daemon(dir.path() + "/data", SlurmFlags(dir.path()));
-  const size_t log_before = daemon.Log().size();  // the log file is the killed daemon's too
-  ASSERT_TRUE(daemon.Start()) << daemon.Log();
-  auto stub = daemon.Stub();
+  const size_t log_before = daemon().Log().size();  // the restarted daemon appends to the log
+  ASSERT_TRUE(StartDaemon()) << daemon().Log();
+  auto* stub = this->stub();
   for (const auto& id : ids) {
     const v1::Job done = WaitFinished(*stub, id);
-    EXPECT_EQ(done.state(), v1::COMPLETED) << id << ": " << done.reason() << "\n" << daemon.Log();
+    EXPECT_EQ(done.state(), v1::COMPLETED) << id << ": " << done.reason() << "\n" << daemon().Log();
     EXPECT_EQ(done.slurm_job_id(), slurm_ids[id]) << id;  // not submitted again
     EXPECT_EQ(done.step(), 200) << id;
     EXPECT_TRUE(fs::exists(done.results_dir() + "/summary.json")) << id;
@@ -75,7 +72,7 @@ TEST(SlurmDurability, ADaemonKilledWithTwentyJobsInSlurmAdoptsThemAllOnRestart) 
   EXPECT_TRUE(WaitUntil([&] { return EndedInSlurm(ids) == kJobs; }));
   for (const auto& id : ids) EXPECT_EQ(SlurmEndsOfName("dlmfd-" + id), 1) << id;
   // Every job unfinished at the kill was adopted; nothing was submitted.
-  const std::string log = daemon.Log().substr(log_before);
+  const std::string log = daemon().Log().substr(log_before);
   int adopted = 0;
   for (size_t at = log.find(" adopted (it outlived"); at != std::string::npos;
        at = log.find(" adopted (it outlived", at + 1)) {
@@ -94,14 +91,10 @@ struct ControllerBack {
 // A long job is followed through the outage (its squeue fails: the daemon keeps the last
 // states), jobs submitted during it wait for the controller (sbatch is run again), jobs in Slurm
 // before it end as usual; afterwards the long job is cancelled through Slurm.
-TEST(SlurmDurability, TheDaemonCarriesOnThroughASlurmctldRestart) {
-  REQUIRE_SLURM();
+TEST_F(SlurmDurability, TheDaemonCarriesOnThroughASlurmctldRestart) {
   if (geteuid() != 0) GTEST_SKIP() << "stopping slurmctld needs root (scripts/slurm-dev.sh)";
-  TempDir dir;
-  SlurmCleanup cleanup(dir.path());
-  DaemonProcess daemon(dir.path() + "/data", SlurmFlags(dir.path()));
-  ASSERT_TRUE(daemon.Start()) << daemon.Log();
-  auto stub = daemon.Stub();
+  ASSERT_TRUE(StartDaemon()) << daemon().Log();
+  auto* stub = this->stub();
   const std::string long_job = Submit(*stub, CavityScene(1.0e4)).id();
   std::vector<std::string> ids;
   for (int k = 0; k < 2; ++k) ids.push_back(Submit(*stub, CavityScene(2.0)).id());
@@ -112,16 +105,16 @@ TEST(SlurmDurability, TheDaemonCarriesOnThroughASlurmctldRestart) {
     for (int k = 0; k < 2; ++k) ids.push_back(Submit(*stub, CavityScene(2.0)).id());
     // The daemon sees the controller gone: squeue fails, sbatch cannot reach it.
     EXPECT_TRUE(WaitUntil([&] {
-      const std::string log = daemon.Log();
+      const std::string log = daemon().Log();
       return log.find("squeue --json failed") != std::string::npos &&
              log.find("trying again in") != std::string::npos;
-    })) << daemon.Log();
+    })) << daemon().Log();
     EXPECT_EQ(Get(*stub, long_job).state(), v1::RUNNING);
     ASSERT_EQ(std::system((kSlurmDev + " start-slurmctld > /dev/null").c_str()), 0);
   }
   for (const auto& id : ids) {
     const v1::Job done = WaitFinished(*stub, id);
-    EXPECT_EQ(done.state(), v1::COMPLETED) << id << ": " << done.reason() << "\n" << daemon.Log();
+    EXPECT_EQ(done.state(), v1::COMPLETED) << id << ": " << done.reason() << "\n" << daemon().Log();
     EXPECT_EQ(done.step(), 200) << id;
     EXPECT_EQ(done.attempt(), 1) << id;
   }
@@ -133,7 +126,7 @@ TEST(SlurmDurability, TheDaemonCarriesOnThroughASlurmctldRestart) {
   v1::Job cancelled;
   ASSERT_TRUE(stub->Cancel(Context().get(), cancel, &cancelled).ok());
   const v1::Job done = WaitFinished(*stub, long_job);
-  EXPECT_EQ(done.state(), v1::CANCELLED) << done.reason() << "\n" << daemon.Log();
+  EXPECT_EQ(done.state(), v1::CANCELLED) << done.reason() << "\n" << daemon().Log();
   EXPECT_EQ(done.attempt(), 1);
 }
 

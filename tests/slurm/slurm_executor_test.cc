@@ -15,13 +15,11 @@ namespace dlmfd::testing {
 namespace {
 namespace fs = std::filesystem;
 
-TEST(SlurmExecutor, OneJobEndToEndStreamsLikeALocalJob) {
-  REQUIRE_SLURM();
-  TempDir dir;
-  SlurmCleanup cleanup(dir.path());
-  DaemonProcess daemon(dir.path() + "/data", SlurmFlags(dir.path()));
-  ASSERT_TRUE(daemon.Start()) << daemon.Log();
-  auto stub = daemon.Stub();
+class SlurmExecutor : public SlurmTest {};
+
+TEST_F(SlurmExecutor, OneJobEndToEndStreamsLikeALocalJob) {
+  ASSERT_TRUE(StartDaemon()) << daemon().Log();
+  auto* stub = this->stub();
   const v1::Job job = Submit(*stub, DiskInCavity(0.2));
   auto context = Context();
   v1::WatchRequest watch;
@@ -32,9 +30,9 @@ TEST(SlurmExecutor, OneJobEndToEndStreamsLikeALocalJob) {
   for (v1::WatchEvent event; reader->Read(&event);) events.push_back(event);
   ASSERT_TRUE(reader->Finish().ok());
   ASSERT_FALSE(events.empty());
-  ASSERT_TRUE(events.back().has_state()) << daemon.Log();
+  ASSERT_TRUE(events.back().has_state()) << daemon().Log();
   EXPECT_EQ(events.back().state().state(), v1::COMPLETED) << events.back().state().reason() << "\n"
-                                                          << daemon.Log();
+                                                          << daemon().Log();
   int progress = 0, particles = 0, snapshots = 0;
   v1::Snapshot last_snapshot;
   for (const auto& event : events) {
@@ -68,22 +66,18 @@ TEST(SlurmExecutor, OneJobEndToEndStreamsLikeALocalJob) {
     return Shell("grep -c '^JobId=" + done.slurm_job_id() + " ' " + JobCompFile()) == "1\n";
   }));
   // dlmfd show names the Slurm id.
-  const std::string out = dir.path() + "/show.txt";
+  const std::string out = dir() + "/show.txt";
   const std::string command = std::string(DLMFD_BINARY_DIR) + "/client/dlmfd --server " +
-                              daemon.address() + " show " + job.id() + " > " + out;
+                              daemon().address() + " show " + job.id() + " > " + out;
   ASSERT_EQ(std::system(command.c_str()), 0);
   std::ifstream show(out);
   std::string shown((std::istreambuf_iterator<char>(show)), std::istreambuf_iterator<char>());
   EXPECT_NE(shown.find("slurm job:   " + done.slurm_job_id()), std::string::npos) << shown;
 }
 
-TEST(SlurmExecutor, CancelIsScancelAndTheSolverCheckpoints) {
-  REQUIRE_SLURM();
-  TempDir dir;
-  SlurmCleanup cleanup(dir.path());
-  DaemonProcess daemon(dir.path() + "/data", SlurmFlags(dir.path()));
-  ASSERT_TRUE(daemon.Start()) << daemon.Log();
-  auto stub = daemon.Stub();
+TEST_F(SlurmExecutor, CancelIsScancelAndTheSolverCheckpoints) {
+  ASSERT_TRUE(StartDaemon()) << daemon().Log();
+  auto* stub = this->stub();
   const v1::Job job = Submit(*stub, CavityScene(1.0e4));
   WaitForProgress(*stub, job.id());
   v1::CancelRequest cancel;
@@ -91,12 +85,12 @@ TEST(SlurmExecutor, CancelIsScancelAndTheSolverCheckpoints) {
   v1::Job cancelled;
   ASSERT_TRUE(stub->Cancel(Context().get(), cancel, &cancelled).ok());
   const v1::Job done = WaitFinished(*stub, job.id());
-  EXPECT_EQ(done.state(), v1::CANCELLED) << done.reason() << "\n" << daemon.Log();
+  EXPECT_EQ(done.state(), v1::CANCELLED) << done.reason() << "\n" << daemon().Log();
   EXPECT_GT(done.step(), 0);
   EXPECT_TRUE(fs::exists(done.results_dir() + "/checkpoint.h5"));
   ASSERT_FALSE(done.slurm_job_id().empty());
   // Slurm no longer runs it.
-  const std::string state = dir.path() + "/state.txt";
+  const std::string state = dir() + "/state.txt";
   const std::string command = "squeue -h -j " + done.slurm_job_id() + " -t R,PD -o %T > " + state;
   ASSERT_EQ(std::system(command.c_str()), 0);
   std::ifstream in(state);
@@ -104,31 +98,22 @@ TEST(SlurmExecutor, CancelIsScancelAndTheSolverCheckpoints) {
   EXPECT_EQ(text, "");
 }
 
-TEST(SlurmExecutor, ADaemonKilledWithSigkillAdoptsItsSlurmJobOnRestart) {
-  REQUIRE_SLURM();
-  TempDir dir;
-  SlurmCleanup cleanup(dir.path());
-  std::string id, slurm_id;
-  {
-    DaemonProcess daemon(dir.path() + "/data", SlurmFlags(dir.path()));
-    ASSERT_TRUE(daemon.Start()) << daemon.Log();
-    auto stub = daemon.Stub();
-    id = Submit(*stub, CavityScene(20.0)).id();
-    WaitForProgress(*stub, id);
-    slurm_id = Get(*stub, id).slurm_job_id();
-    daemon.Kill(SIGKILL);
-    daemon.Wait();
-  }
+TEST_F(SlurmExecutor, ADaemonKilledWithSigkillAdoptsItsSlurmJobOnRestart) {
+  ASSERT_TRUE(StartDaemon()) << daemon().Log();
+  const std::string id = Submit(*stub(), CavityScene(20.0)).id();
+  WaitForProgress(*stub(), id);
+  const std::string slurm_id = Get(*stub(), id).slurm_job_id();
+  daemon().Kill(SIGKILL);
+  daemon().Wait();
   ASSERT_FALSE(slurm_id.empty());
-  DaemonProcess daemon(dir.path() + "/data", SlurmFlags(dir.path()));
-  ASSERT_TRUE(daemon.Start()) << daemon.Log();
-  auto stub = daemon.Stub();
+  ASSERT_TRUE(StartDaemon()) << daemon().Log();
+  auto* stub = this->stub();
   const v1::Job done = WaitFinished(*stub, id);
-  EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon.Log();
+  EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
   EXPECT_EQ(done.slurm_job_id(), slurm_id);  // the same Slurm job: not submitted again
   EXPECT_EQ(done.step(), 2000);
-  EXPECT_NE(daemon.Log().find("Slurm job " + slurm_id + " adopted"), std::string::npos)
-      << daemon.Log();
+  EXPECT_NE(daemon().Log().find("Slurm job " + slurm_id + " adopted"), std::string::npos)
+      << daemon().Log();
   // Slurm ran one job of that name.
   EXPECT_EQ(SlurmEndsOfName("dlmfd-" + id), 1);
 }

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -46,12 +47,6 @@ inline bool SlurmRunning() {
 }
 
 inline std::string JobCompFile() { return DevSlurmDir() + "/log/jobcomp.txt"; }
-
-#define REQUIRE_SLURM()                                                                    \
-  if (!SolverAvailable()) GTEST_SKIP() << "dlmfd-solve is not built: " << kSolverPath;     \
-  if (!SlurmRunning())                                                                     \
-  GTEST_SKIP() << "no Slurm answers sinfo: start one with scripts/slurm-dev.sh start (as " \
-                  "root), or set SLURM_CONF"
 
 // A fixed disk in an Oldroyd-B lid-driven cavity, 16 x 16 cells, dt = 0.01: particle states and
 // trA snapshots to stream.
@@ -148,6 +143,39 @@ class SlurmCleanup {
 
  private:
   std::string dir_;
+};
+
+// A test against the dev Slurm: skipped, naming scripts/slurm-dev.sh, when no Slurm answers (or
+// the solver is not built); a temporary directory whose Slurm jobs are cancelled at the end;
+// StartDaemon starts a dlmfdd with the slurm executor there (again after a kill: the same data).
+class SlurmTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!SolverAvailable()) GTEST_SKIP() << "dlmfd-solve is not built: " << kSolverPath;
+    if (!SlurmRunning()) {
+      GTEST_SKIP() << "no Slurm answers sinfo: start one with scripts/slurm-dev.sh start (as "
+                      "root), or set SLURM_CONF";
+    }
+  }
+  // SlurmFlags and more; false when the daemon did not start (its log says why).
+  bool StartDaemon(const std::vector<std::string>& more = {}) {
+    std::vector<std::string> flags = SlurmFlags(dir_.path());
+    flags.insert(flags.end(), more.begin(), more.end());
+    stub_.reset();
+    daemon_ = std::make_unique<DaemonProcess>(dir_.path() + "/data", flags);
+    if (!daemon_->Start()) return false;
+    stub_ = daemon_->Stub();
+    return true;
+  }
+  DaemonProcess& daemon() { return *daemon_; }
+  v1::Jobs::Stub* stub() { return stub_.get(); }
+  const std::string& dir() const { return dir_.path(); }
+
+ private:
+  TempDir dir_;
+  SlurmCleanup cleanup_{dir_.path()};
+  std::unique_ptr<DaemonProcess> daemon_;
+  std::unique_ptr<v1::Jobs::Stub> stub_;
 };
 
 // How many times Slurm ran a job of this name to its end (the jobcomp file's lines).

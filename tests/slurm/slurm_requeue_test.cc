@@ -19,6 +19,8 @@ namespace dlmfd::testing {
 namespace {
 namespace fs = std::filesystem;
 
+class SlurmRequeue : public SlurmTest {};
+
 // A disk settling in an Oldroyd-B liquid in a closed box, 16 x 32 cells: a free particle and a
 // polymer stress whose values a resumed run must reproduce to the last bit.
 std::string SettlingDisk(double end_time) {
@@ -43,13 +45,9 @@ solver::RunSummary Summary(const std::string& results) {
   return solver::ReadRunSummary(results + "/" + solver::kRunSummaryFile);
 }
 
-TEST(SlurmRequeue, ScontrolRequeueIsANewAttemptThatResumesAndCompletes) {
-  REQUIRE_SLURM();
-  TempDir dir;
-  SlurmCleanup cleanup(dir.path());
-  DaemonProcess daemon(dir.path() + "/data", SlurmFlags(dir.path()));
-  ASSERT_TRUE(daemon.Start()) << daemon.Log();
-  auto stub = daemon.Stub();
+TEST_F(SlurmRequeue, ScontrolRequeueIsANewAttemptThatResumesAndCompletes) {
+  ASSERT_TRUE(StartDaemon()) << daemon().Log();
+  auto* stub = this->stub();
   const v1::Job job = Submit(*stub, CavityScene(30.0));  // 3000 steps, a few seconds
   WaitForProgress(*stub, job.id());
   const std::string slurm_id = Get(*stub, job.id()).slurm_job_id();
@@ -61,7 +59,7 @@ TEST(SlurmRequeue, ScontrolRequeueIsANewAttemptThatResumesAndCompletes) {
       WaitUntil([&] { return Shell("squeue -h -j " + slurm_id + " -o %T") == "PENDING\n"; }));
   ASSERT_EQ(std::system(("scontrol update JobId=" + slurm_id + " StartTime=now").c_str()), 0);
   const v1::Job done = WaitFinished(*stub, job.id());
-  EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon.Log();
+  EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
   EXPECT_EQ(done.slurm_job_id(), slurm_id);  // the same Slurm job, run again
   EXPECT_EQ(done.step(), 3000);
   EXPECT_EQ(done.attempt(), 2);
@@ -73,7 +71,7 @@ TEST(SlurmRequeue, ScontrolRequeueIsANewAttemptThatResumesAndCompletes) {
   EXPECT_GT(done.previous_attempts(0).step(), 0);
   // The second run resumed from the checkpoint the first wrote at Slurm's SIGTERM.
   EXPECT_GT(Summary(done.results_dir()).resumed_from_step, 0);
-  EXPECT_EQ(daemon.Log().find("FAILED"), std::string::npos) << daemon.Log();
+  EXPECT_EQ(daemon().Log().find("FAILED"), std::string::npos) << daemon().Log();
 }
 
 // Slurm enforces time limits in whole minutes, checked every 30 s; the test makes the job's
@@ -82,18 +80,11 @@ TEST(SlurmRequeue, ScontrolRequeueIsANewAttemptThatResumesAndCompletes) {
 // Slurm then times the job out: it continues the solver and sends it SIGTERM (the solver
 // checkpoints and exits 130), and ends the job TIMEOUT. The daemon queues it again; the next
 // attempt resumes from the checkpoint.
-TEST(SlurmRequeue, ATimeoutResumesFromTheCheckpointAndEndsAsAnUninterruptedRun) {
-  REQUIRE_SLURM();
-  TempDir dir;
-  SlurmCleanup cleanup(dir.path());
-  std::vector<std::string> flags = SlurmFlags(dir.path());
-  for (const char* flag : {"--slurm-time-limit-minutes", "1", "--slurm-signal-seconds", "10",
-                           "--slurm-max-attempts", "2"}) {
-    flags.push_back(flag);
-  }
-  DaemonProcess daemon(dir.path() + "/data", flags);
-  ASSERT_TRUE(daemon.Start()) << daemon.Log();
-  auto stub = daemon.Stub();
+TEST_F(SlurmRequeue, ATimeoutResumesFromTheCheckpointAndEndsAsAnUninterruptedRun) {
+  ASSERT_TRUE(StartDaemon({"--slurm-time-limit-minutes", "1", "--slurm-signal-seconds", "10",
+                           "--slurm-max-attempts", "2"}))
+      << daemon().Log();
+  auto* stub = this->stub();
   const std::string scene = SettlingDisk(2.5);  // 2500 steps, about 2 s
   const v1::Job job = Submit(*stub, scene);
   WaitForProgress(*stub, job.id());
@@ -105,7 +96,7 @@ TEST(SlurmRequeue, ATimeoutResumesFromTheCheckpointAndEndsAsAnUninterruptedRun) 
   ASSERT_EQ(std::system(("kill -STOP " + pid).c_str()), 0);
   ASSERT_EQ(std::system(("scontrol update JobId=" + slurm_id + " EndTime=now+1").c_str()), 0);
   const v1::Job done = WaitFinished(*stub, job.id());
-  EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon.Log();
+  EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
   EXPECT_EQ(done.step(), 2500);
   EXPECT_EQ(done.attempt(), 2);
   ASSERT_EQ(done.previous_attempts_size(), 1);
@@ -126,13 +117,13 @@ TEST(SlurmRequeue, ATimeoutResumesFromTheCheckpointAndEndsAsAnUninterruptedRun) 
   // OpenMP thread as the Slurm job's (--cpus-per-task=1: sums in another order differ).
   const solver::RunSummary resumed = Summary(done.results_dir());
   EXPECT_GT(resumed.resumed_from_step, 0);
-  const std::string scene_file = dir.path() + "/scene.toml";
+  const std::string scene_file = dir() + "/scene.toml";
   std::ofstream(scene_file) << scene;
-  ASSERT_EQ(std::system(("OMP_NUM_THREADS=1 " + kSolverPath + " " + scene_file + " --out " +
-                         dir.path() + "/uninterrupted > /dev/null 2>&1")
+  ASSERT_EQ(std::system(("OMP_NUM_THREADS=1 " + kSolverPath + " " + scene_file + " --out " + dir() +
+                         "/uninterrupted > /dev/null 2>&1")
                             .c_str()),
             0);
-  const solver::RunSummary reference = Summary(dir.path() + "/uninterrupted");
+  const solver::RunSummary reference = Summary(dir() + "/uninterrupted");
   EXPECT_EQ(reference.resumed_from_step, -1);
   EXPECT_EQ(resumed.steps, reference.steps);
   ASSERT_EQ(resumed.particles.size(), 1u);

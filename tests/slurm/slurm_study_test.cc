@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "slurm_harness.h"
 
@@ -18,34 +19,38 @@ namespace dlmfd::testing {
 namespace {
 namespace fs = std::filesystem;
 
+class SlurmStudy : public SlurmTest {};
+
 // "A" of "A_I"; empty when the id is not an array task's.
 std::string ArrayOf(const std::string& slurm_id) {
   const size_t underscore = slurm_id.find('_');
   return underscore == std::string::npos ? std::string() : slurm_id.substr(0, underscore);
 }
 
-TEST(SlurmStudy, SixPointsAreOneJobArrayWithThrottleTwoAndEachPointIsAJob) {
-  REQUIRE_SLURM();
-  TempDir dir;
-  SlurmCleanup cleanup(dir.path());
-  DaemonProcess daemon(dir.path() + "/data", SlurmFlags(dir.path()));
-  ASSERT_TRUE(daemon.Start()) << daemon.Log();
-  auto stub = daemon.Stub();
+// A study of the scene over fluid.viscosity with at most max_running jobs at once.
+v1::SubmitSweepResponse SubmitStudy(v1::Jobs::Stub& stub, const std::string& scene,
+                                    const std::string& name, int max_running,
+                                    const std::vector<std::string>& viscosities) {
   v1::SubmitSweepRequest request;
-  request.set_scene(CavityScene(8.0));  // 800 steps of a 16 x 16 cavity: about a second
-  request.set_name("array");
-  request.set_max_running(2);
+  request.set_scene(scene);
+  request.set_name(name);
+  request.set_max_running(max_running);
   auto* axis = request.add_axes();
   axis->set_key("fluid.viscosity");
-  for (const char* value : {"0.01", "0.02", "0.03", "0.04", "0.05", "0.06"}) {
-    axis->add_values(value);
-  }
+  for (const auto& value : viscosities) axis->add_values(value);
   v1::SubmitSweepResponse sweep;
-  {
-    auto context = Context();
-    const grpc::Status status = stub->SubmitSweep(context.get(), request, &sweep);
-    ASSERT_TRUE(status.ok()) << status.error_message();
-  }
+  auto context = Context();
+  const grpc::Status status = stub.SubmitSweep(context.get(), request, &sweep);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return sweep;
+}
+
+TEST_F(SlurmStudy, SixPointsAreOneJobArrayWithThrottleTwoAndEachPointIsAJob) {
+  ASSERT_TRUE(StartDaemon()) << daemon().Log();
+  auto* stub = this->stub();
+  // 800 steps of a 16 x 16 cavity: about a second each.
+  const v1::SubmitSweepResponse sweep = SubmitStudy(
+      *stub, CavityScene(8.0), "array", 2, {"0.01", "0.02", "0.03", "0.04", "0.05", "0.06"});
   ASSERT_EQ(sweep.jobs_size(), 6);
   // Every point has its task of one array, in the study's order.
   std::string array;
@@ -54,7 +59,7 @@ TEST(SlurmStudy, SixPointsAreOneJobArrayWithThrottleTwoAndEachPointIsAJob) {
       if (Get(*stub, job.id()).slurm_job_id().empty()) return false;
     }
     return true;
-  })) << daemon.Log();
+  })) << daemon().Log();
   for (int k = 0; k < 6; ++k) {
     const std::string id = Get(*stub, sweep.jobs(k).id()).slurm_job_id();
     if (k == 0) array = ArrayOf(id);
@@ -89,7 +94,7 @@ TEST(SlurmStudy, SixPointsAreOneJobArrayWithThrottleTwoAndEachPointIsAJob) {
   // Each point is a job of its own that ran its own scene.
   for (int k = 0; k < 6; ++k) {
     const v1::Job done = WaitFinished(*stub, sweep.jobs(k).id());
-    EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon.Log();
+    EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
     EXPECT_EQ(done.step(), 800);
     EXPECT_TRUE(fs::exists(done.results_dir() + "/summary.json"));
   }
@@ -98,26 +103,12 @@ TEST(SlurmStudy, SixPointsAreOneJobArrayWithThrottleTwoAndEachPointIsAJob) {
   EXPECT_EQ(SlurmEndsOfName("dlmfd-" + sweep.sweep_id()), 6);
 }
 
-TEST(SlurmStudy, APointIsCancelledAsItsTaskAndRetriedAsAnArrayOfOne) {
-  REQUIRE_SLURM();
-  TempDir dir;
-  SlurmCleanup cleanup(dir.path());
-  DaemonProcess daemon(dir.path() + "/data", SlurmFlags(dir.path()));
-  ASSERT_TRUE(daemon.Start()) << daemon.Log();
-  auto stub = daemon.Stub();
-  v1::SubmitSweepRequest request;
-  request.set_scene(CavityScene(1.0e4));  // runs until cancelled
-  request.set_name("cancel");
-  request.set_max_running(1);
-  auto* axis = request.add_axes();
-  axis->set_key("fluid.viscosity");
-  axis->add_values("0.01");
-  axis->add_values("0.02");
-  v1::SubmitSweepResponse sweep;
-  {
-    auto context = Context();
-    ASSERT_TRUE(stub->SubmitSweep(context.get(), request, &sweep).ok());
-  }
+TEST_F(SlurmStudy, APointIsCancelledAsItsTaskAndRetriedAsAnArrayOfOne) {
+  ASSERT_TRUE(StartDaemon()) << daemon().Log();
+  auto* stub = this->stub();
+  // Each runs until cancelled.
+  const v1::SubmitSweepResponse sweep =
+      SubmitStudy(*stub, CavityScene(1.0e4), "cancel", 1, {"0.01", "0.02"});
   ASSERT_EQ(sweep.jobs_size(), 2);
   const std::string first = sweep.jobs(0).id(), second = sweep.jobs(1).id();
   // The first point runs (its stream comes as a local job's); the second waits in Slurm behind
@@ -134,10 +125,10 @@ TEST(SlurmStudy, APointIsCancelledAsItsTaskAndRetriedAsAnArrayOfOne) {
   }
   const v1::Job one = WaitFinished(*stub, first);
   const v1::Job two = WaitFinished(*stub, second);
-  EXPECT_EQ(one.state(), v1::CANCELLED) << one.reason() << "\n" << daemon.Log();
+  EXPECT_EQ(one.state(), v1::CANCELLED) << one.reason() << "\n" << daemon().Log();
   EXPECT_GT(one.step(), 0);
   EXPECT_TRUE(fs::exists(one.results_dir() + "/checkpoint.h5"));
-  EXPECT_EQ(two.state(), v1::CANCELLED) << two.reason() << "\n" << daemon.Log();
+  EXPECT_EQ(two.state(), v1::CANCELLED) << two.reason() << "\n" << daemon().Log();
   EXPECT_EQ(two.step(), 0);
   EXPECT_EQ(Shell("squeue -h -j " + second_task + " -t PD,R -o %T 2>/dev/null"), "");
   // A retry with a short end: the point goes to Slurm again, as an array of its own.
@@ -147,7 +138,7 @@ TEST(SlurmStudy, APointIsCancelledAsItsTaskAndRetriedAsAnArrayOfOne) {
   v1::RetryResponse retried;
   ASSERT_TRUE(stub->Retry(Context().get(), retry, &retried).ok());
   const v1::Job again = WaitFinished(*stub, second);
-  EXPECT_EQ(again.state(), v1::COMPLETED) << again.reason() << "\n" << daemon.Log();
+  EXPECT_EQ(again.state(), v1::COMPLETED) << again.reason() << "\n" << daemon().Log();
   EXPECT_EQ(again.attempt(), 2);
   EXPECT_EQ(again.step(), 50);
   EXPECT_NE(ArrayOf(again.slurm_job_id()), ArrayOf(second_task));
