@@ -7,6 +7,9 @@
 #                                 waits until the node is idle; does nothing when already running
 #   scripts/slurm-dev.sh stop     stops slurmd, slurmctld and munged by their pid files
 #   scripts/slurm-dev.sh status   exit 0 and `sinfo` when running, exit 1 otherwise
+#   scripts/slurm-dev.sh stop-slurmctld | start-slurmctld
+#                                 stops or starts slurmctld alone (jobs run on under slurmd;
+#                                 the tests of a controller restart during runs use them)
 #   scripts/slurm-dev.sh env      prints `export SLURM_CONF=...` for a shell (eval "$(... env)")
 #
 # Everything lives under DLMFD_SLURM_DIR (default /tmp/dlmfd-slurm), which this script owns:
@@ -126,9 +129,21 @@ stop() {
   echo "slurm-dev: stopped"
 }
 
+start_slurmctld() {
+  alive "$dir/run/slurmctld.pid" || slurmctld -f "$conf"
+  wait_idle
+  echo "slurm-dev: slurmctld running"
+}
+
 case "${1:-}" in
   start) start ;;
   stop) stop ;;
+  stop-slurmctld)
+    stop_one "$dir/run/slurmctld.pid"
+    rm -f "$dir/run/slurmctld.pid"
+    echo "slurm-dev: slurmctld stopped"
+    ;;
+  start-slurmctld) start_slurmctld ;;
   status)
     if running; then
       sinfo
@@ -138,5 +153,5 @@ case "${1:-}" in
     fi
     ;;
   env) echo "export SLURM_CONF=$conf" ;;
-  *) die "usage: scripts/slurm-dev.sh start|stop|status|env" ;;
+  *) die "usage: scripts/slurm-dev.sh start|stop|status|env|stop-slurmctld|start-slurmctld" ;;
 esac

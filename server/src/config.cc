@@ -95,6 +95,7 @@ std::vector<Setting> Settings() {
       {"slurm_time_limit_minutes",
        slurm_small("slurm_time_limit_minutes", &SlurmSettings::time_limit_minutes)},
       {"slurm_signal_seconds", slurm_small("slurm_signal_seconds", &SlurmSettings::signal_seconds)},
+      {"slurm_max_attempts", slurm_small("slurm_max_attempts", &SlurmSettings::max_attempts)},
   };
 }
 
@@ -220,6 +221,7 @@ void ValidateExecutor(Config& config) {
   range("slurm_max_submitted", config.slurm.max_submitted, 1, 100000);
   range("slurm_time_limit_minutes", config.slurm.time_limit_minutes, 0, 525600);
   range("slurm_signal_seconds", config.slurm.signal_seconds, 1, 65535);
+  range("slurm_max_attempts", config.slurm.max_attempts, 1, 100);
   if (config.slurm.solver.empty()) config.slurm.solver = config.solver;
 }
 

@@ -37,6 +37,10 @@
 //                     (--signal=B:USR1@N) so that it checkpoints
 //   slurm_jobcomp_file    none: Slurm's JobCompLoc (jobcomp/filetxt), read for the end of jobs
 //                     that have left squeue
+//   slurm_max_attempts    3 (1-100): a job that Slurm ends with TIMEOUT, NODE_FAIL, PREEMPTED or
+//                     BOOT_FAIL is queued again (it resumes from its checkpoint) while it has had
+//                     fewer attempts in Slurm since it was submitted or retried (each sbatch and
+//                     each Slurm restart counts); 1: never
 // Validation (ValidateConfig): a listen address that is not loopback requires a tokens file; a
 // tokens file must hold at least one token.
 #pragma once
@@ -62,6 +66,7 @@ struct SlurmSettings {
   int max_submitted = 100;
   int time_limit_minutes = 0;
   int signal_seconds = 120;
+  int max_attempts = 3;
 };
 
 struct Config {

@@ -4,6 +4,7 @@
 #include <memory>
 #include <mutex>
 
+#include "slurm_array.h"
 #include "slurm_executor.h"
 
 namespace dlmfd::server {
@@ -24,22 +25,40 @@ class LocalRun : public JobRun {
   SolverProcess process_;
 };
 
+// One squeue poll for every live run of this configuration.
+std::shared_ptr<SlurmQueue> SharedQueue(const Config& config) {
+  static std::mutex mutex;
+  static std::map<const Config*, std::weak_ptr<SlurmQueue>> shared;
+  std::lock_guard lock(mutex);
+  auto queue = shared[&config].lock();
+  if (!queue) {
+    queue = std::make_shared<SlurmQueue>(config.slurm);
+    shared[&config] = queue;
+  }
+  return queue;
+}
+
 }  // namespace
 
 std::shared_ptr<JobRun> MakeJobRun(const Config& config) {
-  if (config.executor == "slurm") {
-    // One squeue poll for every live run of this configuration.
-    static std::mutex mutex;
-    static std::map<const Config*, std::weak_ptr<SlurmQueue>> shared;
-    std::lock_guard lock(mutex);
-    auto queue = shared[&config].lock();
-    if (!queue) {
-      queue = std::make_shared<SlurmQueue>(config.slurm);
-      shared[&config] = queue;
-    }
-    return std::make_shared<SlurmRun>(config, queue);
-  }
+  if (config.executor == "slurm") return std::make_shared<SlurmRun>(config, SharedQueue(config));
   return std::make_shared<LocalRun>();
+}
+
+bool SubmitsStudiesTogether(const Config& config) { return config.executor == "slurm"; }
+
+std::vector<std::shared_ptr<JobRun>> MakeStudyRuns(const Config& config, const std::string& study,
+                                                   int count, int throttle) {
+  std::vector<std::shared_ptr<JobRun>> runs;
+  if (!SubmitsStudiesTogether(config)) {
+    for (int i = 0; i < count; ++i) runs.push_back(MakeJobRun(config));
+    return runs;
+  }
+  auto array = std::make_shared<SlurmArray>(config, "dlmfd-" + study, count, throttle);
+  for (int i = 0; i < count; ++i) {
+    runs.push_back(std::make_shared<SlurmRun>(config, SharedQueue(config), array, i));
+  }
+  return runs;
 }
 
 }  // namespace dlmfd::server

@@ -8,14 +8,21 @@
 //   slurm  SlurmRun (slurm_executor.h): a batch script submitted with sbatch, events through a
 //          file in the shared job directory, states from squeue and the jobcomp file.
 // Outcome lets an executor name an end that the solver's exit status cannot tell (a Slurm
-// TIMEOUT, NODE_FAIL or OUT_OF_MEMORY); the scheduler uses it instead of the exit-status mapping.
+// TIMEOUT, NODE_FAIL or OUT_OF_MEMORY); the scheduler uses it instead of the exit-status mapping,
+// and queues the job again when it is retryable and the executor's attempts allow.
+// A study's queued jobs may be handed over together (SubmitsStudiesTogether: a Slurm job array):
+// the scheduler starts a runner for each with a run of MakeStudyRuns; a runner that will not call
+// Start calls Abandon, so that the others do not wait for it.
 #pragma once
+
+#include <signal.h>
 
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "config.h"
 #include "dlmfd/v1/events.pb.h"
@@ -24,28 +31,53 @@
 
 namespace dlmfd::server {
 
+// How a run ended when the exit status does not tell it.
+struct RunOutcome {
+  JobState state = JobState::kFailed;
+  std::string reason;
+  bool retryable = false;  // an end that a new attempt from the checkpoint may cure
+};
+
 class JobRun {
  public:
   virtual ~JobRun() = default;
-  // Takes over a run of this job directory that outlived the daemon (a Slurm job submitted
-  // before a daemon crash, live or ended since); true when there is one: the scheduler then skips
-  // Start. The local executor's children die with the daemon: false.
-  virtual bool Adopt(const std::string& job_dir) {
+  // Takes over a run of the job that outlived the daemon (a Slurm job submitted before a daemon
+  // crash or shutdown, live or ended since: job.slurm_live); true when there is one: the
+  // scheduler then skips Start. The local executor's children die with the daemon: false.
+  virtual bool Adopt(const std::string& job_dir, const JobRecord& job) {
     (void)job_dir;
+    (void)job;
     return false;
   }
   // Throws std::runtime_error when the run cannot be started (fork, sbatch).
   virtual void Start(const LaunchSpec& spec) = 0;
+  // Start will not be called (the job was cancelled or failed before it).
+  virtual void Abandon() {}
   virtual void ReadEvents(const std::function<void(const v1::SolverEvent&)>& on_event) = 0;
   virtual SolverExit Wait() = 0;
   virtual void Signal(int signal_number) = 0;
+  // The daemon shuts down: a run that can outlive it (a Slurm job) is left running and ReadEvents
+  // returns (Wait then gives SIGTERM); the local executor's solver gets SIGTERM and checkpoints.
+  virtual void Detach() { Signal(SIGTERM); }
   // A line for the daemon's log once started: "solver pid 123", "Slurm job 45".
   virtual std::string Describe() const = 0;
+  // The executor's id of the run once started or adopted (the Slurm job id); empty otherwise.
+  virtual std::string ExecutorId() const { return {}; }
   // The end as the executor knows it, when the exit status does not tell it; nothing otherwise.
-  virtual std::optional<std::pair<JobState, std::string>> Outcome() const { return std::nullopt; }
+  virtual std::optional<RunOutcome> Outcome() const { return std::nullopt; }
+  // Called on ReadEvents' thread when the executor ran the job again by itself (Slurm requeued
+  // it): restarts is the executor's count of such runs, reason says why.
+  using RestartHandler = std::function<void(int restarts, const std::string& reason)>;
+  virtual void OnRestart(RestartHandler handler) { (void)handler; }
 };
 
 // The run of the configured executor.
 std::shared_ptr<JobRun> MakeJobRun(const Config& config);
+// True when the executor hands a study's queued jobs over together (slurm: one job array).
+bool SubmitsStudiesTogether(const Config& config);
+// The runs of `count` jobs of the study `study` (its id) handed over together, at most `throttle`
+// of them running at once (0: no limit); the scheduler gives the i-th to the i-th job.
+std::vector<std::shared_ptr<JobRun>> MakeStudyRuns(const Config& config, const std::string& study,
+                                                   int count, int throttle);
 
 }  // namespace dlmfd::server

@@ -1,10 +1,6 @@
 #include "job_proto.h"
 
 #include <chrono>
-#include <filesystem>
-#include <fstream>
-
-#include "slurm_commands.h"
 
 namespace dlmfd::server {
 
@@ -61,12 +57,7 @@ v1::Job ToProto(const JobRecord& job) {
     o->set_time(a.time);
     for (const auto& text : a.overrides) o->add_overrides(text);
   }
-  // The slurm executor writes the id into the job directory, results_dir's parent.
-  if (!job.results_dir.empty()) {
-    std::ifstream slurm_id(std::filesystem::path(job.results_dir).parent_path() / kSlurmIdFile);
-    std::string id;
-    if (slurm_id >> id) out.set_slurm_job_id(id);
-  }
+  out.set_slurm_job_id(job.slurm_job_id);
   return out;
 }
 

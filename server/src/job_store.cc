@@ -100,13 +100,24 @@ const Migration kMigrations[] = {
     ALTER TABLE jobs ADD COLUMN held INTEGER NOT NULL DEFAULT 0;
     ALTER TABLE jobs ADD COLUMN disk_bytes INTEGER NOT NULL DEFAULT 0;
     )sql"},
+    // Schema 5: the slurm executor's record of a job (docs/cluster.md): the Slurm id of its latest
+    // attempt, whether that Slurm job's end is still to be recorded (the next start adopts it),
+    // its attempts in Slurm since it was submitted or retried (slurm_max_attempts) and Slurm's
+    // restart count of the current Slurm job already recorded as attempts.
+    {5, R"sql(
+    ALTER TABLE jobs ADD COLUMN slurm_job_id TEXT NOT NULL DEFAULT '';
+    ALTER TABLE jobs ADD COLUMN slurm_live INTEGER NOT NULL DEFAULT 0;
+    ALTER TABLE jobs ADD COLUMN slurm_attempts INTEGER NOT NULL DEFAULT 0;
+    ALTER TABLE jobs ADD COLUMN slurm_restarts INTEGER NOT NULL DEFAULT 0;
+    )sql"},
 };
 
 const char kColumns[] =
     "ordinal, id, name, owner, state, reason, priority, sweep_id, created_time, started_time, "
     "finished_time, step, time, end_time, attempts, results_dir, scene, overrides, "
     "client_request_id, last_seq, cancel_requested, warnings, held, disk_bytes, parameters, "
-    "attempt, previous_attempts, fresh_start";
+    "attempt, previous_attempts, fresh_start, slurm_job_id, slurm_live, slurm_attempts, "
+    "slurm_restarts";
 
 const char kSweepColumns[] =
     "ordinal, id, owner, name, tags, labels, axes, overrides, max_running, created_time";
@@ -523,6 +534,10 @@ std::vector<JobRecord> JobStore::Query(Statement& statement) {
     job.attempt = static_cast<int>(statement.Int(c++));
     job.previous_attempts = DecodeAttempts(statement.Text(c++));
     job.fresh_start = statement.Int(c++) != 0;
+    job.slurm_job_id = statement.Text(c++);
+    job.slurm_live = statement.Int(c++) != 0;
+    job.slurm_attempts = static_cast<int>(statement.Int(c++));
+    job.slurm_restarts = static_cast<int>(statement.Int(c++));
     jobs.push_back(std::move(job));
   }
   for (auto& job : jobs) {
@@ -823,6 +838,7 @@ void JobStore::Requeue(const std::vector<RequeueChange>& changes) {
     Statement update(db_,
                      "UPDATE jobs SET state = ?, reason = '', started_time = 0, finished_time = 0, "
                      "cancel_requested = 0, attempt = attempt + 1, previous_attempts = ?, "
+                     "slurm_live = 0, slurm_attempts = 0, slurm_restarts = 0, "
                      "overrides = ?, parameters = ?, warnings = ?, end_time = ?, fresh_start = ?, "
                      "step = CASE WHEN ? THEN 0 ELSE step END, "
                      "time = CASE WHEN ? THEN 0 ELSE time END WHERE id = ? AND state IN (?, ?, ?)");
@@ -854,12 +870,14 @@ void JobStore::ClearFreshStart(const std::string& id) {
 std::optional<JobRecord> JobStore::NextQueued() {
   std::lock_guard lock(mutex_);
   // A study at its max_running holds its queued jobs back; others may start meanwhile; a held job
-  // waits for its Release.
+  // waits for its Release. A job whose Slurm run outlived the daemon (slurm_live) is in Slurm's
+  // hands already: it comes first and no limit holds it back.
   Statement select(db_, std::string("SELECT ") + kColumns +
-                            " FROM jobs j WHERE state = ? AND held = 0 AND NOT EXISTS (SELECT 1 "
-                            "FROM sweeps s WHERE s.id = j.sweep_id AND s.max_running > 0 AND "
-                            "s.max_running <= (SELECT COUNT(*) FROM jobs r WHERE r.sweep_id = "
-                            "j.sweep_id AND r.state = ?)) ORDER BY priority DESC, ordinal LIMIT 1");
+                            " FROM jobs j WHERE state = ? AND held = 0 AND (slurm_live = 1 OR NOT "
+                            "EXISTS (SELECT 1 FROM sweeps s WHERE s.id = j.sweep_id AND "
+                            "s.max_running > 0 AND s.max_running <= (SELECT COUNT(*) FROM jobs r "
+                            "WHERE r.sweep_id = j.sweep_id AND r.state = ?))) "
+                            "ORDER BY slurm_live DESC, priority DESC, ordinal LIMIT 1");
   select.Bind(static_cast<int>(JobState::kQueued)).Bind(static_cast<int>(JobState::kRunning));
   auto jobs = Query(select);
   if (jobs.empty()) return std::nullopt;
@@ -886,7 +904,7 @@ bool JobStore::MarkFinished(const std::string& id, JobState state, const std::st
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
   Statement update(db_,
-                   "UPDATE jobs SET state = ?, reason = ?, finished_time = ? "
+                   "UPDATE jobs SET state = ?, reason = ?, finished_time = ?, slurm_live = 0 "
                    "WHERE id = ? AND state IN (?, ?)");
   update.Bind(static_cast<int>(state))
       .Bind(reason)
@@ -905,7 +923,7 @@ bool JobStore::CancelQueued(const std::string& id, const std::string& reason, do
   Transaction transaction(db_);
   Statement update(db_,
                    "UPDATE jobs SET state = ?, reason = ?, finished_time = ?, cancel_requested = 1 "
-                   "WHERE id = ? AND state = ?");
+                   "WHERE id = ? AND state = ? AND slurm_live = 0");
   update.Bind(static_cast<int>(JobState::kCancelled))
       .Bind(reason)
       .Bind(when)
@@ -961,7 +979,7 @@ std::vector<std::string> JobStore::RequeueRunning(double now) {
 
 bool JobStore::SetHeld(const std::string& id, bool held) {
   std::lock_guard lock(mutex_);
-  Statement update(db_, "UPDATE jobs SET held = ? WHERE id = ? AND state = ?");
+  Statement update(db_, "UPDATE jobs SET held = ? WHERE id = ? AND state = ? AND slurm_live = 0");
   update.Bind(held ? 1 : 0).Bind(id).Bind(static_cast<int>(JobState::kQueued)).Run();
   return update.Changes() == 1;
 }
@@ -1025,6 +1043,68 @@ void JobStore::Delete(const std::vector<std::string>& ids) {
           .Run();
     }
   }
+  transaction.Commit();
+}
+
+std::vector<JobRecord> JobStore::QueuedOfSweep(const std::string& sweep_id, int limit) {
+  std::lock_guard lock(mutex_);
+  Statement select(db_, std::string("SELECT ") + kColumns +
+                            " FROM jobs WHERE sweep_id = ? AND state = ? AND held = 0 AND "
+                            "slurm_live = 0 ORDER BY priority DESC, ordinal LIMIT ?");
+  select.Bind(sweep_id).Bind(static_cast<int>(JobState::kQueued)).Bind(limit);
+  return Query(select);
+}
+
+int JobStore::CountRunningOfSweep(const std::string& sweep_id) {
+  std::lock_guard lock(mutex_);
+  Statement select(db_, "SELECT COUNT(*) FROM jobs WHERE sweep_id = ? AND state = ?");
+  select.Bind(sweep_id).Bind(static_cast<int>(JobState::kRunning));
+  select.Step();
+  return static_cast<int>(select.Int(0));
+}
+
+void JobStore::SetSlurmSubmitted(const std::string& id, const std::string& slurm_job_id) {
+  std::lock_guard lock(mutex_);
+  Statement(db_,
+            "UPDATE jobs SET slurm_job_id = ?, slurm_live = 1, slurm_attempts = slurm_attempts + "
+            "1, slurm_restarts = 0 WHERE id = ?")
+      .Bind(slurm_job_id)
+      .Bind(id)
+      .Run();
+}
+
+void JobStore::EndAttempt(const std::string& id, const AttemptEnd& end) {
+  std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  std::vector<JobRecord> found;
+  {
+    Statement get(db_, std::string("SELECT ") + kColumns + " FROM jobs WHERE id = ?");
+    get.Bind(id);
+    found = Query(get);
+  }
+  if (found.empty() || found.front().state != JobState::kRunning) {
+    throw StoreError("job " + id + " is not running");
+  }
+  const JobRecord& job = found.front();
+  std::vector<AttemptRecord> attempts = job.previous_attempts;
+  attempts.push_back({job.attempt, end.state, end.reason, job.started_time, end.when, job.step,
+                      job.time, job.overrides});
+  // Slurm ran the job again by itself: it stays RUNNING, its restarts are recorded. Otherwise
+  // the daemon queues it again.
+  const bool restarted = end.slurm_restarts > 0;
+  Statement update(db_,
+                   "UPDATE jobs SET state = ?, reason = ?, attempt = attempt + 1, "
+                   "previous_attempts = ?, started_time = ?, slurm_live = ?, "
+                   "slurm_attempts = slurm_attempts + ?, slurm_restarts = ? WHERE id = ?");
+  update.Bind(static_cast<int>(restarted ? JobState::kRunning : JobState::kQueued))
+      .Bind(restarted ? std::string() : end.reason)
+      .Bind(EncodeAttempts(attempts))
+      .Bind(restarted ? end.when : 0.0)
+      .Bind(restarted ? 1 : 0)
+      .Bind(restarted ? 1 : 0)
+      .Bind(restarted ? end.slurm_restarts : 0)
+      .Bind(id)
+      .Run();
   transaction.Commit();
 }
 

@@ -13,6 +13,11 @@
 // each job flattened to dotted keys with normalised value texts (scene_values.h), which List's
 // `where` filter matches in SQL; jobs gain the point's typed parameters, the attempt number, the
 // earlier attempts and a fresh-start flag (a retry with a changed scene must not resume).
+//
+// Slurm (schema 5): the Slurm id of a job's latest attempt and whether its end is still to be
+// recorded (slurm_live): a daemon that starts adopts such a job (NextQueued gives it first) and
+// neither cancels it while queued (CancelQueued) nor holds it; attempts that end without ending
+// the job (a Slurm requeue, a TIMEOUT requeued by the daemon) are recorded by EndAttempt.
 #pragma once
 
 #include <array>
@@ -90,6 +95,22 @@ struct JobRecord {
   // The effective scene as (dotted key, normalised value) pairs: written at insert and retry, not
   // read back into records (List's `where` matches it in SQL).
   std::vector<std::pair<std::string, std::string>> scene_values;
+  // The slurm executor's (schema 5).
+  std::string slurm_job_id;  // the latest attempt's: "123", an array task "120_4"
+  bool slurm_live = false;   // submitted, its end not recorded yet: the next start adopts it
+  int slurm_attempts = 0;    // sbatch submissions and Slurm restarts since submit or retry
+  int slurm_restarts = 0;    // Slurm's restart count of slurm_job_id already recorded
+};
+
+// How one attempt of a RUNNING job ended without ending the job (JobStore::EndAttempt).
+struct AttemptEnd {
+  JobState state = JobState::kFailed;  // recorded in previous_attempts
+  std::string reason;
+  double when = 0;
+  // 0: the daemon queues the job again (a requeue after a Slurm TIMEOUT, NODE_FAIL, ...); else
+  // Slurm ran the same Slurm job again by itself (scontrol requeue) and this is its restart
+  // count: the job stays RUNNING.
+  int slurm_restarts = 0;
 };
 
 // A study axis as stored: its values (a range already expanded) and how it was given.
@@ -190,19 +211,30 @@ class JobStore {
   // Highest priority, then oldest, among QUEUED jobs that are not held and whose study is below
   // its max_running.
   std::optional<JobRecord> NextQueued();
+  // The QUEUED jobs of a study that are neither held nor in Slurm's hands, in NextQueued's order,
+  // at most limit: the slurm executor hands them to Slurm together (one job array).
+  std::vector<JobRecord> QueuedOfSweep(const std::string& sweep_id, int limit);
+  int CountRunningOfSweep(const std::string& sweep_id);
   void MarkRunning(const std::string& id, double started_time);
   // Sets a finished state; returns false when the job had already finished (nothing changed).
   bool MarkFinished(const std::string& id, JobState state, const std::string& reason, double when);
-  // QUEUED -> CANCELLED atomically; false if the job was not QUEUED.
+  // QUEUED -> CANCELLED atomically; false if the job was not QUEUED or is a Slurm job to adopt.
   bool CancelQueued(const std::string& id, const std::string& reason, double when);
   void SetCancelRequested(const std::string& id);
   void UpdateProgress(const std::string& id, int64_t step, double time, double end_time);
   void SetLastSeq(const std::string& id, int64_t last_seq);
+  // The slurm executor submitted the job's attempt as slurm_job_id: recorded, live (adopted by
+  // the next start until its end is recorded: MarkFinished and EndAttempt clear it), one more
+  // Slurm attempt.
+  void SetSlurmSubmitted(const std::string& id, const std::string& slurm_job_id);
+  // Ends the current attempt of a RUNNING job: records it in previous_attempts, attempt + 1.
+  // Throws StoreError when the job is not RUNNING.
+  void EndAttempt(const std::string& id, const AttemptEnd& end);
   // Daemon start after a crash: every RUNNING job becomes QUEUED (returned), except those whose
   // cancel was requested, which become CANCELLED.
   std::vector<std::string> RequeueRunning(double now);
   int CountRunning();
-  // Holds or releases a QUEUED job; false when the job is not QUEUED.
+  // Holds or releases a QUEUED job; false when the job is not QUEUED or is a Slurm job to adopt.
   bool SetHeld(const std::string& id, bool held);
   // Sets the priority of a QUEUED or RUNNING job; false when it has finished (or does not exist).
   bool SetPriority(const std::string& id, int priority);

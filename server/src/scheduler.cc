@@ -120,6 +120,10 @@ void Scheduler::Loop() {
       // A retried job whose previous run's thread has not ended yet: wait for it (its end wakes
       // this loop), so one job never has two runners.
       if (running_.count(next->id)) break;
+      if (SubmitsStudiesTogether(config_) && !next->sweep_id.empty() && !next->slurm_live) {
+        if (!StartStudyBatch(*next, most - static_cast<int>(running_.size()))) break;
+        continue;
+      }
       try {
         store_.MarkRunning(next->id, NowSeconds());
         next = store_.Get(next->id);
@@ -136,14 +140,45 @@ void Scheduler::Loop() {
         }
         continue;
       }
-      spdlog::info("job {}: RUNNING (attempt {}, priority {})", next->id, next->attempts,
-                   next->priority);
-      hub_.PublishState(*next);
-      auto& entry = running_[next->id];
-      entry.process = MakeJobRun(config_);
-      entry.thread = std::thread([this, job = *next] { RunJob(job); });
+      Launch(*next, MakeJobRun(config_));
     }
   }
+}
+
+void Scheduler::Launch(const JobRecord& job, std::shared_ptr<JobRun> run) {
+  spdlog::info("job {}: RUNNING (attempt {}, priority {})", job.id, job.attempts, job.priority);
+  hub_.PublishState(job);
+  auto& entry = running_[job.id];
+  entry.process = std::move(run);
+  entry.thread = std::thread([this, job] { RunJob(job); });
+}
+
+bool Scheduler::StartStudyBatch(const JobRecord& first, int room) {
+  std::vector<JobRecord> batch;
+  int throttle = 0;
+  try {
+    const auto sweep = store_.GetSweep(first.owner, first.sweep_id);
+    if (sweep && sweep->max_running > 0) {
+      // The study's jobs already in Slurm count against its limit (NextQueued gave this job, so
+      // fewer than max_running are).
+      throttle = std::max(1, sweep->max_running - store_.CountRunningOfSweep(first.sweep_id));
+    }
+    for (JobRecord& job : store_.QueuedOfSweep(first.sweep_id, room)) {
+      if (running_.count(job.id)) continue;  // its previous run's thread is still ending
+      try {
+        store_.MarkRunning(job.id, NowSeconds());
+      } catch (const std::exception&) {
+        continue;  // cancelled or held since it was read
+      }
+      if (auto started = store_.Get(job.id)) batch.push_back(std::move(*started));
+    }
+  } catch (const std::exception& e) {
+    spdlog::error("study {}: cannot start: {}", first.sweep_id, e.what());
+  }
+  if (batch.empty()) return false;
+  auto runs = MakeStudyRuns(config_, first.sweep_id, static_cast<int>(batch.size()), throttle);
+  for (size_t i = 0; i < batch.size(); ++i) Launch(batch[i], runs[i]);
+  return true;
 }
 
 void Scheduler::FinishJob(const std::string& job_id, JobState state, const std::string& reason) {
@@ -172,18 +207,21 @@ void Scheduler::RunJob(JobRecord job) {
     return running_[job.id].cancel;
   };
   int lock_fd = -1;
-  std::optional<std::pair<JobState, std::string>> outcome;
+  bool started = false;  // Start was called, or an earlier run adopted
+  std::optional<RunOutcome> outcome;
   try {
     const fs::path dir = JobDir(job.id);
     const fs::path results = ResultsDir(job.id);
     fs::create_directories(dir);
     lock_fd = LockDirectory(dir.string(), [&] { return Stopping() || cancel_requested(); });
     if (lock_fd < 0) {
-      if (!Stopping()) outcome.emplace(JobState::kCancelled, "cancelled before the solver started");
+      if (!Stopping())
+        outcome = RunOutcome{JobState::kCancelled, "cancelled before the solver started"};
     } else {
       // A run that outlived the daemon (a Slurm job) is followed, not started again; a retry with
       // another scene starts afresh: its old checkpoint must not be resumed.
-      const bool adopted = process->Adopt(dir.string());
+      const bool adopted = process->Adopt(dir.string(), job);
+      started = adopted;
       const bool resume =
           !adopted && !job.fresh_start && fs::exists(results / ResultsWriter::kCheckpoint);
       if (!resume && !adopted) fs::remove_all(results);
@@ -209,12 +247,35 @@ void Scheduler::RunJob(JobRecord job) {
       if (access(spec.solver.c_str(), X_OK) != 0) {
         throw std::runtime_error("cannot execute the solver " + spec.solver);
       }
+      // The latest progress, stored at most once a second while running and at the end of each
+      // attempt, so that a recorded attempt has the step it reached.
+      int64_t seen_step = 0;
+      double seen_time = 0;
+      bool unstored = false;
+      auto store_seen = [&] {
+        if (!unstored) return;
+        store_.UpdateProgress(job.id, seen_step, seen_time, job.end_time);
+        unstored = false;
+      };
+      process->OnRestart([&](int restarts, const std::string& reason) {
+        store_seen();
+        RecordRestart(job, restarts, reason);
+      });
       if (adopted) {
         spdlog::info("job {}: {} adopted (it outlived the daemon's previous run)", job.id,
                      process->Describe());
         hub_.Publish(job.id, LogEvent("info", process->Describe() + " adopted"));
+        // A cancel asked for while it waited to be adopted.
+        if (auto now = store_.Get(job.id); now && now->cancel_requested) {
+          std::lock_guard lock(mutex_);
+          running_[job.id].cancel = true;
+        }
       } else {
+        started = true;
         process->Start(spec);
+        if (const std::string id = process->ExecutorId(); !id.empty()) {
+          store_.SetSlurmSubmitted(job.id, id);
+        }
         spdlog::info("job {}: {} started{}", job.id, process->Describe(),
                      resume ? " with --resume" : "");
         hub_.Publish(job.id, LogEvent("info", resume ? "solver resumed from results/checkpoint.h5"
@@ -296,13 +357,20 @@ void Scheduler::RunJob(JobRecord job) {
           default:
             return;
         }
+        if (in.has_started() || in.has_progress() || in.has_finished()) {
+          seen_step = step;
+          seen_time = time;
+          unstored = true;
+        }
         if (store_progress) {
           if (end_time > 0) job.end_time = end_time;
           store_.UpdateProgress(job.id, step, time, job.end_time);
           last_store = NowSeconds();
+          unstored = false;
         }
         hub_.Publish(job.id, std::move(out));
       });
+      store_seen();
       const SolverExit exit = process->Wait();
       const bool over_wall_time = wall_limit.End();
       const bool cancelled = cancel_requested();
@@ -310,40 +378,44 @@ void Scheduler::RunJob(JobRecord job) {
       const auto exited = [&exit](int code) { return !exit.signalled && exit.code == code; };
       if (over_wall_time && !cancelled && !exited(solver::kExitCompleted) &&
           !exited(solver::kExitFailed)) {
-        outcome.emplace(JobState::kFailed,
-                        "wall time limit: the solver ran longer than max_wall_seconds = " +
-                            std::to_string(config_.max_wall_seconds) +
-                            " and was stopped (its checkpoint is kept)");
+        outcome = RunOutcome{JobState::kFailed,
+                             "wall time limit: the solver ran longer than max_wall_seconds = " +
+                                 std::to_string(config_.max_wall_seconds) +
+                                 " and was stopped (its checkpoint is kept)"};
       } else if (Stopping() && (exited(solver::kExitCancelled) || exit.signalled)) {
         spdlog::info("job {}: solver stopped for the daemon's shutdown; stays RUNNING to resume",
                      job.id);
-      } else if (auto ended = process->Outcome()) {
+      } else if (auto ended = process->Outcome(); ended && !(cancelled && ended->retryable)) {
         outcome = std::move(ended);
       } else if (exited(solver::kExitCompleted)) {
-        outcome.emplace(JobState::kCompleted, "");
+        outcome = RunOutcome{JobState::kCompleted, ""};
       } else if (exited(solver::kExitFailed)) {
         std::string reason = !reported.empty() ? reported : SummaryReason(results);
-        outcome.emplace(JobState::kFailed, reason.empty() ? "solver failed" : reason);
+        outcome = RunOutcome{JobState::kFailed, reason.empty() ? "solver failed" : reason};
       } else if (exited(solver::kExitInvalid)) {
         std::string reason = !reported.empty() ? reported : LastLogLine(dir / "solver.log");
-        outcome.emplace(JobState::kFailed, "invalid scene or arguments: " + reason);
+        outcome = RunOutcome{JobState::kFailed, "invalid scene or arguments: " + reason};
       } else if (exited(solver::kExitCancelled) ||
                  (cancelled && exit.signalled && exit.code == SIGTERM)) {
-        outcome.emplace(JobState::kCancelled, cancelled ? "cancelled" : "solver interrupted");
+        outcome = RunOutcome{JobState::kCancelled, cancelled ? "cancelled" : "solver interrupted"};
       } else if (exit.signalled) {
-        outcome.emplace(JobState::kFailed, "solver killed by signal " + std::to_string(exit.code));
+        outcome =
+            RunOutcome{JobState::kFailed, "solver killed by signal " + std::to_string(exit.code)};
       } else {
-        outcome.emplace(JobState::kFailed,
-                        "solver exited with status " + std::to_string(exit.code));
+        outcome =
+            RunOutcome{JobState::kFailed, "solver exited with status " + std::to_string(exit.code)};
       }
     }
   } catch (const std::exception& e) {
-    outcome.emplace(JobState::kFailed, e.what());
+    outcome = RunOutcome{JobState::kFailed, e.what()};
   }
+  if (!started) process->Abandon();
   if (lock_fd >= 0) close(lock_fd);
   if (outcome) {
     try {
-      FinishJob(job.id, outcome->first, outcome->second);
+      if (!(outcome->retryable && Requeue(job, *outcome))) {
+        FinishJob(job.id, outcome->state, outcome->reason);
+      }
     } catch (const std::exception& e) {
       spdlog::error("job {}: cannot record the end: {}", job.id, e.what());
     }
@@ -352,6 +424,42 @@ void Scheduler::RunJob(JobRecord job) {
   running_[job.id].done = true;
   dirty_ = true;
   changed_.notify_all();
+}
+
+void Scheduler::RecordRestart(const JobRecord& job, int restarts, const std::string& reason) {
+  try {
+    AttemptEnd end;
+    end.state = JobState::kCancelled;
+    end.reason = reason;
+    end.when = NowSeconds();
+    end.slurm_restarts = restarts;
+    store_.EndAttempt(job.id, end);
+    if (auto now = store_.Get(job.id)) {
+      spdlog::info("job {}: attempt {}: {}", job.id, now->attempt, reason);
+      hub_.Publish(job.id, LogEvent("info", reason));
+      hub_.PublishState(*now);
+    }
+  } catch (const std::exception& e) {
+    spdlog::error("job {}: cannot record Slurm's restart {}: {}", job.id, restarts, e.what());
+  }
+}
+
+bool Scheduler::Requeue(const JobRecord& job, const RunOutcome& outcome) {
+  const auto now = store_.Get(job.id);
+  if (!now || now->cancel_requested || now->state != JobState::kRunning) return false;
+  if (now->slurm_attempts >= config_.slurm.max_attempts) return false;
+  AttemptEnd end;
+  end.state = outcome.state;
+  end.reason = outcome.reason + "; queued again to resume from the checkpoint: Slurm attempt " +
+               std::to_string(now->slurm_attempts + 1) +
+               " of slurm_max_attempts = " + std::to_string(config_.slurm.max_attempts);
+  end.when = NowSeconds();
+  store_.SetDiskBytes(job.id, DirectoryBytes(JobDir(job.id)));
+  store_.EndAttempt(job.id, end);
+  spdlog::warn("job {}: {}", job.id, end.reason);
+  hub_.Publish(job.id, LogEvent("warn", end.reason));
+  if (auto queued = store_.Get(job.id)) hub_.PublishState(*queued);
+  return true;
 }
 
 void Scheduler::WaitUntilStopped(const std::string& job_id) {
@@ -407,7 +515,7 @@ void Scheduler::Stop(std::chrono::seconds grace) {
   }
   if (loop_.joinable()) loop_.join();
   std::unique_lock lock(mutex_);
-  for (auto& [id, entry] : running_) entry.process->Signal(SIGTERM);
+  for (auto& [id, entry] : running_) entry.process->Detach();
   auto all_done = [this] {
     for (auto& [id, entry] : running_) {
       if (!entry.done) return false;

@@ -15,12 +15,17 @@
 // Limits: a solver start that runs longer than max_wall_seconds gets SIGTERM (it checkpoints) and
 // the job ends FAILED naming the limit. A job's directory is counted (disk_bytes) when it ends.
 // Cancel: a QUEUED job is cancelled in the store at once; a RUNNING one gets SIGTERM (the solver
-// checkpoints and exits 130 at a step boundary). Stop (daemon shutdown) sends SIGTERM too but
-// leaves the jobs RUNNING in the store, so that the next start resumes them; a solver still alive
-// after the grace period gets SIGKILL.
+// checkpoints and exits 130 at a step boundary). Stop (daemon shutdown) detaches each run
+// (JobRun::Detach: a local solver gets SIGTERM, a Slurm job runs on and the next start adopts it)
+// and leaves the jobs RUNNING in the store, so that the next start resumes or adopts them; a
+// solver still alive after the grace period gets SIGKILL.
 // The run itself is the configured executor's (executor.h: local child processes or Slurm jobs);
-// with the slurm executor at most slurm_max_submitted jobs are handed to Slurm at once and the job
-// directories live in slurm_shared_dir when it is set.
+// with the slurm executor at most slurm_max_submitted jobs are handed to Slurm at once, the job
+// directories live in slurm_shared_dir when it is set, the queued jobs of a study go to Slurm
+// together (one job array with the study's max_running as its throttle, slurm_array.h), the
+// Slurm id is stored (JobStore::SetSlurmSubmitted), a Slurm restart of the job is a new attempt
+// (RecordRestart) and a retryable end (TIMEOUT, NODE_FAIL, PREEMPTED, BOOT_FAIL) queues the job
+// again to resume from its checkpoint while slurm_max_attempts allows (Requeue).
 #pragma once
 
 #include <atomic>
@@ -41,6 +46,7 @@
 namespace dlmfd::server {
 
 class JobRun;
+struct RunOutcome;
 
 class Scheduler {
  public:
@@ -77,7 +83,18 @@ class Scheduler {
     bool done = false;
   };
   void Loop();
+  // Gives the job a runner thread with the run (mutex_ held).
+  void Launch(const JobRecord& job, std::shared_ptr<JobRun> run);
+  // Starts the queued jobs of first's study, at most room, as one submission (a Slurm job array)
+  // with the study's throttle (mutex_ held); false when none could start.
+  bool StartStudyBatch(const JobRecord& first, int room);
   void RunJob(JobRecord job);
+  // The executor ran the job again by itself (Slurm requeued it): a new attempt, still RUNNING.
+  void RecordRestart(const JobRecord& job, int restarts, const std::string& reason);
+  // A retryable end (Slurm TIMEOUT, NODE_FAIL, PREEMPTED, ...): the job goes back to the queue to
+  // resume from its checkpoint when slurm_max_attempts allows and no cancel was asked; false
+  // otherwise (the end is recorded as it is).
+  bool Requeue(const JobRecord& job, const RunOutcome& outcome);
   void FinishJob(const std::string& job_id, JobState state, const std::string& reason);
   bool Stopping() const { return stopping_.load(); }
 

@@ -2,6 +2,7 @@
 
 #include <signal.h>
 #include <spdlog/spdlog.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include "dlmfd/solver/exit_codes.h"
 #include "event_file_tail.h"
 #include "scene_admission.h"
+#include "slurm_array.h"
 #include "slurm_states.h"
 
 namespace dlmfd::server {
@@ -19,7 +21,9 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr auto kTailInterval = std::chrono::milliseconds(500);  // between reads of events.bin
-constexpr int kUnknownPollsToFail = 3;  // polls that find the job nowhere before it is lost
+// Answers of squeue, run after the submission, that find the job nowhere (nor the jobcomp file)
+// before it is lost.
+constexpr int kUnknownPollsToFail = 3;
 
 std::string ReadFile(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -28,43 +32,62 @@ std::string ReadFile(const fs::path& path) {
 
 }  // namespace
 
-std::optional<SlurmJobStatus> SlurmQueue::Status(const std::string& id, bool* answered) {
-  std::string json;
-  {
-    std::lock_guard lock(mutex_);
-    const auto now = std::chrono::steady_clock::now();
-    if (now - polled_ >= std::chrono::seconds(settings_.poll_seconds)) {
-      polled_ = now;
-      CommandResult result = RunCommand({"squeue", "--json"});
-      answered_ = result.status == 0;
-      if (answered_) {
-        json_ = std::move(result.out);
-      } else {
-        spdlog::warn("squeue --json failed ({}): {}; keeping the last states", result.status,
-                     result.err.substr(0, 300));
+std::optional<SlurmJobStatus> SlurmQueue::Status(const std::string& id,
+                                                 Clock::time_point* answered_at) {
+  std::unique_lock lock(mutex_);
+  const auto now = Clock::now();
+  if (!polling_ && now - polled_ >= std::chrono::seconds(settings_.poll_seconds)) {
+    polling_ = true;
+    polled_ = now;
+    lock.unlock();
+    const CommandResult result = RunCommand({"squeue", "--json"});
+    std::optional<std::map<std::string, SlurmJobStatus>> jobs;
+    if (result.status == 0) {
+      try {
+        jobs = ParseSqueueJson(result.out);
+      } catch (const std::exception& e) {
+        spdlog::warn("squeue --json failed: {}; keeping the last states", e.what());
       }
+    } else {
+      spdlog::warn("squeue --json failed ({}): {}; keeping the last states", result.status,
+                   result.err.substr(0, 300));
     }
-    json = json_;
-    *answered = answered_;
-  }
-  if (!json.empty()) {
-    try {
-      if (auto status = FindInSqueueJson(json, id)) return status;
-    } catch (const std::exception& e) {
-      spdlog::warn("Slurm job {}: {}", id, e.what());
-      *answered = false;
+    lock.lock();
+    polling_ = false;
+    if (jobs) {
+      squeue_ = std::move(*jobs);
+      answered_at_ = now;
     }
   }
-  if (settings_.jobcomp_file.empty()) return std::nullopt;
-  return FindInJobComp(ReadFile(settings_.jobcomp_file), id);
+  *answered_at = answered_at_;
+  if (auto it = squeue_.find(id); it != squeue_.end()) return it->second;
+  return FromJobComp(id);
 }
 
-bool SlurmRun::Adopt(const std::string& job_dir) {
-  const fs::path dir = job_dir;
-  if (!fs::exists(dir / kSlurmLiveFile)) return false;
-  std::istringstream(ReadFile(dir / kSlurmIdFile)) >> slurm_id_;
-  if (slurm_id_.empty()) return false;
+std::optional<SlurmJobStatus> SlurmQueue::FromJobComp(const std::string& id) {
+  if (settings_.jobcomp_file.empty()) return std::nullopt;
+  struct stat info {};
+  if (stat(settings_.jobcomp_file.c_str(), &info) == 0) {
+    const auto changed = std::chrono::system_clock::from_time_t(info.st_mtim.tv_sec) +
+                         std::chrono::nanoseconds(info.st_mtim.tv_nsec);
+    if (info.st_size != jobcomp_size_ || changed != jobcomp_changed_) {
+      jobcomp_ = ParseJobComp(ReadFile(settings_.jobcomp_file));
+      jobcomp_size_ = info.st_size;
+      jobcomp_changed_ = changed;
+    }
+  }
+  if (auto it = jobcomp_.find(id); it != jobcomp_.end()) return it->second;
+  return std::nullopt;
+}
+
+bool SlurmRun::Adopt(const std::string& job_dir, const JobRecord& job) {
+  if (!job.slurm_live || job.slurm_job_id.empty()) return false;
   job_dir_ = job_dir;
+  restarts_ = job.slurm_restarts;
+  submitted_ = true;
+  followed_since_ = SlurmQueue::Clock::now();
+  std::lock_guard lock(mutex_);
+  slurm_id_ = job.slurm_job_id;
   return true;
 }
 
@@ -72,116 +95,243 @@ void SlurmRun::Start(const LaunchSpec& spec) {
   const fs::path results = spec.results_dir;
   const fs::path dir = results.parent_path();
   job_dir_ = dir.string();
-  for (const char* name :
-       {kSlurmEventsFile, kSlurmExitFile, kSlurmWarnedFile, kSlurmIdFile, kSlurmLiveFile}) {
-    fs::remove(dir / name);
-  }
   BatchJob job;
-  job.name = "dlmfd-" + dir.filename().string();
-  job.job_dir = job_dir_;
-  job.solver = config_.slurm.solver;
-  job.scene_path = spec.scene_path;
-  job.results_dir = spec.results_dir;
-  job.log_path = spec.log_path;
-  job.overrides = spec.overrides;
-  job.resume = spec.resume;
-  job.threads = config_.solver_threads > 0 ? config_.solver_threads : 1;
-  job.memory_mb =
-      AdmitScene(ReadFile(spec.scene_path), spec.overrides, config_).memory_mb + kProcessHeadroomMb;
-  const std::string script = (dir / kSlurmScript).string();
-  WriteTextAtomically(script, BatchScript(job));
-  std::vector<std::string> argv = {"sbatch"};
-  for (auto& a : SbatchArguments(job, config_.slurm, script)) argv.push_back(std::move(a));
-  const CommandResult result = RunCommand(argv);
-  if (result.status != 0) {
-    throw std::runtime_error("sbatch failed (status " + std::to_string(result.status) +
-                             "): " + result.err.substr(0, 500));
+  std::string script;
+  try {
+    for (const char* name : {kSlurmEventsFile, kSlurmExitFile, kSlurmWarnedFile, kSlurmIdFile}) {
+      fs::remove(dir / name);
+    }
+    job.name = "dlmfd-" + dir.filename().string();
+    job.job_dir = job_dir_;
+    job.solver = config_.slurm.solver;
+    job.scene_path = spec.scene_path;
+    job.results_dir = spec.results_dir;
+    job.log_path = spec.log_path;
+    job.overrides = spec.overrides;
+    job.resume = spec.resume;
+    job.threads = config_.solver_threads > 0 ? config_.solver_threads : 1;
+    job.memory_mb = AdmitScene(ReadFile(spec.scene_path), spec.overrides, config_).memory_mb +
+                    kProcessHeadroomMb;
+    script = (dir / kSlurmScript).string();
+    WriteTextAtomically(script, BatchScript(job));
+  } catch (...) {
+    if (array_) array_->Withdraw();
+    throw;
   }
-  slurm_id_ = ParseSbatchId(result.out);
-  WriteTextAtomically((dir / kSlurmIdFile).string(), slurm_id_ + "\n");
-  WriteTextAtomically((dir / kSlurmLiveFile).string(), slurm_id_ + "\n");
+  const std::string id = array_ ? array_->Join(index_, job) : Submit(job, script);
+  int pending = 0;
+  {
+    std::lock_guard lock(mutex_);
+    if (id.empty()) {
+      // Signalled before it reached Slurm: it never ran (the scheduler maps SIGTERM as for a
+      // solver stopped by it).
+      exit_.signalled = true;
+      exit_.code = SIGTERM;
+      return;
+    }
+    slurm_id_ = id;
+    pending = pending_signal_;
+  }
+  submitted_ = true;
+  followed_since_ = SlurmQueue::Clock::now();
+  WriteTextAtomically((dir / kSlurmIdFile).string(), id + "\n");
+  if (pending != 0) Signal(pending);  // a cancel that came during the submission
 }
 
-bool SlurmRun::ReadExitFile() {
-  const fs::path path = fs::path(job_dir_) / kSlurmExitFile;
-  if (!fs::exists(path)) return false;
-  int status = 0;
-  std::istringstream(ReadFile(path)) >> status;
-  // bash reports a child killed by signal N as 128 + N.
-  exit_.signalled = status > 128 && status != solver::kExitCancelled;
-  exit_.code = exit_.signalled ? status - 128 : status;
-  if (status == solver::kExitCancelled && fs::exists(fs::path(job_dir_) / kSlurmWarnedFile)) {
-    outcome_.emplace(JobState::kFailed,
-                     "Slurm: the time limit (slurm_time_limit_minutes) came: the solver "
-                     "checkpointed; retry resumes from the checkpoint");
+std::string SlurmRun::Submit(const BatchJob& job, const std::string& script) {
+  std::vector<std::string> argv = {"sbatch"};
+  for (auto& a : SbatchArguments(job, config_.slurm, script)) argv.push_back(std::move(a));
+  while (true) {
+    const CommandResult result = RunCommand(argv);
+    if (result.status == 0) return ParseSbatchId(result.out);
+    const std::string message = "sbatch failed (status " + std::to_string(result.status) +
+                                "): " + result.err.substr(0, 500);
+    if (!TransientSlurmError(result.err)) throw std::runtime_error(message);
+    spdlog::warn("{}: {}; trying again in {} s", job.name, message, kSbatchRetryInterval.count());
+    std::unique_lock lock(mutex_);
+    signalled_.wait_for(lock, kSbatchRetryInterval,
+                        [this] { return pending_signal_ != 0 || detached_; });
+    if (pending_signal_ != 0 || detached_) return {};
   }
-  return true;
+}
+
+void SlurmRun::Abandon() {
+  if (array_) array_->Withdraw();
+}
+
+std::string SlurmRun::ExecutorId() const {
+  std::lock_guard lock(mutex_);
+  return slurm_id_;
+}
+
+std::string SlurmRun::Describe() const { return "Slurm job " + ExecutorId(); }
+
+std::optional<SlurmRun::ExitFile> SlurmRun::ReadExitFile() const {
+  const fs::path path = fs::path(job_dir_) / kSlurmExitFile;
+  if (!fs::exists(path)) return std::nullopt;
+  ExitFile file;
+  std::istringstream(ReadFile(path)) >> file.status >> file.restarts;
+  return file;
+}
+
+void SlurmRun::SetExit(const ExitFile& file) {
+  // bash reports a child killed by signal N as 128 + N.
+  exit_.signalled = file.status > 128 && file.status != solver::kExitCancelled;
+  exit_.code = exit_.signalled ? file.status - 128 : file.status;
 }
 
 void SlurmRun::ReadEvents(const std::function<void(const v1::SolverEvent&)>& on_event) {
-  FollowUntilEnd(on_event);
-  // The end is known: a later start of the daemon must not adopt this job again.
-  fs::remove(fs::path(job_dir_) / kSlurmLiveFile);
+  if (submitted_) FollowUntilEnd(on_event);
+}
+
+bool SlurmRun::Sleep() {
+  std::unique_lock lock(mutex_);
+  signalled_.wait_for(lock, kTailInterval, [this] { return woken_; });
+  woken_ = false;
+  return detached_;
 }
 
 void SlurmRun::FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>& on_event) {
   EventFileTail tail((fs::path(job_dir_) / kSlurmEventsFile).string());
+  const std::string id = ExecutorId();
   std::string live_reason;
-  int unknown = 0;
+  int unknown = 0;  // answers of squeue since the submission that did not list the job
+  SlurmQueue::Clock::time_point counted{};
   auto next_poll = std::chrono::steady_clock::now();
+  auto asked = [this] {
+    std::lock_guard lock(mutex_);
+    return asked_;
+  };
   while (true) {
     tail.ReadNew(on_event);
-    if (ReadExitFile()) break;
+    // The exit file of the attempt followed (an older one is a requeued attempt's).
+    std::optional<ExitFile> exit = ReadExitFile();
+    if (exit && exit->restarts < restarts_) exit.reset();
+    if (exit) {
+      const int s = exit->status;
+      const bool warned = fs::exists(fs::path(job_dir_) / kSlurmWarnedFile);
+      if (s == solver::kExitCompleted || s == solver::kExitFailed || s == solver::kExitInvalid ||
+          asked()) {
+        SetExit(*exit);
+        return;
+      }
+      if (s == solver::kExitCancelled && warned) {
+        SetExit(*exit);
+        outcome_ = RunOutcome{JobState::kFailed,
+                              "Slurm: the time limit (slurm_time_limit_minutes) came: the solver "
+                              "checkpointed",
+                              true};
+        return;
+      }
+      // Stopped from outside the daemon: Slurm says whether the job runs again or has ended.
+    }
     if (std::chrono::steady_clock::now() >= next_poll) {
       next_poll =
           std::chrono::steady_clock::now() + std::chrono::seconds(config_.slurm.poll_seconds);
-      bool answered = false;
-      const auto status = queue_->Status(slurm_id_, &answered);
+      SlurmQueue::Clock::time_point answered_at{};
+      const auto status = queue_->Status(id, &answered_at);
       if (status) {
         unknown = 0;
+        if (status->restarts > restarts_) {
+          restarts_ = status->restarts;
+          const std::string reason = "Slurm requeued job " + id + " (restart " +
+                                     std::to_string(restarts_) +
+                                     "): the next run resumes from the checkpoint";
+          spdlog::info("{}", reason);
+          if (on_restart_) on_restart_(restarts_, reason);
+          continue;
+        }
         const SlurmStateMeaning meaning = MapSlurmState(status->state, status->reason);
         if (meaning.finished) {
           tail.ReadNew(on_event);
-          if (ReadExitFile()) break;
-          outcome_.emplace(meaning.state, meaning.reason);
-          exit_.signalled = true;
-          exit_.code = SIGKILL;
-          break;
+          exit = ReadExitFile();
+          if (exit && exit->restarts >= restarts_) {
+            SetExit(*exit);
+            if (meaning.retryable) {
+              outcome_ = RunOutcome{meaning.state, meaning.reason, true};
+            } else if (meaning.state == JobState::kCancelled &&
+                       exit->status == solver::kExitCancelled) {
+              outcome_ = RunOutcome{JobState::kCancelled,
+                                    "Slurm job " + id + " was cancelled in Slurm (scancel)", false};
+            }
+          } else {
+            outcome_ = RunOutcome{meaning.state, meaning.reason, meaning.retryable};
+            exit_.signalled = true;
+            exit_.code = SIGKILL;
+          }
+          return;
         }
         if (meaning.reason != live_reason) {
           live_reason = meaning.reason;
-          spdlog::info("Slurm job {}: {}", slurm_id_, live_reason);
+          spdlog::info("Slurm job {}: {}", id, live_reason);
         }
-      } else if (answered && ++unknown >= kUnknownPollsToFail) {
-        outcome_.emplace(JobState::kFailed, "Slurm job " + slurm_id_ +
-                                                " is neither in squeue nor in the jobcomp file "
-                                                "(slurm_jobcomp_file) and left no exit status");
-        exit_.signalled = true;
-        exit_.code = SIGKILL;
-        break;
+      } else if (answered_at > followed_since_ && answered_at > counted) {
+        counted = answered_at;
+        if (++unknown >= kUnknownPollsToFail) {
+          if (exit) {
+            SetExit(*exit);  // Slurm has forgotten it: the exit status tells
+            return;
+          }
+          outcome_ = RunOutcome{JobState::kFailed,
+                                "Slurm job " + id +
+                                    " is neither in squeue nor in the jobcomp file "
+                                    "(slurm_jobcomp_file) and left no exit status",
+                                false};
+          exit_.signalled = true;
+          exit_.code = SIGKILL;
+          return;
+        }
       }
     }
-    std::unique_lock lock(mutex_);
-    signalled_.wait_for(lock, kTailInterval, [this] { return woken_; });
-    if (woken_) {
-      woken_ = false;
-      next_poll = std::chrono::steady_clock::now();
+    if (Sleep()) {
+      // The daemon shuts down: the Slurm job runs on, the next start adopts it.
+      exit_.signalled = true;
+      exit_.code = SIGTERM;
+      return;
     }
   }
 }
 
 void SlurmRun::Signal(int signal_number) {
-  if (slurm_id_.empty()) return;
+  std::string id;
+  {
+    std::lock_guard lock(mutex_);
+    // Detached for the daemon's shutdown: the Slurm job is left to run and be adopted.
+    if (detached_) return;
+    if (slurm_id_.empty()) {
+      pending_signal_ = signal_number;
+      signalled_.notify_all();
+    } else {
+      asked_ = true;
+      id = slurm_id_;
+    }
+  }
+  if (id.empty()) {
+    if (array_) array_->Signal(index_);
+    return;
+  }
   std::vector<std::string> argv = {"scancel"};
   if (signal_number == SIGKILL) argv.push_back("--signal=KILL");
-  argv.push_back(slurm_id_);
+  argv.push_back(id);
   const CommandResult result = RunCommand(argv);
   if (result.status != 0) {
-    spdlog::warn("scancel {} failed ({}): {}", slurm_id_, result.status, result.err.substr(0, 300));
+    spdlog::warn("scancel {} failed ({}): {}", id, result.status, result.err.substr(0, 300));
   }
   std::lock_guard lock(mutex_);
   woken_ = true;
   signalled_.notify_all();
+}
+
+void SlurmRun::Detach() {
+  bool submitted = false;
+  {
+    std::lock_guard lock(mutex_);
+    detached_ = true;
+    woken_ = true;
+    submitted = !slurm_id_.empty();
+    signalled_.notify_all();
+  }
+  if (!submitted && array_) array_->Signal(index_);
 }
 
 }  // namespace dlmfd::server

@@ -1,12 +1,14 @@
 // The slurm executor's parts without a Slurm: the state map (every state of slurm 22.05), the
 // batch script and sbatch's arguments, the parsing of sbatch --parsable, of squeue --json (a real
 // output of slurm 22.05, OpenAPI v0.0.38, captured from scripts/slurm-dev.sh's Slurm) and of the
-// jobcomp file (real lines of jobcomp/filetxt), the tail of a growing event file, and the
-// executor's configuration.
+// jobcomp file (real lines of jobcomp/filetxt), of a throttled job array and of a slurmctld that
+// does not answer, the job array's script and arguments, the tail of a growing event file, the
+// executor's configuration and the cluster config example of deploy/.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -131,13 +133,78 @@ TEST(SlurmCommands, BatchScriptRunsTheSolverWithItsEventFileAndRecordsItsExit) {
   EXPECT_NE(script.find("exec 3>>events.bin\n"), std::string::npos);
   EXPECT_NE(script.find("'/opt/dlmfd/bin/dlmfd-solve' '/shared/jobs/j1/scene.in.toml' --out "
                         "'/shared/jobs/j1/results' --set 'fluid.relaxation_time=2' --set "
-                        "'title=it'\\''s' --events 3 --resume &\n"),
+                        "'title=it'\\''s' --events 3 $resume &\n"),
             std::string::npos)
       << script;
+  EXPECT_NE(script.find("resume=--resume\n"), std::string::npos) << script;
+  // Slurm ran it again (scontrol requeue): it resumes from the checkpoint of the run before.
+  EXPECT_NE(script.find("if [ \"${SLURM_RESTART_COUNT:-0}\" -gt 0 ] && [ -f "
+                        "'/shared/jobs/j1/results/checkpoint.h5' ]; then resume=--resume; fi"),
+            std::string::npos)
+      << script;
+  BatchJob fresh = Job();
+  fresh.resume = false;
+  EXPECT_NE(BatchScript(fresh).find("resume=\n"), std::string::npos);
   EXPECT_NE(script.find("trap 'touch slurm.warned; kill -TERM $solver 2>/dev/null' USR1"),
             std::string::npos);
-  EXPECT_NE(script.find("mv solver.exit.tmp solver.exit"), std::string::npos);
+  EXPECT_NE(script.find("echo \"$status ${SLURM_RESTART_COUNT:-0}\" > solver.exit.tmp && mv "
+                        "solver.exit.tmp solver.exit"),
+            std::string::npos)
+      << script;
   EXPECT_EQ(ShellQuote("a'b"), "'a'\\''b'");
+}
+
+TEST(SlurmCommands, AStudyIsOneJobArrayWhoseTasksRunTheirJobsScripts) {
+  EXPECT_EQ(ArraySpec({0, 1, 2, 3, 4, 5}, 2), "0-5%2");
+  EXPECT_EQ(ArraySpec({0, 2, 3, 4, 7}, 0), "0,2-4,7");
+  EXPECT_EQ(ArraySpec({3}, 1), "3%1");
+  EXPECT_EQ(ArrayTaskId("120", 4), "120_4");
+  BatchJob array = Job();
+  array.name = "dlmfd-s-1";
+  array.job_dir = "/shared/jobs/slurm-arrays/dlmfd-s-1-AbC123";
+  array.log_path = array.job_dir + "/task-%a.log";
+  array.array = ArraySpec({0, 1, 2}, 2);
+  const auto args = SbatchArguments(array, SlurmSettings(), array.job_dir + "/slurm.sh");
+  EXPECT_NE(std::find(args.begin(), args.end(), "--array=0-2%2"), args.end());
+  EXPECT_NE(std::find(args.begin(), args.end(), "--output=" + array.log_path), args.end());
+  EXPECT_NE(std::find(args.begin(), args.end(), "--job-name=dlmfd-s-1"), args.end());
+  // A single job has no --array.
+  for (const auto& a : SbatchArguments(Job(), SlurmSettings(), "S")) {
+    EXPECT_NE(a.rfind("--array", 0), 0u) << a;
+  }
+  const std::string script =
+      ArrayScript("dlmfd-s-1", {{0, "/shared/jobs/j-a"}, {2, "/shared/jobs/j-c d"}});
+  EXPECT_EQ(script.rfind("#!/bin/bash\n", 0), 0u);
+  EXPECT_NE(script.find("case \"$SLURM_ARRAY_TASK_ID\" in\n  0) dir='/shared/jobs/j-a' ;;\n  2) "
+                        "dir='/shared/jobs/j-c d' ;;\n"),
+            std::string::npos)
+      << script;
+  EXPECT_NE(script.find("exec /bin/bash \"$dir/slurm.sh\"\n"), std::string::npos) << script;
+}
+
+// The script itself, run by bash as Slurm would: each task runs its own job's script.
+TEST(SlurmCommands, TheArrayScriptRunsTheTasksJobScript) {
+  const fs::path dir = fs::temp_directory_path() / ("array_test_" + std::to_string(getpid()));
+  fs::create_directories(dir / "a");
+  fs::create_directories(dir / "b");
+  for (const char* name : {"a", "b"}) {
+    std::ofstream(dir / name / "slurm.sh")
+        << "echo " << name << " > " << (dir / "ran").string() << "\n";
+  }
+  const fs::path script = dir / "array.sh";
+  std::ofstream(script) << ArrayScript("t", {{0, (dir / "a").string()}, {1, (dir / "b").string()}});
+  const CommandResult one =
+      RunCommand({"env", "SLURM_ARRAY_TASK_ID=1", "/bin/bash", script.string()});
+  EXPECT_EQ(one.status, 0) << one.err;
+  std::ifstream ran(dir / "ran");
+  std::string which;
+  ran >> which;
+  EXPECT_EQ(which, "b");
+  const CommandResult none =
+      RunCommand({"env", "SLURM_ARRAY_TASK_ID=7", "/bin/bash", script.string()});
+  EXPECT_EQ(none.status, 2);
+  EXPECT_NE(none.err.find("no job for array task 7"), std::string::npos) << none.err;
+  fs::remove_all(dir);
 }
 
 TEST(SlurmCommands, ParsesSbatchParsable) {
@@ -169,6 +236,36 @@ TEST(SlurmCommands, ParsesARealSqueueJson) {
   EXPECT_EQ(array->restarts, 2);
   EXPECT_THROW(FindInSqueueJson("squeue: error: slurm_load_jobs", "1"), std::runtime_error);
   EXPECT_THROW(FindInSqueueJson(R"({"errors": []})", "1"), std::runtime_error);
+  // A slurmctld that does not answer: squeue --json exits 0 with no jobs and an error (captured
+  // with scripts/slurm-dev.sh stop-slurmctld): not an answer that no job is there.
+  try {
+    ParseSqueueJson(ReadFixture("squeue_controller_down_v0.0.38.json"));
+    ADD_FAILURE() << "an answer without a controller was taken for one";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("Failed while looking for jobs (slurm_load_jobs)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// A job array with throttle 2 (sbatch --array=0-4%2) as squeue --json of slurm 22.05 shows it:
+// tasks 0 and 1 running as jobs of their own, the array's record holding 2-4 back with the
+// reason JobArrayTaskLimit (captured from scripts/slurm-dev.sh's Slurm; paths replaced).
+TEST(SlurmCommands, ParsesARealSqueueJsonOfAThrottledArray) {
+  const std::string json = ReadFixture("squeue_array_v0.0.38.json");
+  ASSERT_FALSE(json.empty());
+  const auto jobs = ParseSqueueJson(json);
+  ASSERT_EQ(jobs.size(), 5u);
+  EXPECT_EQ(jobs.at("14_0").state, "RUNNING");
+  EXPECT_EQ(jobs.at("14_1").state, "RUNNING");
+  for (const char* id : {"14_2", "14_3", "14_4"}) {
+    EXPECT_EQ(jobs.at(id).state, "PENDING");
+    EXPECT_EQ(jobs.at(id).reason, "JobArrayTaskLimit");
+  }
+  // The array's own job id and the tasks' job ids are not the daemon's ids.
+  EXPECT_FALSE(FindInSqueueJson(json, "14"));
+  EXPECT_FALSE(FindInSqueueJson(json, "15"));
+  EXPECT_TRUE(FindInSqueueJson(json, "14_3"));
 }
 
 TEST(SlurmCommands, ParsesARealJobCompFile) {
@@ -186,6 +283,28 @@ TEST(SlurmCommands, ParsesARealJobCompFile) {
       "ExitCode=0:0\n",
       "7");
   EXPECT_EQ(last->state, "COMPLETED");
+  // Array tasks (real lines of jobcomp/filetxt, trimmed): by ArrayJobId_ArrayTaskId; the last
+  // task keeps the array's job id.
+  const std::string array =
+      "JobId=5 UserId=root(0) GroupId=root(0) Name=i15x JobState=COMPLETED Partition=debug "
+      "ArrayJobId=4 ArrayTaskId=0 DerivedExitCode=0:0 ExitCode=0:0 \n"
+      "JobId=4 UserId=root(0) GroupId=root(0) Name=i15x JobState=TIMEOUT Partition=debug "
+      "ArrayJobId=4 ArrayTaskId=5 DerivedExitCode=0:0 ExitCode=0:0 \n";
+  EXPECT_EQ(FindInJobComp(array, "4_0")->state, "COMPLETED");
+  EXPECT_EQ(FindInJobComp(array, "4_5")->state, "TIMEOUT");
+  EXPECT_FALSE(FindInJobComp(array, "4"));
+  EXPECT_FALSE(FindInJobComp(array, "5"));
+}
+
+TEST(SlurmCommands, TransientErrorsAreThoseOfAnUnreachableController) {
+  EXPECT_TRUE(TransientSlurmError(
+      "sbatch: error: Batch job submission failed: Unable to contact slurm controller (connect "
+      "failure)\n"));
+  EXPECT_TRUE(TransientSlurmError("sbatch: error: Socket timed out on send/recv operation\n"));
+  EXPECT_FALSE(TransientSlurmError(
+      "sbatch: error: Batch job submission failed: Invalid account or account/partition "
+      "combination specified\n"));
+  EXPECT_FALSE(TransientSlurmError(""));
 }
 
 TEST(SlurmCommands, RunCommandCollectsOutputAndStatus) {
@@ -255,6 +374,16 @@ TEST(SlurmConfig, ExecutorAndItsSettings) {
   EXPECT_EQ(slurm.slurm.poll_seconds, 5);
   EXPECT_EQ(slurm.slurm.max_submitted, 20);
   EXPECT_EQ(slurm.slurm.solver, "/bin/true");  // the daemon's solver unless slurm_solver is set
+  EXPECT_EQ(slurm.slurm.max_attempts, 3);
+  EXPECT_EQ(Load({"--data-dir", "/tmp/d", "--slurm-max-attempts", "1"}).slurm.max_attempts, 1);
+  try {
+    Load({"--data-dir", "/tmp/d", "--slurm-max-attempts", "0"});
+    ADD_FAILURE() << "slurm_max_attempts 0 accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("slurm_max_attempts = 0 is not allowed: expected 1 to "
+                                         "100"),
+              std::string::npos);
+  }
   try {
     Load({"--data-dir", "/tmp/d", "--executor", "pbs"});
     ADD_FAILURE() << "executor pbs accepted";
@@ -269,6 +398,34 @@ TEST(SlurmConfig, ExecutorAndItsSettings) {
                                          "3600"),
               std::string::npos);
   }
+}
+
+// deploy/dlmfdd-slurm.toml.example loads (with a tokens file of this machine, since it listens
+// beyond loopback) and sets every slurm_* key of docs/api.md's table.
+TEST(SlurmConfig, TheClusterExampleLoadsAndSetsEverySlurmKey) {
+  const std::string example = std::string(DLMFD_SOURCE_DIR) + "/deploy/dlmfdd-slurm.toml.example";
+  const fs::path tokens = fs::temp_directory_path() / ("tokens_" + std::to_string(getpid()));
+  std::ofstream(tokens) << "0123456789abcdef0123 alice\n";
+  fs::permissions(tokens, fs::perms::owner_read | fs::perms::owner_write);
+  const Config config =
+      Load({"--config", example, "--data-dir", "/tmp/d", "--tokens-file", tokens.string()});
+  fs::remove(tokens);
+  EXPECT_EQ(config.executor, "slurm");
+  EXPECT_EQ(config.slurm.shared_dir, "/shared/dlmfd/jobs");
+  EXPECT_EQ(config.slurm.solver, "/shared/dlmfd/bin/dlmfd-solve");
+  EXPECT_EQ(config.slurm.max_attempts, 3);
+  EXPECT_EQ(config.slurm.time_limit_minutes, 1440);
+  std::ifstream api(std::string(DLMFD_SOURCE_DIR) + "/docs/api.md");
+  std::ifstream in(example);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  int keys = 0;
+  for (std::string line; std::getline(api, line);) {
+    if (line.rfind("| slurm_", 0) != 0) continue;
+    const std::string key = line.substr(2, line.find(' ', 2) - 2);
+    ++keys;
+    EXPECT_NE(text.find("\n" + key + " = "), std::string::npos) << key << " is not in " << example;
+  }
+  EXPECT_EQ(keys, 12);
 }
 
 }  // namespace

@@ -108,13 +108,16 @@ TEST(JobStoreSchemaFour, AppliesOverSchemaTwoAndHoldsPriorityAndDelete) {
     store.InsertJobs({StoreJob("old")}, "local", "");
     sqlite3* db = nullptr;
     ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-    // Back to schema 2: a store written before schemas 3 and 4.
+    // Back to schema 2: a store written before schemas 3, 4 and 5.
     ASSERT_EQ(sqlite3_exec(db,
                            "ALTER TABLE jobs DROP COLUMN held; ALTER TABLE jobs DROP COLUMN "
                            "disk_bytes; DROP TABLE sweeps; DROP TABLE job_labels; DROP TABLE "
                            "job_values; ALTER TABLE jobs DROP COLUMN parameters; ALTER TABLE "
                            "jobs DROP COLUMN attempt; ALTER TABLE jobs DROP COLUMN "
                            "previous_attempts; ALTER TABLE jobs DROP COLUMN fresh_start; "
+                           "ALTER TABLE jobs DROP COLUMN slurm_job_id; ALTER TABLE jobs DROP "
+                           "COLUMN slurm_live; ALTER TABLE jobs DROP COLUMN slurm_attempts; "
+                           "ALTER TABLE jobs DROP COLUMN slurm_restarts; "
                            "UPDATE schema_version SET version = 2;",
                            nullptr, nullptr, nullptr),
               SQLITE_OK)
@@ -122,7 +125,7 @@ TEST(JobStoreSchemaFour, AppliesOverSchemaTwoAndHoldsPriorityAndDelete) {
     sqlite3_close(db);
   }
   JobStore store(path);
-  EXPECT_EQ(JobStore::SchemaVersion(), 4);
+  EXPECT_EQ(JobStore::SchemaVersion(), 5);
   auto old = store.Get("old");
   ASSERT_TRUE(old);
   EXPECT_FALSE(old->held);

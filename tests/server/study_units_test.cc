@@ -334,6 +334,10 @@ TEST(StudyStore, ASchemaTwoStoreGainsItsSweepsAsStudies) {
                            "ALTER TABLE jobs DROP COLUMN fresh_start;"
                            "ALTER TABLE jobs DROP COLUMN held;"
                            "ALTER TABLE jobs DROP COLUMN disk_bytes;"
+                           "ALTER TABLE jobs DROP COLUMN slurm_job_id;"
+                           "ALTER TABLE jobs DROP COLUMN slurm_live;"
+                           "ALTER TABLE jobs DROP COLUMN slurm_attempts;"
+                           "ALTER TABLE jobs DROP COLUMN slurm_restarts;"
                            "UPDATE schema_version SET version = 2;",
                            nullptr, nullptr, nullptr),
               SQLITE_OK);

@@ -1,0 +1,159 @@
+// The store's schema 5, the slurm executor's record of a job (real SQLite): a store of schema 4
+// gains the columns; the Slurm id is stored at submission and read back; a job whose Slurm job
+// outlived the daemon (slurm_live) comes first out of the queue, past its study's limit, and is
+// neither cancelled while queued nor held; EndAttempt records a Slurm restart (the job stays
+// RUNNING) and a requeue after a retryable end (QUEUED again); an end or a retry clears the
+// mark.
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <string>
+
+#include "job_store.h"
+#include "support/daemon_process.h"
+
+namespace dlmfd::server {
+namespace {
+
+JobRecord Job(const std::string& id, const std::string& sweep = "", int priority = 0) {
+  JobRecord job;
+  job.id = id;
+  job.name = id;
+  job.owner = "local";
+  job.sweep_id = sweep;
+  job.priority = priority;
+  job.results_dir = "/tmp/" + id;
+  job.scene = "scene";
+  return job;
+}
+
+TEST(SlurmStore, ASchemaFourStoreGainsTheSlurmColumns) {
+  dlmfd::testing::TempDir dir;
+  const std::string path = dir.path() + "/jobs.db";
+  {
+    JobStore store(path);
+    store.InsertJobs({Job("old")}, "local", "");
+  }
+  {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(db,
+                           "ALTER TABLE jobs DROP COLUMN slurm_job_id;"
+                           "ALTER TABLE jobs DROP COLUMN slurm_live;"
+                           "ALTER TABLE jobs DROP COLUMN slurm_attempts;"
+                           "ALTER TABLE jobs DROP COLUMN slurm_restarts;"
+                           "UPDATE schema_version SET version = 4;",
+                           nullptr, nullptr, nullptr),
+              SQLITE_OK)
+        << sqlite3_errmsg(db);
+    sqlite3_close(db);
+  }
+  JobStore store(path);
+  EXPECT_EQ(JobStore::SchemaVersion(), 5);
+  const auto old = store.Get("old");
+  ASSERT_TRUE(old);
+  EXPECT_EQ(old->slurm_job_id, "");
+  EXPECT_FALSE(old->slurm_live);
+  EXPECT_EQ(old->slurm_attempts, 0);
+  store.SetSlurmSubmitted("old", "77");
+  EXPECT_EQ(store.Get("old")->slurm_job_id, "77");
+}
+
+TEST(SlurmStore, ALiveSlurmJobIsAdoptedFirstAndNeitherCancelledNorHeldWhileQueued) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  SweepRecord sweep;
+  sweep.id = "s-1";
+  sweep.owner = "local";
+  sweep.max_running = 1;
+  store.InsertJobs({Job("a", "s-1"), Job("b", "s-1"), Job("c", "", 9)}, "local", "", &sweep);
+  // a and b were both in Slurm (an array with throttle 1 holds b back in Slurm, not here).
+  for (const char* id : {"a", "b"}) {
+    store.MarkRunning(id, 1.0);
+  }
+  store.SetSlurmSubmitted("a", "40_0");
+  store.SetSlurmSubmitted("b", "40_1");
+  // The daemon died; its next start queues its RUNNING jobs again.
+  EXPECT_EQ(store.RequeueRunning(2.0).size(), 2u);
+  const auto b = store.Get("b");
+  EXPECT_EQ(b->state, JobState::kQueued);
+  EXPECT_TRUE(b->slurm_live);
+  EXPECT_EQ(b->slurm_job_id, "40_1");
+  EXPECT_FALSE(store.CancelQueued("b", "cancelled", 3.0));  // Slurm still runs it
+  EXPECT_FALSE(store.SetHeld("b", true));
+  // Both live jobs come before c (priority 9), and the study's max_running = 1 holds neither.
+  auto next = store.NextQueued();
+  ASSERT_TRUE(next);
+  EXPECT_EQ(next->id, "a");
+  store.MarkRunning("a", 3.0);
+  next = store.NextQueued();
+  ASSERT_TRUE(next);
+  EXPECT_EQ(next->id, "b");
+  store.MarkRunning("b", 3.0);
+  EXPECT_EQ(store.NextQueued()->id, "c");
+  // Only jobs not in Slurm's hands form a study's next array.
+  EXPECT_TRUE(store.QueuedOfSweep("s-1", 10).empty());
+  EXPECT_EQ(store.CountRunningOfSweep("s-1"), 2);
+  // An end clears the mark.
+  ASSERT_TRUE(store.MarkFinished("a", JobState::kCompleted, "", 4.0));
+  EXPECT_FALSE(store.Get("a")->slurm_live);
+  EXPECT_EQ(store.Get("a")->slurm_job_id, "40_0");  // kept for `dlmfd show`
+}
+
+TEST(SlurmStore, AttemptsEndWithoutEndingTheJob) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  store.InsertJobs({Job("a")}, "local", "");
+  store.MarkRunning("a", 10.0);
+  store.SetSlurmSubmitted("a", "51");
+  store.UpdateProgress("a", 7, 0.07, 1.0);
+  // Slurm ran the same job again (scontrol requeue): still RUNNING, attempt 2.
+  AttemptEnd restart;
+  restart.state = JobState::kCancelled;
+  restart.reason = "Slurm requeued job 51 (restart 1)";
+  restart.when = 20.0;
+  restart.slurm_restarts = 1;
+  store.EndAttempt("a", restart);
+  auto a = store.Get("a");
+  EXPECT_EQ(a->state, JobState::kRunning);
+  EXPECT_EQ(a->attempt, 2);
+  EXPECT_TRUE(a->slurm_live);
+  EXPECT_EQ(a->slurm_restarts, 1);
+  EXPECT_EQ(a->slurm_attempts, 2);
+  EXPECT_EQ(a->started_time, 20.0);
+  ASSERT_EQ(a->previous_attempts.size(), 1u);
+  EXPECT_EQ(a->previous_attempts[0].attempt, 1);
+  EXPECT_EQ(a->previous_attempts[0].reason, restart.reason);
+  EXPECT_EQ(a->previous_attempts[0].step, 7);
+  // A TIMEOUT that the daemon requeues: QUEUED, attempt 3, no longer live, the progress kept
+  // (it resumes from the checkpoint).
+  AttemptEnd timeout;
+  timeout.state = JobState::kFailed;
+  timeout.reason = "Slurm: TIMEOUT";
+  timeout.when = 30.0;
+  store.EndAttempt("a", timeout);
+  a = store.Get("a");
+  EXPECT_EQ(a->state, JobState::kQueued);
+  EXPECT_EQ(a->reason, "Slurm: TIMEOUT");
+  EXPECT_EQ(a->attempt, 3);
+  EXPECT_FALSE(a->slurm_live);
+  EXPECT_EQ(a->step, 7);
+  ASSERT_EQ(a->previous_attempts.size(), 2u);
+  EXPECT_EQ(a->previous_attempts[1].state, JobState::kFailed);
+  EXPECT_THROW(store.EndAttempt("a", timeout), StoreError);  // not RUNNING
+  // A user's retry starts the count of Slurm attempts again.
+  store.MarkRunning("a", 40.0);
+  store.SetSlurmSubmitted("a", "60");
+  EXPECT_EQ(store.Get("a")->slurm_attempts, 3);
+  ASSERT_TRUE(store.MarkFinished("a", JobState::kFailed, "x", 50.0));
+  RequeueChange retry;
+  retry.id = "a";
+  retry.end_time = 1.0;
+  store.Requeue({retry});
+  a = store.Get("a");
+  EXPECT_EQ(a->slurm_attempts, 0);
+  EXPECT_FALSE(a->slurm_live);
+}
+
+}  // namespace
+}  // namespace dlmfd::server

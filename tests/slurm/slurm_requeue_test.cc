@@ -1,0 +1,138 @@
+// Attempts under the slurm executor against a real Slurm (scripts/slurm-dev.sh start):
+// `scontrol requeue` of a running job is a new attempt of the same Slurm job (Slurm's restart
+// count) that resumes from the checkpoint and completes, not a failure; a job that Slurm ends
+// with TIMEOUT is queued again by the daemon (slurm_max_attempts), resumes from the checkpoint
+// the solver wrote at Slurm's SIGTERM and ends COMPLETED with the result of an uninterrupted
+// run. Skipped, naming scripts/slurm-dev.sh, when no Slurm answers sinfo.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "dlmfd/solver/run_summary.h"
+#include "slurm_harness.h"
+
+namespace dlmfd::testing {
+namespace {
+namespace fs = std::filesystem;
+
+class SlurmRequeue : public SlurmTest {};
+
+// A disk settling in an Oldroyd-B liquid in a closed box, 16 x 32 cells: a free particle and a
+// polymer stress whose values a resumed run must reproduce to the last bit.
+std::string SettlingDisk(double end_time) {
+  std::ostringstream scene;
+  scene << "title = \"a disk settling in an Oldroyd-B liquid\"\n"
+           "gravity = [0.0, -981.0]\n"
+           "[domain]\nsize = [1.0, 2.0]\nh = 0.0625\n"
+           "[domain.boundary]\nleft = { type = \"wall\" }\nright = { type = \"wall\" }\n"
+           "bottom = { type = \"wall\" }\ntop = { type = \"wall\" }\n"
+           "[fluid]\ndensity = 1.0\nviscosity = 0.1\nrelaxation_time = 0.1\n"
+           "solvent_ratio = 0.5\n"
+           "[time]\ndt = 0.001\nend = "
+        << end_time
+        << "\n"
+           "[[particles]]\ncenter = [0.5, 1.5]\ndiameter = 0.25\ndensity = 1.5\n"
+           "[particle_mesh]\nh = 0.0625\n"
+           "[output]\nfields_every = 0\nparticles_every = 0.01\ncheckpoint_every = 0\n";
+  return scene.str();
+}
+
+solver::RunSummary Summary(const std::string& results) {
+  return solver::ReadRunSummary(results + "/" + solver::kRunSummaryFile);
+}
+
+TEST_F(SlurmRequeue, ScontrolRequeueIsANewAttemptThatResumesAndCompletes) {
+  ASSERT_TRUE(StartDaemon()) << daemon().Log();
+  auto* stub = this->stub();
+  const v1::Job job = Submit(*stub, CavityScene(30.0));  // 3000 steps, a few seconds
+  WaitForProgress(*stub, job.id());
+  const std::string slurm_id = Get(*stub, job.id()).slurm_job_id();
+  ASSERT_FALSE(slurm_id.empty());
+  ASSERT_EQ(std::system(("scontrol requeue " + slurm_id).c_str()), 0);
+  // Slurm holds a requeued batch job back for a while (its begin time, 2 min here); an
+  // administrator's `scontrol update StartTime=now` lets it go, as the test does not wait.
+  ASSERT_TRUE(
+      WaitUntil([&] { return Shell("squeue -h -j " + slurm_id + " -o %T") == "PENDING\n"; }));
+  ASSERT_EQ(std::system(("scontrol update JobId=" + slurm_id + " StartTime=now").c_str()), 0);
+  const v1::Job done = WaitFinished(*stub, job.id());
+  EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
+  EXPECT_EQ(done.slurm_job_id(), slurm_id);  // the same Slurm job, run again
+  EXPECT_EQ(done.step(), 3000);
+  EXPECT_EQ(done.attempt(), 2);
+  ASSERT_EQ(done.previous_attempts_size(), 1);
+  EXPECT_NE(
+      done.previous_attempts(0).reason().find("Slurm requeued job " + slurm_id + " (restart 1)"),
+      std::string::npos)
+      << done.previous_attempts(0).reason();
+  EXPECT_GT(done.previous_attempts(0).step(), 0);
+  // The second run resumed from the checkpoint the first wrote at Slurm's SIGTERM.
+  EXPECT_GT(Summary(done.results_dir()).resumed_from_step, 0);
+  EXPECT_EQ(daemon().Log().find("FAILED"), std::string::npos) << daemon().Log();
+}
+
+// Slurm enforces time limits in whole minutes, checked every 30 s; the test makes the job's
+// limit come at once without a minute of solver time: the solver is stopped (SIGSTOP, as a very
+// slow step would hold it) and the job's end time brought forward (scontrol update EndTime=now+1).
+// Slurm then times the job out: it continues the solver and sends it SIGTERM (the solver
+// checkpoints and exits 130), and ends the job TIMEOUT. The daemon queues it again; the next
+// attempt resumes from the checkpoint.
+TEST_F(SlurmRequeue, ATimeoutResumesFromTheCheckpointAndEndsAsAnUninterruptedRun) {
+  ASSERT_TRUE(StartDaemon({"--slurm-time-limit-minutes", "1", "--slurm-signal-seconds", "10",
+                           "--slurm-max-attempts", "2"}))
+      << daemon().Log();
+  auto* stub = this->stub();
+  const std::string scene = SettlingDisk(2.5);  // 2500 steps, about 2 s
+  const v1::Job job = Submit(*stub, scene);
+  WaitForProgress(*stub, job.id());
+  const std::string slurm_id = Get(*stub, job.id()).slurm_job_id();
+  ASSERT_FALSE(slurm_id.empty());
+  // "--ou[t]": the shell that runs pgrep does not match its own pattern.
+  const std::string pid = Shell("pgrep -f -- '--ou[t] " + job.results_dir() + "'");
+  ASSERT_FALSE(pid.empty()) << "no solver of " << job.results_dir();
+  ASSERT_EQ(std::system(("kill -STOP " + pid).c_str()), 0);
+  ASSERT_EQ(std::system(("scontrol update JobId=" + slurm_id + " EndTime=now+1").c_str()), 0);
+  const v1::Job done = WaitFinished(*stub, job.id());
+  EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
+  EXPECT_EQ(done.step(), 2500);
+  EXPECT_EQ(done.attempt(), 2);
+  ASSERT_EQ(done.previous_attempts_size(), 1);
+  const std::string reason = done.previous_attempts(0).reason();
+  EXPECT_TRUE(reason.find("TIMEOUT") != std::string::npos ||
+              reason.find("time limit") != std::string::npos)
+      << reason;
+  EXPECT_NE(reason.find("queued again to resume from the checkpoint: Slurm attempt 2 of "
+                        "slurm_max_attempts = 2"),
+            std::string::npos)
+      << reason;
+  EXPECT_NE(done.slurm_job_id(), slurm_id);  // a new submission
+  EXPECT_TRUE(WaitUntil([&] {
+    return Shell("grep '^JobId=" + slurm_id + " ' " + JobCompFile()).find("JobState=TIMEOUT") !=
+           std::string::npos;
+  }));
+  // The same result as a run that was never interrupted, to the last bit, with the same one
+  // OpenMP thread as the Slurm job's (--cpus-per-task=1: sums in another order differ).
+  const solver::RunSummary resumed = Summary(done.results_dir());
+  EXPECT_GT(resumed.resumed_from_step, 0);
+  const std::string scene_file = dir() + "/scene.toml";
+  std::ofstream(scene_file) << scene;
+  ASSERT_EQ(std::system(("OMP_NUM_THREADS=1 " + kSolverPath + " " + scene_file + " --out " + dir() +
+                         "/uninterrupted > /dev/null 2>&1")
+                            .c_str()),
+            0);
+  const solver::RunSummary reference = Summary(dir() + "/uninterrupted");
+  EXPECT_EQ(reference.resumed_from_step, -1);
+  EXPECT_EQ(resumed.steps, reference.steps);
+  ASSERT_EQ(resumed.particles.size(), 1u);
+  ASSERT_EQ(reference.particles.size(), 1u);
+  EXPECT_EQ(resumed.particles[0].position, reference.particles[0].position);
+  EXPECT_EQ(resumed.particles[0].velocity, reference.particles[0].velocity);
+  EXPECT_EQ(resumed.particles[0].angular_velocity, reference.particles[0].angular_velocity);
+  EXPECT_EQ(resumed.particles[0].force, reference.particles[0].force);
+}
+
+}  // namespace
+}  // namespace dlmfd::testing
