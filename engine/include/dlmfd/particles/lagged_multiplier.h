@@ -17,8 +17,12 @@
 // leak is gone, and what remains is the advection splitting's O(dt). In a transient nu lags one
 // step: the lag e^n = nu^n - nu_coupled obeys e^{n+1} = (I - P^-1 S) e^n with P the inviscid Schur
 // complement of (37) and S the viscous one of particles/viscous_constraint.h, whose spectrum lies
-// in (0, 1]: no oscillation, and the force modes of wavelength l converge in about 1 + nu dt / l^2
-// steps (the net force and torque of a free particle at once: D^-1 dominates both).
+// in (0, 1]: for fixed particles no oscillation, and the force modes of wavelength l converge in
+// about 1 + nu dt / l^2 steps. Measured limits of that argument (docs/stability.md, "The coupling
+// of the constraint"): a free disk barely heavier than the liquid (rho_d / rho_L = 1.01) oscillates
+// and blows up from nu dt / h^2 = 5.5 (stable at 3.7; 1.1 and 1.5 stable at 9.2), and a fast heavy
+// disk at Re ~ 200 (paper 5.1a) failed with least-squares advection, whose sharper, unresolved
+// boundary layer drove trA up; the accuracy envelope bounds nu dt / h^2 by 2.05.
 // Cost: one E at X^n and one spreading a step (no extra fast solve).
 // Neutrally buoyant free particles are not lagged: their stored multiplier stays the paper's nu of
 // (37) (RigidBodyConstraint::Enforce assigns it), so they keep the paper's coupling. Lagged, their
