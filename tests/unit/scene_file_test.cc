@@ -151,6 +151,22 @@ const BadScene kBadScenes[] = {
      "[domain.boundary]\ntop = { type = \"velocity\", profile = \"poiseuille\", max = [1.0, 0.0], "
      "value = [1.0, 0.0] }\n",
      "domain.boundary.top.value", "[1.0, 0.0]"},
+    {"QuarticWithANormalComponent",
+     "[domain.boundary]\ntop = { type = \"velocity\", profile = \"quartic\", max = [1.0, 0.5] }\n",
+     "domain.boundary.top.max", "[1.0, 0.5]"},
+    {"QuarticWithValue",
+     "[domain.boundary]\ntop = { type = \"velocity\", profile = \"quartic\", max = [1.0, 0.0], "
+     "value = [1.0, 0.0] }\n",
+     "domain.boundary.top.value", "[1.0, 0.0]"},
+    {"RampTimeNegative",
+     "[domain.boundary]\ntop = { type = \"velocity\", value = [1.0, 0.0], ramp_time = -0.5 }\n",
+     "domain.boundary.top.ramp_time", "-0.5"},
+    {"RampTimeOnAnInflow",
+     "[domain.boundary]\nleft = { type = \"velocity\", profile = \"poiseuille\", max = [1.0, 0.0], "
+     "ramp_time = 0.5 }\nright = { type = \"outflow\" }\n",
+     "domain.boundary.left.ramp_time", "0.5"},
+    {"RampTimeOnAWall", "[domain.boundary]\nleft = { type = \"wall\", ramp_time = 0.5 }\n",
+     "domain.boundary.left.ramp_time", "0.5"},
     {"ProfileUnknown",
      "[domain.boundary]\ntop = { type = \"velocity\", profile = \"parabolic\", max = [1.0, 0.0] "
      "}\n",
@@ -313,6 +329,23 @@ TEST(SceneFile, InflowStatesThatExistAreAccepted) {
   EXPECT_NO_THROW(ParseScene(tangential + "[fluid]\nrelaxation_time = 1.0\n"));
   // 2 lambda max Re eig(L) = 2 lambda 4 (0.5) / 1 = 4 lambda < 1.
   EXPECT_NO_THROW(ParseScene(tangential + "[fluid]\nrelaxation_time = 0.2\nsolvent_ratio = 0.5\n"));
+}
+
+// The regularised, ramped lid of Fattal & Kupferman (2005) (fluid/boundary_profile.h): tangential,
+// so no liquid enters and no inflow state limits lambda (their Wi = 3 and beyond).
+TEST(SceneFile, RegularisedLidIsReadAndNeedsNoInflowState) {
+  const Params p = ParseScene(
+      "[domain.boundary]\ntop = { type = \"velocity\", profile = \"quartic\", max = [1.0, 0.0], "
+      "ramp_time = 0.5 }\n[fluid]\nrelaxation_time = 3.0\nsolvent_ratio = 0.5\n");
+  const BoundarySide& top = p.domain.side(Side::kTop);
+  EXPECT_EQ(top.type, SideType::kVelocity);
+  EXPECT_EQ(top.profile, Profile::kQuartic);
+  EXPECT_EQ(top.max, Vec2(1.0, 0.0));
+  EXPECT_EQ(top.ramp_time, 0.5);
+  EXPECT_EQ(ParseScene("[domain.boundary]\ntop = { type = \"velocity\", value = [1.0, 0.0] }\n")
+                .domain.side(Side::kTop)
+                .ramp_time,
+            0.0);
 }
 
 TEST(SceneFile, ValidateSceneChecksParamsBuiltInCode) {
@@ -568,6 +601,7 @@ void ExpectSameParams(const Params& a, const Params& b) {
     EXPECT_EQ(a.domain.sides[s].profile, b.domain.sides[s].profile);
     EXPECT_EQ(a.domain.sides[s].value, b.domain.sides[s].value);
     EXPECT_EQ(a.domain.sides[s].max, b.domain.sides[s].max);
+    EXPECT_EQ(a.domain.sides[s].ramp_time, b.domain.sides[s].ramp_time);
   }
   EXPECT_EQ(a.fluid.density, b.fluid.density);
   EXPECT_EQ(a.fluid.viscosity, b.fluid.viscosity);
@@ -649,10 +683,12 @@ TEST(SceneFile, WriteSceneRoundTripsAwkwardValues) {
   p.domain.h = p.domain.size.x() / 4.0;
   p.domain.size.y() = p.domain.h * 6.0;
   p.domain.sides[static_cast<int>(Side::kTop)] = {SideType::kVelocity, Profile::kUniform,
-                                                  Vec2(0.1 + 0.2, -1e-300), Vec2::Zero()};
+                                                  Vec2(0.1 + 0.2, -1e-300), Vec2::Zero(), 0.0};
   p.domain.sides[static_cast<int>(Side::kLeft)] = {SideType::kPeriodic, Profile::kUniform,
-                                                   Vec2::Zero(), Vec2::Zero()};
+                                                   Vec2::Zero(), Vec2::Zero(), 0.0};
   p.domain.sides[static_cast<int>(Side::kRight)] = p.domain.sides[static_cast<int>(Side::kLeft)];
+  p.domain.sides[static_cast<int>(Side::kBottom)] = {SideType::kVelocity, Profile::kQuartic,
+                                                     Vec2::Zero(), Vec2(1.0 / 7.0, 0.0), 1.0 / 3.0};
   p.fluid.viscosity = 1.0 / 3.0;
   p.fluid.relaxation_time = 1e22;
   p.fluid.body_force = Vec2(-5e-324, 123456789012345678.0);

@@ -187,6 +187,7 @@ void Simulation::Step() {
   Impl& s = *impl_;
   const auto t0 = Clock::now();
   StepReport& report = s.report;
+  s.boundary_data.SetTime(s.state.time + s.params.time.dt);  // the data of t_{n+1}
   s.SolveStokes(report);
   s.AdvectVelocity(report);
   if (s.polymer) s.UpdateConformation(report);

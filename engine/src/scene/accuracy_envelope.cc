@@ -6,6 +6,7 @@
 
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/number_text.h"
+#include "dlmfd/fluid/boundary_profile.h"
 
 namespace dlmfd {
 namespace {
@@ -69,8 +70,7 @@ std::string AccuracyWarning::Message() const {
 double VelocityScale(const Params& p) {
   double u = 0.0;
   for (const BoundarySide& side : p.domain.sides) {
-    if (side.type != SideType::kVelocity) continue;
-    u = std::max(u, side.profile == Profile::kUniform ? side.value.norm() : side.max.norm());
+    u = std::max(u, ProfilePeakSpeed(side));  // the data at their peak over time
   }
   const double rho = p.fluid.density;
   const double g = p.gravity.norm();

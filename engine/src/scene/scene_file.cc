@@ -49,15 +49,17 @@ void ReadDomain(TableReader& top, Params& p) {
                                   {"outflow", SideType::kOutflow},
                                   {"periodic", SideType::kPeriodic}});
     if (side.type == SideType::kVelocity) {
-      side.profile =
-          Choose<Profile>(r.Key("profile"), r.String("profile", "uniform"),
-                          {{"uniform", Profile::kUniform}, {"poiseuille", Profile::kPoiseuille}});
+      side.profile = Choose<Profile>(r.Key("profile"), r.String("profile", "uniform"),
+                                     {{"uniform", Profile::kUniform},
+                                      {"poiseuille", Profile::kPoiseuille},
+                                      {"quartic", Profile::kQuartic}});
+      side.ramp_time = r.Real("ramp_time", 0.0);
       if (side.profile == Profile::kUniform) {
         side.value = r.Vector("value", std::nullopt);
-        r.RejectUnknown("type, profile, value for a uniform velocity side");
+        r.RejectUnknown("type, profile, value, ramp_time for a uniform velocity side");
       } else {
         side.max = r.Vector("max", std::nullopt);
-        r.RejectUnknown("type, profile, max for a poiseuille velocity side");
+        r.RejectUnknown("type, profile, max, ramp_time for a poiseuille or quartic velocity side");
       }
     } else {
       r.RejectUnknown(std::string("type only, for a ") + names[s] + " side of this type");

@@ -13,6 +13,7 @@
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/number_text.h"
 #include "dlmfd/core/time_stepping.h"
+#include "dlmfd/fluid/boundary_profile.h"
 #include "dlmfd/particles/collocation_points.h"
 #include "dlmfd/particles/particle_rules.h"
 #include "dlmfd/scene/accuracy_envelope.h"
@@ -87,6 +88,7 @@ void ValidateDomain(const Params& p) {
               " is periodic (periodic sides come in pairs: left with right, bottom with top)");
     }
   }
+  ValidateBoundaryProfiles(d);
 }
 
 void ValidateFluid(const FluidParams& f) {

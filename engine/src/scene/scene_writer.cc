@@ -31,11 +31,18 @@ const char* SideTypeName(SideType t) {
 std::string SideText(const BoundarySide& s) {
   std::string out = std::string("{ type = \"") + SideTypeName(s.type) + "\"";
   if (s.type == SideType::kVelocity) {
-    if (s.profile == Profile::kUniform) {
-      out += ", profile = \"uniform\", value = " + Vec(s.value);
-    } else {
-      out += ", profile = \"poiseuille\", max = " + Vec(s.max);
+    switch (s.profile) {
+      case Profile::kUniform:
+        out += ", profile = \"uniform\", value = " + Vec(s.value);
+        break;
+      case Profile::kPoiseuille:
+        out += ", profile = \"poiseuille\", max = " + Vec(s.max);
+        break;
+      case Profile::kQuartic:
+        out += ", profile = \"quartic\", max = " + Vec(s.max);
+        break;
     }
+    out += ", ramp_time = " + ExactText(s.ramp_time);
   }
   return out + " }";
 }

@@ -9,7 +9,9 @@
 // A11 = 1 + 2 (lambda g)^2, A12 = lambda g, A22 = 1 (reference README, "steady simple shear").
 // Inflow of a poiseuille side: the parabola u(s) = max 4 s (W - s) / W^2 along the side (s from its
 // first corner, W its length) is the fully developed channel flow; its state is the steady state of
-// L = max (d phi/ds) e_s^T at that point. A uniform profile has L = 0, so A_L = I. Other models
+// L = max (d phi/ds) e_s^T at that point. A uniform profile has L = 0, so A_L = I. A quartic side
+// carries tangential data only (fluid/boundary_profile.h), so it is never an inflow: its A_L is I,
+// unused. Other models
 // (relaxation_model.h): the steady homogeneous state of the same L, by the model's steady solve
 // (closed forms exist in shear for some of them; the tests compare the solve with them).
 // Not supported: a steady state that does not exist (2 lambda max Re eig L >= 1, strong extension):

@@ -15,14 +15,15 @@ namespace dlmfd {
 using Vec2 = Eigen::Vector2d;
 
 enum class SideType { kWall, kVelocity, kOutflow, kPeriodic };
-enum class Profile { kUniform, kPoiseuille };
+enum class Profile { kUniform, kPoiseuille, kQuartic };
 
 // One side of the rectangle. A wall is a velocity side with value 0.
 struct BoundarySide {
   SideType type = SideType::kWall;
   Profile profile = Profile::kUniform;
   Vec2 value = Vec2::Zero();  // uniform profile: the velocity on the side
-  Vec2 max = Vec2::Zero();    // poiseuille profile: the velocity at mid-side (zero at the corners)
+  Vec2 max = Vec2::Zero();    // poiseuille, quartic: the velocity at mid-side (zero at the corners)
+  double ramp_time = 0.0;     // > 0: the data times the tanh ramp of fluid/boundary_profile.h
 };
 
 enum class Side { kLeft = 0, kRight = 1, kBottom = 2, kTop = 3 };
