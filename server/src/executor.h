@@ -59,6 +59,9 @@ class JobRun {
   // The daemon shuts down: a run that can outlive it (a Slurm job) is left running and ReadEvents
   // returns (Wait then gives SIGTERM); the local executor's solver gets SIGTERM and checkpoints.
   virtual void Detach() { Signal(SIGTERM); }
+  // True when the executor enforces the run's time limit itself (Slurm's --time, which counts
+  // the time the job runs, not the time it waits); else the scheduler stops the run past it.
+  virtual bool LimitsTimeItself() const { return false; }
   // A line for the daemon's log once started: "solver pid 123", "Slurm job 45".
   virtual std::string Describe() const = 0;
   // The executor's id of the run once started or adopted (the Slurm job id); empty otherwise.

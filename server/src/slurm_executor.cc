@@ -110,6 +110,7 @@ void SlurmRun::Start(const LaunchSpec& spec) {
     job.overrides = spec.overrides;
     job.resume = spec.resume;
     job.threads = config_.solver_threads > 0 ? config_.solver_threads : 1;
+    job.time_limit_seconds = spec.time_limit_seconds;
     job.memory_mb = AdmitScene(ReadFile(spec.scene_path), spec.overrides, config_).memory_mb +
                     kProcessHeadroomMb;
     script = (dir / kSlurmScript).string();
@@ -217,10 +218,9 @@ void SlurmRun::FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>&
       }
       if (s == solver::kExitCancelled && warned) {
         SetExit(*exit);
-        outcome_ = RunOutcome{JobState::kFailed,
-                              "Slurm: the time limit (slurm_time_limit_minutes) came: the solver "
-                              "checkpointed",
-                              true};
+        outcome_ =
+            RunOutcome{JobState::kFailed,
+                       "Slurm: the job's time limit (--time) came: the solver checkpointed", true};
         return;
       }
       // Stopped from outside the daemon: Slurm says whether the job runs again or has ended.

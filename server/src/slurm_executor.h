@@ -5,8 +5,9 @@
 // filesystem the nodes share (slurm_shared_dir), and submits it with sbatch --parsable:
 // --job-name dlmfd-ID, --cpus-per-task the solver's threads (solver_threads, else 1), --mem the
 // scene's memory estimate (scene_admission.h, scene/scene_footprint.h) plus kProcessHeadroomMb,
-// --output the job's solver.log, --time and --signal=B:USR1@N when slurm_time_limit_minutes is
-// set, partition, account, qos and the extra options. A run of a study's batch (MakeStudyRuns)
+// --output the job's solver.log, --time and --signal=B:USR1@N from the run's time limit
+// (LaunchSpec::time_limit_seconds: the job's, else the daemon's; job_time_limit.h), partition,
+// account, qos and the extra options. A run of a study's batch (MakeStudyRuns)
 // joins its SlurmArray instead (slurm_array.h: one sbatch --array for the study's queued jobs).
 // While sbatch cannot reach slurmctld (TransientSlurmError) it is run again every
 // kSbatchRetryInterval until it answers or the run is signalled. The Slurm id ("123", an array
@@ -106,6 +107,8 @@ class SlurmRun : public JobRun {
   std::string ExecutorId() const override;
   std::optional<RunOutcome> Outcome() const override { return outcome_; }
   void OnRestart(RestartHandler handler) override { on_restart_ = std::move(handler); }
+  void OnStateChange(StateHandler handler) override { on_state_ = std::move(handler); }
+  bool LimitsTimeItself() const override { return true; }
 
  private:
   struct ExitFile {

@@ -16,6 +16,8 @@
 #include "config.h"
 #include "dlmfd/solver/event_file.h"
 #include "event_file_tail.h"
+#include "job_time_limit.h"
+#include "service_error.h"
 #include "slurm_commands.h"
 #include "slurm_states.h"
 
@@ -112,19 +114,59 @@ TEST(SlurmCommands, SbatchArgumentsCarryTheJobAndTheSettings) {
                                           "--chdir=/shared/jobs/j1",
                                           "/shared/jobs/j1/slurm.sh"};
   EXPECT_EQ(args, plain);
-  settings.time_limit_minutes = 90;
+  BatchJob limited = Job();
+  limited.time_limit_seconds = 90 * 60;
   settings.signal_seconds = 120;
   settings.partition = "short";
   settings.account = "lab";
   settings.qos = "normal";
   settings.sbatch_options = " --constraint=avx2  --exclusive ";
-  args = SbatchArguments(Job(), settings, "S");
+  args = SbatchArguments(limited, settings, "S");
   const std::vector<std::string> tail = {
       "--time=90",    "--signal=B:USR1@120", "--partition=short", "--account=lab",
       "--qos=normal", "--constraint=avx2",   "--exclusive",       "S"};
   ASSERT_GE(args.size(), tail.size());
   EXPECT_EQ(std::vector<std::string>(args.end() - static_cast<long>(tail.size()), args.end()),
             tail);
+  // Slurm counts whole minutes: 90 s is --time=2; the warning comes at most half the limit early.
+  limited.time_limit_seconds = 90;
+  args = SbatchArguments(limited, settings, "S");
+  EXPECT_NE(std::find(args.begin(), args.end(), "--time=2"), args.end());
+  EXPECT_NE(std::find(args.begin(), args.end(), "--signal=B:USR1@60"), args.end());
+}
+
+TEST(JobTimeLimitUnits, TheJobsOwnElseTheDaemonsAndNeverMore) {
+  Config config;
+  EXPECT_EQ(DaemonTimeLimit(config), 0);
+  EXPECT_EQ(EffectiveTimeLimit(0, config), 0);
+  EXPECT_EQ(EffectiveTimeLimit(600, config), 600);
+  EXPECT_NO_THROW(CheckTimeLimit(kMostTimeLimitSeconds, config));
+  EXPECT_THROW(CheckTimeLimit(kMostTimeLimitSeconds + 1, config), ServiceError);
+  EXPECT_THROW(CheckTimeLimit(-1, config), ServiceError);
+  config.max_wall_seconds = 7200;
+  EXPECT_EQ(DaemonTimeLimit(config), 7200);
+  // slurm_time_limit_minutes counts under the slurm executor only; the smaller limit wins.
+  config.slurm.time_limit_minutes = 90;
+  EXPECT_EQ(DaemonTimeLimit(config), 7200);
+  config.executor = "slurm";
+  EXPECT_EQ(DaemonTimeLimit(config), 5400);
+  EXPECT_EQ(EffectiveTimeLimit(0, config), 5400);
+  EXPECT_EQ(EffectiveTimeLimit(60, config), 60);
+  EXPECT_NO_THROW(CheckTimeLimit(5400, config));
+  try {
+    CheckTimeLimit(5401, config);
+    ADD_FAILURE() << "5401 s accepted over slurm_time_limit_minutes = 90";
+  } catch (const ServiceError& e) {
+    EXPECT_EQ(e.code(), grpc::StatusCode::INVALID_ARGUMENT);
+    EXPECT_EQ(std::string(e.what()),
+              "time_limit_seconds = 5401 is not allowed: expected 0 (the daemon's limit) or 1 to "
+              "5400 (max_wall_seconds, slurm_time_limit_minutes)");
+  }
+  EXPECT_EQ(SlurmTimeMinutes(1), 1);
+  EXPECT_EQ(SlurmTimeMinutes(60), 1);
+  EXPECT_EQ(SlurmTimeMinutes(61), 2);
+  EXPECT_EQ(SlurmSignalLead(90, 120), 120);
+  EXPECT_EQ(SlurmSignalLead(1, 120), 30);
 }
 
 TEST(SlurmCommands, BatchScriptRunsTheSolverWithItsEventFileAndRecordsItsExit) {
