@@ -263,6 +263,7 @@ void Scheduler::RunJob(JobRecord job) {
         store_seen();
         RecordRestart(job, restarts, reason);
       });
+      process->OnStateChange([&](const ExecutorState& state) { RecordState(job, state); });
       if (adopted) {
         spdlog::info("job {}: {} adopted (it outlived the daemon's previous run)", job.id,
                      process->Describe());
@@ -430,6 +431,21 @@ void Scheduler::RunJob(JobRecord job) {
   running_[job.id].done = true;
   dirty_ = true;
   changed_.notify_all();
+}
+
+void Scheduler::RecordState(const JobRecord& job, const ExecutorState& state) {
+  try {
+    if (!store_.SetSlurmState(job.id, state.state, state.reason, state.waiting, NowSeconds())) {
+      return;
+    }
+    if (auto now = store_.Get(job.id)) {
+      spdlog::info("job {}: {} (Slurm {}{})", job.id, JobStateName(ShownState(*now)), state.state,
+                   state.reason.empty() ? "" : ", " + state.reason);
+      hub_.PublishState(*now);
+    }
+  } catch (const std::exception& e) {
+    spdlog::error("job {}: cannot record Slurm's state {}: {}", job.id, state.state, e.what());
+  }
 }
 
 void Scheduler::RecordRestart(const JobRecord& job, int restarts, const std::string& reason) {

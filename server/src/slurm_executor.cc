@@ -234,6 +234,7 @@ void SlurmRun::FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>&
         unknown = 0;
         if (status->restarts > restarts_) {
           restarts_ = status->restarts;
+          live_reason.clear();  // the state of the next run is reported afresh
           const std::string reason = "Slurm requeued job " + id + " (restart " +
                                      std::to_string(restarts_) +
                                      "): the next run resumes from the checkpoint";
@@ -264,6 +265,10 @@ void SlurmRun::FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>&
         if (meaning.reason != live_reason) {
           live_reason = meaning.reason;
           spdlog::info("Slurm job {}: {}", id, live_reason);
+          if (on_state_) {
+            on_state_(ExecutorState{status->state, status->reason == "None" ? "" : status->reason,
+                                    meaning.waiting});
+          }
         }
       } else if (answered_at > followed_since_ && answered_at > counted) {
         counted = answered_at;

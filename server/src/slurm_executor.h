@@ -14,7 +14,8 @@
 // task "120_4") is written to DIR/slurm.id; the scheduler stores it (JobStore::SetSlurmSubmitted).
 // ReadEvents follows DIR/events.bin (EventFileTail) twice a second and asks the shared SlurmQueue
 // for the job's state every slurm_poll_seconds: squeue --json while Slurm lists the job, else
-// the jobcomp file. The end:
+// the jobcomp file; a change of Slurm's state or reason goes to OnStateChange's handler (PENDING
+// and the other states before a run are `waiting`: the API shows the job QUEUED). The end:
 //   - DIR/solver.exit ("STATUS RESTARTS", written by the batch script) of the current Slurm
 //     restart with status 0, 1 or 2, or after the daemon's own signal: the scheduler maps the
 //     status as for a local run;
@@ -130,6 +131,7 @@ class SlurmRun : public JobRun {
   const int index_;
   std::string job_dir_;
   RestartHandler on_restart_;
+  StateHandler on_state_;
   int restarts_ = 0;                                // Slurm's restart count of the attempt followed
   SlurmQueue::Clock::time_point followed_since_{};  // submitted or adopted
   bool submitted_ = false;

@@ -36,30 +36,31 @@ TEST(SlurmStates, EveryStateMapsOntoOursWithItsReason) {
     bool finished;
     JobState state;
     bool retryable;
+    bool waiting;  // not started: the API shows the job QUEUED
   };
   const Case cases[] = {
-      {"PENDING", false, JobState::kRunning, false},
-      {"RUNNING", false, JobState::kRunning, false},
-      {"SUSPENDED", false, JobState::kRunning, false},
-      {"COMPLETING", false, JobState::kRunning, false},
-      {"CONFIGURING", false, JobState::kRunning, false},
-      {"REQUEUED", false, JobState::kRunning, false},
-      {"REQUEUE_HOLD", false, JobState::kRunning, false},
-      {"REQUEUE_FED", false, JobState::kRunning, false},
-      {"RESV_DEL_HOLD", false, JobState::kRunning, false},
-      {"RESIZING", false, JobState::kRunning, false},
-      {"SIGNALING", false, JobState::kRunning, false},
-      {"STAGE_OUT", false, JobState::kRunning, false},
-      {"STOPPED", false, JobState::kRunning, false},
-      {"COMPLETED", true, JobState::kCompleted, false},
-      {"CANCELLED", true, JobState::kCancelled, false},
-      {"FAILED", true, JobState::kFailed, false},
-      {"TIMEOUT", true, JobState::kFailed, true},
-      {"NODE_FAIL", true, JobState::kFailed, true},
-      {"PREEMPTED", true, JobState::kFailed, true},
-      {"BOOT_FAIL", true, JobState::kFailed, true},
-      {"OUT_OF_MEMORY", true, JobState::kFailed, false},
-      {"DEADLINE", true, JobState::kFailed, false},
+      {"PENDING", false, JobState::kRunning, false, true},
+      {"RUNNING", false, JobState::kRunning, false, false},
+      {"SUSPENDED", false, JobState::kRunning, false, false},
+      {"COMPLETING", false, JobState::kRunning, false, false},
+      {"CONFIGURING", false, JobState::kRunning, false, true},
+      {"REQUEUED", false, JobState::kRunning, false, true},
+      {"REQUEUE_HOLD", false, JobState::kRunning, false, true},
+      {"REQUEUE_FED", false, JobState::kRunning, false, true},
+      {"RESV_DEL_HOLD", false, JobState::kRunning, false, true},
+      {"RESIZING", false, JobState::kRunning, false, false},
+      {"SIGNALING", false, JobState::kRunning, false, false},
+      {"STAGE_OUT", false, JobState::kRunning, false, false},
+      {"STOPPED", false, JobState::kRunning, false, false},
+      {"COMPLETED", true, JobState::kCompleted, false, false},
+      {"CANCELLED", true, JobState::kCancelled, false, false},
+      {"FAILED", true, JobState::kFailed, false, false},
+      {"TIMEOUT", true, JobState::kFailed, true, false},
+      {"NODE_FAIL", true, JobState::kFailed, true, false},
+      {"PREEMPTED", true, JobState::kFailed, true, false},
+      {"BOOT_FAIL", true, JobState::kFailed, true, false},
+      {"OUT_OF_MEMORY", true, JobState::kFailed, false, false},
+      {"DEADLINE", true, JobState::kFailed, false, false},
   };
   std::set<std::string> reasons;
   for (const Case& c : cases) {
@@ -67,6 +68,7 @@ TEST(SlurmStates, EveryStateMapsOntoOursWithItsReason) {
     EXPECT_EQ(m.finished, c.finished) << c.slurm;
     EXPECT_EQ(m.state, c.state) << c.slurm;
     EXPECT_EQ(m.retryable, c.retryable) << c.slurm;
+    EXPECT_EQ(m.waiting, c.waiting) << c.slurm;
     EXPECT_EQ(m.reason.rfind(std::string("Slurm: ") + c.slurm + ": ", 0), 0u) << m.reason;
     EXPECT_EQ(m.reason.find("does not know"), std::string::npos) << m.reason;
     reasons.insert(m.reason);
@@ -75,8 +77,15 @@ TEST(SlurmStates, EveryStateMapsOntoOursWithItsReason) {
 }
 
 TEST(SlurmStates, ReasonsFlagsAndUnknownStates) {
-  EXPECT_EQ(MapSlurmState("PENDING", "Priority").reason,
-            "Slurm: PENDING: waiting for resources or priority (Priority)");
+  EXPECT_EQ(
+      MapSlurmState("PENDING", "Priority").reason,
+      "Slurm: PENDING: waiting in Slurm's queue (Priority: jobs of higher priority go first)");
+  EXPECT_EQ(MapSlurmState("PENDING", "JobArrayTaskLimit").reason,
+            "Slurm: PENDING: waiting in Slurm's queue (JobArrayTaskLimit: the study's max_running "
+            "(the array's throttle) holds it back)");
+  // A reason without a meaning here is shown as Slurm gives it.
+  EXPECT_EQ(MapSlurmState("PENDING", "AssocGrpCpuLimit").reason,
+            "Slurm: PENDING: waiting in Slurm's queue (AssocGrpCpuLimit)");
   EXPECT_EQ(MapSlurmState("RUNNING", "None").reason, "Slurm: RUNNING: running");
   // sacct and the jobcomp file write "CANCELLED by 0"; squeue may append '+'.
   EXPECT_EQ(MapSlurmState("CANCELLED by 0", "").state, JobState::kCancelled);
