@@ -15,7 +15,9 @@
 // ReadEvents follows DIR/events.bin (EventFileTail) twice a second and asks the shared SlurmQueue
 // for the job's state every slurm_poll_seconds: squeue --json while Slurm lists the job, else
 // the jobcomp file; a change of Slurm's state or reason goes to OnStateChange's handler (PENDING
-// and the other states before a run are `waiting`: the API shows the job QUEUED). The end:
+// and the other states before a run are `waiting`: the API shows the job QUEUED); the solver's
+// first events show it running before squeue may: RUNNING then, and an older squeue answer that
+// says PENDING is ignored. The end:
 //   - DIR/solver.exit ("STATUS RESTARTS", written by the batch script) of the current Slurm
 //     restart with status 0, 1 or 2, or after the daemon's own signal: the scheduler maps the
 //     status as for a local run;
@@ -121,6 +123,8 @@ class SlurmRun : public JobRun {
   std::string Submit(const BatchJob& job, const std::string& script);
   void FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>& on_event);
   std::optional<ExitFile> ReadExitFile() const;
+  // Gives OnStateChange's handler the state when it differs from the one reported last.
+  void Report(const ExecutorState& state);
   void SetExit(const ExitFile& file);
   // Waits up to the tail interval or until signalled; true when Detach was called.
   bool Sleep();
@@ -133,6 +137,7 @@ class SlurmRun : public JobRun {
   RestartHandler on_restart_;
   StateHandler on_state_;
   int restarts_ = 0;                                // Slurm's restart count of the attempt followed
+  ExecutorState reported_;                          // Slurm's word last reported (as stored)
   SlurmQueue::Clock::time_point followed_since_{};  // submitted or adopted
   bool submitted_ = false;
   SolverExit exit_;
