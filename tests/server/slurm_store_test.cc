@@ -44,10 +44,7 @@ TEST(SlurmStore, ASchemaFourStoreGainsTheSlurmColumns) {
 TEST(SlurmStore, ALiveSlurmJobIsAdoptedFirstAndNeitherCancelledNorHeldWhileQueued) {
   dlmfd::testing::TempDir dir;
   JobStore store(dir.path() + "/jobs.db");
-  SweepRecord sweep;
-  sweep.id = "s-1";
-  sweep.owner = "local";
-  sweep.max_running = 1;
+  const SweepRecord sweep = dlmfd::testing::StoreSweep("s-1", 1);
   store.InsertJobs({StoreJob("a", "s-1"), StoreJob("b", "s-1"), StoreJob("c", "", 9)}, "local", "",
                    &sweep);
   // a and b were both in Slurm (an array with throttle 1 holds b back in Slurm, not here).
@@ -141,10 +138,7 @@ TEST(SlurmStore, AttemptsEndWithoutEndingTheJob) {
 TEST(SlurmStore, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStartsIt) {
   dlmfd::testing::TempDir dir;
   JobStore store(dir.path() + "/jobs.db");
-  SweepRecord sweep;
-  sweep.id = "s-1";
-  sweep.owner = "local";
-  sweep.max_running = 1;
+  const SweepRecord sweep = dlmfd::testing::StoreSweep("s-1", 1);
   JobRecord limited = StoreJob("a", "s-1");
   limited.time_limit_seconds = 5400;
   store.InsertJobs({limited, StoreJob("b", "s-1")}, "local", "", &sweep);

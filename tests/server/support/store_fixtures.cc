@@ -21,6 +21,14 @@ server::JobRecord StoreJob(const std::string& id, const std::string& sweep, int 
   return job;
 }
 
+server::SweepRecord StoreSweep(const std::string& id, int max_running) {
+  server::SweepRecord sweep;
+  sweep.id = id;
+  sweep.owner = "local";
+  sweep.max_running = max_running;
+  return sweep;
+}
+
 namespace {
 
 // What each schema added (job_store.cc kMigrations), undone.
