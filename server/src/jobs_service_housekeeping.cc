@@ -140,7 +140,9 @@ grpc::ServerUnaryReactor* JobsService::Delete(grpc::CallbackServerContext* conte
     const std::vector<JobRecord> jobs = SelectedJobs(user, request->sweep_id(), request->job_ids());
     if (!request->force()) {
       for (const JobRecord& job : jobs) {
-        if (job.state == JobState::kRunning) {
+        // A job that waits in Slurm has not run: it is removed from Slurm's queue as a queued one
+        // from the daemon's.
+        if (ShownState(job) == JobState::kRunning) {
           throw ServiceError(StatusCode::FAILED_PRECONDITION,
                              "job " + job.id +
                                  " is running: delete it with force (dlmfd delete --force), "

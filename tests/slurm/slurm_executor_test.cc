@@ -111,6 +111,17 @@ TEST_F(SlurmExecutor, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStarts
   EXPECT_NE(shown.find("slurm job:   " + slurm_id + " (PENDING, JobHeldUser)"), std::string::npos)
       << shown;
   EXPECT_NE(shown.find("time limit:  7m00s"), std::string::npos) << shown;
+  // Another held job is deleted without force, as a queued one: it leaves Slurm's queue.
+  v1::Job other;
+  ASSERT_TRUE(stub->Submit(Context().get(), request, &other).ok());
+  ASSERT_TRUE(WaitUntil([&] { return !Get(*stub, other.id()).slurm_job_id().empty(); }));
+  const std::string other_slurm_id = Get(*stub, other.id()).slurm_job_id();
+  v1::DeleteRequest remove;
+  remove.add_job_ids(other.id());
+  v1::DeleteResponse removed;
+  const grpc::Status deleted = stub->Delete(Context().get(), remove, &removed);
+  EXPECT_TRUE(deleted.ok()) << deleted.error_message();
+  EXPECT_EQ(Shell("squeue -h -j " + other_slurm_id + " -t PD,R -o %T 2>/dev/null"), "");
   // Released, Slurm starts it: RUNNING, from its start in Slurm.
   ASSERT_EQ(std::system(("scontrol release " + slurm_id).c_str()), 0);
   ASSERT_TRUE(WaitUntil([&] { return Get(*stub, job.id()).state() == v1::RUNNING; }))
@@ -120,11 +131,7 @@ TEST_F(SlurmExecutor, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStarts
   EXPECT_EQ(running.reason(), "");
   EXPECT_GT(running.started_time(), held.created_time());
   WaitForProgress(*stub, job.id());
-  v1::CancelRequest cancel;
-  cancel.set_job_id(job.id());
-  v1::Job cancelled;
-  ASSERT_TRUE(stub->Cancel(Context().get(), cancel, &cancelled).ok());
-  const v1::Job done = WaitFinished(*stub, job.id());
+  const v1::Job done = CancelAndWait(*stub, job.id());
   EXPECT_EQ(done.state(), v1::CANCELLED) << done.reason() << "\n" << daemon().Log();
   EXPECT_EQ(done.slurm_state(), "");
 }
@@ -134,11 +141,7 @@ TEST_F(SlurmExecutor, CancelIsScancelAndTheSolverCheckpoints) {
   auto* stub = this->stub();
   const v1::Job job = Submit(*stub, CavityScene(1.0e4));
   WaitForProgress(*stub, job.id());
-  v1::CancelRequest cancel;
-  cancel.set_job_id(job.id());
-  v1::Job cancelled;
-  ASSERT_TRUE(stub->Cancel(Context().get(), cancel, &cancelled).ok());
-  const v1::Job done = WaitFinished(*stub, job.id());
+  const v1::Job done = CancelAndWait(*stub, job.id());
   EXPECT_EQ(done.state(), v1::CANCELLED) << done.reason() << "\n" << daemon().Log();
   EXPECT_GT(done.step(), 0);
   EXPECT_TRUE(fs::exists(done.results_dir() + "/checkpoint.h5"));
