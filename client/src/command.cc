@@ -8,11 +8,13 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 
 #include "connection.h"
 #include "exit_codes.h"
 #include "progress_printer.h"
 #include "rpc_status.h"
+#include "time_limit_text.h"
 
 namespace dlmfd::cli {
 
@@ -58,6 +60,14 @@ void AddLabels(const std::vector<std::string>& texts,
   for (const std::string& text : texts) {
     const auto [key, value] = SplitKeyValue("--label", text);
     (*labels)[key] = value;
+  }
+}
+
+int64_t TimeLimitFlag(const std::string& text) {
+  try {
+    return ParseTimeLimit(text);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
   }
 }
 

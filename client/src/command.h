@@ -2,6 +2,7 @@
 // its own file, parses its own flags with CLI11, and returns a documented exit code (exit_codes.h).
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -61,6 +62,8 @@ std::pair<std::string, std::string> SplitKeyValue(const std::string& flag, const
 // Adds each "key=value" of --label to `labels`.
 void AddLabels(const std::vector<std::string>& texts,
                google::protobuf::Map<std::string, std::string>* labels);
+// --time's duration in seconds (time_limit_text.h); throws UsageError saying what is expected.
+int64_t TimeLimitFlag(const std::string& text);
 // A random 128-bit hex id that makes a retried Submit or SubmitSweep idempotent.
 std::string NewRequestId();
 // How `watch` prints on this stdout: live line on a terminal, plain otherwise, or JSON.

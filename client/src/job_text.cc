@@ -171,7 +171,18 @@ std::string JobDetails(const v1::Job& job) {
   }
   out << "results:     " << job.results_dir() << "\n";
   if (job.disk_bytes() > 0) out << "disk:        " << job.disk_bytes() << " bytes\n";
-  if (!job.slurm_job_id().empty()) out << "slurm job:   " << job.slurm_job_id() << "\n";
+  if (job.time_limit_seconds() > 0) {
+    out << "time limit:  " << FormatDuration(static_cast<double>(job.time_limit_seconds())) << " ("
+        << job.time_limit_seconds() << " s, of one run)\n";
+  }
+  if (!job.slurm_job_id().empty()) {
+    out << "slurm job:   " << job.slurm_job_id();
+    if (!job.slurm_state().empty()) {
+      out << " (" << job.slurm_state()
+          << (job.slurm_reason().empty() ? "" : ", " + job.slurm_reason()) << ")";
+    }
+    out << "\n";
+  }
   // Settings outside the accuracy envelope: what to change, and to what (docs/scenes.md).
   for (const v1::AccuracyWarning& w : job.warnings()) {
     char value[32];

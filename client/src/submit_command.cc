@@ -1,6 +1,6 @@
 // dlmfd submit SCENE [--set key=value]... [--tag T]... [--label k=v]... [--priority P] [--name N]
-// [--wait [--json]] Prints the job id on stdout (first line). Submit is retried on UNAVAILABLE with
-// the same client request id, so a retry never queues the job twice.
+// [--time DURATION] [--wait [--json]] Prints the job id on stdout (first line). Submit is retried
+// on UNAVAILABLE with the same client request id, so a retry never queues the job twice.
 #include <filesystem>
 #include <iostream>
 #include <thread>
@@ -19,7 +19,7 @@ int RunSubmit(int argc, char** argv) {
   CLI::App app{"Queue a scene file as a job."};
   ConnectionFlags connection_flags;
   AddConnectionFlags(app, connection_flags);
-  std::string scene_path, name, request_id;
+  std::string scene_path, name, request_id, time_limit;
   std::vector<std::string> overrides, tags, labels;
   int priority = 0;
   bool wait = false, json = false;
@@ -31,6 +31,8 @@ int RunSubmit(int argc, char** argv) {
   app.add_option("--priority", priority, "higher runs first, -1000..1000")
       ->check(CLI::Range(-1000, 1000));
   app.add_option("--name", name, "job name (default: the scene file's stem)");
+  app.add_option("--time", time_limit,
+                 "wall-time limit of one run: 90m, 2h, 1h30m, 1:30:00 (default: the daemon's)");
   app.add_option("--request-id", request_id, "idempotency key (default: a fresh random id)");
   app.add_flag("--wait", wait, "watch the job to the end; exit 0 if it completed, 1 if not");
   app.add_flag("--json", json, "print the job (and with --wait every event) as JSON lines");
@@ -46,6 +48,7 @@ int RunSubmit(int argc, char** argv) {
     for (const std::string& t : tags) request.add_tags(t);
     AddLabels(labels, request.mutable_labels());
     request.set_priority(priority);
+    if (!time_limit.empty()) request.set_time_limit_seconds(TimeLimitFlag(time_limit));
     request.set_name(name.empty() ? std::filesystem::path(scene_path).stem().string() : name);
     request.set_client_request_id(request_id.empty() ? NewRequestId() : request_id);
 

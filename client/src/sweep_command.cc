@@ -1,6 +1,6 @@
 // dlmfd sweep SCENE [--grid key=v1,v2,...]... [--zip key=v1,v2,...]... [--range key=A:B:N]...
 //                   [--log-range key=A:B:N]... [--set k=v]... [--tag T]... [--label k=v]...
-//                   [--max-running N] [--priority P] [--name NAME]
+//                   [--max-running N] [--priority P] [--name NAME] [--time DURATION]
 // A study: one job per point. --grid and the ranges are axes of a full grid (the Cartesian
 // product); the --zip axes step together (equal lengths) and are one axis of that grid. A key may
 // hold * for every index (`particles.*.density`). Values are split at commas outside brackets and
@@ -77,7 +77,7 @@ int RunSweep(int argc, char** argv) {
   CLI::App app{"Queue one job per point of a parameter grid."};
   ConnectionFlags connection_flags;
   AddConnectionFlags(app, connection_flags);
-  std::string scene_path, name, request_id;
+  std::string scene_path, name, request_id, time_limit;
   std::vector<std::string> grids, zips, ranges, log_ranges, overrides, tags, labels;
   int priority = 0, max_running = 0;
   bool json = false, quiet = false;
@@ -96,6 +96,8 @@ int RunSweep(int argc, char** argv) {
   app.add_option("--priority", priority, "higher runs first, -1000..1000")
       ->check(CLI::Range(-1000, 1000));
   app.add_option("--name", name, "sweep name (default: the scene file's stem)");
+  app.add_option("--time", time_limit,
+                 "each job's wall-time limit of one run: 90m, 2h, 1:30:00 (default: the daemon's)");
   app.add_option("--request-id", request_id, "idempotency key (default: a fresh random id)");
   app.add_flag("--json", json, "print the response as one JSON line");
   app.add_flag("-q,--quiet", quiet, "print only the sweep id");
@@ -117,6 +119,7 @@ int RunSweep(int argc, char** argv) {
     if (request.axes_size() == 0) throw UsageError("give at least one --grid, --zip or --range");
     AddLabels(labels, request.mutable_labels());
     request.set_max_running(max_running);
+    if (!time_limit.empty()) request.set_time_limit_seconds(TimeLimitFlag(time_limit));
     for (const std::string& o : overrides) {
       if (o.find('=') == std::string::npos) throw UsageError("--set " + o + ": expected key=value");
       request.add_overrides(o);

@@ -96,7 +96,7 @@ void EventHub::PublishState(const JobRecord& job) {
     v1::WatchEvent event;
     auto* state = event.mutable_state();
     state->set_state(channel->job.state());
-    state->set_reason(job.reason);
+    state->set_reason(channel->job.reason());  // Slurm's reason of a job that waits there
     *state->mutable_job() = channel->job;
     Deliver(*channel, std::move(event), wake);
     if (IsFinished(job.state)) {

@@ -7,6 +7,8 @@
 //   local  SolverProcess (solver_process.h): dlmfd-solve as a child process, events on a pipe.
 //   slurm  SlurmRun (slurm_executor.h): a batch script submitted with sbatch, events through a
 //          file in the shared job directory, states from squeue and the jobcomp file.
+// OnStateChange reports the executor's word on the run (a Slurm job PENDING for a reason, then
+// RUNNING): the scheduler stores it, and the API shows a run that has not started QUEUED.
 // Outcome lets an executor name an end that the solver's exit status cannot tell (a Slurm
 // TIMEOUT, NODE_FAIL or OUT_OF_MEMORY); the scheduler uses it instead of the exit-status mapping,
 // and queues the job again when it is retryable and the executor's attempts allow.
@@ -30,6 +32,13 @@
 #include "solver_process.h"
 
 namespace dlmfd::server {
+
+// What the executor says of a run in its hands (a Slurm job's squeue state and reason).
+struct ExecutorState {
+  std::string state;   // "PENDING", "RUNNING", ...
+  std::string reason;  // "JobArrayTaskLimit", ...; empty for none
+  bool waiting = false;
+};
 
 // How a run ended when the exit status does not tell it.
 struct RunOutcome {
@@ -59,6 +68,9 @@ class JobRun {
   // The daemon shuts down: a run that can outlive it (a Slurm job) is left running and ReadEvents
   // returns (Wait then gives SIGTERM); the local executor's solver gets SIGTERM and checkpoints.
   virtual void Detach() { Signal(SIGTERM); }
+  // True when the executor enforces the run's time limit itself (Slurm's --time, which counts
+  // the time the job runs, not the time it waits); else the scheduler stops the run past it.
+  virtual bool LimitsTimeItself() const { return false; }
   // A line for the daemon's log once started: "solver pid 123", "Slurm job 45".
   virtual std::string Describe() const = 0;
   // The executor's id of the run once started or adopted (the Slurm job id); empty otherwise.
@@ -69,6 +81,10 @@ class JobRun {
   // it): restarts is the executor's count of such runs, reason says why.
   using RestartHandler = std::function<void(int restarts, const std::string& reason)>;
   virtual void OnRestart(RestartHandler handler) { (void)handler; }
+  // Called on ReadEvents' thread when the executor's word on the run changes (a Slurm job's state
+  // or reason): waiting tells that the run has not started (Slurm holds it PENDING, ...).
+  using StateHandler = std::function<void(const ExecutorState& state)>;
+  virtual void OnStateChange(StateHandler handler) { (void)handler; }
 };
 
 // The run of the configured executor.

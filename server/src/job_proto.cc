@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "slurm_states.h"
+
 namespace dlmfd::server {
 
 v1::Job ToProto(const JobRecord& job) {
@@ -9,13 +11,20 @@ v1::Job ToProto(const JobRecord& job) {
   out.set_id(job.id);
   out.set_name(job.name);
   out.set_owner(job.owner);
-  out.set_state(static_cast<v1::JobState>(job.state));
+  out.set_state(static_cast<v1::JobState>(ShownState(job)));
   out.set_reason(job.reason);
+  // Slurm's word on a job in its hands: a wait (PENDING, ...) or another state than RUNNING
+  // (SUSPENDED, COMPLETING) is the reason, unless the daemon has one ("cancel requested").
+  if (job.state == JobState::kRunning && job.reason.empty() && !job.slurm_state.empty() &&
+      job.slurm_state != "RUNNING") {
+    out.set_reason(MapSlurmState(job.slurm_state, job.slurm_reason).reason);
+  }
   out.set_priority(job.priority);
   for (const auto& tag : job.tags) out.add_tags(tag);
   out.set_sweep_id(job.sweep_id);
   out.set_created_time(job.created_time);
-  out.set_started_time(job.started_time);
+  out.set_started_time(job.slurm_waiting && job.state == JobState::kRunning ? 0.0
+                                                                            : job.started_time);
   out.set_finished_time(job.finished_time);
   out.set_step(job.step);
   out.set_time(job.time);
@@ -58,6 +67,9 @@ v1::Job ToProto(const JobRecord& job) {
     for (const auto& text : a.overrides) o->add_overrides(text);
   }
   out.set_slurm_job_id(job.slurm_job_id);
+  out.set_slurm_state(job.slurm_state);
+  out.set_slurm_reason(job.slurm_reason);
+  out.set_time_limit_seconds(job.time_limit_seconds);
   return out;
 }
 

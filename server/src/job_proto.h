@@ -1,4 +1,5 @@
-// Conversions between the store's JobRecord and the API's dlmfd.v1.Job.
+// Conversions between the store's JobRecord and the API's dlmfd.v1.Job. A job that Slurm holds
+// waiting (slurm executor) is QUEUED there, its reason Slurm's (job_store.h ShownState).
 #pragma once
 
 #include "dlmfd/v1/jobs.pb.h"

@@ -110,14 +110,25 @@ const Migration kMigrations[] = {
     ALTER TABLE jobs ADD COLUMN slurm_attempts INTEGER NOT NULL DEFAULT 0;
     ALTER TABLE jobs ADD COLUMN slurm_restarts INTEGER NOT NULL DEFAULT 0;
     )sql"},
+    // Schema 6: Slurm's state and reason of a job's live Slurm job as last seen and whether Slurm
+    // holds it waiting (the API shows such a job QUEUED), and the job's own wall-time limit.
+    {6, R"sql(
+    ALTER TABLE jobs ADD COLUMN slurm_state TEXT NOT NULL DEFAULT '';
+    ALTER TABLE jobs ADD COLUMN slurm_reason TEXT NOT NULL DEFAULT '';
+    ALTER TABLE jobs ADD COLUMN slurm_waiting INTEGER NOT NULL DEFAULT 0;
+    ALTER TABLE jobs ADD COLUMN time_limit_seconds INTEGER NOT NULL DEFAULT 0;
+    )sql"},
 };
+
+// The state the API shows: a RUNNING job that Slurm holds waiting is QUEUED (ShownState).
+const char kShownState[] = "(CASE WHEN state = 2 AND slurm_waiting = 1 THEN 1 ELSE state END)";
 
 const char kColumns[] =
     "ordinal, id, name, owner, state, reason, priority, sweep_id, created_time, started_time, "
     "finished_time, step, time, end_time, attempts, results_dir, scene, overrides, "
     "client_request_id, last_seq, cancel_requested, warnings, held, disk_bytes, parameters, "
     "attempt, previous_attempts, fresh_start, slurm_job_id, slurm_live, slurm_attempts, "
-    "slurm_restarts";
+    "slurm_restarts, slurm_state, slurm_reason, slurm_waiting, time_limit_seconds";
 
 const char kSweepColumns[] =
     "ordinal, id, owner, name, tags, labels, axes, overrides, max_running, created_time";
@@ -538,6 +549,10 @@ std::vector<JobRecord> JobStore::Query(Statement& statement) {
     job.slurm_live = statement.Int(c++) != 0;
     job.slurm_attempts = static_cast<int>(statement.Int(c++));
     job.slurm_restarts = static_cast<int>(statement.Int(c++));
+    job.slurm_state = statement.Text(c++);
+    job.slurm_reason = statement.Text(c++);
+    job.slurm_waiting = statement.Int(c++) != 0;
+    job.time_limit_seconds = statement.Int(c++);
     jobs.push_back(std::move(job));
   }
   for (auto& job : jobs) {
@@ -630,8 +645,8 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
     Statement insert(db_,
                      "INSERT INTO jobs (id, name, owner, state, reason, priority, sweep_id, "
                      "created_time, end_time, results_dir, scene, overrides, client_request_id, "
-                     "warnings, parameters, attempt) "
-                     "VALUES (?, ?, ?, ?, '', ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+                     "warnings, parameters, attempt, time_limit_seconds) "
+                     "VALUES (?, ?, ?, ?, '', ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
     insert.Bind(job.id)
         .Bind(job.name)
         .Bind(job.owner)
@@ -646,7 +661,8 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
         .Bind(job.client_request_id)
         .Bind(EncodeWarnings(job.warnings))
         .Bind(EncodeParameters(job.parameters))
-        .Bind(job.attempt);
+        .Bind(job.attempt)
+        .Bind(job.time_limit_seconds);
     insert.Run();
     job.ordinal = sqlite3_last_insert_rowid(db_);
     for (const auto& tag : job.tags) {
@@ -697,7 +713,7 @@ std::vector<JobRecord> JobStore::List(const ListFilter& filter) {
   std::lock_guard lock(mutex_);
   std::string sql = std::string("SELECT ") + kColumns + " FROM jobs WHERE owner = ?";
   if (!filter.states.empty()) {
-    sql += " AND state IN (";
+    sql += std::string(" AND ") + kShownState + " IN (";
     for (size_t i = 0; i < filter.states.size(); ++i) sql += i ? ", ?" : "?";
     sql += ")";
   }
@@ -792,11 +808,13 @@ std::vector<SweepRecord> JobStore::ListSweeps(const std::string& owner, const st
 SweepStats JobStore::StatsOfSweep(const std::string& owner, const std::string& sweep_id) {
   std::lock_guard lock(mutex_);
   Statement select(db_,
-                   "SELECT state, COUNT(*), "
-                   "SUM(CASE WHEN state IN (?, ?, ?) THEN 1.0 WHEN end_time > 0 "
-                   "THEN MIN(1.0, MAX(0.0, time / end_time)) ELSE 0.0 END), "
-                   "MIN(NULLIF(started_time, 0)), MAX(finished_time) "
-                   "FROM jobs WHERE owner = ? AND sweep_id = ? GROUP BY state");
+                   std::string("SELECT ") + kShownState +
+                       ", COUNT(*), "
+                       "SUM(CASE WHEN state IN (?, ?, ?) THEN 1.0 WHEN end_time > 0 "
+                       "THEN MIN(1.0, MAX(0.0, time / end_time)) ELSE 0.0 END), "
+                       "MIN(CASE WHEN slurm_waiting = 1 THEN NULL ELSE NULLIF(started_time, 0) "
+                       "END), MAX(finished_time) "
+                       "FROM jobs WHERE owner = ? AND sweep_id = ? GROUP BY 1");
   select.Bind(static_cast<int>(JobState::kCompleted))
       .Bind(static_cast<int>(JobState::kFailed))
       .Bind(static_cast<int>(JobState::kCancelled))
@@ -839,7 +857,8 @@ void JobStore::Requeue(const std::vector<RequeueChange>& changes) {
                      "UPDATE jobs SET state = ?, reason = '', started_time = 0, finished_time = 0, "
                      "cancel_requested = 0, attempt = attempt + 1, previous_attempts = ?, "
                      "slurm_live = 0, slurm_attempts = 0, slurm_restarts = 0, "
-                     "overrides = ?, parameters = ?, warnings = ?, end_time = ?, fresh_start = ?, "
+                     "slurm_state = '', slurm_reason = '', slurm_waiting = 0, overrides = ?, "
+                     "parameters = ?, warnings = ?, end_time = ?, fresh_start = ?, "
                      "step = CASE WHEN ? THEN 0 ELSE step END, "
                      "time = CASE WHEN ? THEN 0 ELSE time END WHERE id = ? AND state IN (?, ?, ?)");
     update.Bind(static_cast<int>(JobState::kQueued))
@@ -904,7 +923,8 @@ bool JobStore::MarkFinished(const std::string& id, JobState state, const std::st
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
   Statement update(db_,
-                   "UPDATE jobs SET state = ?, reason = ?, finished_time = ?, slurm_live = 0 "
+                   "UPDATE jobs SET state = ?, reason = ?, finished_time = ?, slurm_live = 0, "
+                   "slurm_state = '', slurm_reason = '', slurm_waiting = 0 "
                    "WHERE id = ? AND state IN (?, ?)");
   update.Bind(static_cast<int>(state))
       .Bind(reason)
@@ -1067,10 +1087,33 @@ void JobStore::SetSlurmSubmitted(const std::string& id, const std::string& slurm
   std::lock_guard lock(mutex_);
   Statement(db_,
             "UPDATE jobs SET slurm_job_id = ?, slurm_live = 1, slurm_attempts = slurm_attempts + "
-            "1, slurm_restarts = 0 WHERE id = ?")
+            "1, slurm_restarts = 0, slurm_state = 'PENDING', slurm_reason = '', "
+            "slurm_waiting = 1 WHERE id = ?")
       .Bind(slurm_job_id)
       .Bind(id)
       .Run();
+}
+
+bool JobStore::SetSlurmState(const std::string& id, const std::string& slurm_state,
+                             const std::string& slurm_reason, bool waiting, double now) {
+  std::lock_guard lock(mutex_);
+  Statement update(db_,
+                   "UPDATE jobs SET slurm_state = ?, slurm_reason = ?, started_time = CASE WHEN "
+                   "slurm_waiting = 1 AND ? = 0 THEN ? ELSE started_time END, slurm_waiting = ? "
+                   "WHERE id = ? AND state = ? AND slurm_live = 1 AND (slurm_state != ? OR "
+                   "slurm_reason != ? OR slurm_waiting != ?)");
+  update.Bind(slurm_state)
+      .Bind(slurm_reason)
+      .Bind(waiting ? 1 : 0)
+      .Bind(now)
+      .Bind(waiting ? 1 : 0)
+      .Bind(id)
+      .Bind(static_cast<int>(JobState::kRunning))
+      .Bind(slurm_state)
+      .Bind(slurm_reason)
+      .Bind(waiting ? 1 : 0);
+  update.Run();
+  return update.Changes() == 1;
 }
 
 void JobStore::EndAttempt(const std::string& id, const AttemptEnd& end) {
@@ -1095,7 +1138,8 @@ void JobStore::EndAttempt(const std::string& id, const AttemptEnd& end) {
   Statement update(db_,
                    "UPDATE jobs SET state = ?, reason = ?, attempt = attempt + 1, "
                    "previous_attempts = ?, started_time = ?, slurm_live = ?, "
-                   "slurm_attempts = slurm_attempts + ?, slurm_restarts = ? WHERE id = ?");
+                   "slurm_attempts = slurm_attempts + ?, slurm_restarts = ?, slurm_state = '', "
+                   "slurm_reason = '', slurm_waiting = 0 WHERE id = ?");
   update.Bind(static_cast<int>(restarted ? JobState::kRunning : JobState::kQueued))
       .Bind(restarted ? std::string() : end.reason)
       .Bind(EncodeAttempts(attempts))

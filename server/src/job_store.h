@@ -18,6 +18,10 @@
 // recorded (slurm_live): a daemon that starts adopts such a job (NextQueued gives it first) and
 // neither cancels it while queued (CancelQueued) nor holds it; attempts that end without ending
 // the job (a Slurm requeue, a TIMEOUT requeued by the daemon) are recorded by EndAttempt.
+// Schema 6: Slurm's state and reason of the live Slurm job and whether Slurm holds it waiting
+// (SetSlurmState). The stored state stays RUNNING (the job is in the executor's hands: the
+// scheduler's count); the API shows a waiting one QUEUED (ShownState; List's states filter and
+// StatsOfSweep's counts go by the shown state). And the job's own wall-time limit.
 #pragma once
 
 #include <array>
@@ -100,7 +104,18 @@ struct JobRecord {
   bool slurm_live = false;   // submitted, its end not recorded yet: the next start adopts it
   int slurm_attempts = 0;    // sbatch submissions and Slurm restarts since submit or retry
   int slurm_restarts = 0;    // Slurm's restart count of slurm_job_id already recorded
+  // Schema 6: Slurm's word on the live Slurm job (squeue's job_state and state_reason) and
+  // whether Slurm holds it waiting: the API shows such a RUNNING job QUEUED (ShownState).
+  std::string slurm_state, slurm_reason;
+  bool slurm_waiting = false;
+  int64_t time_limit_seconds = 0;  // the job's own wall-time limit of one run; 0: the daemon's
 };
+
+// The state the API shows: a job in the executor's hands that Slurm holds waiting (PENDING and
+// the like) is QUEUED; else the stored state.
+inline JobState ShownState(const JobRecord& job) {
+  return job.state == JobState::kRunning && job.slurm_waiting ? JobState::kQueued : job.state;
+}
 
 // How one attempt of a RUNNING job ended without ending the job (JobStore::EndAttempt).
 struct AttemptEnd {
@@ -139,7 +154,7 @@ struct SweepRecord {
 
 // Where a study's jobs stand, from one aggregate query.
 struct SweepStats {
-  std::array<int, 6> count{};  // indexed by JobState (0 unused)
+  std::array<int, 6> count{};  // indexed by the shown JobState (ShownState; 0 unused)
   int jobs = 0;
   double progress_sum = 0;  // sum over jobs of min(1, time / end_time), finished jobs 1
   double first_started_time = 0, last_finished_time = 0;
@@ -227,6 +242,11 @@ class JobStore {
   // the next start until its end is recorded: MarkFinished and EndAttempt clear it), one more
   // Slurm attempt.
   void SetSlurmSubmitted(const std::string& id, const std::string& slurm_job_id);
+  // Slurm's word on the RUNNING job's live Slurm job: its state, reason and whether Slurm holds it
+  // waiting; started_time becomes `now` when a waiting job starts. Submission sets PENDING and
+  // waiting; an end (MarkFinished, EndAttempt, Requeue) clears them. False when nothing changed.
+  bool SetSlurmState(const std::string& id, const std::string& slurm_state,
+                     const std::string& slurm_reason, bool waiting, double now);
   // Ends the current attempt of a RUNNING job: records it in previous_attempts, attempt + 1.
   // Throws StoreError when the job is not RUNNING.
   void EndAttempt(const std::string& id, const AttemptEnd& end);

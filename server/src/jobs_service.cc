@@ -10,6 +10,7 @@
 #include <set>
 
 #include "job_proto.h"
+#include "job_time_limit.h"
 #include "result_files.h"
 #include "retry_plan.h"
 #include "rpc_reply.h"
@@ -294,6 +295,7 @@ grpc::ServerUnaryReactor* JobsService::Submit(grpc::CallbackServerContext* conte
     CheckLabels(request->name(), tags, request->priority(), request->client_request_id(),
                 overrides.size());
     CheckJobLabels(request->labels());
+    CheckTimeLimit(request->time_limit_seconds(), config_);
     const std::string key =
         request->client_request_id().empty() ? "" : "submit:" + request->client_request_id();
     if (!key.empty()) {
@@ -309,6 +311,7 @@ grpc::ServerUnaryReactor* JobsService::Submit(grpc::CallbackServerContext* conte
     JobRecord job = NewJob(user, request->scene(), overrides, request->name(), tags,
                            request->priority(), ToMap(request->labels()));
     job.client_request_id = request->client_request_id();
+    job.time_limit_seconds = request->time_limit_seconds();
     auto result = store_.InsertJobs({job}, user, key);
     *reply = ToProto(result.jobs.front());
     if (!result.existed) {
@@ -431,6 +434,7 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
     CheckJobLabels(request->labels());
     Require(request->max_running() >= 0, "max_running = " + std::to_string(request->max_running()) +
                                              " is not allowed: expected 0 (no limit) or more");
+    CheckTimeLimit(request->time_limit_seconds(), config_);
     for (const auto& axis : request->axes()) {
       RequireNoNul("axes: a key", axis.key());
       RequireNoNul("axes: " + axis.key() + " zip", axis.zip());
@@ -469,6 +473,7 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
       jobs.back().sweep_id = sweep_id;
       jobs.back().client_request_id = request->client_request_id();
       jobs.back().parameters = point.parameters;
+      jobs.back().time_limit_seconds = request->time_limit_seconds();
     }
     SweepRecord sweep;
     sweep.id = sweep_id;

@@ -140,7 +140,9 @@ grpc::ServerUnaryReactor* JobsService::Delete(grpc::CallbackServerContext* conte
     const std::vector<JobRecord> jobs = SelectedJobs(user, request->sweep_id(), request->job_ids());
     if (!request->force()) {
       for (const JobRecord& job : jobs) {
-        if (job.state == JobState::kRunning) {
+        // A job that waits in Slurm has not run: it is removed from Slurm's queue as a queued one
+        // from the daemon's.
+        if (ShownState(job) == JobState::kRunning) {
           throw ServiceError(StatusCode::FAILED_PRECONDITION,
                              "job " + job.id +
                                  " is running: delete it with force (dlmfd delete --force), "
@@ -194,9 +196,17 @@ grpc::ServerUnaryReactor* JobsService::Hold(grpc::CallbackServerContext* context
     const std::string user = auth_.User(*context);
     const JobRecord job = OwnJob(user, request->job_id());
     if (!store_.SetHeld(job.id, true)) {
-      throw ServiceError(StatusCode::FAILED_PRECONDITION,
-                         "job " + job.id + " is " + JobStateName(store_.Get(job.id)->state) +
-                             ": only a QUEUED job can be held");
+      const JobRecord now = OwnJob(user, job.id);
+      if (now.state == JobState::kRunning && now.slurm_waiting) {
+        throw ServiceError(StatusCode::FAILED_PRECONDITION,
+                           "job " + job.id + " waits in Slurm (Slurm job " + now.slurm_job_id +
+                               ", " + now.slurm_state +
+                               "): only a job in the daemon's queue can be held; scontrol hold " +
+                               now.slurm_job_id + " holds it in Slurm");
+      }
+      throw ServiceError(
+          StatusCode::FAILED_PRECONDITION,
+          "job " + job.id + " is " + JobStateName(now.state) + ": only a QUEUED job can be held");
     }
     *reply = Reported(OwnJob(user, job.id));
   });

@@ -19,6 +19,7 @@
 #include "dlmfd/solver/run_summary.h"
 #include "executor.h"
 #include "job_proto.h"
+#include "job_time_limit.h"
 #include "service_error.h"
 #include "solver_process.h"
 #include "wall_time_limit.h"
@@ -236,6 +237,7 @@ void Scheduler::RunJob(JobRecord job) {
       spec.overrides = job.overrides;
       spec.resume = resume;
       spec.lock_fd = lock_fd;
+      spec.time_limit_seconds = EffectiveTimeLimit(job.time_limit_seconds, config_);
       if (config_.solver_threads > 0) {
         spec.environment.push_back("OMP_NUM_THREADS=" + std::to_string(config_.solver_threads));
       } else if (!std::getenv("OMP_NUM_THREADS")) {
@@ -261,6 +263,7 @@ void Scheduler::RunJob(JobRecord job) {
         store_seen();
         RecordRestart(job, restarts, reason);
       });
+      process->OnStateChange([&](const ExecutorState& state) { RecordState(job, state); });
       if (adopted) {
         spdlog::info("job {}: {} adopted (it outlived the daemon's previous run)", job.id,
                      process->Describe());
@@ -281,7 +284,8 @@ void Scheduler::RunJob(JobRecord job) {
         hub_.Publish(job.id, LogEvent("info", resume ? "solver resumed from results/checkpoint.h5"
                                                      : "solver started"));
       }
-      WallTimeLimit wall_limit(config_.max_wall_seconds, [&] { process->Signal(SIGTERM); });
+      WallTimeLimit wall_limit(process->LimitsTimeItself() ? 0 : spec.time_limit_seconds,
+                               [&] { process->Signal(SIGTERM); });
       if (cancel_requested()) process->Signal(SIGTERM);
 
       std::optional<v1::Finished> finished;
@@ -378,10 +382,13 @@ void Scheduler::RunJob(JobRecord job) {
       const auto exited = [&exit](int code) { return !exit.signalled && exit.code == code; };
       if (over_wall_time && !cancelled && !exited(solver::kExitCompleted) &&
           !exited(solver::kExitFailed)) {
-        outcome = RunOutcome{JobState::kFailed,
-                             "wall time limit: the solver ran longer than max_wall_seconds = " +
-                                 std::to_string(config_.max_wall_seconds) +
-                                 " and was stopped (its checkpoint is kept)"};
+        const std::string limit =
+            job.time_limit_seconds > 0
+                ? "the job's time_limit_seconds = " + std::to_string(job.time_limit_seconds)
+                : "max_wall_seconds = " + std::to_string(config_.max_wall_seconds);
+        outcome =
+            RunOutcome{JobState::kFailed, "wall time limit: the solver ran longer than " + limit +
+                                              " and was stopped (its checkpoint is kept)"};
       } else if (Stopping() && (exited(solver::kExitCancelled) || exit.signalled)) {
         spdlog::info("job {}: solver stopped for the daemon's shutdown; stays RUNNING to resume",
                      job.id);
@@ -424,6 +431,21 @@ void Scheduler::RunJob(JobRecord job) {
   running_[job.id].done = true;
   dirty_ = true;
   changed_.notify_all();
+}
+
+void Scheduler::RecordState(const JobRecord& job, const ExecutorState& state) {
+  try {
+    if (!store_.SetSlurmState(job.id, state.state, state.reason, state.waiting, NowSeconds())) {
+      return;
+    }
+    if (auto now = store_.Get(job.id)) {
+      spdlog::info("job {}: {} (Slurm {}{})", job.id, JobStateName(ShownState(*now)), state.state,
+                   state.reason.empty() ? "" : ", " + state.reason);
+      hub_.PublishState(*now);
+    }
+  } catch (const std::exception& e) {
+    spdlog::error("job {}: cannot record Slurm's state {}: {}", job.id, state.state, e.what());
+  }
 }
 
 void Scheduler::RecordRestart(const JobRecord& job, int restarts, const std::string& reason) {

@@ -12,18 +12,20 @@
 // exit:
 //   0 COMPLETED; 1 FAILED (the reason from the finished event or results/summary.json); 2 FAILED
 //   (invalid scene); 130 CANCELLED; killed by signal N: FAILED "solver killed by signal N".
-// Limits: a solver start that runs longer than max_wall_seconds gets SIGTERM (it checkpoints) and
-// the job ends FAILED naming the limit. A job's directory is counted (disk_bytes) when it ends.
-// Cancel: a QUEUED job is cancelled in the store at once; a RUNNING one gets SIGTERM (the solver
-// checkpoints and exits 130 at a step boundary). Stop (daemon shutdown) detaches each run
-// (JobRun::Detach: a local solver gets SIGTERM, a Slurm job runs on and the next start adopts it)
-// and leaves the jobs RUNNING in the store, so that the next start resumes or adopts them; a
-// solver still alive after the grace period gets SIGKILL.
-// The run itself is the configured executor's (executor.h: local child processes or Slurm jobs);
-// with the slurm executor at most slurm_max_submitted jobs are handed to Slurm at once, the job
-// directories live in slurm_shared_dir when it is set, the queued jobs of a study go to Slurm
-// together (one job array with the study's max_running as its throttle, slurm_array.h), the
-// Slurm id is stored (JobStore::SetSlurmSubmitted), a Slurm restart of the job is a new attempt
+// Limits: a solver start that runs longer than the job's time limit (its time_limit_seconds, else
+// max_wall_seconds; job_time_limit.h) gets SIGTERM (it checkpoints) and the job ends FAILED naming
+// the limit; an executor that limits time itself (Slurm's --time) is left to do so. A job's
+// directory is counted (disk_bytes) when it ends. Cancel: a QUEUED job is cancelled in the store at
+// once; a RUNNING one gets SIGTERM (the solver checkpoints and exits 130 at a step boundary). Stop
+// (daemon shutdown) detaches each run (JobRun::Detach: a local solver gets SIGTERM, a Slurm job
+// runs on and the next start adopts it) and leaves the jobs RUNNING in the store, so that the next
+// start resumes or adopts them; a solver still alive after the grace period gets SIGKILL. The run
+// itself is the configured executor's (executor.h: local child processes or Slurm jobs); with the
+// slurm executor at most slurm_max_submitted jobs are handed to Slurm at once, the job directories
+// live in slurm_shared_dir when it is set, the queued jobs of a study go to Slurm together (one job
+// array with the study's max_running as its throttle, slurm_array.h), the Slurm id is stored
+// (JobStore::SetSlurmSubmitted), so are Slurm's state and reason while it holds the job
+// (RecordState: a job waiting in Slurm shows QUEUED), a Slurm restart of the job is a new attempt
 // (RecordRestart) and a retryable end (TIMEOUT, NODE_FAIL, PREEMPTED, BOOT_FAIL) queues the job
 // again to resume from its checkpoint while slurm_max_attempts allows (Requeue).
 #pragma once
@@ -46,6 +48,7 @@
 namespace dlmfd::server {
 
 class JobRun;
+struct ExecutorState;
 struct RunOutcome;
 
 class Scheduler {
@@ -89,6 +92,9 @@ class Scheduler {
   // with the study's throttle (mutex_ held); false when none could start.
   bool StartStudyBatch(const JobRecord& first, int room);
   void RunJob(JobRecord job);
+  // The executor's word on the run changed (Slurm's state and reason): stored, and published
+  // when it changes what the API shows (a waiting job is QUEUED).
+  void RecordState(const JobRecord& job, const ExecutorState& state);
   // The executor ran the job again by itself (Slurm requeued it): a new attempt, still RUNNING.
   void RecordRestart(const JobRecord& job, int restarts, const std::string& reason);
   // A retryable end (Slurm TIMEOUT, NODE_FAIL, PREEMPTED, ...): the job goes back to the queue to

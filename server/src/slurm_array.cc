@@ -53,6 +53,7 @@ std::vector<std::string> SlurmArray::Prepare(const std::vector<int>& indices,
   for (int index : indices) {
     const BatchJob& member = joined_.at(index);
     array.memory_mb = std::max(array.memory_mb, member.memory_mb);
+    array.time_limit_seconds = std::max(array.time_limit_seconds, member.time_limit_seconds);
     task_dirs.emplace_back(index, member.job_dir);
     // Slurm's own lines of the task (its time limit, a requeue) go to the member's log.
     fs::create_symlink(member.log_path, dir / ("task-" + std::to_string(index) + ".log"));

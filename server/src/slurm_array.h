@@ -10,7 +10,7 @@
 // ROOT/slurm-arrays/NAME-XXXXXX beside the job directories, with task-I.log linked to member I's
 // solver.log (Slurm's own lines of the task land there), and submits it once:
 //   sbatch --array=INDICES%THROTTLE --job-name=NAME --output=DIR/task-%a.log ...
-// with the settings of a single job, --mem the largest member's. THROTTLE is the study's
+// with the settings of a single job, --mem and --time the largest member's. THROTTLE is the study's
 // max_running less its jobs already in Slurm (Slurm's JobArrayTaskLimit keeps at most that many
 // tasks running). While sbatch fails because slurmctld cannot be reached (TransientSlurmError) it
 // is tried again every few seconds, each time without the members signalled since. Each member

@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "dlmfd/io/results_writer.h"
+#include "job_time_limit.h"
 
 namespace dlmfd::server {
 
@@ -116,9 +117,11 @@ std::vector<std::string> SbatchArguments(const BatchJob& job, const SlurmSetting
       "--open-mode=append",
       "--chdir=" + job.job_dir};
   if (!job.array.empty()) args.push_back("--array=" + job.array);
-  if (settings.time_limit_minutes > 0) {
-    args.push_back("--time=" + std::to_string(settings.time_limit_minutes));
-    args.push_back("--signal=B:USR1@" + std::to_string(settings.signal_seconds));
+  if (job.time_limit_seconds > 0) {
+    const int64_t minutes = SlurmTimeMinutes(job.time_limit_seconds);
+    args.push_back("--time=" + std::to_string(minutes));
+    args.push_back("--signal=B:USR1@" +
+                   std::to_string(SlurmSignalLead(minutes, settings.signal_seconds)));
   }
   if (!settings.partition.empty()) args.push_back("--partition=" + settings.partition);
   if (!settings.account.empty()) args.push_back("--account=" + settings.account);

@@ -1,7 +1,7 @@
 // The Slurm commands the daemon runs and the parsing of their output (slurm 22.05's CLI; the
 // commands are the stable interface there, slurmrestd needs slurmdbd: ../shared/ops).
 //
-//   sbatch --parsable --job-name --cpus-per-task --mem [--time --signal] --output [--array
+//   sbatch --parsable --job-name --cpus-per-task --mem --output [--array --time --signal
 //          --partition --account --qos] [extra options] SCRIPT   prints "ID" or "ID;CLUSTER"
 //   squeue --json                                     OpenAPI v0.0.38: jobs[].job_id, job_state
 //                                                     (a string; an array in newer releases),
@@ -49,6 +49,10 @@ struct BatchJob {
   bool resume = false;
   int threads = 1;
   int64_t memory_mb = 0;
+  // The job's wall-time limit (job_time_limit.h: its own, else the daemon's); 0: none. sbatch gets
+  // --time in whole minutes, rounded up, and --signal=B:USR1@N (slurm_signal_seconds, at most half
+  // the limit).
+  int64_t time_limit_seconds = 0;
   std::string array;  // sbatch --array (ArraySpec) for a job array; empty for one job
 };
 

@@ -84,6 +84,7 @@ bool SlurmRun::Adopt(const std::string& job_dir, const JobRecord& job) {
   if (!job.slurm_live || job.slurm_job_id.empty()) return false;
   job_dir_ = job_dir;
   restarts_ = job.slurm_restarts;
+  reported_ = ExecutorState{job.slurm_state, job.slurm_reason, job.slurm_waiting};
   submitted_ = true;
   followed_since_ = SlurmQueue::Clock::now();
   std::lock_guard lock(mutex_);
@@ -110,6 +111,7 @@ void SlurmRun::Start(const LaunchSpec& spec) {
     job.overrides = spec.overrides;
     job.resume = spec.resume;
     job.threads = config_.solver_threads > 0 ? config_.solver_threads : 1;
+    job.time_limit_seconds = spec.time_limit_seconds;
     job.memory_mb = AdmitScene(ReadFile(spec.scene_path), spec.overrides, config_).memory_mb +
                     kProcessHeadroomMb;
     script = (dir / kSlurmScript).string();
@@ -134,6 +136,7 @@ void SlurmRun::Start(const LaunchSpec& spec) {
   }
   submitted_ = true;
   followed_since_ = SlurmQueue::Clock::now();
+  reported_ = ExecutorState{"PENDING", "", true};  // as JobStore::SetSlurmSubmitted records it
   WriteTextAtomically((dir / kSlurmIdFile).string(), id + "\n");
   if (pending != 0) Signal(pending);  // a cancel that came during the submission
 }
@@ -197,13 +200,27 @@ void SlurmRun::FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>&
   std::string live_reason;
   int unknown = 0;  // answers of squeue since the submission that did not list the job
   SlurmQueue::Clock::time_point counted{};
+  // Events from the solver show the job running before squeue may (it is asked every
+  // slurm_poll_seconds, and not at all while slurmctld is down): from then on, an answer of squeue
+  // run before that time that still says PENDING is out of date.
+  SlurmQueue::Clock::time_point ran_at{};
+  int delivered = 0;
+  auto deliver = [&](const v1::SolverEvent& event) {
+    ++delivered;
+    on_event(event);
+  };
   auto next_poll = std::chrono::steady_clock::now();
   auto asked = [this] {
     std::lock_guard lock(mutex_);
     return asked_;
   };
   while (true) {
-    tail.ReadNew(on_event);
+    delivered = 0;
+    tail.ReadNew(deliver);
+    if (delivered > 0 && reported_.waiting) {
+      ran_at = SlurmQueue::Clock::now();
+      Report(ExecutorState{"RUNNING", "", false});
+    }
     // The exit file of the attempt followed (an older one is a requeued attempt's).
     std::optional<ExitFile> exit = ReadExitFile();
     if (exit && exit->restarts < restarts_) exit.reset();
@@ -217,10 +234,9 @@ void SlurmRun::FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>&
       }
       if (s == solver::kExitCancelled && warned) {
         SetExit(*exit);
-        outcome_ = RunOutcome{JobState::kFailed,
-                              "Slurm: the time limit (slurm_time_limit_minutes) came: the solver "
-                              "checkpointed",
-                              true};
+        outcome_ =
+            RunOutcome{JobState::kFailed,
+                       "Slurm: the job's time limit (--time) came: the solver checkpointed", true};
         return;
       }
       // Stopped from outside the daemon: Slurm says whether the job runs again or has ended.
@@ -234,6 +250,8 @@ void SlurmRun::FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>&
         unknown = 0;
         if (status->restarts > restarts_) {
           restarts_ = status->restarts;
+          live_reason.clear();          // the state of the next run is reported afresh
+          reported_ = ExecutorState{};  // the store clears it with the attempt
           const std::string reason = "Slurm requeued job " + id + " (restart " +
                                      std::to_string(restarts_) +
                                      "): the next run resumes from the checkpoint";
@@ -265,6 +283,10 @@ void SlurmRun::FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>&
           live_reason = meaning.reason;
           spdlog::info("Slurm job {}: {}", id, live_reason);
         }
+        if (!(meaning.waiting && answered_at <= ran_at)) {
+          Report(ExecutorState{status->state, status->reason == "None" ? "" : status->reason,
+                               meaning.waiting});
+        }
       } else if (answered_at > followed_since_ && answered_at > counted) {
         counted = answered_at;
         if (++unknown >= kUnknownPollsToFail) {
@@ -290,6 +312,15 @@ void SlurmRun::FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>&
       return;
     }
   }
+}
+
+void SlurmRun::Report(const ExecutorState& state) {
+  if (state.state == reported_.state && state.reason == reported_.reason &&
+      state.waiting == reported_.waiting) {
+    return;
+  }
+  reported_ = state;
+  if (on_state_) on_state_(state);
 }
 
 void SlurmRun::Signal(int signal_number) {

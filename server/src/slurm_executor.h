@@ -5,15 +5,19 @@
 // filesystem the nodes share (slurm_shared_dir), and submits it with sbatch --parsable:
 // --job-name dlmfd-ID, --cpus-per-task the solver's threads (solver_threads, else 1), --mem the
 // scene's memory estimate (scene_admission.h, scene/scene_footprint.h) plus kProcessHeadroomMb,
-// --output the job's solver.log, --time and --signal=B:USR1@N when slurm_time_limit_minutes is
-// set, partition, account, qos and the extra options. A run of a study's batch (MakeStudyRuns)
+// --output the job's solver.log, --time and --signal=B:USR1@N from the run's time limit
+// (LaunchSpec::time_limit_seconds: the job's, else the daemon's; job_time_limit.h), partition,
+// account, qos and the extra options. A run of a study's batch (MakeStudyRuns)
 // joins its SlurmArray instead (slurm_array.h: one sbatch --array for the study's queued jobs).
 // While sbatch cannot reach slurmctld (TransientSlurmError) it is run again every
 // kSbatchRetryInterval until it answers or the run is signalled. The Slurm id ("123", an array
 // task "120_4") is written to DIR/slurm.id; the scheduler stores it (JobStore::SetSlurmSubmitted).
 // ReadEvents follows DIR/events.bin (EventFileTail) twice a second and asks the shared SlurmQueue
 // for the job's state every slurm_poll_seconds: squeue --json while Slurm lists the job, else
-// the jobcomp file. The end:
+// the jobcomp file; a change of Slurm's state or reason goes to OnStateChange's handler (PENDING
+// and the other states before a run are `waiting`: the API shows the job QUEUED); the solver's
+// first events show it running before squeue may: RUNNING then, and an older squeue answer that
+// says PENDING is ignored. The end:
 //   - DIR/solver.exit ("STATUS RESTARTS", written by the batch script) of the current Slurm
 //     restart with status 0, 1 or 2, or after the daemon's own signal: the scheduler maps the
 //     status as for a local run;
@@ -106,6 +110,8 @@ class SlurmRun : public JobRun {
   std::string ExecutorId() const override;
   std::optional<RunOutcome> Outcome() const override { return outcome_; }
   void OnRestart(RestartHandler handler) override { on_restart_ = std::move(handler); }
+  void OnStateChange(StateHandler handler) override { on_state_ = std::move(handler); }
+  bool LimitsTimeItself() const override { return true; }
 
  private:
   struct ExitFile {
@@ -117,6 +123,8 @@ class SlurmRun : public JobRun {
   std::string Submit(const BatchJob& job, const std::string& script);
   void FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>& on_event);
   std::optional<ExitFile> ReadExitFile() const;
+  // Gives OnStateChange's handler the state when it differs from the one reported last.
+  void Report(const ExecutorState& state);
   void SetExit(const ExitFile& file);
   // Waits up to the tail interval or until signalled; true when Detach was called.
   bool Sleep();
@@ -127,7 +135,9 @@ class SlurmRun : public JobRun {
   const int index_;
   std::string job_dir_;
   RestartHandler on_restart_;
+  StateHandler on_state_;
   int restarts_ = 0;                                // Slurm's restart count of the attempt followed
+  ExecutorState reported_;                          // Slurm's word last reported (as stored)
   SlurmQueue::Clock::time_point followed_since_{};  // submitted or adopted
   bool submitted_ = false;
   SolverExit exit_;

@@ -31,6 +31,9 @@ struct LaunchSpec {
   bool resume = false;
   int lock_fd = -1;  // the held flock of the job directory, passed to the child as fd 4
   std::vector<std::string> environment;  // "NAME=value" set in the child over the daemon's
+  // The wall-time limit of this run in seconds (job_time_limit.h); 0: none. The scheduler enforces
+  // it for the local executor; the slurm executor hands it to Slurm (--time).
+  int64_t time_limit_seconds = 0;
 };
 
 struct SolverExit {

@@ -271,6 +271,30 @@ TEST_F(CliTest, InvalidSceneExitsTwoNamingTheKey) {
   EXPECT_EQ(no_job.code, 3);
 }
 
+TEST_F(CliTest, TimeGivesTheJobsTimeLimitAndABadOneExitsTwo) {
+  const std::string scene = (root_ / "cavity.toml").string();
+  const CliRun submit = Cli({"submit", scene, "--time", "1:30:00", "--wait"});
+  ASSERT_EQ(submit.code, 0) << submit.out << submit.err;
+  const std::string job = FirstLine(submit.out);
+  EXPECT_THAT(Cli({"show", job}).out, HasSubstr("time limit:  1h30m (5400 s, of one run)"));
+  EXPECT_THAT(Cli({"show", job, "--json"}).out, HasSubstr("\"time_limit_seconds\":5400"));
+  const CliRun sweep =
+      Cli({"sweep", scene, "--grid", "fluid.viscosity=0.01,0.02", "--time", "90m", "--json"});
+  ASSERT_EQ(sweep.code, 0) << sweep.err;
+  EXPECT_THAT(sweep.out, HasSubstr("\"time_limit_seconds\":5400"));
+  // Refused by the CLI: not a positive duration.
+  const CliRun zero = Cli({"submit", scene, "--time", "0"});
+  EXPECT_EQ(zero.code, 2);
+  EXPECT_THAT(zero.err, HasSubstr("--time 0: not positive"));
+  const CliRun word = Cli({"sweep", scene, "--grid", "fluid.viscosity=0.01", "--time", "soon"});
+  EXPECT_EQ(word.code, 2);
+  EXPECT_THAT(word.err, HasSubstr("expected a positive duration"));
+  // Refused by the daemon: over its limit (a year without max_wall_seconds).
+  const CliRun long_run = Cli({"submit", scene, "--time", "400d"});
+  EXPECT_EQ(long_run.code, 2);
+  EXPECT_THAT(long_run.err, HasSubstr("time_limit_seconds = 34560000 is not allowed"));
+}
+
 TEST_F(CliTest, WrongTokenExitsFourAndOtherUsersSeeNothing) {
   const CliRun wrong = Cli({"list", "--token", "not-a-token"});
   EXPECT_EQ(wrong.code, 4);

@@ -37,9 +37,10 @@ class ClientTest(unittest.TestCase):
 
     def test_submit_watch_fetch_and_read_results(self):
         job = self.client.submit(support.settling_scene(), {"time.end": 0.01}, name="settling",
-                                 tags=["python"])
+                                 tags=["python"], time_limit_seconds=3600)
         self.assertIn(job.state, (dlmfd.jobs_pb2.QUEUED, dlmfd.jobs_pb2.RUNNING))
         self.assertEqual(list(job.overrides), ["time.end=0.01"])
+        self.assertEqual(job.time_limit_seconds, 3600)
 
         events = list(self.client.watch(job.id))
         kinds = [e.WhichOneof("event") for e in events]

@@ -1,60 +1,42 @@
-// The store's schema 5, the slurm executor's record of a job (real SQLite): a store of schema 4
-// gains the columns; the Slurm id is stored at submission and read back; a job whose Slurm job
-// outlived the daemon (slurm_live) comes first out of the queue, past its study's limit, and is
-// neither cancelled while queued nor held; EndAttempt records a Slurm restart (the job stays
-// RUNNING) and a requeue after a retryable end (QUEUED again); an end or a retry clears the
-// mark.
+// The store's schemas 5 and 6, the slurm executor's record of a job (real SQLite): a store of
+// schema 4 gains the columns; the Slurm id is stored at submission and read back; a job whose
+// Slurm job outlived the daemon (slurm_live) comes first out of the queue, past its study's limit,
+// and is neither cancelled while queued nor held; EndAttempt records a Slurm restart (the job
+// stays RUNNING) and a requeue after a retryable end (QUEUED again); an end or a retry clears the
+// mark. A job that Slurm holds waiting is QUEUED for the API (Get, List's states, a study's
+// counts) with Slurm's reason, and RUNNING from its start in Slurm; its own time limit is kept.
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 
 #include <string>
 
+#include "job_proto.h"
 #include "job_store.h"
 #include "support/daemon_process.h"
+#include "support/store_fixtures.h"
 
 namespace dlmfd::server {
 namespace {
 
-JobRecord Job(const std::string& id, const std::string& sweep = "", int priority = 0) {
-  JobRecord job;
-  job.id = id;
-  job.name = id;
-  job.owner = "local";
-  job.sweep_id = sweep;
-  job.priority = priority;
-  job.results_dir = "/tmp/" + id;
-  job.scene = "scene";
-  return job;
-}
+using dlmfd::testing::StoreJob;
 
 TEST(SlurmStore, ASchemaFourStoreGainsTheSlurmColumns) {
   dlmfd::testing::TempDir dir;
   const std::string path = dir.path() + "/jobs.db";
   {
     JobStore store(path);
-    store.InsertJobs({Job("old")}, "local", "");
+    store.InsertJobs({StoreJob("old")}, "local", "");
   }
-  {
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-    ASSERT_EQ(sqlite3_exec(db,
-                           "ALTER TABLE jobs DROP COLUMN slurm_job_id;"
-                           "ALTER TABLE jobs DROP COLUMN slurm_live;"
-                           "ALTER TABLE jobs DROP COLUMN slurm_attempts;"
-                           "ALTER TABLE jobs DROP COLUMN slurm_restarts;"
-                           "UPDATE schema_version SET version = 4;",
-                           nullptr, nullptr, nullptr),
-              SQLITE_OK)
-        << sqlite3_errmsg(db);
-    sqlite3_close(db);
-  }
+  dlmfd::testing::RollBackSchema(path, 4);
   JobStore store(path);
-  EXPECT_EQ(JobStore::SchemaVersion(), 5);
+  EXPECT_EQ(JobStore::SchemaVersion(), 6);
   const auto old = store.Get("old");
   ASSERT_TRUE(old);
   EXPECT_EQ(old->slurm_job_id, "");
   EXPECT_FALSE(old->slurm_live);
   EXPECT_EQ(old->slurm_attempts, 0);
+  EXPECT_EQ(old->slurm_state, "");
+  EXPECT_FALSE(old->slurm_waiting);
+  EXPECT_EQ(old->time_limit_seconds, 0);
   store.SetSlurmSubmitted("old", "77");
   EXPECT_EQ(store.Get("old")->slurm_job_id, "77");
 }
@@ -62,11 +44,9 @@ TEST(SlurmStore, ASchemaFourStoreGainsTheSlurmColumns) {
 TEST(SlurmStore, ALiveSlurmJobIsAdoptedFirstAndNeitherCancelledNorHeldWhileQueued) {
   dlmfd::testing::TempDir dir;
   JobStore store(dir.path() + "/jobs.db");
-  SweepRecord sweep;
-  sweep.id = "s-1";
-  sweep.owner = "local";
-  sweep.max_running = 1;
-  store.InsertJobs({Job("a", "s-1"), Job("b", "s-1"), Job("c", "", 9)}, "local", "", &sweep);
+  const SweepRecord sweep = dlmfd::testing::StoreSweep("s-1", 1);
+  store.InsertJobs({StoreJob("a", "s-1"), StoreJob("b", "s-1"), StoreJob("c", "", 9)}, "local", "",
+                   &sweep);
   // a and b were both in Slurm (an array with throttle 1 holds b back in Slurm, not here).
   for (const char* id : {"a", "b"}) {
     store.MarkRunning(id, 1.0);
@@ -103,7 +83,7 @@ TEST(SlurmStore, ALiveSlurmJobIsAdoptedFirstAndNeitherCancelledNorHeldWhileQueue
 TEST(SlurmStore, AttemptsEndWithoutEndingTheJob) {
   dlmfd::testing::TempDir dir;
   JobStore store(dir.path() + "/jobs.db");
-  store.InsertJobs({Job("a")}, "local", "");
+  store.InsertJobs({StoreJob("a")}, "local", "");
   store.MarkRunning("a", 10.0);
   store.SetSlurmSubmitted("a", "51");
   store.UpdateProgress("a", 7, 0.07, 1.0);
@@ -153,6 +133,64 @@ TEST(SlurmStore, AttemptsEndWithoutEndingTheJob) {
   a = store.Get("a");
   EXPECT_EQ(a->slurm_attempts, 0);
   EXPECT_FALSE(a->slurm_live);
+}
+
+TEST(SlurmStore, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStartsIt) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  const SweepRecord sweep = dlmfd::testing::StoreSweep("s-1", 1);
+  JobRecord limited = StoreJob("a", "s-1");
+  limited.time_limit_seconds = 5400;
+  store.InsertJobs({limited, StoreJob("b", "s-1")}, "local", "", &sweep);
+  EXPECT_EQ(store.Get("a")->time_limit_seconds, 5400);
+  for (const char* id : {"a", "b"}) store.MarkRunning(id, 10.0);
+  store.SetSlurmSubmitted("a", "40_0");
+  store.SetSlurmSubmitted("b", "40_1");
+  // Submitted: waiting in Slurm until squeue says otherwise.
+  EXPECT_EQ(ShownState(*store.Get("a")), JobState::kQueued);
+  // Slurm runs a and holds b back by the array's throttle.
+  EXPECT_TRUE(store.SetSlurmState("a", "RUNNING", "", false, 12.0));
+  EXPECT_TRUE(store.SetSlurmState("b", "PENDING", "JobArrayTaskLimit", true, 12.0));
+  EXPECT_FALSE(store.SetSlurmState("b", "PENDING", "JobArrayTaskLimit", true, 13.0));  // the same
+  const JobRecord b = *store.Get("b");
+  EXPECT_EQ(b.state, JobState::kRunning);  // in the executor's hands: the scheduler's count
+  EXPECT_EQ(ShownState(b), JobState::kQueued);
+  const v1::Job shown = ToProto(b);
+  EXPECT_EQ(shown.state(), v1::QUEUED);
+  EXPECT_EQ(shown.slurm_state(), "PENDING");
+  EXPECT_EQ(shown.slurm_reason(), "JobArrayTaskLimit");
+  EXPECT_EQ(shown.started_time(), 0.0);
+  EXPECT_NE(shown.reason().find("Slurm: PENDING"), std::string::npos) << shown.reason();
+  EXPECT_NE(shown.reason().find("JobArrayTaskLimit"), std::string::npos) << shown.reason();
+  const v1::Job running = ToProto(*store.Get("a"));
+  EXPECT_EQ(running.state(), v1::RUNNING);
+  EXPECT_EQ(running.reason(), "");
+  EXPECT_EQ(running.started_time(), 12.0);  // Slurm started it
+  EXPECT_EQ(running.time_limit_seconds(), 5400);
+  // List's states and the study's counts go by the shown state; the scheduler's by the stored.
+  ListFilter queued;
+  queued.owner = "local";
+  queued.states = {JobState::kQueued};
+  const auto listed = store.List(queued);
+  ASSERT_EQ(listed.size(), 1u);
+  EXPECT_EQ(listed[0].id, "b");
+  ListFilter running_filter = queued;
+  running_filter.states = {JobState::kRunning};
+  ASSERT_EQ(store.List(running_filter).size(), 1u);
+  EXPECT_EQ(store.List(running_filter)[0].id, "a");
+  const SweepStats stats = store.StatsOfSweep("local", "s-1");
+  EXPECT_EQ(stats.count[static_cast<size_t>(JobState::kQueued)], 1);
+  EXPECT_EQ(stats.count[static_cast<size_t>(JobState::kRunning)], 1);
+  EXPECT_EQ(stats.first_started_time, 12.0);
+  EXPECT_EQ(store.CountRunningOfSweep("s-1"), 2);
+  // Slurm starts b: RUNNING from then.
+  EXPECT_TRUE(store.SetSlurmState("b", "RUNNING", "", false, 20.0));
+  EXPECT_EQ(ToProto(*store.Get("b")).state(), v1::RUNNING);
+  EXPECT_EQ(store.Get("b")->started_time, 20.0);
+  // An end clears Slurm's word.
+  ASSERT_TRUE(store.MarkFinished("b", JobState::kCompleted, "", 30.0));
+  EXPECT_EQ(store.Get("b")->slurm_state, "");
+  EXPECT_FALSE(store.SetSlurmState("b", "COMPLETING", "", false, 31.0));  // not RUNNING
 }
 
 }  // namespace

@@ -16,6 +16,8 @@
 #include "config.h"
 #include "dlmfd/solver/event_file.h"
 #include "event_file_tail.h"
+#include "job_time_limit.h"
+#include "service_error.h"
 #include "slurm_commands.h"
 #include "slurm_states.h"
 
@@ -34,30 +36,31 @@ TEST(SlurmStates, EveryStateMapsOntoOursWithItsReason) {
     bool finished;
     JobState state;
     bool retryable;
+    bool waiting;  // not started: the API shows the job QUEUED
   };
   const Case cases[] = {
-      {"PENDING", false, JobState::kRunning, false},
-      {"RUNNING", false, JobState::kRunning, false},
-      {"SUSPENDED", false, JobState::kRunning, false},
-      {"COMPLETING", false, JobState::kRunning, false},
-      {"CONFIGURING", false, JobState::kRunning, false},
-      {"REQUEUED", false, JobState::kRunning, false},
-      {"REQUEUE_HOLD", false, JobState::kRunning, false},
-      {"REQUEUE_FED", false, JobState::kRunning, false},
-      {"RESV_DEL_HOLD", false, JobState::kRunning, false},
-      {"RESIZING", false, JobState::kRunning, false},
-      {"SIGNALING", false, JobState::kRunning, false},
-      {"STAGE_OUT", false, JobState::kRunning, false},
-      {"STOPPED", false, JobState::kRunning, false},
-      {"COMPLETED", true, JobState::kCompleted, false},
-      {"CANCELLED", true, JobState::kCancelled, false},
-      {"FAILED", true, JobState::kFailed, false},
-      {"TIMEOUT", true, JobState::kFailed, true},
-      {"NODE_FAIL", true, JobState::kFailed, true},
-      {"PREEMPTED", true, JobState::kFailed, true},
-      {"BOOT_FAIL", true, JobState::kFailed, true},
-      {"OUT_OF_MEMORY", true, JobState::kFailed, false},
-      {"DEADLINE", true, JobState::kFailed, false},
+      {"PENDING", false, JobState::kRunning, false, true},
+      {"RUNNING", false, JobState::kRunning, false, false},
+      {"SUSPENDED", false, JobState::kRunning, false, false},
+      {"COMPLETING", false, JobState::kRunning, false, false},
+      {"CONFIGURING", false, JobState::kRunning, false, true},
+      {"REQUEUED", false, JobState::kRunning, false, true},
+      {"REQUEUE_HOLD", false, JobState::kRunning, false, true},
+      {"REQUEUE_FED", false, JobState::kRunning, false, true},
+      {"RESV_DEL_HOLD", false, JobState::kRunning, false, true},
+      {"RESIZING", false, JobState::kRunning, false, false},
+      {"SIGNALING", false, JobState::kRunning, false, false},
+      {"STAGE_OUT", false, JobState::kRunning, false, false},
+      {"STOPPED", false, JobState::kRunning, false, false},
+      {"COMPLETED", true, JobState::kCompleted, false, false},
+      {"CANCELLED", true, JobState::kCancelled, false, false},
+      {"FAILED", true, JobState::kFailed, false, false},
+      {"TIMEOUT", true, JobState::kFailed, true, false},
+      {"NODE_FAIL", true, JobState::kFailed, true, false},
+      {"PREEMPTED", true, JobState::kFailed, true, false},
+      {"BOOT_FAIL", true, JobState::kFailed, true, false},
+      {"OUT_OF_MEMORY", true, JobState::kFailed, false, false},
+      {"DEADLINE", true, JobState::kFailed, false, false},
   };
   std::set<std::string> reasons;
   for (const Case& c : cases) {
@@ -65,6 +68,7 @@ TEST(SlurmStates, EveryStateMapsOntoOursWithItsReason) {
     EXPECT_EQ(m.finished, c.finished) << c.slurm;
     EXPECT_EQ(m.state, c.state) << c.slurm;
     EXPECT_EQ(m.retryable, c.retryable) << c.slurm;
+    EXPECT_EQ(m.waiting, c.waiting) << c.slurm;
     EXPECT_EQ(m.reason.rfind(std::string("Slurm: ") + c.slurm + ": ", 0), 0u) << m.reason;
     EXPECT_EQ(m.reason.find("does not know"), std::string::npos) << m.reason;
     reasons.insert(m.reason);
@@ -73,8 +77,15 @@ TEST(SlurmStates, EveryStateMapsOntoOursWithItsReason) {
 }
 
 TEST(SlurmStates, ReasonsFlagsAndUnknownStates) {
-  EXPECT_EQ(MapSlurmState("PENDING", "Priority").reason,
-            "Slurm: PENDING: waiting for resources or priority (Priority)");
+  EXPECT_EQ(
+      MapSlurmState("PENDING", "Priority").reason,
+      "Slurm: PENDING: waiting in Slurm's queue (Priority: jobs of higher priority go first)");
+  EXPECT_EQ(MapSlurmState("PENDING", "JobArrayTaskLimit").reason,
+            "Slurm: PENDING: waiting in Slurm's queue (JobArrayTaskLimit: the study's max_running "
+            "(the array's throttle) holds it back)");
+  // A reason without a meaning here is shown as Slurm gives it.
+  EXPECT_EQ(MapSlurmState("PENDING", "AssocGrpCpuLimit").reason,
+            "Slurm: PENDING: waiting in Slurm's queue (AssocGrpCpuLimit)");
   EXPECT_EQ(MapSlurmState("RUNNING", "None").reason, "Slurm: RUNNING: running");
   // sacct and the jobcomp file write "CANCELLED by 0"; squeue may append '+'.
   EXPECT_EQ(MapSlurmState("CANCELLED by 0", "").state, JobState::kCancelled);
@@ -112,19 +123,59 @@ TEST(SlurmCommands, SbatchArgumentsCarryTheJobAndTheSettings) {
                                           "--chdir=/shared/jobs/j1",
                                           "/shared/jobs/j1/slurm.sh"};
   EXPECT_EQ(args, plain);
-  settings.time_limit_minutes = 90;
+  BatchJob limited = Job();
+  limited.time_limit_seconds = 90 * 60;
   settings.signal_seconds = 120;
   settings.partition = "short";
   settings.account = "lab";
   settings.qos = "normal";
   settings.sbatch_options = " --constraint=avx2  --exclusive ";
-  args = SbatchArguments(Job(), settings, "S");
+  args = SbatchArguments(limited, settings, "S");
   const std::vector<std::string> tail = {
       "--time=90",    "--signal=B:USR1@120", "--partition=short", "--account=lab",
       "--qos=normal", "--constraint=avx2",   "--exclusive",       "S"};
   ASSERT_GE(args.size(), tail.size());
   EXPECT_EQ(std::vector<std::string>(args.end() - static_cast<long>(tail.size()), args.end()),
             tail);
+  // Slurm counts whole minutes: 90 s is --time=2; the warning comes at most half the limit early.
+  limited.time_limit_seconds = 90;
+  args = SbatchArguments(limited, settings, "S");
+  EXPECT_NE(std::find(args.begin(), args.end(), "--time=2"), args.end());
+  EXPECT_NE(std::find(args.begin(), args.end(), "--signal=B:USR1@60"), args.end());
+}
+
+TEST(JobTimeLimitUnits, TheJobsOwnElseTheDaemonsAndNeverMore) {
+  Config config;
+  EXPECT_EQ(DaemonTimeLimit(config), 0);
+  EXPECT_EQ(EffectiveTimeLimit(0, config), 0);
+  EXPECT_EQ(EffectiveTimeLimit(600, config), 600);
+  EXPECT_NO_THROW(CheckTimeLimit(kMostTimeLimitSeconds, config));
+  EXPECT_THROW(CheckTimeLimit(kMostTimeLimitSeconds + 1, config), ServiceError);
+  EXPECT_THROW(CheckTimeLimit(-1, config), ServiceError);
+  config.max_wall_seconds = 7200;
+  EXPECT_EQ(DaemonTimeLimit(config), 7200);
+  // slurm_time_limit_minutes counts under the slurm executor only; the smaller limit wins.
+  config.slurm.time_limit_minutes = 90;
+  EXPECT_EQ(DaemonTimeLimit(config), 7200);
+  config.executor = "slurm";
+  EXPECT_EQ(DaemonTimeLimit(config), 5400);
+  EXPECT_EQ(EffectiveTimeLimit(0, config), 5400);
+  EXPECT_EQ(EffectiveTimeLimit(60, config), 60);
+  EXPECT_NO_THROW(CheckTimeLimit(5400, config));
+  try {
+    CheckTimeLimit(5401, config);
+    ADD_FAILURE() << "5401 s accepted over slurm_time_limit_minutes = 90";
+  } catch (const ServiceError& e) {
+    EXPECT_EQ(e.code(), grpc::StatusCode::INVALID_ARGUMENT);
+    EXPECT_EQ(std::string(e.what()),
+              "time_limit_seconds = 5401 is not allowed: expected 0 (the daemon's limit) or 1 to "
+              "5400 (max_wall_seconds, slurm_time_limit_minutes)");
+  }
+  EXPECT_EQ(SlurmTimeMinutes(1), 1);
+  EXPECT_EQ(SlurmTimeMinutes(60), 1);
+  EXPECT_EQ(SlurmTimeMinutes(61), 2);
+  EXPECT_EQ(SlurmSignalLead(90, 120), 120);
+  EXPECT_EQ(SlurmSignalLead(1, 120), 30);
 }
 
 TEST(SlurmCommands, BatchScriptRunsTheSolverWithItsEventFileAndRecordsItsExit) {

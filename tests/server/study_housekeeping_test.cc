@@ -3,7 +3,6 @@
 // Hold/Release, the disk quota and the per-job limits; and the store's schema 4 and the typing of
 // parameters as units.
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 
 #include <chrono>
 #include <cmath>
@@ -16,6 +15,7 @@
 #include "job_store.h"
 #include "job_table.h"
 #include "support/daemon_process.h"
+#include "support/store_fixtures.h"
 
 namespace dlmfd::testing {
 namespace {
@@ -89,16 +89,6 @@ TEST(StudyTable, ParametersAreTypedAsTomlReadsThem) {
   EXPECT_EQ(server::TypedParameter("x=1_").value_case(), v1::Parameter::kTextValue);
 }
 
-JobRecord StoreJob(const std::string& id, const std::string& owner = "local") {
-  JobRecord job;
-  job.id = id;
-  job.name = id;
-  job.owner = owner;
-  job.results_dir = "/tmp/" + id;
-  job.scene = "scene";
-  return job;
-}
-
 // Schema 4 (held, disk_bytes) applied over a schema 2 store (the "if version < 4" rule).
 TEST(JobStoreSchemaFour, AppliesOverSchemaTwoAndHoldsPriorityAndDelete) {
   TempDir dir;
@@ -106,26 +96,11 @@ TEST(JobStoreSchemaFour, AppliesOverSchemaTwoAndHoldsPriorityAndDelete) {
   {
     JobStore store(path);
     store.InsertJobs({StoreJob("old")}, "local", "");
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-    // Back to schema 2: a store written before schemas 3, 4 and 5.
-    ASSERT_EQ(sqlite3_exec(db,
-                           "ALTER TABLE jobs DROP COLUMN held; ALTER TABLE jobs DROP COLUMN "
-                           "disk_bytes; DROP TABLE sweeps; DROP TABLE job_labels; DROP TABLE "
-                           "job_values; ALTER TABLE jobs DROP COLUMN parameters; ALTER TABLE "
-                           "jobs DROP COLUMN attempt; ALTER TABLE jobs DROP COLUMN "
-                           "previous_attempts; ALTER TABLE jobs DROP COLUMN fresh_start; "
-                           "ALTER TABLE jobs DROP COLUMN slurm_job_id; ALTER TABLE jobs DROP "
-                           "COLUMN slurm_live; ALTER TABLE jobs DROP COLUMN slurm_attempts; "
-                           "ALTER TABLE jobs DROP COLUMN slurm_restarts; "
-                           "UPDATE schema_version SET version = 2;",
-                           nullptr, nullptr, nullptr),
-              SQLITE_OK)
-        << sqlite3_errmsg(db);
-    sqlite3_close(db);
   }
+  // Back to schema 2: a store written before schemas 3 and later.
+  RollBackSchema(path, 2);
   JobStore store(path);
-  EXPECT_EQ(JobStore::SchemaVersion(), 5);
+  EXPECT_EQ(JobStore::SchemaVersion(), 6);
   auto old = store.Get("old");
   ASSERT_TRUE(old);
   EXPECT_FALSE(old->held);

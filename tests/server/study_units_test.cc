@@ -3,7 +3,6 @@
 // --where` matches, the store's studies (schema 3: sweeps, labels, scene values, the per-study
 // limit of the scheduler's queue, requeue of a retry) and the retry plan.
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 
 #include <cmath>
 #include <functional>
@@ -14,6 +13,7 @@
 #include "scene_values.h"
 #include "service_error.h"
 #include "support/daemon_process.h"
+#include "support/store_fixtures.h"
 #include "sweep_expansion.h"
 
 namespace dlmfd::server {
@@ -139,14 +139,7 @@ TEST(SceneValues, TheEffectiveSceneIsFlattenedWithNormalisedNumbers) {
 }
 
 JobRecord Job(const std::string& id, const std::string& sweep, int priority = 0) {
-  JobRecord job;
-  job.id = id;
-  job.name = id;
-  job.owner = "local";
-  job.priority = priority;
-  job.sweep_id = sweep;
-  job.results_dir = "/tmp/" + id;
-  job.scene = "scene text";
+  JobRecord job = dlmfd::testing::StoreJob(id, sweep, priority);
   job.overrides = {"time.end=1"};
   return job;
 }
@@ -322,27 +315,8 @@ TEST(StudyStore, ASchemaTwoStoreGainsItsSweepsAsStudies) {
     JobStore store(path);
     store.InsertJobs({Job("a", "s-old")}, "local", "");
   }
-  {
-    // Back to schema 2, as an older daemon left it.
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-    ASSERT_EQ(sqlite3_exec(db,
-                           "DROP TABLE sweeps; DROP TABLE job_labels; DROP TABLE job_values;"
-                           "ALTER TABLE jobs DROP COLUMN parameters;"
-                           "ALTER TABLE jobs DROP COLUMN attempt;"
-                           "ALTER TABLE jobs DROP COLUMN previous_attempts;"
-                           "ALTER TABLE jobs DROP COLUMN fresh_start;"
-                           "ALTER TABLE jobs DROP COLUMN held;"
-                           "ALTER TABLE jobs DROP COLUMN disk_bytes;"
-                           "ALTER TABLE jobs DROP COLUMN slurm_job_id;"
-                           "ALTER TABLE jobs DROP COLUMN slurm_live;"
-                           "ALTER TABLE jobs DROP COLUMN slurm_attempts;"
-                           "ALTER TABLE jobs DROP COLUMN slurm_restarts;"
-                           "UPDATE schema_version SET version = 2;",
-                           nullptr, nullptr, nullptr),
-              SQLITE_OK);
-    sqlite3_close(db);
-  }
+  // Back to schema 2, as an older daemon left it.
+  dlmfd::testing::RollBackSchema(path, 2);
   JobStore store(path);
   auto sweep = store.GetSweep("local", "s-old");
   ASSERT_TRUE(sweep);

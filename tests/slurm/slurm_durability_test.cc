@@ -121,11 +121,7 @@ TEST_F(SlurmDurability, TheDaemonCarriesOnThroughASlurmctldRestart) {
   EXPECT_TRUE(WaitUntil([&] { return EndedInSlurm(ids) == 4; }));
   for (const auto& id : ids) EXPECT_EQ(SlurmEndsOfName("dlmfd-" + id), 1) << id;
   // The long job ran through it all and is cancelled as ever.
-  v1::CancelRequest cancel;
-  cancel.set_job_id(long_job);
-  v1::Job cancelled;
-  ASSERT_TRUE(stub->Cancel(Context().get(), cancel, &cancelled).ok());
-  const v1::Job done = WaitFinished(*stub, long_job);
+  const v1::Job done = CancelAndWait(*stub, long_job);
   EXPECT_EQ(done.state(), v1::CANCELLED) << done.reason() << "\n" << daemon().Log();
   EXPECT_EQ(done.attempt(), 1);
 }

@@ -1,8 +1,9 @@
 // The daemon's slurm executor against a real Slurm (scripts/slurm-dev.sh start): one job end to
 // end with its events streamed through the shared job directory (progress, particle states and
-// trA snapshots, as for a local job), `dlmfd show`'s Slurm id, cancel as scancel, and a daemon
-// killed with SIGKILL that adopts its Slurm job on restart. Skipped,
-// naming scripts/slurm-dev.sh, when no Slurm answers sinfo.
+// trA snapshots, as for a local job), `dlmfd show`'s Slurm id, a job that waits in Slurm (held)
+// shown QUEUED with Slurm's reason until Slurm starts it, the job's own time limit as its --time,
+// cancel as scancel, and a daemon killed with SIGKILL that adopts its Slurm job on restart.
+// Skipped, naming scripts/slurm-dev.sh, when no Slurm answers sinfo.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -75,16 +76,72 @@ TEST_F(SlurmExecutor, OneJobEndToEndStreamsLikeALocalJob) {
   EXPECT_NE(shown.find("slurm job:   " + done.slurm_job_id()), std::string::npos) << shown;
 }
 
+// Every job of this daemon is submitted held (sbatch --hold): Slurm keeps it PENDING, reason
+// JobHeldUser, until `scontrol release`.
+TEST_F(SlurmExecutor, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStartsIt) {
+  ASSERT_TRUE(StartDaemon({"--slurm-sbatch-options=--hold"})) << daemon().Log();
+  auto* stub = this->stub();
+  v1::SubmitRequest request;
+  request.set_scene(CavityScene(1.0e4));  // runs until cancelled
+  request.set_name("held");
+  request.set_time_limit_seconds(7 * 60);
+  v1::Job job;
+  ASSERT_TRUE(stub->Submit(Context().get(), request, &job).ok());
+  EXPECT_EQ(job.time_limit_seconds(), 420);
+  ASSERT_TRUE(WaitUntil([&] { return Get(*stub, job.id()).slurm_reason() == "JobHeldUser"; }))
+      << Get(*stub, job.id()).ShortDebugString() << "\n"
+      << daemon().Log();
+  const v1::Job held = Get(*stub, job.id());
+  EXPECT_EQ(held.state(), v1::QUEUED);
+  EXPECT_EQ(held.slurm_state(), "PENDING");
+  EXPECT_NE(held.reason().find("Slurm: PENDING"), std::string::npos) << held.reason();
+  EXPECT_NE(held.reason().find("JobHeldUser"), std::string::npos) << held.reason();
+  EXPECT_EQ(held.started_time(), 0.0);
+  const std::string slurm_id = held.slurm_job_id();
+  ASSERT_FALSE(slurm_id.empty());
+  // The job's time limit is its Slurm job's, in minutes.
+  EXPECT_EQ(Shell("scontrol show job " + slurm_id + " | grep -o 'TimeLimit=[0-9:-]*'"),
+            "TimeLimit=00:07:00\n");
+  // `dlmfd show` says why it waits.
+  const std::string command = std::string(DLMFD_BINARY_DIR) + "/client/dlmfd --server " +
+                              daemon().address() + " show " + job.id();
+  const std::string shown = Shell(command);
+  EXPECT_NE(shown.find("state:       queued"), std::string::npos) << shown;
+  EXPECT_NE(shown.find("JobHeldUser"), std::string::npos) << shown;
+  EXPECT_NE(shown.find("slurm job:   " + slurm_id + " (PENDING, JobHeldUser)"), std::string::npos)
+      << shown;
+  EXPECT_NE(shown.find("time limit:  7m00s"), std::string::npos) << shown;
+  // Another held job is deleted without force, as a queued one: it leaves Slurm's queue.
+  v1::Job other;
+  ASSERT_TRUE(stub->Submit(Context().get(), request, &other).ok());
+  ASSERT_TRUE(WaitUntil([&] { return !Get(*stub, other.id()).slurm_job_id().empty(); }));
+  const std::string other_slurm_id = Get(*stub, other.id()).slurm_job_id();
+  v1::DeleteRequest remove;
+  remove.add_job_ids(other.id());
+  v1::DeleteResponse removed;
+  const grpc::Status deleted = stub->Delete(Context().get(), remove, &removed);
+  EXPECT_TRUE(deleted.ok()) << deleted.error_message();
+  EXPECT_EQ(Shell("squeue -h -j " + other_slurm_id + " -t PD,R -o %T 2>/dev/null"), "");
+  // Released, Slurm starts it: RUNNING, from its start in Slurm.
+  ASSERT_EQ(std::system(("scontrol release " + slurm_id).c_str()), 0);
+  ASSERT_TRUE(WaitUntil([&] { return Get(*stub, job.id()).state() == v1::RUNNING; }))
+      << daemon().Log();
+  const v1::Job running = Get(*stub, job.id());
+  EXPECT_EQ(running.slurm_state(), "RUNNING");
+  EXPECT_EQ(running.reason(), "");
+  EXPECT_GT(running.started_time(), held.created_time());
+  WaitForProgress(*stub, job.id());
+  const v1::Job done = CancelAndWait(*stub, job.id());
+  EXPECT_EQ(done.state(), v1::CANCELLED) << done.reason() << "\n" << daemon().Log();
+  EXPECT_EQ(done.slurm_state(), "");
+}
+
 TEST_F(SlurmExecutor, CancelIsScancelAndTheSolverCheckpoints) {
   ASSERT_TRUE(StartDaemon()) << daemon().Log();
   auto* stub = this->stub();
   const v1::Job job = Submit(*stub, CavityScene(1.0e4));
   WaitForProgress(*stub, job.id());
-  v1::CancelRequest cancel;
-  cancel.set_job_id(job.id());
-  v1::Job cancelled;
-  ASSERT_TRUE(stub->Cancel(Context().get(), cancel, &cancelled).ok());
-  const v1::Job done = WaitFinished(*stub, job.id());
+  const v1::Job done = CancelAndWait(*stub, job.id());
   EXPECT_EQ(done.state(), v1::CANCELLED) << done.reason() << "\n" << daemon().Log();
   EXPECT_GT(done.step(), 0);
   EXPECT_TRUE(fs::exists(done.results_dir() + "/checkpoint.h5"));

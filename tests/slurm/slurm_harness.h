@@ -126,6 +126,16 @@ inline void WaitForProgress(v1::Jobs::Stub& stub, const std::string& id) {
   reader->Finish();
 }
 
+// Cancels the job (Cancel, as `dlmfd cancel`) and waits for its end; returns the job then.
+inline v1::Job CancelAndWait(v1::Jobs::Stub& stub, const std::string& id) {
+  v1::CancelRequest cancel;
+  cancel.set_job_id(id);
+  v1::Job cancelled;
+  const grpc::Status status = stub.Cancel(Context().get(), cancel, &cancelled);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return WaitFinished(stub, id);
+}
+
 // At the end of a test, cancels the Slurm jobs whose working directory lies under dir (a daemon
 // that shuts down leaves its Slurm jobs running, to adopt them at its next start).
 class SlurmCleanup {

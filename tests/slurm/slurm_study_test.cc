@@ -1,7 +1,8 @@
 // A study under the slurm executor against a real Slurm (scripts/slurm-dev.sh start): its six
 // points go to Slurm as one job array with the study's throttle (max_running = 2: sbatch
-// --array=0-5%2, Slurm holds the other tasks back with JobArrayTaskLimit), each task runs its own
-// point, and each point stays a job of its own: its Slurm id ARRAYID_INDEX, its stream, its
+// --array=0-5%2, Slurm holds the other tasks back with JobArrayTaskLimit, and the daemon shows
+// those points QUEUED with Slurm's reason, not RUNNING), each task runs its own point, and each
+// point stays a job of its own: its Slurm id ARRAYID_INDEX, its time limit, its stream, its
 // results, its cancel (scancel ARRAYID_INDEX) and its retry (a new array of one). Skipped, naming
 // scripts/slurm-dev.sh, when no Slurm answers sinfo.
 #include <gtest/gtest.h>
@@ -27,14 +28,17 @@ std::string ArrayOf(const std::string& slurm_id) {
   return underscore == std::string::npos ? std::string() : slurm_id.substr(0, underscore);
 }
 
-// A study of the scene over fluid.viscosity with at most max_running jobs at once.
+// A study of the scene over fluid.viscosity with at most max_running jobs at once, each with the
+// time limit (0: the daemon's).
 v1::SubmitSweepResponse SubmitStudy(v1::Jobs::Stub& stub, const std::string& scene,
                                     const std::string& name, int max_running,
-                                    const std::vector<std::string>& viscosities) {
+                                    const std::vector<std::string>& viscosities,
+                                    int64_t time_limit_seconds = 0) {
   v1::SubmitSweepRequest request;
   request.set_scene(scene);
   request.set_name(name);
   request.set_max_running(max_running);
+  request.set_time_limit_seconds(time_limit_seconds);
   auto* axis = request.add_axes();
   axis->set_key("fluid.viscosity");
   for (const auto& value : viscosities) axis->add_values(value);
@@ -48,9 +52,9 @@ v1::SubmitSweepResponse SubmitStudy(v1::Jobs::Stub& stub, const std::string& sce
 TEST_F(SlurmStudy, SixPointsAreOneJobArrayWithThrottleTwoAndEachPointIsAJob) {
   ASSERT_TRUE(StartDaemon()) << daemon().Log();
   auto* stub = this->stub();
-  // 800 steps of a 16 x 16 cavity: about a second each.
+  // 800 steps of a 16 x 16 cavity: about a second each; a time limit of 5 minutes each.
   const v1::SubmitSweepResponse sweep = SubmitStudy(
-      *stub, CavityScene(8.0), "array", 2, {"0.01", "0.02", "0.03", "0.04", "0.05", "0.06"});
+      *stub, CavityScene(8.0), "array", 2, {"0.01", "0.02", "0.03", "0.04", "0.05", "0.06"}, 300);
   ASSERT_EQ(sweep.jobs_size(), 6);
   // Every point has its task of one array, in the study's order.
   std::string array;
@@ -71,10 +75,28 @@ TEST_F(SlurmStudy, SixPointsAreOneJobArrayWithThrottleTwoAndEachPointIsAJob) {
   const std::string throttle =
       Shell("scontrol show job " + array + " | grep -o 'ArrayTaskThrottle=[0-9]*' | head -1");
   EXPECT_EQ(throttle, "ArrayTaskThrottle=2\n");
+  // Each task's --time: the points' time limit, in minutes.
+  EXPECT_EQ(Shell("scontrol show job " + array + " | grep -o 'TimeLimit=[0-9:-]*' | sort -u"),
+            "TimeLimit=00:05:00\n");
   int most_running = 0;
   bool held_by_limit = false;
   std::set<std::string> seen_running;
+  // The points the daemon showed waiting for the throttle: QUEUED with Slurm's reason, never
+  // RUNNING while Slurm holds them.
+  std::set<std::string> shown_waiting;
   WaitUntil([&] {
+    for (const auto& point : sweep.jobs()) {
+      const v1::Job job = Get(*stub, point.id());
+      if (job.slurm_state() == "PENDING") {
+        EXPECT_EQ(job.state(), v1::QUEUED) << job.ShortDebugString();
+        EXPECT_EQ(job.started_time(), 0.0) << job.ShortDebugString();
+      }
+      if (job.state() == v1::QUEUED && job.slurm_reason() == "JobArrayTaskLimit" &&
+          job.reason().find("Slurm: PENDING") != std::string::npos &&
+          job.reason().find("max_running") != std::string::npos) {
+        shown_waiting.insert(job.id());
+      }
+    }
     std::istringstream lines(Shell("squeue -h -r -j " + array + " -o '%i %T %r' 2>/dev/null"));
     int running = 0, listed = 0;
     for (std::string id, state, reason; lines >> id >> state >> reason;) {
@@ -91,6 +113,8 @@ TEST_F(SlurmStudy, SixPointsAreOneJobArrayWithThrottleTwoAndEachPointIsAJob) {
   EXPECT_LE(most_running, 2);
   EXPECT_GE(seen_running.size(), 2u);
   EXPECT_TRUE(held_by_limit);
+  // The last points wait two rounds of about a second; squeue is asked every second.
+  EXPECT_GE(shown_waiting.size(), 1u) << daemon().Log();
   // Each point is a job of its own that ran its own scene.
   for (int k = 0; k < 6; ++k) {
     const v1::Job done = WaitFinished(*stub, sweep.jobs(k).id());
@@ -117,6 +141,24 @@ TEST_F(SlurmStudy, APointIsCancelledAsItsTaskAndRetriedAsAnArrayOfOne) {
   const std::string second_task = Get(*stub, second).slurm_job_id();
   ASSERT_FALSE(second_task.empty());
   EXPECT_EQ(Shell("squeue -h -j " + second_task + " -o %T"), "PENDING\n");
+  // The daemon shows the waiting point QUEUED with Slurm's reason, the running one RUNNING, and
+  // the study counts them so.
+  ASSERT_TRUE(WaitUntil([&] {
+    const v1::Job job = Get(*stub, second);
+    return job.state() == v1::QUEUED && job.slurm_reason() == "JobArrayTaskLimit";
+  })) << Get(*stub, second).ShortDebugString();
+  const v1::Job waiting = Get(*stub, second);
+  EXPECT_EQ(waiting.slurm_state(), "PENDING");
+  EXPECT_NE(waiting.reason().find("JobArrayTaskLimit"), std::string::npos) << waiting.reason();
+  EXPECT_EQ(waiting.started_time(), 0.0);
+  ASSERT_TRUE(WaitUntil([&] { return Get(*stub, first).state() == v1::RUNNING; }));
+  EXPECT_EQ(Get(*stub, first).slurm_state(), "RUNNING");
+  v1::GetSweepRequest get_sweep;
+  get_sweep.set_sweep_id(sweep.sweep_id());
+  v1::Sweep counts;
+  ASSERT_TRUE(stub->GetSweep(Context().get(), get_sweep, &counts).ok());
+  EXPECT_EQ(counts.queued(), 1);
+  EXPECT_EQ(counts.running(), 1);
   for (const std::string& id : {second, first}) {
     v1::CancelRequest cancel;
     cancel.set_job_id(id);

@@ -1,0 +1,82 @@
+#include "store_fixtures.h"
+
+#include <sqlite3.h>
+
+#include <functional>
+#include <map>
+#include <stdexcept>
+
+namespace dlmfd::testing {
+
+server::JobRecord StoreJob(const std::string& id, const std::string& sweep, int priority,
+                           const std::string& owner) {
+  server::JobRecord job;
+  job.id = id;
+  job.name = id;
+  job.owner = owner;
+  job.sweep_id = sweep;
+  job.priority = priority;
+  job.results_dir = "/tmp/" + id;
+  job.scene = "scene";
+  return job;
+}
+
+server::SweepRecord StoreSweep(const std::string& id, int max_running) {
+  server::SweepRecord sweep;
+  sweep.id = id;
+  sweep.owner = "local";
+  sweep.max_running = max_running;
+  return sweep;
+}
+
+namespace {
+
+// What each schema added (job_store.cc kMigrations), undone.
+const std::map<int, const char*, std::greater<>> kUndo = {
+    {6,
+     "ALTER TABLE jobs DROP COLUMN slurm_state; ALTER TABLE jobs DROP COLUMN slurm_reason; "
+     "ALTER TABLE jobs DROP COLUMN slurm_waiting; ALTER TABLE jobs DROP COLUMN "
+     "time_limit_seconds;"},
+    {5,
+     "ALTER TABLE jobs DROP COLUMN slurm_job_id; ALTER TABLE jobs DROP COLUMN slurm_live; "
+     "ALTER TABLE jobs DROP COLUMN slurm_attempts; ALTER TABLE jobs DROP COLUMN slurm_restarts;"},
+    {4, "ALTER TABLE jobs DROP COLUMN held; ALTER TABLE jobs DROP COLUMN disk_bytes;"},
+    {3,
+     "DROP TABLE sweeps; DROP TABLE job_labels; DROP TABLE job_values; ALTER TABLE jobs DROP "
+     "COLUMN parameters; ALTER TABLE jobs DROP COLUMN attempt; ALTER TABLE jobs DROP COLUMN "
+     "previous_attempts; ALTER TABLE jobs DROP COLUMN fresh_start;"},
+    {2, "ALTER TABLE jobs DROP COLUMN warnings;"},
+};
+
+}  // namespace
+
+void RollBackSchema(const std::string& path, int version) {
+  if (kUndo.begin()->first != server::JobStore::SchemaVersion()) {
+    throw std::runtime_error("RollBackSchema knows schema " + std::to_string(kUndo.begin()->first) +
+                             ", the store has " +
+                             std::to_string(server::JobStore::SchemaVersion()) +
+                             ": add the new schema's undo to store_fixtures.cc");
+  }
+  sqlite3* db = nullptr;
+  if (sqlite3_open(path.c_str(), &db) != SQLITE_OK) {
+    const std::string message = db ? sqlite3_errmsg(db) : "cannot open";
+    sqlite3_close(db);
+    throw std::runtime_error(path + ": " + message);
+  }
+  std::string sql;
+  for (const auto& [added, undo] : kUndo) {
+    if (added > version) sql += undo;
+  }
+  sql += "UPDATE schema_version SET version = " + std::to_string(version) + ";";
+  char* error = nullptr;
+  if (sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error) != SQLITE_OK) {
+    const std::string message = error ? error : "unknown";
+    sqlite3_free(error);
+    sqlite3_close(db);
+    throw std::runtime_error("rolling " + path + " back to schema " + std::to_string(version) +
+                             ": " + message);
+  }
+  sqlite3_close(db);
+}
+
+}  // namespace dlmfd::testing
