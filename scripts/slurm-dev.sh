@@ -10,6 +10,7 @@
 #   scripts/slurm-dev.sh stop-slurmctld | start-slurmctld
 #                                 stops or starts slurmctld alone (jobs run on under slurmd;
 #                                 the tests of a controller restart during runs use them)
+#   scripts/slurm-dev.sh logs     the last lines of slurmctld's and slurmd's logs, and squeue
 #   scripts/slurm-dev.sh env      prints `export SLURM_CONF=...` for a shell (eval "$(... env)")
 #
 # Everything lives under DLMFD_SLURM_DIR (default /tmp/dlmfd-slurm), which this script owns:
@@ -37,7 +38,9 @@ running() { alive "$dir/run/slurmctld.pid" && alive "$dir/run/slurmd.pid"; }
 write_config() {
   local host cpus memory_mb
   host="$(hostname -s)"
-  cpus="$(nproc)"
+  # The machine's processors, not OpenMP's thread count: GNU nproc honours OMP_NUM_THREADS, which
+  # scripts/test.sh sets to 1 (a one-CPU node runs one job at a time and a long job blocks the rest).
+  cpus="$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)"
   # Without RealMemory a node offers 1 MB and every --mem fails; 95 % of the machine's memory stays
   # below what slurmd measures (a node that reports less than configured would be drained).
   memory_mb=$(awk '/^MemTotal:/ { print int($2 / 1024 * 0.95) }' /proc/meminfo)
@@ -144,6 +147,14 @@ case "${1:-}" in
     echo "slurm-dev: slurmctld stopped"
     ;;
   start-slurmctld) start_slurmctld ;;
+  logs)
+    for log in slurmctld.log slurmd.log; do
+      echo "== $dir/log/$log (last 40 lines)"
+      tail -n 40 "$dir/log/$log" 2> /dev/null || true
+    done
+    echo "== squeue"
+    squeue 2> /dev/null || true
+    ;;
   status)
     if running; then
       sinfo
@@ -153,5 +164,5 @@ case "${1:-}" in
     fi
     ;;
   env) echo "export SLURM_CONF=$conf" ;;
-  *) die "usage: scripts/slurm-dev.sh start|stop|status|env|stop-slurmctld|start-slurmctld" ;;
+  *) die "usage: scripts/slurm-dev.sh start|stop|status|logs|env|stop-slurmctld|start-slurmctld" ;;
 esac

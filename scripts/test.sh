@@ -16,7 +16,10 @@ if [ "$(id -u)" -eq 0 ]; then
     scripts/slurm-dev.sh start
     slurm_started=1
   fi
-  trap 'if [ "$slurm_started" = 1 ]; then scripts/slurm-dev.sh stop; fi' EXIT
+  # On a failure the controller's and the node's last lines go to the log before Slurm stops.
+  trap 'status=$?
+    if [ "$status" != 0 ]; then scripts/slurm-dev.sh logs || true; fi
+    if [ "$slurm_started" = 1 ]; then scripts/slurm-dev.sh stop; fi' EXIT
   eval "$(scripts/slurm-dev.sh env)"
 fi
 
@@ -29,5 +32,7 @@ echo "== ASan+UBSan build and tests"
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDLMFD_SANITIZE=ON -DDLMFD_WERROR=ON \
   -DDLMFD_BUILD_BENCH=OFF > /dev/null
 cmake --build build-asan -j"$jobs"
+# The tests labelled slurm run once, in the release build: they wait on Slurm's scheduling (minutes),
+# and the daemon's code they drive runs under the sanitizers in the server tests.
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 1800
+  ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 1800 -LE slurm

@@ -89,8 +89,8 @@ struct ControllerBack {
 };
 
 // A long job is followed through the outage (its squeue fails: the daemon keeps the last
-// states), jobs submitted during it wait for the controller (sbatch is run again), jobs in Slurm
-// before it end as usual; afterwards the long job is cancelled through Slurm.
+// states), jobs submitted during it wait for the controller (sbatch is run again); afterwards the
+// long job is cancelled through Slurm and the jobs in Slurm before the outage end as usual.
 TEST_F(SlurmDurability, TheDaemonCarriesOnThroughASlurmctldRestart) {
   if (geteuid() != 0) GTEST_SKIP() << "stopping slurmctld needs root (scripts/slurm-dev.sh)";
   ASSERT_TRUE(StartDaemon()) << daemon().Log();
@@ -112,6 +112,11 @@ TEST_F(SlurmDurability, TheDaemonCarriesOnThroughASlurmctldRestart) {
     EXPECT_EQ(Get(*stub, long_job).state(), v1::RUNNING);
     ASSERT_EQ(std::system((kSlurmDev + " start-slurmctld > /dev/null").c_str()), 0);
   }
+  // The long job ran through it all and is cancelled as ever (first: on a node of one CPU the
+  // other jobs wait for its CPU).
+  const v1::Job cancelled = CancelAndWait(*stub, long_job);
+  EXPECT_EQ(cancelled.state(), v1::CANCELLED) << cancelled.reason() << "\n" << daemon().Log();
+  EXPECT_EQ(cancelled.attempt(), 1);
   for (const auto& id : ids) {
     const v1::Job done = WaitFinished(*stub, id);
     EXPECT_EQ(done.state(), v1::COMPLETED) << id << ": " << done.reason() << "\n" << daemon().Log();
@@ -120,10 +125,6 @@ TEST_F(SlurmDurability, TheDaemonCarriesOnThroughASlurmctldRestart) {
   }
   EXPECT_TRUE(WaitUntil([&] { return EndedInSlurm(ids) == 4; }));
   for (const auto& id : ids) EXPECT_EQ(SlurmEndsOfName("dlmfd-" + id), 1) << id;
-  // The long job ran through it all and is cancelled as ever.
-  const v1::Job done = CancelAndWait(*stub, long_job);
-  EXPECT_EQ(done.state(), v1::CANCELLED) << done.reason() << "\n" << daemon().Log();
-  EXPECT_EQ(done.attempt(), 1);
 }
 
 }  // namespace

@@ -114,14 +114,20 @@ inline bool WaitUntil(const std::function<bool()>& done,
   return true;
 }
 
-// Reads the job's Watch stream until a progress event past step 0 (the solver runs on a node).
+// Reads the job's Watch stream until a progress event past step 0 (the solver runs on a node);
+// a job with no progress within five minutes is a test failure.
 inline void WaitForProgress(v1::Jobs::Stub& stub, const std::string& id) {
   auto context = Context();
+  context->set_deadline(std::chrono::system_clock::now() + std::chrono::minutes(5));
   v1::WatchRequest watch;
   watch.set_job_id(id);
   auto reader = stub.Watch(context.get(), watch);
   v1::WatchEvent event;
-  while (reader->Read(&event) && !(event.has_progress() && event.progress().step() > 0)) {}
+  bool progressed = false;
+  while (!progressed && reader->Read(&event)) {
+    progressed = event.has_progress() && event.progress().step() > 0;
+  }
+  EXPECT_TRUE(progressed) << "job " << id << " made no progress within five minutes";
   context->TryCancel();
   reader->Finish();
 }
@@ -136,18 +142,28 @@ inline v1::Job CancelAndWait(v1::Jobs::Stub& stub, const std::string& id) {
   return WaitFinished(stub, id);
 }
 
+// Cancels the Slurm jobs whose working directory starts with prefix.
+inline void CancelSlurmJobsUnder(const std::string& prefix) {
+  std::istringstream lines(Shell("squeue -h -o '%i %Z' 2>/dev/null"));
+  for (std::string id, work_dir; lines >> id >> work_dir;) {
+    if (work_dir.rfind(prefix, 0) == 0) std::system(("scancel " + id + " 2>/dev/null").c_str());
+  }
+}
+
+// The Slurm jobs of an earlier slurm test that ctest killed (its timeout: no destructor ran) would
+// hold the node's CPUs for ever; the slurm tests run one at a time (RESOURCE_LOCK in
+// tests/CMakeLists.txt), so every job under a test directory is such a leftover when one starts.
+inline void CancelLeftoverTestJobs() {
+  CancelSlurmJobsUnder((std::filesystem::temp_directory_path() / "dlmfdd-test-").string());
+}
+
 // At the end of a test, cancels the Slurm jobs whose working directory lies under dir (a daemon
 // that shuts down leaves its Slurm jobs running, to adopt them at its next start).
 class SlurmCleanup {
  public:
   explicit SlurmCleanup(std::string dir)
       : dir_(std::move(dir)) {}
-  ~SlurmCleanup() {
-    std::istringstream lines(Shell("squeue -h -o '%i %Z' 2>/dev/null"));
-    for (std::string id, work_dir; lines >> id >> work_dir;) {
-      if (work_dir.rfind(dir_, 0) == 0) std::system(("scancel " + id + " 2>/dev/null").c_str());
-    }
-  }
+  ~SlurmCleanup() { CancelSlurmJobsUnder(dir_); }
   SlurmCleanup(const SlurmCleanup&) = delete;
   SlurmCleanup& operator=(const SlurmCleanup&) = delete;
 
@@ -166,6 +182,7 @@ class SlurmTest : public ::testing::Test {
       GTEST_SKIP() << "no Slurm answers sinfo: start one with scripts/slurm-dev.sh start (as "
                       "root), or set SLURM_CONF";
     }
+    CancelLeftoverTestJobs();
   }
   // SlurmFlags and more; false when the daemon did not start (its log says why).
   bool StartDaemon(const std::vector<std::string>& more = {}) {

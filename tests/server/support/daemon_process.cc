@@ -197,6 +197,7 @@ std::vector<v1::WatchEvent> WatchAll(v1::Jobs::Stub& stub, const std::string& jo
 }
 
 v1::Job WaitFinished(v1::Jobs::Stub& stub, const std::string& job_id, const std::string& token) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(10);
   while (true) {
     auto context = Context(token);
     v1::GetRequest request;
@@ -205,6 +206,11 @@ v1::Job WaitFinished(v1::Jobs::Stub& stub, const std::string& job_id, const std:
     auto status = stub.Get(context.get(), request, &job);
     if (!status.ok()) return job;
     if (job.state() >= v1::COMPLETED) return job;
+    if (std::chrono::steady_clock::now() > deadline) {
+      ADD_FAILURE() << "job " << job_id << " did not finish within 10 minutes (state "
+                    << v1::JobState_Name(job.state()) << ")";
+      return job;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
 }

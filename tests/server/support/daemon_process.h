@@ -82,7 +82,8 @@ std::string CavityScene(double end_time = 0.5);
 // Reads a Watch stream to its end; returns the events.
 std::vector<v1::WatchEvent> WatchAll(v1::Jobs::Stub& stub, const std::string& job_id,
                                      const std::string& token = "", int64_t from_seq = 0);
-// Polls Get until the job is finished; returns it.
+// Polls Get until the job is finished; returns it. A job still unfinished after ten minutes is a
+// test failure (a hung job or a deadlocked scheduler fails the test instead of hanging it).
 v1::Job WaitFinished(v1::Jobs::Stub& stub, const std::string& job_id,
                      const std::string& token = "");
 
