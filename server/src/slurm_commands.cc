@@ -10,6 +10,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cstdlib>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -18,6 +19,8 @@
 #include "job_time_limit.h"
 
 namespace dlmfd::server {
+
+namespace fs = std::filesystem;
 
 std::string ShellQuote(const std::string& word) {
   std::string out = "'";
@@ -130,6 +133,27 @@ std::vector<std::string> SbatchArguments(const BatchJob& job, const SlurmSetting
   for (std::string word; extra >> word;) args.push_back(word);
   args.push_back(script_path);
   return args;
+}
+
+std::vector<std::string> SqueueOfNameArguments(const std::string& name) {
+  return {"--noheader", "--name=" + name, "--states=PENDING,RUNNING,SUSPENDED,CONFIGURING,REQUEUED",
+          "--format=%i %Z"};
+}
+
+std::string ParseLiveJobIn(const std::string& output, const std::string& job_dir) {
+  const auto normal = [](const std::string& dir) {
+    fs::path path = fs::path(dir).lexically_normal();
+    return (path.has_filename() ? path : path.parent_path()).string();  // no trailing '/'
+  };
+  const std::string wanted = normal(job_dir);
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    const size_t space = line.find(' ');
+    if (space == std::string::npos) continue;
+    const std::string id = line.substr(0, space);
+    if (normal(line.substr(space + 1)) == wanted) return id;
+  }
+  return {};
 }
 
 std::string ParseSbatchId(const std::string& output) {

@@ -7,6 +7,8 @@
 //                                                     (a string; an array in newer releases),
 //                                                     state_reason, restart_cnt, array_job_id,
 //                                                     array_task_id, array_task_string
+//   squeue -h --name --states -o "%i %Z"              the live jobs of a name and their
+//                                                     working directories
 //   scancel [--signal=KILL] ID                        ID or ARRAYID_INDEX
 // The jobcomp file (JobCompType=jobcomp/filetxt) has one line per ended job, "JobId=ID ...
 // JobState=STATE ... [ArrayJobId=A ArrayTaskId=I] ExitCode=A:B": it tells the end of a job that
@@ -72,6 +74,11 @@ std::vector<std::string> SbatchArguments(const BatchJob& job, const SlurmSetting
                                          const std::string& script_path);
 // The id sbatch --parsable printed; throws std::runtime_error when there is none.
 std::string ParseSbatchId(const std::string& output);
+// squeue's arguments (without "squeue") that list the live jobs of a name, one "ID WORKDIR" line
+// each: waiting or running, not ending or ended.
+std::vector<std::string> SqueueOfNameArguments(const std::string& name);
+// The id in that output of the job whose working directory is job_dir; empty when none is.
+std::string ParseLiveJobIn(const std::string& output, const std::string& job_dir);
 
 struct SlurmJobStatus {
   std::string id;

@@ -96,6 +96,7 @@ void SlurmRun::Start(const LaunchSpec& spec) {
   const fs::path results = spec.results_dir;
   const fs::path dir = results.parent_path();
   job_dir_ = dir.string();
+  if (FollowUnrecordedJob(dir)) return;
   BatchJob job;
   std::string script;
   try {
@@ -139,6 +140,34 @@ void SlurmRun::Start(const LaunchSpec& spec) {
   reported_ = ExecutorState{"PENDING", "", true};  // as JobStore::SetSlurmSubmitted records it
   WriteTextAtomically((dir / kSlurmIdFile).string(), id + "\n");
   if (pending != 0) Signal(pending);  // a cancel that came during the submission
+}
+
+bool SlurmRun::FollowUnrecordedJob(const fs::path& dir) {
+  // A job of its own whose script is there has been handed to sbatch before; an array's task is
+  // submitted with its array (slurm_array.h).
+  if (array_ || !fs::exists(dir / kSlurmScript)) return false;
+  const std::string name = "dlmfd-" + dir.filename().string();
+  std::vector<std::string> argv = {"squeue"};
+  for (auto& a : SqueueOfNameArguments(name)) argv.push_back(std::move(a));
+  const CommandResult result = RunCommand(argv);
+  const std::string id = result.status == 0 ? ParseLiveJobIn(result.out, job_dir_) : "";
+  if (id.empty()) return false;
+  spdlog::warn(
+      "{}: Slurm job {} of this job runs or waits, unrecorded (the daemon was killed between "
+      "sbatch's answer and the store): followed, not submitted again",
+      name, id);
+  int pending = 0;
+  {
+    std::lock_guard lock(mutex_);
+    slurm_id_ = id;
+    pending = pending_signal_;
+  }
+  submitted_ = true;
+  followed_since_ = SlurmQueue::Clock::now();
+  reported_ = ExecutorState{"PENDING", "", true};  // as JobStore::SetSlurmSubmitted records it
+  WriteTextAtomically((dir / kSlurmIdFile).string(), id + "\n");
+  if (pending != 0) Signal(pending);
+  return true;
 }
 
 std::string SlurmRun::Submit(const BatchJob& job, const std::string& script) {

@@ -45,6 +45,7 @@
 #include <sys/types.h>
 #include <chrono>
 #include <condition_variable>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -118,6 +119,10 @@ class SlurmRun : public JobRun {
     int status = 0;
     int restarts = 0;
   };
+  // A daemon killed between sbatch's answer and the store's commit of the id leaves a Slurm job
+  // the store does not know: when one of this job's name and directory waits or runs (squeue),
+  // it is followed as if just submitted; true then.
+  bool FollowUnrecordedJob(const std::filesystem::path& dir);
   // sbatch for a job of its own; empty when the run was signalled while sbatch could not reach
   // slurmctld.
   std::string Submit(const BatchJob& job, const std::string& script);

@@ -265,6 +265,19 @@ TEST(SlurmCommands, ParsesSbatchParsable) {
   EXPECT_THROW(ParseSbatchId("sbatch: error: Batch job submission failed\n"), std::runtime_error);
 }
 
+// squeue -h --name=N --states=... -o "%i %Z": the job of this name in this directory, not one of
+// the same name elsewhere (another daemon's job directory).
+TEST(SlurmCommands, FindsTheLiveJobOfANameInItsDirectory) {
+  const std::vector<std::string> args = SqueueOfNameArguments("dlmfd-j7");
+  EXPECT_NE(std::find(args.begin(), args.end(), "--name=dlmfd-j7"), args.end());
+  EXPECT_NE(std::find(args.begin(), args.end(), "--format=%i %Z"), args.end());
+  const std::string out = "41 /scratch/other/jobs/j7\n42 /shared/jobs/j7\n";
+  EXPECT_EQ(ParseLiveJobIn(out, "/shared/jobs/j7"), "42");
+  EXPECT_EQ(ParseLiveJobIn(out, "/shared/jobs/./j7/"), "42");
+  EXPECT_EQ(ParseLiveJobIn(out, "/shared/jobs/j8"), "");
+  EXPECT_EQ(ParseLiveJobIn("", "/shared/jobs/j7"), "");
+}
+
 TEST(SlurmCommands, ParsesARealSqueueJson) {
   const std::string json = ReadFixture("squeue_v0.0.38.json");
   ASSERT_FALSE(json.empty());

@@ -2,7 +2,8 @@
 // end with its events streamed through the shared job directory (progress, particle states and
 // trA snapshots, as for a local job), `dlmfd show`'s Slurm id, a job that waits in Slurm (held)
 // shown QUEUED with Slurm's reason until Slurm starts it, the job's own time limit as its --time,
-// cancel as scancel, and a daemon killed with SIGKILL that adopts its Slurm job on restart.
+// cancel as scancel, a daemon killed with SIGKILL that adopts its Slurm job on restart, and one
+// killed before it stored the Slurm id that follows the job it submitted.
 // Skipped, naming scripts/slurm-dev.sh, when no Slurm answers sinfo.
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../server/support/store_fixtures.h"
 #include "slurm_harness.h"
 
 namespace dlmfd::testing {
@@ -172,6 +174,37 @@ TEST_F(SlurmExecutor, ADaemonKilledWithSigkillAdoptsItsSlurmJobOnRestart) {
   EXPECT_NE(daemon().Log().find("Slurm job " + slurm_id + " adopted"), std::string::npos)
       << daemon().Log();
   // Slurm ran one job of that name.
+  EXPECT_EQ(SlurmEndsOfName("dlmfd-" + id), 1);
+}
+
+// The window between sbatch's answer and the store's commit of the id: the daemon is killed, and
+// its store (and the job directory) are left as if it had died inside that window. The next
+// daemon finds the Slurm job by its name and directory and follows it: no second run.
+TEST_F(SlurmExecutor, ADaemonKilledBeforeItStoredTheSlurmIdFollowsTheJobInsteadOfASecondOne) {
+  ASSERT_TRUE(StartDaemon()) << daemon().Log();
+  const v1::Job job = Submit(*stub(), CavityScene(20.0));
+  const std::string id = job.id();
+  WaitForProgress(*stub(), id);
+  const v1::Job running = Get(*stub(), id);
+  const std::string slurm_id = running.slurm_job_id();
+  ASSERT_FALSE(slurm_id.empty());
+  daemon().Kill(SIGKILL);
+  daemon().Wait();
+  ExecuteOnStore(dir() + "/data/jobs.db",
+                 "UPDATE jobs SET slurm_job_id = '', slurm_live = 0, slurm_attempts = 0 "
+                 "WHERE id = '" +
+                     id + "';",
+                 "forgetting the Slurm id");
+  fs::remove(fs::path(running.results_dir()).parent_path() / "slurm.id");
+  ASSERT_TRUE(StartDaemon()) << daemon().Log();
+  auto* stub = this->stub();
+  const v1::Job done = WaitFinished(*stub, id);
+  EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
+  EXPECT_EQ(done.slurm_job_id(), slurm_id);  // the same Slurm job: not submitted again
+  EXPECT_EQ(done.step(), 2000);
+  EXPECT_NE(daemon().Log().find("Slurm job " + slurm_id + " of this job runs or waits, unrecorded"),
+            std::string::npos)
+      << daemon().Log();
   EXPECT_EQ(SlurmEndsOfName("dlmfd-" + id), 1);
 }
 

@@ -3,9 +3,11 @@
 // count) that resumes from the checkpoint and completes, not a failure; a job that Slurm ends
 // with TIMEOUT is queued again by the daemon (slurm_max_attempts), resumes from the checkpoint
 // the solver wrote at Slurm's SIGTERM and ends COMPLETED with the result of an uninterrupted
-// run. Skipped, naming scripts/slurm-dev.sh, when no Slurm answers sinfo.
+// run; a node that fails under a job (NODE_FAIL) is another attempt that completes. Skipped, naming
+// scripts/slurm-dev.sh, when no Slurm answers sinfo.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -132,6 +134,55 @@ TEST_F(SlurmRequeue, ATimeoutResumesFromTheCheckpointAndEndsAsAnUninterruptedRun
   EXPECT_EQ(resumed.particles[0].velocity, reference.particles[0].velocity);
   EXPECT_EQ(resumed.particles[0].angular_velocity, reference.particles[0].angular_velocity);
   EXPECT_EQ(resumed.particles[0].force, reference.particles[0].force);
+}
+
+// Brings the node back when the test ends, whatever happened.
+struct NodeBack {
+  std::string node;
+  ~NodeBack() {
+    std::system(("scontrol update NodeName=" + node + " State=RESUME > /dev/null 2>&1").c_str());
+  }
+};
+
+// A node failure: the node is set DOWN under a running job (as slurmctld does when a node stops
+// answering). With --no-requeue (a site's JobRequeue=0) Slurm ends the job NODE_FAIL; the daemon
+// queues it again (slurm_max_attempts) and the next attempt, on the node back in service,
+// completes. With Slurm's default requeue the same failure is a Slurm restart, as the requeue
+// test above.
+TEST_F(SlurmRequeue, ANodeFailureIsQueuedAgainAndCompletes) {
+  if (geteuid() != 0) GTEST_SKIP() << "setting the node DOWN needs Slurm's root (scontrol)";
+  ASSERT_TRUE(StartDaemon({"--slurm-sbatch-options=--no-requeue", "--slurm-max-attempts", "2"}))
+      << daemon().Log();
+  auto* stub = this->stub();
+  const v1::Job job = Submit(*stub, CavityScene(30.0));  // 3000 steps, a few seconds
+  WaitForProgress(*stub, job.id());
+  const std::string slurm_id = Get(*stub, job.id()).slurm_job_id();
+  ASSERT_FALSE(slurm_id.empty());
+  NodeBack back{Shell("squeue -h -j " + slurm_id + " -o %N | tr -d '\\n'")};
+  ASSERT_FALSE(back.node.empty());
+  ASSERT_EQ(std::system(("scontrol update NodeName=" + back.node +
+                         " State=DOWN Reason=dlmfd-node-failure-test")
+                            .c_str()),
+            0);
+  ASSERT_TRUE(WaitUntil([&] { return Get(*stub, job.id()).attempt() == 2; })) << daemon().Log();
+  // Back in service (slurmd may have registered it already: ReturnToService=2).
+  std::system(("scontrol update NodeName=" + back.node + " State=RESUME 2>/dev/null").c_str());
+  const v1::Job done = WaitFinished(*stub, job.id());
+  EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
+  EXPECT_EQ(done.step(), 3000);
+  EXPECT_EQ(done.attempt(), 2);
+  ASSERT_EQ(done.previous_attempts_size(), 1);
+  const std::string reason = done.previous_attempts(0).reason();
+  EXPECT_NE(reason.find("NODE_FAIL"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("queued again to resume from the checkpoint: Slurm attempt 2 of "
+                        "slurm_max_attempts = 2"),
+            std::string::npos)
+      << reason;
+  EXPECT_NE(done.slurm_job_id(), slurm_id);  // a new submission
+  EXPECT_TRUE(WaitUntil([&] {
+    return Shell("grep '^JobId=" + slurm_id + " ' " + JobCompFile()).find("JobState=NODE_FAIL") !=
+           std::string::npos;
+  }));
 }
 
 }  // namespace

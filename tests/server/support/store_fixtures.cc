@@ -57,24 +57,27 @@ void RollBackSchema(const std::string& path, int version) {
                              std::to_string(server::JobStore::SchemaVersion()) +
                              ": add the new schema's undo to store_fixtures.cc");
   }
+  std::string sql;
+  for (const auto& [added, undo] : kUndo) {
+    if (added > version) sql += undo;
+  }
+  sql += "UPDATE schema_version SET version = " + std::to_string(version) + ";";
+  ExecuteOnStore(path, sql, "rolling " + path + " back to schema " + std::to_string(version));
+}
+
+void ExecuteOnStore(const std::string& path, const std::string& sql, const std::string& what) {
   sqlite3* db = nullptr;
   if (sqlite3_open(path.c_str(), &db) != SQLITE_OK) {
     const std::string message = db ? sqlite3_errmsg(db) : "cannot open";
     sqlite3_close(db);
     throw std::runtime_error(path + ": " + message);
   }
-  std::string sql;
-  for (const auto& [added, undo] : kUndo) {
-    if (added > version) sql += undo;
-  }
-  sql += "UPDATE schema_version SET version = " + std::to_string(version) + ";";
   char* error = nullptr;
   if (sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error) != SQLITE_OK) {
     const std::string message = error ? error : "unknown";
     sqlite3_free(error);
     sqlite3_close(db);
-    throw std::runtime_error("rolling " + path + " back to schema " + std::to_string(version) +
-                             ": " + message);
+    throw std::runtime_error(what + ": " + message);
   }
   sqlite3_close(db);
 }

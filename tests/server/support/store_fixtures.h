@@ -22,4 +22,8 @@ server::SweepRecord StoreSweep(const std::string& id, int max_running);
 // here.
 void RollBackSchema(const std::string& path, int version);
 
+// Runs the SQL statements on the store file at `path` (a test that edits what a daemon left);
+// throws std::runtime_error with SQLite's message, prefixed by `what`, when one fails.
+void ExecuteOnStore(const std::string& path, const std::string& sql, const std::string& what);
+
 }  // namespace dlmfd::testing
