@@ -35,4 +35,5 @@ cmake --build build-asan -j"$jobs"
 # The tests labelled slurm run once, in the release build: they wait on Slurm's scheduling (minutes),
 # and the daemon's code they drive runs under the sanitizers in the server tests.
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  LSAN_OPTIONS=suppressions="$PWD/scripts/lsan.supp":print_suppressions=0 \
   ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 1800 -LE slurm

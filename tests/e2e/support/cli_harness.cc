@@ -190,6 +190,10 @@ std::map<std::string, std::string> CliDaemon::Env(bool with_server, bool with_to
                                             {"PATH", "/usr/bin:/bin"}};
   if (with_server) env["DLMFD_SERVER"] = server_;
   if (with_token) env["DLMFD_TOKEN"] = kAliceToken;
+  // A sanitizer build's options (scripts/test.sh: the leak suppressions among them) reach the CLI.
+  for (const char* name : {"ASAN_OPTIONS", "LSAN_OPTIONS", "UBSAN_OPTIONS"}) {
+    if (const char* value = std::getenv(name)) env[name] = value;
+  }
   return env;
 }
 

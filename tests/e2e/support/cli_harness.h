@@ -68,7 +68,8 @@ class CliDaemon {
   bool Start(const std::string& listen, std::string& error);
   void Kill(int signal_number);
   const std::string& server() const { return server_; }
-  // A user's environment with no config file: HOME, PATH, DLMFD_SERVER, DLMFD_TOKEN.
+  // A user's environment with no config file: HOME, PATH, DLMFD_SERVER, DLMFD_TOKEN (and the
+  // sanitizer options of the test's own environment, when set).
   std::map<std::string, std::string> Env(bool with_server = true, bool with_token = true) const;
 
  private:
