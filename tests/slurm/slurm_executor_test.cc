@@ -182,7 +182,8 @@ TEST_F(SlurmExecutor, ADaemonKilledWithSigkillAdoptsItsSlurmJobOnRestart) {
 // daemon finds the Slurm job by its name and directory and follows it: no second run.
 TEST_F(SlurmExecutor, ADaemonKilledBeforeItStoredTheSlurmIdFollowsTheJobInsteadOfASecondOne) {
   ASSERT_TRUE(StartDaemon()) << daemon().Log();
-  const v1::Job job = Submit(*stub(), CavityScene(20.0));
+  // 20000 steps, about 7 s: still running when the next daemon looks for it.
+  const v1::Job job = Submit(*stub(), CavityScene(200.0));
   const std::string id = job.id();
   WaitForProgress(*stub(), id);
   const v1::Job running = Get(*stub(), id);
@@ -201,7 +202,7 @@ TEST_F(SlurmExecutor, ADaemonKilledBeforeItStoredTheSlurmIdFollowsTheJobInsteadO
   const v1::Job done = WaitFinished(*stub, id);
   EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
   EXPECT_EQ(done.slurm_job_id(), slurm_id);  // the same Slurm job: not submitted again
-  EXPECT_EQ(done.step(), 2000);
+  EXPECT_EQ(done.step(), 20000);
   EXPECT_NE(daemon().Log().find("Slurm job " + slurm_id + " of this job runs or waits, unrecorded"),
             std::string::npos)
       << daemon().Log();

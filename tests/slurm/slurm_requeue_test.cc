@@ -50,7 +50,8 @@ solver::RunSummary Summary(const std::string& results) {
 TEST_F(SlurmRequeue, ScontrolRequeueIsANewAttemptThatResumesAndCompletes) {
   ASSERT_TRUE(StartDaemon()) << daemon().Log();
   auto* stub = this->stub();
-  const v1::Job job = Submit(*stub, CavityScene(30.0));  // 3000 steps, a few seconds
+  // 30000 steps, about 10 s: still running when the test acts on it (3000 steps took 1 s).
+  const v1::Job job = Submit(*stub, CavityScene(300.0));
   WaitForProgress(*stub, job.id());
   const std::string slurm_id = Get(*stub, job.id()).slurm_job_id();
   ASSERT_FALSE(slurm_id.empty());
@@ -63,7 +64,7 @@ TEST_F(SlurmRequeue, ScontrolRequeueIsANewAttemptThatResumesAndCompletes) {
   const v1::Job done = WaitFinished(*stub, job.id());
   EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
   EXPECT_EQ(done.slurm_job_id(), slurm_id);  // the same Slurm job, run again
-  EXPECT_EQ(done.step(), 3000);
+  EXPECT_EQ(done.step(), 30000);
   EXPECT_EQ(done.attempt(), 2);
   ASSERT_EQ(done.previous_attempts_size(), 1);
   EXPECT_NE(
@@ -87,7 +88,10 @@ TEST_F(SlurmRequeue, ATimeoutResumesFromTheCheckpointAndEndsAsAnUninterruptedRun
                            "--slurm-max-attempts", "2"}))
       << daemon().Log();
   auto* stub = this->stub();
-  const std::string scene = SettlingDisk(2.5);  // 2500 steps, about 2 s
+  // 20000 steps, about 6 s: the solver must still run when the test stops it (the first
+  // progress reaches the test about half a second after the solver wrote it; 2500 steps were
+  // over by then on an idle machine).
+  const std::string scene = SettlingDisk(20.0);
   const v1::Job job = Submit(*stub, scene);
   WaitForProgress(*stub, job.id());
   const std::string slurm_id = Get(*stub, job.id()).slurm_job_id();
@@ -99,7 +103,7 @@ TEST_F(SlurmRequeue, ATimeoutResumesFromTheCheckpointAndEndsAsAnUninterruptedRun
   ASSERT_EQ(std::system(("scontrol update JobId=" + slurm_id + " EndTime=now+1").c_str()), 0);
   const v1::Job done = WaitFinished(*stub, job.id());
   EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
-  EXPECT_EQ(done.step(), 2500);
+  EXPECT_EQ(done.step(), 20000);
   EXPECT_EQ(done.attempt(), 2);
   ASSERT_EQ(done.previous_attempts_size(), 1);
   const std::string reason = done.previous_attempts(0).reason();
@@ -154,7 +158,8 @@ TEST_F(SlurmRequeue, ANodeFailureIsQueuedAgainAndCompletes) {
   ASSERT_TRUE(StartDaemon({"--slurm-sbatch-options=--no-requeue", "--slurm-max-attempts", "2"}))
       << daemon().Log();
   auto* stub = this->stub();
-  const v1::Job job = Submit(*stub, CavityScene(30.0));  // 3000 steps, a few seconds
+  // 30000 steps, about 10 s: still running when the test acts on it (3000 steps took 1 s).
+  const v1::Job job = Submit(*stub, CavityScene(300.0));
   WaitForProgress(*stub, job.id());
   const std::string slurm_id = Get(*stub, job.id()).slurm_job_id();
   ASSERT_FALSE(slurm_id.empty());
@@ -169,7 +174,7 @@ TEST_F(SlurmRequeue, ANodeFailureIsQueuedAgainAndCompletes) {
   std::system(("scontrol update NodeName=" + back.node + " State=RESUME 2>/dev/null").c_str());
   const v1::Job done = WaitFinished(*stub, job.id());
   EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
-  EXPECT_EQ(done.step(), 3000);
+  EXPECT_EQ(done.step(), 30000);
   EXPECT_EQ(done.attempt(), 2);
   ASSERT_EQ(done.previous_attempts_size(), 1);
   const std::string reason = done.previous_attempts(0).reason();
