@@ -122,16 +122,21 @@ void SlurmRun::Start(const LaunchSpec& spec) {
     throw;
   }
   const std::string id = array_ ? array_->Join(index_, job) : Submit(job, script);
+  if (id.empty()) {
+    // Signalled before it reached Slurm: it never ran (the scheduler maps SIGTERM as for a
+    // solver stopped by it).
+    std::lock_guard lock(mutex_);
+    exit_.signalled = true;
+    exit_.code = SIGTERM;
+    return;
+  }
+  Follow(dir, id);
+}
+
+void SlurmRun::Follow(const fs::path& dir, const std::string& id) {
   int pending = 0;
   {
     std::lock_guard lock(mutex_);
-    if (id.empty()) {
-      // Signalled before it reached Slurm: it never ran (the scheduler maps SIGTERM as for a
-      // solver stopped by it).
-      exit_.signalled = true;
-      exit_.code = SIGTERM;
-      return;
-    }
     slurm_id_ = id;
     pending = pending_signal_;
   }
@@ -156,17 +161,7 @@ bool SlurmRun::FollowUnrecordedJob(const fs::path& dir) {
       "{}: Slurm job {} of this job runs or waits, unrecorded (the daemon was killed between "
       "sbatch's answer and the store): followed, not submitted again",
       name, id);
-  int pending = 0;
-  {
-    std::lock_guard lock(mutex_);
-    slurm_id_ = id;
-    pending = pending_signal_;
-  }
-  submitted_ = true;
-  followed_since_ = SlurmQueue::Clock::now();
-  reported_ = ExecutorState{"PENDING", "", true};  // as JobStore::SetSlurmSubmitted records it
-  WriteTextAtomically((dir / kSlurmIdFile).string(), id + "\n");
-  if (pending != 0) Signal(pending);
+  Follow(dir, id);
   return true;
 }
 

@@ -123,6 +123,9 @@ class SlurmRun : public JobRun {
   // the store does not know: when one of this job's name and directory waits or runs (squeue),
   // it is followed as if just submitted; true then.
   bool FollowUnrecordedJob(const std::filesystem::path& dir);
+  // Follows Slurm job `id` from now on (submitted, or found): records it, writes the id file of
+  // `dir`, and passes on a signal that came before the id.
+  void Follow(const std::filesystem::path& dir, const std::string& id);
   // sbatch for a job of its own; empty when the run was signalled while sbatch could not reach
   // slurmctld.
   std::string Submit(const BatchJob& job, const std::string& script);
