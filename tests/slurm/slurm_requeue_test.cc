@@ -43,6 +43,23 @@ std::string SettlingDisk(double end_time) {
   return scene.str();
 }
 
+// The daemon queued the job again once, as a new Slurm submission, after Slurm ended its first
+// attempt (Slurm job slurm_id) in slurm_state (the jobcomp file says so).
+void ExpectQueuedAgainAfter(const v1::Job& done, const std::string& slurm_id,
+                            const std::string& slurm_state) {
+  ASSERT_EQ(done.previous_attempts_size(), 1);
+  const std::string reason = done.previous_attempts(0).reason();
+  EXPECT_NE(reason.find("queued again to resume from the checkpoint: Slurm attempt 2 of "
+                        "slurm_max_attempts = 2"),
+            std::string::npos)
+      << reason;
+  EXPECT_NE(done.slurm_job_id(), slurm_id);  // a new submission
+  EXPECT_TRUE(WaitUntil([&] {
+    return Shell("grep '^JobId=" + slurm_id + " ' " + JobCompFile())
+               .find("JobState=" + slurm_state) != std::string::npos;
+  }));
+}
+
 solver::RunSummary Summary(const std::string& results) {
   return solver::ReadRunSummary(results + "/" + solver::kRunSummaryFile);
 }
@@ -110,15 +127,7 @@ TEST_F(SlurmRequeue, ATimeoutResumesFromTheCheckpointAndEndsAsAnUninterruptedRun
   EXPECT_TRUE(reason.find("TIMEOUT") != std::string::npos ||
               reason.find("time limit") != std::string::npos)
       << reason;
-  EXPECT_NE(reason.find("queued again to resume from the checkpoint: Slurm attempt 2 of "
-                        "slurm_max_attempts = 2"),
-            std::string::npos)
-      << reason;
-  EXPECT_NE(done.slurm_job_id(), slurm_id);  // a new submission
-  EXPECT_TRUE(WaitUntil([&] {
-    return Shell("grep '^JobId=" + slurm_id + " ' " + JobCompFile()).find("JobState=TIMEOUT") !=
-           std::string::npos;
-  }));
+  ExpectQueuedAgainAfter(done, slurm_id, "TIMEOUT");
   // The same result as a run that was never interrupted, to the last bit, with the same one
   // OpenMP thread as the Slurm job's (--cpus-per-task=1: sums in another order differ).
   const solver::RunSummary resumed = Summary(done.results_dir());
@@ -179,15 +188,7 @@ TEST_F(SlurmRequeue, ANodeFailureIsQueuedAgainAndCompletes) {
   ASSERT_EQ(done.previous_attempts_size(), 1);
   const std::string reason = done.previous_attempts(0).reason();
   EXPECT_NE(reason.find("NODE_FAIL"), std::string::npos) << reason;
-  EXPECT_NE(reason.find("queued again to resume from the checkpoint: Slurm attempt 2 of "
-                        "slurm_max_attempts = 2"),
-            std::string::npos)
-      << reason;
-  EXPECT_NE(done.slurm_job_id(), slurm_id);  // a new submission
-  EXPECT_TRUE(WaitUntil([&] {
-    return Shell("grep '^JobId=" + slurm_id + " ' " + JobCompFile()).find("JobState=NODE_FAIL") !=
-           std::string::npos;
-  }));
+  ExpectQueuedAgainAfter(done, slurm_id, "NODE_FAIL");
 }
 
 }  // namespace
