@@ -61,9 +61,15 @@ NodeField Windowed(const NodeField& field, const std::vector<double>& window) {
   return CropField(field, window[0], window[1], window[2], window[3]);
 }
 
+bool DrawsDiverging(const std::string& quantity, const PictureOptions& options) {
+  return IsSignedQuantity(quantity) && !options.log_colours;
+}
+
 FieldPicture DrawFrame(const ResultsFrame& frame, const PlotFlags& flags,
-                       const PictureOptions& options) {
+                       const PictureOptions& frame_options) {
   const NodeField field = Windowed(frame.field, flags.window);
+  PictureOptions options = frame_options;
+  options.diverging = DrawsDiverging(field.quantity, options);
   if (options.arrows > 0 && !frame.has_velocity)
     throw UsageError("--arrows: " + frame.snapshot_path + " has no velocity (/u, /v)");
   if (options.arrows == 0) return DrawFieldPicture(field, frame.disks, options);

@@ -26,7 +26,11 @@ void AddPlotFlags(CLI::App& app, PlotFlags& flags);
 void CheckPlotFlags(PlotFlags& flags);
 // The field (and the velocity) inside the window, or the whole field when no window was given.
 NodeField Windowed(const NodeField& field, const std::vector<double>& window);
-// Draws a results frame with the flags (window applied to the field and the arrows).
+// Whether `quantity` is drawn on the diverging map: a signed quantity (node_quantities.h) on a
+// linear scale; with --log it stays on viridis (its positive values only).
+bool DrawsDiverging(const std::string& quantity, const PictureOptions& options);
+// Draws a results frame with the flags (window applied to the field and the arrows), on the
+// diverging map for a signed quantity.
 FieldPicture DrawFrame(const ResultsFrame& frame, const PlotFlags& flags,
                        const PictureOptions& options);
 
