@@ -196,7 +196,10 @@ int RunMovie(int argc, char** argv) {
         if (stem.empty() || stem == ".") stem = "movie";
         m.out = stem + "_" + FileStemOf(plot.quantity.empty() ? "trA" : plot.quantity) + ".mp4";
       }
-      if (local) return MakeMovie(m.source, DirectoryCaption(m.source), m, plot);
+      if (local) {
+        const std::string caption = plot.options.caption.empty() ? DirectoryCaption(m.source) : "";
+        return MakeMovie(m.source, caption, m, plot);
+      }
       const bool temporary = m.keep.empty();
       const fs::path dir =
           temporary ? fs::temp_directory_path() / ("dlmfd_movie_" + std::to_string(::getpid()))

@@ -3,9 +3,11 @@
 
 #include <cctype>
 #include <filesystem>
+#include <optional>
 
 #include "connection.h"
 #include "dlmfd/viz/node_quantities.h"
+#include "fetched_job.h"
 
 namespace dlmfd::cli {
 
@@ -83,6 +85,7 @@ std::string FrameCaption(const std::string& quantity, double time, long step) {
 }
 
 std::string DirectoryCaption(const std::string& results_dir) {
+  if (const std::optional<v1::Job> job = ReadFetchedJob(results_dir)) return JobCaption(*job);
   std::filesystem::path path = std::filesystem::path(results_dir).lexically_normal();
   if (path.filename().empty()) path = path.parent_path();
   const std::string name = path.filename().string();

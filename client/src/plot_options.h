@@ -1,6 +1,7 @@
 // The drawing flags that `dlmfd plot` and `dlmfd movie` share (quantity, size, colour scale,
 // window, isolines, arrows) and the captions that name a run: its scene title and directory, or a
-// job's name and overrides (the swept parameters of a sweep's job), then quantity, time and step.
+// job's name and overrides (the swept parameters of a sweep's job; also for a directory that
+// dlmfd fetch wrote, from its job.json), then quantity, time and step.
 #pragma once
 
 #include <string>
@@ -36,7 +37,9 @@ FieldPicture DrawFrame(const ResultsFrame& frame, const PlotFlags& flags,
 
 // "trA  t = 1.5  step 3750".
 std::string FrameCaption(const std::string& quantity, double time, long step);
-// "<scene title>  |  <directory name>" (the title only when the scene has one).
+// A fetched directory (its job.json, fetched_job.h): JobCaption of its job, as for the job on the
+// daemon; else "<scene title>  |  <directory name>" (the title only when the scene has one).
+// Throws InvalidParameter for a job.json that is not a job's JSON.
 std::string DirectoryCaption(const std::string& results_dir);
 // "<job name>  |  key=value, ..." (the overrides as submitted; a sweep's point is among them).
 std::string JobCaption(const v1::Job& job);
