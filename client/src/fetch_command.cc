@@ -6,7 +6,8 @@
 // Writes each file to DIR/<its path in the results directory> through a temporary name
 // (dlmfd/io/atomic_file.h), renamed when its last chunk has arrived, so an interrupted fetch never
 // leaves a truncated file under the final name. Paths from the server are checked: absolute ones or
-// ones with ".." are refused.
+// ones with ".." are refused. Each job's folder also gets job.json (fetched_job.h): the job as
+// `dlmfd show --json` prints it, which names its overrides for the captions of plot and movie.
 #include <cctype>
 #include <cstring>
 #include <filesystem>
@@ -18,6 +19,7 @@
 #include "connection.h"
 #include "dlmfd/io/atomic_file.h"
 #include "exit_codes.h"
+#include "fetched_job.h"
 #include "job_selection.h"
 #include "job_text.h"
 #include "rpc_status.h"
@@ -136,7 +138,21 @@ int FetchSelection(Connection& connection, const JobSelection& selection, const 
       const int code = Receive(connection, it->id(), p, dir / folder, files, bytes);
       if (code != kExitOk) return code;
     }
+    fs::create_directories(dir / folder);
+    WriteFetchedJob(dir / folder, *it);
   }
+  return kExitOk;
+}
+
+// DIR/job.json of one job, as the daemon describes it now.
+int WriteJobOf(Connection& connection, const std::string& job_id, const fs::path& dir) {
+  v1::GetRequest request;
+  request.set_job_id(job_id);
+  v1::Job job;
+  auto context = connection.UnaryContext();
+  const grpc::Status status = connection.jobs().Get(context.get(), request, &job);
+  if (!status.ok()) return ReportRpcError("fetch", status);
+  WriteFetchedJob(dir, job);
   return kExitOk;
 }
 
@@ -185,6 +201,10 @@ int RunFetch(int argc, char** argv) {
     for (const std::string& p : paths) {
       if (job_id.empty()) break;
       const int code = Receive(connection, job_id, p, dir, files, bytes);
+      if (code != kExitOk) return code;
+    }
+    if (!job_id.empty()) {
+      const int code = WriteJobOf(connection, job_id, dir);
       if (code != kExitOk) return code;
     }
     std::cerr << "fetched " << files << (files == 1 ? " file" : " files") << ", " << bytes

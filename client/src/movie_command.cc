@@ -3,7 +3,8 @@
 // A movie of a run from its field snapshots (design.md 3.2): one frame per snapshot, each a field
 // picture (viz/field_picture.h) with the particles, the time and the colour bar, encoded by
 // Debian's ffmpeg (viz/movie_encoder.h). The colour range is the same in every frame: --range, or
-// the extremes over all the frames drawn (inside --window), so colours compare across time. The
+// the extremes over all the frames drawn (inside --window; [-m, m] with m the largest |value| for a
+// signed quantity, on the diverging map), so colours compare across time. The
 // frame size is the first frame's, rounded up to even sides (H.264 needs them).
 // JOB (not an existing directory) is a job of the daemon: its scene.toml, particles.h5 and
 // snapshots are fetched first (into --keep DIR, or a temporary folder removed afterwards), and the
@@ -100,11 +101,14 @@ std::vector<long> ChosenSteps(const std::string& dir, const MovieFlags& m) {
   return chosen;
 }
 
-// The colour range over the frames (inside the window; positive values for a log scale).
+// The colour range over the frames (inside the window; positive values for a log scale;
+// symmetric about zero, [-m, m], for a signed quantity on the diverging map).
 void CommonRange(const std::string& dir, const std::vector<long>& steps, PlotFlags& plot) {
   double lo = HUGE_VAL, hi = -HUGE_VAL;
+  bool diverging = false;
   for (const long step : steps) {
     const NodeField field = Windowed(LoadResultsFrame(dir, step, plot.quantity).field, plot.window);
+    diverging = DrawsDiverging(field.quantity, plot.options);
     for (const double v : field.values) {
       if (!std::isfinite(v) || (plot.options.log_colours && !(v > 0.0))) continue;
       lo = std::min(lo, v);
@@ -112,6 +116,10 @@ void CommonRange(const std::string& dir, const std::vector<long>& steps, PlotFla
     }
   }
   if (!(lo <= hi)) return;  // no usable value anywhere: each frame's own (grey) scale
+  if (diverging) {
+    hi = std::max(std::abs(lo), std::abs(hi));
+    lo = -hi;
+  }
   plot.options.fixed_range = true;
   plot.options.range_min = lo;
   plot.options.range_max = hi;
@@ -188,7 +196,10 @@ int RunMovie(int argc, char** argv) {
         if (stem.empty() || stem == ".") stem = "movie";
         m.out = stem + "_" + FileStemOf(plot.quantity.empty() ? "trA" : plot.quantity) + ".mp4";
       }
-      if (local) return MakeMovie(m.source, DirectoryCaption(m.source), m, plot);
+      if (local) {
+        const std::string caption = plot.options.caption.empty() ? DirectoryCaption(m.source) : "";
+        return MakeMovie(m.source, caption, m, plot);
+      }
       const bool temporary = m.keep.empty();
       const fs::path dir =
           temporary ? fs::temp_directory_path() / ("dlmfd_movie_" + std::to_string(::getpid()))

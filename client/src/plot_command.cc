@@ -98,6 +98,7 @@ int PlotJob(const ConnectionFlags& flags, const std::string& job_id, const PlotF
   }
   PictureOptions picture_options = plot.options;
   const NodeField field = Windowed(FieldOfSnapshot(snapshot), plot.window);
+  picture_options.diverging = DrawsDiverging(field.quantity, picture_options);
   v1::Job job = outcome.job;  // as of its latest state change; the id at least
   if (job.id().empty()) job.set_id(job_id);
   picture_options.caption =

@@ -3,9 +3,11 @@
 
 #include <cctype>
 #include <filesystem>
+#include <optional>
 
 #include "connection.h"
 #include "dlmfd/viz/node_quantities.h"
+#include "fetched_job.h"
 
 namespace dlmfd::cli {
 
@@ -61,9 +63,15 @@ NodeField Windowed(const NodeField& field, const std::vector<double>& window) {
   return CropField(field, window[0], window[1], window[2], window[3]);
 }
 
+bool DrawsDiverging(const std::string& quantity, const PictureOptions& options) {
+  return IsSignedQuantity(quantity) && !options.log_colours;
+}
+
 FieldPicture DrawFrame(const ResultsFrame& frame, const PlotFlags& flags,
-                       const PictureOptions& options) {
+                       const PictureOptions& frame_options) {
   const NodeField field = Windowed(frame.field, flags.window);
+  PictureOptions options = frame_options;
+  options.diverging = DrawsDiverging(field.quantity, options);
   if (options.arrows > 0 && !frame.has_velocity)
     throw UsageError("--arrows: " + frame.snapshot_path + " has no velocity (/u, /v)");
   if (options.arrows == 0) return DrawFieldPicture(field, frame.disks, options);
@@ -77,6 +85,7 @@ std::string FrameCaption(const std::string& quantity, double time, long step) {
 }
 
 std::string DirectoryCaption(const std::string& results_dir) {
+  if (const std::optional<v1::Job> job = ReadFetchedJob(results_dir)) return JobCaption(*job);
   std::filesystem::path path = std::filesystem::path(results_dir).lexically_normal();
   if (path.filename().empty()) path = path.parent_path();
   const std::string name = path.filename().string();

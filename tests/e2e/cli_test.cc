@@ -174,6 +174,55 @@ TEST_F(CliTest, SubmitWaitListShowFetchAndPlot) {
   EXPECT_THAT(unknown.err, HasSubstr("dlmfd movie: not found: "));
 }
 
+TEST_F(CliTest, AFetchedDirectoryIsCaptionedWithItsJobsNameAndOverrides) {
+  const CliRun submit = Cli({"submit", (root_ / "cavity.toml").string(), "--name", "lid", "--set",
+                             "fluid.viscosity=0.02", "--set", "time.end=0.1", "--wait"});
+  ASSERT_EQ(submit.code, 0) << submit.out << submit.err;
+  const std::string job = FirstLine(submit.out);
+  const fs::path out = root_ / "captioned";
+  const CliRun fetch = Cli({"fetch", job, "--out", out.string()});
+  ASSERT_EQ(fetch.code, 0) << fetch.err;
+  // job.json: the job as `show --json` prints it, its overrides as submitted.
+  const std::string record = Slurp(out / "job.json");
+  EXPECT_THAT(record, HasSubstr("\"id\":\"" + job + "\""));
+  EXPECT_THAT(record, HasSubstr("\"overrides\":[\"fluid.viscosity=0.02\",\"time.end=0.1\"]"));
+  // A fetch of one file writes it too.
+  const fs::path one = root_ / "captioned_one";
+  ASSERT_EQ(Cli({"fetch", job, "--out", one.string(), "--path", "summary.json"}).code, 0);
+  EXPECT_THAT(Slurp(one / "job.json"),
+              HasSubstr("\"overrides\":[\"fluid.viscosity=0.02\",\"time.end=0.1\"]"));
+
+  // The default caption is the job's (JobCaption: name, then the overrides): the picture is the
+  // one drawn with that caption given, pixel for pixel, and not the one with the directory's
+  // caption of a solver's own results (scene title and directory name).
+  auto plot = [&](const std::string& stem, const std::vector<std::string>& extra) {
+    const fs::path png = root_ / (stem + ".png");
+    std::vector<std::string> args = {"plot", out.string(), "--quantity", "vorticity"};
+    args.insert(args.end(), {"--out", png.string(), "--width", "500", "--height", "400"});
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliRun run = Cli(args);
+    EXPECT_EQ(run.code, 0) << run.err;
+    return Slurp(png);
+  };
+  const std::string by_default = plot("caption_default", {});
+  const std::string as_job =
+      plot("caption_job", {"--caption", "lid   |   fluid.viscosity=0.02, time.end=0.1"});
+  const std::string as_directory =
+      plot("caption_directory", {"--caption", "lid-driven cavity (e2e)   |   captioned"});
+  ASSERT_GT(by_default.size(), 100u);
+  EXPECT_TRUE(by_default == as_job) << "the caption of the fetched directory is not the job's";
+  EXPECT_FALSE(by_default == as_directory);
+
+  // Without job.json (a solver's own results directory) the caption is the scene's title and the
+  // directory's name, as before; a job.json that is not a job's JSON is exit 2.
+  fs::rename(out / "job.json", root_ / "job.json.kept");
+  EXPECT_TRUE(plot("caption_plain", {}) == as_directory);
+  std::ofstream(out / "job.json") << "{\"overrides\": 3}";
+  const CliRun broken = Cli({"plot", out.string(), "--out", (root_ / "broken.png").string()});
+  EXPECT_EQ(broken.code, 2) << broken.err;
+  EXPECT_THAT(broken.err, HasSubstr("job.json"));
+}
+
 TEST_F(CliTest, WatchJsonYieldsProgressAndTheFinalState) {
   // 2000 steps (a few seconds): the job is still running when the watch connects, so the watch sees
   // progress events and not only the final state.

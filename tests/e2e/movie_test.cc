@@ -3,7 +3,8 @@
 // Newtonian), then the real dlmfd binary
 // makes a movie of its snapshots with Debian's ffmpeg, which ffprobe reads back: one frame per
 // snapshot, the frame size dlmfd reports (even sides), the duration frames / fps. The same run is
-// plotted in the derived quantities with isolines and arrows, as PNG read back by cairo and as PDF;
+// plotted in the derived quantities with isolines and arrows, as PNG read back by cairo and as PDF,
+// the signed ones (vorticity, A12, pressure) on the diverging map and the others on viridis;
 // a quantity the snapshots lack and a movie without snapshots are usage errors naming the cause.
 #include <unistd.h>
 
@@ -19,6 +20,7 @@
 
 #include "dlmfd/io/field_snapshot.h"
 #include "dlmfd/viz/canvas.h"
+#include "dlmfd/viz/colour_map.h"
 #include "support/run_process.h"
 
 namespace dlmfd {
@@ -159,6 +161,52 @@ TEST_F(MovieTest, PlotDrawsTheDerivedQuantitiesWithIsolinesAndArrows) {
   const Outcome lines = Client({"plot", "disk", "--lines-only"});
   EXPECT_EQ(lines.code, 2);
   EXPECT_THAT(lines.err, HasSubstr("--isolines"));
+}
+
+// Whether any pixel of the image is exactly `colour`.
+bool Holds(const RgbImage& image, Rgb colour) {
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      if (image.At(x, y) == colour) return true;
+    }
+  }
+  return false;
+}
+
+TEST_F(MovieTest, SignedQuantitiesAreDrawnOnTheDivergingMapCentredOnZero) {
+  // The colour bar (over 256 rows here) runs from one end of its map to the other: a signed
+  // quantity's range is symmetric about zero on cool to warm, so both of its ends show; the
+  // others stay on viridis.
+  auto picture = [&](const std::vector<std::string>& flags) {
+    std::vector<std::string> args = {"plot", "disk", "--out", "s.png"};
+    args.insert(args.end(), {"--width", "500", "--height", "800"});
+    args.insert(args.end(), flags.begin(), flags.end());
+    const Outcome plot = Client(args);
+    EXPECT_EQ(plot.code, 0) << plot.err;
+    return ReadPng((root_ / "s.png").string());
+  };
+  for (const char* quantity : {"vorticity", "A12", "pressure"}) {
+    const RgbImage png = picture({"--quantity", quantity});
+    EXPECT_TRUE(Holds(png, CoolWarm(0.0))) << quantity;
+    EXPECT_TRUE(Holds(png, CoolWarm(1.0))) << quantity;
+    EXPECT_FALSE(Holds(png, Viridis(1.0))) << quantity;
+  }
+  for (const char* quantity : {"trA", "trA-2", "speed", "A11", "A22"}) {
+    const RgbImage png = picture({"--quantity", quantity});
+    EXPECT_TRUE(Holds(png, Viridis(0.0))) << quantity;
+    EXPECT_TRUE(Holds(png, Viridis(1.0))) << quantity;
+    EXPECT_FALSE(Holds(png, CoolWarm(0.0))) << quantity;
+    EXPECT_FALSE(Holds(png, CoolWarm(1.0))) << quantity;
+  }
+  // A lopsided --range keeps zero neutral: its positive end is the red end, its negative end
+  // (-1 of 3) a pale blue, never the blue end. --log keeps viridis.
+  const RgbImage lopsided = picture({"--quantity", "vorticity", "--range=-1,3"});
+  EXPECT_TRUE(Holds(lopsided, CoolWarm(1.0)));
+  EXPECT_FALSE(Holds(lopsided, CoolWarm(0.0)));
+  EXPECT_TRUE(Holds(lopsided, CoolWarm(0.5 - 1.0 / 6.0)));
+  const RgbImage log = picture({"--quantity", "vorticity", "--log"});
+  EXPECT_TRUE(Holds(log, Viridis(1.0)));
+  EXPECT_FALSE(Holds(log, CoolWarm(1.0)));
 }
 
 }  // namespace

@@ -108,6 +108,15 @@ TEST_F(StudiesCliTest, AStudyIsListedShownWatchedFetchedAndSelected) {
   int folders = 0;
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(out)) ++folders;
   EXPECT_EQ(folders, 4);
+  // Each folder has its job (job.json, as `show --json` prints it): the name and the overrides
+  // of its point, which `dlmfd plot FOLDER` names in its caption.
+  const std::string point =
+      Slurp(out / "time.dt=0.02,fluid.viscosity=0.02,time.end=0.2" / "job.json");
+  EXPECT_THAT(point, HasSubstr("\"name\":\"cavity-study["));
+  EXPECT_THAT(point, HasSubstr("\"time.dt=0.02\""));
+  EXPECT_THAT(point, HasSubstr("\"fluid.viscosity=0.02\""));
+  EXPECT_THAT(point, HasSubstr("\"time.end=0.2\""));
+  EXPECT_THAT(point, HasSubstr("\"sweep_id\":\"" + id + "\""));
 
   // --json: 64-bit integers are numbers.
   const CliRun json = Cli({"show", "--sweep", id, "--json"});

@@ -8,6 +8,7 @@
 
 #include "dlmfd/core/errors.h"
 #include "dlmfd/viz/colour_map.h"
+#include "dlmfd/viz/colour_scale.h"
 #include "dlmfd/viz/isolines.h"
 
 namespace dlmfd {
@@ -85,15 +86,6 @@ NodeField CropField(const NodeField& field, double x_min, double y_min, double x
   return crop;
 }
 
-Rgb ColourOf(double v, double lo, double hi, bool log_colours) {
-  if (!std::isfinite(v)) return kNanColour;
-  if (log_colours && !(v > 0.0)) return Viridis(0.0);
-  const double bottom = log_colours ? std::log10(lo) : lo;
-  const double span = (log_colours ? std::log10(hi) : hi) - bottom;
-  const double c = log_colours ? std::log10(v) : v;
-  return Viridis(span > 0.0 ? std::clamp((c - bottom) / span, 0.0, 1.0) : 0.5);
-}
-
 double FieldPicture::PixelX(double x) const {
   return panel_left + (x - grid.x0) / grid.Width() * panel_width;
 }
@@ -114,17 +106,12 @@ namespace {
 
 constexpr Rgb kAxisColour{0, 0, 0};
 
-// The colour range: fixed, or the finite (positive, on a log scale) extremes of the values.
+// The colour range: fixed, or the finite (positive, on a log scale) extremes of the values, or on
+// a diverging scale [-m, m] with m the largest finite |value|. Checked by ColourScale.
 void ColourRange(const NodeField& field, const PictureOptions& options, double& lo, double& hi) {
   if (options.fixed_range) {
     lo = options.range_min;
     hi = options.range_max;
-    if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo <= hi) ||
-        (options.log_colours && !(lo > 0.0))) {
-      throw InvalidParameter(
-          "colour range", FormatLabel(lo) + "," + FormatLabel(hi),
-          options.log_colours ? "finite 0 < min <= max for log colours" : "finite min <= max");
-    }
     return;
   }
   lo = HUGE_VAL;
@@ -136,6 +123,10 @@ void ColourRange(const NodeField& field, const PictureOptions& options, double& 
     }
   }
   if (lo > hi) lo = hi = options.log_colours ? 1.0 : 0.0;  // no usable value
+  if (options.diverging) {
+    hi = std::max(std::abs(lo), std::abs(hi));
+    lo = -hi;
+  }
 }
 
 double WidestLabel(const Canvas& canvas, const AxisTicks& ticks, double size) {
@@ -216,6 +207,7 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
   const bool log_colours = options.log_colours;
   double lo = 0.0, hi = 0.0;
   ColourRange(field, options, lo, hi);
+  const ColourScale colours(lo, hi, log_colours, options.diverging);
   const std::string bar_label =
       options.colour_label.empty() ? field.quantity : options.colour_label;
 
@@ -278,6 +270,7 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
   picture.value_min = lo;
   picture.value_max = hi;
   picture.log_colours = log_colours;
+  picture.diverging = options.diverging;
   picture.grid = g;
   Canvas& canvas = picture.image;
 
@@ -291,7 +284,7 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
       const double y = g.y0 + (1.0 - (py + 0.5) / panel_height) * g.Height();
       for (int px = 0; px < panel_width; ++px) {
         const double x = g.x0 + (px + 0.5) / panel_width * g.Width();
-        const Rgb c = ColourOf(InterpolateP1(field, x, y), lo, hi, log_colours);
+        const Rgb c = colours.Of(InterpolateP1(field, x, y));
         const std::size_t k = (std::size_t(py) * std::size_t(panel_width) + std::size_t(px)) * 3;
         raster.rgb[k] = c.r;
         raster.rgb[k + 1] = c.g;
@@ -303,6 +296,8 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
 
   canvas.Clip(picture.panel_left, picture.panel_top, panel_width, panel_height);
   const double thin = std::max(1.25, fs / 12.0);
+  // White over viridis, black over cool to warm (its middle is light) and with no fill.
+  const Rgb isoline_colour = options.fill && !options.diverging ? kWhite : kBlack;
   picture.isovalues = Isovalues(lo, hi, options.isolines, log_colours);
   for (const double level : picture.isovalues) {
     const std::vector<double> segments = IsolineSegments(field, level);
@@ -311,7 +306,7 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
       pixels[k] = picture.PixelX(segments[k]);
       pixels[k + 1] = picture.PixelY(segments[k + 1]);
     }
-    canvas.Segments(pixels, thin, options.fill ? Rgb{255, 255, 255} : kBlack);
+    canvas.Segments(pixels, thin, isoline_colour);
   }
   if (options.arrows > 0)
     picture.arrow_speed = DrawArrows(canvas, picture, *velocity, options.arrows, thin);
@@ -366,13 +361,14 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
                 kAxisColour, Align::kEnd, Align::kCentre);
   }
 
-  // The colour bar: viridis from bottom to top, its ticks and label, the isovalues marked.
+  // The colour bar: the field's scale from bottom (min) to top (max), its ticks and label, the
+  // isovalues marked.
   RgbImage bar;
   bar.width = picture.bar_width;
   bar.height = body_height;
   bar.rgb.resize(std::size_t(bar.width) * std::size_t(bar.height) * 3);
   for (int r = 0; r < body_height; ++r) {
-    const Rgb colour = hi > lo ? Viridis(1.0 - (r + 0.5) / body_height) : Viridis(0.5);
+    const Rgb colour = colours.AtFraction(1.0 - (r + 0.5) / body_height);
     for (int c = 0; c < bar.width; ++c) {
       const std::size_t k = (std::size_t(r) * std::size_t(bar.width) + std::size_t(c)) * 3;
       bar.rgb[k] = colour.r;
@@ -385,8 +381,7 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
                     body_height + 1.0, 1.0, kAxisColour);
   for (const double level : picture.isovalues) {
     const double y = picture.BarY(level);
-    canvas.Line(picture.bar_left, y, picture.bar_left + bar.width, y, thin,
-                options.fill ? Rgb{255, 255, 255} : kBlack);
+    canvas.Line(picture.bar_left, y, picture.bar_left + bar.width, y, thin, isoline_colour);
   }
   picture.bar_ticks =
       BarTicks(lo, hi, std::clamp(int(body_height / (3.0 * fs)), 2, 8), log_colours);

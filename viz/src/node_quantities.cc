@@ -29,6 +29,10 @@ std::string PictureQuantityList() {
   return text;
 }
 
+bool IsSignedQuantity(const std::string& quantity) {
+  return quantity == "vorticity" || quantity == "A12" || quantity == "pressure";
+}
+
 std::vector<std::string> DatasetsOf(const std::string& quantity) {
   if (quantity == "speed" || quantity == "vorticity") return {"u", "v"};
   if (quantity == "pressure") return {"p"};

@@ -6,16 +6,22 @@
 // Discrete method: each pixel of the field panel takes the value of the field's own
 // finite-element representation at the pixel centre: P1 on the triangles of its mesh (squares of
 // side h cut by the SW-NE diagonal, paper section 3), so the picture shows exactly what the solver
-// computed, with no smoothing across the diagonal. Values map linearly from [min, max] of the
-// finite node values to viridis, or, with log_colours, log10 of the value from [min, max] of the
-// positive finite node values (a value <= 0 takes the bottom colour); the bar's ticks are then
-// placed at their logarithm (axis_ticks.h: 1-2-5 multiples or decades), so a log scale shows as
-// one. A fixed range (a movie's, over all its frames) replaces the field's extremes. A constant
-// field takes the middle colour (no division by zero); NaN/Inf pixels are grey.
+// computed, with no smoothing across the diagonal. Colours (colour_scale.h): values map linearly
+// from [min, max] of the finite node values to viridis, or, with log_colours, log10 of the value
+// from [min, max] of the positive finite node values (a value <= 0 takes the bottom colour); the
+// bar's ticks are then placed at their logarithm (axis_ticks.h: 1-2-5 multiples or decades), so a
+// log scale shows as one. With `diverging` (a signed quantity: the vorticity, A12, the pressure)
+// the range is [-m, m], m the largest finite |value|, on Moreland's cool to warm map, so zero is
+// the neutral grey, negative values blue and positive ones red. A fixed range (the user's, or a
+// movie's over all its frames) replaces the field's extremes as given; on a diverging scale zero
+// stays neutral and the sign stays the hue (colour_scale.h). The colour bar draws the same scale
+// from its bottom (min) to its top (max). A constant field takes the middle colour (no division
+// by zero); NaN/Inf pixels are grey.
 // Isolines: the exact level sets of the P1 field (isolines.h) at `isolines` values evenly spaced
-// inside the colour range (in log10 with log_colours), marked on the colour bar too; with
-// fill = false only the isolines are drawn, in black on white, as in the paper's figures
-// ("isovalues of trA"). Arrows: the P1 velocity at the centres of a regular lattice of
+// inside the colour range (in log10 with log_colours), marked on the colour bar too: white over
+// viridis, black over cool to warm (white would vanish in its light middle); with fill = false
+// only the isolines are drawn, in black on white, as in the paper's figures ("isovalues of
+// trA"). Arrows: the P1 velocity at the centres of a regular lattice of
 // `arrows` columns, the longest arrow one lattice spacing; the caption's key gives the speed of
 // that length. Particles: circles of their radius at their centres (the same scale on both axes),
 // white with a black rim, with a radius drawn at their rotation angle (the angle the record's
@@ -62,6 +68,7 @@ struct PictureOptions {
   int max_height = 1000;     // pixels, whole image
   std::string caption;       // drawn above the field when not empty; '\n' starts a second line
   bool log_colours = false;  // colour by log10 of the value (see the header)
+  bool diverging = false;    // cool to warm about zero, for signed quantities (not with log)
   std::string colour_label;  // the colour bar's label (default: the field's quantity)
   bool fixed_range = false;  // colour range [range_min, range_max] instead of the field's
   double range_min = 0.0;
@@ -97,10 +104,12 @@ struct FieldPicture {
   // The row of the colour bar (continuous, y down) that shows `value`.
   double BarY(double value) const;
   bool log_colours = false;
+  bool diverging = false;
 };
 
 // Throws InvalidParameter when the values do not match the grid, the size leaves no room, arrows
-// are asked without a velocity, or a fixed range is empty or not finite.
+// are asked without a velocity, a fixed range is inverted or not finite, or diverging is asked
+// with log_colours.
 FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutline>& disks,
                               const PictureOptions& options = {},
                               const NodeVelocity* velocity = nullptr);
@@ -112,7 +121,5 @@ NodeField CropField(const NodeField& field, double x_min, double y_min, double x
 double InterpolateP1(const NodeField& field, double x, double y);
 // "%.4g" of a value, the form of the caption's numbers.
 std::string FormatLabel(double value);
-// The colour of `value` on a scale [lo, hi] (log10 with log_colours), as the picture draws it.
-Rgb ColourOf(double value, double lo, double hi, bool log_colours);
 
 }  // namespace dlmfd

@@ -6,7 +6,11 @@
 // Method: the vorticity omega = dv/dx - du/dy at the nodes by second-order finite differences on
 // the uniform mesh (centred inside, the one-sided three-point formula on the sides), the other
 // quantities node by node. log10(trA / 2) of a non-positive trA (never, for an SPD A) is NaN.
-// Not supported: the stream function, polymer stress components.
+// Signed quantities, whose sign is the physics and whose zero is a state of its own: the vorticity
+// (the sense of rotation), A12 (the sign of the shear stretch; 0 in the rest state A = I) and the
+// pressure (mean-free, or 0 on an outflow side). Pictures draw them on a diverging map centred on
+// zero (colour_scale.h); trA, trA-2, log10(trA/2), the speed, A11 and A22 on a sequential one. Not
+// supported: the stream function, polymer stress components.
 #pragma once
 
 #include <string>
@@ -20,6 +24,8 @@ namespace dlmfd {
 const std::vector<std::string>& PictureQuantities();
 // "trA, trA-2, ..." for messages.
 std::string PictureQuantityList();
+// True for "vorticity", "A12" and "pressure" (above).
+bool IsSignedQuantity(const std::string& quantity);
 // The snapshot datasets a quantity needs ("trA"; "u", "v"; "p"; "A11" ...).
 std::vector<std::string> DatasetsOf(const std::string& quantity);
 // omega = dv/dx - du/dy at the nodes of `grid` (at least 2 x 2 cells).
