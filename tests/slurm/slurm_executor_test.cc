@@ -159,7 +159,9 @@ TEST_F(SlurmExecutor, CancelIsScancelAndTheSolverCheckpoints) {
 
 TEST_F(SlurmExecutor, ADaemonKilledWithSigkillAdoptsItsSlurmJobOnRestart) {
   ASSERT_TRUE(StartDaemon()) << daemon().Log();
-  const std::string id = Submit(*stub(), CavityScene(20.0)).id();
+  // 20000 steps, about 7 s: still running when the daemon is killed (2000 steps had sometimes
+  // ended by then, and an ended job is not adopted).
+  const std::string id = Submit(*stub(), CavityScene(200.0)).id();
   WaitForProgress(*stub(), id);
   const std::string slurm_id = Get(*stub(), id).slurm_job_id();
   daemon().Kill(SIGKILL);
@@ -170,7 +172,7 @@ TEST_F(SlurmExecutor, ADaemonKilledWithSigkillAdoptsItsSlurmJobOnRestart) {
   const v1::Job done = WaitFinished(*stub, id);
   EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
   EXPECT_EQ(done.slurm_job_id(), slurm_id);  // the same Slurm job: not submitted again
-  EXPECT_EQ(done.step(), 2000);
+  EXPECT_EQ(done.step(), 20000);
   EXPECT_NE(daemon().Log().find("Slurm job " + slurm_id + " adopted"), std::string::npos)
       << daemon().Log();
   // Slurm ran one job of that name.
