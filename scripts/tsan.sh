@@ -14,7 +14,7 @@
 # same compiler, flags, preload and options) must give exactly that one report, or the script fails.
 # A report from the test process fails it (exit 66); a report the daemon writes to its log fails the
 # test that ran it (daemon_process.cc). Results and the reasoning: docs/api.md, "ThreadSanitizer".
-# Usage: scripts/tsan.sh [extra ctest arguments], e.g. scripts/tsan.sh -R daemon_test
+# Usage: scripts/tsan.sh [extra ctest arguments], e.g. scripts/tsan.sh -R Daemon
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="$root/build-tsan"
@@ -36,7 +36,7 @@ echo "tsan.sh: solver (not instrumented) = $solver"
 
 cmake -S "$root" -B "$build" -DDLMFD_TSAN=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DDLMFD_BUILD_BENCH=OFF -DDLMFD_WERROR=ON
-cmake --build "$build" --target dlmfdd service_units_test daemon_test -j "$jobs"
+cmake --build "$build" --target dlmfdd server_tests -j "$jobs"
 
 # absl::Mutex/CondVar of the uninstrumented gRPC made visible to TSan (scripts/tsan_absl_sync.cc).
 absl_sync="$(ls /lib/*/libabsl_synchronization.so.* /usr/lib/*/libabsl_synchronization.so.* \

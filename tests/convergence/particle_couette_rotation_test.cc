@@ -30,8 +30,8 @@ namespace {
 constexpr double kWallSpeed = 0.5;
 constexpr double kHeight = 1.0;
 constexpr double kShearRate = 2 * kWallSpeed / kHeight;
-constexpr double kDiffusionNumber = 2.0;
-constexpr double kEndTime = 0.4;
+constexpr double kCouetteDiffusionNumber = 2.0;
+constexpr double kCouetteEndTime = 0.4;
 
 struct Rotation {
   double ratio = 0.0;        // omega / shear rate at the end
@@ -49,8 +49,8 @@ Rotation FreeRotation(int cells) {
   params.fluid.density = 1.0;
   params.fluid.viscosity = 1.0;
   params.splitting.advection = AdvectionScheme::kWave;
-  params.time.dt = kDiffusionNumber * params.domain.h * params.domain.h;
-  params.time.end = kEndTime;
+  params.time.dt = kCouetteDiffusionNumber * params.domain.h * params.domain.h;
+  params.time.end = kCouetteEndTime;
   // h_p = h, a hair above so that ceil(R / h_p) is R / h_p despite round-off.
   params.particle_mesh.h = params.domain.h * (1.0 + 1e-9);
   params.threads = 1;

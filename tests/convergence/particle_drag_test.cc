@@ -166,7 +166,8 @@ TEST(ParticleDrag, FixedDiskInAChannelConvergesAtFirstOrderWithCollocationPoints
 }
 
 // The grid study of the default coupling (splitting.constraint = "incremental"), run by hand:
-//   build/tests/particle_drag_test --gtest_also_run_disabled_tests --gtest_filter='*Study*'
+//   build/tests/convergence_tests --gtest_also_run_disabled_tests
+//   --gtest_filter='ParticleDrag*Study*'
 TEST(ParticleDrag, DISABLED_IncrementalCouplingStudy) {
   for (ParticleMeshKind kind : {ParticleMeshKind::kRing, ParticleMeshKind::kCollocation}) {
     for (double number : {8.0, 2.0, 0.5}) {

@@ -31,7 +31,7 @@ namespace {
 constexpr double kViscosity = 0.05;  // rho = 1: nu = 0.05
 constexpr double kEnd = 0.5;
 
-struct Errors {
+struct TaylorGreenErrors {
   double h, dt;
   double u_l2, u_max, p_l2, p_max;
 };
@@ -62,7 +62,7 @@ Params TaylorGreenParams(int cells, AdvectionScheme scheme) {
   return p;
 }
 
-Errors RunTaylorGreen(int cells, AdvectionScheme scheme) {
+TaylorGreenErrors RunTaylorGreen(int cells, AdvectionScheme scheme) {
   const Params params = TaylorGreenParams(cells, scheme);
   Simulation sim(params);
   const Grid& g = sim.grid();
@@ -80,7 +80,7 @@ Errors RunTaylorGreen(int cells, AdvectionScheme scheme) {
   const double t = end.time;
   const double f = std::exp(-2.0 * kViscosity * t);
 
-  Errors e{g.h, params.time.dt, 0.0, 0.0, 0.0, 0.0};
+  TaylorGreenErrors e{g.h, params.time.dt, 0.0, 0.0, 0.0, 0.0};
   // Distinct nodes only (the last row and column repeat the first).
   for (int j = 0; j < g.ny; ++j) {
     for (int i = 0; i < g.nx; ++i) {
@@ -109,13 +109,13 @@ Errors RunTaylorGreen(int cells, AdvectionScheme scheme) {
   return e;
 }
 
-double Order(double e_coarse, double e_fine, double h_coarse, double h_fine) {
+double TaylorGreenOrder(double e_coarse, double e_fine, double h_coarse, double h_fine) {
   return std::log(e_coarse / e_fine) / std::log(h_coarse / h_fine);
 }
 
 void CheckOrders(AdvectionScheme scheme, const char* name) {
   const int cells[] = {16, 32, 64};
-  std::vector<Errors> e;
+  std::vector<TaylorGreenErrors> e;
   for (int c : cells) e.push_back(RunTaylorGreen(c, scheme));
   std::printf(
       "Taylor-Green, %s advection, nu = %.2f, t = %.1f, dt = 0.25 h^2 (rounded to divide t)\n",
@@ -129,10 +129,11 @@ void CheckOrders(AdvectionScheme scheme, const char* name) {
       std::printf(" |\n");
       continue;
     }
-    const Errors& a = e[k - 1];
-    const Errors& b = e[k];
-    const double orders[4] = {Order(a.u_l2, b.u_l2, a.h, b.h), Order(a.u_max, b.u_max, a.h, b.h),
-                              Order(a.p_l2, b.p_l2, a.h, b.h), Order(a.p_max, b.p_max, a.h, b.h)};
+    const TaylorGreenErrors& a = e[k - 1];
+    const TaylorGreenErrors& b = e[k];
+    const double orders[4] = {
+        TaylorGreenOrder(a.u_l2, b.u_l2, a.h, b.h), TaylorGreenOrder(a.u_max, b.u_max, a.h, b.h),
+        TaylorGreenOrder(a.p_l2, b.p_l2, a.h, b.h), TaylorGreenOrder(a.p_max, b.p_max, a.h, b.h)};
     std::printf(" | %6.2f %6.2f %6.2f %6.2f\n", orders[0], orders[1], orders[2], orders[3]);
     const char* labels[4] = {"u L2", "u max", "p L2", "p max"};
     for (int q = 0; q < 4; ++q) {

@@ -18,6 +18,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "../support/build_paths.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/viz/canvas.h"
 #include "dlmfd/viz/line_chart.h"
@@ -29,8 +30,8 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-const std::string kClient = DLMFD_BINARY_DIR "/client/dlmfd";
-const std::string kSolver = DLMFD_BINARY_DIR "/solver/dlmfd-solve";
+using testing::kClient;
+using testing::kSolver;
 
 // Disks of diameter 0.25 settling in a closed Newtonian box; `disks` holds the centres' lines.
 std::string SettlingScene(const std::string& disks) {

@@ -18,6 +18,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "../support/build_paths.h"
 #include "dlmfd/io/field_snapshot.h"
 #include "dlmfd/viz/canvas.h"
 #include "dlmfd/viz/colour_map.h"
@@ -31,8 +32,8 @@ using test::Execute;
 using test::Outcome;
 using ::testing::HasSubstr;
 
-const std::string kClient = DLMFD_BINARY_DIR "/client/dlmfd";
-const std::string kSolver = DLMFD_BINARY_DIR "/solver/dlmfd-solve";
+using testing::kClient;
+using testing::kSolver;
 const std::string kFfprobe = "/usr/bin/ffprobe";
 
 std::string Scene(double fields_every, double relaxation_time) {

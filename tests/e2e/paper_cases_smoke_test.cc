@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/build_paths.h"
 #include "dlmfd/io/atomic_file.h"
 #include "dlmfd/io/field_snapshot.h"
 #include "dlmfd/io/particle_history.h"
@@ -28,7 +29,6 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-const char* const kSolve = DLMFD_BINARY_DIR "/solver/dlmfd-solve";
 const std::string kCases = DLMFD_SOURCE_DIR "/cases/paper/";
 constexpr double kCoarseH = 1.0 / 24;
 constexpr double kCoarseParticleH = kCoarseH * 96.0 / 70.0;  // the paper's ratio h_p / h
@@ -74,10 +74,10 @@ CaseRun RunCase(const std::string& name, double end) {
                                          "output.checkpoint_every=0"};
   const pid_t pid = fork();
   if (pid == 0) {
-    std::vector<char*> argv{const_cast<char*>(kSolve)};
+    std::vector<char*> argv{const_cast<char*>(testing::kSolver.c_str())};
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
-    execv(kSolve, argv.data());
+    execv(testing::kSolver.c_str(), argv.data());
     _exit(127);
   }
   int status = 0;

@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "../support/build_paths.h"
 #include "dlmfd/io/atomic_file.h"
 #include "dlmfd/io/checkpoint.h"
 #include "dlmfd/io/diagnostics_csv.h"
@@ -30,8 +31,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
-
-const char* const kSolve = DLMFD_BINARY_DIR "/solver/dlmfd-solve";
 
 // 16 x 16 cavity; `end` and the output cadence vary per test.
 std::string CavityScene(double end, double fields_every, double checkpoint_every) {
@@ -78,11 +77,11 @@ Child Start(const std::vector<std::string>& args, const std::string& stderr_path
     const int err = open(stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (err >= 0) dup2(err, 2);
     std::vector<char*> argv;
-    argv.push_back(const_cast<char*>(kSolve));
+    argv.push_back(const_cast<char*>(testing::kSolver.c_str()));
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
     (void)events_fd;
-    execv(kSolve, argv.data());
+    execv(testing::kSolver.c_str(), argv.data());
     _exit(127);
   }
   return c;

@@ -14,7 +14,7 @@ namespace dlmfd::testing {
 namespace {
 namespace fs = std::filesystem;
 
-constexpr char kAlice[] = "alice-token-0123456789";
+constexpr char kStartAliceToken[] = "alice-token-0123456789";
 
 // Expects the daemon to refuse to start with `exit_status` and `in_log` in what it printed.
 void ExpectRefused(DaemonProcess& daemon, int exit_status, const std::string& in_log) {
@@ -57,7 +57,7 @@ TEST(DaemonStart, AnEmptyTokensFileIsAnError) {
 TEST(DaemonStart, ATokensFileOthersCanReadGetsAWarning) {
   TempDir dir;
   const std::string tokens = dir.path() + "/tokens";
-  std::ofstream(tokens) << kAlice << " alice\n";
+  std::ofstream(tokens) << kStartAliceToken << " alice\n";
   chmod(tokens.c_str(), 0644);
   {
     DaemonProcess daemon(dir.path() + "/data", {"--tokens-file", tokens});

@@ -18,7 +18,7 @@
 namespace dlmfd {
 namespace {
 
-BoundarySide Side(SideType type, double ux = 0.0, double uy = 0.0) {
+BoundarySide AdvectionSide(SideType type, double ux = 0.0, double uy = 0.0) {
   BoundarySide s;
   s.type = type;
   s.value = Vec2(ux, uy);
@@ -48,14 +48,16 @@ Grid GridOf(const Params& p) {
 
 std::vector<Params> UniformFlowCases() {
   const Vec2 w(0.7, 0.4);
-  return {
-      MakeParams(1.0 / 16, Side(SideType::kVelocity, w.x(), w.y()),
-                 Side(SideType::kVelocity, w.x(), w.y()), Side(SideType::kVelocity, w.x(), w.y()),
-                 Side(SideType::kVelocity, w.x(), w.y())),
-      MakeParams(1.0 / 16, Side(SideType::kPeriodic), Side(SideType::kPeriodic),
-                 Side(SideType::kVelocity, w.x(), w.y()), Side(SideType::kOutflow)),
-      MakeParams(1.0 / 16, Side(SideType::kVelocity, w.x(), w.y()), Side(SideType::kOutflow),
-                 Side(SideType::kPeriodic), Side(SideType::kPeriodic))};
+  return {MakeParams(1.0 / 16, AdvectionSide(SideType::kVelocity, w.x(), w.y()),
+                     AdvectionSide(SideType::kVelocity, w.x(), w.y()),
+                     AdvectionSide(SideType::kVelocity, w.x(), w.y()),
+                     AdvectionSide(SideType::kVelocity, w.x(), w.y())),
+          MakeParams(
+              1.0 / 16, AdvectionSide(SideType::kPeriodic), AdvectionSide(SideType::kPeriodic),
+              AdvectionSide(SideType::kVelocity, w.x(), w.y()), AdvectionSide(SideType::kOutflow)),
+          MakeParams(1.0 / 16, AdvectionSide(SideType::kVelocity, w.x(), w.y()),
+                     AdvectionSide(SideType::kOutflow), AdvectionSide(SideType::kPeriodic),
+                     AdvectionSide(SideType::kPeriodic))};
 }
 
 TEST(Advection, UniformFlowIsUnchangedByBothSchemes) {
@@ -135,12 +137,12 @@ void FillSmooth(const Grid& g, const NodeSet& nodes, const BoundaryData& data,
 // its boundary term), and T'(u) w = (T(u + e w) - T(u - e w)) / 2e exactly since T is quadratic.
 TEST(AdvectionLeastSquares, GradientIsTheAdjointOfTheLinearisedResidual) {
   const std::vector<Params> cases = {
-      MakeParams(1.0 / 8, Side(SideType::kPeriodic), Side(SideType::kPeriodic),
-                 Side(SideType::kWall), Side(SideType::kOutflow)),
-      MakeParams(1.0 / 8, Side(SideType::kOutflow), Side(SideType::kOutflow),
-                 Side(SideType::kVelocity, 0.1, 1.0), Side(SideType::kOutflow)),
-      MakeParams(1.0 / 8, Side(SideType::kWall), Side(SideType::kWall), Side(SideType::kWall),
-                 Side(SideType::kVelocity, 1.0, 0.0))};
+      MakeParams(1.0 / 8, AdvectionSide(SideType::kPeriodic), AdvectionSide(SideType::kPeriodic),
+                 AdvectionSide(SideType::kWall), AdvectionSide(SideType::kOutflow)),
+      MakeParams(1.0 / 8, AdvectionSide(SideType::kOutflow), AdvectionSide(SideType::kOutflow),
+                 AdvectionSide(SideType::kVelocity, 0.1, 1.0), AdvectionSide(SideType::kOutflow)),
+      MakeParams(1.0 / 8, AdvectionSide(SideType::kWall), AdvectionSide(SideType::kWall),
+                 AdvectionSide(SideType::kWall), AdvectionSide(SideType::kVelocity, 1.0, 0.0))};
   for (const Params& p : cases) {
     const Grid g = GridOf(p);
     BoundaryData data(g, p.domain);
@@ -185,8 +187,9 @@ TEST(AdvectionLeastSquares, GradientIsTheAdjointOfTheLinearisedResidual) {
 // sqrt(g.r / g0.r0), recomputed from scratch after the solve, is below the tolerance, and the
 // residual norm <P^-1 T, T> has fallen accordingly.
 TEST(AdvectionLeastSquares, GradientRatioIsBelowToleranceAfterSolve) {
-  Params p = MakeParams(1.0 / 16, Side(SideType::kPeriodic), Side(SideType::kPeriodic),
-                        Side(SideType::kWall), Side(SideType::kOutflow));
+  Params p =
+      MakeParams(1.0 / 16, AdvectionSide(SideType::kPeriodic), AdvectionSide(SideType::kPeriodic),
+                 AdvectionSide(SideType::kWall), AdvectionSide(SideType::kOutflow));
   p.solvers.advection_tolerance = 1e-6;
   p.time.dt = 0.05;
   const Grid g = GridOf(p);
@@ -222,8 +225,9 @@ TEST(AdvectionLeastSquares, GradientRatioIsBelowToleranceAfterSolve) {
 // NumericalBlowUp at once instead of sub-cycling for hours: |u| = 1e6 with dt = 1, h = 1/16 would
 // need 3.2e7 sub-steps of Courant 0.5.
 TEST(AdvectionWave, AVelocityBeyondAnyBoundThrowsInsteadOfSubCyclingForever) {
-  Params p = MakeParams(1.0 / 16, Side(SideType::kPeriodic), Side(SideType::kPeriodic),
-                        Side(SideType::kPeriodic), Side(SideType::kPeriodic));
+  Params p =
+      MakeParams(1.0 / 16, AdvectionSide(SideType::kPeriodic), AdvectionSide(SideType::kPeriodic),
+                 AdvectionSide(SideType::kPeriodic), AdvectionSide(SideType::kPeriodic));
   p.time.dt = 1.0;
   const Grid g = GridOf(p);
   BoundaryData data(g, p.domain);
@@ -246,8 +250,9 @@ TEST(AdvectionWave, AVelocityBeyondAnyBoundThrowsInsteadOfSubCyclingForever) {
 // grows, and along x it grows at 0.9. So 0.7 is asserted, not the 0.9 hoped for; at 1.6 every
 // direction grows, so the check can fail.
 double PerturbationGrowth(double courant, Vec2 flow) {
-  Params p = MakeParams(1.0 / 32, Side(SideType::kPeriodic), Side(SideType::kPeriodic),
-                        Side(SideType::kPeriodic), Side(SideType::kPeriodic));
+  Params p =
+      MakeParams(1.0 / 32, AdvectionSide(SideType::kPeriodic), AdvectionSide(SideType::kPeriodic),
+                 AdvectionSide(SideType::kPeriodic), AdvectionSide(SideType::kPeriodic));
   p.solvers.wave_max_courant = courant * 1.01;  // two sub-steps (the minimum) of Courant `courant`
   p.time.dt = 2.0 * courant * p.domain.h / flow.norm();
   const Grid g = GridOf(p);

@@ -49,20 +49,20 @@ namespace dlmfd {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr int kCells = 32;  // periodic box of 32 x 32 cells
+constexpr int kWaveCells = 32;  // periodic box of 32 x 32 cells
 constexpr int kSubstepCounts[] = {1,
                                   2};  // Q = 1 is the engine's minimum; the theory holds for any Q
 
-// Spectral radius of one call of the scheme over the modes of the kCells-periodic grid (theory
+// Spectral radius of one call of the scheme over the modes of the kWaveCells-periodic grid (theory
 // above).
 double TheoreticalRadius(Vec2 direction, double courant, int substeps) {
   const Vec2 d = direction.normalized();
   const Complex i1(0.0, 1.0);
   double rho = 0.0;
-  for (int a = 0; a < kCells; ++a) {
-    for (int b = 0; b < kCells; ++b) {
-      const Complex ex = std::exp(i1 * (2.0 * kPi * a / kCells)),
-                    ey = std::exp(i1 * (2.0 * kPi * b / kCells));
+  for (int a = 0; a < kWaveCells; ++a) {
+    for (int b = 0; b < kWaveCells; ++b) {
+      const Complex ex = std::exp(i1 * (2.0 * kPi * a / kWaveCells)),
+                    ey = std::exp(i1 * (2.0 * kPi * b / kWaveCells));
       const Complex gx =
           (2.0 * (ex - 1.0 / ex) + (1.0 / ey - 1.0 / (ex * ey)) + (ex * ey - ey)) / 6.0;
       const Complex gy =
@@ -97,13 +97,13 @@ double TheoreticalLimit(Vec2 direction, int substeps) {
 double MeasuredRadius(Vec2 flow, double courant, int iterations, int substeps) {
   Params p;
   p.domain.size = Vec2(1.0, 1.0);
-  p.domain.h = 1.0 / kCells;
+  p.domain.h = 1.0 / kWaveCells;
   for (BoundarySide& s : p.domain.sides) s.type = SideType::kPeriodic;
   p.fluid.viscosity = 0.02;
   p.fluid.solvent_ratio = 1.0;
   p.solvers.wave_max_courant = courant * 1.01;  // exactly `substeps` sub-steps of Courant `courant`
   p.time.dt = substeps * courant * p.domain.h / flow.norm();
-  const Grid g{kCells, kCells, p.domain.h, 0.0, 0.0};
+  const Grid g{kWaveCells, kWaveCells, p.domain.h, 0.0, 0.0};
   BoundaryData data(g, p.domain);
   AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.0, p.solvers, data);
   NodeSet nodes(g, BoundaryTopology::ForVelocity(p.domain));

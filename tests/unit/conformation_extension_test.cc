@@ -24,14 +24,14 @@
 namespace dlmfd {
 namespace {
 
-constexpr int kCells = 96;  // h = 1/48 on [-1, 1]
+constexpr int kExtensionCells = 96;  // h = 1/48 on [-1, 1]
 constexpr double kLambda = 1.0;
 constexpr double kRate = 2.0;     // lambda e = 2
 constexpr double kDt = 0.003;     // e dt = 0.006
 constexpr double kEndTime = 3.0;  // past the naive scheme's failure (t = 2.37 in the notes)
 
 struct Flow {
-  Grid grid{kCells, kCells, 2.0 / kCells, -1.0, -1.0};
+  Grid grid{kExtensionCells, kExtensionCells, 2.0 / kExtensionCells, -1.0, -1.0};
   Mat2 l;  // the uniform velocity gradient
   std::vector<double> u, v;
   Flow() {
@@ -40,8 +40,8 @@ struct Flow {
              kRate * (s * s - c * c)};
     u.resize(grid.NodeCount());
     v.resize(grid.NodeCount());
-    for (int j = 0; j <= kCells; ++j) {
-      for (int i = 0; i <= kCells; ++i) {
+    for (int j = 0; j <= kExtensionCells; ++j) {
+      for (int i = 0; i <= kExtensionCells; ++i) {
         const double x = grid.X(i), y = grid.Y(j);
         u[grid.Index(i, j)] = l.m11 * x + l.m12 * y;
         v[grid.Index(i, j)] = l.m21 * x + l.m22 * y;
@@ -60,7 +60,7 @@ struct NaiveResult {
 
 NaiveResult RunNaive(const Flow& flow) {
   const Grid& g = flow.grid;
-  const int n = kCells, pad = n + 5;
+  const int n = kExtensionCells, pad = n + 5;
   auto P = [pad](int i, int j) { return std::size_t(j + 2) * pad + std::size_t(i + 2); };
   std::vector<double> a[3], s1[3], s2[3];
   for (int c = 0; c < 3; ++c) {
@@ -149,7 +149,7 @@ NaiveResult RunNaive(const Flow& flow) {
 Params ExtensionParams() {
   Params p;
   p.domain.size = Vec2(2.0, 2.0);
-  p.domain.h = 2.0 / kCells;
+  p.domain.h = 2.0 / kExtensionCells;
   for (BoundarySide& s : p.domain.sides) {
     s.type = SideType::kVelocity;  // uniform profile: A_L = I where the flow enters
     s.profile = Profile::kUniform;

@@ -17,19 +17,19 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr int kCells = 8;
+constexpr int kFailureCells = 8;
 
 Params WalledBox() {
   Params p;
   p.domain.size = Vec2(1.0, 1.0);
-  p.domain.h = 1.0 / kCells;
+  p.domain.h = 1.0 / kFailureCells;
   p.fluid.relaxation_time = 0.5;
   p.fluid.solvent_ratio = 0.5;
   return p;  // four walls by default
 }
 
 struct Case {
-  Grid grid{kCells, kCells, 1.0 / kCells, 0.0, 0.0};
+  Grid grid{kFailureCells, kFailureCells, 1.0 / kFailureCells, 0.0, 0.0};
   std::vector<double> u, v, a11, a12, a22;
   Case() {
     const std::size_t n = grid.NodeCount();

@@ -16,7 +16,8 @@
 namespace dlmfd {
 namespace {
 
-BoundarySide MakeSide(SideType type, Profile profile = Profile::kUniform, Vec2 max = Vec2::Zero()) {
+BoundarySide PolymerSide(SideType type, Profile profile = Profile::kUniform,
+                         Vec2 max = Vec2::Zero()) {
   BoundarySide s;
   s.type = type;
   s.profile = profile;
@@ -28,7 +29,7 @@ Params Box(int n, SideType type, double lambda) {
   Params p;
   p.domain.size = Vec2(1.0, 1.0);
   p.domain.h = 1.0 / n;
-  for (auto& side : p.domain.sides) side = MakeSide(type);
+  for (auto& side : p.domain.sides) side = PolymerSide(type);
   p.fluid.viscosity = 1.2;
   p.fluid.solvent_ratio = 0.25;
   p.fluid.relaxation_time = lambda;
@@ -95,9 +96,9 @@ TEST(OldroydBPolymer, InitialStateFollowsTheInflowRuleOfEveryStep) {
   const Grid g = GridOf(n);
   Params p = Box(n, SideType::kWall, lambda);
   p.domain.sides[int(Side::kLeft)] =
-      MakeSide(SideType::kVelocity, Profile::kPoiseuille, Vec2(1.0, 0.0));
-  p.domain.sides[int(Side::kRight)] = MakeSide(SideType::kOutflow);
-  p.domain.sides[int(Side::kBottom)] = MakeSide(SideType::kVelocity);
+      PolymerSide(SideType::kVelocity, Profile::kPoiseuille, Vec2(1.0, 0.0));
+  p.domain.sides[int(Side::kRight)] = PolymerSide(SideType::kOutflow);
+  p.domain.sides[int(Side::kBottom)] = PolymerSide(SideType::kVelocity);
   OldroydBPolymer polymer(p, g);
   FlowState s = RestState(g);
   for (std::size_t k = 0; k < g.NodeCount(); ++k) {

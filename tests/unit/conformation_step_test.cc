@@ -15,7 +15,7 @@
 namespace dlmfd {
 namespace {
 
-BoundarySide MakeSide(SideType type, Vec2 value = Vec2::Zero()) {
+BoundarySide ConformationSide(SideType type, Vec2 value = Vec2::Zero()) {
   BoundarySide s;
   s.type = type;
   s.value = value;
@@ -27,10 +27,10 @@ Params MakeParams(int nx, int ny, double h, SideType x_sides, SideType y_sides, 
   Params p;
   p.domain.size = Vec2(nx * h, ny * h);
   p.domain.h = h;
-  p.domain.sides[int(Side::kLeft)] = MakeSide(x_sides);
-  p.domain.sides[int(Side::kRight)] = MakeSide(x_sides);
-  p.domain.sides[int(Side::kBottom)] = MakeSide(y_sides);
-  p.domain.sides[int(Side::kTop)] = MakeSide(y_sides);
+  p.domain.sides[int(Side::kLeft)] = ConformationSide(x_sides);
+  p.domain.sides[int(Side::kRight)] = ConformationSide(x_sides);
+  p.domain.sides[int(Side::kBottom)] = ConformationSide(y_sides);
+  p.domain.sides[int(Side::kTop)] = ConformationSide(y_sides);
   p.fluid.relaxation_time = lambda;
   p.fluid.solvent_ratio = 0.5;
   p.fluid.viscosity = 1.0;
@@ -147,7 +147,7 @@ TEST(ConformationStep, IdentityInsideParticlesAndInflowDataOnUpstreamNodes) {
   const int n = 8;
   const Grid grid{n, n, 1.0 / n, 0.0, 0.0};
   Params p = MakeParams(n, n, 1.0 / n, SideType::kVelocity, SideType::kWall, 1.0);
-  p.domain.sides[int(Side::kRight)] = MakeSide(SideType::kOutflow);
+  p.domain.sides[int(Side::kRight)] = ConformationSide(SideType::kOutflow);
   ConformationStep step(p, grid);
   Fields f(grid.NodeCount());
   std::vector<unsigned char> inside(grid.NodeCount(), 0);

@@ -3,6 +3,7 @@
 // reference README, a fixed disk in a body-force-driven periodic box takes the body force as drag
 // at steady state, the initial A is A_L on inflow nodes, and Restore from a checkpoint file
 // continues bit for bit. Coarse grids, well under a second in all on an idle machine.
+#include "../support/max_norms.h"
 #include "dlmfd/core/simulation.h"
 
 #include <gtest/gtest.h>
@@ -67,11 +68,8 @@ ParticleParams Disk(Vec2 centre, double diameter, double density, Motion motion)
   return d;
 }
 
-double MaxAbs(const std::vector<double>& f) {
-  double m = 0.0;
-  for (double x : f) m = std::max(m, std::abs(x));
-  return m;
-}
+using testing::MaxAbs;
+using testing::MaxAbsDiff;
 
 TEST(SimulationCoupling, NewtonianSceneModelsNoConformationAndNoParticles) {
   Params p = Box(1.0, 1.0, 1.0 / 16, SideType::kWall);

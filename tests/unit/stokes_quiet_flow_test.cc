@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "../support/max_norms.h"
 #include "dlmfd/core/simulation.h"
 
 namespace dlmfd {
@@ -47,11 +48,8 @@ Params RestingOldroydBLiquid() {
   return p;
 }
 
-double MaxAbs(const std::vector<double>& f) {
-  double m = 0.0;
-  for (double x : f) m = std::max(m, std::abs(x));
-  return m;
-}
+using testing::MaxAbs;
+using testing::MaxAbsDiff;
 
 TEST(StokesQuietFlow, LiquidAtRestCostsNoIterationsAndStaysAtRest) {
   Simulation sim(RestingOldroydBLiquid());

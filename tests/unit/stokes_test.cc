@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "../support/max_norms.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/fluid/boundary_data.h"
@@ -71,17 +72,8 @@ void FillSmooth(const Grid& g, std::vector<double>& u, std::vector<double>& v) {
   }
 }
 
-double MaxAbsDiff(const std::vector<double>& a, const std::vector<double>& b) {
-  double m = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) m = std::max(m, std::abs(a[k] - b[k]));
-  return m;
-}
-
-double MaxAbs(const std::vector<double>& a) {
-  double m = 0.0;
-  for (double x : a) m = std::max(m, std::abs(x));
-  return m;
-}
+using testing::MaxAbs;
+using testing::MaxAbsDiff;
 
 TEST(StokesSolver, DivergenceBelowToleranceAfterSolve) {
   // Lid-driven box, and inflow with an outflow side: the true residual sqrt(Bu . P^-1 Bu),

@@ -104,8 +104,6 @@ double FieldPicture::BarY(double value) const {
 
 namespace {
 
-constexpr Rgb kAxisColour{0, 0, 0};
-
 // The colour range: fixed, or the finite (positive, on a log scale) extremes of the values, or on
 // a diverging scale [-m, m] with m the largest finite |value|. Checked by ColourScale.
 void ColourRange(const NodeField& field, const PictureOptions& options, double& lo, double& hi) {

@@ -18,7 +18,6 @@ constexpr Rgb kPalette[kPaletteSize] = {{0, 114, 178},   {213, 94, 0},  {0, 158,
                                         {204, 121, 167}, {230, 159, 0}, {86, 180, 233},
                                         {0, 0, 0}};
 constexpr Rgb kGridColour{225, 225, 225};
-constexpr Rgb kAxisColour{0, 0, 0};
 
 double Transform(double value, AxisScale scale) {
   return scale == AxisScale::kLog10 ? std::log10(value) : value;

@@ -17,7 +17,7 @@ namespace dlmfd {
 namespace {
 
 // More advection sub-steps than this mean a velocity no fluid step could have produced stably.
-constexpr int kMaxSubsteps = 1000;
+constexpr int kMaxConformationSubsteps = 1000;
 
 double CheckedRelaxationTime(const Params& params) {
   if (params.fluid.IsNewtonian()) {
@@ -161,11 +161,11 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
   // 1. Advection, sub-cycled so that (|u| + |v|) tau / h <= max_courant.
   // The 1e-12 slack keeps a Courant ratio of exactly 3 (up to round-off) at 3 sub-steps.
   const double courant_ratio = dt * max_speed / (grid_.h * max_courant_);
-  if (courant_ratio > kMaxSubsteps) {
+  if (courant_ratio > kMaxConformationSubsteps) {
     std::ostringstream msg;
     msg << "advective Courant number " << dt * max_speed / grid_.h
         << " in step (35) at t = " << time << " (max |u| + |v| = " << max_speed
-        << ") would need more than " << kMaxSubsteps
+        << ") would need more than " << kMaxConformationSubsteps
         << " conformation sub-steps: the velocity is beyond any bound the time step can follow";
     throw NumericalBlowUp(msg.str());
   }

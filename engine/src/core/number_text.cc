@@ -23,4 +23,8 @@ std::string ShortText(double x) {
   return buffer;
 }
 
+std::string VecText(const Eigen::Vector2d& v) {
+  return "[" + ExactText(v.x()) + ", " + ExactText(v.y()) + "]";
+}
+
 }  // namespace dlmfd

@@ -23,7 +23,7 @@ namespace dlmfd {
 constexpr int kMinSubsteps = 1;
 // A velocity that would need more sub-steps than this is a blow-up (step (35) has the same bound):
 // without it a diverging run would spend hours sub-cycling one step instead of ending FAILED.
-constexpr int kMaxSubsteps = 1000;
+constexpr int kMaxAdvectionSubsteps = 1000;
 
 AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const FluidParams& fluid,
                              double dt, double beta, const SolverParams& solvers,
@@ -168,10 +168,11 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
   FreezeVelocity(u, v);
   const double vmax = nodes_.MaxNorm(vx_.data(), vy_.data());
   const double courant_ratio = vmax * dt_ / (grid_.h * max_courant_);
-  if (!(courant_ratio <= kMaxSubsteps)) {  // (NaN velocities are Simulation::CheckFinite's)
+  if (!(courant_ratio <=
+        kMaxAdvectionSubsteps)) {  // (NaN velocities are Simulation::CheckFinite's)
     std::ostringstream msg;
     msg << "advective Courant number " << vmax * dt_ / grid_.h
-        << " in step (34) (max |u| = " << vmax << ") would need more than " << kMaxSubsteps
+        << " in step (34) (max |u| = " << vmax << ") would need more than " << kMaxAdvectionSubsteps
         << " wave sub-steps: the velocity is beyond any bound the time step can follow";
     throw NumericalBlowUp(msg.str());
   }

@@ -17,10 +17,6 @@ double NormalComponent(Side side, const BoundarySide& b) {
   return (side == Side::kLeft || side == Side::kRight) ? data.x() : data.y();
 }
 
-std::string VecText(const Vec2& v) {
-  return "[" + ExactText(v.x()) + ", " + ExactText(v.y()) + "]";
-}
-
 }  // namespace
 
 Vec2 ProfileVelocity(const BoundarySide& side, double s) {

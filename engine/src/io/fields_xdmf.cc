@@ -8,7 +8,7 @@ namespace dlmfd {
 namespace {
 
 // The node shape of one layer, slowest first: "1 ny+1 nx+1".
-std::string Dims(const Grid& g) {
+std::string DimensionsText(const Grid& g) {
   return "1 " + std::to_string(g.NodesY()) + " " + std::to_string(g.NodesX());
 }
 
@@ -19,10 +19,11 @@ void HeavyItem(std::ostringstream& o, const std::string& dims, const std::string
     << "</DataItem>\n";
 }
 
-// A node attribute: "Scalar" of shape Dims(g), or "Vector" of shape Dims(g) plus 3 components.
+// A node attribute: "Scalar" of shape DimensionsText(g), or "Vector" of shape DimensionsText(g)
+// plus 3 components.
 void Attribute(std::ostringstream& o, const Grid& g, const std::string& type,
                const std::string& file, const std::string& set) {
-  const std::string dims = type == "Vector" ? Dims(g) + " 3" : Dims(g);
+  const std::string dims = type == "Vector" ? DimensionsText(g) + " 3" : DimensionsText(g);
   o << "          <Attribute Name=\"" << set << "\" AttributeType=\"" << type
     << "\" Center=\"Node\">\n";
   HeavyItem(o, dims, file, set, "            ");
@@ -36,7 +37,8 @@ void Scalar(std::ostringstream& o, const Grid& g, const std::string& file, const
 // ORIGIN_DXDYDZ, z first: origin "0 y0 x0", spacing "1 h h".
 void Mesh(std::ostringstream& o, const Grid& g) {
   o.precision(17);
-  o << "        <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"" << Dims(g) << "\"/>\n";
+  o << "        <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"" << DimensionsText(g)
+    << "\"/>\n";
   o << "        <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n";
   o << "          <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">0 "
     << g.y0 << " " << g.x0 << "</DataItem>\n";

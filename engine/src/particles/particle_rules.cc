@@ -12,10 +12,6 @@
 namespace dlmfd {
 namespace {
 
-std::string VecText(const Vec2& v) {
-  return "[" + ExactText(v.x()) + ", " + ExactText(v.y()) + "]";
-}
-
 // Distance between two centres; the nearest periodic image along periodic directions.
 double CenterDistance(const DomainParams& d, const Vec2& a, const Vec2& b) {
   Vec2 delta = a - b;

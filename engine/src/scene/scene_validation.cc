@@ -25,10 +25,6 @@ namespace {
 constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
 const char* const kSideNames[4] = {"left", "right", "bottom", "top"};
 
-std::string VecText(const Vec2& v) {
-  return "[" + ExactText(v.x()) + ", " + ExactText(v.y()) + "]";
-}
-
 void RequirePositive(const std::string& key, double x) {
   if (!(x > 0.0)) throw InvalidParameter(key, ExactText(x), "a number > 0");
 }

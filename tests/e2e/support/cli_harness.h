@@ -11,11 +11,9 @@
 #include <string>
 #include <vector>
 
-namespace dlmfd::testing {
+#include "../../support/build_paths.h"
 
-inline const std::string kClient = DLMFD_BINARY_DIR "/client/dlmfd";
-inline const std::string kDaemon = DLMFD_BINARY_DIR "/server/dlmfdd";
-inline const std::string kSolver = DLMFD_BINARY_DIR "/solver/dlmfd-solve";
+namespace dlmfd::testing {
 
 // A small lid-driven cavity (10 steps, snapshots and checkpoints) the e2e tests submit.
 inline constexpr char kCavity[] = R"toml(title = "lid-driven cavity (e2e)"

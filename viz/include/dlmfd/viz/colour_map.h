@@ -41,6 +41,8 @@ struct Rgb {
 
 inline constexpr Rgb kBlack{0, 0, 0};
 inline constexpr Rgb kWhite{255, 255, 255};
+// Axes, ticks, their labels and the titles, in field pictures and in charts alike.
+inline constexpr Rgb kAxisColour = kBlack;
 // Pixels whose field value is NaN or Inf: a neutral grey that neither colour map produces.
 inline constexpr Rgb kNanColour{160, 160, 160};
 
