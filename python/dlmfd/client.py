@@ -12,6 +12,7 @@ import os
 import pathlib
 
 import grpc
+from google.protobuf import json_format
 
 from . import errors, scene_input, table
 from .axes import sweep_axes
@@ -168,8 +169,10 @@ class Client:
 
     def fetch(self, job_id, out=None, paths=()):
         """Writes the job's result files (all, or the given relative paths) under out (default
-        ./JOB_ID); each file goes to a hidden temporary name and is renamed when complete.
-        Returns out as a pathlib.Path."""
+        ./JOB_ID); each file goes to a hidden temporary name and is renamed when complete. Then
+        out/job.json records the job as `dlmfd fetch` does (docs/results.md), so that `dlmfd plot
+        DIR` captions the directory with the job's name and overrides. Returns out as a
+        pathlib.Path."""
         out = pathlib.Path(out if out is not None else job_id)
         requests = [jobs_pb2.FetchRequest(job_id=job_id, path=p) for p in paths] or [
             jobs_pb2.FetchRequest(job_id=job_id)]
@@ -191,6 +194,12 @@ class Client:
                 if handle is not None:  # the stream broke inside a file: no truncated file kept
                     handle.close()
                     os.remove(temporary)
+        out.mkdir(parents=True, exist_ok=True)
+        job_json = json_format.MessageToJson(self.job(job_id), preserving_proto_field_name=True,
+                                             including_default_value_fields=True, indent=None)
+        temporary = out / ".job.json.part"
+        temporary.write_text(job_json + "\n")
+        os.replace(temporary, out / "job.json")
         return out
 
     def table(self, sweep_id="", jobs=None, tag="", states=(), frame=None):

@@ -60,6 +60,11 @@ class ClientTest(unittest.TestCase):
                 self.assertIn(name, names)
                 self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
             self.assertFalse([n for n in os.listdir(out) if n.endswith(".part")])
+            # job.json: the job as `dlmfd fetch` records it, for the captions of `dlmfd plot DIR`.
+            with open(os.path.join(out, "job.json")) as f:
+                recorded = json.load(f)
+            self.assertEqual(recorded["id"], job.id)
+            self.assertEqual(recorded["state"], "COMPLETED")
             with open(os.path.join(out, "summary.json")) as f:
                 summary = json.load(f)
             self.assertEqual(summary["status"], "completed")
