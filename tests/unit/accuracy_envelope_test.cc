@@ -262,6 +262,8 @@ motion = "fixed"
 center = [0.7, 0.5]
 diameter = 0.125
 motion = "fixed"
+[particle_mesh]
+h = 0.02142857142857143  # 96 / 70 h, the studies' ratio (the default 1 / 70 would warn on h_p / h)
 )TOML";
   const std::vector<AccuracyWarning> w = AccuracyWarnings(Scene(kTwo));
   ASSERT_EQ(w.size(), 1u);
@@ -304,6 +306,35 @@ TEST(AccuracyEnvelope, StrictKeyIsABoolean) {
   const Params strict = Scene(kCavity, {"accuracy.strict=true"});
   EXPECT_TRUE(ParseScene(WriteScene(strict), {}, "written.toml").accuracy.strict);
   EXPECT_EQ(WriteScene(Scene(kCavity)).find("accuracy"), std::string::npos);
+}
+
+TEST(AccuracyEnvelope, ParticleMeshFinerThanTheBoundWarnsWithTheStudiedRatio) {
+  // The Schaefer-Turek scene's ring mesh is at the studies' 96 / 70 of h: no warning on it.
+  for (const AccuracyWarning& w : AccuracyWarnings(Scene(kSchaeferTurek))) {
+    EXPECT_NE(w.setting, "h_p / h") << w.Message();
+  }
+  // h_p = h, where the multiplier CG did not converge (bench/multiplier_conditioning.sh).
+  const std::vector<std::string> equal = {"particle_mesh.h=0.005"};
+  const std::vector<AccuracyWarning> w = AccuracyWarnings(Scene(kSchaeferTurek, equal));
+  ASSERT_FALSE(w.empty());
+  const AccuracyWarning& last = w.back();
+  EXPECT_EQ(last.setting, "h_p / h");
+  EXPECT_DOUBLE_EQ(last.value, 1.0);
+  EXPECT_EQ(last.allowed, ">= 1.1");
+  EXPECT_EQ(last.key, "particle_mesh.h");
+  EXPECT_EQ(last.current, "0.005");
+  EXPECT_DOUBLE_EQ(std::stod(last.suggested), 96.0 / 70.0 * 0.005);
+  EXPECT_THAT(last.source, HasSubstr("The particle mesh against the fluid mesh"));
+  ExpectSuggestionSatisfies(kSchaeferTurek, equal, last);
+  // On the bound is inside it; collocation points have no ring mesh to warn on.
+  for (const AccuracyWarning& x :
+       AccuracyWarnings(Scene(kSchaeferTurek, {"particle_mesh.h=0.0055"}))) {
+    EXPECT_NE(x.setting, "h_p / h") << x.Message();
+  }
+  for (const AccuracyWarning& x : AccuracyWarnings(Scene(
+           kSchaeferTurek, {"particle_mesh.h=0.005", "particle_mesh.kind=\"collocation\""}))) {
+    EXPECT_NE(x.setting, "h_p / h") << x.Message();
+  }
 }
 
 }  // namespace

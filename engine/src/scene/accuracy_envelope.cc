@@ -18,6 +18,8 @@ constexpr const char* kSourceViscousCoupling =
     "docs/work_precision.md, Coupling the constraint with viscosity";
 constexpr const char* kSourceCourant = "docs/work_precision.md (b), Which settings 1";
 constexpr const char* kSourceElastic = "docs/work_precision.md (a)";
+constexpr const char* kSourceParticleMesh =
+    "docs/work_precision.md, The particle mesh against the fluid mesh";
 
 // A setting on its bound is inside it: the settings are products and quotients of the scene's
 // numbers (0.01 / 0.015625), so a bound is compared with this margin of round-off.
@@ -170,6 +172,21 @@ std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
     w.suggested = ExactText(h / k);
     w.source = kSourceD;
     out.push_back(std::move(w));
+  }
+
+  if (particles && p.particle_mesh.kind == ParticleMeshKind::kRing) {
+    const double ratio = p.particle_mesh.h / h;
+    if (Above(kMinParticleMeshRatio, ratio)) {
+      AccuracyWarning w;
+      w.setting = "h_p / h";
+      w.value = ratio;
+      w.allowed = ">= " + ShortText(kMinParticleMeshRatio);
+      w.key = "particle_mesh.h";
+      w.current = ExactText(p.particle_mesh.h);
+      w.suggested = ExactText(kStudiedParticleMeshRatio * h);
+      w.source = kSourceParticleMesh;
+      out.push_back(std::move(w));
+    }
   }
   return out;
 }

@@ -44,9 +44,15 @@
 // |f| H^2 / (8 eta), H the height across. It is an estimate: the run's own Courant number is in
 // diagnostics.csv.
 //
-// Not warned on, because the study did not vary it: D / h_p (the particle mesh, h_p / h = 96 / 70
-// in (c) and (d) throughout; reported among the settings, with h_p = c h, the boundary point
-// spacing, for collocation points), the splitting weights, the solver
+// - h_p / h >= 1.1 for the ring mesh (particle_mesh.h against domain.h): the accuracy studies (c)
+//   and (d) ran at h_p / h = 96 / 70 = 1.37 throughout, and a finer particle mesh makes the DLM
+//   multiplier CG (37) ill-conditioned: bench/multiplier_conditioning.sh (docs/work_precision.md,
+//   "The particle mesh against the fluid mesh"; a disk of D = 0.62 in a periodic box, h = 1/64)
+//   took 60-135 iterations a step from h_p / h = 1.1 up, 284-420 at 0.5-0.75, and did not converge
+//   at 1.0. The suggestion is the studies' ratio, h_p = 96 / 70 h.
+//
+// Not warned on, because the study did not vary it: D / h_p (reported among the settings, with
+// h_p = c h, the boundary point spacing, for collocation points), the splitting weights, the solver
 // tolerances (their "tol" ladders give the defaults, docs/work_precision.md "Which settings" 2),
 // the collision parameters. Values below the bounds' lower side (smaller dt, finer h) are never
 // warned on. Each suggestion keeps the other keys as they are (refining domain.h raises
@@ -68,6 +74,8 @@ inline constexpr double kMaxViscousNumberWithoutParticles = 10.24;
 inline constexpr double kMaxAdvectiveCourant = 0.64;       // U dt / h
 inline constexpr double kMaxElasticCourant = 0.3017;       // sqrt(eta_p / (rho lambda)) dt / h
 inline constexpr double kMaxStepPerRelaxationTime = 0.01;  // dt / lambda
+inline constexpr double kMinParticleMeshRatio = 1.1;       // h_p / h, ring mesh
+inline constexpr double kStudiedParticleMeshRatio = 96.0 / 70.0;  // h_p / h of studies (c), (d)
 
 // One dimensionless setting of the scene, for the log ("nu dt / h^2", 0.44).
 struct AccuracySetting {
