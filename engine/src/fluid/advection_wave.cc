@@ -168,8 +168,8 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
   FreezeVelocity(u, v);
   const double vmax = nodes_.MaxNorm(vx_.data(), vy_.data());
   const double courant_ratio = vmax * dt_ / (grid_.h * max_courant_);
-  if (!(courant_ratio <=
-        kMaxAdvectionSubsteps)) {  // (NaN velocities are Simulation::CheckFinite's)
+  // (NaN velocities are Simulation::CheckFinite's.)
+  if (!(courant_ratio <= kMaxAdvectionSubsteps)) {
     std::ostringstream msg;
     msg << "advective Courant number " << vmax * dt_ / grid_.h
         << " in step (34) (max |u| = " << vmax << ") would need more than " << kMaxAdvectionSubsteps
