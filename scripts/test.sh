@@ -31,8 +31,10 @@ cmake --build build -j"$jobs"
 ctest --test-dir build --output-on-failure -j"$jobs" --timeout 900
 
 echo "== ASan+UBSan build and tests"
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDLMFD_SANITIZE=ON -DDLMFD_WERROR=ON \
-  -DDLMFD_BUILD_BENCH=OFF > /dev/null
+# -O1 -g1 (line tables: reports keep file and line): the build takes 488 s instead of about 750 s
+# at -O2 -g, and the tests run as fast (207 s and 209 s, server and e2e, 2 cores).
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
+  -DDLMFD_SANITIZE=ON -DDLMFD_WERROR=ON -DDLMFD_BUILD_BENCH=OFF > /dev/null
 # The sanitizers guard the code that meets clients and jobs: the daemon, the CLI and the solver
 # they run (the e2e tests run every paper case's scene through the instrumented dlmfd-solve). The
 # engine's unit and convergence tests run in the release build only: under ASan they doubled the
