@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <atomic>
 #include <deque>
 #include <optional>
 #include <vector>
@@ -20,7 +21,7 @@ struct EventHub::Channel {
   int64_t last_seq = 0;  // last issued
   int64_t reserved = 0;  // issued numbers never exceed this (persisted)
   std::vector<std::shared_ptr<WatcherQueue>> watchers;
-  bool finished = false;
+  std::atomic<bool> finished{false};  // read under mutex_ alone by PublishState, FindOrCreate
 };
 
 std::shared_ptr<EventHub::Channel> EventHub::Find(const std::string& job_id) {
@@ -31,12 +32,19 @@ std::shared_ptr<EventHub::Channel> EventHub::Find(const std::string& job_id) {
 
 std::shared_ptr<EventHub::Channel> EventHub::FindOrCreate(const JobRecord& job) {
   auto& slot = channels_[job.id];
-  if (!slot) {
+  if (!slot || slot->finished) {
+    // A channel whose final state was just delivered (not yet dropped) hands on its last number:
+    // the record passed here may predate the store's copy of it.
+    int64_t last = job.last_seq;
+    if (slot) {
+      std::lock_guard lock(slot->mutex);
+      last = slot->last_seq;
+    }
     slot = std::make_shared<Channel>();
     slot->job_id = job.id;
     slot->job = ToProto(job);
-    slot->last_seq = job.last_seq;
-    slot->reserved = job.last_seq;
+    slot->last_seq = last;
+    slot->reserved = last;
   }
   return slot;
 }
@@ -75,14 +83,14 @@ void WakeAll(const std::vector<std::shared_ptr<WatcherQueue>>& wake) {
 }  // namespace
 
 void EventHub::PublishState(const JobRecord& job) {
+  const bool final_state = IsFinished(job.state);
   std::shared_ptr<Channel> channel;
   {
     std::lock_guard lock(mutex_);
-    if (IsFinished(job.state)) {
+    if (final_state) {
       auto it = channels_.find(job.id);
-      if (it == channels_.end()) return;
+      if (it == channels_.end() || it->second->finished) return;
       channel = it->second;
-      channels_.erase(it);
     } else {
       channel = FindOrCreate(job);
     }
@@ -110,6 +118,13 @@ void EventHub::PublishState(const JobRecord& job) {
       }
       channel->watchers.clear();
     }
+  }
+  if (final_state) {
+    // Dropped only now, after the store holds the last number: a job read as finished and found
+    // without a channel (ReportedLastSeq) finds that number in the store.
+    std::lock_guard lock(mutex_);
+    auto it = channels_.find(job.id);
+    if (it != channels_.end() && it->second == channel) channels_.erase(it);
   }
   WakeAll(wake);
 }
@@ -224,6 +239,20 @@ void EventHub::RecordIssued() {
     // An event after this reserves a block again.
     channel->reserved = channel->last_seq;
   }
+}
+
+int64_t EventHub::ReportedLastSeq(const JobRecord& job) {
+  if (auto channel = Find(job.id)) {
+    std::lock_guard lock(channel->mutex);
+    // Read as finished before its final state event was numbered: that event's number, so that a
+    // finished job's last_seq always counts its final state.
+    if (IsFinished(job.state) && !channel->finished) return channel->last_seq + 1;
+    return channel->last_seq;
+  }
+  // No channel: the record may have been read while one was open (its last_seq then the end of a
+  // reserved block); the store holds the last number issued once the channel is dropped.
+  if (auto issued = store_.LastSeq(job.id)) return *issued;
+  return job.last_seq;
 }
 
 std::optional<int64_t> EventHub::LastIssued(const std::string& job_id) {

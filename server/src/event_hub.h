@@ -56,6 +56,9 @@ class EventHub {
   void RecordIssued();
   // The last number issued for a job with a channel (the store may hold a reserved block's end).
   std::optional<int64_t> LastIssued(const std::string& job_id);
+  // The last_seq to report with a record read from the store: the last number issued, counting a
+  // finished record's final state event even while that event is being delivered.
+  int64_t ReportedLastSeq(const JobRecord& job);
 
   size_t ChannelCount();
   size_t WatcherCount(const std::string& job_id);

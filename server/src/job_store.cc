@@ -971,6 +971,14 @@ void JobStore::SetLastSeq(const std::string& id, int64_t last_seq) {
   Statement(db_, "UPDATE jobs SET last_seq = ? WHERE id = ?").Bind(last_seq).Bind(id).Run();
 }
 
+std::optional<int64_t> JobStore::LastSeq(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  Statement select(db_, "SELECT last_seq FROM jobs WHERE id = ?");
+  select.Bind(id);
+  if (!select.Step()) return std::nullopt;
+  return select.Int(0);
+}
+
 std::vector<std::string> JobStore::RequeueRunning(double now) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);

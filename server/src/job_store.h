@@ -238,6 +238,7 @@ class JobStore {
   void SetCancelRequested(const std::string& id);
   void UpdateProgress(const std::string& id, int64_t step, double time, double end_time);
   void SetLastSeq(const std::string& id, int64_t last_seq);
+  std::optional<int64_t> LastSeq(const std::string& id);  // none when the job does not exist
   // The slurm executor submitted the job's attempt as slurm_job_id: recorded, live (adopted by
   // the next start until its end is recorded: MarkFinished and EndAttempt clear it), one more
   // Slurm attempt.

@@ -233,7 +233,7 @@ JobsService::JobsService(const Config& config, JobStore& store, EventHub& hub, S
 
 v1::Job JobsService::Reported(const JobRecord& job) {
   v1::Job out = ToProto(job);
-  if (auto issued = hub_.LastIssued(job.id)) out.set_last_seq(*issued);
+  out.set_last_seq(hub_.ReportedLastSeq(job));
   return out;
 }
 

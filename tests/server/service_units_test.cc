@@ -459,6 +459,31 @@ TEST(EventHub, AfterAKillNumbersResumeRightAfterTheLastOneIssued) {
   EXPECT_TRUE(journal.ReadAll().empty());
 }
 
+// The store commits a final state before the hub numbers its event. A record read in between
+// (Get, List) reports the number that event takes, and one read just before the hub stored its
+// last number reports that number, not the end of the reserved block: a finished job's last_seq
+// counts its final state, so a retry's first event is the number right after it.
+TEST(EventHub, AJobReadAsFinishedReportsItsFinalStateEventsNumber) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  SeqJournal journal(dir.path() + "/watch_seq");
+  store.InsertJobs({MakeJob("a", 0)}, "local", "");
+  store.MarkRunning("a", 1.0);
+  EventHub hub(store, journal, 16);
+  hub.PublishState(*store.Get("a"));  // seq 1
+  hub.Publish("a", Progress(0));      // seq 2
+  store.MarkFinished("a", JobState::kCompleted, "", 2.0);
+  const JobRecord finished = *store.Get("a");
+  EXPECT_EQ(finished.last_seq, EventHub::kSeqBlock);  // reserved, not issued
+  EXPECT_EQ(hub.ReportedLastSeq(finished), 3);        // the final state event's, still to come
+  auto queue = AttachedWatcher(hub, finished, 2);
+  hub.PublishState(finished);
+  EXPECT_EQ(SeqsWithoutGaps(*queue), (std::vector<int64_t>{2, 3}));
+  EXPECT_EQ(hub.ChannelCount(), 0u);
+  EXPECT_EQ(hub.ReportedLastSeq(finished), 3);  // the stale record: the store's number
+  EXPECT_EQ(store.Get("a")->last_seq, 3);
+}
+
 TEST(Downsample, KeepsCornersAndLimits) {
   v1::Snapshot full;
   full.set_nx(8);
