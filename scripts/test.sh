@@ -20,6 +20,7 @@ if [ "$(id -u)" -eq 0 ]; then
   fi
   # On a failure the controller's and the node's last lines go to the log before Slurm stops.
   trap 'status=$?
+    if [ -n "${slurm_tests_pid:-}" ]; then kill "$slurm_tests_pid" 2> /dev/null || true; fi
     if [ "$status" != 0 ]; then scripts/slurm-dev.sh logs || true; fi
     if [ "$slurm_started" = 1 ]; then scripts/slurm-dev.sh stop; fi' EXIT
   eval "$(scripts/slurm-dev.sh env)"
@@ -28,7 +29,15 @@ fi
 echo "== release build and tests"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDLMFD_WERROR=ON > /dev/null
 cmake --build build -j"$jobs"
-ctest --test-dir build --output-on-failure -j"$jobs" --timeout 900
+ctest --test-dir build --output-on-failure -j"$jobs" --timeout 900 -LE slurm
+
+# The tests labelled slurm run one at a time (a resource lock) and mostly wait on Slurm's
+# scheduling: about 5 minutes in which a core is idle. They run beside the ASan+UBSan build, their
+# output kept in a file and printed when they end.
+echo "== release tests labelled slurm, beside the ASan+UBSan build (output follows it)"
+slurm_tests_log=build/slurm-tests.log
+ctest --test-dir build --output-on-failure --timeout 900 -L slurm > "$slurm_tests_log" 2>&1 &
+slurm_tests_pid=$!
 
 echo "== ASan+UBSan build and tests"
 # -O1 -g1 (line tables: reports keep file and line): the build takes 488 s instead of about 750 s
@@ -48,6 +57,13 @@ else
   cmake --build build-asan -j"$jobs" --target dlmfdd dlmfd dlmfd-solve server_tests e2e_tests
   asan_labels=(-L '^(server|e2e)$')
 fi
+slurm_tests_status=0
+wait "$slurm_tests_pid" || slurm_tests_status=$?
+slurm_tests_pid=
+echo "== release tests labelled slurm (exit status $slurm_tests_status)"
+cat "$slurm_tests_log"
+if [ "$slurm_tests_status" != 0 ]; then exit "$slurm_tests_status"; fi
+echo "== ASan+UBSan tests"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS=suppressions="$PWD/scripts/lsan.supp":print_suppressions=0 \
   ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 1800 "${asan_labels[@]}"
