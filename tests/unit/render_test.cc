@@ -6,6 +6,7 @@
 // fields (constant, NaN) giving finite scales instead of dividing by zero.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -24,6 +25,7 @@
 #include "dlmfd/io/field_snapshot.h"
 #include "dlmfd/io/particle_history.h"
 #include "dlmfd/viz/canvas.h"
+#include "dlmfd/viz/caption_lines.h"
 #include "dlmfd/viz/colour_map.h"
 #include "dlmfd/viz/field_picture.h"
 #include "dlmfd/viz/isolines.h"
@@ -407,6 +409,57 @@ TEST(RenderTest, LongCaptionsAreFittedInsideTheImage) {
   // Text in the caption rows, none in the right margin (0.8 font sizes, 7 px here).
   EXPECT_GT(DarkPixels(png, 0, 0, png.width, picture.panel_top), 100);
   EXPECT_EQ(DarkPixels(png, png.width - 5, 0, png.width, picture.panel_top - 2), 0);
+}
+
+// A caption wraps at spaces in the room it has: every line fits, no word is lost or cut, the title
+// paragraph alone is bold, and a paragraph longer than its lines ends cut with "...".
+TEST(CaptionLines, WrapsAtSpacesWithinTheRoomAndCutsOnlyPastTheLastLine) {
+  const Canvas measure(1, 1);
+  const double fs = 12.0;
+  std::string title = "5.2_oldroyd_b, short coarse run:";
+  for (int k = 0; k < 4; ++k) title += " h = 1/32, h_p = 1/23.3, dt = 0.001,";
+  const std::string caption = title + "\ntrA at t = 2.5";
+  const double room = 300.0;
+  const std::vector<CaptionLine> lines = CaptionLines(measure, caption, room, fs, 8);
+  ASSERT_GT(lines.size(), 3u);
+  std::string joined;
+  for (std::size_t k = 0; k + 1 < lines.size(); ++k) {
+    EXPECT_TRUE(lines[k].bold) << k;
+    EXPECT_EQ(lines[k].size, fs) << k;  // wrapped, not shrunk
+    EXPECT_LE(measure.MeasureText(lines[k].text, lines[k].size, true).advance, room) << k;
+    joined += (k == 0 ? "" : " ") + lines[k].text;
+  }
+  EXPECT_EQ(joined, title);
+  EXPECT_FALSE(lines.back().bold);
+  EXPECT_EQ(lines.back().text, "trA at t = 2.5");
+
+  const std::vector<CaptionLine> two = CaptionLines(measure, caption, room, fs, 2);
+  ASSERT_EQ(two.size(), 3u);
+  EXPECT_EQ(two[0].text, lines[0].text);
+  EXPECT_THAT(two[1].text, ::testing::EndsWith("..."));
+  EXPECT_LE(measure.MeasureText(two[1].text, two[1].size, true).advance, room);
+  EXPECT_GE(two[1].size, 0.75 * fs);
+}
+
+// On a narrow picture of a tall domain the caption takes more lines, and the panel moves down
+// under them: the caption is not cut.
+TEST(RenderTest, ALongCaptionWrapsOnANarrowPictureAndThePanelMovesBelowIt) {
+  NodeField tall;
+  tall.grid = Grid{4, 16, 0.125, 0.0, 0.0};
+  tall.values.assign(tall.grid.NodeCount(), 1.0);
+  const std::string words = "5.2_oldroyd_b, short coarse run: h = 1/32, h_p = 1/23.3, dt = 0.001";
+  const FieldPicture one_line = DrawFieldPicture(tall, {}, Sized(400, 900, "title"));
+  const FieldPicture wrapped = DrawFieldPicture(tall, {}, Sized(400, 900, words));
+  const Canvas measure(1, 1);
+  const double fs = std::clamp(400 / 55.0, 9.0, 24.0);
+  const std::vector<CaptionLine> lines =
+      CaptionLines(measure, words, wrapped.image.Width() - 1.6 * fs, fs);
+  ASSERT_GE(lines.size(), 2u);
+  for (const CaptionLine& line : lines)
+    EXPECT_THAT(line.text, ::testing::Not(::testing::EndsWith("...")));
+  EXPECT_NEAR(wrapped.panel_top - one_line.panel_top, (lines.size() - 1) * 1.3 * fs, 1.0);
+  const RgbImage png = WrittenPng(wrapped, "wrapped_caption");
+  EXPECT_EQ(DarkPixels(png, png.width - 5, 0, png.width, wrapped.panel_top - 2), 0);
 }
 
 TEST(RenderTest, RejectsMismatchedValuesAndSizesWithoutRoom) {

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/viz/caption_lines.h"
 #include "dlmfd/viz/colour_map.h"
 #include "dlmfd/viz/colour_scale.h"
 #include "dlmfd/viz/isolines.h"
@@ -134,18 +135,6 @@ double WidestLabel(const Canvas& canvas, const AxisTicks& ticks, double size) {
   return width;
 }
 
-std::vector<std::string> Lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::size_t start = 0;
-  while (start <= text.size() && !text.empty()) {
-    const std::size_t end = text.find('\n', start);
-    lines.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
-  return lines;
-}
-
 AxisTicks BarTicks(double lo, double hi, int wanted, bool log) {
   if (!(lo < hi)) return AxisTicks{{lo}, {FormatLabel(lo)}};
   return ScaleTicks(lo, hi, wanted, log ? AxisScale::kLog10 : AxisScale::kLinear);
@@ -217,36 +206,67 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
   const double margin = 0.8 * fs;
   const double tick = 0.4 * fs;
   const double line_height = 1.3 * fs;
-  const std::vector<std::string> caption = Lines(options.caption);
-  const double caption_height = caption.empty() ? 0.0 : caption.size() * line_height + 0.3 * fs;
   const double bar_width = 1.2 * fs;
   const double min_bar_height = 6.0 * fs;
 
-  // A first guess of the ticks, for the widths of their labels.
-  const double top = margin + caption_height + 0.5 * fs;
-  const double bottom = tick + 0.2 * fs + 2.0 * line_height + margin;
-  const double room_y_guess = max_height - top - bottom;
-  const int y_wanted = std::clamp(int(room_y_guess / (3.0 * fs)), 2, 8);
-  const AxisTicks y_guess = LinearTicks(g.y0, g.y0 + g.Height(), y_wanted);
-  const AxisTicks bar_guess = BarTicks(lo, hi, y_wanted, log_colours);
-  const double left =
-      margin + line_height + WidestLabel(measure, y_guess, fs) + 0.3 * fs + tick + 1.0;
-  const double right = 1.2 * fs + bar_width + tick + 0.3 * fs +
-                       WidestLabel(measure, bar_guess, fs) + 0.6 * fs + line_height + margin;
-  const double room_x = max_width - left - right;
-  const double room_y = max_height - top - bottom;
-  if (room_x < 16 || room_y < std::max(16.0, min_bar_height)) {
-    throw InvalidParameter("picture size",
-                           std::to_string(max_width) + "x" + std::to_string(max_height),
-                           "room for the field, its axes, the colour bar and its labels (try "
-                           "400x300 or more)");
+  // The layout for a caption of `caption_lines` lines: the panel keeps the domain's aspect, the
+  // picture shrinks around it.
+  struct Layout {
+    double left = 0, top = 0;
+    int panel_width = 0, panel_height = 0, body_height = 0, width = 0, height = 0;
+  };
+  auto layout_for = [&](std::size_t caption_lines) {
+    const double caption_height = caption_lines == 0 ? 0.0 : caption_lines * line_height + 0.3 * fs;
+    Layout l;
+    // A first guess of the ticks, for the widths of their labels.
+    l.top = margin + caption_height + 0.5 * fs;
+    const double bottom = tick + 0.2 * fs + 2.0 * line_height + margin;
+    const double room_y_guess = max_height - l.top - bottom;
+    const int y_wanted = std::clamp(int(room_y_guess / (3.0 * fs)), 2, 8);
+    const AxisTicks y_guess = LinearTicks(g.y0, g.y0 + g.Height(), y_wanted);
+    const AxisTicks bar_guess = BarTicks(lo, hi, y_wanted, log_colours);
+    l.left = margin + line_height + WidestLabel(measure, y_guess, fs) + 0.3 * fs + tick + 1.0;
+    const double right = 1.2 * fs + bar_width + tick + 0.3 * fs +
+                         WidestLabel(measure, bar_guess, fs) + 0.6 * fs + line_height + margin;
+    const double room_x = max_width - l.left - right;
+    const double room_y = max_height - l.top - bottom;
+    if (room_x < 16 || room_y < std::max(16.0, min_bar_height)) {
+      throw InvalidParameter("picture size",
+                             std::to_string(max_width) + "x" + std::to_string(max_height),
+                             "room for the field, its axes, the colour bar and its labels (try "
+                             "400x300 or more)");
+    }
+    const double pixels_per_unit = std::min(room_x / g.Width(), room_y / g.Height());
+    l.panel_width = std::max(1, int(std::floor(g.Width() * pixels_per_unit)));
+    l.panel_height = std::max(1, int(std::floor(g.Height() * pixels_per_unit)));
+    l.body_height = std::max(l.panel_height, int(min_bar_height));
+    l.width = int(std::ceil(l.left + l.panel_width + right));
+    l.height = int(std::ceil(l.top + l.body_height + bottom));
+    return l;
+  };
+  // The caption wraps in the picture's final width; more lines make the panel, and so the
+  // picture, narrower: a few rounds settle it (the count of lines only grows).
+  auto caption_in = [&](int picture_width) {
+    return CaptionLines(measure, options.caption, picture_width - 2.0 * margin, fs);
+  };
+  std::vector<CaptionLine> caption = caption_in(max_width);
+  Layout layout = layout_for(caption.size());
+  for (int round = 0; round < 4; ++round) {
+    std::vector<CaptionLine> rewrapped = caption_in(layout.width);
+    if (rewrapped.size() <= caption.size()) {
+      caption = std::move(rewrapped);
+      break;
+    }
+    caption = std::move(rewrapped);
+    layout = layout_for(caption.size());
   }
-  const double pixels_per_unit = std::min(room_x / g.Width(), room_y / g.Height());
-  const int panel_width = std::max(1, int(std::floor(g.Width() * pixels_per_unit)));
-  const int panel_height = std::max(1, int(std::floor(g.Height() * pixels_per_unit)));
-  const int body_height = std::max(panel_height, int(min_bar_height));
-  int width = int(std::ceil(left + panel_width + right));
-  int height = int(std::ceil(top + body_height + bottom));
+  const double left = layout.left;
+  const double top = layout.top;
+  const int panel_width = layout.panel_width;
+  const int panel_height = layout.panel_height;
+  const int body_height = layout.body_height;
+  int width = layout.width;
+  int height = layout.height;
   int shift_x = 0, shift_y = 0;
   if (options.exact_width > 0) {
     shift_x = std::max(0, (options.exact_width - width) / 2);
@@ -396,26 +416,9 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
               bar_label + (log_colours ? " (log scale)" : ""), fs, kAxisColour, Align::kCentre,
               Align::kCentre, 90.0);
 
-  // Caption lines fit the image: a smaller font first (down to 3/4), then cut with "...".
-  const double room = width - 2.0 * shift_x - 2.0 * margin;
   for (std::size_t k = 0; k < caption.size(); ++k) {
-    const bool bold = k == 0;
-    const double natural = canvas.MeasureText(caption[k], fs, bold).advance;
-    const double size = natural > room ? std::max(0.75 * fs, 0.995 * fs * room / natural) : fs;
-    std::string line = caption[k];
-    if (canvas.MeasureText(line, size, bold).advance > room) {
-      while (line.size() > 1 && canvas.MeasureText(line + "...", size, bold).advance > room) {
-        // One character: its UTF-8 continuation bytes, then its first byte.
-        unsigned char last = 0;
-        do {
-          last = static_cast<unsigned char>(line.back());
-          line.pop_back();
-        } while (!line.empty() && (last & 0xC0) == 0x80);
-      }
-      line += "...";
-    }
-    canvas.Text(shift_x + margin, shift_y + margin + k * line_height, line, size, kAxisColour,
-                Align::kStart, Align::kStart, 0.0, bold);
+    canvas.Text(shift_x + margin, shift_y + margin + k * line_height, caption[k].text,
+                caption[k].size, kAxisColour, Align::kStart, Align::kStart, 0.0, caption[k].bold);
   }
   return picture;
 }
