@@ -430,6 +430,10 @@ TEST(CaptionLines, WrapsAtSpacesWithinTheRoomAndCutsOnlyPastTheLastLine) {
     joined += (k == 0 ? "" : " ") + lines[k].text;
   }
   EXPECT_EQ(joined, title);
+  for (const CaptionLine& line : lines) {  // no line starts or ends at the "=" of a setting
+    EXPECT_THAT(line.text, ::testing::Not(::testing::EndsWith("="))) << line.text;
+    EXPECT_THAT(line.text, ::testing::Not(::testing::StartsWith("="))) << line.text;
+  }
   EXPECT_FALSE(lines.back().bold);
   EXPECT_EQ(lines.back().text, "trA at t = 2.5");
 

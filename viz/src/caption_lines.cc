@@ -1,4 +1,5 @@
-// CaptionLines: greedy wrapping at spaces, then the fit of each line (smaller font, then "...").
+// CaptionLines: greedy wrapping at spaces (never around a lone "="), then the fit of each line
+// (smaller font, then "...").
 #include "dlmfd/viz/caption_lines.h"
 
 #include <algorithm>
@@ -15,6 +16,26 @@ std::vector<std::string> Split(const std::string& text, char separator) {
     if (end == std::string::npos) return parts;
     start = end + 1;
   }
+}
+
+// The units a line may break between: the words, with a lone "=" keeping its neighbours
+// ("dt = 0.001" is never split).
+std::vector<std::string> Words(const std::string& paragraph) {
+  std::vector<std::string> words;
+  bool glue_next = false;
+  for (const std::string& word : Split(paragraph, ' ')) {
+    if (word.empty()) continue;
+    if (word == "=" && !words.empty()) {
+      words.back() += " =";
+      glue_next = true;
+    } else if (glue_next) {
+      words.back() += " " + word;
+      glue_next = false;
+    } else {
+      words.push_back(word);
+    }
+  }
+  return words;
 }
 
 // Removes the last UTF-8 character: its continuation bytes, then its first byte.
@@ -50,8 +71,7 @@ std::vector<CaptionLine> CaptionLines(const Canvas& measure, const std::string& 
     const bool bold = p == 0;
     std::vector<std::string> wrapped;
     std::string line;
-    for (const std::string& word : Split(paragraphs[p], ' ')) {
-      if (word.empty()) continue;
+    for (const std::string& word : Words(paragraphs[p])) {
       const std::string longer = line.empty() ? word : line + " " + word;
       if (line.empty() || measure.MeasureText(longer, font_size, bold).advance <= room) {
         line = longer;
