@@ -31,9 +31,10 @@ run() {  # run NAME CASE [--set ...]: one run, skipped when its summary says com
 }
 # The snapshot at time T of a run whose time step is DT.
 step_of() { awk -v t="$1" -v dt="$2" 'BEGIN { printf "%d", t / dt + 0.5 }'; }
-declare -A dt=([5.1a]=0.001 [5.1b]=0.0004 [5.2_newtonian]=0.0004 [5.2_oldroyd_b]=0.0004
-  [5.3a]=0.0004 [5.3c]=0.0004 [5.4]=0.0004)
-caption_of() { echo "$1: h = 1/96, h_p = 1/70, dt = ${dt[$1]}, wave advection"; }
+declare -A dt=([5.1a]=0.001 [5.1a_h128]=0.0004 [5.1a_dt4e-4]=0.0004 [5.1b]=0.0004
+  [5.2_newtonian]=0.0004 [5.2_oldroyd_b]=0.0004 [5.3a]=0.0004 [5.3c]=0.0004 [5.4]=0.0004)
+mesh_of() { if [[ $1 == 5.1a_h128 ]]; then echo "h = 1/128, h_p = 1/120"; else echo "h = 1/96, h_p = 1/70"; fi; }
+caption_of() { echo "$1: $(mesh_of "$1"), dt = ${dt[$1]}, wave advection"; }
 plot() {  # plot RUN T FILE [flags]: the snapshot at time T
   local run=$1 t=$2 file=$3
   shift 3
@@ -42,16 +43,25 @@ plot() {  # plot RUN T FILE [flags]: the snapshot at time T
 }
 chart() { "$dlmfd" chart --width 800 --height 500 "$@" 2> /dev/null > /dev/null; }
 
-# 5.1a, figures 3 and 4: one disk (rho_p = 1.5) in an Oldroyd-B liquid (lambda = 0.01).
+# 5.1a, figures 3-6: one disk (rho_p = 1.5) in an Oldroyd-B liquid (lambda = 0.01), on the three
+# meshes and time steps of figure 3; figure 5 at t = 0.304, figure 6 at step 818 (t = 0.3272: the
+# caption's 0.327 is not a multiple of dt = 0.0004).
 run 5.1a 5.1a_disk_rho1.5_h96_dt1e-3 --set time.end=0.35
+run 5.1a_h128 5.1a_disk_rho1.5_h128_dt4e-4 --set time.end=0.35 --set output.fields_every=0.152
+run 5.1a_dt4e-4 5.1a_disk_rho1.5_h96_dt4e-4 --set time.end=0.35 --set output.fields_every=0.3272
 for q in u v omega; do
-  chart "$runs/5.1a" --label "h = 1/96, dt = 0.001" --y "$q" --title "5.1a: $q (figure 3)" \
-    -o "$out/5.1a_$q.png"
+  chart "$runs/5.1a" "$runs/5.1a_h128" "$runs/5.1a_dt4e-4" --label "+ h = 1/96, dt = 0.001" \
+    --label "++ h = 1/128, dt = 0.0004" --label "+++ h = 1/96, dt = 0.0004" --y "$q" \
+    --title "5.1a: $q (figure 3)" -o "$out/5.1a_$q.png"
 done
-plot 5.1a 0.3 5.1a_velocity_t0.3.png --quantity speed --arrows 14 --window 0,2.5,1.5,5.5 \
-  --width 520 --height 900
-plot 5.1a 0.3 5.1a_trA_t0.3.png --quantity trA-2 --log --isolines 10 --window 0,2.5,1.5,5.5 \
-  --width 520 --height 900
+near=(--window 0,1.8,1.5,4.8 --width 520 --height 900)
+plot 5.1a 0.3 5.1a_velocity_t0.3.png --quantity speed --arrows 14 "${near[@]}"
+plot 5.1a 0.3 5.1a_trA_t0.3.png --quantity trA-2 --log --isolines 10 "${near[@]}"
+plot 5.1a_h128 0.304 5.1a_h128_velocity_t0.304.png --quantity speed --arrows 14 "${near[@]}"
+plot 5.1a_h128 0.304 5.1a_h128_trA_t0.304.png --quantity trA-2 --log --isolines 10 "${near[@]}"
+plot 5.1a_dt4e-4 0.3272 5.1a_dt4e-4_velocity_t0.327.png --quantity speed --arrows 14 "${near[@]}"
+plot 5.1a_dt4e-4 0.3272 5.1a_dt4e-4_trA_t0.327.png --quantity trA-2 --log --isolines 10 \
+  "${near[@]}"
 
 # 5.1b, figure 7: rho_p = 1.02, lambda = 0.3, trA at t = 3.1.
 run 5.1b 5.1b_disk_rho1.02_lambda0.3 --set time.end=3.1
