@@ -32,8 +32,15 @@ run() {  # run NAME CASE [--set ...]: one run, skipped when its summary says com
 # The snapshot at time T of a run whose time step is DT.
 step_of() { awk -v t="$1" -v dt="$2" 'BEGIN { printf "%d", t / dt + 0.5 }'; }
 declare -A dt=([5.1a]=0.001 [5.1a_h128]=0.0004 [5.1a_dt4e-4]=0.0004 [5.1b]=0.0004
-  [5.2_newtonian]=0.0004 [5.2_oldroyd_b]=0.0004 [5.3a]=0.0004 [5.3c]=0.0004 [5.4]=0.0004)
-mesh_of() { if [[ $1 == 5.1a_h128 ]]; then echo "h = 1/128, h_p = 1/120"; else echo "h = 1/96, h_p = 1/70"; fi; }
+  [5.2_newtonian]=0.0004 [5.2_oldroyd_b]=0.0004 [5.3a]=0.0004 [5.3b]=0.0004 [5.3c]=0.0004
+  [5.4]=0.0004)
+mesh_of() {
+  case $1 in
+    5.1a_h128) echo "h = 1/128, h_p = 1/120" ;;
+    5.3b) echo "h = 1/144, h_p = 1/120" ;;
+    *) echo "h = 1/96, h_p = 1/70" ;;
+  esac
+}
 caption_of() { echo "$1: $(mesh_of "$1"), dt = ${dt[$1]}, wave advection"; }
 plot() {  # plot RUN T FILE [flags]: the snapshot at time T
   local run=$1 t=$2 file=$3
@@ -109,6 +116,14 @@ for t in 1 15.6 18.3; do
 done
 chart "$runs/5.3a" --label "5.3a" --x x --y y --equal --title "5.3a: trajectories to t = 18.3" \
   -o "$out/5.3a_trajectory.png"
+
+# 5.3b, figure 10(c): the 5.3a lattice in a liquid of eta 0.3, lambda 3.5 (rho_p 1.02), on the
+# paper's finer mesh h = 1/144, h_p = 1/120, t = 18.3.
+run 5.3b 5.3b_eleven_disks_lambda3.5 --set output.fields_every=0.3
+plot 5.3b 18.3 5.3b_trA_t18.3.png --quantity trA-2 --log --range 1e-4,1e3 --isolines 10 \
+  --width 420 --height 1000
+chart "$runs/5.3b" --label "5.3b" --x x --y y --equal --title "5.3b: trajectories to t = 18.3" \
+  -o "$out/5.3b_trajectory.png"
 
 # 5.3c, figure 11: eleven disks in a narrow channel (width 1, eta 0.1, lambda 3), t = 21.1; trA
 # reaches 2500 there, so its colours go to 1e3.
