@@ -64,9 +64,11 @@ struct NodeVelocity {
 };
 
 struct PictureOptions {
-  int max_width = 1000;      // pixels, whole image
-  int max_height = 1000;     // pixels, whole image
-  std::string caption;       // drawn above the field when not empty; '\n' starts a second line
+  int max_width = 1000;   // pixels, whole image
+  int max_height = 1000;  // pixels, whole image
+  // Drawn above the field when not empty; '\n' starts a paragraph, and lines wrap in the picture's
+  // width (caption_lines.h).
+  std::string caption;
   bool log_colours = false;  // colour by log10 of the value (see the header)
   bool diverging = false;    // cool to warm about zero, for signed quantities (not with log)
   std::string colour_label;  // the colour bar's label (default: the field's quantity)
