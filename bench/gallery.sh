@@ -4,7 +4,7 @@
 # step, to the times of the paper's figures. Two settings differ from the case files, and the
 # captions say so: wave advection instead of least squares (3 times cheaper a step on the paper's
 # grid, and the scheme of docs/validation.md's long viscoelastic runs), and snapshots as often as
-# the figures and the movie need. About an hour on two cores (docs/gallery.md has each run's
+# the figures and the movie need. About an hour and a half on two cores (docs/gallery.md has each run's
 # wall time); a run whose summary says completed is not run again, so a second call only redraws.
 # Usage: bench/gallery.sh [BUILD_DIR]   (default build; THREADS=2). Runs go to runs/gallery/,
 # pictures to docs/figures/gallery/.
@@ -78,7 +78,7 @@ chart "$runs/5.1b" --label "h = 1/96, dt = 0.0004" --y v --title "5.1b: v" -o "$
 
 # 5.2, figure 8: the Newtonian pair (drafting, kissing, tumbling) to t = 25.
 run 5.2_newtonian 5.2_pair_newtonian --set time.end=25 --set output.fields_every=0.5
-for t in 0.5 9.5 25; do
+for t in 0.5 1.5 2.5 9.5 25; do
   plot 5.2_newtonian "$t" "5.2_newtonian_velocity_t$t.png" --quantity speed --arrows 12 \
     --width 420 --height 1000
 done
