@@ -85,7 +85,8 @@ for t in 0.5 1.5 2.5 9.5 25; do
 done
 plot 5.2_newtonian 2.5 5.2_newtonian_vorticity_t2.5.png --quantity vorticity --arrows 12 \
   --width 420 --height 1000
-chart "$runs/5.2_newtonian" --label "Newtonian pair" --y y --title "5.2 Newtonian: y of the centres" \
+chart "$runs/5.2_newtonian" --label "Newtonian pair" --y y \
+  --title "5.2 Newtonian: y of the centres" \
   -o "$out/5.2_newtonian_y.png"
 chart "$runs/5.2_newtonian" --label "Newtonian pair" --x x --y y --equal \
   --title "5.2 Newtonian: trajectories (equal scales)" -o "$out/5.2_newtonian_trajectory.png"
