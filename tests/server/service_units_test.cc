@@ -394,12 +394,21 @@ std::vector<int64_t> SeqsWithoutGaps(WatcherQueue& queue) {
   return seqs;
 }
 
-TEST(EventHub, ACleanRestartResumesRightAfterTheLastNumberIssued) {
+// A store holding one running job "a", its journal, and their directory.
+struct OneRunningJob {
+  OneRunningJob() {
+    store.InsertJobs({MakeJob("a", 0)}, "local", "");
+    store.MarkRunning("a", 1.0);
+  }
   dlmfd::testing::TempDir dir;
-  JobStore store(dir.path() + "/jobs.db");
-  SeqJournal journal(dir.path() + "/watch_seq");
-  store.InsertJobs({MakeJob("a", 0)}, "local", "");
-  store.MarkRunning("a", 1.0);
+  JobStore store{dir.path() + "/jobs.db"};
+  SeqJournal journal{dir.path() + "/watch_seq"};
+};
+
+TEST(EventHub, ACleanRestartResumesRightAfterTheLastNumberIssued) {
+  OneRunningJob one;
+  JobStore& store = one.store;
+  SeqJournal& journal = one.journal;
   {
     EventHub hub(store, journal, 16);
     hub.PublishState(*store.Get("a"));  // seq 1
@@ -464,12 +473,9 @@ TEST(EventHub, AfterAKillNumbersResumeRightAfterTheLastOneIssued) {
 // last number reports that number, not the end of the reserved block: a finished job's last_seq
 // counts its final state, so a retry's first event is the number right after it.
 TEST(EventHub, AJobReadAsFinishedReportsItsFinalStateEventsNumber) {
-  dlmfd::testing::TempDir dir;
-  JobStore store(dir.path() + "/jobs.db");
-  SeqJournal journal(dir.path() + "/watch_seq");
-  store.InsertJobs({MakeJob("a", 0)}, "local", "");
-  store.MarkRunning("a", 1.0);
-  EventHub hub(store, journal, 16);
+  OneRunningJob one;
+  JobStore& store = one.store;
+  EventHub hub(store, one.journal, 16);
   hub.PublishState(*store.Get("a"));  // seq 1
   hub.Publish("a", Progress(0));      // seq 2
   store.MarkFinished("a", JobState::kCompleted, "", 2.0);
