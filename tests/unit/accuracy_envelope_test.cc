@@ -263,7 +263,7 @@ center = [0.7, 0.5]
 diameter = 0.125
 motion = "fixed"
 [particle_mesh]
-h = 0.02142857142857143  # 96 / 70 h, the studies' ratio (the default 1 / 70 would warn on h_p / h)
+h = 0.02142857142857143  # 96 / 70 h, the studies' ratio (and the default of a scene file)
 )TOML";
   const std::vector<AccuracyWarning> w = AccuracyWarnings(Scene(kTwo));
   ASSERT_EQ(w.size(), 1u);

@@ -437,7 +437,8 @@ TEST(SceneFile, PaperSceneGivesItsValues) {
 
 TEST(SceneFile, EmptySceneIsAllDefaults) {
   const Params p = ParseScene("");
-  const Params d;
+  Params d;
+  d.particle_mesh.h = kPaperParticleMeshRatio * d.domain.h;  // the one default that follows a key
   EXPECT_EQ(WriteScene(p), WriteScene(d));
   EXPECT_EQ(p.domain.h, d.domain.h);
   EXPECT_EQ(p.fluid.viscosity, d.fluid.viscosity);
@@ -445,6 +446,26 @@ TEST(SceneFile, EmptySceneIsAllDefaults) {
   EXPECT_EQ(p.conformation.blend_kappa, d.conformation.blend_kappa);
   EXPECT_TRUE(p.particles.empty());
   for (int s = 0; s < 4; ++s) EXPECT_EQ(p.domain.sides[s].type, SideType::kWall);
+}
+
+TEST(SceneFile, ParticleMeshFollowsTheFluidMeshUnlessSet) {
+  // Without particle_mesh.h the ring mesh keeps the paper's h_p / h = 96 / 70 on any fluid mesh, so
+  // a coarse or fine scene stays inside the multiplier CG's well-conditioned range h_p / h >= 1.1
+  // (bench/multiplier_conditioning.sh); the paper's own h = 1/96 gives its h_p = 1/70.
+  const char* disk = "[[particles]]\ncenter = [0.5, 0.5]\nmotion = \"fixed\"\n";
+  EXPECT_DOUBLE_EQ(ParseScene(disk).particle_mesh.h, 96.0 / 70.0 / 32.0);
+  EXPECT_DOUBLE_EQ(ParseScene(disk, {{"domain.h", "0.015625"}}).particle_mesh.h,
+                   96.0 / 70.0 / 64.0);
+  EXPECT_EQ(ParseScene(disk, {{"domain.h", "0.010416666666666666"}}).particle_mesh.h, 1.0 / 70.0);
+  // A scene that sets it keeps it, whatever domain.h.
+  EXPECT_EQ(
+      ParseScene(disk, {{"domain.h", "0.015625"}, {"particle_mesh.h", "0.01"}}).particle_mesh.h,
+      0.01);
+  EXPECT_EQ(ParseScene(std::string(disk) + "[particle_mesh]\nh = 0.03\n").particle_mesh.h, 0.03);
+  // The scene as run names the value, so a resume or a rerun of it keeps the same mesh.
+  const Params p = ParseScene(disk, {{"domain.h", "0.015625"}});
+  EXPECT_EQ(ParseScene(WriteScene(p), {{"domain.h", "0.03125"}}).particle_mesh.h,
+            p.particle_mesh.h);
 }
 
 TEST(SceneFile, IntegersAreAcceptedAsReals) {

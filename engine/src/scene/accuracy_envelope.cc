@@ -183,7 +183,7 @@ std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
       w.allowed = ">= " + ShortText(kMinParticleMeshRatio);
       w.key = "particle_mesh.h";
       w.current = ExactText(p.particle_mesh.h);
-      w.suggested = ExactText(kStudiedParticleMeshRatio * h);
+      w.suggested = ExactText(kPaperParticleMeshRatio * h);
       w.source = kSourceParticleMesh;
       out.push_back(std::move(w));
     }

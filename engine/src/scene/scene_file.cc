@@ -1,6 +1,7 @@
 // Scene parsing (design.md 3.1): TOML -> Params, every key with the default of core/params.h except
-// a particle's center; types, choices and unknown keys are checked here, values by ValidateScene
-// (scene/scene_validation.h). Every error names the key, the value and what is allowed.
+// a particle's center (required) and particle_mesh.h (kPaperParticleMeshRatio domain.h); types,
+// choices and unknown keys are checked here, values by ValidateScene (scene/scene_validation.h).
+// Every error names the key, the value and what is allowed.
 #include "dlmfd/scene/scene_file.h"
 
 #include <fstream>
@@ -160,7 +161,7 @@ void ReadMeshCollisionsConformationOutput(TableReader& top, Params& p) {
   pm.kind = Choose<ParticleMeshKind>(
       "particle_mesh.kind", mesh.String("kind", "ring"),
       {{"ring", ParticleMeshKind::kRing}, {"collocation", ParticleMeshKind::kCollocation}});
-  pm.h = mesh.Real("h", pm.h);
+  pm.h = mesh.Real("h", kPaperParticleMeshRatio * p.domain.h);  // follows the fluid mesh
   pm.spacing = mesh.Real("spacing", pm.spacing);
   pm.interpolation = Choose<BoundaryInterpolation>(
       "particle_mesh.interpolation", mesh.String("interpolation", "quadratic"),

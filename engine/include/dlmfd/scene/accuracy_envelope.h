@@ -75,7 +75,6 @@ inline constexpr double kMaxAdvectiveCourant = 0.64;       // U dt / h
 inline constexpr double kMaxElasticCourant = 0.3017;       // sqrt(eta_p / (rho lambda)) dt / h
 inline constexpr double kMaxStepPerRelaxationTime = 0.01;  // dt / lambda
 inline constexpr double kMinParticleMeshRatio = 1.1;       // h_p / h, ring mesh
-inline constexpr double kStudiedParticleMeshRatio = 96.0 / 70.0;  // h_p / h of studies (c), (d)
 
 // One dimensionless setting of the scene, for the log ("nu dt / h^2", 0.44).
 struct AccuracySetting {
