@@ -2,7 +2,9 @@
 # Stability map of the Oldroyd-B scheme (issue 6, point 2; docs/stability.md, "Stability map"):
 # which combinations of Deborah number, time step and mesh survive on four demanding cases (one of
 # them with two viscosity splittings), and
-# how the others fail. Every run uses the wave-like advection and one thread; JOBS run at a time.
+# how the others fail; each in every representation of the conformation tensor that
+# REPRESENTATIONS lists (fluid.conformation: standard, log, sqrt; issue 17, point 4).
+# Every run uses the wave-like advection and one thread; JOBS run at a time.
 #   cross  cases/verification/stability_cross_slot.toml: planar extension at a stagnation point,
 #          eps = 1, so Wi = lambda (Oldroyd-B's stress there is unbounded for Wi > 1/2); to t = 6.
 #   disk   paper 5.1b: one disk (rho_p = 1.02) settling in the 1.5 x 6 channel, to t = 0.5;
@@ -11,14 +13,20 @@
 #          De = lambda U / D with U = 0.39 (our mean fall speed at lambda = 1.4).
 #   wk     start-up Poiseuille (cases/verification/waters_king.toml: beta = 1/9, all the viscosity in
 #          step (33), alpha = 1, beta = 0), to t = 10; De = E = lambda eta / (rho H^2) = lambda.
-#   wkhalf the same flow with the viscosity split alpha = beta = 1/2 (the other families' split).
+#   wkhalf the same flow with the viscosity split alpha = beta = 1/2.
+#   diskpaper, pairpaper  disk and pair under the paper's coupling of the constraint
+#          (splitting.constraint = paper, alpha = beta = 1/2; the default is incremental, alpha = 1,
+#          beta = 0: docs/stability.md, "The coupling of the constraint"), standard representation.
 # For each family: 2 meshes x 4-5 time steps x 3-6 relaxation times, reaching time steps far beyond
 # the paper's; the particle mesh follows the velocity mesh (h_p = h 96/70, the paper's ratio).
 # Output: docs/stability/map.csv (one row per run: outcome, steps, extremes of trA and eig A, the
-# reason), a Markdown table on stdout, and docs/figures/stability_<family>_h<cells>.png: De against
-# dt on one mesh, one point per run, one series per outcome (completed, or the kind of failure).
+# reason, the final particle heights), a Markdown table on stdout, and
+# docs/figures/stability_<family>_h<cells>[_<representation>].png (no suffix for standard): De
+# against dt on one mesh, one point per run, one series per outcome (completed, or the kind of
+# failure).
 #   bench/stability_map.sh            # SOLVE=build/solver/dlmfd-solve DLMFD=build/client/dlmfd
 #                                     # WORK=runs/stability_map JOBS=2 ONLY=<grep -E on run names>
+#                                     # REPRESENTATIONS="standard log sqrt"
 # Runs whose summary.json exists in WORK are not run again (a second call only redraws).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,6 +34,7 @@ SOLVE=$(realpath "${SOLVE:-build/solver/dlmfd-solve}")
 DLMFD=${DLMFD:-build/client/dlmfd}
 WORK=${WORK:-runs/stability_map}
 JOBS=${JOBS:-2}
+REPRESENTATIONS=${REPRESENTATIONS:-standard log sqrt}
 DATA=docs/stability
 mkdir -p "$WORK" "$DATA" docs/figures
 
@@ -36,32 +45,41 @@ FAMILIES=(
   "pair|cases/paper/5.2_pair_oldroyd_b.toml|1.95|2|0.041666666666666664 0.020833333333333332|0.0004 0.0032 0.0256 0.1|1.4 14 140|"
   "wk|cases/verification/waters_king.toml|1|10|0.03125 0.015625|0.005 0.01 0.02 0.04 0.08|1 3 10|"
   "wkhalf|cases/verification/waters_king.toml|1|10|0.03125 0.015625|0.005 0.01 0.02 0.04 0.08|1 3 10|--set splitting.alpha=0.5 --set splitting.beta=0.5"
+  "diskpaper|cases/paper/5.1b_disk_rho1.02_lambda0.3.toml|6.95|0.5|0.041666666666666664 0.020833333333333332|0.001 0.004 0.016 0.064|0.3 1 3 10 30 100|--set splitting.constraint=paper"
+  "pairpaper|cases/paper/5.2_pair_oldroyd_b.toml|1.95|2|0.041666666666666664 0.020833333333333332|0.0004 0.0032 0.0256 0.1|1.4 14 140|--set splitting.constraint=paper"
 )
 
-# name|family|scene|h|dt|lambda|De|overrides
+# name|family|scene|h|dt|lambda|De|representation|overrides (standard runs keep their names)
 for family in "${FAMILIES[@]}"; do
   IFS='|' read -r fam scene de_per_lambda end hs dts lams extra <<< "$family"
-  for h in $hs; do
-    for dt in $dts; do
-      for lam in $lams; do
-        cells=$(awk -v h="$h" 'BEGIN { printf "%d", 1 / h + 0.5 }')
-        hp=$(awk -v h="$h" 'BEGIN { printf "%.12g", h * 96 / 70 }')
-        de=$(awk -v l="$lam" -v k="$de_per_lambda" 'BEGIN { printf "%.4g", l * k }')
-        sets="--set splitting.advection=wave --set domain.h=$h --set time.dt=$dt --set time.end=$end"
-        sets+=" --set fluid.relaxation_time=$lam --set output.fields_every=0 --set output.checkpoint_every=0 $extra"
-        case $fam in
-          disk | pair) sets+=" --set particle_mesh.h=$hp" ;;
-          wk*) sets+=" --set domain.size=[$(awk -v h="$h" 'BEGIN { printf "%.10g", 4 * h }'),2.0]" ;;
-        esac
-        echo "${fam}_c${cells}_dt${dt}_lambda${lam}|$fam|$scene|$h|$dt|$lam|$de|$sets"
+  for rep in $REPRESENTATIONS; do
+    # The families under the paper's coupling only compare couplings: the standard representation.
+    case $fam in *paper) [ "$rep" = standard ] || continue ;; esac
+    suffix=""
+    [ "$rep" = standard ] || suffix="_$rep"
+    for h in $hs; do
+      for dt in $dts; do
+        for lam in $lams; do
+          cells=$(awk -v h="$h" 'BEGIN { printf "%d", 1 / h + 0.5 }')
+          hp=$(awk -v h="$h" 'BEGIN { printf "%.12g", h * 96 / 70 }')
+          de=$(awk -v l="$lam" -v k="$de_per_lambda" 'BEGIN { printf "%.4g", l * k }')
+          sets="--set splitting.advection=wave --set domain.h=$h --set time.dt=$dt --set time.end=$end"
+          sets+=" --set fluid.relaxation_time=$lam --set fluid.conformation=$rep"
+          sets+=" --set output.fields_every=0 --set output.checkpoint_every=0 $extra"
+          case $fam in
+            disk* | pair*) sets+=" --set particle_mesh.h=$hp" ;;
+            wk*) sets+=" --set domain.size=[$(awk -v h="$h" 'BEGIN { printf "%.10g", 4 * h }'),2.0]" ;;
+          esac
+          echo "${fam}_c${cells}_dt${dt}_lambda${lam}${suffix}|$fam|$scene|$h|$dt|$lam|$de|$rep|$sets"
+        done
       done
     done
   done
 done | grep -E -- "${ONLY:-.}" > "$WORK/runs.txt"
 
 run_one() {
-  local name family scene h dt lam de sets
-  IFS='|' read -r name family scene h dt lam de sets <<< "$1"
+  local name family scene h dt lam de rep sets
+  IFS='|' read -r name family scene h dt lam de rep sets <<< "$1"
   [ -f "$WORK/$name/summary.json" ] && return 0
   rm -rf "${WORK:?}/${name:?}"
   # shellcheck disable=SC2086  # sets is a list of flags
@@ -85,15 +103,16 @@ def outcome(summary):
         return 'completed'
     r = summary.get('reason', '').lower()
     for key, kind in (('positive definite', 'A not SPD'), ('not converged', 'solver not converged'),
-                      ('breakdown', 'solver not converged'), ('blow-up', 'NaN'), ('overlap', 'overlap'),
-                      ('would need more than', 'velocity blow-up')):
+                      ('breakdown', 'solver not converged'), ('blow-up', 'NaN'), ('not finite', 'NaN'),
+                      ('overlap', 'overlap'),
+                      ('would need more than', 'velocity blow-up'), ('crosses the', 'particle blow-up')):
         if key in r:
             return 'failed: ' + kind
     return 'failed: other'
 
 rows = []
 for line in open(os.path.join(work, 'runs.txt')):
-    name, family, scene, h, dt, lam, de, _ = line.rstrip('\n').split('|')
+    name, family, scene, h, dt, lam, de, rep, _ = line.rstrip('\n').split('|')
     d = os.path.join(work, name)
     try:
         s = json.load(open(os.path.join(d, 'summary.json')))
@@ -113,39 +132,71 @@ for line in open(os.path.join(work, 'runs.txt')):
                     min_eig = min(min_eig, v)
     except OSError:
         pass
-    rows.append({'family': family, 'cells': round(1 / float(h)), 'h': h, 'dt': dt, 'lambda': lam, 'De': de,
-                 'outcome': outcome(s), 'steps': s['steps'] if s else '', 'time': s['time'] if s else '',
-                 'end_time': s['end_time'] if s else '', 'max_trA': f'{max_tr:.4g}',
-                 'min_eig_A': f'{min_eig:.3g}' if math.isfinite(min_eig) else '',
-                 'reason': (s or {}).get('reason', '')})
+    heights = ' '.join(f"{p['position'][1]:.5f}" if p['position'][1] is not None else 'nan'
+                       for p in (s or {}).get('particles', []))
+    rows.append({'family': family, 'conformation': rep, 'cells': round(1 / float(h)), 'h': h, 'dt': dt,
+                 'lambda': lam, 'De': de, 'outcome': outcome(s), 'steps': s['steps'] if s else '',
+                 'time': s['time'] if s else '', 'end_time': s['end_time'] if s else '',
+                 'max_trA': f'{max_tr:.4g}', 'min_eig_A': f'{min_eig:.3g}' if math.isfinite(min_eig) else '',
+                 'y_final': heights, 'reason': (s or {}).get('reason', '')})
 fields = list(rows[0].keys())
 with open(os.path.join(data, 'map.csv'), 'w', newline='') as f:
     w = csv.DictWriter(f, fieldnames=fields)
     w.writeheader()
     w.writerows(rows)
-# One CSV per family and mesh for the charts: one series per outcome.
-for family, cells in sorted({(r['family'], r['cells']) for r in rows}):
-    with open(os.path.join(data, f'{family}_h{cells}_chart.csv'), 'w', newline='') as f:
+# One CSV per family, mesh and representation for the charts: one series per outcome.
+for family, cells, rep in sorted({(r['family'], r['cells'], r['conformation']) for r in rows}):
+    suffix = '' if rep == 'standard' else '_' + rep
+    with open(os.path.join(data, f'{family}_h{cells}{suffix}_chart.csv'), 'w', newline='') as f:
         w = csv.writer(f)
         w.writerow(['outcome', 'dt', 'De'])
         for r in rows:
-            if (r['family'], r['cells']) == (family, cells):
+            if (r['family'], r['cells'], r['conformation']) == (family, cells, rep):
                 w.writerow([r['outcome'], r['dt'], r['De']])
-print('| family | h | dt | lambda | De | outcome | steps | t reached | max trA | min eig A | reason |')
-print('|---|---|---|---|---|---|---|---|---|---|---|')
+print('| family | representation | h | dt | lambda | De | outcome | steps | t reached | max trA | min eig A | reason |')
+print('|---|---|---|---|---|---|---|---|---|---|---|---|')
 for r in rows:
     reason = r['reason'].replace('|', '/')
     if len(reason) > 160:
         reason = reason[:157] + '...'
-    print(f"| {r['family']} | 1/{r['cells']} | {r['dt']} | {r['lambda']} | {r['De']} | {r['outcome']} | {r['steps']} | "
-          f"{r['time']} | {r['max_trA']} | {r['min_eig_A']} | {reason} |")
+    print(f"| {r['family']} | {r['conformation']} | 1/{r['cells']} | {r['dt']} | {r['lambda']} | {r['De']} | "
+          f"{r['outcome']} | {r['steps']} | {r['time']} | {r['max_trA']} | {r['min_eig_A']} | {reason} |")
+
+# Per family and representation: outcomes, and where the standard run and this one both completed,
+# how far apart they end: the largest relative difference of max trA and of the final particle
+# heights (in units of the particle diameter 0.2 of the disk and pair scenes).
+print()
+print('| family | representation | runs | completed | both completed with standard | max trA: largest relative '
+      'difference | final heights: largest difference / D | min eig A: smallest |')
+print('|---|---|---|---|---|---|---|---|')
+key = lambda r: (r['family'], r['cells'], r['dt'], r['lambda'])
+standard = {key(r): r for r in rows if r['conformation'] == 'standard'}
+for family in dict.fromkeys(r['family'] for r in rows):
+    for rep in dict.fromkeys(r['conformation'] for r in rows):
+        mine = [r for r in rows if (r['family'], r['conformation']) == (family, rep)]
+        if not mine:
+            continue
+        done = [r for r in mine if r['outcome'] == 'completed']
+        pairs = [(r, standard[key(r)]) for r in done
+                 if key(r) in standard and standard[key(r)]['outcome'] == 'completed']
+        dtr = max((abs(float(r['max_trA']) / float(q['max_trA']) - 1) for r, q in pairs), default=0.0)
+        dy = max((abs(float(a) - float(b)) / 0.2 for r, q in pairs
+                  for a, b in zip(r['y_final'].split(), q['y_final'].split())), default=0.0)
+        eig = min((float(r['min_eig_A']) for r in done if r['min_eig_A']), default=math.nan)
+        print(f'| {family} | {rep} | {len(mine)} | {len(done)} | {len(pairs)} | {dtr:.3g} | '
+              f"{dy:.3g} | {eig:.3g} |")
 PY
 
 rm -f docs/figures/stability_*.png
 for chart in "$DATA"/*_chart.csv; do
-  stem=$(basename "$chart" _chart.csv)  # family_hCELLS
+  stem=$(basename "$chart" _chart.csv)  # FAMILY_hCELLS or FAMILY_hCELLS_REPRESENTATION
+  family=${stem%%_h*}
+  rest=${stem#*_h}
+  cells=${rest%%_*}
+  rep=standard
+  [ "$rest" = "$cells" ] || rep=${rest#*_}
   "$DLMFD" chart --csv "$chart" --xcol dt --ycol De --group outcome --points --logx --logy \
-    --title "stability map: ${stem%_h*}, h = 1/${stem##*_h}" --width 800 --height 560 \
+    --title "stability map: $family, h = 1/$cells, $rep" --width 800 --height 560 \
     -o "docs/figures/stability_$stem.png" >/dev/null
 done
-echo "wrote $DATA/map.csv and docs/figures/stability_<family>_h<cells>.png" >&2
+echo "wrote $DATA/map.csv and docs/figures/stability_<family>_h<cells>[_<representation>].png" >&2
