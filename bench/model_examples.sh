@@ -6,7 +6,7 @@
 #     time; the chain has formed by then);
 #   - 5.3a (eleven disks) with Giesekus and FENE-P to t = 8 (half way to figure 10b's 15.6: the
 #     nonlinear models' step costs 2-3 times Oldroyd-B's, an hour a run to 15.6 on one core), beside
-#     bench/gallery.sh's Oldroyd-B run of the same scene (runs/gallery/5.3a).
+#     bench/gallery.sh's Oldroyd-B run of the same scene (runs/gallery/5.3a: run bench/gallery.sh first).
 # One setting differs from the case files, as in bench/gallery.sh: wave advection (a third of the
 # cost of least squares a step). One thread a run, JOBS runs at a time; a run whose summary says
 # completed is not run again, an interrupted one resumes from its checkpoint, so a second call only
