@@ -28,12 +28,16 @@ def nearest(times, t):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("run")
-    ap.add_argument("--window", action="append", default=[], help="a,b: mean fall speed over [a, b]")
+    ap.add_argument("--window", action="append", default=[],
+                    help="a,b: mean fall speed over [a, b]")
     ap.add_argument("--gap-at", action="append", type=float, default=[], help="gap of a pair at t")
-    ap.add_argument("--h", type=float, default=1 / 96, help="mesh size, for the collision range 1.5 h")
-    ap.add_argument("--floor", type=float, default=0.05, help="distance from the floor that counts as on it")
+    ap.add_argument("--h", type=float, default=1 / 96,
+                    help="mesh size, for the collision range 1.5 h")
+    ap.add_argument("--floor", type=float, default=0.05,
+                    help="distance from the floor that counts as on it")
     args = ap.parse_args()
 
     with h5py.File(os.path.join(args.run, "particles.h5"), "r") as f:
@@ -41,7 +45,8 @@ def main():
         y = f["position"][:, :, 1]
         r = f["radius"][:]
     summary = json.load(open(os.path.join(args.run, "summary.json")))
-    print(f"{args.run}: {summary['status']} at t = {summary['time']:.4g} ({summary['steps']} steps, "
+    print(f"{args.run}: {summary['status']} at t = {summary['time']:.4g} "
+          f"({summary['steps']} steps, "
           f"{summary['wall_seconds']:.0f} s, {summary['ms_per_step']:.1f} ms/step)")
     for w in args.window:
         a, b = (float(x) for x in w.split(","))
@@ -71,9 +76,11 @@ def main():
                     kiss = float(row["time"])
             if row.get("collision_contacts"):
                 contacts = max(contacts, int(float(row["collision_contacts"])))
-    print(f"  closest approach {min_gap:.4g} ({min_gap / args.h:.2f} h), up to {contacts} contacts at once; "
+    print(f"  closest approach {min_gap:.4g} ({min_gap / args.h:.2f} h), "
+          f"up to {contacts} contacts at once; "
           f"first within 1.5 h: " + (f"t = {kiss:.4g}" if kiss is not None else "never"))
-    print(f"  max trA {summary['max_trA']:.4g}, smallest eigenvalue of A {summary['min_eig_A']:.3g}")
+    print(f"  max trA {summary['max_trA']:.4g}, "
+          f"smallest eigenvalue of A {summary['min_eig_A']:.3g}")
 
 
 if __name__ == "__main__":

@@ -6,7 +6,8 @@
 #     time; the chain has formed by then);
 #   - 5.3a (eleven disks) with Giesekus and FENE-P to t = 8 (half way to figure 10b's 15.6: the
 #     nonlinear models' step costs 2-3 times Oldroyd-B's, an hour a run to 15.6 on one core), beside
-#     bench/gallery.sh's Oldroyd-B run of the same scene (runs/gallery/5.3a: run bench/gallery.sh first).
+#     bench/gallery.sh's Oldroyd-B run of the same scene (runs/gallery/5.3a: run bench/gallery.sh
+#     first).
 # One setting differs from the case files, as in bench/gallery.sh: wave advection (a third of the
 # cost of least squares a step). One thread a run, JOBS runs at a time; a run whose summary says
 # completed is not run again, an interrupted one resumes from its checkpoint, so a second call only
@@ -49,14 +50,17 @@ export -f run_one
 # shellcheck disable=SC2016  # $1 expands in the child bash
 tr '\n' '\0' < "$RUNS/runs.txt" | xargs -0 -P "${JOBS:-2}" -I{} bash -c 'run_one "$1"' _ {}
 
-# The numbers of docs/validation.md's tables (bench/fall_numbers.py: fall speeds, gaps, the kiss, trA).
+# The numbers of docs/validation.md's tables (bench/fall_numbers.py: fall speeds, gaps, the kiss,
+# trA).
 for name in 5.2_oldroyd_b 5.2_oldroyd_b_log 5.2_giesekus 5.2_fene_p; do
   "$python" bench/fall_numbers.py "$RUNS/$name" --window 0,1 --window 5,9.5 --gap-at 1 --gap-at 3 \
     --gap-at 6 --gap-at 9.5
 done
-"$python" bench/fall_numbers.py runs/gallery/5.3a --window 0,8 --window 0.5,2 --window 2,5 --window 5,8
+# shellcheck disable=SC2054  # the commas are inside each window a,b
+windows=(--window 0,8 --window 0.5,2 --window 2,5 --window 5,8)
+"$python" bench/fall_numbers.py runs/gallery/5.3a "${windows[@]}"
 for name in 5.3a_giesekus 5.3a_fene_p; do
-  "$python" bench/fall_numbers.py "$RUNS/$name" --window 0,8 --window 0.5,2 --window 2,5 --window 5,8
+  "$python" bench/fall_numbers.py "$RUNS/$name" "${windows[@]}"
 done
 
 # Pictures: trA - 2 (log colours, the gallery's range) of the pair at t = 9.5 and of 5.3a at t = 8,
