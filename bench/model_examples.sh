@@ -4,10 +4,9 @@
 #   - the 5.2 pair (dropped at y = 7.7 and 7.3) with Oldroyd-B in the standard and the log
 #     representation, with Giesekus (alpha 0.1) and with FENE-P (L^2 100), to t = 9.5 (figure 9c's
 #     time; the chain has formed by then);
-#   - 5.3a (eleven disks) with Giesekus and FENE-P to t = 8 (half way to figure 10b's 15.6: the
-#     nonlinear models' step costs 2-3 times Oldroyd-B's, an hour a run to 15.6 on one core), beside
-#     bench/gallery.sh's Oldroyd-B run of the same scene (runs/gallery/5.3a: run bench/gallery.sh
-#     first).
+#   - 5.3a (eleven disks) with Giesekus and FENE-P to t = 15.6 (figure 10b's time; about 40 min a
+#     run on one core), beside bench/gallery.sh's Oldroyd-B run of the same scene
+#     (runs/gallery/5.3a: run bench/gallery.sh first).
 # One setting differs from the case files, as in bench/gallery.sh: wave advection (a third of the
 # cost of least squares a step). One thread a run, JOBS runs at a time; a run whose summary says
 # completed is not run again, an interrupted one resumes from its checkpoint, so a second call only
@@ -30,8 +29,8 @@ cat > "$RUNS/runs.txt" << 'EOF'
 5.2_oldroyd_b_log|cases/models/5.2_pair_oldroyd_b_log.toml|9.5|0.5
 5.2_giesekus|cases/models/5.2_pair_giesekus.toml|9.5|0.5
 5.2_fene_p|cases/models/5.2_pair_fene_p.toml|9.5|0.5
-5.3a_giesekus|cases/models/5.3a_eleven_disks_giesekus.toml|8|0.2
-5.3a_fene_p|cases/models/5.3a_eleven_disks_fene_p.toml|8|0.2
+5.3a_giesekus|cases/models/5.3a_eleven_disks_giesekus.toml|15.6|0.2
+5.3a_fene_p|cases/models/5.3a_eleven_disks_fene_p.toml|15.6|0.2
 EOF
 
 run_one() {
@@ -57,14 +56,16 @@ for name in 5.2_oldroyd_b 5.2_oldroyd_b_log 5.2_giesekus 5.2_fene_p; do
     --gap-at 6 --gap-at 9.5
 done
 # shellcheck disable=SC2054  # the commas are inside each window a,b
-windows=(--window 0,8 --window 0.5,2 --window 2,5 --window 5,8)
+windows=(--window 0,8 --window 0,15.6 --window 0.5,2 --window 2,5 --window 5,8 --window 5,10
+  --window 10,15.6)
 "$python" bench/fall_numbers.py runs/gallery/5.3a "${windows[@]}"
 for name in 5.3a_giesekus 5.3a_fene_p; do
   "$python" bench/fall_numbers.py "$RUNS/$name" "${windows[@]}"
 done
 
-# Pictures: trA - 2 (log colours, the gallery's range) of the pair at t = 9.5 and of 5.3a at t = 8,
-# and the pair's gap and heights against time, one curve a model.
+# Pictures: trA - 2 (log colours, the gallery's range) of the pair at t = 9.5 and of 5.3a at t = 8
+# and 15.6, the pair's gap and velocity against time (one curve a disk and model), and 5.3a's
+# trajectories.
 picture() {  # picture RUN STEP FILE CAPTION
   "$dlmfd" plot "$1" --snapshot "$2" --quantity trA-2 --log --range 1e-4,10 --isolines 10 \
     --width 420 --height 1000 --caption "$4" --out "$out/$3" > /dev/null
@@ -81,12 +82,15 @@ labels=(--label "Oldroyd-B" --label "Oldroyd-B, log" --label "Giesekus 0.1" --la
   --title "5.2 pair by model: gap between the disks" -o "$out/5.2_models_gap.png" > /dev/null
 "$dlmfd" chart "${pairs[@]}" "${labels[@]}" --y v --width 800 --height 500 \
   --title "5.2 pair by model: vertical velocity of the disks" -o "$out/5.2_models_v.png" > /dev/null
-picture runs/gallery/5.3a 20000 5.3a_oldroyd_b_trA_t8.png \
-  "5.3a, Oldroyd-B: t = 8, h = 1/96, h_p = 1/70, dt = 0.0004, wave advection"
 label+=([5.3a_giesekus]="Giesekus, alpha = 0.1" [5.3a_fene_p]="FENE-P, L^2 = 100")
-for name in 5.3a_giesekus 5.3a_fene_p; do
-  picture "$RUNS/$name" 20000 "${name}_trA_t8.png" \
-    "5.3a, ${label[$name]}: t = 8, h = 1/96, h_p = 1/70, dt = 0.0004, wave advection"
+for t in 8 15.6; do
+  step=$(awk -v t="$t" 'BEGIN { printf "%d", t / 0.0004 + 0.5 }')
+  picture runs/gallery/5.3a "$step" "5.3a_oldroyd_b_trA_t$t.png" \
+    "5.3a, Oldroyd-B: t = $t, h = 1/96, h_p = 1/70, dt = 0.0004, wave advection"
+  for name in 5.3a_giesekus 5.3a_fene_p; do
+    picture "$RUNS/$name" "$step" "${name}_trA_t$t.png" \
+      "5.3a, ${label[$name]}: t = $t, h = 1/96, h_p = 1/70, dt = 0.0004, wave advection"
+  done
 done
 "$dlmfd" chart runs/gallery/5.3a "$RUNS/5.3a_giesekus" "$RUNS/5.3a_fene_p" --label "Oldroyd-B" \
   --label "Giesekus 0.1" --label "FENE-P 100" --x x --y y --equal --width 700 --height 900 \
