@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The numbers docs/validation.md quotes for a falling-disk run of the paper's section 5, read from
-its results directory (particles.h5 with h5py, diagnostics.csv, summary.json), so that a rerun under
-other settings is compared by the same definitions:
+its results directory (particles.h5 through the Python client's dlmfd.results, diagnostics.csv,
+summary.json), so that a rerun under other settings is compared by the same definitions:
 
   - mean fall speed of the disks over [a, b]: the mean over disks of (y(a) - y(b)) / (b - a), at the
     recorded times nearest a and b;
@@ -9,18 +9,25 @@ other settings is compared by the same definitions:
     the collision range (diagnostics' particle_pair_gap below 1.5 h);
   - the first time the lowest disk's surface comes within --floor (default 0.05, a quarter of the
     paper's D = 0.2) of the floor y = 0;
-  - closest approach, most contacts at once, max trA and the smallest eigenvalue of A over the run.
+  - closest approach between disks and to a wall, most contacts at once, max trA and the smallest
+    eigenvalue of A over the run.
 
-Usage: bench/fall_numbers.py RUN [--window a,b ...] [--gap-at t ...] [--h H] [--floor F]
+Usage: PYTHONPATH=build/python bench/fall_numbers.py RUN [--window a,b ...] [--gap-at t ...] [--h H]
+       [--floor F]
 """
 import argparse
 import csv
 import json
 import math
 import os
+import sys
 
-import h5py
 import numpy as np
+
+try:
+    from dlmfd.results import read_particles  # the Python client's reader of particles.h5
+except ImportError as e:
+    sys.exit(f"fall_numbers.py: {e}; run with PYTHONPATH=<build>/python (docs/python.md)")
 
 
 def nearest(times, t):
@@ -40,10 +47,8 @@ def main():
                     help="distance from the floor that counts as on it")
     args = ap.parse_args()
 
-    with h5py.File(os.path.join(args.run, "particles.h5"), "r") as f:
-        t = f["time"][:]
-        y = f["position"][:, :, 1]
-        r = f["radius"][:]
+    particles = read_particles(args.run)
+    t, y, r = particles.time, particles.position[:, :, 1], particles.radius
     summary = json.load(open(os.path.join(args.run, "summary.json")))
     print(f"{args.run}: {summary['status']} at t = {summary['time']:.4g} "
           f"({summary['steps']} steps, "
@@ -62,23 +67,21 @@ def main():
     print(f"  lowest disk within {args.floor:g} of the floor: " +
           (f"t = {t[floor[0]]:.4g}" if floor.size else "never"))
 
-    pair_gap, contacts, min_gap = math.inf, 0, math.inf
-    kiss = None
+    pair_gap, wall_gap, contacts, kiss = math.inf, math.inf, 0, None
     with open(os.path.join(args.run, "diagnostics.csv")) as f:
         for row in csv.DictReader(f):
-            for key in ("particle_min_gap", "particle_pair_gap"):
-                if row.get(key):
-                    min_gap = min(min_gap, float(row[key]))
             if row.get("particle_pair_gap"):
                 g = float(row["particle_pair_gap"])
                 pair_gap = min(pair_gap, g)
                 if kiss is None and g < 1.5 * args.h:
                     kiss = float(row["time"])
+            if row.get("particle_wall_gap"):
+                wall_gap = min(wall_gap, float(row["particle_wall_gap"]))
             if row.get("collision_contacts"):
                 contacts = max(contacts, int(float(row["collision_contacts"])))
-    print(f"  closest approach {min_gap:.4g} ({min_gap / args.h:.2f} h), "
-          f"up to {contacts} contacts at once; "
-          f"first within 1.5 h: " + (f"t = {kiss:.4g}" if kiss is not None else "never"))
+    print(f"  closest approach between disks {pair_gap:.4g} ({pair_gap / args.h:.2f} h), to a wall "
+          f"{wall_gap:.4g}; up to {contacts} contacts at once; first within 1.5 h: "
+          + (f"t = {kiss:.4g}" if kiss is not None else "never"))
     print(f"  max trA {summary['max_trA']:.4g}, "
           f"smallest eigenvalue of A {summary['min_eig_A']:.3g}")
 

@@ -19,6 +19,7 @@ build=${1:-build}
 export SOLVE=$build/solver/dlmfd-solve
 dlmfd=$build/client/dlmfd
 python=${PYTHON:-python3}  # with h5py (Debian's python3-h5py, scripts/setup.sh)
+export PYTHONPATH=$build/python${PYTHONPATH:+:$PYTHONPATH}  # dlmfd.results, for fall_numbers.py
 export RUNS=runs/model_examples
 out=docs/figures/models
 mkdir -p "$RUNS" "$out"
