@@ -24,11 +24,11 @@ namespace dlmfd {
 namespace {
 
 constexpr double kLimitLambda = 1e-4;
-constexpr double kBeta = 0.59;
+constexpr double kSolventRatio = 0.59;
 
 void SetLiquid(Params& p, double lambda) {
   p.fluid.relaxation_time = lambda;
-  p.fluid.solvent_ratio = lambda > 0.0 ? kBeta : 1.0;
+  p.fluid.solvent_ratio = lambda > 0.0 ? kSolventRatio : 1.0;
 }
 
 // The channel and fixed disk of tests/unit/viscosity_rule_test.cc: the drag at t = 0.5.

@@ -65,7 +65,8 @@ TEST(Advection, UniformFlowIsUnchangedByBothSchemes) {
     const Grid g = GridOf(p);
     BoundaryData data(g, p.domain);
     AdvectionLeastSquares ls(g, p.domain, p.fluid, p.time.dt, 0.5, p.solvers, data);
-    AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.5, p.solvers, data);
+    AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.5, SteadyCorrection::kNone, p.solvers,
+                       data);
     for (int scheme = 0; scheme < 2; ++scheme) {
       std::vector<double> u(g.NodeCount(), 0.7), v(g.NodeCount(), 0.4);
       const AdvectionReport r =
@@ -231,7 +232,8 @@ TEST(AdvectionWave, AVelocityBeyondAnyBoundThrowsInsteadOfSubCyclingForever) {
   p.time.dt = 1.0;
   const Grid g = GridOf(p);
   BoundaryData data(g, p.domain);
-  AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.5, p.solvers, data);
+  AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.5, SteadyCorrection::kNone, p.solvers,
+                     data);
   std::vector<double> u(g.NodeCount(), 1e6), v(g.NodeCount(), 0.0);
   try {
     wave.Solve(u.data(), v.data());
@@ -257,7 +259,8 @@ double PerturbationGrowth(double courant, Vec2 flow) {
   p.time.dt = 2.0 * courant * p.domain.h / flow.norm();
   const Grid g = GridOf(p);
   BoundaryData data(g, p.domain);
-  AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.0, p.solvers, data);
+  AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.0, SteadyCorrection::kNone, p.solvers,
+                     data);
   NodeSet nodes(g, BoundaryTopology::ForVelocity(p.domain));
   std::vector<double> u(g.NodeCount()), v(g.NodeCount());
   unsigned state = 12345u;

@@ -105,7 +105,8 @@ double MeasuredRadius(Vec2 flow, double courant, int iterations, int substeps) {
   p.time.dt = substeps * courant * p.domain.h / flow.norm();
   const Grid g{kWaveCells, kWaveCells, p.domain.h, 0.0, 0.0};
   BoundaryData data(g, p.domain);
-  AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.0, p.solvers, data);
+  AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.0, SteadyCorrection::kNone, p.solvers,
+                     data);
   NodeSet nodes(g, BoundaryTopology::ForVelocity(p.domain));
   const std::size_t n = g.NodeCount();
   std::vector<double> xu(n), xv(n), u(n), v(n);

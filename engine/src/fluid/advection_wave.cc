@@ -24,10 +24,13 @@ constexpr int kMinSubsteps = 1;
 // A velocity that would need more sub-steps than this is a blow-up (step (35) has the same bound):
 // without it a diverging run would spend hours sub-cycling one step instead of ending FAILED.
 constexpr int kMaxAdvectionSubsteps = 1000;
+// kappa of the steady-state correction (advection_wave.h): the share of the Newtonian viscosity
+// the removed streamline diffusion may reach at a node.
+constexpr double kTaylorViscosityShare = 0.5;
 
 AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const FluidParams& fluid,
-                             double dt, double beta, const SolverParams& solvers,
-                             const BoundaryData& boundary_data)
+                             double dt, double beta, SteadyCorrection correction,
+                             const SolverParams& solvers, const BoundaryData& boundary_data)
     : grid_(grid),
       topo_(BoundaryTopology::ForVelocity(domain)),
       nodes_(grid_, topo_),
@@ -35,6 +38,9 @@ AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const
       rho_over_dt_(fluid.density / dt),
       nu_b_(beta * fluid.NewtonianViscosity()),
       max_courant_(solvers.wave_max_courant),
+      taylor_viscosity_(correction == SteadyCorrection::kTaylor
+                            ? kTaylorViscosityShare * fluid.NewtonianViscosity() / fluid.density
+                            : 0.0),
       boundary_data_(boundary_data) {
   if (nu_b_ > 0.0) {
     helmholtz_ = std::make_unique<SeparableHelmholtz>(grid_, topo_, rho_over_dt_, nu_b_, 2);
@@ -47,6 +53,10 @@ AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const
   LumpedMassDiagonal(grid_, topo_, mass_.data());
   for (auto* a : {&out_mass_, &vx_, &vy_, &u0_, &v0_, &u1_, &v1_, &ku_, &kv_, &gx_, &gy_})
     a->assign(n, 0.0);
+  if (taylor_viscosity_ > 0.0) {
+    utt_u_.assign(n, 0.0);
+    utt_v_.assign(n, 0.0);
+  }
   for (auto* a : {&w11a_, &w12a_, &w22a_, &w11b_, &w12b_, &w22b_}) a->assign(cells, 0.0);
   for (auto* a : {&f1xu_, &f1yu_, &f2xu_, &f2yu_, &f1xv_, &f1yv_, &f2xv_, &f2yv_})
     a->assign(padded, 0.0);
@@ -158,6 +168,24 @@ void AdvectionWave::ApplyWaveStiffness(const double* u, const double* v, double*
   }
 }
 
+void AdvectionWave::RemoveTaylorTerm() {
+  const long n = static_cast<long>(mass_.size());
+  const double* unknown = nodes_.unknown().data();
+  const double *vx = vx_.data(), *vy = vy_.data(), *tu = utt_u_.data(), *tv = utt_v_.data();
+  double *u = u1_.data(), *v = v1_.data();
+  const double half_dt2 = 0.5 * dt_ * dt_, half_dt = 0.5 * dt_, cap = taylor_viscosity_;
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < n; ++k) {
+    if (unknown[k] == 0.0) continue;
+    const double streamline = half_dt * (vx[k] * vx[k] + vy[k] * vy[k]);  // dt |V|^2 / 2
+    const double theta = streamline > cap ? cap / streamline : 1.0;
+    u[k] -= theta * half_dt2 * tu[k];
+    v[k] -= theta * half_dt2 * tv[k];
+  }
+  nodes_.SyncPeriodic(u);
+  nodes_.SyncPeriodic(v);
+}
+
 void AdvectionWave::Record(const AdvectionReport& result, StepReport& report) const {
   report.Set("wave_substeps", result.iterations);
 }
@@ -194,6 +222,7 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
     const double* x0 = c == 0 ? u0_.data() : v0_.data();
     double* x1 = c == 0 ? u1_.data() : v1_.data();
     const double* kx = c == 0 ? ku_.data() : kv_.data();
+    double* kept = taylor_viscosity_ > 0.0 ? (c == 0 ? utt_u_.data() : utt_v_.data()) : nullptr;
     ApplyIntegratedGradient(grid_, topo_, x0, gx_.data(), gy_.data());
     const double* gx = gx_.data();
     const double* gy = gy_.data();
@@ -206,6 +235,7 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
       const double ut = -(vx[k] * gx[k] + vy[k] * gy[k]) / m[k];
       const double utt = -(kx[k] + mo[k] * ut) / m[k];
       x1[k] = x0[k] + tau * ut + 0.5 * tau * tau * utt;
+      if (kept) kept[k] = utt;
     }
   }
   nodes_.SyncPeriodic(u1_.data());
@@ -233,6 +263,7 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
     std::swap(u0_, u1_);
     std::swap(v0_, v1_);
   }
+  if (taylor_viscosity_ > 0.0) RemoveTaylorTerm();
   // Diffusion: (rho/dt) M u + nu_b K u = (rho/dt) M u_adv, Dirichlet data of t^{n+1}.
   if (helmholtz_) {
     double *fu = u0_.data(), *fv = v0_.data();

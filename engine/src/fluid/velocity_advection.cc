@@ -13,7 +13,8 @@ std::unique_ptr<VelocityAdvection> MakeVelocityAdvection(const Grid& grid, const
                                                    params.solvers, boundary_data);
   }
   return std::make_unique<AdvectionWave>(grid, params.domain, params.fluid, params.time.dt,
-                                         params.splitting.beta, params.solvers, boundary_data);
+                                         params.splitting.beta, params.splitting.steady_correction,
+                                         params.solvers, boundary_data);
 }
 
 }  // namespace dlmfd

@@ -136,7 +136,13 @@ void ReadTimeAndSplitting(TableReader& top, Params& p) {
   s.advection = Choose<AdvectionScheme>(
       "splitting.advection", splitting.String("advection", "least_squares"),
       {{"least_squares", AdvectionScheme::kLeastSquares}, {"wave", AdvectionScheme::kWave}});
-  splitting.RejectUnknown("alpha, beta, advection, constraint");
+  // (ReadFluid first.) The correction's default: "taylor" with "wave" in a Newtonian liquid.
+  const bool corrected = s.advection == AdvectionScheme::kWave && p.fluid.IsNewtonian();
+  s.steady_correction = Choose<SteadyCorrection>(
+      "splitting.steady_correction",
+      splitting.String("steady_correction", corrected ? "taylor" : "none"),
+      {{"none", SteadyCorrection::kNone}, {"taylor", SteadyCorrection::kTaylor}});
+  splitting.RejectUnknown("alpha, beta, advection, constraint, steady_correction");
 }
 
 void ReadSolvers(TableReader& top, Params& p) {

@@ -110,6 +110,8 @@ std::string WriteScene(const Params& p) {
   o << "advection = \""
     << (p.splitting.advection == AdvectionScheme::kWave ? "wave" : "least_squares") << "\"\n";
   o << "constraint = \"" << ConstraintCouplingName(p.splitting.constraint) << "\"\n";
+  o << "steady_correction = \""
+    << (p.splitting.steady_correction == SteadyCorrection::kTaylor ? "taylor" : "none") << "\"\n";
 
   const SolverParams& s = p.solvers;
   o << "\n[solvers]\n";

@@ -19,6 +19,19 @@
 // outflow side) no data exist and the boundary term is dropped (the wave reflects there).
 // No linear solve in the advection part, so no iteration count: the report gives the sub-steps.
 //
+// Steady-state correction (splitting.steady_correction = "taylor"): for any count Q the step maps
+// u^0 to u^0 + dt u_t + (dt^2/2) u_tt + O(dt^3), so at a fixed point of the Lie splitting the
+// implicit step (33) sees (u - u_adv)/dt = M^-1 N(V, u) + (dt/2) M^-1 (K_V u + M_out u_t): the
+// steady solution is that of the equations with an extra streamline diffusion (dt/2) (V.grad)^2 u,
+// of size dt |V|^2 / 2 (docs/validation.md, cavity section). The correction adds
+// theta (dt^2/2) M^-1 (K_V u^0 + M_out u_t) back to u_adv, node by node with
+//   theta = min(1, kappa nu_N / (dt |V|^2 / 2)),  kappa = 1/2,  nu_N = eta_N / rho,
+// so the fixed point solves the steady equations to O(dt^2) wherever dt |V|^2 / 2 <= nu_N / 2.
+// Where it is removed in full the advection alone is a forward-Euler step (unstable on its own);
+// the implicit viscosity of (33) damps a Fourier mode by 1 / (1 + nu dt k^2) and the removed term
+// grows it by at most 1 + theta dt^2 |V|^2 k^2 / 2 <= 1 + kappa nu dt k^2, so with kappa < 1 the
+// pair stays stable (the central advection symbol is bounded by the Laplacian's on this mesh).
+//
 // References: Dean & Glowinski, C. R. Acad. Sci. Paris 325 (1997) 789-797; Glowinski, Pan, Hesla,
 // Joseph & Periaux, J. Comput. Phys. 169 (2001) 363-426.
 #pragma once
@@ -39,7 +52,8 @@ namespace dlmfd {
 class AdvectionWave final : public VelocityAdvection {
  public:
   AdvectionWave(const Grid& grid, const DomainParams& domain, const FluidParams& fluid, double dt,
-                double beta, const SolverParams& solvers, const BoundaryData& boundary_data);
+                double beta, SteadyCorrection correction, const SolverParams& solvers,
+                const BoundaryData& boundary_data);
   ~AdvectionWave() override;
   AdvectionWave(const AdvectionWave&) = delete;
   AdvectionWave& operator=(const AdvectionWave&) = delete;
@@ -52,12 +66,14 @@ class AdvectionWave final : public VelocityAdvection {
  private:
   void FreezeVelocity(const double* u, const double* v);  // W_T per triangle from V
   void ApplyWaveStiffness(const double* u, const double* v, double* ku, double* kv);  // K_V
+  void RemoveTaylorTerm();  // u1_, v1_ -= theta (dt^2/2) u_tt (steady-state correction)
   std::size_t Cell(int ci, int cj) const { return std::size_t(cj + 1) * (grid_.nx + 2) + (ci + 1); }
 
   Grid grid_;
   BoundaryTopology topo_;
   NodeSet nodes_;
   double dt_, rho_over_dt_, nu_b_, max_courant_;
+  double taylor_viscosity_;  // kappa nu_N with the correction, 0 without
   const BoundaryData& boundary_data_;
   std::unique_ptr<SeparableHelmholtz> helmholtz_;  // null when nu_b == 0
   std::vector<double> mass_, out_mass_;  // lumped mass; outflow boundary mass (V.n)^+ M_out
@@ -66,6 +82,7 @@ class AdvectionWave final : public VelocityAdvection {
   std::vector<double> f1xu_, f1yu_, f2xu_, f2yu_, f1xv_, f1yv_, f2xv_,
       f2yv_;  // fluxes, padded cells
   std::vector<double> u0_, v0_, u1_, v1_, ku_, kv_, gx_, gy_;
+  std::vector<double> utt_u_, utt_v_;  // u_tt of the start, kept for the correction
   int outflow_normal_[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
   bool outflow_[4] = {false, false, false, false};
 };
