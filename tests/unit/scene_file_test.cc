@@ -185,6 +185,10 @@ const BadScene kBadScenes[] = {
      "\"upwind\""},
     {"ConstraintUnknown", "[splitting]\nconstraint = \"implicit\"\n", "splitting.constraint",
      "\"implicit\""},
+    {"SteadyCorrectionUnknown", "[splitting]\nadvection = \"wave\"\nsteady_correction = \"full\"\n",
+     "splitting.steady_correction", "\"full\""},
+    {"TaylorCorrectionWithLeastSquares", "[splitting]\nsteady_correction = \"taylor\"\n",
+     "splitting.steady_correction", "\"taylor\""},
     {"ViscousConstraintWithViscosityInAdvection",
      "[splitting]\nalpha = 0.5\nbeta = 0.5\nconstraint = \"viscous\"\n[[particles]]\ncenter = "
      "[0.5, 0.5]\n",
@@ -635,6 +639,7 @@ void ExpectSameParams(const Params& a, const Params& b) {
   EXPECT_EQ(a.splitting.alpha, b.splitting.alpha);
   EXPECT_EQ(a.splitting.beta, b.splitting.beta);
   EXPECT_EQ(a.splitting.advection, b.splitting.advection);
+  EXPECT_EQ(a.splitting.steady_correction, b.splitting.steady_correction);
   EXPECT_EQ(a.solvers.stokes_tolerance, b.solvers.stokes_tolerance);
   EXPECT_EQ(a.solvers.stokes_max_iterations, b.solvers.stokes_max_iterations);
   EXPECT_EQ(a.solvers.advection_tolerance, b.solvers.advection_tolerance);
@@ -686,6 +691,26 @@ TEST(SceneFile, SplittingWeightsFollowTheConstraint) {
   EXPECT_EQ(Params{}.splitting.constraint, ConstraintCoupling::kIncremental);
   const Params fluid_only = ParseScene("[splitting]\nalpha = 0.5\nbeta = 0.5\n");
   EXPECT_EQ(fluid_only.splitting.beta, 0.5);
+}
+
+// The steady correction's default follows the advection and the liquid (docs/scenes.md): the
+// Taylor term is removed with the wave-like scheme in a Newtonian liquid only.
+TEST(SceneFile, SteadyCorrectionFollowsTheAdvectionAndTheLiquid) {
+  auto correction = [](const std::string& scene) {
+    return ParseScene(scene).splitting.steady_correction;
+  };
+  const std::string wave = "[splitting]\nadvection = \"wave\"\n";
+  EXPECT_EQ(correction(""), SteadyCorrection::kNone);
+  EXPECT_EQ(correction(wave), SteadyCorrection::kTaylor);
+  EXPECT_EQ(correction(wave + "[fluid]\nrelaxation_time = 1.0\nsolvent_ratio = 0.5\n"),
+            SteadyCorrection::kNone);
+  EXPECT_EQ(correction(wave + "[fluid]\nrelaxation_time = 1.0\nsolvent_ratio = 1.0\n"),
+            SteadyCorrection::kTaylor);
+  EXPECT_EQ(correction(wave + "steady_correction = \"none\"\n"), SteadyCorrection::kNone);
+  EXPECT_EQ(correction(wave + "steady_correction = \"taylor\"\n[fluid]\nrelaxation_time = "
+                              "1.0\nsolvent_ratio = 0.5\n"),
+            SteadyCorrection::kTaylor);
+  EXPECT_EQ(Params{}.splitting.steady_correction, SteadyCorrection::kNone);
 }
 
 TEST(SceneFile, WriteSceneRoundTripsThePaperScene) {
