@@ -82,8 +82,9 @@ def main():
     print(f"  closest approach between disks {pair_gap:.4g} ({pair_gap / args.h:.2f} h), to a wall "
           f"{wall_gap:.4g}; up to {contacts} contacts at once; first within 1.5 h: "
           + (f"t = {kiss:.4g}" if kiss is not None else "never"))
-    print(f"  max trA {summary['max_trA']:.4g}, "
-          f"smallest eigenvalue of A {summary['min_eig_A']:.3g}")
+    if summary.get('max_trA') is not None:  # null in a Newtonian liquid (no polymer modelled)
+        print(f"  max trA {summary['max_trA']:.4g}, "
+              f"smallest eigenvalue of A {summary['min_eig_A']:.3g}")
 
 
 if __name__ == "__main__":

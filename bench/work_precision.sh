@@ -11,7 +11,9 @@
 #      D/h = 9.76, 19.5, 39, 78 fit): |Cd(t = 1.5) - Richardson limit of the study's own finest runs|
 #   e  the same flow run to its steady state (t = 5) against the Schaefer-Turek reference Cd = 5.57953523384:
 #      the ring multiplier mesh (particle_mesh.kind = ring, h_p / h = 96 / 70) and the collocation points
-#      (kind = collocation, quadratic) as series, wave advection, dt = h, D/h = 9.76 ... 78, and the peer's
+#      (kind = collocation, quadratic) as series, wave advection, dt = h, D/h = 9.76 ... 78, each under the
+#      default coupling (incremental, with the steady correction) and the paper's (constraint = paper,
+#      alpha = beta = 1/2, steady_correction = none; series "..., paper"), and the peer's
 #      three points (Basilisk, ../shared/reference/peers.md: C_D and 1-thread ms per step on this machine
 #      type) as a third series; cost axis ms per step (the peer's table gives no step counts): ours as CPU
 #      ms per step (user + system over steps: a loaded machine stretches wall time far more than CPU time),
@@ -22,7 +24,7 @@
 # (solver error far below discretisation error); the engine's defaults are L = 4, chosen from these ladders.
 #
 # Usage: bench/work_precision.sh [DLMFD_SOLVE]   (default build/solver/dlmfd-solve)
-# Env:   ONLY=a|b|c|d|e (or several, e.g. ONLY=ab)  E_SKIP="ring_h0.00128125 ..." (e: runs not to start)  WORK=runs/work_precision  WP_ERROR=<wp_error binary>
+# Env:   ONLY=a|b|c|d|e (or several, e.g. ONLY=ab)  E_SKIP="paper_ring_h0.00128125 ..." (e: runs not to start)  WORK=runs/work_precision  WP_ERROR=<wp_error binary>
 #        WP_COST=wall_seconds|cpu_seconds (the charts' cost axis; default wall_seconds, take cpu_seconds
 #        on a loaded machine, where a one-thread run's wall time is mostly waiting)
 #        (default: bench/wp_error next to the solver's build)  DLMFD=<dlmfd CLI> (default build/client/dlmfd)
@@ -270,25 +272,33 @@ if [[ $only == *e* ]]; then
   lift=$data/e_lift.txt
   echo "problem,series,particle_mesh,ladder,h,dt,tolerance,status,cpu_seconds,wall_seconds,steps,ms_per_step,cpu_ms_per_step,value,error" > "$raw"
   echo "# Cl = 2 Fy / (rho 0.2^2 0.1) at t = 5 (reference 0.010618948146)" > "$lift"
-  for kind in ring collocation; do
-    for h in 0.01025 0.005125 0.0025625 0.00128125; do
-      dir=$work/e/${kind}_h${h}
-      # E_SKIP="kind_hH ...": runs not to start (a finest run that this machine cannot afford now).
-      [[ " ${E_SKIP:-} " == *" ${kind}_h${h} "* && ! -f $dir/summary.json ]] && continue
-      # shellcheck disable=SC2046
-      run_case "$dir" "$root/cases/verification/schaefer_turek_2d1.toml" $(st_steady_sets "$h") --set time.dt="$h" \
-        --set particle_mesh.kind=$kind $(tolerance_sets 6) --set output.checkpoint_every=0
-      status=$(json_string "$dir" status)
-      value=nan
-      error=nan
-      if [[ $status == completed ]]; then
-        read -r value cl < <("$wp_error" particle "$dir" | awk '{ printf "%.10g %.6g\n", 2 * $7 / (0.2 * 0.2 * 0.1), 2 * $8 / (0.2 * 0.2 * 0.1) }')
-        error=$(awk -v v="$value" 'BEGIN { e = (v - 5.57953523384) / 5.57953523384; if (e < 0) e = -e; printf "%.6e", e }')
-        echo "$kind h=$h Cl=$cl" >> "$lift"
-      fi
-      steps=$(json_number "$dir" steps)
-      cpu_ms=$(awk -v c="$(cat "$dir.cpu")" -v n="$steps" 'BEGIN { printf "%.4g", 1e3 * c / n }')
-      echo "e,$kind,$kind,h+dt,$h,$h,1e-6,$status,$(cat "$dir.cpu"),$(json_number "$dir" wall_seconds),$steps,$(json_number "$dir" ms_per_step),$cpu_ms,$value,$error" >> "$raw"
+  for coupling in default paper; do
+    coupling_sets=()
+    series_suffix=
+    if [[ $coupling == paper ]]; then
+      coupling_sets=(--set 'splitting.constraint="paper"' --set 'splitting.steady_correction="none"')
+      series_suffix=", paper"
+    fi
+    for kind in ring collocation; do
+      for h in 0.01025 0.005125 0.0025625 0.00128125; do
+        dir=$work/e/${coupling}_${kind}_h${h}
+        # E_SKIP="coupling_kind_hH ...": runs not to start (a finest run this machine cannot afford now).
+        [[ " ${E_SKIP:-} " == *" ${coupling}_${kind}_h${h} "* && ! -f $dir/summary.json ]] && continue
+        # shellcheck disable=SC2046
+        run_case "$dir" "$root/cases/verification/schaefer_turek_2d1.toml" $(st_steady_sets "$h") --set time.dt="$h" \
+          --set particle_mesh.kind=$kind $(tolerance_sets 6) --set output.checkpoint_every=0 "${coupling_sets[@]}"
+        status=$(json_string "$dir" status)
+        value=nan
+        error=nan
+        if [[ $status == completed ]]; then
+          read -r value cl < <("$wp_error" particle "$dir" | awk '{ printf "%.10g %.6g\n", 2 * $7 / (0.2 * 0.2 * 0.1), 2 * $8 / (0.2 * 0.2 * 0.1) }')
+          error=$(awk -v v="$value" 'BEGIN { e = (v - 5.57953523384) / 5.57953523384; if (e < 0) e = -e; printf "%.6e", e }')
+          echo "$kind$series_suffix h=$h Cl=$cl" >> "$lift"
+        fi
+        steps=$(json_number "$dir" steps)
+        cpu_ms=$(awk -v c="$(cat "$dir.cpu")" -v n="$steps" 'BEGIN { printf "%.4g", 1e3 * c / n }')
+        echo "e,$kind$series_suffix,$kind,h+dt,$h,$h,1e-6,$status,$(cat "$dir.cpu"),$(json_number "$dir" wall_seconds),$steps,$(json_number "$dir" ms_per_step),$cpu_ms,$value,$error" >> "$raw"
+      done
     done
   done
   # The peer (../shared/reference/peers.md, DFG 2D-1 table): grid, C_D, 1-thread ms per step.
