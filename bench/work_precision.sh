@@ -277,7 +277,7 @@ if [[ $only == *e* ]]; then
     series_suffix=
     if [[ $coupling == paper ]]; then
       coupling_sets=(--set 'splitting.constraint="paper"' --set 'splitting.steady_correction="none"')
-      series_suffix=", paper"
+      series_suffix=" (paper coupling)"
     fi
     for kind in ring collocation; do
       for h in 0.01025 0.005125 0.0025625 0.00128125; do
