@@ -244,6 +244,23 @@ TEST(AccuracyEnvelope, ElasticCourantAndStepPerRelaxationTimeAboveTheBoundsWarn)
   EXPECT_EQ(Settings(AccuracyWarnings(newtonian)), std::vector<std::string>{"nu dt / h^2"});
 }
 
+// The collocation points have their own D / h bound (accuracy_envelope.h): 19.2 under the default
+// coupling, 39 under the paper's; the ring mesh keeps 120.
+TEST(AccuracyEnvelope, CollocationPointsHaveTheirOwnDiskResolutionBound) {
+  auto bound = [](const std::vector<std::string>& sets) {
+    for (const AccuracyWarning& w : AccuracyWarnings(Scene(kSchaeferTurek, sets)))
+      if (w.setting.rfind("D / h", 0) == 0) return w.allowed;
+    return std::string("none");
+  };
+  EXPECT_EQ(bound({}), ">= 120");  // D / h = 20, ring mesh
+  EXPECT_EQ(bound({"particle_mesh.kind=\"collocation\""}), "none");
+  EXPECT_EQ(
+      bound({"particle_mesh.kind=\"collocation\"", "domain.size=[2.255,0.41]", "domain.h=0.01025"}),
+      ">= 19.2");  // D / h = 9.76
+  EXPECT_EQ(bound({"particle_mesh.kind=\"collocation\"", "splitting.constraint=\"paper\""}),
+            ">= 39");
+}
+
 TEST(AccuracyEnvelope, DiskResolutionBelowTheBoundWarnsOnceOnTheSmallestParticle) {
   const char* const kTwo = R"TOML(
 [domain]

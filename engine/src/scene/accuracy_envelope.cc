@@ -12,6 +12,7 @@ namespace dlmfd {
 namespace {
 
 constexpr const char* kSourceD = "docs/work_precision.md (d), Which settings 3";
+constexpr const char* kSourceDCollocation = "docs/work_precision.md (e), the work-precision chart";
 constexpr const char* kSourceViscous = "docs/work_precision.md (d) dt ladder";
 constexpr const char* kSourceViscousFluid = "docs/work_precision.md (a), (b)";
 constexpr const char* kSourceViscousCoupling =
@@ -27,6 +28,13 @@ constexpr double kRoundOff = 1e-9;
 bool Above(double value, double bound) { return value > bound * (1.0 + kRoundOff); }
 
 double KinematicViscosity(const Params& p) { return p.fluid.viscosity / p.fluid.density; }
+
+// The D / h bound of the scene's multiplier points (accuracy_envelope.h).
+double MinDiskResolution(const Params& p) {
+  if (p.particle_mesh.kind == ParticleMeshKind::kRing) return kMinDiskResolution;
+  return p.splitting.constraint == ConstraintCoupling::kPaper ? kMinDiskResolutionCollocationPaper
+                                                              : kMinDiskResolutionCollocation;
+}
 
 bool HasPolymer(const Params& p) { return !p.fluid.IsNewtonian(); }
 
@@ -151,14 +159,15 @@ std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
 
   std::size_t smallest = 0;
   int below = 0;
+  const double min_resolution = MinDiskResolution(p);
   for (std::size_t i = 0; i < p.particles.size(); ++i) {
-    if (Above(kMinDiskResolution, p.particles[i].diameter / h)) ++below;
+    if (Above(min_resolution, p.particles[i].diameter / h)) ++below;
     if (p.particles[i].diameter < p.particles[smallest].diameter) smallest = i;
   }
   if (below > 0) {
     const double resolution = p.particles[smallest].diameter / h;
     // h / k keeps every cell count an even integer.
-    const double k = std::ceil(kMinDiskResolution / resolution * (1.0 - kRoundOff));
+    const double k = std::ceil(min_resolution / resolution * (1.0 - kRoundOff));
     AccuracyWarning w;
     w.setting = "D / h (particles." + std::to_string(smallest) + ")";
     if (below > 1) {
@@ -166,11 +175,11 @@ std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
       w.setting += " the smallest of " + std::to_string(below) + " below the bound)";
     }
     w.value = resolution;
-    w.allowed = ">= " + ShortText(kMinDiskResolution);
+    w.allowed = ">= " + ShortText(min_resolution);
     w.key = "domain.h";
     w.current = ExactText(h);
     w.suggested = ExactText(h / k);
-    w.source = kSourceD;
+    w.source = p.particle_mesh.kind == ParticleMeshKind::kRing ? kSourceD : kSourceDCollocation;
     out.push_back(std::move(w));
   }
 

@@ -9,10 +9,12 @@
 // - D / h >= 120 for every particle (D its diameter, h = domain.h): problem (d), the fixed disk,
 //   converges at first order in h (drag error 12, 6, 3, 1.5 % at D/h = 10 to 78); "Which settings",
 //   item 3: 1 % in the drag takes D/h of about 120. The light disk (c) needs less (1.5 % at 51.2).
-//   Measured with the ring mesh; it holds for particle_mesh.kind = "collocation" too: those points
-//   were measured below 1 % only once (problem (e): +0.54 % at D/h = 40 with c = 1.5, the disk
-//   centred on a node), not with the default spacing or off the nodes, so no lower bound of their
-//   own is established yet.
+//   Measured with the ring mesh. For particle_mesh.kind = "collocation" under a coupling that
+//   keeps the constraint in the Stokes step (incremental, viscous) the bound is D / h >= 19.2:
+//   every measured case from 19.2 up was below 1 % (Faxen's disk in creeping flow at D/h = 19.2,
+//   -0.33 % and -0.16 %; Schaefer-Turek at 19.5 off the nodes, 0.31 %, and at 20 on them, +0.78 %;
+//   docs/work_precision.md (e), docs/validation.md Faxen), and D/h = 9.76 was not (4.5 %). With
+//   the paper's coupling the collocation points need D / h >= 39 (1.49 % at 19.5, 0.14 % at 39).
 // - nu dt / h^2 <= 0.195 in a scene with particles (nu = eta / rho, eta the zero-shear viscosity):
 //   problem (d)'s dt ladder at D/h = 19.5, where nu dt / h^2 = 0.195 (dt = h) is the largest
 //   value whose halving moved Cd by at most 1 % (0.5 % wave, 1.0 % least squares; 0.39 -> 0.195
@@ -66,8 +68,10 @@
 
 namespace dlmfd {
 
-inline constexpr double kMinDiskResolution = 120.0;               // D / h
-inline constexpr double kMaxViscousNumberWithParticles = 0.195;   // nu dt / h^2
+inline constexpr double kMinDiskResolution = 120.0;                 // D / h, ring mesh
+inline constexpr double kMinDiskResolutionCollocation = 19.2;       // collocation, default coupling
+inline constexpr double kMinDiskResolutionCollocationPaper = 39.0;  // collocation, paper coupling
+inline constexpr double kMaxViscousNumberWithParticles = 0.195;     // nu dt / h^2
 inline constexpr double kMaxViscousNumberViscousCoupling = 40.0;  // splitting.constraint = viscous
 inline constexpr double kMaxViscousNumberIncrementalCoupling = 2.05;  // ... = incremental
 inline constexpr double kMaxViscousNumberWithoutParticles = 10.24;
