@@ -128,7 +128,7 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
 
   // The warm start nu of the last step enters as the velocity increment dt M^-1 E^T nu (and the
   // particles' -dt D^-1 C^T nu); then the Stokes solve of (33) with the scene's data and forcing.
-  if (have_warm_) {
+  if (have_warm_ && points.Kind() == ParticleMeshKind::kRing) {
     coupling.Spread(nu_.data(), slot_u_.data(), slot_v_.data());
     coupling.AddAtSlots(slot_u_.data(), slot_v_.data(), u, v);
     coupling.CopyPeriodicDuplicates(u, v);

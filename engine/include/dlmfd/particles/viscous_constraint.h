@@ -27,16 +27,23 @@
 // Polak-Ribiere directions, so the inexact inner solve does not stall the outer one.
 // Per iteration: one Stokes solve with zero data (the same Uzawa/PCG, relative to its own
 // response), one inner CG of (37)'s size, two fluid-sized updates.
-// Warm start: the previous step's nu. Stopping rule: max over the points of |E u - C xi| <=
-// tol V, tol = solvers.multiplier_tolerance, V the velocity scale of the step (max |u| after the
-// first Stokes solve, and |U| + |omega| R of every particle); throws SolverNotConverged after
-// solvers.multiplier_max_iterations.
-// Not supported: neutrally buoyant free particles (validation rejects them: their velocity would
-// be a multiplier of the net-force constraint); a warm start across a resume (the stored nu is
-// not checkpointed: the first step after a resume starts cold and agrees to the tolerance).
-// References: Glowinski, Pan, Hesla, Joseph, Periaux, J. Comput. Phys. 169 (2001) 363-426 (the
-// constraint with viscosity, gamma > 0, solved by Uzawa/CG on the multiplier); Glowinski,
-// Finite element methods for incompressible viscous flow (2003), section 21 (Uzawa/PCG).
+// Warm start: the previous step's nu, with the ring mesh only. With the collocation points it made
+// the PCG diverge after a few steps (Faxen's disk on h = 1/48: 11, 16, 12, then 46-55 iterations
+// and no convergence at step 10; on h = 1/96 at step 2, the residual falling to 6e-6 and then
+// growing). With solvers.stokes_tolerance = 1e-8 instead of 1e-4 it converged (73, 44, 40
+// iterations), so the Stokes solves' tolerance is involved; the suspected mechanism, not
+// established, is that the interior points give S many more null directions (spreadings that are
+// discrete gradients) and the carried nu seeds them. Started cold they take 8-16 iterations a step
+// at 1e-4 (ViscousCoupling.CollocationPointsConvergeEveryStep). Stopping rule: max over the points
+// of |E u - C xi| <= tol V, tol = solvers.multiplier_tolerance, V the velocity scale of the step
+// (max |u| after the first Stokes solve, and |U| + |omega| R of every particle); throws
+// SolverNotConverged after solvers.multiplier_max_iterations. Not supported: neutrally buoyant free
+// particles (validation rejects them: their velocity would be a multiplier of the net-force
+// constraint); a warm start across a resume (the stored nu is not checkpointed: the first step
+// after a resume starts cold and agrees to the tolerance). References: Glowinski, Pan, Hesla,
+// Joseph, Periaux, J. Comput. Phys. 169 (2001) 363-426 (the constraint with viscosity, gamma > 0,
+// solved by Uzawa/CG on the multiplier); Glowinski, Finite element methods for incompressible
+// viscous flow (2003), section 21 (Uzawa/PCG).
 #pragma once
 
 #include <cstddef>
