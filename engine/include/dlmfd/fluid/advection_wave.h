@@ -30,7 +30,9 @@
 // Where it is removed in full the advection alone is a forward-Euler step (unstable on its own);
 // the implicit viscosity of (33) damps a Fourier mode by 1 / (1 + nu dt k^2) and the removed term
 // grows it by at most 1 + theta dt^2 |V|^2 k^2 / 2 <= 1 + kappa nu dt k^2, so with kappa < 1 the
-// pair stays stable (the central advection symbol is bounded by the Laplacian's on this mesh).
+// pair stays stable. That is a constant-coefficient argument, assuming the central advection
+// symbol is bounded by the Laplacian's; no test checks it. Measured: the stability limits of the
+// Newtonian runs did not move, while a polymer's did (docs/work_precision.md).
 //
 // References: Dean & Glowinski, C. R. Acad. Sci. Paris 325 (1997) 789-797; Glowinski, Pan, Hesla,
 // Joseph & Periaux, J. Comput. Phys. 169 (2001) 363-426.
