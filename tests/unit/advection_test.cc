@@ -64,7 +64,8 @@ TEST(Advection, UniformFlowIsUnchangedByBothSchemes) {
   for (const Params& p : UniformFlowCases()) {
     const Grid g = GridOf(p);
     BoundaryData data(g, p.domain);
-    AdvectionLeastSquares ls(g, p.domain, p.fluid, p.time.dt, 0.5, p.solvers, data);
+    AdvectionLeastSquares ls(g, p.domain, p.fluid, p.time.dt, 0.5, SteadyCorrection::kNone,
+                             p.solvers, data);
     AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.5, SteadyCorrection::kNone, p.solvers,
                        data);
     for (int scheme = 0; scheme < 2; ++scheme) {
@@ -147,7 +148,8 @@ TEST(AdvectionLeastSquares, GradientIsTheAdjointOfTheLinearisedResidual) {
   for (const Params& p : cases) {
     const Grid g = GridOf(p);
     BoundaryData data(g, p.domain);
-    AdvectionLeastSquares ls(g, p.domain, p.fluid, p.time.dt, 0.5, p.solvers, data);
+    AdvectionLeastSquares ls(g, p.domain, p.fluid, p.time.dt, 0.5, SteadyCorrection::kNone,
+                             p.solvers, data);
     const NodeSet& nodes = ls.nodes();
     std::vector<double> u, v, wu, wv, yu, yv, su, sv;
     FillSmooth(g, nodes, data, u, v, 0.0);
@@ -195,7 +197,8 @@ TEST(AdvectionLeastSquares, GradientRatioIsBelowToleranceAfterSolve) {
   p.time.dt = 0.05;
   const Grid g = GridOf(p);
   BoundaryData data(g, p.domain);
-  AdvectionLeastSquares ls(g, p.domain, p.fluid, p.time.dt, 0.5, p.solvers, data);
+  AdvectionLeastSquares ls(g, p.domain, p.fluid, p.time.dt, 0.5, SteadyCorrection::kNone, p.solvers,
+                           data);
   const NodeSet& nodes = ls.nodes();
   std::vector<double> u, v;
   FillSmooth(g, nodes, data, u, v, 0.0);

@@ -48,12 +48,6 @@ void ValidateSplitting(const SplittingParams& s, bool with_particles) {
             "\": the advection step (34) does not see the particles, so viscosity there "
             "would leak through them; or splitting.constraint = \"paper\"");
   }
-  if (s.steady_correction == SteadyCorrection::kTaylor && s.advection != AdvectionScheme::kWave) {
-    throw InvalidParameter("splitting.steady_correction", "\"taylor\"",
-                           "\"none\" with splitting.advection = \"least_squares\" (the correction "
-                           "removes the Taylor term of the wave-like step), or splitting.advection "
-                           "= \"wave\"");
-  }
 }
 
 void ValidateTimeSteps(const TimeParams& time) {

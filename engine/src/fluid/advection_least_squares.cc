@@ -12,6 +12,7 @@ namespace dlmfd {
 
 AdvectionLeastSquares::AdvectionLeastSquares(const Grid& grid, const DomainParams& domain,
                                              const FluidParams& fluid, double dt, double beta,
+                                             SteadyCorrection correction,
                                              const SolverParams& solvers,
                                              const BoundaryData& boundary_data)
     : grid_(grid),
@@ -20,6 +21,10 @@ AdvectionLeastSquares::AdvectionLeastSquares(const Grid& grid, const DomainParam
       rho_(fluid.density),
       rho_over_dt_(fluid.density / dt),
       nu_b_(beta * fluid.NewtonianViscosity()),
+      dt_(dt),
+      taylor_viscosity_(correction == SteadyCorrection::kTaylor
+                            ? kTaylorViscosityShare * fluid.NewtonianViscosity() / fluid.density
+                            : 0.0),
       tolerance_(solvers.advection_tolerance),
       max_iterations_(solvers.advection_max_iterations),
       boundary_data_(boundary_data) {
@@ -42,6 +47,32 @@ AdvectionLeastSquares::~AdvectionLeastSquares() = default;
 void AdvectionLeastSquares::SetReference(const double* u, const double* v) {
   std::copy(u, u + su_.size(), su_.begin());
   std::copy(v, v + sv_.size(), sv_.begin());
+}
+
+void AdvectionLeastSquares::RemoveBackwardEulerTerm(double* u, double* v) {
+  const long n = static_cast<long>(mass_.size());
+  double *nu = s1_.data(), *nv = s2_.data(), *nsu = s3_.data(), *nsv = s4_.data();
+  const double *gxu = gxu_.data(), *gyu = gyu_.data(), *gxv = gxv_.data(), *gyv = gyv_.data();
+  const double *su = su_.data(), *sv = sv_.data(), *m = mass_.data();
+  GradientsOf(u, v);  // N(u, u)
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < n; ++k) {
+    nu[k] = u[k] * gxu[k] + v[k] * gyu[k];
+    nv[k] = u[k] * gxv[k] + v[k] * gyv[k];
+  }
+  GradientsOf(su, sv);  // N(u*, u*)
+  const double* unknown = nodes_.unknown().data();
+  const double dt = dt_, cap = taylor_viscosity_;
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < n; ++k) {
+    if (unknown[k] == 0.0) continue;
+    nsu[k] = su[k] * gxu[k] + sv[k] * gyu[k];
+    nsv[k] = su[k] * gxv[k] + sv[k] * gyv[k];
+    const double streamline = dt * (su[k] * su[k] + sv[k] * sv[k]);  // dt |u*|^2
+    const double theta = streamline > cap ? cap / streamline : 1.0;
+    u[k] += theta * dt / m[k] * (nu[k] - nsu[k]);
+    v[k] += theta * dt / m[k] * (nv[k] - nsv[k]);
+  }
 }
 
 void AdvectionLeastSquares::GradientsOf(const double* u, const double* v) {
@@ -290,6 +321,7 @@ AdvectionReport AdvectionLeastSquares::Solve(double* u, double* v) {
       }
     }
   }
+  if (taylor_viscosity_ > 0.0) RemoveBackwardEulerTerm(u, v);
   nodes_.SyncPeriodic(u);
   nodes_.SyncPeriodic(v);
   boundary_data_.Apply(u, v);

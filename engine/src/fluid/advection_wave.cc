@@ -24,9 +24,6 @@ constexpr int kMinSubsteps = 1;
 // A velocity that would need more sub-steps than this is a blow-up (step (35) has the same bound):
 // without it a diverging run would spend hours sub-cycling one step instead of ending FAILED.
 constexpr int kMaxAdvectionSubsteps = 1000;
-// kappa of the steady-state correction (advection_wave.h): the share of the Newtonian viscosity
-// the removed streamline diffusion may reach at a node.
-constexpr double kTaylorViscosityShare = 0.5;
 
 AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const FluidParams& fluid,
                              double dt, double beta, SteadyCorrection correction,

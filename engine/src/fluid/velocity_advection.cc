@@ -8,9 +8,9 @@ namespace dlmfd {
 std::unique_ptr<VelocityAdvection> MakeVelocityAdvection(const Grid& grid, const Params& params,
                                                          const BoundaryData& boundary_data) {
   if (params.splitting.advection == AdvectionScheme::kLeastSquares) {
-    return std::make_unique<AdvectionLeastSquares>(grid, params.domain, params.fluid,
-                                                   params.time.dt, params.splitting.beta,
-                                                   params.solvers, boundary_data);
+    return std::make_unique<AdvectionLeastSquares>(
+        grid, params.domain, params.fluid, params.time.dt, params.splitting.beta,
+        params.splitting.steady_correction, params.solvers, boundary_data);
   }
   return std::make_unique<AdvectionWave>(grid, params.domain, params.fluid, params.time.dt,
                                          params.splitting.beta, params.splitting.steady_correction,

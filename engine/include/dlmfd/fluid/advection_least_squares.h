@@ -15,9 +15,14 @@
 // for every boundary kind (the boundary term vanishes where y = 0 and on periodic sides).
 // Throws SolverNotConverged after advection_max_iterations.
 //
-// Not supported: the symmetric-gradient viscous form (see StokesSolver).
-// References: Bristeau, Glowinski & Periaux, Comput. Phys. Rep. 6 (1987) 73-187; Glowinski (2003),
-// section 26.
+// Steady-state correction (splitting.steady_correction = "taylor", not the default here): the step
+// is backward Euler, u = u* - dt M^-1 N(u, u), so at a fixed point of the splitting the Stokes
+// step (33) sees (u* - u)/dt = M^-1 N(u, u) = M^-1 N(u*, u*) + dt M^-1 K_V u* + O(dt^2), a
+// streamline diffusion dt |u|^2 (twice the wave-like step's). The correction adds theta dt M^-1
+// (N(u, u) - N(u*, u*)) to the result, node by node with theta = min(1, kappa nu_N / (dt |u*|^2)),
+// kappa = 1/2, the cap of fluid/advection_wave.h, so that (33) sees M^-1 N(u*, u*) where the cap
+// allows. Not supported: the symmetric-gradient viscous form (see StokesSolver). References:
+// Bristeau, Glowinski & Periaux, Comput. Phys. Rep. 6 (1987) 73-187; Glowinski (2003), section 26.
 #pragma once
 
 #include <array>
@@ -37,8 +42,8 @@ namespace dlmfd {
 class AdvectionLeastSquares final : public VelocityAdvection {
  public:
   AdvectionLeastSquares(const Grid& grid, const DomainParams& domain, const FluidParams& fluid,
-                        double dt, double beta, const SolverParams& solvers,
-                        const BoundaryData& boundary_data);
+                        double dt, double beta, SteadyCorrection correction,
+                        const SolverParams& solvers, const BoundaryData& boundary_data);
   ~AdvectionLeastSquares() override;
   AdvectionLeastSquares(const AdvectionLeastSquares&) = delete;
   AdvectionLeastSquares& operator=(const AdvectionLeastSquares&) = delete;
@@ -50,6 +55,8 @@ class AdvectionLeastSquares final : public VelocityAdvection {
 
   // Exposed for tests. u* is the last Solve's input (or set by SetReference).
   void SetReference(const double* u, const double* v);
+  // u += theta dt M^-1 (N(u, u) - N(u*, u*)) (the steady-state correction, see above).
+  void RemoveBackwardEulerTerm(double* u, double* v);
   // out = T(u) (zero at known nodes).
   void Residual(const double* u, const double* v, double* out_u, double* out_v);
   // out = T'(u) w.
@@ -70,6 +77,7 @@ class AdvectionLeastSquares final : public VelocityAdvection {
   BoundaryTopology topo_;
   NodeSet nodes_;
   double rho_, rho_over_dt_, nu_b_;
+  double dt_, taylor_viscosity_;  // kappa nu_N with the steady correction, 0 without
   double tolerance_;
   int max_iterations_;
   const BoundaryData& boundary_data_;

@@ -17,6 +17,10 @@
 
 namespace dlmfd {
 
+// kappa of the steady-state correction of both schemes (splitting.steady_correction): the share of
+// the Newtonian viscosity that the removed streamline diffusion may reach at a node.
+inline constexpr double kTaylorViscosityShare = 0.5;
+
 class VelocityAdvection {
  public:
   virtual ~VelocityAdvection() = default;
