@@ -22,9 +22,7 @@ AdvectionLeastSquares::AdvectionLeastSquares(const Grid& grid, const DomainParam
       rho_over_dt_(fluid.density / dt),
       nu_b_(beta * fluid.NewtonianViscosity()),
       dt_(dt),
-      taylor_viscosity_(correction == SteadyCorrection::kTaylor
-                            ? kTaylorViscosityShare * fluid.NewtonianViscosity() / fluid.density
-                            : 0.0),
+      taylor_viscosity_(SteadyCorrectionCap(correction, fluid)),
       tolerance_(solvers.advection_tolerance),
       max_iterations_(solvers.advection_max_iterations),
       boundary_data_(boundary_data) {
@@ -51,7 +49,7 @@ void AdvectionLeastSquares::SetReference(const double* u, const double* v) {
 
 void AdvectionLeastSquares::RemoveBackwardEulerTerm(double* u, double* v) {
   const long n = static_cast<long>(mass_.size());
-  double *nu = s1_.data(), *nv = s2_.data(), *nsu = s3_.data(), *nsv = s4_.data();
+  double *nu = s1_.data(), *nv = s2_.data();
   const double *gxu = gxu_.data(), *gyu = gyu_.data(), *gxv = gxv_.data(), *gyv = gyv_.data();
   const double *su = su_.data(), *sv = sv_.data(), *m = mass_.data();
   GradientsOf(u, v);  // N(u, u)
@@ -66,12 +64,12 @@ void AdvectionLeastSquares::RemoveBackwardEulerTerm(double* u, double* v) {
 #pragma omp parallel for schedule(static)
   for (long k = 0; k < n; ++k) {
     if (unknown[k] == 0.0) continue;
-    nsu[k] = su[k] * gxu[k] + sv[k] * gyu[k];
-    nsv[k] = su[k] * gxv[k] + sv[k] * gyv[k];
+    const double nsu = su[k] * gxu[k] + sv[k] * gyu[k];
+    const double nsv = su[k] * gxv[k] + sv[k] * gyv[k];
     const double streamline = dt * (su[k] * su[k] + sv[k] * sv[k]);  // dt |u*|^2
-    const double theta = streamline > cap ? cap / streamline : 1.0;
-    u[k] += theta * dt / m[k] * (nu[k] - nsu[k]);
-    v[k] += theta * dt / m[k] * (nv[k] - nsv[k]);
+    const double theta = SteadyCorrectionShare(streamline, cap);
+    u[k] += theta * dt / m[k] * (nu[k] - nsu);
+    v[k] += theta * dt / m[k] * (nv[k] - nsv);
   }
 }
 

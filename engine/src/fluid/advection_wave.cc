@@ -35,9 +35,7 @@ AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const
       rho_over_dt_(fluid.density / dt),
       nu_b_(beta * fluid.NewtonianViscosity()),
       max_courant_(solvers.wave_max_courant),
-      taylor_viscosity_(correction == SteadyCorrection::kTaylor
-                            ? kTaylorViscosityShare * fluid.NewtonianViscosity() / fluid.density
-                            : 0.0),
+      taylor_viscosity_(SteadyCorrectionCap(correction, fluid)),
       boundary_data_(boundary_data) {
   if (nu_b_ > 0.0) {
     helmholtz_ = std::make_unique<SeparableHelmholtz>(grid_, topo_, rho_over_dt_, nu_b_, 2);
@@ -175,7 +173,7 @@ void AdvectionWave::RemoveTaylorTerm() {
   for (long k = 0; k < n; ++k) {
     if (unknown[k] == 0.0) continue;
     const double streamline = half_dt * (vx[k] * vx[k] + vy[k] * vy[k]);  // dt |V|^2 / 2
-    const double theta = streamline > cap ? cap / streamline : 1.0;
+    const double theta = SteadyCorrectionShare(streamline, cap);
     u[k] -= theta * half_dt2 * tu[k];
     v[k] -= theta * half_dt2 * tv[k];
   }

@@ -21,6 +21,18 @@ namespace dlmfd {
 // the Newtonian viscosity that the removed streamline diffusion may reach at a node.
 inline constexpr double kTaylorViscosityShare = 0.5;
 
+// kappa nu_N, the cap of the removed diffusion, with the correction; 0 without it.
+inline double SteadyCorrectionCap(SteadyCorrection correction, const FluidParams& fluid) {
+  return correction == SteadyCorrection::kTaylor
+             ? kTaylorViscosityShare * fluid.NewtonianViscosity() / fluid.density
+             : 0.0;
+}
+
+// theta = min(1, cap / streamline): the share of a node's streamline diffusion that is removed.
+inline double SteadyCorrectionShare(double streamline, double cap) {
+  return streamline > cap ? cap / streamline : 1.0;
+}
+
 class VelocityAdvection {
  public:
   virtual ~VelocityAdvection() = default;
