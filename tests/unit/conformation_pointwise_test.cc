@@ -218,6 +218,26 @@ TEST(StretchAndRelax, SteadyShearIsAFixedPointUpToQuadrature) {
   }
 }
 
+// lambda << dt (a sweep of lambda towards 0 at a fixed dt): one step forgets A^n (e^{-dt/lambda})
+// and must land on the steady state of the frozen L, A - I = lambda (L + L^T) + 2 lambda^2 L L^T in
+// shear, the lambda -> 0 limit that fluid.stress_splitting = devss relies on. Before the integral
+// stopped at its decay (IntegralEnd), the 256 panels spread over dt were up to 40 lambda wide, and
+// the error relative to lambda g was 5.8e-3 / 3.4 / 439 at dt / lambda = 1e3 / 1e4 / 1e6. With the
+// tail cut at 50 e-foldings the 256 panels are 0.2 lambda wide, and the error is the quadrature's:
+// measured 1.6e-10 / 1.6e-10 / 1.1e-9 / 1.6e-10 at dt / lambda = 50 / 1e3 / 1e4 / 1e6. Asserted:
+// 1e-8 relative to lambda g, from a start far from the steady state.
+TEST(StretchAndRelax, RelaxationMuchFasterThanTheStepLandsOnTheSteadyState) {
+  const double dt = 2e-3, g = 3.0;
+  for (double ratio : {50.0, 1e3, 1e4, 1e6}) {
+    const double lambda = dt / ratio;
+    const SymTensor exact = SimpleShearConformation(lambda, g);
+    const SymTensor a = StretchAndRelax(SymTensor{4.0, 1.0, 2.0}, Mat2{0, g, 0, 0}, dt, lambda);
+    const double error = MaxDiff(a, exact) / (lambda * g);
+    std::printf("dt / lambda = %.0e: |A - A_steady| / (lambda g) = %.3e\n", ratio, error);
+    EXPECT_LT(error, 1e-8) << "dt / lambda = " << ratio;
+  }
+}
+
 TEST(SteadyConformation, SimpleShearMatchesReference) {
   for (double wi : {0.0, 0.5, 1.0, 3.0, 10.0}) {
     const SymTensor a = SteadyConformation(Mat2{0.0, wi, 0.0, 0.0}, 1.0);
