@@ -4,7 +4,8 @@
 // with eta = 0.12, lambda = 1.4, beta = 1/2, on the paper's grid 2 x 8, h = 1/96, dt = 4e-4), after
 // 20 set-up steps from rest so that the disks move and the flow and the iteration counts are those
 // of a developing flow (the scene's own advection, least squares, is replaced by the wave scheme).
-// Arguments: threads, coupling (splitting.constraint: 0 paper, 1 viscous, 2 incremental).
+// Arguments: threads, coupling (splitting.constraint: 0 paper, 1 viscous, 2 incremental), stress
+// (fluid.stress_splitting: 0 explicit, 1 devss, the default).
 // Counters: per-substep ms (StepReport ms_stokes, ms_advection, ms_conformation, ms_particles),
 // Uzawa and DLM CG iterations, velocity node updates per second.
 //   OMP_WAIT_POLICY=active build/bench/oldroyd_b_step_bench --benchmark_counters_tabular=true
@@ -40,12 +41,14 @@ void BM_OldroydBStep(benchmark::State& state) {
       ConstraintCoupling::kPaper, ConstraintCoupling::kViscous, ConstraintCoupling::kIncremental};
   p.splitting = SplittingParams::DefaultWeights(kCouplings[state.range(1)]);
   p.splitting.advection = AdvectionScheme::kWave;
+  p.fluid.stress_splitting =
+      state.range(2) == 0 ? StressSplitting::kExplicit : StressSplitting::kDevss;
   TimeFullSteps(state, p, kSetUpSteps);
 }
 
 BENCHMARK(BM_OldroydBStep)
-    ->ArgNames({"threads", "coupling"})
-    ->ArgsProduct({{1, 2}, {0, 1, 2}})
+    ->ArgNames({"threads", "coupling", "stress"})
+    ->ArgsProduct({{1, 2}, {0, 1, 2}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);

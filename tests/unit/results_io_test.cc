@@ -11,7 +11,9 @@
 #include <random>
 #include <string>
 
+#include "../support/viscous_channel.h"
 #include "dlmfd/core/errors.h"
+#include "dlmfd/core/simulation.h"
 #include "dlmfd/io/atomic_file.h"
 #include "dlmfd/io/checkpoint.h"
 #include "dlmfd/io/diagnostics_csv.h"
@@ -62,6 +64,9 @@ FlowState RandomState(const Grid& g, bool conformation, int particles, unsigned 
     s.a11 = RandomField(g.NodeCount(), seed + 3);
     s.a12 = RandomField(g.NodeCount(), seed + 4);
     s.a22 = RandomField(g.NodeCount(), seed + 5);
+    s.d11 = RandomField(g.NodeCount(), seed + 6);
+    s.d12 = RandomField(g.NodeCount(), seed + 7);
+    s.d22 = RandomField(g.NodeCount(), seed + 8);
   }
   for (int i = 0; i < particles; ++i) {
     ParticleState q;
@@ -271,6 +276,9 @@ TEST(Checkpoint, RoundTripsEveryFieldBitForBit) {
   ExpectSameBits(c.state.a11, s.a11);
   ExpectSameBits(c.state.a12, s.a12);
   ExpectSameBits(c.state.a22, s.a22);
+  ExpectSameBits(c.state.d11, s.d11);
+  ExpectSameBits(c.state.d12, s.d12);
+  ExpectSameBits(c.state.d22, s.d22);
   ASSERT_EQ(c.state.particles.size(), 3u);
   for (std::size_t i = 0; i < 3; ++i) {
     const ParticleState& a = c.state.particles[i];
@@ -299,6 +307,40 @@ TEST(Checkpoint, NewtonianStateHasNoConformation) {
   EXPECT_TRUE(c.state.particles.empty());
   ExpectSameBits(c.state.p, s.p);
   EXPECT_THROW(ReadCheckpoint(dir + "/absent.h5"), Error);
+}
+
+// A viscoelastic run under the default devss (the viscosity rule's channel and disk at lambda =
+// 1e-3, where the devss share w = 0.91) stopped after 10 steps, written to a checkpoint and read
+// back into a new Simulation, goes on as the run that was not stopped: the strain rate D_h of
+// FlowState::d11, d12, d22 is part of the state. A checkpoint without it is refused.
+TEST(Checkpoint, ViscoelasticRunResumesBitForBit) {
+  const std::string dir = FreshDir("checkpoint_devss");
+  Params p = testing::ChannelWithFixedDisk(16, 2e-3, 1e-3, 0.59);
+  p.time.end = 20 * p.time.dt;
+  ASSERT_EQ(p.fluid.stress_splitting, StressSplitting::kDevss);
+  Simulation whole(p);
+  whole.Run();
+  Simulation first(p);
+  for (int n = 0; n < 10; ++n) first.Step();
+  WriteCheckpoint(dir + "/c.h5", first.state(), "");
+  const Checkpoint c = ReadCheckpoint(dir + "/c.h5");
+  ASSERT_EQ(c.state.d11.size(), first.grid().NodeCount());
+  Simulation resumed(p);
+  resumed.Restore(c.state);
+  resumed.Run();
+  for (const auto& [a, b] : {std::pair{&whole.state().u, &resumed.state().u},
+                             std::pair{&whole.state().a12, &resumed.state().a12},
+                             std::pair{&whole.state().d12, &resumed.state().d12}}) {
+    ExpectSameBits(*b, *a);
+  }
+  EXPECT_TRUE(
+      SameBits(resumed.state().particles[0].force.x(), whole.state().particles[0].force.x()));
+  FlowState without = c.state;
+  without.d11.clear();
+  without.d12.clear();
+  without.d22.clear();
+  Simulation refused(p);
+  EXPECT_THROW(refused.Restore(without), InvalidParameter);
 }
 
 // ResultsWriter driven by hand (no Simulation): snapshots at steps 0, 4, 8; checkpoint at step 5;

@@ -185,6 +185,8 @@ const BadScene kBadScenes[] = {
      "\"upwind\""},
     {"ConstraintUnknown", "[splitting]\nconstraint = \"implicit\"\n", "splitting.constraint",
      "\"implicit\""},
+    {"StressSplittingUnknown", "[fluid]\nstress_splitting = \"implicit\"\n",
+     "fluid.stress_splitting", "\"implicit\""},
     {"SteadyCorrectionUnknown", "[splitting]\nadvection = \"wave\"\nsteady_correction = \"full\"\n",
      "splitting.steady_correction", "\"full\""},
     {"ViscousConstraintWithViscosityInAdvection",
@@ -631,6 +633,7 @@ void ExpectSameParams(const Params& a, const Params& b) {
   EXPECT_EQ(a.fluid.relaxation_time, b.fluid.relaxation_time);
   EXPECT_EQ(a.fluid.solvent_ratio, b.fluid.solvent_ratio);
   EXPECT_EQ(a.fluid.body_force, b.fluid.body_force);
+  EXPECT_EQ(a.fluid.stress_splitting, b.fluid.stress_splitting);
   EXPECT_EQ(a.gravity, b.gravity);
   EXPECT_EQ(a.time.dt, b.time.dt);
   EXPECT_EQ(a.time.end, b.time.end);
@@ -711,6 +714,19 @@ TEST(SceneFile, SteadyCorrectionFollowsTheAdvectionAndTheLiquid) {
   EXPECT_EQ(Params{}.splitting.steady_correction, SteadyCorrection::kNone);
   // With the least-squares scheme the correction is there when asked for.
   EXPECT_EQ(correction("[splitting]\nsteady_correction = \"taylor\"\n"), SteadyCorrection::kTaylor);
+}
+
+// The polymer stress's splitting (docs/scenes.md): devss unless the scene asks for the paper's
+// explicit stress; the same default for Params built in code.
+TEST(SceneFile, StressSplittingDefaultsToDevss) {
+  const std::string polymer = "[fluid]\nrelaxation_time = 1.0\nsolvent_ratio = 0.5\n";
+  EXPECT_EQ(ParseScene(polymer).fluid.stress_splitting, StressSplitting::kDevss);
+  EXPECT_EQ(ParseScene(polymer + "stress_splitting = \"explicit\"\n").fluid.stress_splitting,
+            StressSplitting::kExplicit);
+  EXPECT_EQ(Params{}.fluid.stress_splitting, StressSplitting::kDevss);
+  const Params written =
+      ParseScene(WriteScene(ParseScene(polymer + "stress_splitting = \"explicit\"\n")));
+  EXPECT_EQ(written.fluid.stress_splitting, StressSplitting::kExplicit);
 }
 
 TEST(SceneFile, WriteSceneRoundTripsThePaperScene) {

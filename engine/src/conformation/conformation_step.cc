@@ -57,8 +57,11 @@ ConformationStep::ConformationStep(const Params& params, const Grid& grid)
     if (domain.side(w.side).type != SideType::kVelocity) continue;
     for (int k = 0; k < w.count; ++k) {
       const SymTensor inflow = InflowConformation(grid, domain, w.side, k, lambda_, *model_);
+      Mat2 l{0.0, 0.0, 0.0, 0.0};
+      InflowGradient(grid, domain, w.side, k, &l);
       boundary_.push_back(BoundaryNode{w.i0 + k * w.di, w.j0 + k * w.dj, w.nx, w.ny, inflow,
-                                       ToRepresentation(representation_, inflow)});
+                                       ToRepresentation(representation_, inflow),
+                                       SymTensor{l.m11, 0.5 * (l.m12 + l.m21), l.m22}});
     }
   }
   const std::size_t n = grid.NodeCount();
@@ -303,6 +306,26 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
   report.Set("elastic_courant", lambda_ * max_gradient * dt);
   report.Set("blended_nodes", static_cast<double>(blended));
   report.Set("conformation_substeps", substeps);
+}
+
+void ConformationStep::StrainRate(const unsigned char* inside_particle, double* d11, double* d12,
+                                  double* d22) const {
+  const long n = static_cast<long>(grid_.NodeCount());
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < n; ++k) {
+    const bool rigid = inside_particle != nullptr && inside_particle[k] != 0;
+    d11[k] = rigid ? 0.0 : l11_[k];
+    d12[k] = rigid ? 0.0 : 0.5 * (l12_[k] + l21_[k]);
+    d22[k] = rigid ? 0.0 : l22_[k];
+  }
+  // Inflow nodes: the strain rate of the profile that A_L is the steady state of.
+  for (const BoundaryNode& b : boundary_) {
+    if (!b.active) continue;
+    const std::size_t k = grid_.Index(b.i, b.j);
+    d11[k] = b.inflow_strain_rate.a11;
+    d12[k] = b.inflow_strain_rate.a12;
+    d22[k] = b.inflow_strain_rate.a22;
+  }
 }
 
 }  // namespace dlmfd

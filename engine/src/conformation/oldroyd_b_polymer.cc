@@ -10,13 +10,16 @@ namespace dlmfd {
 OldroydBPolymer::OldroydBPolymer(const Params& params, const Grid& grid)
     : grid_(grid),
       domain_(params.domain),
+      lambda_(params.fluid.relaxation_time),
+      devss_(params.fluid.Devss()),
+      devss_weight_(params.fluid.DevssWeight(grid.h)),
       step_(params, grid),
       fx_(grid.NodeCount(), 0.0),
       fy_(grid.NodeCount(), 0.0) {
   // After step_: its constructor rejects a Newtonian liquid (lambda = 0) first.
   modulus_ = params.fluid.PolymerViscosity() / params.fluid.relaxation_time;
   if (!params.particles.empty()) inside_particle_.assign(grid.NodeCount(), 0);
-  if (!step_.model().StressIsAMinusI()) {
+  if (!step_.model().StressIsAMinusI() || devss_) {
     s11_.assign(grid.NodeCount(), 1.0);
     s12_.assign(grid.NodeCount(), 0.0);
     s22_.assign(grid.NodeCount(), 1.0);
@@ -29,24 +32,38 @@ void OldroydBPolymer::SetInitialState(FlowState& state) {
   state.a22.assign(grid_.NodeCount(), 1.0);
   step_.SetInflowState(state.u.data(), state.v.data(), state.a11.data(), state.a12.data(),
                        state.a22.data());
+  if (devss_) {
+    state.d11.assign(grid_.NodeCount(), 0.0);
+    state.d12.assign(grid_.NodeCount(), 0.0);
+    state.d22.assign(grid_.NodeCount(), 0.0);
+  }
 }
 
 NodeForce OldroydBPolymer::MomentumForce(const FlowState& state) {
   std::fill(fx_.begin(), fx_.end(), 0.0);
   std::fill(fy_.begin(), fy_.end(), 0.0);
   const RelaxationModel& model = step_.model();
-  if (model.StressIsAMinusI()) {
+  if (model.StressIsAMinusI() && !devss_) {
     AddPolymerForce(grid_, domain_, modulus_, state.a11.data(), state.a12.data(), state.a22.data(),
                     fx_.data(), fy_.data());
   } else {
-    // tau_p = G T(A) = G (S - I) with S = T(A) + I, which the force reads as it reads A.
+    // tau_p = G (S - I) with S = T(A) + I (- 2 w lambda D_h), which the force reads as it reads A.
     const long n = static_cast<long>(grid_.NodeCount());
+    const double two_lambda = devss_ ? 2.0 * devss_weight_ * lambda_ : 0.0;
+    const double* d11 = devss_ ? state.d11.data() : nullptr;
+    const double* d12 = devss_ ? state.d12.data() : nullptr;
+    const double* d22 = devss_ ? state.d22.data() : nullptr;
 #pragma omp parallel for schedule(static)
     for (long k = 0; k < n; ++k) {
       const SymTensor t = model.Stress(SymTensor{state.a11[k], state.a12[k], state.a22[k]});
       s11_[k] = t.a11 + 1.0;
       s12_[k] = t.a12;
       s22_[k] = t.a22 + 1.0;
+      if (d11 != nullptr) {
+        s11_[k] -= two_lambda * d11[k];
+        s12_[k] -= two_lambda * d12[k];
+        s22_[k] -= two_lambda * d22[k];
+      }
     }
     AddPolymerForce(grid_, domain_, modulus_, s11_.data(), s12_.data(), s22_.data(), fx_.data(),
                     fy_.data());
@@ -62,6 +79,7 @@ void OldroydBPolymer::Update(double dt, FlowState& state, StepReport& report) {
   }
   step_.Advance(state.time, dt, state.u.data(), state.v.data(), inside, state.a11.data(),
                 state.a12.data(), state.a22.data(), report);
+  if (devss_) step_.StrainRate(inside, state.d11.data(), state.d12.data(), state.d22.data());
 }
 
 void OldroydBPolymer::MarkParticleNodes(const std::vector<ParticleState>& particles) {

@@ -243,6 +243,13 @@ void Simulation::Restore(const FlowState& state) {
         std::to_string(a_nodes) + " nodes (" + (s.viscoelastic ? "a viscoelastic" : "a Newtonian") +
             " scene)");
   }
+  const std::size_t d_nodes = s.params.fluid.Devss() ? s.grid.NodeCount() : 0;
+  if (state.d11.size() != d_nodes || state.d12.size() != d_nodes || state.d22.size() != d_nodes) {
+    throw InvalidParameter("checkpoint",
+                           "a strain rate D_h of " + std::to_string(state.d11.size()) + " nodes",
+                           std::to_string(d_nodes) + " nodes (fluid.stress_splitting = \"" +
+                               (d_nodes > 0 ? "devss" : "explicit") + "\" in this scene)");
+  }
   if (state.particles.size() != s.state.particles.size()) {
     throw InvalidParameter(
         "checkpoint", std::to_string(state.particles.size()) + " particles",

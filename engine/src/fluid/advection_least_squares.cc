@@ -20,9 +20,9 @@ AdvectionLeastSquares::AdvectionLeastSquares(const Grid& grid, const DomainParam
       nodes_(grid_, topo_),
       rho_(fluid.density),
       rho_over_dt_(fluid.density / dt),
-      nu_b_(beta * fluid.NewtonianViscosity()),
+      nu_b_(beta * fluid.ImplicitViscosity(grid.h)),
       dt_(dt),
-      taylor_viscosity_(SteadyCorrectionCap(correction, fluid)),
+      taylor_viscosity_(SteadyCorrectionCap(correction, fluid, grid.h)),
       tolerance_(solvers.advection_tolerance),
       max_iterations_(solvers.advection_max_iterations),
       boundary_data_(boundary_data) {

@@ -33,9 +33,9 @@ AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const
       nodes_(grid_, topo_),
       dt_(dt),
       rho_over_dt_(fluid.density / dt),
-      nu_b_(beta * fluid.NewtonianViscosity()),
+      nu_b_(beta * fluid.ImplicitViscosity(grid.h)),
       max_courant_(solvers.wave_max_courant),
-      taylor_viscosity_(SteadyCorrectionCap(correction, fluid)),
+      taylor_viscosity_(SteadyCorrectionCap(correction, fluid, grid.h)),
       boundary_data_(boundary_data) {
   if (nu_b_ > 0.0) {
     helmholtz_ = std::make_unique<SeparableHelmholtz>(grid_, topo_, rho_over_dt_, nu_b_, 2);

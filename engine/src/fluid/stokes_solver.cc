@@ -42,7 +42,7 @@ StokesSolver::StokesSolver(const Grid& grid, const DomainParams& domain, const F
       vnodes_(grid_, vtopo_),
       pnodes_(pgrid_, ptopo_),
       rho_over_dt_(fluid.density / dt),
-      nu_(alpha * fluid.NewtonianViscosity()),
+      nu_(alpha * fluid.ImplicitViscosity(grid.h)),
       body_force_(fluid.body_force),
       tolerance_(solvers.stokes_tolerance),
       max_iterations_(solvers.stokes_max_iterations),

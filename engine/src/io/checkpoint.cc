@@ -33,6 +33,11 @@ void WriteCheckpoint(const std::string& path, const FlowState& state,
       WriteField(f, "a12", state.a12);
       WriteField(f, "a22", state.a22);
     }
+    if (!state.d11.empty()) {  // fluid.stress_splitting = devss
+      WriteField(f, "d11", state.d11);
+      WriteField(f, "d12", state.d12);
+      WriteField(f, "d22", state.d22);
+    }
     h5::Handle group(h5::CheckId(H5Gcreate2(f, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                                  "create group"),
                      H5Gclose);
@@ -84,6 +89,11 @@ Checkpoint ReadCheckpoint(const std::string& path) {
     s.a11 = ReadField(f, "a11");
     s.a12 = ReadField(f, "a12");
     s.a22 = ReadField(f, "a22");
+  }
+  if (H5Lexists(f, "d11", H5P_DEFAULT) > 0) {
+    s.d11 = ReadField(f, "d11");
+    s.d12 = ReadField(f, "d12");
+    s.d22 = ReadField(f, "d22");
   }
   h5::Handle group(
       h5::CheckId(H5Gopen2(f, "particles", H5P_DEFAULT), "open " + path + ":/particles"), H5Gclose);

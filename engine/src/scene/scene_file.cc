@@ -89,6 +89,9 @@ void ReadFluid(TableReader& top, Params& p) {
       {{"standard", ConformationRepresentation::kStandard},
        {"log", ConformationRepresentation::kLog},
        {"sqrt", ConformationRepresentation::kSqrt}});
+  f.stress_splitting = Choose<StressSplitting>(
+      "fluid.stress_splitting", fluid.String("stress_splitting", "devss"),
+      {{"explicit", StressSplitting::kExplicit}, {"devss", StressSplitting::kDevss}});
   // Model parameters: present only when given (ValidateScene checks them against fluid.model).
   auto optional_real = [&fluid](const char* name) -> std::optional<double> {
     if (!fluid.Has(name)) return std::nullopt;
@@ -100,7 +103,7 @@ void ReadFluid(TableReader& top, Params& p) {
   fluid.Vector("gravity", Vec2::Zero());  // read by ReadGravity
   fluid.RejectUnknown(
       "density, viscosity, relaxation_time, solvent_ratio, body_force, model, conformation, "
-      "mobility, extensibility, ptt_epsilon, gravity");
+      "stress_splitting, mobility, extensibility, ptt_epsilon, gravity");
 }
 
 // gravity is a top-level key; `fluid.gravity` is accepted too, because a `gravity = ...` line

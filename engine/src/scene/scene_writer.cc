@@ -96,6 +96,8 @@ std::string WriteScene(const Params& p) {
   o << "body_force = " << Vec(p.fluid.body_force) << "\n";
   o << "model = \"" << ModelName(p.fluid.model) << "\"\n";
   o << "conformation = \"" << RepresentationName(p.fluid.conformation) << "\"\n";
+  o << "stress_splitting = \""
+    << (p.fluid.stress_splitting == StressSplitting::kDevss ? "devss" : "explicit") << "\"\n";
   if (p.fluid.mobility) o << "mobility = " << ExactText(*p.fluid.mobility) << "\n";
   if (p.fluid.extensibility) o << "extensibility = " << ExactText(*p.fluid.extensibility) << "\n";
   if (p.fluid.ptt_epsilon) o << "ptt_epsilon = " << ExactText(*p.fluid.ptt_epsilon) << "\n";

@@ -73,6 +73,13 @@ class ConformationStep {
   // left as they are.
   void SetInflowState(const double* u, const double* v, double* a11, double* a12, double* a22);
 
+  // The nodal strain rate D_h = (L + L^T) / 2 of the velocity of the last Advance (the L of its
+  // step 2), 0 at the nodes inside particles, and at the inflow nodes the strain rate of the
+  // profile whose steady state A_L is (so that A - I - 2 lambda D_h = O(lambda^2) at every node),
+  // into d11, d12, d22 (fluid.stress_splitting = devss).
+  void StrainRate(const unsigned char* inside_particle, double* d11, double* d12,
+                  double* d22) const;
+
   // The relaxation model of the scene (fluid.model).
   const RelaxationModel& model() const { return *model_; }
 
@@ -82,10 +89,11 @@ class ConformationStep {
  private:
   struct BoundaryNode {
     int i, j;
-    double nx, ny;              // outward normal
-    SymTensor inflow;           // A_L
-    SymTensor inflow_advected;  // A_L in the representation (log A_L, A_L^(1/2))
-    bool active = false;        // an inflow node of this side for the last velocity seen
+    double nx, ny;                 // outward normal
+    SymTensor inflow;              // A_L
+    SymTensor inflow_advected;     // A_L in the representation (log A_L, A_L^(1/2))
+    SymTensor inflow_strain_rate;  // D of the fully developed profile whose steady state is A_L
+    bool active = false;           // an inflow node of this side for the last velocity seen
   };
   // Applies the inflow rule to (u, v): BoundaryNode::active and the per-node flags inflow_.
   void FindInflow(const double* u, const double* v);

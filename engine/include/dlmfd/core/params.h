@@ -48,6 +48,20 @@ enum class ConstitutiveModel { kOldroydB, kGiesekus, kFeneP, kPttLinear, kPttExp
 // How step (35) carries the conformation tensor through its advection: A itself (standard), its
 // matrix logarithm (log) or its symmetric square root (sqrt).
 enum class ConformationRepresentation { kStandard, kLog, kSqrt };
+// How the polymer stress tau_p enters the momentum equation (fluid.stress_splitting):
+//   kExplicit: all of tau_p^n explicitly in step (33), the paper's scheme;
+//   kDevss:    the share w of its viscous part, w eta_p 2 D(u), implicitly with the solvent's
+//              viscosity in the fluid steps, and the rest, tau_p^n - w eta_p 2 D_h, explicitly,
+//              D_h being the nodal strain rate that step (35) used for A^n. This is DEVSS-G
+//              (Guenette & Fortin 1995; Liu, Bornside, Armstrong & Brown 1998) with D_h the lumped
+//              L2 projection of the P1 gradient and alpha = w eta_p, w = 1 / (1 + El_h), where
+//              El_h = lambda eta_p / (rho h^2) is the elasticity number of one cell: the polymer is
+//              viscous on the grid's scale when El_h << 1 (w -> 1) and elastic when El_h >> 1
+//              (w -> 0, the paper's scheme). As lambda -> 0 the explicit rest vanishes and the step
+//              is the Newtonian step of viscosity eta, so the drag is continuous in lambda on every
+//              grid; w does not depend on dt, so neither does a steady state
+//              (conformation/oldroyd_b_polymer.h; docs/validation.md, "The viscosity rule").
+enum class StressSplitting { kExplicit, kDevss };
 
 struct FluidParams {
   double density = 1.0;          // rho_L > 0
@@ -58,6 +72,7 @@ struct FluidParams {
       Vec2::Zero();  // force per unit volume on the liquid (e.g. a mean pressure gradient)
   ConstitutiveModel model = ConstitutiveModel::kOldroydB;
   ConformationRepresentation conformation = ConformationRepresentation::kStandard;
+  StressSplitting stress_splitting = StressSplitting::kDevss;
   // Model parameters, each given only for its model (scene validation): Giesekus mobility alpha in
   // [0, 0.5]; FENE-P extensibility L^2 > 2 (tr A < L^2); PTT epsilon >= 0.
   std::optional<double> mobility;
@@ -67,11 +82,23 @@ struct FluidParams {
   // beta < 1; then the Newtonian part of the momentum equation carries eta_s = beta eta and the
   // polymer stress carries eta_p = (1 - beta) eta. A Newtonian liquid has no polymer stress, so
   // its Newtonian part carries the whole eta, whatever solvent_ratio says. The two always sum to
-  // eta, which keeps the drag continuous as lambda -> 0 and as beta -> 1.
+  // eta, which keeps the drag continuous as beta -> 1 (and, with stress_splitting = kDevss, as
+  // lambda -> 0 on a fixed grid too: ImplicitViscosity).
   bool IsNewtonian() const { return relaxation_time == 0.0 || solvent_ratio == 1.0; }
-  // The viscosity of the term 2 eta D(u) that steps (33)-(34) treat implicitly.
+  bool Devss() const { return !IsNewtonian() && stress_splitting == StressSplitting::kDevss; }
+  // eta_s, or the whole eta without a modelled polymer.
   double NewtonianViscosity() const {
     return IsNewtonian() ? viscosity : solvent_ratio * viscosity;
+  }
+  // w = 1 / (1 + lambda eta_p / (rho h^2)), the share of eta_p that kDevss treats implicitly on
+  // the velocity mesh of size h; 0 without kDevss.
+  double DevssWeight(double h) const {
+    return Devss() ? 1.0 / (1.0 + relaxation_time * PolymerViscosity() / (density * h * h)) : 0.0;
+  }
+  // The viscosity of the term 2 eta D(u) that steps (33)-(34) treat implicitly on the velocity mesh
+  // of size h: eta_N, plus w eta_p with kDevss (the polymer stress then subtracts w eta_p 2 D_h).
+  double ImplicitViscosity(double h) const {
+    return NewtonianViscosity() + DevssWeight(h) * PolymerViscosity();
   }
   // The viscosity the polymer stress carries: 0 when no polymer is modelled.
   double PolymerViscosity() const {

@@ -30,6 +30,9 @@ struct FlowState {
   std::vector<double> u, v;           // velocity on the h-grid nodes
   std::vector<double> p;              // pressure on the 2h-grid nodes
   std::vector<double> a11, a12, a22;  // configuration tensor on the h-grid; empty when Newtonian
+  // fluid.stress_splitting = "devss" only (else empty): the nodal strain rate D_h of the velocity
+  // that step (35) used for A (0 inside particles, 0 before the first step).
+  std::vector<double> d11, d12, d22;
   std::vector<ParticleState> particles;
 };
 

@@ -18,13 +18,15 @@
 namespace dlmfd {
 
 // kappa of the steady-state correction of both schemes (splitting.steady_correction): the share of
-// the Newtonian viscosity that the removed streamline diffusion may reach at a node.
+// the implicit viscosity that the removed streamline diffusion may reach at a node.
 inline constexpr double kTaylorViscosityShare = 0.5;
 
-// kappa nu_N, the cap of the removed diffusion, with the correction; 0 without it.
-inline double SteadyCorrectionCap(SteadyCorrection correction, const FluidParams& fluid) {
+// kappa nu_N, the cap of the removed diffusion, with the correction; 0 without it. nu_N is the
+// viscosity the fluid steps treat implicitly on the velocity mesh of size h
+// (FluidParams::ImplicitViscosity).
+inline double SteadyCorrectionCap(SteadyCorrection correction, const FluidParams& fluid, double h) {
   return correction == SteadyCorrection::kTaylor
-             ? kTaylorViscosityShare * fluid.NewtonianViscosity() / fluid.density
+             ? kTaylorViscosityShare * fluid.ImplicitViscosity(h) / fluid.density
              : 0.0;
 }
 

@@ -3,11 +3,12 @@
 //
 // Root attributes step, time, scene (the scene text as WriteScene gives it, to check on resume that
 // the same scene goes on). Datasets /u, /v, /p and, for a non-Newtonian run, /a11, /a12, /a22
-// (flat, as in FlowState); per particle, in /particles: id, position (np, 2), velocity (np, 2),
-// angular_velocity, force (np, 2), torque, radius, density, motion (0 free, 1 fixed, 2 prescribed),
-// and the multiplier vectors concatenated in multiplier with multiplier_offset (np + 1). Doubles
-// are stored as native doubles: what is read back equals what was written. Written to a temporary
-// name and renamed, so a crash while writing leaves the previous checkpoint intact.
+// (flat, as in FlowState), with fluid.stress_splitting = devss also /d11, /d12, /d22; per particle,
+// in /particles: id, position (np, 2), velocity (np, 2), angular_velocity, force (np, 2), torque,
+// radius, density, motion (0 free, 1 fixed, 2 prescribed), and the multiplier vectors concatenated
+// in multiplier with multiplier_offset (np + 1). Doubles are stored as native doubles: what is read
+// back equals what was written. Written to a temporary name and renamed, so a crash while writing
+// leaves the previous checkpoint intact.
 #pragma once
 
 #include <string>
