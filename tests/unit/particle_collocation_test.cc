@@ -1,7 +1,8 @@
 // Collocation multiplier points (particles/collocation_points.h) and the quadratic coupling of the
 // sharp-boundary DLM variant (particle_mesh.kind = "collocation"): the points lie where the method
-// note puts them, the P2 macro-triangle stencil reproduces quadratics (so rigid motions exactly) at
-// every point, the constraint holds at the points after (37), and momentum is conserved.
+// note puts them, the P2 macro-triangle stencil reproduces quadratics and the Q2 macro-square
+// stencil biquadratics (so both rigid motions exactly) at every point, the constraint holds at the
+// points after (37), and momentum is conserved.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -78,6 +79,54 @@ TEST(MacroTriangleStencil, ReproducesQuadraticsExactly) {
   EXPECT_EQ(side, 0);
 }
 
+// The Q2 stencil (particle_mesh.interpolation = biquadratic): weights sum to 1 and reproduce every
+// monomial x^a y^b with a, b <= 2 at points anywhere, also across a periodic axis; and the weights
+// at (x, y) and at its mirror image in the macro square's middle line y = const are the same node
+// for node mirrored (the P2 stencil's are not: its macro-triangles have one diagonal).
+TEST(MacroTriangleStencil, BiquadraticReproducesQ2AndIsMirrorSymmetric) {
+  const Grid grid{16, 12, 0.125, -0.3, 0.2};
+  for (const bool periodic : {false, true}) {
+    for (int n = 0; n < 200; ++n) {
+      const double x = grid.x0 + grid.Width() * std::fmod(0.6180339887 * n, 1.0);
+      const double y = grid.y0 + grid.Height() * std::fmod(0.7548776662 * n + 0.1, 1.0);
+      kernels::Q2Stencil s;
+      int side = -1;
+      ASSERT_TRUE(kernels::LocatePointBiquadratic(grid, periodic, periodic, x, y, &s, &side));
+      double sum[9] = {};
+      for (int q = 0; q < 9; ++q) {
+        double xq = grid.X(s.i[q]), yq = grid.Y(s.j[q]);
+        if (periodic && xq < x - 2.5 * grid.h) xq += grid.Width();
+        if (periodic && yq < y - 2.5 * grid.h) yq += grid.Height();
+        for (int b = 0; b < 3; ++b) {
+          for (int a = 0; a < 3; ++a)
+            sum[3 * b + a] += s.weight[q] * std::pow(xq, a) * std::pow(yq, b);
+        }
+      }
+      for (int b = 0; b < 3; ++b) {
+        for (int a = 0; a < 3; ++a) {
+          EXPECT_NEAR(sum[3 * b + a], std::pow(x, a) * std::pow(y, b), 1e-13)
+              << "x^" << a << " y^" << b;
+        }
+      }
+    }
+  }
+  // Macro square (2, 1): its rows of nodes j = 2, 3, 4; a point at eta and its mirror at 1 - eta.
+  for (const double xi : {0.1, 0.37, 0.8}) {
+    for (const double eta : {0.05, 0.3, 0.45}) {
+      const kernels::Q2Stencil a =
+          kernels::Q2StencilInMacroSquare(grid, false, false, 2, 1, xi, eta);
+      const kernels::Q2Stencil b =
+          kernels::Q2StencilInMacroSquare(grid, false, false, 2, 1, xi, 1.0 - eta);
+      for (int q = 0; q < 9; ++q) {
+        const int mirrored = 3 * (2 - q / 3) + q % 3;
+        EXPECT_EQ(a.i[q], b.i[mirrored]);
+        EXPECT_EQ(a.j[q] - 2, 4 - b.j[mirrored]);
+        EXPECT_NEAR(a.weight[q], b.weight[mirrored], 1e-15);
+      }
+    }
+  }
+}
+
 // Unit box of walls, h = 1/48, one disk D = 0.2 off the grid lines, collocation points.
 struct CollocationScene {
   Params params;
@@ -130,7 +179,15 @@ struct CollocationScene {
     const Vec2 y = particles[0].position + points.Points(0)[k];
     Vec2 out = Vec2::Zero();
     int side = 0;
-    if (points.Quadratic(0, k)) {
+    if (points.Quadratic(0, k) &&
+        params.particle_mesh.interpolation == BoundaryInterpolation::kBiquadratic) {
+      kernels::Q2Stencil s;
+      EXPECT_TRUE(kernels::LocatePointBiquadratic(grid, false, false, y.x(), y.y(), &s, &side));
+      for (int q = 0; q < 9; ++q) {
+        const std::size_t n = grid.Index(s.i[q], s.j[q]);
+        out += s.weight[q] * Vec2(u[n], v[n]);
+      }
+    } else if (points.Quadratic(0, k)) {
       kernels::P2Stencil s;
       EXPECT_TRUE(kernels::LocatePointQuadratic(grid, false, false, y.x(), y.y(), &s, &side));
       for (int q = 0; q < 6; ++q) {
@@ -163,7 +220,8 @@ struct CollocationScene {
 // collocation point, so the constraint step has nothing to do and leaves it untouched.
 TEST(CollocationConstraint, RigidMotionIsReproducedExactlyAtThePoints) {
   for (const auto interpolation :
-       {BoundaryInterpolation::kQuadratic, BoundaryInterpolation::kLinear}) {
+       {BoundaryInterpolation::kQuadratic, BoundaryInterpolation::kLinear,
+        BoundaryInterpolation::kBiquadratic}) {
     CollocationScene s(1.5, interpolation);
     s.Rigid(s.particles[0].velocity, s.particles[0].angular_velocity);
     RigidBodyConstraint dlm(s.params, s.grid);
@@ -187,7 +245,8 @@ TEST(CollocationConstraint, RigidMotionIsReproducedExactlyAtThePoints) {
 // excess particle are those before (E reproduces constants and linears: a round-off identity).
 TEST(CollocationConstraint, ConstraintHoldsAtThePointsAndMomentumIsConserved) {
   for (const auto interpolation :
-       {BoundaryInterpolation::kQuadratic, BoundaryInterpolation::kLinear}) {
+       {BoundaryInterpolation::kQuadratic, BoundaryInterpolation::kLinear,
+        BoundaryInterpolation::kBiquadratic}) {
     const double tol = 1e-10;
     CollocationScene s(1.01, interpolation);
     s.params.solvers.multiplier_tolerance = tol;
@@ -227,7 +286,9 @@ TEST(CollocationConstraint, ConstraintHoldsAtThePointsAndMomentumIsConserved) {
     const double after = s.MaxMismatch(points);
     momentum(&l1, &a1);
     std::printf("%s: %d points, %d iterations, mismatch %.3e -> %.3e\n",
-                interpolation == BoundaryInterpolation::kQuadratic ? "quadratic" : "linear",
+                interpolation == BoundaryInterpolation::kQuadratic     ? "quadratic"
+                : interpolation == BoundaryInterpolation::kBiquadratic ? "biquadratic"
+                                                                       : "linear",
                 points.Count(0), out.iterations, before, after);
     EXPECT_GT(before, 0.1);
     EXPECT_LE(after, tol * std::sqrt(g0) + 1e-13);

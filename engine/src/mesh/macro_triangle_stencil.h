@@ -66,23 +66,79 @@ inline P2Stencil P2StencilInMacroSquare(const Grid& grid, bool periodic_x, bool 
   return s;
 }
 
+// The 9 velocity nodes of the biquadratic (Q2) stencil of a point and their weights.
+struct Q2Stencil {
+  int i[9];
+  int j[9];
+  double weight[9];
+};
+
+// The 1-D quadratic Lagrange weights of the nodes at 0, 1/2, 1 at local coordinate t in [0, 1].
+inline void QuadraticLagrange(double t, double w[3]) {
+  w[0] = 2.0 * (t - 0.5) * (t - 1.0);
+  w[1] = -4.0 * t * (t - 1.0);
+  w[2] = 2.0 * t * (t - 0.5);
+}
+
+// The Q2 stencil at local coordinates (xi, eta) of macro square (ci, cj): weight L_a(xi) L_b(eta)
+// at node (2 ci + a, 2 cj + b), a, b = 0, 1, 2. Q2 reproduces every polynomial of degree <= 2 in
+// each variable (a rigid motion exactly), and it is symmetric under x -> -x and y -> -y, which the
+// P2 basis of the SW-NE macro-triangles is not.
+inline Q2Stencil Q2StencilInMacroSquare(const Grid& grid, bool periodic_x, bool periodic_y, int ci,
+                                        int cj, double xi, double eta) {
+  double wx[3], wy[3];
+  QuadraticLagrange(xi, wx);
+  QuadraticLagrange(eta, wy);
+  Q2Stencil s;
+  for (int b = 0; b < 3; ++b) {
+    for (int a = 0; a < 3; ++a) {
+      s.i[3 * b + a] = MacroLine(ci, a, grid.nx, periodic_x);
+      s.j[3 * b + a] = MacroLine(cj, b, grid.ny, periodic_y);
+      s.weight[3 * b + a] = wx[a] * wy[b];
+    }
+  }
+  return s;
+}
+
+// The macro square (ci, cj) and local coordinates (xi, eta) of point (x, y): true, or false when it
+// lies beyond a non-periodic side, with *side that side (as LocatePoint: 0 left, 1 right, 2 bottom,
+// 3 top). Requires even grid.nx and grid.ny.
+inline bool LocateInMacroMesh(const Grid& grid, bool periodic_x, bool periodic_y, double x,
+                              double y, int* ci, int* cj, double* xi, double* eta, int* side) {
+  const double macro = 2.0 * grid.h;
+  if (!LocateOnAxis((x - grid.x0) / macro, grid.nx / 2, periodic_x, ci, xi)) {
+    *side = *ci < 0 ? 0 : 1;
+    return false;
+  }
+  if (!LocateOnAxis((y - grid.y0) / macro, grid.ny / 2, periodic_y, cj, eta)) {
+    *side = *cj < 0 ? 2 : 3;
+    return false;
+  }
+  return true;
+}
+
 // Locates point (x, y) in the macro mesh: true with its P2 stencil; false when it lies beyond a
-// non-periodic side, with *side that side (as LocatePoint: 0 left, 1 right, 2 bottom, 3 top).
-// Requires even grid.nx and grid.ny.
+// non-periodic side, with *side that side.
 inline bool LocatePointQuadratic(const Grid& grid, bool periodic_x, bool periodic_y, double x,
                                  double y, P2Stencil* stencil, int* side) {
   int ci = 0, cj = 0;
   double xi = 0.0, eta = 0.0;
-  const double macro = 2.0 * grid.h;
-  if (!LocateOnAxis((x - grid.x0) / macro, grid.nx / 2, periodic_x, &ci, &xi)) {
-    *side = ci < 0 ? 0 : 1;
-    return false;
-  }
-  if (!LocateOnAxis((y - grid.y0) / macro, grid.ny / 2, periodic_y, &cj, &eta)) {
-    *side = cj < 0 ? 2 : 3;
+  if (!LocateInMacroMesh(grid, periodic_x, periodic_y, x, y, &ci, &cj, &xi, &eta, side)) {
     return false;
   }
   *stencil = P2StencilInMacroSquare(grid, periodic_x, periodic_y, ci, cj, xi, eta);
+  return true;
+}
+
+// As LocatePointQuadratic, with the Q2 stencil of the macro square.
+inline bool LocatePointBiquadratic(const Grid& grid, bool periodic_x, bool periodic_y, double x,
+                                   double y, Q2Stencil* stencil, int* side) {
+  int ci = 0, cj = 0;
+  double xi = 0.0, eta = 0.0;
+  if (!LocateInMacroMesh(grid, periodic_x, periodic_y, x, y, &ci, &cj, &xi, &eta, side)) {
+    return false;
+  }
+  *stencil = Q2StencilInMacroSquare(grid, periodic_x, periodic_y, ci, cj, xi, eta);
   return true;
 }
 

@@ -18,7 +18,7 @@ int CollocationBoundaryCount(double radius, double fluid_h, double spacing) {
 CollocationPoints::CollocationPoints(double radius, double fluid_h, double spacing,
                                      BoundaryInterpolation boundary)
     : radius_(radius),
-      quadratic_boundary_(boundary == BoundaryInterpolation::kQuadratic) {
+      quadratic_boundary_(boundary != BoundaryInterpolation::kLinear) {
   if (!(radius > 0.0)) throw InvalidParameter("particles.diameter", ExactText(2 * radius), "> 0");
   if (!(fluid_h > 0.0)) throw InvalidParameter("domain.h", ExactText(fluid_h), "> 0");
   if (!(spacing > 0.0)) {

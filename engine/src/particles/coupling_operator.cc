@@ -24,6 +24,7 @@ CouplingOperator::CouplingOperator(const Params& params, const Grid& grid, std::
     : grid_(grid),
       periodic_x_(params.domain.PeriodicX()),
       periodic_y_(params.domain.PeriodicY()),
+      biquadratic_(params.particle_mesh.interpolation == BoundaryInterpolation::kBiquadratic),
       fluid_density_(params.fluid.density),
       max_points_(max_points) {
   for (int s = 0; s < 4; ++s) {
@@ -109,7 +110,15 @@ void CouplingOperator::Build(double time, double dt, const MultiplierPoints& poi
       const Vec2 y = centre + relative[k];
       int side = 0;
       stencil_start_[points.Begin(p) + k] = entries_;
-      if (points.Quadratic(p, k)) {
+      if (points.Quadratic(p, k) && biquadratic_) {
+        kernels::Q2Stencil stencil;
+        if (!kernels::LocatePointBiquadratic(grid_, periodic_x_, periodic_y_, y.x(), y.y(),
+                                             &stencil, &side)) {
+          ThrowCrossing(time, points, particles[p], p, side);
+        }
+        for (int q = 0; q < 9; ++q)
+          AddEntry(points.Begin(p) + k, stencil.i[q], stencil.j[q], stencil.weight[q]);
+      } else if (points.Quadratic(p, k)) {
         kernels::P2Stencil stencil;
         if (!kernels::LocatePointQuadratic(grid_, periodic_x_, periodic_y_, y.x(), y.y(), &stencil,
                                            &side)) {

@@ -175,7 +175,8 @@ void ReadMeshCollisionsConformationOutput(TableReader& top, Params& p) {
   pm.interpolation = Choose<BoundaryInterpolation>(
       "particle_mesh.interpolation", mesh.String("interpolation", "quadratic"),
       {{"quadratic", BoundaryInterpolation::kQuadratic},
-       {"linear", BoundaryInterpolation::kLinear}});
+       {"linear", BoundaryInterpolation::kLinear},
+       {"biquadratic", BoundaryInterpolation::kBiquadratic}});
   mesh.RejectUnknown("kind, h, spacing, interpolation");
 
   TableReader col(top.Table("collisions"), "collisions");

@@ -131,7 +131,9 @@ std::string WriteScene(const Params& p) {
   o << "h = " << ExactText(p.particle_mesh.h) << "\n";
   o << "spacing = " << ExactText(p.particle_mesh.spacing) << "\n";
   o << "interpolation = \""
-    << (p.particle_mesh.interpolation == BoundaryInterpolation::kLinear ? "linear" : "quadratic")
+    << (p.particle_mesh.interpolation == BoundaryInterpolation::kLinear        ? "linear"
+        : p.particle_mesh.interpolation == BoundaryInterpolation::kBiquadratic ? "biquadratic"
+                                                                               : "quadratic")
     << "\"\n";
 
   o << "\n[collisions]\n";

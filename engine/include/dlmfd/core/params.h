@@ -185,8 +185,9 @@ struct ParticleParams {
 // (particle-coupling.md section 3; particles/collocation_points.h).
 enum class ParticleMeshKind { kRing, kCollocation };
 // How E evaluates the fluid velocity at a collocation boundary point: the 6-node P2 basis of the
-// 2h macro-triangle that holds it, or P1 on the h-triangle.
-enum class BoundaryInterpolation { kQuadratic, kLinear };
+// 2h macro-triangle that holds it, P1 on the h-triangle, or the 9-node biquadratic (Q2) basis of
+// the 2h macro-square that holds it, which is mirror-symmetric where the triangles are not.
+enum class BoundaryInterpolation { kQuadratic, kLinear, kBiquadratic };
 
 // The paper's particle mesh against its fluid mesh, h_p / h = (1/70) / (1/96) (section 5). A scene
 // file without particle_mesh.h gets h_p = kPaperParticleMeshRatio domain.h (scene/scene_file.cc):

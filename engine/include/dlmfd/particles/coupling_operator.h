@@ -35,8 +35,8 @@ namespace dlmfd {
 class CouplingOperator {
  public:
   CouplingOperator() = default;
-  // The most entries of one point's stencil (P2).
-  static constexpr std::size_t kMaxStencil = 6;
+  // The most entries of one point's stencil (Q2).
+  static constexpr std::size_t kMaxStencil = 9;
 
   // For at most max_points stacked points on this grid and domain.
   CouplingOperator(const Params& params, const Grid& grid, std::size_t max_points);
@@ -95,6 +95,7 @@ class CouplingOperator {
 
   Grid grid_;
   bool periodic_x_ = false, periodic_y_ = false;
+  bool biquadratic_ = false;  // particle_mesh.interpolation = biquadratic: Q2 at boundary points
   bool dirichlet_[4] = {};  // by Side
   bool neumann_[4] = {};
   double fluid_density_ = 0.0;
