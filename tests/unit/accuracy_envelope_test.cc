@@ -244,6 +244,21 @@ TEST(AccuracyEnvelope, ElasticCourantAndStepPerRelaxationTimeAboveTheBoundsWarn)
   EXPECT_EQ(Settings(AccuracyWarnings(newtonian)), std::vector<std::string>{"nu dt / h^2"});
 }
 
+// A polymer viscous on the grid's scale under devss (El_h = lambda eta_p / (rho h^2) <= 0.105,
+// lambda U / h <= 0.016) has no elastic bound: Waters-King's scene (h = 1/32, eta_p = 8/9, U = 1.5)
+// at lambda = 1e-4 has El_h = 0.091 and lambda U / h = 0.0048, and c dt / h = 15.1, dt / lambda =
+// 50. Under the paper's explicit stress, and at lambda = 1e-3 (El_h = 0.91), both warn.
+TEST(AccuracyEnvelope, PolymerViscousOnTheGridHasNoElasticBoundUnderDevss) {
+  const std::vector<std::string> viscous = {"fluid.relaxation_time=1e-4"};
+  EXPECT_EQ(Settings(AccuracyWarnings(Scene(kWatersKing, viscous))), std::vector<std::string>{});
+  std::vector<std::string> explicit_stress = viscous;
+  explicit_stress.push_back("fluid.stress_splitting=\"explicit\"");
+  EXPECT_EQ(Settings(AccuracyWarnings(Scene(kWatersKing, explicit_stress))),
+            (std::vector<std::string>{"c dt / h", "dt / lambda"}));
+  EXPECT_EQ(Settings(AccuracyWarnings(Scene(kWatersKing, {"fluid.relaxation_time=1e-3"}))),
+            (std::vector<std::string>{"c dt / h", "dt / lambda"}));
+}
+
 // The collocation points have their own D / h bound (accuracy_envelope.h): 19.2 under the default
 // coupling, 39 under the paper's; the ring mesh keeps 120.
 TEST(AccuracyEnvelope, CollocationPointsHaveTheirOwnDiskResolutionBound) {

@@ -38,6 +38,12 @@ double MinDiskResolution(const Params& p) {
 
 bool HasPolymer(const Params& p) { return !p.fluid.IsNewtonian(); }
 
+// El_h = lambda eta_p / (rho h^2), the elasticity number of one cell.
+double GridElasticity(const Params& p) {
+  const double h = p.domain.h;
+  return p.fluid.relaxation_time * p.fluid.PolymerViscosity() / (p.fluid.density * h * h);
+}
+
 // The plane Poiseuille peak of a body force component across the sides it is bounded by.
 double BodyForceSpeed(const Params& p, double force, double height, bool periodic_across) {
   if (force == 0.0 || periodic_across) return 0.0;
@@ -145,7 +151,11 @@ std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
     out.push_back(TimeStepWarning(p, "U dt / h", courant, kMaxAdvectiveCourant, kSourceCourant));
   }
 
-  if (HasPolymer(p)) {
+  // A polymer viscous on the grid's scale under devss has no elastic bounds (accuracy_envelope.h).
+  const bool viscous_polymer =
+      p.fluid.Devss() && !Above(GridElasticity(p), kMaxGridElasticity) &&
+      !Above(p.fluid.relaxation_time * VelocityScale(p) / h, kMaxGridDeborah);
+  if (HasPolymer(p) && !viscous_polymer) {
     const double elastic = ElasticCourant(p);
     if (Above(elastic, kMaxElasticCourant)) {
       out.push_back(TimeStepWarning(p, "c dt / h", elastic, kMaxElasticCourant, kSourceElastic));
