@@ -139,8 +139,8 @@ void ReadTimeAndSplitting(TableReader& top, Params& p) {
   s.advection = Choose<AdvectionScheme>(
       "splitting.advection", splitting.String("advection", "least_squares"),
       {{"least_squares", AdvectionScheme::kLeastSquares}, {"wave", AdvectionScheme::kWave}});
-  // (ReadFluid first.) The correction's default: "taylor" with "wave" in a Newtonian liquid.
-  const bool corrected = s.advection == AdvectionScheme::kWave && p.fluid.IsNewtonian();
+  // (ReadFluid first.) The correction's default: "taylor" in a Newtonian liquid.
+  const bool corrected = p.fluid.IsNewtonian();
   s.steady_correction = Choose<SteadyCorrection>(
       "splitting.steady_correction",
       splitting.String("steady_correction", corrected ? "taylor" : "none"),

@@ -118,10 +118,10 @@ enum class AdvectionScheme { kLeastSquares, kWave };
 // (dt/2) (u.grad)^2 u with the wave-like step, twice that with the backward-Euler least-squares
 // step); kTaylor, the step subtracts that term wherever it is at most half the Newtonian viscosity
 // (fluid/advection_wave.h, fluid/advection_least_squares.h). A scene file's default is "taylor"
-// with "wave" in a Newtonian liquid and "none" otherwise (least squares: not yet the default); with
-// the polymer's stress explicit the removed diffusion is damping the elastic coupling needs (the
-// Waters-King start-up at dt = 0.04 failed earlier with it; docs/ work_precision.md, "The
-// splitting's steady-state error").
+// in a Newtonian liquid, with either scheme (least squares since 2026-12-03), and "none" with a
+// polymer: with the polymer's stress explicit the removed diffusion is damping the elastic
+// coupling needs (the Waters-King start-up at dt = 0.04 failed earlier with it; docs/
+// work_precision.md, "The splitting's steady-state error").
 enum class SteadyCorrection { kNone, kTaylor };
 
 // Where the rigid-body constraint meets the fluid: kPaper, only in the DLM step (37), without
