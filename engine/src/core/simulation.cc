@@ -46,6 +46,14 @@ void ValidateSupported(const Params& p) {
   ValidateOutputPeriods(p.time, p.output);
 }
 
+// The settings of step (33)'s solver: with the constraint inside it (splitting.constraint =
+// "viscous") the coupled solve's (ViscousConstraint::StokesSettings).
+SolverParams StokesSettings(const Params& p) {
+  const bool coupled =
+      !p.particles.empty() && p.splitting.constraint == ConstraintCoupling::kViscous;
+  return coupled ? ViscousConstraint::StokesSettings(p) : p.solvers;
+}
+
 // Index of the output period that t_n = n dt falls in; deterministic in n.
 long Period(long n, double dt, double every) {
   return static_cast<long>(std::floor(static_cast<double>(n) * dt / every + 1e-9));
@@ -59,7 +67,8 @@ struct Simulation::Impl {
         grid(p.domain.VelocityGrid()),
         pgrid(grid.Coarse()),
         boundary_data(grid, p.domain),
-        stokes(grid, p.domain, p.fluid, p.time.dt, p.splitting.alpha, p.solvers, boundary_data),
+        stokes(grid, p.domain, p.fluid, p.time.dt, p.splitting.alpha, StokesSettings(p),
+               boundary_data),
         advection(MakeVelocityAdvection(grid, p, boundary_data)),
         viscoelastic(!p.fluid.IsNewtonian()) {
     state.u.assign(grid.NodeCount(), 0.0);

@@ -33,6 +33,15 @@ double MaxSpeed(const double* u, const double* v, std::size_t n) {
 
 }  // namespace
 
+SolverParams ViscousConstraint::StokesSettings(const Params& params) {
+  SolverParams s = params.solvers;
+  if (params.particle_mesh.kind == ParticleMeshKind::kCollocation) {
+    s.stokes_tolerance =
+        std::min(s.stokes_tolerance, kCollocationStokesShare * s.multiplier_tolerance);
+  }
+  return s;
+}
+
 ViscousConstraint::ViscousConstraint(const Params& params, const Grid& grid)
     : inviscid_(params, grid),
       zero_domain_(WithZeroData(params.domain)),
@@ -46,7 +55,7 @@ ViscousConstraint::ViscousConstraint(const Params& params, const Grid& grid)
   }
   response_solver_ = std::make_unique<StokesSolver>(
       grid, zero_domain_, WithoutBodyForce(params.fluid), params.time.dt, params.splitting.alpha,
-      params.solvers, zero_data_);
+      StokesSettings(params), zero_data_);
   const std::size_t n = params.particles.size();
   const std::size_t stacked = 2 * inviscid_.points().Total();
   for (auto* a : {&nu_, &r_, &r_old_, &z_, &d_, &sd_}) a->assign(stacked, 0.0);

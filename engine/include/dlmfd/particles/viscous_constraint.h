@@ -63,6 +63,19 @@ class ViscousConstraint {
  public:
   // Relative tolerance of the inner (37) solves that apply P^-1.
   static constexpr double kInnerTolerance = 1e-6;
+  // With collocation points the coupled Stokes solves (the first one and the responses) stop at
+  // a tolerance of at most this share of solvers.multiplier_tolerance. Their interior points make
+  // S singular: a multiplier whose spreading is a discrete gradient B^T q (q at the pressure nodes
+  // inside the disk) moves nothing, and the right side's component along it is q . B u_0, the
+  // divergence the first Stokes solve leaves. PCG on that inconsistent system grows along the null
+  // space once it asks for less mismatch than the divergence allows. Schaefer-Turek at D/h = 20,
+  // dt = h, fixed disk: with the Stokes tolerance at 1e-4 the mismatch grew to 9e17 at step 1, at
+  // 1e-5 to 7e21 at step 2 (multiplier tolerance 1e-4); at 1e-6 every step converged (43, then 29
+  // iterations), and so did 1e-4 against a multiplier tolerance of 1e-2. The ring mesh's sparser
+  // points complete at 1e-4.
+  static constexpr double kCollocationStokesShare = 1e-2;
+  // The solver settings of the Stokes solves coupled with the constraint (kCollocationStokesShare).
+  static SolverParams StokesSettings(const Params& params);
 
   struct Outcome {
     int iterations = 0;            // outer PCG iterations
