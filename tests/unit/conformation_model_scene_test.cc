@@ -161,6 +161,8 @@ TEST(ConformationModelScene, FenePForceReadsTheStressWithThePeterlinFunction) {
   p.fluid.model = ConstitutiveModel::kFeneP;
   p.fluid.mobility.reset();
   p.fluid.extensibility = 20.0;
+  // The stress alone: devss would also subtract its share of the strain rate (FlowState::d11...).
+  p.fluid.stress_splitting = StressSplitting::kExplicit;
   const Grid grid = p.domain.VelocityGrid();
   OldroydBPolymer polymer(p, grid);
   FlowState state;

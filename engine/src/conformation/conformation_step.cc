@@ -91,13 +91,7 @@ void ConformationStep::FindInflow(const double* u, const double* v) {
 void ConformationStep::SetInflowState(const double* u, const double* v, double* a11, double* a12,
                                       double* a22) {
   FindInflow(u, v);
-  for (const BoundaryNode& b : boundary_) {
-    if (!b.active) continue;
-    const std::size_t k = grid_.Index(b.i, b.j);
-    a11[k] = b.inflow.a11;
-    a12[k] = b.inflow.a12;
-    a22[k] = b.inflow.a22;
-  }
+  WriteAtInflowNodes(&BoundaryNode::inflow, a11, a12, a22);
 }
 
 void ConformationStep::CheckField(double time, const char* when, const double* a11,
@@ -278,12 +272,9 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
                  SymTensor{a11[first_bad], a12[first_bad], a22[first_bad]});
   }
   // 3. A = A_L on inflow nodes (SPD by construction); periodic duplicates equal to the first node.
+  WriteAtInflowNodes(&BoundaryNode::inflow, a11, a12, a22);
   for (const BoundaryNode& b : boundary_) {
     if (!b.active) continue;
-    const std::size_t k = grid_.Index(b.i, b.j);
-    a11[k] = b.inflow.a11;
-    a12[k] = b.inflow.a12;
-    a22[k] = b.inflow.a22;
     min_eig = std::min(min_eig, MinEigenvalue(b.inflow));
     max_trace = std::max(max_trace, Trace(b.inflow));
   }
@@ -319,12 +310,18 @@ void ConformationStep::StrainRate(const unsigned char* inside_particle, double* 
     d22[k] = rigid ? 0.0 : l22_[k];
   }
   // Inflow nodes: the strain rate of the profile that A_L is the steady state of.
+  WriteAtInflowNodes(&BoundaryNode::inflow_strain_rate, d11, d12, d22);
+}
+
+void ConformationStep::WriteAtInflowNodes(SymTensor BoundaryNode::*value, double* t11, double* t12,
+                                          double* t22) const {
   for (const BoundaryNode& b : boundary_) {
     if (!b.active) continue;
     const std::size_t k = grid_.Index(b.i, b.j);
-    d11[k] = b.inflow_strain_rate.a11;
-    d12[k] = b.inflow_strain_rate.a12;
-    d22[k] = b.inflow_strain_rate.a22;
+    const SymTensor& t = b.*value;
+    t11[k] = t.a11;
+    t12[k] = t.a12;
+    t22[k] = t.a22;
   }
 }
 

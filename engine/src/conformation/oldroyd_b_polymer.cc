@@ -42,32 +42,33 @@ void OldroydBPolymer::SetInitialState(FlowState& state) {
 NodeForce OldroydBPolymer::MomentumForce(const FlowState& state) {
   std::fill(fx_.begin(), fx_.end(), 0.0);
   std::fill(fy_.begin(), fy_.end(), 0.0);
+  // tau_p = G (S - I): S = A, or T(A) + I for the models whose T(A) is not A - I, and with devss
+  // S - 2 w lambda D_h; the force reads S as it reads A.
   const RelaxationModel& model = step_.model();
-  if (model.StressIsAMinusI() && !devss_) {
-    AddPolymerForce(grid_, domain_, modulus_, state.a11.data(), state.a12.data(), state.a22.data(),
-                    fx_.data(), fy_.data());
-  } else {
-    // tau_p = G (S - I) with S = T(A) + I (- 2 w lambda D_h), which the force reads as it reads A.
-    const long n = static_cast<long>(grid_.NodeCount());
-    const double two_lambda = devss_ ? 2.0 * devss_weight_ * lambda_ : 0.0;
-    const double* d11 = devss_ ? state.d11.data() : nullptr;
-    const double* d12 = devss_ ? state.d12.data() : nullptr;
-    const double* d22 = devss_ ? state.d22.data() : nullptr;
+  const long n = static_cast<long>(grid_.NodeCount());
+  const double *s11 = state.a11.data(), *s12 = state.a12.data(), *s22 = state.a22.data();
+  if (!model.StressIsAMinusI()) {
 #pragma omp parallel for schedule(static)
     for (long k = 0; k < n; ++k) {
       const SymTensor t = model.Stress(SymTensor{state.a11[k], state.a12[k], state.a22[k]});
       s11_[k] = t.a11 + 1.0;
       s12_[k] = t.a12;
       s22_[k] = t.a22 + 1.0;
-      if (d11 != nullptr) {
-        s11_[k] -= two_lambda * d11[k];
-        s12_[k] -= two_lambda * d12[k];
-        s22_[k] -= two_lambda * d22[k];
-      }
     }
-    AddPolymerForce(grid_, domain_, modulus_, s11_.data(), s12_.data(), s22_.data(), fx_.data(),
-                    fy_.data());
+    s11 = s11_.data(), s12 = s12_.data(), s22 = s22_.data();
   }
+  if (devss_) {
+    const double two_lambda = 2.0 * devss_weight_ * lambda_;
+    const double *d11 = state.d11.data(), *d12 = state.d12.data(), *d22 = state.d22.data();
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      s11_[k] = s11[k] - two_lambda * d11[k];
+      s12_[k] = s12[k] - two_lambda * d12[k];
+      s22_[k] = s22[k] - two_lambda * d22[k];
+    }
+    s11 = s11_.data(), s12 = s12_.data(), s22 = s22_.data();
+  }
+  AddPolymerForce(grid_, domain_, modulus_, s11, s12, s22, fx_.data(), fy_.data());
   return NodeForce{fx_.data(), fy_.data()};
 }
 

@@ -117,29 +117,35 @@ inline bool LocateInMacroMesh(const Grid& grid, bool periodic_x, bool periodic_y
   return true;
 }
 
-// Locates point (x, y) in the macro mesh: true with its P2 stencil; false when it lies beyond a
-// non-periodic side, with *side that side.
-inline bool LocatePointQuadratic(const Grid& grid, bool periodic_x, bool periodic_y, double x,
-                                 double y, P2Stencil* stencil, int* side) {
+// Locates point (x, y) in the macro mesh: true with the stencil `build` makes of its macro square
+// and local coordinates (P2StencilInMacroSquare, Q2StencilInMacroSquare); false when it lies beyond
+// a non-periodic side, with *side that side.
+template <class Stencil>
+inline bool LocateInMacroSquare(const Grid& grid, bool periodic_x, bool periodic_y, double x,
+                                double y,
+                                Stencil (*build)(const Grid&, bool, bool, int, int, double, double),
+                                Stencil* stencil, int* side) {
   int ci = 0, cj = 0;
   double xi = 0.0, eta = 0.0;
   if (!LocateInMacroMesh(grid, periodic_x, periodic_y, x, y, &ci, &cj, &xi, &eta, side)) {
     return false;
   }
-  *stencil = P2StencilInMacroSquare(grid, periodic_x, periodic_y, ci, cj, xi, eta);
+  *stencil = build(grid, periodic_x, periodic_y, ci, cj, xi, eta);
   return true;
 }
 
-// As LocatePointQuadratic, with the Q2 stencil of the macro square.
+// The P2 stencil of point (x, y), as LocateInMacroSquare.
+inline bool LocatePointQuadratic(const Grid& grid, bool periodic_x, bool periodic_y, double x,
+                                 double y, P2Stencil* stencil, int* side) {
+  return LocateInMacroSquare(grid, periodic_x, periodic_y, x, y, &P2StencilInMacroSquare, stencil,
+                             side);
+}
+
+// The Q2 stencil of point (x, y), as LocateInMacroSquare.
 inline bool LocatePointBiquadratic(const Grid& grid, bool periodic_x, bool periodic_y, double x,
                                    double y, Q2Stencil* stencil, int* side) {
-  int ci = 0, cj = 0;
-  double xi = 0.0, eta = 0.0;
-  if (!LocateInMacroMesh(grid, periodic_x, periodic_y, x, y, &ci, &cj, &xi, &eta, side)) {
-    return false;
-  }
-  *stencil = Q2StencilInMacroSquare(grid, periodic_x, periodic_y, ci, cj, xi, eta);
-  return true;
+  return LocateInMacroSquare(grid, periodic_x, periodic_y, x, y, &Q2StencilInMacroSquare, stencil,
+                             side);
 }
 
 }  // namespace dlmfd::kernels

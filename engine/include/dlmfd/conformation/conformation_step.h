@@ -95,6 +95,9 @@ class ConformationStep {
     SymTensor inflow_strain_rate;  // D of the fully developed profile whose steady state is A_L
     bool active = false;           // an inflow node of this side for the last velocity seen
   };
+  // Writes the tensor `value` of every active inflow node into (t11, t12, t22) at its node.
+  void WriteAtInflowNodes(SymTensor BoundaryNode::*value, double* t11, double* t12,
+                          double* t22) const;
   // Applies the inflow rule to (u, v): BoundaryNode::active and the per-node flags inflow_.
   void FindInflow(const double* u, const double* v);
   // Throws when a node of (a11, a12, a22) is not finite or not SPD. `when` is "before" or "after".
