@@ -9,6 +9,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -73,10 +74,16 @@ TEST_F(SlurmRequeue, ScontrolRequeueIsANewAttemptThatResumesAndCompletes) {
   const std::string slurm_id = Get(*stub, job.id()).slurm_job_id();
   ASSERT_FALSE(slurm_id.empty());
   ASSERT_EQ(std::system(("scontrol requeue " + slurm_id).c_str()), 0);
+  const std::time_t requeued_at = std::time(nullptr);
   // Slurm holds a requeued batch job back for a while (its begin time, 2 min here); an
   // administrator's `scontrol update StartTime=now` lets it go, as the test does not wait.
   ASSERT_TRUE(
       WaitUntil([&] { return Shell("squeue -h -j " + slurm_id + " -o %T") == "PENDING\n"; }));
+  // The requeue revoked the job's credential at a time in whole seconds, and slurmd refuses any
+  // credential issued in that second ("Killing non-startable batch JobId=N: Job credential
+  // revoked", and the job ends FAILED): Slurm's own begin time keeps the restart out of that
+  // second, so the early release must too.
+  ASSERT_TRUE(WaitUntil([&] { return std::time(nullptr) >= requeued_at + 2; }));
   ASSERT_EQ(std::system(("scontrol update JobId=" + slurm_id + " StartTime=now").c_str()), 0);
   const v1::Job done = WaitFinished(*stub, job.id());
   EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
