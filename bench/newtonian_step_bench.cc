@@ -1,7 +1,8 @@
 // ms per Newtonian time step (Stokes (33) + advection (34)) on the paper's grid: 2 x 8, h = 1/96
 // (193 x 769 velocity nodes), walls, eta = 0.01, alpha = beta = 0.5, dt = 4e-4, the flow driven by
 // the left wall moving upwards at 1 (5 set-up steps before timing so that iterations are those of a
-// developing flow). Arguments: {advection scheme: 0 least squares, 1 wave} x {threads}.
+// developing flow). Arguments: {advection scheme: 0 least squares, 1 wave} x {threads} x
+// {domain.diagonals: 0 sw_ne, 1 both (wave only)}.
 // Counters: per-substep ms, Uzawa and LS-CG iterations (or wave sub-steps), node updates per
 // second.
 #include <benchmark/benchmark.h>
@@ -13,10 +14,11 @@
 namespace dlmfd {
 namespace {
 
-Params PaperGrid(AdvectionScheme scheme, int threads) {
+Params PaperGrid(AdvectionScheme scheme, int threads, MeshDiagonals diagonals) {
   Params p;
   p.domain.size = Vec2(2.0, 8.0);
   p.domain.h = 1.0 / 96;
+  p.domain.diagonals = diagonals;
   p.domain.sides[0].type = SideType::kVelocity;
   p.domain.sides[0].value = Vec2(0.0, 1.0);
   p.fluid.density = 1.0;
@@ -35,7 +37,8 @@ Params PaperGrid(AdvectionScheme scheme, int threads) {
 void BM_NewtonianStep(benchmark::State& state) {
   const auto scheme = state.range(0) == 0 ? AdvectionScheme::kLeastSquares : AdvectionScheme::kWave;
   const int threads = static_cast<int>(state.range(1));
-  Simulation sim(PaperGrid(scheme, threads));
+  const auto diagonals = state.range(2) == 0 ? MeshDiagonals::kSwNe : MeshDiagonals::kBoth;
+  Simulation sim(PaperGrid(scheme, threads, diagonals));
   const bool wave = scheme == AdvectionScheme::kWave;
   StepAverages averages(
       {{"ms_stokes", "ms_stokes"},
@@ -51,11 +54,13 @@ void BM_NewtonianStep(benchmark::State& state) {
 }
 
 BENCHMARK(BM_NewtonianStep)
-    ->ArgNames({"wave", "threads"})
-    ->Args({1, 1})
-    ->Args({1, 2})
-    ->Args({0, 1})
-    ->Args({0, 2})
+    ->ArgNames({"wave", "threads", "both"})
+    ->Args({1, 1, 0})
+    ->Args({1, 2, 0})
+    ->Args({0, 1, 0})
+    ->Args({0, 2, 0})
+    ->Args({1, 1, 1})
+    ->Args({1, 2, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);

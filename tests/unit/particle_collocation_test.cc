@@ -127,6 +127,65 @@ TEST(MacroTriangleStencil, BiquadraticReproducesQ2AndIsMirrorSymmetric) {
   }
 }
 
+// domain.diagonals = "both": the mean of the two macro-diagonals' P2 stencils reproduces every
+// polynomial of degree <= 2, and the mean of the two diagonals' P1 stencils every linear, at points
+// anywhere, also across a periodic axis; the P2 mean is mirror-symmetric in x and in y (a point and
+// its mirror images in the macro square's middle lines get mirrored weights), which the
+// one-diagonal P2 is not (tests/convergence/mirror_lift_test.cc).
+TEST(MacroTriangleStencil, MeansOverBothDiagonalsReproducePolynomialsAndAreMirrorSymmetric) {
+  const Grid grid{16, 12, 0.125, -0.3, 0.2};
+  for (const bool periodic : {false, true}) {
+    for (int n = 0; n < 200; ++n) {
+      const double x = grid.x0 + grid.Width() * std::fmod(0.6180339887 * n, 1.0);
+      const double y = grid.y0 + grid.Height() * std::fmod(0.7548776662 * n + 0.1, 1.0);
+      kernels::Q2Stencil quadratic;
+      kernels::MeanP1Stencil linear;
+      int side = -1;
+      ASSERT_TRUE(
+          kernels::LocatePointMeanQuadratic(grid, periodic, periodic, x, y, &quadratic, &side));
+      ASSERT_TRUE(kernels::LocatePointMean(grid, periodic, periodic, x, y, &linear, &side));
+      double sum[6] = {}, lsum[3] = {};
+      auto node = [&](int i, int j, double reach) {
+        double xq = grid.X(i), yq = grid.Y(j);
+        if (periodic && xq < x - reach) xq += grid.Width();
+        if (periodic && yq < y - reach) yq += grid.Height();
+        return Vec2(xq, yq);
+      };
+      for (int q = 0; q < 9; ++q) {
+        const Vec2 r = node(quadratic.i[q], quadratic.j[q], 2.5 * grid.h);
+        const double monomials[6] = {1.0,           r.x(),         r.y(),
+                                     r.x() * r.x(), r.x() * r.y(), r.y() * r.y()};
+        for (int m = 0; m < 6; ++m) sum[m] += quadratic.weight[q] * monomials[m];
+      }
+      for (int q = 0; q < 4; ++q) {
+        const Vec2 r = node(linear.i[q], linear.j[q], 1.5 * grid.h);
+        const double monomials[3] = {1.0, r.x(), r.y()};
+        for (int m = 0; m < 3; ++m) lsum[m] += linear.weight[q] * monomials[m];
+      }
+      const double exact[6] = {1.0, x, y, x * x, x * y, y * y};
+      for (int m = 0; m < 6; ++m) EXPECT_NEAR(sum[m], exact[m], 1e-13) << "monomial " << m;
+      for (int m = 0; m < 3; ++m) EXPECT_NEAR(lsum[m], exact[m], 1e-14) << "monomial " << m;
+    }
+  }
+  // Macro square (2, 1) (node lines i = 4..6, j = 2..4): a point at (xi, eta) and its mirror images
+  // at (1 - xi, eta) and (xi, 1 - eta).
+  for (const double xi : {0.1, 0.37, 0.8}) {
+    for (const double eta : {0.05, 0.3, 0.45}) {
+      const kernels::Q2Stencil a =
+          kernels::MeanP2StencilInMacroSquare(grid, false, false, 2, 1, xi, eta);
+      const kernels::Q2Stencil mx =
+          kernels::MeanP2StencilInMacroSquare(grid, false, false, 2, 1, 1.0 - xi, eta);
+      const kernels::Q2Stencil my =
+          kernels::MeanP2StencilInMacroSquare(grid, false, false, 2, 1, xi, 1.0 - eta);
+      for (int q = 0; q < 9; ++q) {
+        const int a_x = q % 3, b_y = q / 3;
+        EXPECT_NEAR(a.weight[q], mx.weight[3 * b_y + (2 - a_x)], 1e-15);
+        EXPECT_NEAR(a.weight[q], my.weight[3 * (2 - b_y) + a_x], 1e-15);
+      }
+    }
+  }
+}
+
 // Unit box of walls, h = 1/48, one disk D = 0.2 off the grid lines, collocation points.
 struct CollocationScene {
   Params params;
@@ -134,9 +193,11 @@ struct CollocationScene {
   std::vector<ParticleState> particles;
   std::vector<double> u, v;
 
-  CollocationScene(double density, BoundaryInterpolation interpolation) {
+  CollocationScene(double density, BoundaryInterpolation interpolation,
+                   MeshDiagonals diagonals = MeshDiagonals::kSwNe) {
     params.domain.size = Vec2(1.0, 1.0);
     params.domain.h = 1.0 / 48;
+    params.domain.diagonals = diagonals;
     params.particle_mesh.kind = ParticleMeshKind::kCollocation;
     params.particle_mesh.interpolation = interpolation;
     params.fluid.density = 1.0;
@@ -179,28 +240,35 @@ struct CollocationScene {
     const Vec2 y = particles[0].position + points.Points(0)[k];
     Vec2 out = Vec2::Zero();
     int side = 0;
+    const bool both = params.domain.diagonals == MeshDiagonals::kBoth;
+    auto add = [&](const auto& s) {
+      constexpr int kNodes = static_cast<int>(sizeof(s.weight) / sizeof(s.weight[0]));
+      for (int q = 0; q < kNodes; ++q) {
+        const std::size_t n = grid.Index(s.i[q], s.j[q]);
+        out += s.weight[q] * Vec2(u[n], v[n]);
+      }
+    };
     if (points.Quadratic(0, k) &&
         params.particle_mesh.interpolation == BoundaryInterpolation::kBiquadratic) {
       kernels::Q2Stencil s;
       EXPECT_TRUE(kernels::LocatePointBiquadratic(grid, false, false, y.x(), y.y(), &s, &side));
-      for (int q = 0; q < 9; ++q) {
-        const std::size_t n = grid.Index(s.i[q], s.j[q]);
-        out += s.weight[q] * Vec2(u[n], v[n]);
-      }
+      add(s);
+    } else if (points.Quadratic(0, k) && both) {
+      kernels::Q2Stencil s;
+      EXPECT_TRUE(kernels::LocatePointMeanQuadratic(grid, false, false, y.x(), y.y(), &s, &side));
+      add(s);
     } else if (points.Quadratic(0, k)) {
       kernels::P2Stencil s;
       EXPECT_TRUE(kernels::LocatePointQuadratic(grid, false, false, y.x(), y.y(), &s, &side));
-      for (int q = 0; q < 6; ++q) {
-        const std::size_t n = grid.Index(s.i[q], s.j[q]);
-        out += s.weight[q] * Vec2(u[n], v[n]);
-      }
+      add(s);
+    } else if (both) {
+      kernels::MeanP1Stencil s;
+      EXPECT_TRUE(kernels::LocatePointMean(grid, false, false, y.x(), y.y(), &s, &side));
+      add(s);
     } else {
       kernels::P1Stencil s;
       EXPECT_TRUE(kernels::LocatePoint(grid, false, false, y.x(), y.y(), &s, &side));
-      for (int q = 0; q < 3; ++q) {
-        const std::size_t n = grid.Index(s.i[q], s.j[q]);
-        out += s.weight[q] * Vec2(u[n], v[n]);
-      }
+      add(s);
     }
     return out;
   }
@@ -218,25 +286,28 @@ struct CollocationScene {
 
 // A fluid in rigid motion (translation + rotation) is interpolated exactly, to round-off, at every
 // collocation point, so the constraint step has nothing to do and leaves it untouched.
+// Also on both diagonals (domain.diagonals = "both": the mean P1 and P2 stencils).
 TEST(CollocationConstraint, RigidMotionIsReproducedExactlyAtThePoints) {
   for (const auto interpolation :
        {BoundaryInterpolation::kQuadratic, BoundaryInterpolation::kLinear,
         BoundaryInterpolation::kBiquadratic}) {
-    CollocationScene s(1.5, interpolation);
-    s.Rigid(s.particles[0].velocity, s.particles[0].angular_velocity);
-    RigidBodyConstraint dlm(s.params, s.grid);
-    EXPECT_LT(s.MaxMismatch(dlm.Points()), 1e-15);
-    const std::vector<double> u0 = s.u, v0 = s.v;
-    const RigidBodyConstraint::Outcome out =
-        dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
-    EXPECT_LT(out.cold_residual, 1e-15);
-    double change = 0.0;
-    for (std::size_t n = 0; n < u0.size(); ++n) {
-      change = std::max({change, std::abs(s.u[n] - u0[n]), std::abs(s.v[n] - v0[n])});
+    for (const MeshDiagonals diagonals : {MeshDiagonals::kSwNe, MeshDiagonals::kBoth}) {
+      CollocationScene s(1.5, interpolation, diagonals);
+      s.Rigid(s.particles[0].velocity, s.particles[0].angular_velocity);
+      RigidBodyConstraint dlm(s.params, s.grid);
+      EXPECT_LT(s.MaxMismatch(dlm.Points()), 1e-15);
+      const std::vector<double> u0 = s.u, v0 = s.v;
+      const RigidBodyConstraint::Outcome out =
+          dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
+      EXPECT_LT(out.cold_residual, 1e-15);
+      double change = 0.0;
+      for (std::size_t n = 0; n < u0.size(); ++n) {
+        change = std::max({change, std::abs(s.u[n] - u0[n]), std::abs(s.v[n] - v0[n])});
+      }
+      EXPECT_LT(change, 1e-14);
+      EXPECT_NEAR(s.particles[0].velocity.x(), 0.1, 1e-14);
+      EXPECT_NEAR(s.particles[0].angular_velocity, 0.5, 1e-13);
     }
-    EXPECT_LT(change, 1e-14);
-    EXPECT_NEAR(s.particles[0].velocity.x(), 0.1, 1e-14);
-    EXPECT_NEAR(s.particles[0].angular_velocity, 0.5, 1e-13);
   }
 }
 
@@ -247,54 +318,57 @@ TEST(CollocationConstraint, ConstraintHoldsAtThePointsAndMomentumIsConserved) {
   for (const auto interpolation :
        {BoundaryInterpolation::kQuadratic, BoundaryInterpolation::kLinear,
         BoundaryInterpolation::kBiquadratic}) {
-    const double tol = 1e-10;
-    CollocationScene s(1.01, interpolation);
-    s.params.solvers.multiplier_tolerance = tol;
-    s.Vortical();
-    RigidBodyConstraint dlm(s.params, s.grid);
-    const MultiplierPoints& points = dlm.Points();
-    double g0 = 0.0;
-    {
-      const ParticleState& p = s.particles[0];
-      for (int k = 0; k < points.Count(0); ++k) {
-        const Vec2 r = points.Points(0)[k];
-        g0 += (s.AtPoint(points, k) - p.velocity - p.angular_velocity * Vec2(-r.y(), r.x()))
-                  .squaredNorm();
-      }
-    }
-    const double m = s.params.fluid.density * s.grid.h * s.grid.h;
-    const double me = 0.01 * kPi * 0.01, je = me * 0.01 / 2;
-    auto momentum = [&](Vec2* linear, double* angular) {
-      const ParticleState& p = s.particles[0];
-      *linear = me * p.velocity;
-      *angular = je * p.angular_velocity;
-      for (int j = 1; j < s.grid.ny; ++j) {
-        for (int i = 1; i < s.grid.nx; ++i) {
-          const std::size_t n = s.grid.Index(i, j);
-          const Vec2 r = Vec2(s.grid.X(i), s.grid.Y(j)) - p.position;
-          *linear += m * Vec2(s.u[n], s.v[n]);
-          *angular += m * (r.x() * s.v[n] - r.y() * s.u[n]);
+    for (const MeshDiagonals diagonals : {MeshDiagonals::kSwNe, MeshDiagonals::kBoth}) {
+      const double tol = 1e-10;
+      CollocationScene s(1.01, interpolation, diagonals);
+      s.params.solvers.multiplier_tolerance = tol;
+      s.Vortical();
+      RigidBodyConstraint dlm(s.params, s.grid);
+      const MultiplierPoints& points = dlm.Points();
+      double g0 = 0.0;
+      {
+        const ParticleState& p = s.particles[0];
+        for (int k = 0; k < points.Count(0); ++k) {
+          const Vec2 r = points.Points(0)[k];
+          g0 += (s.AtPoint(points, k) - p.velocity - p.angular_velocity * Vec2(-r.y(), r.x()))
+                    .squaredNorm();
         }
       }
-    };
-    Vec2 l0, l1;
-    double a0, a1;
-    momentum(&l0, &a0);
-    const double before = s.MaxMismatch(points);
-    const RigidBodyConstraint::Outcome out =
-        dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
-    const double after = s.MaxMismatch(points);
-    momentum(&l1, &a1);
-    std::printf("%s: %d points, %d iterations, mismatch %.3e -> %.3e\n",
-                interpolation == BoundaryInterpolation::kQuadratic     ? "quadratic"
-                : interpolation == BoundaryInterpolation::kBiquadratic ? "biquadratic"
-                                                                       : "linear",
-                points.Count(0), out.iterations, before, after);
-    EXPECT_GT(before, 0.1);
-    EXPECT_LE(after, tol * std::sqrt(g0) + 1e-13);
-    EXPECT_NEAR(out.residual, after, 1e-12);
-    EXPECT_NEAR((l1 - l0).norm(), 0.0, 1e-15);
-    EXPECT_NEAR(a1 - a0, 0.0, 1e-15);
+      const double m = s.params.fluid.density * s.grid.h * s.grid.h;
+      const double me = 0.01 * kPi * 0.01, je = me * 0.01 / 2;
+      auto momentum = [&](Vec2* linear, double* angular) {
+        const ParticleState& p = s.particles[0];
+        *linear = me * p.velocity;
+        *angular = je * p.angular_velocity;
+        for (int j = 1; j < s.grid.ny; ++j) {
+          for (int i = 1; i < s.grid.nx; ++i) {
+            const std::size_t n = s.grid.Index(i, j);
+            const Vec2 r = Vec2(s.grid.X(i), s.grid.Y(j)) - p.position;
+            *linear += m * Vec2(s.u[n], s.v[n]);
+            *angular += m * (r.x() * s.v[n] - r.y() * s.u[n]);
+          }
+        }
+      };
+      Vec2 l0, l1;
+      double a0, a1;
+      momentum(&l0, &a0);
+      const double before = s.MaxMismatch(points);
+      const RigidBodyConstraint::Outcome out =
+          dlm.Enforce(0.0, 4e-4, s.particles, s.u.data(), s.v.data());
+      const double after = s.MaxMismatch(points);
+      momentum(&l1, &a1);
+      std::printf("%s%s: %d points, %d iterations, mismatch %.3e -> %.3e\n",
+                  interpolation == BoundaryInterpolation::kQuadratic     ? "quadratic"
+                  : interpolation == BoundaryInterpolation::kBiquadratic ? "biquadratic"
+                                                                         : "linear",
+                  diagonals == MeshDiagonals::kBoth ? " (both diagonals)" : "", points.Count(0),
+                  out.iterations, before, after);
+      EXPECT_GT(before, 0.1);
+      EXPECT_LE(after, tol * std::sqrt(g0) + 1e-13);
+      EXPECT_NEAR(out.residual, after, 1e-12);
+      EXPECT_NEAR((l1 - l0).norm(), 0.0, 1e-15);
+      EXPECT_NEAR(a1 - a0, 0.0, 1e-15);
+    }
   }
 }
 

@@ -189,6 +189,14 @@ const BadScene kBadScenes[] = {
      "fluid.stress_splitting", "\"implicit\""},
     {"SteadyCorrectionUnknown", "[splitting]\nadvection = \"wave\"\nsteady_correction = \"full\"\n",
      "splitting.steady_correction", "\"full\""},
+    {"DiagonalsUnknown", "[domain]\ndiagonals = \"nw_se\"\n", "domain.diagonals", "\"nw_se\""},
+    {"DiagonalsBothWithLeastSquares", "[domain]\ndiagonals = \"both\"\n", "domain.diagonals",
+     "\"both\""},
+    {"DiagonalsBothWithPolymer",
+     "[domain]\ndiagonals = \"both\"\n[splitting]\nadvection = \"wave\"\n[fluid]\nrelaxation_time "
+     "= "
+     "0.1\nsolvent_ratio = 0.5\n",
+     "domain.diagonals", "\"both\""},
     {"ViscousConstraintWithViscosityInAdvection",
      "[splitting]\nalpha = 0.5\nbeta = 0.5\nconstraint = \"viscous\"\n[[particles]]\ncenter = "
      "[0.5, 0.5]\n",
@@ -644,6 +652,7 @@ void ExpectSameParams(const Params& a, const Params& b) {
   EXPECT_EQ(a.splitting.beta, b.splitting.beta);
   EXPECT_EQ(a.splitting.advection, b.splitting.advection);
   EXPECT_EQ(a.splitting.steady_correction, b.splitting.steady_correction);
+  EXPECT_EQ(a.domain.diagonals, b.domain.diagonals);
   EXPECT_EQ(a.solvers.stokes_tolerance, b.solvers.stokes_tolerance);
   EXPECT_EQ(a.solvers.stokes_max_iterations, b.solvers.stokes_max_iterations);
   EXPECT_EQ(a.solvers.advection_tolerance, b.solvers.advection_tolerance);
@@ -753,6 +762,7 @@ TEST(SceneFile, WriteSceneRoundTripsAwkwardValues) {
   p.splitting.alpha = 1.0;
   p.splitting.beta = 0.0;
   p.splitting.advection = AdvectionScheme::kWave;
+  p.domain.diagonals = MeshDiagonals::kBoth;
   p.collisions.substeps = 7;
   p.particle_mesh.kind = ParticleMeshKind::kCollocation;
   p.particle_mesh.spacing = 1.0 / 0.7;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "../mesh/mirror_image.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/mesh/fem_operators.h"
 
@@ -30,6 +31,7 @@ AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const
                              const SolverParams& solvers, const BoundaryData& boundary_data)
     : grid_(grid),
       topo_(BoundaryTopology::ForVelocity(domain)),
+      diagonals_(domain.diagonals),
       nodes_(grid_, topo_),
       dt_(dt),
       rho_over_dt_(fluid.density / dt),
@@ -52,19 +54,23 @@ AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const
     utt_u_.assign(n, 0.0);
     utt_v_.assign(n, 0.0);
   }
-  for (auto* a : {&w11a_, &w12a_, &w22a_, &w11b_, &w12b_, &w22b_}) a->assign(cells, 0.0);
+  const bool both = diagonals_ == MeshDiagonals::kBoth;
+  for (TriangleWeights* w : {&weights_, &mirrored_weights_}) {
+    if (w == &mirrored_weights_ && !both) break;
+    for (auto* a : {&w->w11a, &w->w12a, &w->w22a, &w->w11b, &w->w12b, &w->w22b})
+      a->assign(cells, 0.0);
+  }
+  if (both) {
+    for (auto* a : {&mirrored_u_, &mirrored_v_, &mirrored_ku_, &mirrored_kv_}) a->assign(n, 0.0);
+  }
   for (auto* a : {&f1xu_, &f1yu_, &f2xu_, &f2yu_, &f1xv_, &f1yv_, &f2xv_, &f2yv_})
     a->assign(padded, 0.0);
 }
 
 AdvectionWave::~AdvectionWave() = default;
 
-void AdvectionWave::FreezeVelocity(const double* u, const double* v) {
+void AdvectionWave::ComputeWeights(const double* vx, const double* vy, TriangleWeights& w) const {
   const int nx = grid_.nx, ny = grid_.ny;
-  std::copy(u, u + vx_.size(), vx_.begin());
-  std::copy(v, v + vy_.size(), vy_.begin());
-  const double* vx = vx_.data();
-  const double* vy = vy_.data();
   // W_T / h^2 = (1/24)(sum_k V_k V_k^T + S S^T) for |T| = h^2 / 2 and unscaled gradients.
   constexpr double kOneOver24 = 1.0 / 24.0;
 #pragma omp parallel for schedule(static)
@@ -75,17 +81,32 @@ void AdvectionWave::FreezeVelocity(const double* u, const double* v) {
       const std::size_t cell = std::size_t(cj) * nx + ci;
       {
         const double sx = vx[a] + vx[b] + vx[c], sy = vy[a] + vy[b] + vy[c];
-        w11a_[cell] = kOneOver24 * (vx[a] * vx[a] + vx[b] * vx[b] + vx[c] * vx[c] + sx * sx);
-        w12a_[cell] = kOneOver24 * (vx[a] * vy[a] + vx[b] * vy[b] + vx[c] * vy[c] + sx * sy);
-        w22a_[cell] = kOneOver24 * (vy[a] * vy[a] + vy[b] * vy[b] + vy[c] * vy[c] + sy * sy);
+        w.w11a[cell] = kOneOver24 * (vx[a] * vx[a] + vx[b] * vx[b] + vx[c] * vx[c] + sx * sx);
+        w.w12a[cell] = kOneOver24 * (vx[a] * vy[a] + vx[b] * vy[b] + vx[c] * vy[c] + sx * sy);
+        w.w22a[cell] = kOneOver24 * (vy[a] * vy[a] + vy[b] * vy[b] + vy[c] * vy[c] + sy * sy);
       }
       {
         const double sx = vx[a] + vx[c] + vx[d], sy = vy[a] + vy[c] + vy[d];
-        w11b_[cell] = kOneOver24 * (vx[a] * vx[a] + vx[c] * vx[c] + vx[d] * vx[d] + sx * sx);
-        w12b_[cell] = kOneOver24 * (vx[a] * vy[a] + vx[c] * vy[c] + vx[d] * vy[d] + sx * sy);
-        w22b_[cell] = kOneOver24 * (vy[a] * vy[a] + vy[c] * vy[c] + vy[d] * vy[d] + sy * sy);
+        w.w11b[cell] = kOneOver24 * (vx[a] * vx[a] + vx[c] * vx[c] + vx[d] * vx[d] + sx * sx);
+        w.w12b[cell] = kOneOver24 * (vx[a] * vy[a] + vx[c] * vy[c] + vx[d] * vy[d] + sx * sy);
+        w.w22b[cell] = kOneOver24 * (vy[a] * vy[a] + vy[c] * vy[c] + vy[d] * vy[d] + sy * sy);
       }
     }
+  }
+}
+
+void AdvectionWave::FreezeVelocity(const double* u, const double* v) {
+  const int nx = grid_.nx, ny = grid_.ny;
+  std::copy(u, u + vx_.size(), vx_.begin());
+  std::copy(v, v + vy_.size(), vy_.begin());
+  const double* vx = vx_.data();
+  const double* vy = vy_.data();
+  ComputeWeights(vx, vy, weights_);
+  if (diagonals_ == MeshDiagonals::kBoth) {
+    const bool px = topo_.x.low == EndKind::kPeriodic;
+    kernels::MirrorInX(grid_, px, -1.0, vx, mirrored_u_.data());
+    kernels::MirrorInX(grid_, px, 1.0, vy, mirrored_v_.data());
+    ComputeWeights(mirrored_u_.data(), mirrored_v_.data(), mirrored_weights_);
   }
   // (V.n)^+ times the lumped boundary mass on outflow sides.
   std::fill(out_mass_.begin(), out_mass_.end(), 0.0);
@@ -108,7 +129,22 @@ void AdvectionWave::FreezeVelocity(const double* u, const double* v) {
   }
 }
 
+// On the NW-SE triangles K_V is S K_V' S per component, V' the mirrored V (mirror_image.h).
 void AdvectionWave::ApplyWaveStiffness(const double* u, const double* v, double* ku, double* kv) {
+  ApplyMeshWaveStiffness(weights_, u, v, ku, kv);
+  if (diagonals_ != MeshDiagonals::kBoth) return;
+  const bool px = topo_.x.low == EndKind::kPeriodic;
+  double *mu = mirrored_u_.data(), *mv = mirrored_v_.data();
+  double *mku = mirrored_ku_.data(), *mkv = mirrored_kv_.data();
+  kernels::MirrorInX(grid_, px, 1.0, u, mu);
+  kernels::MirrorInX(grid_, px, 1.0, v, mv);
+  ApplyMeshWaveStiffness(mirrored_weights_, mu, mv, mku, mkv);
+  kernels::AverageWithMirrorImage(grid_, px, 1.0, mku, ku);
+  kernels::AverageWithMirrorImage(grid_, px, 1.0, mkv, kv);
+}
+
+void AdvectionWave::ApplyMeshWaveStiffness(const TriangleWeights& wt, const double* u,
+                                           const double* v, double* ku, double* kv) {
   const int nx = grid_.nx, ny = grid_.ny;
   // Per-triangle fluxes F_T = W_T grad u_T (unscaled differences), both components.
 #pragma omp parallel for schedule(static)
@@ -117,8 +153,8 @@ void AdvectionWave::ApplyWaveStiffness(const double* u, const double* v, double*
       const std::size_t a = grid_.Index(ci, cj), b = grid_.Index(ci + 1, cj),
                         c = grid_.Index(ci + 1, cj + 1), d = grid_.Index(ci, cj + 1);
       const std::size_t cell = std::size_t(cj) * nx + ci, pc = Cell(ci, cj);
-      const double w11 = w11a_[cell], w12 = w12a_[cell], w22 = w22a_[cell];
-      const double z11 = w11b_[cell], z12 = w12b_[cell], z22 = w22b_[cell];
+      const double w11 = wt.w11a[cell], w12 = wt.w12a[cell], w22 = wt.w22a[cell];
+      const double z11 = wt.w11b[cell], z12 = wt.w12b[cell], z22 = wt.w22b[cell];
       double gx = u[b] - u[a], gy = u[c] - u[b];
       f1xu_[pc] = w11 * gx + w12 * gy;
       f1yu_[pc] = w12 * gx + w22 * gy;
@@ -218,7 +254,7 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
     double* x1 = c == 0 ? u1_.data() : v1_.data();
     const double* kx = c == 0 ? ku_.data() : kv_.data();
     double* kept = taylor_viscosity_ > 0.0 ? (c == 0 ? utt_u_.data() : utt_v_.data()) : nullptr;
-    ApplyIntegratedGradient(grid_, topo_, x0, gx_.data(), gy_.data());
+    ApplyIntegratedGradient(grid_, topo_, x0, gx_.data(), gy_.data(), diagonals_);
     const double* gx = gx_.data();
     const double* gy = gy_.data();
 #pragma omp parallel for schedule(static)

@@ -39,6 +39,7 @@ StokesSolver::StokesSolver(const Grid& grid, const DomainParams& domain, const F
       pgrid_(grid.Coarse()),
       vtopo_(BoundaryTopology::ForVelocity(domain)),
       ptopo_(BoundaryTopology::ForPressure(domain)),
+      diagonals_(domain.diagonals),
       vnodes_(grid_, vtopo_),
       pnodes_(pgrid_, ptopo_),
       rho_over_dt_(fluid.density / dt),
@@ -90,7 +91,7 @@ void StokesSolver::ApplyPreconditioner(const double* r, double* g) {
 }
 
 double StokesSolver::ResidualNorm(const double* u, const double* v) {
-  ApplyDivergence(grid_, ptopo_, u, v, r_.data());
+  ApplyDivergence(grid_, ptopo_, u, v, r_.data(), diagonals_);
   pnodes_.ZeroKnown(r_.data());
   ApplyPreconditioner(r_.data(), g_.data());
   return std::sqrt(std::max(0.0, pnodes_.Dot(r_.data(), g_.data())));
@@ -106,7 +107,7 @@ double StokesSolver::WeightedSquareSum(const double* r) const {
 }
 
 double StokesSolver::DivergenceNorm(const double* u, const double* v) {
-  ApplyDivergence(grid_, ptopo_, u, v, r_.data());
+  ApplyDivergence(grid_, ptopo_, u, v, r_.data(), diagonals_);
   return std::sqrt(WeightedSquareSum(r_.data()));
 }
 
@@ -130,7 +131,7 @@ StokesReport StokesSolver::Solve(const double* fx, const double* fy, double* u, 
     for (std::size_t k = 0; k < pmass_.size(); ++k) p[k] -= pnodes_.IsUnknown(k) ? mean : 0.0;
   }
   pnodes_.SyncPeriodic(p);
-  ApplyDivergenceTranspose(grid_, ptopo_, p, tu_.data(), tv_.data());
+  ApplyDivergenceTranspose(grid_, ptopo_, p, tu_.data(), tv_.data(), diagonals_);
   double energy_old = 0.0;
   {
     double* fu = fu_.data();
@@ -156,7 +157,7 @@ StokesReport StokesSolver::Solve(const double* fx, const double* fy, double* u, 
   report.reference = ref;
 
   // Step 2: r = B u^0, g = P^-1 r, w = g.
-  ApplyDivergence(grid_, ptopo_, u, v, r_.data());
+  ApplyDivergence(grid_, ptopo_, u, v, r_.data(), diagonals_);
   pnodes_.ZeroKnown(r_.data());
   ApplyPreconditioner(r_.data(), g_.data());
   double rg = pnodes_.Dot(r_.data(), g_.data());
@@ -176,9 +177,9 @@ StokesReport StokesSolver::Solve(const double* fx, const double* fy, double* u, 
     }
     ++it;
     // A ubar = B^T w (zero Dirichlet data), Sw = B ubar.
-    ApplyDivergenceTranspose(grid_, ptopo_, w_.data(), tu_.data(), tv_.data());
+    ApplyDivergenceTranspose(grid_, ptopo_, w_.data(), tu_.data(), tv_.data(), diagonals_);
     SolveVelocityPair(tu_.data(), tv_.data(), ubar_.data(), vbar_.data());
-    ApplyDivergence(grid_, ptopo_, ubar_.data(), vbar_.data(), sw_.data());
+    ApplyDivergence(grid_, ptopo_, ubar_.data(), vbar_.data(), sw_.data(), diagonals_);
     pnodes_.ZeroKnown(sw_.data());
     const double wsw = pnodes_.Dot(sw_.data(), w_.data());
     if (!(wsw > 0.0)) {

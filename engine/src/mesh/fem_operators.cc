@@ -1,12 +1,15 @@
 // Matrix-free P1 operators on the uniform SW-NE mesh (method notes 1, section 1): each function
 // sweeps the node rows that own a Galerkin row and calls one kernel of grid_kernels.h per node;
-// periodic duplicates get a zero row, as in the assembled matrices.
+// periodic duplicates get a zero row, as in the assembled matrices. With MeshDiagonals::kBoth, G,
+// B and B^T add the same sweep on the mirrored arguments, which is the form on the NW-SE
+// triangles (mirror_image.h), and return the mean.
 #include <algorithm>
 #include <cstddef>
 #include <vector>
 
 #include "dlmfd/mesh/fem_operators.h"
 #include "grid_kernels.h"
+#include "mirror_image.h"
 
 namespace dlmfd {
 namespace {
@@ -36,6 +39,13 @@ double* Scratch(std::size_t size) {
   thread_local std::vector<double> buffer;
   if (buffer.size() < size) buffer.resize(size);
   return buffer.data();
+}
+
+// Scratch node arrays of the calling thread for the mirrored pass of domain.diagonals = "both".
+double* MirrorScratch(int slot, std::size_t size) {
+  thread_local std::vector<double> buffers[2];
+  if (buffers[slot].size() < size) buffers[slot].resize(size);
+  return buffers[slot].data();
 }
 
 // Calls node(im, i, ip) for every row-owning node of a row: the ends with their wrapped or missing
@@ -104,8 +114,11 @@ void ApplyStiffness(const Grid& grid, const BoundaryTopology& topo, const double
   ZeroDuplicates(grid, ax, ay, out);
 }
 
-void ApplyIntegratedGradient(const Grid& grid, const BoundaryTopology& topo, const double* f,
-                             double* gx, double* gy) {
+namespace {
+
+// The three forms below on the SW-NE mesh alone.
+void IntegratedGradientOnMesh(const Grid& grid, const BoundaryTopology& topo, const double* f,
+                              double* gx, double* gy) {
   const AxisWrap ax(grid.nx, topo.x), ay(grid.ny, topo.y);
   const double scale = grid.h / 6.0;
   const int lines_y = ay.Lines();
@@ -125,8 +138,8 @@ void ApplyIntegratedGradient(const Grid& grid, const BoundaryTopology& topo, con
   ZeroDuplicates(grid, ax, ay, gy);
 }
 
-void ApplyDivergence(const Grid& grid, const BoundaryTopology& pressure_topo, const double* u,
-                     const double* v, double* out) {
+void DivergenceOnMesh(const Grid& grid, const BoundaryTopology& pressure_topo, const double* u,
+                      const double* v, double* out) {
   const AxisWrap ax(grid.nx, pressure_topo.x), ay(grid.ny, pressure_topo.y);
   const Grid coarse = grid.Coarse();
   const AxisWrap cx(coarse.nx, pressure_topo.x), cy(coarse.ny, pressure_topo.y);
@@ -145,8 +158,8 @@ void ApplyDivergence(const Grid& grid, const BoundaryTopology& pressure_topo, co
   ZeroDuplicates(coarse, cx, cy, out);
 }
 
-void ApplyDivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo,
-                              const double* p, double* out_u, double* out_v) {
+void DivergenceTransposeOnMesh(const Grid& grid, const BoundaryTopology& pressure_topo,
+                               const double* p, double* out_u, double* out_v) {
   const AxisWrap ax(grid.nx, pressure_topo.x), ay(grid.ny, pressure_topo.y);
   const Grid coarse = grid.Coarse();
   const AxisWrap cx(coarse.nx, pressure_topo.x), cy(coarse.ny, pressure_topo.y);
@@ -176,6 +189,60 @@ void ApplyDivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure
       });
     }
   }
+  ZeroDuplicates(grid, ax, ay, out_u);
+  ZeroDuplicates(grid, ax, ay, out_v);
+}
+
+}  // namespace
+
+// On both diagonals: each form's mean with its mirror image (mirror_image.h): a scalar argument f
+// goes in as S f; a velocity (u, v) as (-S u, S v); a gradient (gx, gy) comes out as (-S gx, S gy).
+void ApplyIntegratedGradient(const Grid& grid, const BoundaryTopology& topo, const double* f,
+                             double* gx, double* gy, MeshDiagonals diagonals) {
+  IntegratedGradientOnMesh(grid, topo, f, gx, gy);
+  if (diagonals == MeshDiagonals::kSwNe) return;
+  const std::size_t n = grid.NodeCount();
+  const bool px = topo.x.low == EndKind::kPeriodic;
+  double *mf = MirrorScratch(0, n), *mg = MirrorScratch(1, 2 * n);
+  kernels::MirrorInX(grid, px, 1.0, f, mf);
+  IntegratedGradientOnMesh(grid, topo, mf, mg, mg + n);
+  kernels::AverageWithMirrorImage(grid, px, -1.0, mg, gx);
+  kernels::AverageWithMirrorImage(grid, px, 1.0, mg + n, gy);
+  const AxisWrap ax(grid.nx, topo.x), ay(grid.ny, topo.y);
+  ZeroDuplicates(grid, ax, ay, gx);
+  ZeroDuplicates(grid, ax, ay, gy);
+}
+
+void ApplyDivergence(const Grid& grid, const BoundaryTopology& pressure_topo, const double* u,
+                     const double* v, double* out, MeshDiagonals diagonals) {
+  DivergenceOnMesh(grid, pressure_topo, u, v, out);
+  if (diagonals == MeshDiagonals::kSwNe) return;
+  const std::size_t n = grid.NodeCount();
+  const Grid coarse = grid.Coarse();
+  const bool px = pressure_topo.x.low == EndKind::kPeriodic;
+  double* mirrored = MirrorScratch(0, 2 * n + coarse.NodeCount());
+  kernels::MirrorInX(grid, px, -1.0, u, mirrored);
+  kernels::MirrorInX(grid, px, 1.0, v, mirrored + n);
+  DivergenceOnMesh(grid, pressure_topo, mirrored, mirrored + n, mirrored + 2 * n);
+  kernels::AverageWithMirrorImage(coarse, px, 1.0, mirrored + 2 * n, out);
+  const AxisWrap cx(coarse.nx, pressure_topo.x), cy(coarse.ny, pressure_topo.y);
+  ZeroDuplicates(coarse, cx, cy, out);
+}
+
+void ApplyDivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo,
+                              const double* p, double* out_u, double* out_v,
+                              MeshDiagonals diagonals) {
+  DivergenceTransposeOnMesh(grid, pressure_topo, p, out_u, out_v);
+  if (diagonals == MeshDiagonals::kSwNe) return;
+  const std::size_t n = grid.NodeCount();
+  const Grid coarse = grid.Coarse();
+  const bool px = pressure_topo.x.low == EndKind::kPeriodic;
+  double* mirrored = MirrorScratch(0, 2 * n + coarse.NodeCount());
+  kernels::MirrorInX(coarse, px, 1.0, p, mirrored + 2 * n);
+  DivergenceTransposeOnMesh(grid, pressure_topo, mirrored + 2 * n, mirrored, mirrored + n);
+  kernels::AverageWithMirrorImage(grid, px, -1.0, mirrored, out_u);
+  kernels::AverageWithMirrorImage(grid, px, 1.0, mirrored + n, out_v);
+  const AxisWrap ax(grid.nx, pressure_topo.x), ay(grid.ny, pressure_topo.y);
   ZeroDuplicates(grid, ax, ay, out_u);
   ZeroDuplicates(grid, ax, ay, out_v);
 }

@@ -36,32 +36,47 @@ inline int MacroLine(int c, int k, int cells, bool periodic) {
   return (periodic && line >= cells) ? line - cells : line;
 }
 
-// The stencil at local coordinates (xi, eta) of macro square (ci, cj) (units of 2h).
-inline P2Stencil P2StencilInMacroSquare(const Grid& grid, bool periodic_x, bool periodic_y, int ci,
-                                        int cj, double xi, double eta) {
-  auto x = [&](int k) { return MacroLine(ci, k, grid.nx, periodic_x); };
-  auto y = [&](int k) { return MacroLine(cj, k, grid.ny, periodic_y); };
+// The P2 weights of the SW-NE macro-triangle that holds local coordinates (xi, eta), on the nodes
+// of the macro square at offsets (a, b) in h, a, b = 0, 1, 2 (zero at the three nodes off that
+// triangle); *first tells which triangle, (a, b, c) (xi >= eta) or (a, c, d).
+inline void P2WeightsOnMacroNodes(double xi, double eta, double w[3][3], bool* first) {
   // Vertices v0, v1, v2 (offsets in h) with barycentric coordinates l0, l1, l2, then the edge
   // midpoints v0v1, v1v2, v0v2.
   int vi[3], vj[3];
   double l[3];
-  if (xi >= eta) {
+  *first = xi >= eta;
+  if (*first) {
     vi[0] = 0, vj[0] = 0, vi[1] = 2, vj[1] = 0, vi[2] = 2, vj[2] = 2;
     l[0] = 1.0 - xi, l[1] = xi - eta, l[2] = eta;
   } else {
     vi[0] = 0, vj[0] = 0, vi[1] = 2, vj[1] = 2, vi[2] = 0, vj[2] = 2;
     l[0] = 1.0 - eta, l[1] = xi, l[2] = eta - xi;
   }
-  P2Stencil s;
+  for (int b = 0; b < 3; ++b)
+    for (int a = 0; a < 3; ++a) w[a][b] = 0.0;
   static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {0, 2}};
   for (int q = 0; q < 3; ++q) {
-    s.i[q] = x(vi[q]);
-    s.j[q] = y(vj[q]);
-    s.weight[q] = l[q] * (2.0 * l[q] - 1.0);
+    w[vi[q]][vj[q]] = l[q] * (2.0 * l[q] - 1.0);
     const int a = kEdge[q][0], b = kEdge[q][1];
-    s.i[3 + q] = x((vi[a] + vi[b]) / 2);
-    s.j[3 + q] = y((vj[a] + vj[b]) / 2);
-    s.weight[3 + q] = 4.0 * l[a] * l[b];
+    w[(vi[a] + vi[b]) / 2][(vj[a] + vj[b]) / 2] = 4.0 * l[a] * l[b];
+  }
+}
+
+// The stencil at local coordinates (xi, eta) of macro square (ci, cj) (units of 2h): the six nodes
+// of its macro-triangle, the vertices first, then the edge midpoints.
+inline P2Stencil P2StencilInMacroSquare(const Grid& grid, bool periodic_x, bool periodic_y, int ci,
+                                        int cj, double xi, double eta) {
+  double w[3][3];
+  bool first = true;
+  P2WeightsOnMacroNodes(xi, eta, w, &first);
+  static constexpr int kNodes[2][6][2] = {{{0, 0}, {2, 0}, {2, 2}, {1, 0}, {2, 1}, {1, 1}},
+                                          {{0, 0}, {2, 2}, {0, 2}, {1, 1}, {1, 2}, {0, 1}}};
+  const int(*nodes)[2] = kNodes[first ? 0 : 1];
+  P2Stencil s;
+  for (int q = 0; q < 6; ++q) {
+    s.i[q] = MacroLine(ci, nodes[q][0], grid.nx, periodic_x);
+    s.j[q] = MacroLine(cj, nodes[q][1], grid.ny, periodic_y);
+    s.weight[q] = w[nodes[q][0]][nodes[q][1]];
   }
   return s;
 }
@@ -95,6 +110,27 @@ inline Q2Stencil Q2StencilInMacroSquare(const Grid& grid, bool periodic_x, bool 
       s.i[3 * b + a] = MacroLine(ci, a, grid.nx, periodic_x);
       s.j[3 * b + a] = MacroLine(cj, b, grid.ny, periodic_y);
       s.weight[3 * b + a] = wx[a] * wy[b];
+    }
+  }
+  return s;
+}
+
+// The mean of the P2 interpolants on the SW-NE macro-triangles and on the NW-SE ones (the mirror
+// image x -> -x of the former: its weight at offset (a, b) is the SW-NE weight at (2 - a, b) of the
+// point (1 - xi, eta)), as a 3x3 stencil: domain.diagonals = "both" (core/params.h). It reproduces
+// the polynomials of degree <= 2 as each P2 does, and it is symmetric under x -> -x and y -> -y.
+inline Q2Stencil MeanP2StencilInMacroSquare(const Grid& grid, bool periodic_x, bool periodic_y,
+                                            int ci, int cj, double xi, double eta) {
+  double w[3][3], m[3][3];
+  bool first = true;
+  P2WeightsOnMacroNodes(xi, eta, w, &first);
+  P2WeightsOnMacroNodes(1.0 - xi, eta, m, &first);
+  Q2Stencil s;
+  for (int b = 0; b < 3; ++b) {
+    for (int a = 0; a < 3; ++a) {
+      s.i[3 * b + a] = MacroLine(ci, a, grid.nx, periodic_x);
+      s.j[3 * b + a] = MacroLine(cj, b, grid.ny, periodic_y);
+      s.weight[3 * b + a] = 0.5 * (w[a][b] + m[2 - a][b]);
     }
   }
   return s;
@@ -139,6 +175,13 @@ inline bool LocatePointQuadratic(const Grid& grid, bool periodic_x, bool periodi
                                  double y, P2Stencil* stencil, int* side) {
   return LocateInMacroSquare(grid, periodic_x, periodic_y, x, y, &P2StencilInMacroSquare, stencil,
                              side);
+}
+
+// The mean P2 stencil of point (x, y), as LocateInMacroSquare.
+inline bool LocatePointMeanQuadratic(const Grid& grid, bool periodic_x, bool periodic_y, double x,
+                                     double y, Q2Stencil* stencil, int* side) {
+  return LocateInMacroSquare(grid, periodic_x, periodic_y, x, y, &MeanP2StencilInMacroSquare,
+                             stencil, side);
 }
 
 // The Q2 stencil of point (x, y), as LocateInMacroSquare.

@@ -58,23 +58,67 @@ inline P1Stencil P1StencilInSquare(int i0, int j0, int i1, int j1, double xi, do
   return P1Stencil{{i0, i1, i0}, {j0, j1, j1}, {1.0 - eta, xi, eta - xi}};
 }
 
+// The square (i0, j0) of point (x, y), its next node lines (i1, j1) and the local coordinates
+// (xi, eta): true, or false when the point lies beyond a non-periodic side, with *side that side
+// (as Side: 0 left, 1 right, 2 bottom, 3 top; the x axis is checked first).
+struct SquareOfPoint {
+  int i0 = 0, j0 = 0, i1 = 0, j1 = 0;
+  double xi = 0.0, eta = 0.0;
+};
+inline bool LocateInSquare(const Grid& grid, bool periodic_x, bool periodic_y, double x, double y,
+                           SquareOfPoint* q, int* side) {
+  if (!LocateOnAxis((x - grid.x0) / grid.h, grid.nx, periodic_x, &q->i0, &q->xi)) {
+    *side = q->i0 < 0 ? 0 : 1;
+    return false;
+  }
+  if (!LocateOnAxis((y - grid.y0) / grid.h, grid.ny, periodic_y, &q->j0, &q->eta)) {
+    *side = q->j0 < 0 ? 2 : 3;
+    return false;
+  }
+  q->i1 = NextLine(q->i0, grid.nx, periodic_x);
+  q->j1 = NextLine(q->j0, grid.ny, periodic_y);
+  return true;
+}
+
 // Locates point (x, y) on the grid: true with its stencil; false when it lies beyond a
-// non-periodic side, with *side that side (as Side: 0 left, 1 right, 2 bottom, 3 top; the x axis
-// is checked first).
+// non-periodic side, with *side that side (LocateInSquare).
 inline bool LocatePoint(const Grid& grid, bool periodic_x, bool periodic_y, double x, double y,
                         P1Stencil* stencil, int* side) {
-  int i0 = 0, j0 = 0;
-  double xi = 0.0, eta = 0.0;
-  if (!LocateOnAxis((x - grid.x0) / grid.h, grid.nx, periodic_x, &i0, &xi)) {
-    *side = i0 < 0 ? 0 : 1;
-    return false;
+  SquareOfPoint q;
+  if (!LocateInSquare(grid, periodic_x, periodic_y, x, y, &q, side)) return false;
+  *stencil = P1StencilInSquare(q.i0, q.j0, q.i1, q.j1, q.xi, q.eta);
+  return true;
+}
+
+// The mean of the P1 interpolants on the square's two SW-NE triangles and on its two NW-SE ones
+// (domain.diagonals = "both", core/params.h): weights at the corners (i0, j0), (i1, j0), (i1, j1),
+// (i0, j1). Exact for linear fields (a rigid motion) as each P1 is, and symmetric under x -> -x
+// and y -> -y. At a node it is the nodal value.
+struct MeanP1Stencil {
+  int i[4];
+  int j[4];
+  double weight[4];
+};
+inline bool LocatePointMean(const Grid& grid, bool periodic_x, bool periodic_y, double x, double y,
+                            MeanP1Stencil* stencil, int* side) {
+  SquareOfPoint q;
+  if (!LocateInSquare(grid, periodic_x, periodic_y, x, y, &q, side)) return false;
+  const double xi = q.xi, eta = q.eta;
+  // SW-NE: (a, b, c) or (a, c, d); NW-SE: (a, b, d) or (b, c, d); corners a, b, c, d.
+  double w[4] = {0.0, 0.0, 0.0, 0.0};
+  if (xi >= eta) {
+    w[0] += 1.0 - xi, w[1] += xi - eta, w[2] += eta;
+  } else {
+    w[0] += 1.0 - eta, w[2] += xi, w[3] += eta - xi;
   }
-  if (!LocateOnAxis((y - grid.y0) / grid.h, grid.ny, periodic_y, &j0, &eta)) {
-    *side = j0 < 0 ? 2 : 3;
-    return false;
+  if (xi + eta <= 1.0) {
+    w[0] += 1.0 - xi - eta, w[1] += xi, w[3] += eta;
+  } else {
+    w[1] += 1.0 - eta, w[2] += xi + eta - 1.0, w[3] += 1.0 - xi;
   }
-  *stencil = P1StencilInSquare(i0, j0, NextLine(i0, grid.nx, periodic_x),
-                               NextLine(j0, grid.ny, periodic_y), xi, eta);
+  *stencil = MeanP1Stencil{{q.i0, q.i1, q.i1, q.i0},
+                           {q.j0, q.j0, q.j1, q.j1},
+                           {0.5 * w[0], 0.5 * w[1], 0.5 * w[2], 0.5 * w[3]}};
   return true;
 }
 

@@ -25,6 +25,7 @@ CouplingOperator::CouplingOperator(const Params& params, const Grid& grid, std::
       periodic_x_(params.domain.PeriodicX()),
       periodic_y_(params.domain.PeriodicY()),
       biquadratic_(params.particle_mesh.interpolation == BoundaryInterpolation::kBiquadratic),
+      both_diagonals_(params.domain.diagonals == MeshDiagonals::kBoth),
       fluid_density_(params.fluid.density),
       max_points_(max_points) {
   for (int s = 0; s < 4; ++s) {
@@ -84,6 +85,12 @@ void CouplingOperator::AddEntry(std::size_t point, int i, int j, double weight) 
   }
 }
 
+template <class Stencil>
+void CouplingOperator::AddStencil(std::size_t point, const Stencil& stencil) {
+  constexpr int kNodes = static_cast<int>(sizeof(stencil.weight) / sizeof(stencil.weight[0]));
+  for (int q = 0; q < kNodes; ++q) AddEntry(point, stencil.i[q], stencil.j[q], stencil.weight[q]);
+}
+
 void CouplingOperator::ThrowCrossing(double time, const MultiplierPoints& points,
                                      const ParticleState& particle, std::size_t p, int side) const {
   const bool low = side == 0 || side == 2;
@@ -110,30 +117,32 @@ void CouplingOperator::Build(double time, double dt, const MultiplierPoints& poi
       const Vec2 y = centre + relative[k];
       int side = 0;
       stencil_start_[points.Begin(p) + k] = entries_;
-      if (points.Quadratic(p, k) && biquadratic_) {
+      const std::size_t point = points.Begin(p) + k;
+      bool inside = true;
+      if (points.Quadratic(p, k) && (biquadratic_ || both_diagonals_)) {
         kernels::Q2Stencil stencil;
-        if (!kernels::LocatePointBiquadratic(grid_, periodic_x_, periodic_y_, y.x(), y.y(),
-                                             &stencil, &side)) {
-          ThrowCrossing(time, points, particles[p], p, side);
-        }
-        for (int q = 0; q < 9; ++q)
-          AddEntry(points.Begin(p) + k, stencil.i[q], stencil.j[q], stencil.weight[q]);
+        inside = biquadratic_ ? kernels::LocatePointBiquadratic(grid_, periodic_x_, periodic_y_,
+                                                                y.x(), y.y(), &stencil, &side)
+                              : kernels::LocatePointMeanQuadratic(grid_, periodic_x_, periodic_y_,
+                                                                  y.x(), y.y(), &stencil, &side);
+        if (inside) AddStencil(point, stencil);
       } else if (points.Quadratic(p, k)) {
         kernels::P2Stencil stencil;
-        if (!kernels::LocatePointQuadratic(grid_, periodic_x_, periodic_y_, y.x(), y.y(), &stencil,
-                                           &side)) {
-          ThrowCrossing(time, points, particles[p], p, side);
-        }
-        for (int q = 0; q < 6; ++q)
-          AddEntry(points.Begin(p) + k, stencil.i[q], stencil.j[q], stencil.weight[q]);
+        inside = kernels::LocatePointQuadratic(grid_, periodic_x_, periodic_y_, y.x(), y.y(),
+                                               &stencil, &side);
+        if (inside) AddStencil(point, stencil);
+      } else if (both_diagonals_) {
+        kernels::MeanP1Stencil stencil;
+        inside = kernels::LocatePointMean(grid_, periodic_x_, periodic_y_, y.x(), y.y(), &stencil,
+                                          &side);
+        if (inside) AddStencil(point, stencil);
       } else {
         kernels::P1Stencil stencil;
-        if (!kernels::LocatePoint(grid_, periodic_x_, periodic_y_, y.x(), y.y(), &stencil, &side)) {
-          ThrowCrossing(time, points, particles[p], p, side);
-        }
-        for (int q = 0; q < 3; ++q)
-          AddEntry(points.Begin(p) + k, stencil.i[q], stencil.j[q], stencil.weight[q]);
+        inside =
+            kernels::LocatePoint(grid_, periodic_x_, periodic_y_, y.x(), y.y(), &stencil, &side);
+        if (inside) AddStencil(point, stencil);
       }
+      if (!inside) ThrowCrossing(time, points, particles[p], p, side);
     }
   }
   stencil_start_[points.Total()] = entries_;

@@ -67,7 +67,10 @@ void ReadDomain(TableReader& top, Params& p) {
     }
   }
   boundary.RejectUnknown("left, right, bottom, top");
-  domain.RejectUnknown("size, h, boundary");
+  d.diagonals =
+      Choose<MeshDiagonals>("domain.diagonals", domain.String("diagonals", "sw_ne"),
+                            {{"sw_ne", MeshDiagonals::kSwNe}, {"both", MeshDiagonals::kBoth}});
+  domain.RejectUnknown("size, h, boundary, diagonals");
 }
 
 void ReadFluid(TableReader& top, Params& p) {

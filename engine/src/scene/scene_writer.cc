@@ -82,6 +82,8 @@ std::string WriteScene(const Params& p) {
   o << "\n[domain]\n";
   o << "size = " << Vec(p.domain.size) << "\n";
   o << "h = " << ExactText(p.domain.h) << "\n";
+  o << "diagonals = \"" << (p.domain.diagonals == MeshDiagonals::kBoth ? "both" : "sw_ne")
+    << "\"\n";
   o << "\n[domain.boundary]\n";
   o << "left = " << SideText(p.domain.side(Side::kLeft)) << "\n";
   o << "right = " << SideText(p.domain.side(Side::kRight)) << "\n";

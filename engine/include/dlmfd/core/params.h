@@ -28,10 +28,20 @@ struct BoundarySide {
 
 enum class Side { kLeft = 0, kRight = 1, kBottom = 2, kTop = 3 };
 
+// Which triangles the fluid's forms integrate on (domain.diagonals): kSwNe, the paper's mesh, every
+// square cut along its SW-NE diagonal; kBoth, the mean of the forms on that mesh and on its mirror
+// image (every square cut along its NW-SE diagonal): the divergence B of step (33) and the
+// wave-like step's K_V and N(V, .) of step (34). The mesh is not mirror-symmetric (x -> -x or y ->
+// -y maps it onto the other diagonal's), so a flow symmetric in the domain's mid-line is not quite
+// symmetric on it; the mean is (mesh/mirror_image.h; docs/work_precision.md (e), "The lift's mirror
+// bias").
+enum class MeshDiagonals { kSwNe, kBoth };
+
 struct DomainParams {
   Vec2 size = Vec2(1.0, 1.0);  // width, height; size / h even integers
   double h = 1.0 / 32;         // velocity mesh size
   BoundarySide sides[4];       // indexed by Side
+  MeshDiagonals diagonals = MeshDiagonals::kSwNe;
   const BoundarySide& side(Side s) const { return sides[static_cast<int>(s)]; }
   bool PeriodicX() const { return side(Side::kLeft).type == SideType::kPeriodic; }
   bool PeriodicY() const { return side(Side::kBottom).type == SideType::kPeriodic; }

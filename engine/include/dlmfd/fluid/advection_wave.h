@@ -18,6 +18,12 @@
 // Outflow sides: M_out is the lumped boundary mass; at nodes where V.n < 0 (backflow through an
 // outflow side) no data exist and the boundary term is dropped (the wave reflects there).
 // No linear solve in the advection part, so no iteration count: the report gives the sub-steps.
+// With domain.diagonals = "both", K_V and N(V, .) are the means of these forms on the mesh's
+// triangles (a, b, c), (a, c, d) and on the NW-SE triangles (a, b, d), (b, c, d) of each square,
+// the latter through the mirror image x -> -x (src/mesh/mirror_image.h): the step then commutes
+// with the mirrors x -> -x and y -> -y, at twice the cost of the forms. Its stability bound is the
+// SW-NE mesh's: the symbols are the means of the two meshes' (mirror images of each other, so with
+// the same bound), and the condition sigma^2 <= kappa (1 - c^2 kappa / 4) is convex in the pair.
 //
 // Steady-state correction (splitting.steady_correction = "taylor"): for any count Q the step maps
 // u^0 to u^0 + dt u_t + (dt^2/2) u_tt + O(dt^3), so at a fixed point of the Lie splitting the
@@ -66,13 +72,22 @@ class AdvectionWave final : public VelocityAdvection {
   void Record(const AdvectionReport& result, StepReport& report) const override;
 
  private:
+  // W_T / h^2 per triangle of the cells, (a, b, c) and (a, c, d).
+  struct TriangleWeights {
+    std::vector<double> w11a, w12a, w22a, w11b, w12b, w22b;
+  };
   void FreezeVelocity(const double* u, const double* v);  // W_T per triangle from V
+  void ComputeWeights(const double* vx, const double* vy, TriangleWeights& w) const;
   void ApplyWaveStiffness(const double* u, const double* v, double* ku, double* kv);  // K_V
+  // K_V on the SW-NE triangles with the weights w.
+  void ApplyMeshWaveStiffness(const TriangleWeights& w, const double* u, const double* v,
+                              double* ku, double* kv);
   void RemoveTaylorTerm();  // u1_, v1_ -= theta (dt^2/2) u_tt (steady-state correction)
   std::size_t Cell(int ci, int cj) const { return std::size_t(cj + 1) * (grid_.nx + 2) + (ci + 1); }
 
   Grid grid_;
   BoundaryTopology topo_;
+  MeshDiagonals diagonals_;
   NodeSet nodes_;
   double dt_, rho_over_dt_, nu_b_, max_courant_;
   double taylor_viscosity_;  // kappa nu_N with the correction, 0 without
@@ -80,7 +95,10 @@ class AdvectionWave final : public VelocityAdvection {
   std::unique_ptr<SeparableHelmholtz> helmholtz_;  // null when nu_b == 0
   std::vector<double> mass_, out_mass_;  // lumped mass; outflow boundary mass (V.n)^+ M_out
   std::vector<double> vx_, vy_;          // frozen V
-  std::vector<double> w11a_, w12a_, w22a_, w11b_, w12b_, w22b_;  // W_T / h^2 of (a,b,c), (a,c,d)
+  TriangleWeights weights_;
+  // domain.diagonals = "both": the weights of the mirrored V (-S V_x, S V_y), and node scratch.
+  TriangleWeights mirrored_weights_;
+  std::vector<double> mirrored_u_, mirrored_v_, mirrored_ku_, mirrored_kv_;
   std::vector<double> f1xu_, f1yu_, f2xu_, f2yu_, f1xv_, f1yv_, f2xv_,
       f2yv_;  // fluxes, padded cells
   std::vector<double> u0_, v0_, u1_, v1_, ku_, kv_, gx_, gy_;

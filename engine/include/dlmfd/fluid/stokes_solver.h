@@ -81,6 +81,7 @@ class StokesSolver {
 
   Grid grid_, pgrid_;
   BoundaryTopology vtopo_, ptopo_;
+  MeshDiagonals diagonals_;  // of B and B^T (domain.diagonals)
   NodeSet vnodes_, pnodes_;
   double rho_over_dt_, nu_;
   Vec2 body_force_;

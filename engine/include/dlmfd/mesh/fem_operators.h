@@ -25,26 +25,36 @@ void ApplyLumpedMass(const Grid& grid, const BoundaryTopology& topo, const doubl
 void LumpedMassDiagonal(const Grid& grid, const BoundaryTopology& topo, double* out);
 // out = K u, K_ij = int grad phi_i . grad phi_j (5-point Laplacian in the interior).
 void ApplyStiffness(const Grid& grid, const BoundaryTopology& topo, const double* u, double* out);
+// The next three integrate on the SW-NE mesh, or with MeshDiagonals::kBoth give the mean of that
+// and the same form on the NW-SE mesh (domain.diagonals; src/mesh/mirror_image.h), at twice the
+// cost. M and K are the same on both meshes (the trapezoid lumping; the 5-point Laplacian).
 // gx = G_x f, gy = G_y f with (G_x f)_i = int phi_i d_x f_h (P1-P1 on the h-mesh).
 void ApplyIntegratedGradient(const Grid& grid, const BoundaryTopology& topo, const double* f,
-                             double* gx, double* gy);
+                             double* gx, double* gy,
+                             MeshDiagonals diagonals = MeshDiagonals::kSwNe);
 // out (pressure nodes, grid.Coarse()) = B (u, v), (B v)_Q = int q_Q div v_h.
 void ApplyDivergence(const Grid& grid, const BoundaryTopology& pressure_topo, const double* u,
-                     const double* v, double* out);
+                     const double* v, double* out, MeshDiagonals diagonals = MeshDiagonals::kSwNe);
 // (out_u, out_v) (velocity nodes) = B^T p, (B^T p)_i = int p_h div phi_i (per component).
 void ApplyDivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo,
-                              const double* p, double* out_u, double* out_v);
+                              const double* p, double* out_u, double* out_v,
+                              MeshDiagonals diagonals = MeshDiagonals::kSwNe);
 
 // Assembled reference matrices over all nodes of the grid (periodic duplicates folded into the
-// first node; the duplicate rows and columns are empty). For tests and small problems only.
+// first node; the duplicate rows and columns are empty). For tests and small problems only. G and B
+// on either triangulation's triangles, or their mean (MeshDiagonals::kBoth).
 Eigen::SparseMatrix<double> AssembleConsistentMass(const Grid& grid, const BoundaryTopology& topo);
 Eigen::SparseMatrix<double> AssembleStiffness(const Grid& grid, const BoundaryTopology& topo);
-Eigen::SparseMatrix<double> AssembleGradientX(const Grid& grid, const BoundaryTopology& topo);
-Eigen::SparseMatrix<double> AssembleGradientY(const Grid& grid, const BoundaryTopology& topo);
+Eigen::SparseMatrix<double> AssembleGradientX(const Grid& grid, const BoundaryTopology& topo,
+                                              MeshDiagonals diagonals = MeshDiagonals::kSwNe);
+Eigen::SparseMatrix<double> AssembleGradientY(const Grid& grid, const BoundaryTopology& topo,
+                                              MeshDiagonals diagonals = MeshDiagonals::kSwNe);
 // B_x, B_y: (pressure nodes) x (velocity nodes).
 Eigen::SparseMatrix<double> AssembleDivergenceX(const Grid& grid,
-                                                const BoundaryTopology& pressure_topo);
+                                                const BoundaryTopology& pressure_topo,
+                                                MeshDiagonals diagonals = MeshDiagonals::kSwNe);
 Eigen::SparseMatrix<double> AssembleDivergenceY(const Grid& grid,
-                                                const BoundaryTopology& pressure_topo);
+                                                const BoundaryTopology& pressure_topo,
+                                                MeshDiagonals diagonals = MeshDiagonals::kSwNe);
 
 }  // namespace dlmfd

@@ -5,14 +5,18 @@
 // Discrete method: each point is located in the SW-NE h-mesh and E takes, by the point's rule
 // (MultiplierPoints::Quadratic), either the three P1 weights of its h-triangle
 // (mesh/point_location.h; method notes 2, section 1.1) or the six P2 weights of the 2h
-// macro-triangle that holds it (mesh/macro_triangle_stencil.h; particle-coupling.md section 3); E
+// macro-triangle that holds it (mesh/macro_triangle_stencil.h; particle-coupling.md section 3), or
+// the nine Q2 weights of its macro square (particle_mesh.interpolation = "biquadratic"); with
+// domain.diagonals = "both" the P1 and P2 weights are the means over the two diagonals of the
+// square (4 and 9 nodes), so E commutes with the mirrors x -> -x and y -> -y as the fluid's forms
+// do; E
 // is rebuilt each step from the point positions (the particle centres plus the points of a
 // MultiplierPoints set, of whatever kind). M is the lumped fluid mass, rho_L h^2 times the
 // trapezoid edge factors (1/2 on outflow sides); E^T only reaches fluid nodes that are unknowns
 // (Dirichlet nodes keep their data: their weight / mass is 0). Layout, for a cost per CG iteration
 // proportional to the points: the distinct fluid nodes that E^T reaches get compact slots 1 ..
 // SlotCount() (slot 0 is a slot always zero, the target of the Dirichlet entries), E keeps for
-// every point its stencil (3 or 6 entries from stencil_start_[q]: fluid nodes, slots and weights),
+// every point its stencil (3 to 9 entries from stencil_start_[q]: fluid nodes, slots and weights),
 // and E^T is stored by slot (the transposed list, built by a counting sort once per step, each
 // slot's contributions in increasing stacked point order), so a slot gathers its sum without
 // atomics and a fluid-sized array is touched only when the response is added to u. Errors: Build
@@ -88,6 +92,8 @@ class CouplingOperator {
   void BuildSpreading(double dt);
   // Appends the stencil entry of fluid node (i, j) with this weight to stacked point `point`.
   void AddEntry(std::size_t point, int i, int j, double weight);
+  template <class Stencil>
+  void AddStencil(std::size_t point, const Stencil& stencil);  // AddEntry for each of its nodes
   [[noreturn]] void ThrowCrossing(double time, const MultiplierPoints& points,
                                   const ParticleState& particle, std::size_t p, int side) const;
   // 1 / the lumped mass of fluid node (i, j), 0 at Dirichlet nodes.
@@ -96,6 +102,8 @@ class CouplingOperator {
   Grid grid_;
   bool periodic_x_ = false, periodic_y_ = false;
   bool biquadratic_ = false;  // particle_mesh.interpolation = biquadratic: Q2 at boundary points
+  // domain.diagonals = "both": P2 and P1 are the means over both diagonals (9 and 4 nodes).
+  bool both_diagonals_ = false;
   bool dirichlet_[4] = {};  // by Side
   bool neumann_[4] = {};
   double fluid_density_ = 0.0;
