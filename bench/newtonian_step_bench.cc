@@ -2,7 +2,7 @@
 // (193 x 769 velocity nodes), walls, eta = 0.01, alpha = beta = 0.5, dt = 4e-4, the flow driven by
 // the left wall moving upwards at 1 (5 set-up steps before timing so that iterations are those of a
 // developing flow). Arguments: {advection scheme: 0 least squares, 1 wave} x {threads} x
-// {domain.diagonals: 0 sw_ne, 1 both (wave only)}.
+// {domain.diagonals: 0 sw_ne, 1 both}.
 // Counters: per-substep ms, Uzawa and LS-CG iterations (or wave sub-steps), node updates per
 // second.
 #include <benchmark/benchmark.h>

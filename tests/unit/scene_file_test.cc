@@ -190,8 +190,6 @@ const BadScene kBadScenes[] = {
     {"SteadyCorrectionUnknown", "[splitting]\nadvection = \"wave\"\nsteady_correction = \"full\"\n",
      "splitting.steady_correction", "\"full\""},
     {"DiagonalsUnknown", "[domain]\ndiagonals = \"nw_se\"\n", "domain.diagonals", "\"nw_se\""},
-    {"DiagonalsBothWithLeastSquares", "[domain]\ndiagonals = \"both\"\n", "domain.diagonals",
-     "\"both\""},
     {"DiagonalsBothWithPolymer",
      "[domain]\ndiagonals = \"both\"\n[splitting]\nadvection = \"wave\"\n[fluid]\nrelaxation_time "
      "= "

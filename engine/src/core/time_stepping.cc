@@ -52,12 +52,6 @@ void ValidateSplitting(const SplittingParams& s, bool with_particles) {
 
 void ValidateMeshDiagonals(const Params& p) {
   if (p.domain.diagonals == MeshDiagonals::kSwNe) return;
-  if (p.splitting.advection != AdvectionScheme::kWave) {
-    throw InvalidParameter("domain.diagonals", "\"both\"",
-                           "\"sw_ne\" with splitting.advection = \"least_squares\" (the mean over "
-                           "both diagonals is built for the wave-like step (34)); or "
-                           "splitting.advection = \"wave\"");
-  }
   if (!p.fluid.IsNewtonian()) {
     throw InvalidParameter("domain.diagonals", "\"both\"",
                            "\"sw_ne\" with a polymer (fluid.relaxation_time > 0 and "

@@ -17,6 +17,7 @@ AdvectionLeastSquares::AdvectionLeastSquares(const Grid& grid, const DomainParam
                                              const BoundaryData& boundary_data)
     : grid_(grid),
       topo_(BoundaryTopology::ForVelocity(domain)),
+      diagonals_(domain.diagonals),
       nodes_(grid_, topo_),
       rho_(fluid.density),
       rho_over_dt_(fluid.density / dt),
@@ -74,8 +75,8 @@ void AdvectionLeastSquares::RemoveBackwardEulerTerm(double* u, double* v) {
 }
 
 void AdvectionLeastSquares::GradientsOf(const double* u, const double* v) {
-  ApplyIntegratedGradient(grid_, topo_, u, gxu_.data(), gyu_.data());
-  ApplyIntegratedGradient(grid_, topo_, v, gxv_.data(), gyv_.data());
+  ApplyIntegratedGradient(grid_, topo_, u, gxu_.data(), gyu_.data(), diagonals_);
+  ApplyIntegratedGradient(grid_, topo_, v, gxv_.data(), gyv_.data(), diagonals_);
 }
 
 void AdvectionLeastSquares::Residual(const double* u, const double* v, double* out_u,
@@ -101,8 +102,8 @@ void AdvectionLeastSquares::Residual(const double* u, const double* v, double* o
 void AdvectionLeastSquares::Jacobian(const double* u, const double* v, const double* wu,
                                      const double* wv, double* out_u, double* out_v) {
   GradientsOf(u, v);
-  ApplyIntegratedGradient(grid_, topo_, wu, gxw_.data(), gyw_.data());
-  ApplyIntegratedGradient(grid_, topo_, wv, gxwv_.data(), gywv_.data());
+  ApplyIntegratedGradient(grid_, topo_, wu, gxw_.data(), gyw_.data(), diagonals_);
+  ApplyIntegratedGradient(grid_, topo_, wv, gxwv_.data(), gywv_.data(), diagonals_);
   ApplyStiffness(grid_, topo_, wu, s1_.data());
   ApplyStiffness(grid_, topo_, wv, s2_.data());
   const long n = static_cast<long>(mass_.size());
@@ -178,8 +179,10 @@ void AdvectionLeastSquares::JacobianTranspose(const double* u, const double* v, 
     }
     nodes_.SyncPeriodic(s1);
     nodes_.SyncPeriodic(s2);
-    ApplyIntegratedGradient(grid_, topo_, s1, gxw_.data(), gyw_.data());    // use G_x (u y_c)
-    ApplyIntegratedGradient(grid_, topo_, s2, gxwv_.data(), gywv_.data());  // use G_y (v y_c)
+    ApplyIntegratedGradient(grid_, topo_, s1, gxw_.data(), gyw_.data(),
+                            diagonals_);  // use G_x (u y_c)
+    ApplyIntegratedGradient(grid_, topo_, s2, gxwv_.data(), gywv_.data(),
+                            diagonals_);  // use G_y (v y_c)
     ApplyStiffness(grid_, topo_, y, s3_.data());
     const double *gx1 = gxw_.data(), *gy2 = gywv_.data(), *ky = s3_.data();
     const double* gcu = c == 0 ? gxu_.data() : gyu_.data();  // G_c u

@@ -116,8 +116,8 @@ void CouplingOperator::Build(double time, double dt, const MultiplierPoints& poi
     for (int k = 0; k < points.Count(p); ++k) {
       const Vec2 y = centre + relative[k];
       int side = 0;
-      stencil_start_[points.Begin(p) + k] = entries_;
       const std::size_t point = points.Begin(p) + k;
+      stencil_start_[point] = entries_;
       bool inside = true;
       if (points.Quadratic(p, k) && (biquadratic_ || both_diagonals_)) {
         kernels::Q2Stencil stencil;

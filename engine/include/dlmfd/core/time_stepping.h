@@ -34,7 +34,7 @@ inline long StepCount(const TimeParams& time) {
 // coupling is the paper's.
 void ValidateSplitting(const SplittingParams& splitting, bool with_particles);
 // domain.diagonals = "both" only where it covers every form of the step: a Newtonian liquid (the
-// conformation step (35) integrates on the SW-NE mesh) and the wave-like advection.
+// conformation step (35) integrates on the SW-NE mesh).
 void ValidateMeshDiagonals(const Params& params);
 // dt > 0, end >= 0, dt <= end unless end = 0, end / dt <= kMaxStepCount.
 void ValidateTimeSteps(const TimeParams& time);

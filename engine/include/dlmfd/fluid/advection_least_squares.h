@@ -13,7 +13,9 @@
 // tol (solvers.advection_tolerance; 1e-3 is ample for this first-order splitting, notes section 4).
 // The gradient T'(u)^T y uses G^T z = -G z + (boundary integral of z phi n) on outflow sides, exact
 // for every boundary kind (the boundary term vanishes where y = 0 and on periodic sides).
-// Throws SolverNotConverged after advection_max_iterations.
+// With domain.diagonals = "both", G is the mean of the SW-NE and NW-SE triangulations' (the
+// identity above holds for each, so for the mean), and the step commutes with the mirrors x -> -x,
+// y -> -y. Throws SolverNotConverged after advection_max_iterations.
 //
 // Steady-state correction (splitting.steady_correction = "taylor", not the default here): the step
 // is backward Euler, u = u* - dt M^-1 N(u, u), so at a fixed point of the splitting the Stokes
@@ -75,6 +77,7 @@ class AdvectionLeastSquares final : public VelocityAdvection {
 
   Grid grid_;
   BoundaryTopology topo_;
+  MeshDiagonals diagonals_;  // of G (domain.diagonals)
   NodeSet nodes_;
   double rho_, rho_over_dt_, nu_b_;
   double dt_, taylor_viscosity_;  // kappa nu_N with the steady correction, 0 without

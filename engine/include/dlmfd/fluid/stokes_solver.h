@@ -9,7 +9,10 @@
 // (a Newtonian liquid, lambda = 0 or beta = 1), so a Newtonian liquid has viscosity eta. With
 // A = (rho/dt) M_l + nu K per component the system is A u - B^T p = F, B u = 0, where
 // F = (rho/dt) M_l u^n + M_l f_body + (fx, fy) (the extra dual forcing: polymer stress, DLM terms).
-// Gravity does not enter: the split scheme absorbs rho_L g into the pressure.
+// Gravity does not enter: the split scheme absorbs rho_L g into the pressure. B is the SW-NE
+// mesh's, or with domain.diagonals = "both" the mean of the SW-NE and NW-SE triangulations'
+// (inf-sup stable, mirror-symmetric: tests/unit/mesh_diagonals_test.cc); M_l, K and the
+// preconditioner are the same on both.
 //
 // Solver: Uzawa / preconditioned CG on the pressure (Glowinski), Cahouet-Chabard preconditioner
 // P^-1 = nu M_p^-1 + (rho/dt) K_p^-1; each iteration 2 velocity fast solves (u and v side by side
