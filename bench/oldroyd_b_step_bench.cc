@@ -5,7 +5,8 @@
 // 20 set-up steps from rest so that the disks move and the flow and the iteration counts are those
 // of a developing flow (the scene's own advection, least squares, is replaced by the wave scheme).
 // Arguments: threads, coupling (splitting.constraint: 0 paper, 1 viscous, 2 incremental), stress
-// (fluid.stress_splitting: 0 explicit, 1 devss, the default).
+// (fluid.stress_splitting: 0 explicit, 1 devss, the default), diagonals (domain.diagonals: 0 sw_ne,
+// 1 both; both only with the default coupling and stress).
 // Counters: per-substep ms (StepReport ms_stokes, ms_advection, ms_conformation, ms_particles),
 // Uzawa and DLM CG iterations, velocity node updates per second.
 //   OMP_WAIT_POLICY=active build/bench/oldroyd_b_step_bench --benchmark_counters_tabular=true
@@ -43,12 +44,15 @@ void BM_OldroydBStep(benchmark::State& state) {
   p.splitting.advection = AdvectionScheme::kWave;
   p.fluid.stress_splitting =
       state.range(2) == 0 ? StressSplitting::kExplicit : StressSplitting::kDevss;
+  p.domain.diagonals = state.range(3) == 0 ? MeshDiagonals::kSwNe : MeshDiagonals::kBoth;
   TimeFullSteps(state, p, kSetUpSteps);
 }
 
 BENCHMARK(BM_OldroydBStep)
-    ->ArgNames({"threads", "coupling", "stress"})
-    ->ArgsProduct({{1, 2}, {0, 1, 2}, {0, 1}})
+    ->ArgNames({"threads", "coupling", "stress", "diagonals"})
+    ->ArgsProduct({{1, 2}, {0, 1, 2}, {0, 1}, {0}})
+    ->Args({1, 2, 1, 1})
+    ->Args({2, 2, 1, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);

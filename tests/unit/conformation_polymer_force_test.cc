@@ -1,6 +1,7 @@
 // The polymer force of (33), f_i = -int grad phi_i : tau_p with tau_p = G (A - I), G =
-// eta_p/lambda: against an independently assembled matrix, against h^2 div tau for a linear tau at
-// interior nodes, and zero for a uniform A away from the boundary.
+// eta_p/lambda: against an independently assembled matrix (on the SW-NE triangles, and with
+// domain.diagonals = "both" the mean of the SW-NE and the NW-SE matrices), against h^2 div tau for
+// a linear tau at interior nodes, and zero for a uniform A away from the boundary.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -15,8 +16,10 @@
 namespace dlmfd {
 namespace {
 
-DomainParams Domain(const Grid& g, SideType x_sides, SideType y_sides) {
+DomainParams Domain(const Grid& g, SideType x_sides, SideType y_sides,
+                    MeshDiagonals diagonals = MeshDiagonals::kSwNe) {
   DomainParams d;
+  d.diagonals = diagonals;
   d.size = Vec2(g.Width(), g.Height());
   d.h = g.h;
   d.sides[int(Side::kLeft)].type = d.sides[int(Side::kRight)].type = x_sides;
@@ -26,12 +29,12 @@ DomainParams Domain(const Grid& g, SideType x_sides, SideType y_sides) {
 
 // D_x, D_y with (D_x)_{ik} = int d_x phi_i phi_k, assembled triangle by triangle from the vertex
 // coordinates (barycentric gradients by inverting the edge matrix), rows of periodic duplicates
-// folded into the first node.
+// folded into the first node; on the SW-NE triangles, or half on each triangulation ("both").
 struct AssembledDerivative {
   Eigen::SparseMatrix<double> dx, dy;
 };
 
-AssembledDerivative Assemble(const Grid& g, bool px, bool py) {
+AssembledDerivative Assemble(const Grid& g, bool px, bool py, MeshDiagonals diagonals) {
   std::vector<Eigen::Triplet<double>> tx, ty;
   auto row_of = [&](int i, int j) {
     if (px && i == g.nx) i = 0;
@@ -40,15 +43,21 @@ AssembledDerivative Assemble(const Grid& g, bool px, bool py) {
   };
   for (int sj = 0; sj < g.ny; ++sj) {
     for (int si = 0; si < g.nx; ++si) {
-      const std::array<std::array<int, 2>, 3> lower{{{si, sj}, {si + 1, sj}, {si + 1, sj + 1}}};
-      const std::array<std::array<int, 2>, 3> upper{{{si, sj}, {si + 1, sj + 1}, {si, sj + 1}}};
-      for (const auto& tri : {lower, upper}) {
+      using Triangle = std::array<std::array<int, 2>, 3>;
+      const Triangle sw_ne[2] = {{{{si, sj}, {si + 1, sj}, {si + 1, sj + 1}}},
+                                 {{{si, sj}, {si + 1, sj + 1}, {si, sj + 1}}}};
+      const Triangle nw_se[2] = {{{{si, sj}, {si + 1, sj}, {si, sj + 1}}},
+                                 {{{si + 1, sj}, {si + 1, sj + 1}, {si, sj + 1}}}};
+      std::vector<Triangle> triangles(sw_ne, sw_ne + 2);
+      if (diagonals == MeshDiagonals::kBoth) triangles.insert(triangles.end(), nw_se, nw_se + 2);
+      const double weight = diagonals == MeshDiagonals::kBoth ? 0.5 : 1.0;
+      for (const Triangle& tri : triangles) {
         Eigen::Vector2d p[3];
         for (int a = 0; a < 3; ++a) p[a] = Eigen::Vector2d(g.X(tri[a][0]), g.Y(tri[a][1]));
         Eigen::Matrix2d edges;
         edges.col(0) = p[1] - p[0];
         edges.col(1) = p[2] - p[0];
-        const double area = 0.5 * std::abs(edges.determinant());
+        const double area = weight * 0.5 * std::abs(edges.determinant());
         const Eigen::Matrix2d inv_t = edges.inverse().transpose();
         // grad phi_1 = inv_t e1, grad phi_2 = inv_t e2, grad phi_0 = -(sum).
         Eigen::Vector2d grad[3];
@@ -94,16 +103,17 @@ Field SmoothField(const Grid& g) {
   return f;
 }
 
-void ExpectEqualsAssembled(const Grid& g, bool px, bool py) {
+void ExpectEqualsAssembled(const Grid& g, bool px, bool py,
+                           MeshDiagonals diagonals = MeshDiagonals::kSwNe) {
   const double modulus = 0.37;
   const Field a = SmoothField(g);
   const int n = int(g.NodeCount());
   std::vector<double> fx(n, 0.25), fy(n, -0.5);  // AddPolymerForce adds into what is there
   AddPolymerForce(g,
                   Domain(g, px ? SideType::kPeriodic : SideType::kWall,
-                         py ? SideType::kPeriodic : SideType::kOutflow),
+                         py ? SideType::kPeriodic : SideType::kOutflow, diagonals),
                   modulus, a.a11.data(), a.a12.data(), a.a22.data(), fx.data(), fy.data());
-  const AssembledDerivative d = Assemble(g, px, py);
+  const AssembledDerivative d = Assemble(g, px, py, diagonals);
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(n);
   const Eigen::VectorXd t11 = modulus * (a.a11 - ones), t12 = modulus * a.a12,
                         t22 = modulus * (a.a22 - ones);
@@ -122,6 +132,13 @@ TEST(AddPolymerForce, EqualsAssembledIntegralWithWallsAndOutflow) {
 TEST(AddPolymerForce, EqualsAssembledIntegralWithPeriodicSides) {
   ExpectEqualsAssembled(Grid{6, 4, 0.25, 0.0, 0.0}, true, false);
   ExpectEqualsAssembled(Grid{6, 4, 0.25, 0.0, 0.0}, true, true);
+}
+
+TEST(AddPolymerForce, BothDiagonalsEqualTheMeanOfTheTwoAssembledIntegrals) {
+  ExpectEqualsAssembled(Grid{6, 5, 0.2, -0.4, 0.3}, false, false, MeshDiagonals::kBoth);
+  ExpectEqualsAssembled(Grid{6, 4, 0.25, 0.0, 0.0}, true, false, MeshDiagonals::kBoth);
+  ExpectEqualsAssembled(Grid{6, 4, 0.25, 0.0, 0.0}, false, true, MeshDiagonals::kBoth);
+  ExpectEqualsAssembled(Grid{6, 4, 0.25, 0.0, 0.0}, true, true, MeshDiagonals::kBoth);
 }
 
 TEST(AddPolymerForce, LinearStressGivesHSquaredDivergenceAtInteriorNodes) {

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -248,6 +249,111 @@ TEST(NodeVelocityGradient, SecondOrderOnAPeriodicBox) {
       EXPECT_GT(std::log2(previous / error), 1.8);  // expected 2 (centred stencil)
     }
     previous = error;
+  }
+}
+
+// The gradient of (u, v) on the given diagonals.
+struct NodeGradient {
+  std::vector<double> l11, l12, l21, l22;
+};
+
+NodeGradient GradientOf(const Grid& g, bool px, bool py, const std::vector<double>& u,
+                        const std::vector<double>& v, MeshDiagonals diagonals) {
+  const std::size_t n = g.NodeCount();
+  NodeGradient l{std::vector<double>(n), std::vector<double>(n), std::vector<double>(n),
+                 std::vector<double>(n)};
+  NodeVelocityGradient(g, px, py, u.data(), v.data(), l.l11.data(), l.l12.data(), l.l21.data(),
+                       l.l22.data(), diagonals);
+  return l;
+}
+
+TEST(NodeVelocityGradient, BothDiagonalsGiveTheMeanStencilAndCommuteWithTheMirror) {
+  // domain.diagonals = "both": exact for linear fields at every node; at interior nodes the mean of
+  // the SW-NE and NW-SE 6-triangle averages, (4 (f_{i+1,j} - f_{i-1,j}) + f_{i+1,j+1} - f_{i-1,j+1}
+  // + f_{i+1,j-1} - f_{i-1,j-1}) / 12h for d/dx and the same in y; and at every node the gradient
+  // of the mirrored velocity (-u(W - x), v(W - x)) is the mirror image of the gradient with
+  // L12, L21 negated (walls, and a periodic x axis).
+  for (const bool px : {false, true}) {
+    const Grid g{8, 6, 0.125, 0.0, 0.0};
+    const std::size_t n = g.NodeCount();
+    std::vector<double> u(n), v(n), ul(n), vl(n);
+    const double tp = 2.0 * kPi;
+    for (int j = 0; j <= g.ny; ++j) {
+      for (int i = 0; i <= g.nx; ++i) {
+        const double x = g.X(i), y = g.Y(j);
+        const std::size_t k = g.Index(i, j);
+        u[k] = std::sin(tp * x + 0.3) * std::cos(2.0 * y) + 0.5 * x * y;
+        v[k] = std::cos(tp * x - 0.7) * std::exp(y);
+        ul[k] = 0.3 + 1.5 * x - 0.7 * y;
+        vl[k] = -1.0 + 0.4 * x + 2.5 * y;
+      }
+    }
+    if (px) {  // the repeated last column equals the first
+      for (int j = 0; j <= g.ny; ++j) u[g.Index(g.nx, j)] = u[g.Index(0, j)];
+      for (int j = 0; j <= g.ny; ++j) v[g.Index(g.nx, j)] = v[g.Index(0, j)];
+    }
+    if (!px) {
+      const NodeGradient l = GradientOf(g, false, false, ul, vl, MeshDiagonals::kBoth);
+      for (std::size_t k = 0; k < n; ++k) {
+        EXPECT_NEAR(l.l11[k], 1.5, 1e-13);
+        EXPECT_NEAR(l.l12[k], -0.7, 1e-13);
+        EXPECT_NEAR(l.l21[k], 0.4, 1e-13);
+        EXPECT_NEAR(l.l22[k], 2.5, 1e-13);
+      }
+    }
+    const NodeGradient both = GradientOf(g, px, false, u, v, MeshDiagonals::kBoth);
+    const NodeGradient sw_ne = GradientOf(g, px, false, u, v, MeshDiagonals::kSwNe);
+    const long row = g.nx + 1;
+    auto mean_dx = [&](const std::vector<double>& f, long k) {
+      return (4.0 * (f[k + 1] - f[k - 1]) + f[k + row + 1] - f[k + row - 1] + f[k - row + 1] -
+              f[k - row - 1]) /
+             (12.0 * g.h);
+    };
+    auto mean_dy = [&](const std::vector<double>& f, long k) {
+      return (4.0 * (f[k + row] - f[k - row]) + f[k + row + 1] - f[k - row + 1] + f[k + row - 1] -
+              f[k - row - 1]) /
+             (12.0 * g.h);
+    };
+    double sw_ne_offset = 0.0;
+    for (int j = 1; j < g.ny; ++j) {
+      for (int i = 1; i < g.nx; ++i) {
+        const long k = long(g.Index(i, j));
+        EXPECT_NEAR(both.l11[k], mean_dx(u, k), 1e-12);
+        EXPECT_NEAR(both.l12[k], mean_dy(u, k), 1e-12);
+        EXPECT_NEAR(both.l21[k], mean_dx(v, k), 1e-12);
+        EXPECT_NEAR(both.l22[k], mean_dy(v, k), 1e-12);
+        sw_ne_offset = std::max(sw_ne_offset, std::abs(sw_ne.l11[k] - both.l11[k]));
+      }
+    }
+    EXPECT_GT(sw_ne_offset, 1e-2);  // the SW-NE average is another stencil
+    std::vector<double> um(n), vm(n);
+    for (int j = 0; j <= g.ny; ++j) {
+      for (int i = 0; i <= g.nx; ++i) {
+        const std::size_t image = g.Index(px ? (g.nx - i) % g.nx : g.nx - i, j);
+        um[g.Index(i, j)] = -u[image];
+        vm[g.Index(i, j)] = v[image];
+      }
+      if (px) um[g.Index(g.nx, j)] = um[g.Index(0, j)], vm[g.Index(g.nx, j)] = vm[g.Index(0, j)];
+    }
+    for (const MeshDiagonals diagonals : {MeshDiagonals::kBoth, MeshDiagonals::kSwNe}) {
+      const NodeGradient l = GradientOf(g, px, false, u, v, diagonals);
+      const NodeGradient m = GradientOf(g, px, false, um, vm, diagonals);
+      double mismatch = 0.0;
+      for (int j = 0; j <= g.ny; ++j) {
+        for (int i = 0; i <= g.nx; ++i) {
+          const std::size_t k = g.Index(i, j);
+          const std::size_t image = g.Index(px ? (g.nx - i) % g.nx : g.nx - i, j);
+          mismatch = std::max({mismatch, std::abs(m.l11[k] - l.l11[image]),
+                               std::abs(m.l12[k] + l.l12[image]), std::abs(m.l21[k] + l.l21[image]),
+                               std::abs(m.l22[k] - l.l22[image])});
+        }
+      }
+      if (diagonals == MeshDiagonals::kBoth) {
+        EXPECT_LT(mismatch, 1e-13) << "periodic x " << px;
+      } else {
+        EXPECT_GT(mismatch, 1e-2) << "periodic x " << px;  // the SW-NE mesh is not symmetric
+      }
+    }
   }
 }
 

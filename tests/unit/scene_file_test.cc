@@ -190,11 +190,6 @@ const BadScene kBadScenes[] = {
     {"SteadyCorrectionUnknown", "[splitting]\nadvection = \"wave\"\nsteady_correction = \"full\"\n",
      "splitting.steady_correction", "\"full\""},
     {"DiagonalsUnknown", "[domain]\ndiagonals = \"nw_se\"\n", "domain.diagonals", "\"nw_se\""},
-    {"DiagonalsBothWithPolymer",
-     "[domain]\ndiagonals = \"both\"\n[splitting]\nadvection = \"wave\"\n[fluid]\nrelaxation_time "
-     "= "
-     "0.1\nsolvent_ratio = 0.5\n",
-     "domain.diagonals", "\"both\""},
     {"ViscousConstraintWithViscosityInAdvection",
      "[splitting]\nalpha = 0.5\nbeta = 0.5\nconstraint = \"viscous\"\n[[particles]]\ncenter = "
      "[0.5, 0.5]\n",

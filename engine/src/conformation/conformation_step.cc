@@ -41,6 +41,7 @@ ConformationStep::ConformationStep(const Params& params, const Grid& grid)
       max_courant_(params.conformation.max_courant),
       periodic_x_(params.domain.PeriodicX()),
       periodic_y_(params.domain.PeriodicY()),
+      diagonals_(params.domain.diagonals),
       advection_(grid, params.domain.PeriodicX(), params.domain.PeriodicY(),
                  params.conformation.blend_kappa) {
   const DomainParams& domain = params.domain;
@@ -130,7 +131,7 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
   CheckField(time, "before", a11, a12, a22);
 
   NodeVelocityGradient(grid_, periodic_x_, periodic_y_, u, v, l11_.data(), l12_.data(), l21_.data(),
-                       l22_.data());
+                       l22_.data(), diagonals_);
   const long n = static_cast<long>(grid_.NodeCount());
   double max_speed = 0.0, max_gradient = 0.0;
   long first_bad_velocity = n;

@@ -1,6 +1,9 @@
 #include "dlmfd/conformation/polymer_force.h"
 
+#include <algorithm>
+
 #include "../mesh/grid_kernels.h"
+#include "../mesh/mirror_image.h"
 
 namespace dlmfd {
 namespace {
@@ -18,13 +21,11 @@ inline MeanStress Mean(double modulus, const double* a11, const double* a12, con
                     third * (a22[k0] + a22[k1] + a22[k2] - 3.0)};
 }
 
-}  // namespace
-
-void AddPolymerForce(const Grid& grid, const DomainParams& domain, double polymer_modulus,
-                     const double* a11, const double* a12, const double* a22, double* fx,
-                     double* fy) {
+// The integrals on the SW-NE triangles, added into fx, fy.
+void AddSwNePolymerForce(const Grid& grid, bool px, bool py, double polymer_modulus,
+                         const double* a11, const double* a12, const double* a22, double* fx,
+                         double* fy) {
   const int nx = grid.nx, ny = grid.ny;
-  const bool px = domain.PeriodicX(), py = domain.PeriodicY();
   // |T| grad phi = (h^2/2)(gx, gy)/h: the h cancels to h/2 times the unit-mesh gradients (+-1, 0).
   const double half_h = 0.5 * grid.h;
   // Gather form (grid_kernels.h): node (i, j) sums over its 6 triangles, so rows are written by one
@@ -75,6 +76,42 @@ void AddPolymerForce(const Grid& grid, const DomainParams& domain, double polyme
       fy[k] -= scale * (dx(a12, k) + dy(a22, k));
     }
     if (last_i == nx) any_node(nx, j);
+  }
+}
+
+}  // namespace
+
+void AddPolymerForce(const Grid& grid, const DomainParams& domain, double polymer_modulus,
+                     const double* a11, const double* a12, const double* a22, double* fx,
+                     double* fy) {
+  const bool px = domain.PeriodicX(), py = domain.PeriodicY();
+  if (domain.diagonals == MeshDiagonals::kSwNe) {
+    AddSwNePolymerForce(grid, px, py, polymer_modulus, a11, a12, a22, fx, fy);
+    return;
+  }
+  // Slot 0: the mirrored A, then the NW-SE force; slot 1: the SW-NE force.
+  const std::size_t n = grid.NodeCount();
+  double *m = kernels::MirrorScratch(0, 5 * n), *f = kernels::MirrorScratch(1, 2 * n);
+  kernels::MirrorInX(grid, px, 1.0, a11, m);
+  kernels::MirrorInX(grid, px, -1.0, a12, m + n);
+  kernels::MirrorInX(grid, px, 1.0, a22, m + 2 * n);
+  std::fill(m + 3 * n, m + 5 * n, 0.0);
+  AddSwNePolymerForce(grid, px, py, polymer_modulus, m, m + n, m + 2 * n, m + 3 * n, m + 4 * n);
+  std::fill(f, f + 2 * n, 0.0);
+  AddSwNePolymerForce(grid, px, py, polymer_modulus, a11, a12, a22, f, f + n);
+  kernels::AverageWithMirrorImage(grid, px, -1.0, m + 3 * n, f);
+  kernels::AverageWithMirrorImage(grid, px, 1.0, m + 4 * n, f + n);
+  // The periodic duplicates get none (the mean wrote node 0's value into column nx).
+  for (double* fc : {f, f + n}) {
+    if (px) {
+      for (int j = 0; j <= grid.ny; ++j) fc[grid.Index(grid.nx, j)] = 0.0;
+    }
+    if (py) std::fill_n(fc + grid.Index(0, grid.ny), grid.nx + 1, 0.0);
+  }
+#pragma omp parallel for schedule(static) if (n > 16384)
+  for (std::size_t k = 0; k < n; ++k) {
+    fx[k] += f[k];
+    fy[k] += f[n + k];
   }
 }
 

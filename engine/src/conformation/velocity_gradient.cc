@@ -1,6 +1,7 @@
 #include "dlmfd/conformation/velocity_gradient.h"
 
 #include "../mesh/grid_kernels.h"
+#include "../mesh/mirror_image.h"
 
 namespace dlmfd {
 namespace {
@@ -45,10 +46,9 @@ __attribute__((target_clones("avx2", "default"))) void InteriorRow(
   }
 }
 
-}  // namespace
-
-void NodeVelocityGradient(const Grid& grid, bool periodic_x, bool periodic_y, const double* u,
-                          const double* v, double* l11, double* l12, double* l21, double* l22) {
+// The average on the SW-NE triangles.
+void SwNeGradient(const Grid& grid, bool periodic_x, bool periodic_y, const double* u,
+                  const double* v, double* l11, double* l12, double* l21, double* l22) {
   const int nx = grid.nx, ny = grid.ny;
   const std::ptrdiff_t row = nx + 1;
   const double inv_6h = 1.0 / (6.0 * grid.h);
@@ -70,6 +70,26 @@ void NodeVelocityGradient(const Grid& grid, bool periodic_x, bool periodic_y, co
       l22[k] = s.vy * inv;
     }
   }
+}
+
+}  // namespace
+
+void NodeVelocityGradient(const Grid& grid, bool periodic_x, bool periodic_y, const double* u,
+                          const double* v, double* l11, double* l12, double* l21, double* l22,
+                          MeshDiagonals diagonals) {
+  SwNeGradient(grid, periodic_x, periodic_y, u, v, l11, l12, l21, l22);
+  if (diagonals == MeshDiagonals::kSwNe) return;
+  // The NW-SE average is the mirror image of the SW-NE average of the mirrored velocity (-S u, S
+  // v).
+  const std::size_t n = grid.NodeCount();
+  double* m = kernels::MirrorScratch(0, 6 * n);
+  kernels::MirrorInX(grid, periodic_x, -1.0, u, m);
+  kernels::MirrorInX(grid, periodic_x, 1.0, v, m + n);
+  SwNeGradient(grid, periodic_x, periodic_y, m, m + n, m + 2 * n, m + 3 * n, m + 4 * n, m + 5 * n);
+  kernels::AverageWithMirrorImage(grid, periodic_x, 1.0, m + 2 * n, l11);
+  kernels::AverageWithMirrorImage(grid, periodic_x, -1.0, m + 3 * n, l12);
+  kernels::AverageWithMirrorImage(grid, periodic_x, -1.0, m + 4 * n, l21);
+  kernels::AverageWithMirrorImage(grid, periodic_x, 1.0, m + 5 * n, l22);
 }
 
 }  // namespace dlmfd

@@ -42,7 +42,6 @@ double Milliseconds(Clock::time_point a, Clock::time_point b) {
 // The rules of the time stepping (core/time_stepping.h), which the scene validation applies too.
 void ValidateSupported(const Params& p) {
   ValidateSplitting(p.splitting, !p.particles.empty());
-  ValidateMeshDiagonals(p);
   ValidateTimeSteps(p.time);
   ValidateOutputPeriods(p.time, p.output);
 }

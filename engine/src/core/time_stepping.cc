@@ -50,16 +50,6 @@ void ValidateSplitting(const SplittingParams& s, bool with_particles) {
   }
 }
 
-void ValidateMeshDiagonals(const Params& p) {
-  if (p.domain.diagonals == MeshDiagonals::kSwNe) return;
-  if (!p.fluid.IsNewtonian()) {
-    throw InvalidParameter("domain.diagonals", "\"both\"",
-                           "\"sw_ne\" with a polymer (fluid.relaxation_time > 0 and "
-                           "fluid.solvent_ratio < 1): the conformation step (35) integrates on "
-                           "the SW-NE mesh");
-  }
-}
-
 void ValidateTimeSteps(const TimeParams& time) {
   if (!(time.dt > 0.0)) throw InvalidParameter("time.dt", ExactText(time.dt), "a number > 0");
   if (!(time.end >= 0.0)) throw InvalidParameter("time.end", ExactText(time.end), "a number >= 0");

@@ -41,13 +41,6 @@ double* Scratch(std::size_t size) {
   return buffer.data();
 }
 
-// Scratch node arrays of the calling thread for the mirrored pass of domain.diagonals = "both".
-double* MirrorScratch(int slot, std::size_t size) {
-  thread_local std::vector<double> buffers[2];
-  if (buffers[slot].size() < size) buffers[slot].resize(size);
-  return buffers[slot].data();
-}
-
 // Calls node(im, i, ip) for every row-owning node of a row: the ends with their wrapped or missing
 // neighbours, the interior with literal ones so that the kernel's neighbour tests fold away.
 template <typename NodeFn>
@@ -203,7 +196,7 @@ void ApplyIntegratedGradient(const Grid& grid, const BoundaryTopology& topo, con
   if (diagonals == MeshDiagonals::kSwNe) return;
   const std::size_t n = grid.NodeCount();
   const bool px = topo.x.low == EndKind::kPeriodic;
-  double *mf = MirrorScratch(0, n), *mg = MirrorScratch(1, 2 * n);
+  double *mf = kernels::MirrorScratch(0, n), *mg = kernels::MirrorScratch(1, 2 * n);
   kernels::MirrorInX(grid, px, 1.0, f, mf);
   IntegratedGradientOnMesh(grid, topo, mf, mg, mg + n);
   kernels::AverageWithMirrorImage(grid, px, -1.0, mg, gx);
@@ -220,7 +213,7 @@ void ApplyDivergence(const Grid& grid, const BoundaryTopology& pressure_topo, co
   const std::size_t n = grid.NodeCount();
   const Grid coarse = grid.Coarse();
   const bool px = pressure_topo.x.low == EndKind::kPeriodic;
-  double* mirrored = MirrorScratch(0, 2 * n + coarse.NodeCount());
+  double* mirrored = kernels::MirrorScratch(0, 2 * n + coarse.NodeCount());
   kernels::MirrorInX(grid, px, -1.0, u, mirrored);
   kernels::MirrorInX(grid, px, 1.0, v, mirrored + n);
   DivergenceOnMesh(grid, pressure_topo, mirrored, mirrored + n, mirrored + 2 * n);
@@ -237,7 +230,7 @@ void ApplyDivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure
   const std::size_t n = grid.NodeCount();
   const Grid coarse = grid.Coarse();
   const bool px = pressure_topo.x.low == EndKind::kPeriodic;
-  double* mirrored = MirrorScratch(0, 2 * n + coarse.NodeCount());
+  double* mirrored = kernels::MirrorScratch(0, 2 * n + coarse.NodeCount());
   kernels::MirrorInX(coarse, px, 1.0, p, mirrored + 2 * n);
   DivergenceTransposeOnMesh(grid, pressure_topo, mirrored + 2 * n, mirrored, mirrored + n);
   kernels::AverageWithMirrorImage(grid, px, -1.0, mirrored, out_u);

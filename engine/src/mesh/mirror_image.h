@@ -13,10 +13,20 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "dlmfd/core/grid.h"
 
 namespace dlmfd::kernels {
+
+// Scratch node arrays of the calling thread for the mirrored pass (two slots). Each grows once and
+// is then reused, so the time loop allocates nothing. A slot is its caller's until that returns: a
+// form that holds one calls no other form of "both".
+inline double* MirrorScratch(int slot, std::size_t size) {
+  thread_local std::vector<double> buffers[2];
+  if (buffers[slot].size() < size) buffers[slot].resize(size);
+  return buffers[slot].data();
+}
 
 // out = sign S in (in and out distinct node arrays of the grid).
 inline void MirrorInX(const Grid& grid, bool periodic_x, double sign, const double* in,

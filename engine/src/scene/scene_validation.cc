@@ -161,7 +161,6 @@ void ValidateScene(const Params& params) {
   ValidateFluid(params.fluid);
   ValidateTimeSteps(params.time);
   ValidateSplitting(params.splitting, !params.particles.empty());
-  ValidateMeshDiagonals(params);
   ValidateSolvers(params.solvers);
   ValidateMeshCollisionsConformation(params);
   ValidateOutputPeriods(params.time, params.output);

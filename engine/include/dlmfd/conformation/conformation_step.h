@@ -11,7 +11,8 @@
 //      fluid.conformation = log or sqrt the same scheme advects log A or A^(1/2) without the
 //      blend, and A = exp(Psi) or B^2 enters step 2 (conformation_representation.h);
 //   2. the pointwise ODE dA/dt = L A + A L^T - R(A)/lambda over dt with L frozen at each node
-//      (average of the 6 P1 triangle gradients, velocity_gradient.h), R of the relaxation model
+//      (average of the 6 P1 triangle gradients, with domain.diagonals = "both" the mean of that
+//      average over both triangulations; velocity_gradient.h), R of the relaxation model
 //      (fluid.model, relaxation_model.h): Oldroyd-B (R = A - I) solved exactly by the exponential
 //      integrator (pointwise_update.h), the other models by the predictor-corrector of their
 //      frozen linear form (model_pointwise_update.h: second order in dt, SPD for any dt);
@@ -113,6 +114,7 @@ class ConformationStep {
   ConformationRepresentation representation_;
   double max_courant_;
   bool periodic_x_, periodic_y_;
+  MeshDiagonals diagonals_;  // domain.diagonals: L on the SW-NE triangles or the mean over both
   ConformationAdvection advection_;
   std::vector<BoundaryNode> boundary_;  // nodes of velocity sides
   std::vector<unsigned char> inflow_;   // per node: 1 where A = A_L this step

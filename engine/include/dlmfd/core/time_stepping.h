@@ -33,9 +33,6 @@ inline long StepCount(const TimeParams& time) {
 // alpha and beta in [0, 1], gamma = 0, alpha > 0; with particles, beta = 0 unless the constraint
 // coupling is the paper's.
 void ValidateSplitting(const SplittingParams& splitting, bool with_particles);
-// domain.diagonals = "both" only where it covers every form of the step: a Newtonian liquid (the
-// conformation step (35) integrates on the SW-NE mesh).
-void ValidateMeshDiagonals(const Params& params);
 // dt > 0, end >= 0, dt <= end unless end = 0, end / dt <= kMaxStepCount.
 void ValidateTimeSteps(const TimeParams& time);
 // Each period >= 0 (0: none, or every step for particles), end / period <= kMaxStepCount.
