@@ -46,8 +46,8 @@ ParticleStep::ParticleStep(const Params& params, const Grid& grid)
     inv_excess_mass_.push_back(heavy_free ? 1.0 / excess : 0.0);
     predicted_.push_back(heavy_free ? 1 : 0);
   }
-  for (auto* a :
-       {&x_old_, &u_old_, &x_, &x_star_, &u_, &u_star_, &f0_, &f1_, &collision_average_}) {
+  for (auto* a : {&x_old_, &u_old_, &x_, &x_star_, &u_, &u_star_, &f0_, &f1_, &collision_average_,
+                  &lag_accel_, &accel_}) {
     a->assign(n, Vec2::Zero());
   }
   omega_old_.assign(n, 0.0);
@@ -87,13 +87,16 @@ void ParticleStep::Predict(double dt, const Vec2& gravity, std::vector<ParticleS
     x_[p] = particles[p].position;
     u_[p] = particles[p].velocity;
     collision_average_[p].setZero();
+    // The body force per unit excess mass over the step: g (when the Stokes step did not carry
+    // it) and the lagged multiplier's reaction -C^T nu^n / m_e (zero unless LagMultiplier ran).
+    accel_[p] = gravity + lag_accel_[p];
   }
   max_contacts_ = 0;
   for (int k = 1; k <= substeps_; ++k) {
     max_contacts_ = std::max(max_contacts_, collisions_.Compute(x_, f0_));
     for (std::size_t p = 0; p < n; ++p) {
       u_star_[p] =
-          predicted_[p] ? Vec2(u_[p] + (gravity + inv_excess_mass_[p] * f0_[p]) * tau) : u_[p];
+          predicted_[p] ? Vec2(u_[p] + (accel_[p] + inv_excess_mass_[p] * f0_[p]) * tau) : u_[p];
       x_star_[p] = x_[p] + 0.5 * (u_[p] + u_star_[p]) * tau;
     }
     collisions_.Compute(x_star_, f1_);
@@ -101,7 +104,7 @@ void ParticleStep::Predict(double dt, const Vec2& gravity, std::vector<ParticleS
       const Vec2 average = 0.5 * (f0_[p] + f1_[p]);
       collision_average_[p] += average / substeps_;
       const Vec2 previous = u_[p];
-      if (predicted_[p]) u_[p] += (gravity + inv_excess_mass_[p] * average) * tau;
+      if (predicted_[p]) u_[p] += (accel_[p] + inv_excess_mass_[p] * average) * tau;
       x_[p] += 0.5 * (previous + u_[p]) * tau;
     }
   }
@@ -160,15 +163,17 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
     u_old_[p] = coupled_ ? u_start_[p] : particles[p].velocity;
     omega_old_[p] = coupled_ ? omega_start_[p] : particles[p].angular_velocity;
   }
-  // The reaction of the lagged multiplier nu^n, which acted on the fluid in (33): U* starts from
-  // U^n - dt D^-1 C^T nu^n (D^-1 = 0 but for the heavy free particles).
-  if (lag_applied_) {
-    for (std::size_t p = 0; p < n; ++p) {
-      const double inv_inertia =
-          2.0 * inv_excess_mass_[p] / (particles[p].radius * particles[p].radius);
-      particles[p].velocity -= dt * inv_excess_mass_[p] * lagged_->ForceSum(p);
-      particles[p].angular_velocity -= dt * inv_inertia * lagged_->TorqueSum(p);
-    }
+  // The reaction of the lagged multiplier nu^n, which acted on the fluid in (33) (D^-1 = 0 but
+  // for the heavy free particles): a force over the predictor's sub-steps beside g, so that the
+  // predicted positions follow the motion (the particle header); omega, not predicted, starts
+  // from omega^n - dt (T^T nu^n) / I_e.
+  for (std::size_t p = 0; p < n; ++p) {
+    lag_accel_[p].setZero();
+    if (!lag_applied_) continue;
+    const double inv_inertia =
+        2.0 * inv_excess_mass_[p] / (particles[p].radius * particles[p].radius);
+    lag_accel_[p] = -inv_excess_mass_[p] * lagged_->ForceSum(p);
+    particles[p].angular_velocity -= dt * inv_inertia * lagged_->TorqueSum(p);
   }
   // Gravity acts in the coupled Stokes step when there is one, so that the excess weight meets
   // the viscous drag in the same solve; the predictor then carries the collision forces only.
