@@ -6,8 +6,9 @@
 // Why: with gamma = 0 the paper's steps (33)-(34) diffuse momentum through a particle for a whole
 // step before (37) resets its velocity, so the drag falls as nu dt / h^2 grows
 // (particle-coupling.md, section 1). Here (33) carries the force nu^n that held the particles rigid
-// at the end of the last step:
-//   (rho/dt) M (u - u^n) + alpha eta K u - B^T p = f + E(X^n)^T nu^n,   B u = 0,
+// at the end of the last step, on the multiplier points where (37) will hold them, X~ = X^n + dt
+// U^n:
+//   (rho/dt) M (u - u^n) + alpha eta K u - B^T p = f + E(X~)^T nu^n,   B u = 0,
 // (entered as the velocity increment dt M^-1 E^T nu^n on u^n, the fast solver's data), and the
 // heavy free particles its reaction -D^-1 C^T nu^n as a force over the sub-steps of (36), beside g
 // (particles/particle_step.h, "Why over the sub-steps"). Then (34)-(36)
@@ -26,7 +27,15 @@
 // the sub-steps, Faxen's disk (rho_d / rho_L = 1.01, h = 1/96) settles at the same speed within
 // 0.21 % from nu dt / h^2 = 1.4 to 18.4 (tests/convergence/lagged_reaction_test.cc). The accuracy
 // envelope bounds nu dt / h^2 by 2.05 for the transient's accuracy.
-// Cost: one E at X^n and one spreading a step (no extra fast solve).
+// Where: nu^n is a force on the multiplier points, which move with the particle; (37) finds this
+// step's force at X^{n+2/4} = X^n + dt U^n + O(dt^2). Spread at X^n, the lag trailed a moving
+// particle by U dt: it pushed the liquid the particle had left and not the liquid it entered, and
+// (37)'s increment had to undo that every step, an error that grows with U dt / h. Paper 5.1a (a
+// disk at Re ~ 200 crossing about a cell a step at dt = 1e-3 on h = 1/96) failed so in four of its
+// six files (t = 0.055-0.085: the least-squares advection's Courant number ran away); at X~ all six
+// complete with max trA 42-56, where the paper's coupling has 42.5 (docs/stability.md, "The
+// coupling of the constraint", failure 2). For slow particles X~ and X^n differ by far less than a
+// cell (the 5.2 pair: 0.015 h). Cost: one E at X~ and one spreading a step (no extra fast solve).
 // Neutrally buoyant free particles are not lagged: their stored multiplier stays the paper's nu of
 // (37) (RigidBodyConstraint::Enforce assigns it), so they keep the paper's coupling. Lagged, their
 // rotation drifted without end (a disk in Couette flow, h = 1/32: omega / g from -0.480 at t = 0.2
@@ -51,8 +60,8 @@ class LaggedMultiplier {
  public:
   explicit LaggedMultiplier(const RigidBodyConstraint& constraint);
 
-  // Before (33): locates E at the particles' positions X^n (constraint.Locate) and adds dt M^-1
-  // E^T nu^n to u, v (nu^n: each particle's stored multiplier); records C^T nu^n per particle.
+  // Before (33): locates E at X^n + dt U^n (constraint.Locate) and adds dt M^-1 E^T nu^n to u, v
+  // (nu^n: each particle's stored multiplier); records C^T nu^n per particle.
   // time names the step in errors. Throws ParticlesOverlap.
   void Apply(double time, double dt, RigidBodyConstraint& constraint,
              const std::vector<ParticleState>& particles, double* u, double* v);
@@ -66,6 +75,7 @@ class LaggedMultiplier {
   std::vector<double> slot_u_, slot_v_;  // the spreading, by slot
   std::vector<Vec2> force_sum_;
   std::vector<double> torque_sum_;
+  std::vector<ParticleState> located_;  // the particles at X^n + dt U^n
 };
 
 }  // namespace dlmfd
