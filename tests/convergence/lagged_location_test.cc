@@ -31,17 +31,15 @@ namespace dlmfd {
 namespace {
 
 // The fall speed -v at t = 0.1 of the Newtonian 5.1a disk (h = 1/96, dt = 1e-3), under the
-// default coupling or under the paper's (the file's own).
+// default coupling (alpha = 1, beta = 0) or under the paper's (alpha = beta = 1/2).
 double FallSpeed(bool default_coupling) {
   std::vector<SceneOverride> overrides = {{"time.end", "0.1"},
                                           {"output.fields_every", "0"},
                                           {"output.particles_every", "0"},
                                           {"output.checkpoint_every", "0"}};
-  if (default_coupling) {
-    overrides.push_back({"splitting.constraint", "\"incremental\""});
-    overrides.push_back({"splitting.alpha", "1"});
-    overrides.push_back({"splitting.beta", "0"});
-  }
+  overrides.push_back({"splitting.constraint", default_coupling ? "\"incremental\"" : "\"paper\""});
+  overrides.push_back({"splitting.alpha", default_coupling ? "1" : "0.5"});
+  overrides.push_back({"splitting.beta", default_coupling ? "0" : "0.5"});
   Params params = LoadSceneFile(
       std::string(DLMFD_SOURCE_DIR) + "/cases/paper/5.1a_newtonian_disk_rho1.5_h96_dt1e-3.toml",
       overrides);

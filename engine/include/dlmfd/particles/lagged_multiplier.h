@@ -25,8 +25,9 @@
 // nu dt / h^2 = 5.5, or at moderate steps on coarse meshes, or in their own polymer layer) came
 // from the reaction given as a kick at the start of (36), not from the lag: with the force over
 // the sub-steps, Faxen's disk (rho_d / rho_L = 1.01, h = 1/96) settles at the same speed within
-// 0.21 % from nu dt / h^2 = 1.4 to 18.4 (tests/convergence/lagged_reaction_test.cc). The accuracy
-// envelope bounds nu dt / h^2 by 2.05 for the transient's accuracy.
+// 0.08 % from nu dt / h^2 = 1.4 to 9.2, 0.37 % at 18.4 (tests/convergence/
+// lagged_reaction_test.cc). The accuracy envelope bounds nu dt / h^2 by 2.05 for the transient's
+// accuracy.
 // Where: nu^n is a force on the multiplier points, which move with the particle; (37) finds this
 // step's force at X^{n+2/4} = X^n + dt U^n + O(dt^2). Spread at X^n, the lag trailed a moving
 // particle by U dt: it pushed the liquid the particle had left and not the liquid it entered, and
@@ -35,7 +36,8 @@
 // six files (t = 0.055-0.085: the least-squares advection's Courant number ran away); at X~ all six
 // complete with max trA 42-56, where the paper's coupling has 42.5 (docs/stability.md, "The
 // coupling of the constraint", failure 2). For slow particles X~ and X^n differ by far less than a
-// cell (the 5.2 pair: 0.015 h). Cost: one E at X~ and one spreading a step (no extra fast solve).
+// cell (the 5.2 pair: 0.015 h).
+// Cost: one E at X~ and one spreading a step (no extra fast solve).
 // Neutrally buoyant free particles are not lagged: their stored multiplier stays the paper's nu of
 // (37) (RigidBodyConstraint::Enforce assigns it), so they keep the paper's coupling. Lagged, their
 // rotation drifted without end (a disk in Couette flow, h = 1/32: omega / g from -0.480 at t = 0.2
