@@ -17,12 +17,7 @@ LaggedMultiplier::LaggedMultiplier(const RigidBodyConstraint& constraint) {
 
 void LaggedMultiplier::Apply(double time, double dt, RigidBodyConstraint& constraint,
                              const std::vector<ParticleState>& particles, double* u, double* v) {
-  // E where (37) will hold the particles, X^n + dt U^n (the header); the copy is made once.
-  if (located_.size() != particles.size()) located_ = particles;
-  for (std::size_t p = 0; p < particles.size(); ++p) {
-    located_[p].position = particles[p].position + dt * particles[p].velocity;
-  }
-  constraint.Locate(time, dt, located_);
+  constraint.Locate(time, dt, particles);
   const MultiplierPoints& points = constraint.Points();
   const CouplingOperator& coupling = constraint.coupling();
   for (std::size_t p = 0; p < particles.size(); ++p) {

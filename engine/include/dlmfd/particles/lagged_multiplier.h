@@ -6,9 +6,8 @@
 // Why: with gamma = 0 the paper's steps (33)-(34) diffuse momentum through a particle for a whole
 // step before (37) resets its velocity, so the drag falls as nu dt / h^2 grows
 // (particle-coupling.md, section 1). Here (33) carries the force nu^n that held the particles rigid
-// at the end of the last step, on the multiplier points where (37) will hold them, X~ = X^n + dt
-// U^n:
-//   (rho/dt) M (u - u^n) + alpha eta K u - B^T p = f + E(X~)^T nu^n,   B u = 0,
+// at the end of the last step:
+//   (rho/dt) M (u - u^n) + alpha eta K u - B^T p = f + E(X^n)^T nu^n,   B u = 0,
 // (entered as the velocity increment dt M^-1 E^T nu^n on u^n, the fast solver's data), and the
 // heavy free particles its reaction -D^-1 C^T nu^n as a force over the sub-steps of (36), beside g
 // (particles/particle_step.h, "Why over the sub-steps"). Then (34)-(36)
@@ -25,24 +24,25 @@
 // nu dt / h^2 = 5.5, or at moderate steps on coarse meshes, or in their own polymer layer) came
 // from the reaction given as a kick at the start of (36), not from the lag: with the force over
 // the sub-steps, Faxen's disk (rho_d / rho_L = 1.01, h = 1/96) settles at the same speed within
-// 0.08 % from nu dt / h^2 = 1.4 to 9.2, 0.37 % at 18.4 (tests/convergence/
+// 0.02 % from nu dt / h^2 = 1.4 to 9.2, 0.21 % at 18.4 (tests/convergence/
 // lagged_reaction_test.cc). The accuracy envelope bounds nu dt / h^2 by 2.05 for the transient's
 // accuracy.
-// Where: nu^n is a force on the multiplier points, which move with the particle; (37) finds this
-// step's force at X^{n+2/4} = X^n + dt U^n + O(dt^2). Spread at X^n, the lag trailed a moving
-// particle by U dt: it pushed the liquid the particle had left and not the liquid it entered, and
-// (37)'s increment had to undo that every step, an error that grows with U dt / h. Paper 5.1a (a
-// disk at Re ~ 200 crossing about a cell a step at dt = 1e-3 on h = 1/96) failed so in four of its
-// six files (t = 0.055-0.085: the least-squares advection's Courant number ran away); at X~ all six
-// complete with max trA 42-56, where the paper's coupling has 42.5 (docs/stability.md, "The
-// coupling of the constraint", failure 2). For slow particles X~ and X^n differ by far less than a
-// cell (the 5.2 pair: 0.015 h).
-// Cost: one E at X~ and one spreading a step (no extra fast solve).
+// Where: at X^n, because the advection step (34) that follows (33) carries the liquid inside a
+// particle, and the push nu^n gave it, by U dt to X^{n+1}, where (37) holds the particle (the
+// viscous coupling puts the particles at X^n in (33) for the same reason). Spreading nu^n at
+// X^n + dt U^n instead was measured (2026-12-03; docs/stability.md, "The coupling of the
+// constraint", failure 2). It completed the four least-squares files of paper 5.1a that fail here
+// (U dt / h about 1, or h_p finer than 1.1 h: outside the accuracy envelope), but it failed the
+// wave-advected file at dt = 1e-3 that completes here, and its transient fall speed carried
+// 1.3-1.6 times the dt error (5.1a at t = 0.1: 9.008 / 9.134 / 9.198 at dt = 4e-4 / 2e-4 /
+// 1e-4, against 9.104 / 9.163 / 9.209 at X^n).
+// Cost: one E at X^n and one spreading a step (no extra fast solve).
 // Neutrally buoyant free particles are not lagged: their stored multiplier stays the paper's nu of
-// (37) (RigidBodyConstraint::Enforce assigns it), so they keep the paper's coupling. Lagged, their
-// rotation drifted without end (a disk in Couette flow, h = 1/32: omega / g from -0.480 at t = 0.2
-// to -0.473 at t = 1.5 and still moving, where the paper's is steady at -0.482): (37) leaves the
-// rigid part of their mismatch to their motion, so nothing corrects what the lag does to it.
+// (37) (RigidBodyConstraint::Enforce assigns it), so they keep the paper's coupling.
+// Lagged, their rotation drifted without end (a disk in Couette flow, h = 1/32: omega / g from
+// -0.480 at t = 0.2 to -0.473 at t = 1.5 and still moving, where the paper's is steady at -0.482):
+// (37) leaves the rigid part of their mismatch to their motion, so nothing corrects what the lag
+// does to it.
 // Not supported: the viscous coupling's fully coupled solve (this is its first iterate, warm
 // started by the total multiplier, without the PCG that follows).
 // References: J. van Kan, SIAM J. Sci. Stat. Comput. 7 (1986) 870-891 (incremental pressure
@@ -62,8 +62,8 @@ class LaggedMultiplier {
  public:
   explicit LaggedMultiplier(const RigidBodyConstraint& constraint);
 
-  // Before (33): locates E at X^n + dt U^n (constraint.Locate) and adds dt M^-1 E^T nu^n to u, v
-  // (nu^n: each particle's stored multiplier); records C^T nu^n per particle.
+  // Before (33): locates E at the particles' positions X^n (constraint.Locate) and adds dt M^-1
+  // E^T nu^n to u, v (nu^n: each particle's stored multiplier); records C^T nu^n per particle.
   // time names the step in errors. Throws ParticlesOverlap.
   void Apply(double time, double dt, RigidBodyConstraint& constraint,
              const std::vector<ParticleState>& particles, double* u, double* v);
@@ -77,7 +77,6 @@ class LaggedMultiplier {
   std::vector<double> slot_u_, slot_v_;  // the spreading, by slot
   std::vector<Vec2> force_sum_;
   std::vector<double> torque_sum_;
-  std::vector<ParticleState> located_;  // the particles at X^n + dt U^n
 };
 
 }  // namespace dlmfd

@@ -98,8 +98,8 @@ class ParticleStep {
 
   // True with splitting.constraint = "incremental": Simulation calls LagMultiplier before (33).
   bool LagsMultiplier() const { return lagged_ != nullptr; }
-  // Before (33): the particles' stored multipliers nu^n at X^n + dt U^n onto u, v as dt M^-1 E^T
-  // nu^n (particles/lagged_multiplier.h); the following Advance adds their reaction and force.
+  // Before (33): the particles' stored multipliers nu^n at X^n onto u, v as dt M^-1 E^T nu^n
+  // (particles/lagged_multiplier.h); the following Advance adds their reaction and force.
   void LagMultiplier(double time, double dt, const std::vector<ParticleState>& particles, double* u,
                      double* v);
 

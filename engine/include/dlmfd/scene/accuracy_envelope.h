@@ -28,7 +28,7 @@
 //   last step's multiplier in the Stokes step) the bound is nu dt / h^2 <= 2.05: the test channel
 //   (a fixed disk D = 0.4, h = 1/16) at dt = 8e-3 (2.05) is 0.52 % below the dt -> 0 drag during
 //   its transient (t = 0.5; 0.06 % at 1.02), and a free disk of rho_d / rho_L = 1.01 (Faxen's
-//   disk, h = 1/96) settles at the same speed within 0.08 % from 1.4 to 9.2, 0.37 % at 18.4
+//   disk, h = 1/96) settles at the same speed within 0.02 % from 1.4 to 9.2, 0.21 % at 18.4
 //   (unstable from 5.5 until the lag's reaction became a force over the predictor's sub-steps,
 //   2026-12-03, particles/particle_step.h); at a steady state the drag does not depend on nu dt /
 //   h^2 (Schaefer-Turek at nu = 0.1: 0.38 % between 40 and 0.04, a lag still decaying).
