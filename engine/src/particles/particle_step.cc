@@ -47,7 +47,7 @@ ParticleStep::ParticleStep(const Params& params, const Grid& grid)
     predicted_.push_back(heavy_free ? 1 : 0);
   }
   for (auto* a : {&x_old_, &u_old_, &x_, &x_star_, &u_, &u_star_, &f0_, &f1_, &collision_average_,
-                  &lag_accel_, &accel_}) {
+                  &lag_accel_}) {
     a->assign(n, Vec2::Zero());
   }
   omega_old_.assign(n, 0.0);
@@ -87,16 +87,15 @@ void ParticleStep::Predict(double dt, const Vec2& gravity, std::vector<ParticleS
     x_[p] = particles[p].position;
     u_[p] = particles[p].velocity;
     collision_average_[p].setZero();
-    // The body force per unit excess mass over the step: g (when the Stokes step did not carry
-    // it) and the lagged multiplier's reaction -C^T nu^n / m_e (zero unless LagMultiplier ran).
-    accel_[p] = gravity + lag_accel_[p];
   }
   max_contacts_ = 0;
   for (int k = 1; k <= substeps_; ++k) {
     max_contacts_ = std::max(max_contacts_, collisions_.Compute(x_, f0_));
     for (std::size_t p = 0; p < n; ++p) {
       u_star_[p] =
-          predicted_[p] ? Vec2(u_[p] + (accel_[p] + inv_excess_mass_[p] * f0_[p]) * tau) : u_[p];
+          predicted_[p]
+              ? Vec2(u_[p] + (gravity + lag_accel_[p] + inv_excess_mass_[p] * f0_[p]) * tau)
+              : u_[p];
       x_star_[p] = x_[p] + 0.5 * (u_[p] + u_star_[p]) * tau;
     }
     collisions_.Compute(x_star_, f1_);
@@ -104,7 +103,8 @@ void ParticleStep::Predict(double dt, const Vec2& gravity, std::vector<ParticleS
       const Vec2 average = 0.5 * (f0_[p] + f1_[p]);
       collision_average_[p] += average / substeps_;
       const Vec2 previous = u_[p];
-      if (predicted_[p]) u_[p] += (accel_[p] + inv_excess_mass_[p] * average) * tau;
+      // g (when the Stokes step did not carry it) and the lag's reaction (zero unless it ran).
+      if (predicted_[p]) u_[p] += (gravity + lag_accel_[p] + inv_excess_mass_[p] * average) * tau;
       x_[p] += 0.5 * (previous + u_[p]) * tau;
     }
   }

@@ -126,7 +126,6 @@ class ParticleStep {
   // Work arrays, sized once.
   std::vector<Vec2> x_old_, u_old_, x_, x_star_, u_, u_star_, f0_, f1_, collision_average_;
   std::vector<Vec2> lag_accel_;  // -C^T nu^n / m_e of the lagged multiplier (incremental only)
-  std::vector<Vec2> accel_;      // the predictor's body force per unit excess mass
   std::vector<double> omega_old_;
   int max_contacts_ = 0;
   std::unique_ptr<ViscousConstraint> viscous_;  // splitting.constraint = "viscous" only
