@@ -4,7 +4,6 @@
 #include <cmath>
 #include <sstream>
 
-#include "../mesh/mirror_image.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/mesh/fem_operators.h"
 
@@ -55,42 +54,46 @@ AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const
     utt_v_.assign(n, 0.0);
   }
   const bool both = diagonals_ == MeshDiagonals::kBoth;
-  for (TriangleWeights* w : {&weights_, &mirrored_weights_}) {
-    if (w == &mirrored_weights_ && !both) break;
+  for (TriangleWeights* w : {&weights_, &nwse_weights_}) {
+    if (w == &nwse_weights_ && !both) break;
     for (auto* a : {&w->w11a, &w->w12a, &w->w22a, &w->w11b, &w->w12b, &w->w22b})
       a->assign(cells, 0.0);
   }
   if (both) {
-    for (auto* a : {&mirrored_u_, &mirrored_v_, &mirrored_ku_, &mirrored_kv_}) a->assign(n, 0.0);
+    for (auto& a : corners_) a.assign(padded, 0.0);
+  } else {
+    for (auto* a : {&f1xu_, &f1yu_, &f2xu_, &f2yu_, &f1xv_, &f1yv_, &f2xv_, &f2yv_})
+      a->assign(padded, 0.0);
   }
-  for (auto* a : {&f1xu_, &f1yu_, &f2xu_, &f2yu_, &f1xv_, &f1yv_, &f2xv_, &f2yv_})
-    a->assign(padded, 0.0);
 }
 
 AdvectionWave::~AdvectionWave() = default;
 
-void AdvectionWave::ComputeWeights(const double* vx, const double* vy, TriangleWeights& w) const {
+// W_T / h^2 = (1/24)(sum_k V_k V_k^T + S S^T) over the vertices of T, for |T| = h^2 / 2 and
+// unscaled gradients.
+void AdvectionWave::ComputeWeights(const double* vx, const double* vy) {
   const int nx = grid_.nx, ny = grid_.ny;
-  // W_T / h^2 = (1/24)(sum_k V_k V_k^T + S S^T) for |T| = h^2 / 2 and unscaled gradients.
   constexpr double kOneOver24 = 1.0 / 24.0;
+  const bool both = diagonals_ == MeshDiagonals::kBoth;
+  auto triangle = [&](std::size_t p, std::size_t q, std::size_t r, double& w11, double& w12,
+                      double& w22) {
+    const double sx = vx[p] + vx[q] + vx[r], sy = vy[p] + vy[q] + vy[r];
+    w11 = kOneOver24 * (vx[p] * vx[p] + vx[q] * vx[q] + vx[r] * vx[r] + sx * sx);
+    w12 = kOneOver24 * (vx[p] * vy[p] + vx[q] * vy[q] + vx[r] * vy[r] + sx * sy);
+    w22 = kOneOver24 * (vy[p] * vy[p] + vy[q] * vy[q] + vy[r] * vy[r] + sy * sy);
+  };
+  TriangleWeights &w = weights_, &z = nwse_weights_;
 #pragma omp parallel for schedule(static)
   for (int cj = 0; cj < ny; ++cj) {
     for (int ci = 0; ci < nx; ++ci) {
       const std::size_t a = grid_.Index(ci, cj), b = grid_.Index(ci + 1, cj),
                         c = grid_.Index(ci + 1, cj + 1), d = grid_.Index(ci, cj + 1);
       const std::size_t cell = std::size_t(cj) * nx + ci;
-      {
-        const double sx = vx[a] + vx[b] + vx[c], sy = vy[a] + vy[b] + vy[c];
-        w.w11a[cell] = kOneOver24 * (vx[a] * vx[a] + vx[b] * vx[b] + vx[c] * vx[c] + sx * sx);
-        w.w12a[cell] = kOneOver24 * (vx[a] * vy[a] + vx[b] * vy[b] + vx[c] * vy[c] + sx * sy);
-        w.w22a[cell] = kOneOver24 * (vy[a] * vy[a] + vy[b] * vy[b] + vy[c] * vy[c] + sy * sy);
-      }
-      {
-        const double sx = vx[a] + vx[c] + vx[d], sy = vy[a] + vy[c] + vy[d];
-        w.w11b[cell] = kOneOver24 * (vx[a] * vx[a] + vx[c] * vx[c] + vx[d] * vx[d] + sx * sx);
-        w.w12b[cell] = kOneOver24 * (vx[a] * vy[a] + vx[c] * vy[c] + vx[d] * vy[d] + sx * sy);
-        w.w22b[cell] = kOneOver24 * (vy[a] * vy[a] + vy[c] * vy[c] + vy[d] * vy[d] + sy * sy);
-      }
+      triangle(a, b, c, w.w11a[cell], w.w12a[cell], w.w22a[cell]);  // T1
+      triangle(a, c, d, w.w11b[cell], w.w12b[cell], w.w22b[cell]);  // T2
+      if (!both) continue;
+      triangle(a, b, d, z.w11a[cell], z.w12a[cell], z.w22a[cell]);  // T3
+      triangle(b, c, d, z.w11b[cell], z.w12b[cell], z.w22b[cell]);  // T4
     }
   }
 }
@@ -101,13 +104,7 @@ void AdvectionWave::FreezeVelocity(const double* u, const double* v) {
   std::copy(v, v + vy_.size(), vy_.begin());
   const double* vx = vx_.data();
   const double* vy = vy_.data();
-  ComputeWeights(vx, vy, weights_);
-  if (diagonals_ == MeshDiagonals::kBoth) {
-    const bool px = topo_.x.low == EndKind::kPeriodic;
-    kernels::MirrorInX(grid_, px, -1.0, vx, mirrored_u_.data());
-    kernels::MirrorInX(grid_, px, 1.0, vy, mirrored_v_.data());
-    ComputeWeights(mirrored_u_.data(), mirrored_v_.data(), mirrored_weights_);
-  }
+  ComputeWeights(vx, vy);
   // (V.n)^+ times the lumped boundary mass on outflow sides.
   std::fill(out_mass_.begin(), out_mass_.end(), 0.0);
   for (int s = 0; s < 4; ++s) {
@@ -129,23 +126,34 @@ void AdvectionWave::FreezeVelocity(const double* u, const double* v) {
   }
 }
 
-// On the NW-SE triangles K_V is S K_V' S per component, V' the mirrored V (mirror_image.h).
 void AdvectionWave::ApplyWaveStiffness(const double* u, const double* v, double* ku, double* kv) {
-  ApplyMeshWaveStiffness(weights_, u, v, ku, kv);
-  if (diagonals_ != MeshDiagonals::kBoth) return;
-  const bool px = topo_.x.low == EndKind::kPeriodic;
-  double *mu = mirrored_u_.data(), *mv = mirrored_v_.data();
-  double *mku = mirrored_ku_.data(), *mkv = mirrored_kv_.data();
-  kernels::MirrorInX(grid_, px, 1.0, u, mu);
-  kernels::MirrorInX(grid_, px, 1.0, v, mv);
-  ApplyMeshWaveStiffness(mirrored_weights_, mu, mv, mku, mkv);
-  kernels::AverageWithMirrorImage(grid_, px, 1.0, mku, ku);
-  kernels::AverageWithMirrorImage(grid_, px, 1.0, mkv, kv);
+  if (diagonals_ == MeshDiagonals::kBoth) {
+    ApplyMeanWaveStiffness(u, v, ku, kv);
+  } else {
+    ApplyMeshWaveStiffness(u, v, ku, kv);
+  }
 }
 
-void AdvectionWave::ApplyMeshWaveStiffness(const TriangleWeights& wt, const double* u,
-                                           const double* v, double* ku, double* kv) {
+void AdvectionWave::FillPeriodicGhosts(std::vector<double>* const* cells, int count) {
   const int nx = grid_.nx, ny = grid_.ny;
+  if (topo_.x.low == EndKind::kPeriodic) {
+    for (int k = 0; k < count; ++k) {
+      std::vector<double>& f = *cells[k];
+      for (int cj = 0; cj < ny; ++cj) f[Cell(-1, cj)] = f[Cell(nx - 1, cj)];
+    }
+  }
+  if (topo_.y.low == EndKind::kPeriodic) {
+    for (int k = 0; k < count; ++k) {
+      std::vector<double>& f = *cells[k];
+      for (int ci = -1; ci < nx; ++ci) f[Cell(ci, -1)] = f[Cell(ci, ny - 1)];
+    }
+  }
+}
+
+void AdvectionWave::ApplyMeshWaveStiffness(const double* u, const double* v, double* ku,
+                                           double* kv) {
+  const int nx = grid_.nx, ny = grid_.ny;
+  const TriangleWeights& wt = weights_;
   // Per-triangle fluxes F_T = W_T grad u_T (unscaled differences), both components.
 #pragma omp parallel for schedule(static)
   for (int cj = 0; cj < ny; ++cj) {
@@ -173,16 +181,7 @@ void AdvectionWave::ApplyMeshWaveStiffness(const TriangleWeights& wt, const doub
     }
   }
   std::vector<double>* fluxes[8] = {&f1xu_, &f1yu_, &f2xu_, &f2yu_, &f1xv_, &f1yv_, &f2xv_, &f2yv_};
-  if (topo_.x.low == EndKind::kPeriodic) {
-    for (auto* f : fluxes) {
-      for (int cj = 0; cj < ny; ++cj) (*f)[Cell(-1, cj)] = (*f)[Cell(nx - 1, cj)];
-    }
-  }
-  if (topo_.y.low == EndKind::kPeriodic) {
-    for (auto* f : fluxes) {
-      for (int ci = -1; ci < nx; ++ci) (*f)[Cell(ci, -1)] = (*f)[Cell(ci, ny - 1)];
-    }
-  }
+  FillPeriodicGhosts(fluxes, 8);
   // Gather: node (i, j) is a of cell (i, j), b of T1 in (i-1, j), c of (i-1, j-1), d of T2 in (i,
   // j-1).
 #pragma omp parallel for schedule(static)
@@ -195,6 +194,62 @@ void AdvectionWave::ApplyMeshWaveStiffness(const TriangleWeights& wt, const doub
                f2yu_[s];
       kv[id] = -f1xv_[own] - f2yv_[own] + f1xv_[w] - f1yv_[w] + f1yv_[sw] + f2xv_[sw] - f2xv_[s] +
                f2yv_[s];
+    }
+  }
+}
+
+// The mean of K_V on the four triangles of each cell, in one sweep: each cell's share of the rows
+// of its corners a, b, c, d (half the SW-NE pair's plus half the NW-SE pair's), then one gather of
+// four shares a node. With F_T = W_T grad u_T and h grad phi of each corner on each triangle
+// (grid_kernels.h):
+//   a: -F1x - F2y  and  -F3x - F3y;      b: F1x - F1y  and  F3x - F4y;
+//   c:  F1y + F2x  and   F4x + F4y;      d: F2y - F2x  and  F3y - F4x.
+void AdvectionWave::ApplyMeanWaveStiffness(const double* u, const double* v, double* ku,
+                                           double* kv) {
+  const int nx = grid_.nx, ny = grid_.ny;
+  const TriangleWeights &w1 = weights_, &w2 = nwse_weights_;
+  std::vector<double>* shares[8];
+  for (int k = 0; k < 8; ++k) shares[k] = &corners_[k];
+#pragma omp parallel for schedule(static)
+  for (int cj = 0; cj < ny; ++cj) {
+    for (int ci = 0; ci < nx; ++ci) {
+      const std::size_t a = grid_.Index(ci, cj), b = grid_.Index(ci + 1, cj),
+                        c = grid_.Index(ci + 1, cj + 1), d = grid_.Index(ci, cj + 1);
+      const std::size_t cell = std::size_t(cj) * nx + ci, pc = Cell(ci, cj);
+      for (int comp = 0; comp < 2; ++comp) {
+        const double* f = comp == 0 ? u : v;
+        auto flux = [&](const std::vector<double>& w11, const std::vector<double>& w12,
+                        const std::vector<double>& w22, double gx, double gy, double& fx,
+                        double& fy) {
+          fx = w11[cell] * gx + w12[cell] * gy;
+          fy = w12[cell] * gx + w22[cell] * gy;
+        };
+        double f1x, f1y, f2x, f2y, f3x, f3y, f4x, f4y;
+        flux(w1.w11a, w1.w12a, w1.w22a, f[b] - f[a], f[c] - f[b], f1x, f1y);  // T1 (a, b, c)
+        flux(w1.w11b, w1.w12b, w1.w22b, f[c] - f[d], f[d] - f[a], f2x, f2y);  // T2 (a, c, d)
+        flux(w2.w11a, w2.w12a, w2.w22a, f[b] - f[a], f[d] - f[a], f3x, f3y);  // T3 (a, b, d)
+        flux(w2.w11b, w2.w12b, w2.w22b, f[c] - f[d], f[c] - f[b], f4x, f4y);  // T4 (b, c, d)
+        std::vector<double>* const* out = shares + 4 * comp;
+        (*out[0])[pc] = 0.5 * ((-f1x - f2y) + (-f3x - f3y));
+        (*out[1])[pc] = 0.5 * ((f1x - f1y) + (f3x - f4y));
+        (*out[2])[pc] = 0.5 * ((f1y + f2x) + (f4x + f4y));
+        (*out[3])[pc] = 0.5 * ((f2y - f2x) + (f3y - f4x));
+      }
+    }
+  }
+  FillPeriodicGhosts(shares, 8);
+  // Gather: node (i, j) is a of cell (i, j), b of (i-1, j), c of (i-1, j-1), d of (i, j-1).
+  const double *au = corners_[0].data(), *bu = corners_[1].data(), *cu = corners_[2].data(),
+               *du = corners_[3].data(), *av = corners_[4].data(), *bv = corners_[5].data(),
+               *cv = corners_[6].data(), *dv = corners_[7].data();
+#pragma omp parallel for schedule(static)
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i) {
+      const std::size_t own = Cell(i, j), w = Cell(i - 1, j), sw = Cell(i - 1, j - 1),
+                        s = Cell(i, j - 1);
+      const std::size_t id = grid_.Index(i, j);
+      ku[id] = au[own] + bu[w] + cu[sw] + du[s];
+      kv[id] = av[own] + bv[w] + cv[sw] + dv[s];
     }
   }
 }

@@ -1,15 +1,14 @@
 // Matrix-free P1 operators on the uniform SW-NE mesh (method notes 1, section 1): each function
 // sweeps the node rows that own a Galerkin row and calls one kernel of grid_kernels.h per node;
 // periodic duplicates get a zero row, as in the assembled matrices. With MeshDiagonals::kBoth, G,
-// B and B^T add the same sweep on the mirrored arguments, which is the form on the NW-SE
-// triangles (mirror_image.h), and return the mean.
+// B and B^T return the mean of the form on the SW-NE triangles and on the NW-SE ones, each node's
+// row gathered from both triangulations in the same sweep (grid_kernels.h, Diagonal).
 #include <algorithm>
 #include <cstddef>
 #include <vector>
 
 #include "dlmfd/mesh/fem_operators.h"
 #include "grid_kernels.h"
-#include "mirror_image.h"
 
 namespace dlmfd {
 namespace {
@@ -34,11 +33,12 @@ void ZeroDuplicates(const Grid& grid, const AxisWrap& ax, const AxisWrap& ay, do
   }
 }
 
-// Scratch node array of the calling thread; grows once, then is reused (no allocation per call).
-double* Scratch(std::size_t size) {
-  thread_local std::vector<double> buffer;
-  if (buffer.size() < size) buffer.resize(size);
-  return buffer.data();
+// Scratch node arrays of the calling thread (two slots); each grows once, then is reused (no
+// allocation per call).
+double* Scratch(int slot, std::size_t size) {
+  thread_local std::vector<double> buffers[2];
+  if (buffers[slot].size() < size) buffers[slot].resize(size);
+  return buffers[slot].data();
 }
 
 // Calls node(im, i, ip) for every row-owning node of a row: the ends with their wrapped or missing
@@ -49,21 +49,6 @@ inline void SweepRow(const AxisWrap& ax, NodeFn&& node) {
   node(ax.Prev(0), 0, ax.Next(0));
   for (int i = 1; i < last; ++i) node(i - 1, i, i + 1);
   if (last > 0) node(ax.Prev(last), last, ax.Next(last));
-}
-
-// w = G_x u + G_y v on every row-owning velocity node.
-void DivergenceOnVelocityNodes(const Grid& grid, const AxisWrap& ax, const AxisWrap& ay,
-                               const double* u, const double* v, double* w) {
-  const double scale = grid.h / 6.0;
-  const int lines_y = ay.Lines();
-#pragma omp parallel for schedule(static) if (grid.NodeCount() > kParallelNodes)
-  for (int j = 0; j < lines_y; ++j) {
-    const CellsBeside y = FoldedRows(grid, ay, j);
-    double* out = w + grid.Index(0, j);
-    SweepRow(ax, [&](int im, int i, int ip) {
-      out[i] = scale * kernels::DivergenceSumsAt(u, v, FoldedCells(im, i, ip), y);
-    });
-  }
 }
 
 }  // namespace
@@ -100,19 +85,45 @@ void ApplyStiffness(const Grid& grid, const BoundaryTopology& topo, const double
     const Rows r = RowsAt(grid, ay, u, j);
     const double wy = ay.Weight(j);
     double* o = out + grid.Index(0, j);
-    SweepRow(ax, [&](int im, int i, int ip) {
-      o[i] = kernels::StiffnessAt(r, im, i, ip, ax.Weight(i), wy);
-    });
+    SweepRow(
+        ax, [&](int im, int i, int ip) __attribute__((always_inline)) {
+          o[i] = kernels::StiffnessAt(r, im, i, ip, ax.Weight(i), wy);
+        });
   }
   ZeroDuplicates(grid, ax, ay, out);
 }
 
 namespace {
 
-// The three forms below on the SW-NE mesh alone.
-void IntegratedGradientOnMesh(const Grid& grid, const BoundaryTopology& topo, const double* f,
-                              double* gx, double* gy) {
-  const AxisWrap ax(grid.nx, topo.x), ay(grid.ny, topo.y);
+using kernels::Diagonal;
+
+// Calls generic(im, i, ip) as SweepRow does, except that on an interior row (its neighbour rows
+// j - 1 and j + 1, no wrap) the nodes between the row's ends call interior(i): there all eight
+// neighbours lie at fixed offsets, and the mean of the two triangulations' forms has a short
+// closed form (each below), which the generic gather, summing 2 x 6 triangles, does not find
+// (floating-point sums are not reassociated).
+template <typename Generic, typename Interior>
+inline void SweepRowSplit(const AxisWrap& ax, bool interior_row, Generic&& generic,
+                          Interior&& interior) {
+  if (!interior_row) {
+    SweepRow(ax, generic);
+    return;
+  }
+  const int last = ax.Lines() - 1;
+  generic(ax.Prev(0), 0, ax.Next(0));
+  for (int i = 1; i < last; ++i) interior(i);
+  if (last > 0) generic(ax.Prev(last), last, ax.Next(last));
+}
+
+bool InteriorRow(const AxisWrap& ay, int j) {
+  return j > 0 && ay.Prev(j) == j - 1 && ay.Next(j) == j + 1;
+}
+
+// The three forms below on the SW-NE mesh, or with both triangulations as their mean, each node's
+// row gathered from the triangles of both around it in one sweep: the arguments are read once and
+// nothing is mirrored or copied.
+void IntegratedGradientOnMesh(const Grid& grid, const AxisWrap& ax, const AxisWrap& ay,
+                              const double* f, double* gx, double* gy) {
   const double scale = grid.h / 6.0;
   const int lines_y = ay.Lines();
 #pragma omp parallel for schedule(static) if (grid.NodeCount() > kParallelNodes)
@@ -120,66 +131,187 @@ void IntegratedGradientOnMesh(const Grid& grid, const BoundaryTopology& topo, co
     const CellsBeside y = FoldedRows(grid, ay, j);
     double* ox = gx + grid.Index(0, j);
     double* oy = gy + grid.Index(0, j);
-    SweepRow(ax, [&](int im, int i, int ip) {
-      double sx, sy;
-      kernels::GradientSumsAt(f, FoldedCells(im, i, ip), y, sx, sy);
-      ox[i] = scale * sx;
-      oy[i] = scale * sy;
-    });
+    SweepRow(
+        ax, [&](int im, int i, int ip) __attribute__((always_inline)) {
+          double sx, sy;
+          kernels::GradientSumsAt(f, FoldedCells(im, i, ip), y, sx, sy);
+          ox[i] = scale * sx;
+          oy[i] = scale * sy;
+        });
   }
-  ZeroDuplicates(grid, ax, ay, gx);
-  ZeroDuplicates(grid, ax, ay, gy);
 }
 
-void DivergenceOnMesh(const Grid& grid, const BoundaryTopology& pressure_topo, const double* u,
-                      const double* v, double* out) {
+// Interior mean: (h/12) (4 (E - W) + NE - NW + SE - SW, 4 (N - S) + NE + NW - SE - SW), the sum of
+// the SW-NE rows 2 (E - W) + NE - N + S - SW, 2 (N - S) + NE - E + W - SW and the NW-SE rows
+// 2 (E - W) + N - NW + SE - S, 2 (N - S) + NW - W + E - SE.
+void IntegratedGradientOnBoth(const Grid& grid, const AxisWrap& ax, const AxisWrap& ay,
+                              const double* f, double* gx, double* gy) {
+  const double scale = grid.h / 12.0;  // the mean of two h/6-scaled sums
+  const long row = grid.NodesX();
+  const int lines_y = ay.Lines();
+#pragma omp parallel for schedule(static) if (grid.NodeCount() > kParallelNodes)
+  for (int j = 0; j < lines_y; ++j) {
+    const CellsBeside y = FoldedRows(grid, ay, j);
+    const double* r = f + grid.Index(0, j);
+    double* ox = gx + grid.Index(0, j);
+    double* oy = gy + grid.Index(0, j);
+    SweepRowSplit(
+        ax, InteriorRow(ay, j),
+        [&](int im, int i, int ip) __attribute__((always_inline)) {
+          double sx, sy, mx, my;
+          kernels::GradientSumsAt<Diagonal::kSwNe>(f, FoldedCells(im, i, ip), y, sx, sy);
+          kernels::GradientSumsAt<Diagonal::kNwSe>(f, FoldedCells(im, i, ip), y, mx, my);
+          ox[i] = scale * (sx + mx);
+          oy[i] = scale * (sy + my);
+        },
+        [&](int i) __attribute__((always_inline)) {
+          const double* c = r + i;
+          const double ne = c[row + 1], nw = c[row - 1], se = c[1 - row], sw = c[-1 - row];
+          ox[i] = scale * (4.0 * (c[1] - c[-1]) + ne - nw + se - sw);
+          oy[i] = scale * (4.0 * (c[row] - c[-row]) + ne + nw - se - sw);
+        });
+  }
+}
+
+// w = G_x u + G_y v on every row-owning velocity node, and with both triangulations w2 the NW-SE
+// one's, in the same sweep. Interior rows in closed form, SW-NE: 2 (uE - uW) + uNE - uN + uS - uSW
+// + 2 (vN - vS) + vNE - vE + vW - vSW; NW-SE: 2 (uE - uW) + uN - uNW + uSE - uS + 2 (vN - vS) + vNW
+// - vW + vE - vSE.
+void DivergenceOnVelocityNodes(const Grid& grid, const AxisWrap& ax, const AxisWrap& ay,
+                               const double* u, const double* v, double* w, double* w2) {
+  const double scale = grid.h / 6.0;
+  const long row = grid.NodesX();
+  const int lines_y = ay.Lines();
+#pragma omp parallel for schedule(static) if (grid.NodeCount() > kParallelNodes)
+  for (int j = 0; j < lines_y; ++j) {
+    const CellsBeside y = FoldedRows(grid, ay, j);
+    double* out = w + grid.Index(0, j);
+    if (w2 == nullptr) {
+      SweepRow(
+          ax, [&](int im, int i, int ip) __attribute__((always_inline)) {
+            out[i] = scale * kernels::DivergenceSumsAt(u, v, FoldedCells(im, i, ip), y);
+          });
+      continue;
+    }
+    double* out2 = w2 + grid.Index(0, j);
+    const double* ru = u + grid.Index(0, j);
+    const double* rv = v + grid.Index(0, j);
+    SweepRowSplit(
+        ax, InteriorRow(ay, j),
+        [&](int im, int i, int ip) __attribute__((always_inline)) {
+          const CellsBeside x = FoldedCells(im, i, ip);
+          out[i] = scale * kernels::DivergenceSumsAt<Diagonal::kSwNe>(u, v, x, y);
+          out2[i] = scale * kernels::DivergenceSumsAt<Diagonal::kNwSe>(u, v, x, y);
+        },
+        [&](int i) __attribute__((always_inline)) {
+          const double* a = ru + i;
+          const double* b = rv + i;
+          const double dx = 2.0 * (a[1] - a[-1]), dy = 2.0 * (b[row] - b[-row]);
+          out[i] = scale * (dx + a[row + 1] - a[row] + a[-row] - a[-1 - row] + dy + b[row + 1] -
+                            b[1] + b[-1] - b[-1 - row]);
+          out2[i] = scale * (dx + a[row] - a[row - 1] + a[1 - row] - a[-row] + dy + b[row - 1] -
+                             b[-1] + b[1] - b[1 - row]);
+        });
+  }
+}
+
+// B = I_p^T (G_x u + G_y v): the fine rows restricted to the 2h mesh; with both triangulations the
+// mean of the SW-NE pair's and the NW-SE pair's (each restricts with its own 2h triangles).
+void Divergence(const Grid& grid, const BoundaryTopology& pressure_topo, const double* u,
+                const double* v, double* out, bool both) {
   const AxisWrap ax(grid.nx, pressure_topo.x), ay(grid.ny, pressure_topo.y);
   const Grid coarse = grid.Coarse();
   const AxisWrap cx(coarse.nx, pressure_topo.x), cy(coarse.ny, pressure_topo.y);
-  double* w = Scratch(grid.NodeCount());
-  DivergenceOnVelocityNodes(grid, ax, ay, u, v, w);
+  double* w = Scratch(0, grid.NodeCount());
+  double* w2 = both ? Scratch(1, grid.NodeCount()) : nullptr;
+  DivergenceOnVelocityNodes(grid, ax, ay, u, v, w, w2);
   const int lines_x = cx.Lines(), lines_y = cy.Lines();
 #pragma omp parallel for schedule(static) if (coarse.NodeCount() > kParallelNodes)
   for (int jc = 0; jc < lines_y; ++jc) {
     const Rows r = RowsAt(grid, ay, w, 2 * jc);
     double* o = out + coarse.Index(0, jc);
+    if (!both) {
+      for (int ic = 0; ic < lines_x; ++ic) {
+        const int i = 2 * ic;
+        o[ic] = kernels::RestrictAt(r, ax.Prev(i), i, ax.Next(i));
+      }
+      continue;
+    }
+    const Rows r2 = RowsAt(grid, ay, w2, 2 * jc);
     for (int ic = 0; ic < lines_x; ++ic) {
-      const int i = 2 * ic;
-      o[ic] = kernels::RestrictAt(r, ax.Prev(i), i, ax.Next(i));
+      const int i = 2 * ic, im = ax.Prev(i), ip = ax.Next(i);
+      o[ic] = 0.5 * (kernels::RestrictAt<Diagonal::kSwNe>(r, im, i, ip) +
+                     kernels::RestrictAt<Diagonal::kNwSe>(r2, im, i, ip));
     }
   }
   ZeroDuplicates(coarse, cx, cy, out);
 }
 
-void DivergenceTransposeOnMesh(const Grid& grid, const BoundaryTopology& pressure_topo,
-                               const double* p, double* out_u, double* out_v) {
+// B^T p = G^T I_p p; with both triangulations the mean of the two pairs' (each prolongs with its
+// own 2h triangles and gathers over its own h triangles), in one prolongation and one gather sweep.
+void DivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo, const double* p,
+                         double* out_u, double* out_v, bool both) {
   const AxisWrap ax(grid.nx, pressure_topo.x), ay(grid.ny, pressure_topo.y);
   const Grid coarse = grid.Coarse();
   const AxisWrap cx(coarse.nx, pressure_topo.x), cy(coarse.ny, pressure_topo.y);
-  double* fine = Scratch(grid.NodeCount());
+  double* fine = Scratch(0, grid.NodeCount());
+  double* fine2 = both ? Scratch(1, grid.NodeCount()) : nullptr;
   const int lines_x = ax.Lines(), lines_y = ay.Lines();
-  const double scale = grid.h / 6.0;
+  const double scale = grid.h / 6.0, half_scale = 0.5 * scale;
+  const long row = grid.NodesX();
 #pragma omp parallel if (grid.NodeCount() > kParallelNodes)
   {
 #pragma omp for schedule(static)
     for (int j = 0; j < lines_y; ++j) {
-      double* o = fine + grid.Index(0, j);
       const int cj = j / 2;
       const double* low = p + coarse.Index(0, cj);
       const double* high = (j % 2 != 0) ? p + coarse.Index(0, cy.Next(cj)) : nullptr;
-      kernels::ProlongRow(cx, low, high, lines_x, o);
+      kernels::ProlongRow<Diagonal::kSwNe>(cx, low, high, lines_x, fine + grid.Index(0, j));
+      if (both) {
+        kernels::ProlongRow<Diagonal::kNwSe>(cx, low, high, lines_x, fine2 + grid.Index(0, j));
+      }
     }
 #pragma omp for schedule(static)
     for (int j = 0; j < lines_y; ++j) {
       const CellsBeside y = FoldedRows(grid, ay, j);
       double* ou = out_u + grid.Index(0, j);
       double* ov = out_v + grid.Index(0, j);
-      SweepRow(ax, [&](int im, int i, int ip) {
-        double sx, sy;
-        kernels::GradientTransposeSumsAt(fine, FoldedCells(im, i, ip), y, sx, sy);
-        ou[i] = scale * sx;
-        ov[i] = scale * sy;
-      });
+      if (!both) {
+        SweepRow(
+            ax, [&](int im, int i, int ip) __attribute__((always_inline)) {
+              double sx, sy;
+              kernels::GradientTransposeSumsAt(fine, FoldedCells(im, i, ip), y, sx, sy);
+              ou[i] = scale * sx;
+              ov[i] = scale * sy;
+            });
+        continue;
+      }
+      // Interior rows in closed form (the node's own weight is zero), SW-NE on I_p p:
+      // x -2 E - NE + N + 2 W + SW - S, y E - NE - 2 N - W + SW + 2 S; NW-SE on its own I_p p:
+      // x -2 E - SE + S + 2 W + NW - N, y -E - NW - 2 N + W + SE + 2 S.
+      const double* r1 = fine + grid.Index(0, j);
+      const double* r2 = fine2 + grid.Index(0, j);
+      SweepRowSplit(
+          ax, InteriorRow(ay, j),
+          [&](int im, int i, int ip) __attribute__((always_inline)) {
+            const CellsBeside x = FoldedCells(im, i, ip);
+            double sx, sy, mx, my;
+            kernels::GradientTransposeSumsAt<Diagonal::kSwNe>(fine, x, y, sx, sy);
+            kernels::GradientTransposeSumsAt<Diagonal::kNwSe>(fine2, x, y, mx, my);
+            ou[i] = half_scale * (sx + mx);
+            ov[i] = half_scale * (sy + my);
+          },
+          [&](int i) __attribute__((always_inline)) {
+            const double* a = r1 + i;
+            const double* b = r2 + i;
+            const double sx = 2.0 * (a[-1] - a[1]) - a[row + 1] + a[row] + a[-1 - row] - a[-row];
+            const double sy =
+                a[1] - a[row + 1] - 2.0 * a[row] - a[-1] + a[-1 - row] + 2.0 * a[-row];
+            const double mx = 2.0 * (b[-1] - b[1]) - b[1 - row] + b[-row] + b[row - 1] - b[row];
+            const double my = b[-1] - b[1] - b[row - 1] - 2.0 * b[row] + b[1 - row] + 2.0 * b[-row];
+            ou[i] = half_scale * (sx + mx);
+            ov[i] = half_scale * (sy + my);
+          });
     }
   }
   ZeroDuplicates(grid, ax, ay, out_u);
@@ -188,56 +320,27 @@ void DivergenceTransposeOnMesh(const Grid& grid, const BoundaryTopology& pressur
 
 }  // namespace
 
-// On both diagonals: each form's mean with its mirror image (mirror_image.h): a scalar argument f
-// goes in as S f; a velocity (u, v) as (-S u, S v); a gradient (gx, gy) comes out as (-S gx, S gy).
 void ApplyIntegratedGradient(const Grid& grid, const BoundaryTopology& topo, const double* f,
                              double* gx, double* gy, MeshDiagonals diagonals) {
-  IntegratedGradientOnMesh(grid, topo, f, gx, gy);
-  if (diagonals == MeshDiagonals::kSwNe) return;
-  const std::size_t n = grid.NodeCount();
-  const bool px = topo.x.low == EndKind::kPeriodic;
-  double *mf = kernels::MirrorScratch(0, n), *mg = kernels::MirrorScratch(1, 2 * n);
-  kernels::MirrorInX(grid, px, 1.0, f, mf);
-  IntegratedGradientOnMesh(grid, topo, mf, mg, mg + n);
-  kernels::AverageWithMirrorImage(grid, px, -1.0, mg, gx);
-  kernels::AverageWithMirrorImage(grid, px, 1.0, mg + n, gy);
   const AxisWrap ax(grid.nx, topo.x), ay(grid.ny, topo.y);
+  if (diagonals == MeshDiagonals::kBoth) {
+    IntegratedGradientOnBoth(grid, ax, ay, f, gx, gy);
+  } else {
+    IntegratedGradientOnMesh(grid, ax, ay, f, gx, gy);
+  }
   ZeroDuplicates(grid, ax, ay, gx);
   ZeroDuplicates(grid, ax, ay, gy);
 }
 
 void ApplyDivergence(const Grid& grid, const BoundaryTopology& pressure_topo, const double* u,
                      const double* v, double* out, MeshDiagonals diagonals) {
-  DivergenceOnMesh(grid, pressure_topo, u, v, out);
-  if (diagonals == MeshDiagonals::kSwNe) return;
-  const std::size_t n = grid.NodeCount();
-  const Grid coarse = grid.Coarse();
-  const bool px = pressure_topo.x.low == EndKind::kPeriodic;
-  double* mirrored = kernels::MirrorScratch(0, 2 * n + coarse.NodeCount());
-  kernels::MirrorInX(grid, px, -1.0, u, mirrored);
-  kernels::MirrorInX(grid, px, 1.0, v, mirrored + n);
-  DivergenceOnMesh(grid, pressure_topo, mirrored, mirrored + n, mirrored + 2 * n);
-  kernels::AverageWithMirrorImage(coarse, px, 1.0, mirrored + 2 * n, out);
-  const AxisWrap cx(coarse.nx, pressure_topo.x), cy(coarse.ny, pressure_topo.y);
-  ZeroDuplicates(coarse, cx, cy, out);
+  Divergence(grid, pressure_topo, u, v, out, diagonals == MeshDiagonals::kBoth);
 }
 
 void ApplyDivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo,
                               const double* p, double* out_u, double* out_v,
                               MeshDiagonals diagonals) {
-  DivergenceTransposeOnMesh(grid, pressure_topo, p, out_u, out_v);
-  if (diagonals == MeshDiagonals::kSwNe) return;
-  const std::size_t n = grid.NodeCount();
-  const Grid coarse = grid.Coarse();
-  const bool px = pressure_topo.x.low == EndKind::kPeriodic;
-  double* mirrored = kernels::MirrorScratch(0, 2 * n + coarse.NodeCount());
-  kernels::MirrorInX(coarse, px, 1.0, p, mirrored + 2 * n);
-  DivergenceTransposeOnMesh(grid, pressure_topo, mirrored + 2 * n, mirrored, mirrored + n);
-  kernels::AverageWithMirrorImage(grid, px, -1.0, mirrored, out_u);
-  kernels::AverageWithMirrorImage(grid, px, 1.0, mirrored + n, out_v);
-  const AxisWrap ax(grid.nx, pressure_topo.x), ay(grid.ny, pressure_topo.y);
-  ZeroDuplicates(grid, ax, ay, out_u);
-  ZeroDuplicates(grid, ax, ay, out_v);
+  DivergenceTranspose(grid, pressure_topo, p, out_u, out_v, diagonals == MeshDiagonals::kBoth);
 }
 
 }  // namespace dlmfd

@@ -11,6 +11,13 @@
 //   T2 = (a,c,d): h dx f = f_c - f_d, h dy f = f_d - f_a.
 // Around node n = (i,j): square (i,j) [NE of n; n = a of T1 and T2], (i-1,j) [NW; n = b of T1],
 // (i-1,j-1) [SW; n = c of T1 and T2], (i,j-1) [SE; n = d of T2].
+// The mirrored triangulation (NW-SE diagonals, domain.diagonals = "both") cuts the square along
+// b-d instead:
+//   T3 = (a,b,d): h dx f = f_b - f_a, h dy f = f_d - f_a;
+//   T4 = (b,c,d): h dx f = f_c - f_d, h dy f = f_c - f_b.
+// Around node n: NE square, n = a of T3; NW, n = b of T3 and T4; SW, n = c of T4; SE, n = d of T3
+// and T4. The kernels below take the triangulation as a template argument (Diagonal), so that the
+// mean of the two forms is one sweep over the nodes (fem_operators.cc).
 #pragma once
 
 #include <algorithm>
@@ -145,21 +152,46 @@ inline CellsBeside FoldedRows(const Grid& grid, const AxisWrap& ay, int j) {
   return RowOffsets(grid, FoldedCells(ay.Prev(j), j, ay.Next(j)));
 }
 
+// The triangulation of the squares: SW-NE diagonals (the mesh's, T1 and T2) or NW-SE ones (T3 and
+// T4, the mirror image; domain.diagonals = "both" takes the mean of the forms on the two).
+enum class Diagonal { kSwNe, kNwSe };
+
 // One square around a node: corners a = SW, b = SE, c = NE, d = NW (node indices); the triangles
-// T1 = (a, b, c) and T2 = (a, c, d) that touch the node, and in each h grad phi of the node's hat
-// function (unit mesh: components -1, 0 or 1).
+// of the triangulation that touch the node, `lower` (T1, or T3) and `upper` (T2, or T4), and in
+// each h grad phi of the node's hat function (unit mesh: components -1, 0 or 1).
 struct SquareAround {
   std::size_t a, b, c, d;
-  bool lower, upper;  // T1, T2 touch the node
-  int lx, ly;         // h grad phi on T1
-  int ux, uy;         // h grad phi on T2
+  bool lower, upper;  // T1 / T3 and T2 / T4 touch the node
+  int lx, ly;         // h grad phi on T1 / T3
+  int ux, uy;         // h grad phi on T2 / T4
 };
 
-// h times the derivatives of a P1 field f on T1 and T2 of a square.
-inline double LowerDx(const double* f, const SquareAround& s) { return f[s.b] - f[s.a]; }
-inline double LowerDy(const double* f, const SquareAround& s) { return f[s.c] - f[s.b]; }
-inline double UpperDx(const double* f, const SquareAround& s) { return f[s.c] - f[s.d]; }
-inline double UpperDy(const double* f, const SquareAround& s) { return f[s.d] - f[s.a]; }
+// h times the derivatives of a P1 field f on the lower and upper triangle of a square.
+template <Diagonal kD = Diagonal::kSwNe>
+inline double LowerDx(const double* f, const SquareAround& s) {
+  return f[s.b] - f[s.a];
+}
+template <Diagonal kD = Diagonal::kSwNe>
+inline double LowerDy(const double* f, const SquareAround& s) {
+  return kD == Diagonal::kSwNe ? f[s.c] - f[s.b] : f[s.d] - f[s.a];
+}
+template <Diagonal kD = Diagonal::kSwNe>
+inline double UpperDx(const double* f, const SquareAround& s) {
+  return f[s.c] - f[s.d];
+}
+template <Diagonal kD = Diagonal::kSwNe>
+inline double UpperDy(const double* f, const SquareAround& s) {
+  return kD == Diagonal::kSwNe ? f[s.d] - f[s.a] : f[s.c] - f[s.b];
+}
+// Sums of f over the vertices of the lower and upper triangle.
+template <Diagonal kD = Diagonal::kSwNe>
+inline double LowerSum(const double* f, const SquareAround& s) {
+  return kD == Diagonal::kSwNe ? f[s.a] + f[s.b] + f[s.c] : f[s.a] + f[s.b] + f[s.d];
+}
+template <Diagonal kD = Diagonal::kSwNe>
+inline double UpperSum(const double* f, const SquareAround& s) {
+  return kD == Diagonal::kSwNe ? f[s.a] + f[s.c] + f[s.d] : f[s.b] + f[s.c] + f[s.d];
+}
 
 // The order in which the squares are visited (sums are not associative: each caller keeps its
 // own). kCounterClockwise: NE, NW, SW, SE. kFullSquaresFirst: NE, SW, NW, SE.
@@ -167,9 +199,13 @@ enum class SquareOrder { kCounterClockwise, kFullSquaresFirst };
 
 // Calls visit(SquareAround) for each square around the node whose cells exist: x holds node lines,
 // y row offsets (RowOffsets). Each node row is written by its node alone: rows can be computed in
-// parallel without write conflicts, and the element-wise boundary rows come out exactly.
-template <SquareOrder kOrder = SquareOrder::kCounterClockwise, typename Visit>
-inline void ForEachSquareAround(const CellsBeside& x, const CellsBeside& y, Visit&& visit) {
+// parallel without write conflicts, and the element-wise boundary rows come out exactly. Always
+// inlined: a sweep that gathers from both triangulations instantiates it twice per node, beyond
+// what the compiler inlines on its own (measured: the NW-SE call stayed a call, 3 times slower).
+template <SquareOrder kOrder = SquareOrder::kCounterClockwise, Diagonal kD = Diagonal::kSwNe,
+          typename Visit>
+[[gnu::always_inline]] inline void ForEachSquareAround(const CellsBeside& x, const CellsBeside& y,
+                                                       Visit&& visit) {
   auto square = [](long xlo, long xhi, long ylo, long yhi, bool lower, bool upper, int lx, int ly,
                    int ux, int uy) {
     return SquareAround{std::size_t(ylo + xlo),
@@ -183,23 +219,40 @@ inline void ForEachSquareAround(const CellsBeside& x, const CellsBeside& y, Visi
                         ux,
                         uy};
   };
+  constexpr bool kSwNe = kD == Diagonal::kSwNe;
   const bool west = x.before_lo >= 0, east = x.after_lo >= 0;
   const bool south = y.before_lo >= 0, north = y.after_lo >= 0;
-  auto ne = [&] {  // the node is a: T1 and T2
-    if (east && north)
+  auto ne = [&] {  // the node is a: T1 and T2, or T3
+    if (!(east && north)) return;
+    if constexpr (kSwNe) {
       visit(square(x.after_lo, x.after_hi, y.after_lo, y.after_hi, true, true, -1, 0, 0, -1));
+    } else {
+      visit(square(x.after_lo, x.after_hi, y.after_lo, y.after_hi, true, false, -1, -1, 0, 0));
+    }
   };
-  auto nw = [&] {  // the node is b: T1 only
-    if (west && north)
+  auto nw = [&] {  // the node is b: T1, or T3 and T4
+    if (!(west && north)) return;
+    if constexpr (kSwNe) {
       visit(square(x.before_lo, x.before_hi, y.after_lo, y.after_hi, true, false, 1, -1, 0, 0));
+    } else {
+      visit(square(x.before_lo, x.before_hi, y.after_lo, y.after_hi, true, true, 1, 0, 0, -1));
+    }
   };
-  auto sw = [&] {  // the node is c: T1 and T2
-    if (west && south)
+  auto sw = [&] {  // the node is c: T1 and T2, or T4
+    if (!(west && south)) return;
+    if constexpr (kSwNe) {
       visit(square(x.before_lo, x.before_hi, y.before_lo, y.before_hi, true, true, 0, 1, 1, 0));
+    } else {
+      visit(square(x.before_lo, x.before_hi, y.before_lo, y.before_hi, false, true, 0, 0, 1, 1));
+    }
   };
-  auto se = [&] {  // the node is d: T2 only
-    if (east && south)
+  auto se = [&] {  // the node is d: T2, or T3 and T4
+    if (!(east && south)) return;
+    if constexpr (kSwNe) {
       visit(square(x.after_lo, x.after_hi, y.before_lo, y.before_hi, false, true, 0, 0, -1, 1));
+    } else {
+      visit(square(x.after_lo, x.after_hi, y.before_lo, y.before_hi, true, true, 0, 1, -1, 0));
+    }
   };
   ne();
   if constexpr (kOrder == SquareOrder::kCounterClockwise) {
@@ -212,28 +265,40 @@ inline void ForEachSquareAround(const CellsBeside& x, const CellsBeside& y, Visi
   se();
 }
 
-// One triangle around a node: its vertices k0, k1, k2 (T1: a, b, c; T2: a, c, d), which one it is,
-// and h grad phi of the node's hat function on it.
+// One triangle around a node: its vertices k0, k1, k2 (T1: a, b, c; T2: a, c, d; T3: a, b, d; T4:
+// b, c, d), which one of the square's two it is, and h grad phi of the node's hat function on it.
 struct TriangleAround {
   std::size_t k0, k1, k2;
-  bool upper;  // T2
+  bool upper;  // T2 or T4
   int gx, gy;
 };
 
-// h times the derivatives of a P1 field f on the triangle.
+// h times the derivatives of a P1 field f on the triangle (the x one is k1 - k0 on T1 and T3, k1 -
+// k2 on T2 and T4).
+template <Diagonal kD = Diagonal::kSwNe>
 inline double TriangleDx(const double* f, const TriangleAround& t) {
   return t.upper ? f[t.k1] - f[t.k2] : f[t.k1] - f[t.k0];
 }
+template <Diagonal kD = Diagonal::kSwNe>
 inline double TriangleDy(const double* f, const TriangleAround& t) {
-  return t.upper ? f[t.k2] - f[t.k0] : f[t.k2] - f[t.k1];
+  if constexpr (kD == Diagonal::kSwNe) return t.upper ? f[t.k2] - f[t.k0] : f[t.k2] - f[t.k1];
+  return t.upper ? f[t.k1] - f[t.k0] : f[t.k2] - f[t.k0];
 }
 
-// Calls visit(TriangleAround) for each triangle around the node, T1 before T2 in each square.
-template <SquareOrder kOrder = SquareOrder::kCounterClockwise, typename Visit>
-inline void ForEachTriangleAround(const CellsBeside& x, const CellsBeside& y, Visit&& visit) {
-  ForEachSquareAround<kOrder>(x, y, [&](const SquareAround& s) {
-    if (s.lower) visit(TriangleAround{s.a, s.b, s.c, false, s.lx, s.ly});
-    if (s.upper) visit(TriangleAround{s.a, s.c, s.d, true, s.ux, s.uy});
+// Calls visit(TriangleAround) for each triangle of the triangulation around the node, the lower
+// before the upper in each square.
+template <SquareOrder kOrder = SquareOrder::kCounterClockwise, Diagonal kD = Diagonal::kSwNe,
+          typename Visit>
+[[gnu::always_inline]] inline void ForEachTriangleAround(const CellsBeside& x, const CellsBeside& y,
+                                                         Visit&& visit) {
+  ForEachSquareAround<kOrder, kD>(x, y, [&](const SquareAround& s) {
+    if constexpr (kD == Diagonal::kSwNe) {
+      if (s.lower) visit(TriangleAround{s.a, s.b, s.c, false, s.lx, s.ly});
+      if (s.upper) visit(TriangleAround{s.a, s.c, s.d, true, s.ux, s.uy});
+    } else {
+      if (s.lower) visit(TriangleAround{s.a, s.b, s.d, false, s.lx, s.ly});
+      if (s.upper) visit(TriangleAround{s.b, s.c, s.d, true, s.ux, s.uy});
+    }
   });
 }
 
@@ -245,37 +310,39 @@ inline void AddUnit(double& acc, int unit, double value) {
 
 // h/6-scaled sums of the element gradients of f over the triangles around the node:
 // (G_x f)_n = (h/6) gx, (G_y f)_n = (h/6) gy. The two triangles of a square are added as a pair.
-inline void GradientSumsAt(const double* f, const CellsBeside& x, const CellsBeside& y, double& gx,
-                           double& gy) {
+template <Diagonal kD = Diagonal::kSwNe>
+[[gnu::always_inline]] inline void GradientSumsAt(const double* f, const CellsBeside& x,
+                                                  const CellsBeside& y, double& gx, double& gy) {
   gx = 0.0;
   gy = 0.0;
-  ForEachSquareAround(x, y, [&](const SquareAround& s) {
+  ForEachSquareAround<SquareOrder::kCounterClockwise, kD>(x, y, [&](const SquareAround& s) {
     if (s.lower && s.upper) {
-      gx += LowerDx(f, s) + UpperDx(f, s);
-      gy += LowerDy(f, s) + UpperDy(f, s);
+      gx += LowerDx<kD>(f, s) + UpperDx<kD>(f, s);
+      gy += LowerDy<kD>(f, s) + UpperDy<kD>(f, s);
     } else if (s.lower) {
-      gx += LowerDx(f, s);
-      gy += LowerDy(f, s);
+      gx += LowerDx<kD>(f, s);
+      gy += LowerDy<kD>(f, s);
     } else {
-      gx += UpperDx(f, s);
-      gy += UpperDy(f, s);
+      gx += UpperDx<kD>(f, s);
+      gy += UpperDy<kD>(f, s);
     }
   });
 }
 
 // h/6-scaled divergence row, (G_x u + G_y v)_n = (h/6) of the result: the x sums of u plus the y
 // sums of v over the same triangles as GradientSumsAt.
-inline double DivergenceSumsAt(const double* u, const double* v, const CellsBeside& x,
-                               const CellsBeside& y) {
+template <Diagonal kD = Diagonal::kSwNe>
+[[gnu::always_inline]] inline double DivergenceSumsAt(const double* u, const double* v,
+                                                      const CellsBeside& x, const CellsBeside& y) {
   double sum = 0.0;
-  ForEachSquareAround(x, y, [&](const SquareAround& s) {
+  ForEachSquareAround<SquareOrder::kCounterClockwise, kD>(x, y, [&](const SquareAround& s) {
     if (s.lower && s.upper) {
-      sum += LowerDx(u, s) + UpperDx(u, s);
-      sum += LowerDy(v, s) + UpperDy(v, s);
+      sum += LowerDx<kD>(u, s) + UpperDx<kD>(u, s);
+      sum += LowerDy<kD>(v, s) + UpperDy<kD>(v, s);
     } else if (s.lower) {
-      sum += LowerDx(u, s) + LowerDy(v, s);
+      sum += LowerDx<kD>(u, s) + LowerDy<kD>(v, s);
     } else {
-      sum += UpperDx(u, s) + UpperDy(v, s);
+      sum += UpperDx<kD>(u, s) + UpperDy<kD>(v, s);
     }
   });
   return sum;
@@ -283,37 +350,52 @@ inline double DivergenceSumsAt(const double* u, const double* v, const CellsBesi
 
 // h/6-scaled rows of the transposed gradients, (G_x^T g)_n = (h/6) ox, (G_y^T g)_n = (h/6) oy:
 // each triangle adds (sum of g at its vertices) times h times the gradient of the node's basis.
-inline void GradientTransposeSumsAt(const double* g, const CellsBeside& x, const CellsBeside& y,
-                                    double& ox, double& oy) {
+template <Diagonal kD = Diagonal::kSwNe>
+[[gnu::always_inline]] inline void GradientTransposeSumsAt(const double* g, const CellsBeside& x,
+                                                           const CellsBeside& y, double& ox,
+                                                           double& oy) {
   ox = 0.0;
   oy = 0.0;
-  ForEachTriangleAround(x, y, [&](const TriangleAround& t) {
-    const double sum = g[t.k0] + g[t.k1] + g[t.k2];
-    AddUnit(ox, t.gx, sum);
-    AddUnit(oy, t.gy, sum);
+  ForEachSquareAround<SquareOrder::kCounterClockwise, kD>(x, y, [&](const SquareAround& s) {
+    if (s.lower) {
+      const double sum = LowerSum<kD>(g, s);
+      AddUnit(ox, s.lx, sum);
+      AddUnit(oy, s.ly, sum);
+    }
+    if (s.upper) {
+      const double sum = UpperSum<kD>(g, s);
+      AddUnit(ox, s.ux, sum);
+      AddUnit(oy, s.uy, sum);
+    }
   });
 }
 
 // Full-weighting restriction I_p^T at the fine node under a pressure node: the node itself plus
-// half of its six P1 neighbours E, W, N, S, NE, SW (2h-squares are also cut SW-NE).
-inline double RestrictAt(const Rows& w, int im, int i, int ip) {
+// half of its six P1 neighbours E, W, N, S and, along the 2h-squares' diagonal, NE and SW (SW-NE)
+// or NW and SE (NW-SE).
+template <Diagonal kD = Diagonal::kSwNe>
+[[gnu::always_inline]] inline double RestrictAt(const Rows& w, int im, int i, int ip) {
+  constexpr bool kSwNe = kD == Diagonal::kSwNe;
   double sum = 0.0;
   if (im >= 0) sum += w.row[im];
   if (ip >= 0) sum += w.row[ip];
   if (w.below) {
     sum += w.below[i];
-    if (im >= 0) sum += w.below[im];
+    const int diagonal = kSwNe ? im : ip;
+    if (diagonal >= 0) sum += w.below[diagonal];
   }
   if (w.above) {
     sum += w.above[i];
-    if (ip >= 0) sum += w.above[ip];
+    const int diagonal = kSwNe ? ip : im;
+    if (diagonal >= 0) sum += w.above[diagonal];
   }
   return w.row[i] + 0.5 * sum;
 }
 
 // P1 interpolation I_p from the 2h-grid along one fine row: `low` is coarse row j/2, `high` the
-// next coarse row for odd j (null for even j). Odd-odd fine nodes are midpoints of the SW-NE
-// diagonal of a 2h-square, so they average the SW and NE coarse values.
+// next coarse row for odd j (null for even j). Odd-odd fine nodes are midpoints of the diagonal of
+// a 2h-square, so they average its SW and NE coarse values (SW-NE) or its NW and SE ones (NW-SE).
+template <Diagonal kD = Diagonal::kSwNe>
 inline void ProlongRow(const AxisWrap& cx, const double* low, const double* high, int fine_lines,
                        double* out) {
   for (int i = 0; i < fine_lines; ++i) {
@@ -322,7 +404,11 @@ inline void ProlongRow(const AxisWrap& cx, const double* low, const double* high
       out[i] = high ? 0.5 * (low[ci] + high[ci]) : low[ci];
     } else {
       const int ci1 = cx.Next(ci);
-      out[i] = 0.5 * (low[ci] + (high ? high[ci1] : low[ci1]));
+      if constexpr (kD == Diagonal::kSwNe) {
+        out[i] = 0.5 * (low[ci] + (high ? high[ci1] : low[ci1]));
+      } else {
+        out[i] = 0.5 * (low[ci1] + (high ? high[ci] : low[ci]));
+      }
     }
   }
 }

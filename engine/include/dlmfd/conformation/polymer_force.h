@@ -10,8 +10,8 @@
 // folded into the first node and the repeated node gets none (the layout of mesh/fem_operators.h).
 // Scale: f ~ h tau_p. Interior rows equal h^2 div tau_p for a linear tau_p.
 // With domain.diagonals = "both" the force is the mean of the integrals on the SW-NE and on the
-// NW-SE triangles, the latter the mirror image (mesh/mirror_image.h) of the SW-NE force of the
-// mirrored A: under x -> -x, A11, A22 and f_y keep their sign and A12, f_x change it.
+// NW-SE triangles, each node's gathered from both triangulations in one sweep (interior nodes by
+// the mean's closed form, polymer_force.cc).
 // Not supported: other stress models (log-conformation would pass exp(Psi)).
 // References: paper (33); design.md 4.
 #pragma once

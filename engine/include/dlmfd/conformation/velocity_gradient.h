@@ -7,8 +7,8 @@
 // sided, first order there), wrapped across periodic sides. Exact for linear fields at every node.
 // With domain.diagonals = "both" the value is the mean of that average on the SW-NE and on the
 // NW-SE triangles (interior: (4 (f_{i+1,j} - f_{i-1,j}) + f_{i+1,j+1} - f_{i-1,j+1} + f_{i+1,j-1}
-// - f_{i-1,j-1}) / 12h for d/dx), computed as the SW-NE average of the mirrored velocity
-// (mesh/mirror_image.h): under x -> -x, L11 and L22 keep their sign and L12, L21 change it.
+// - f_{i-1,j-1}) / 12h for d/dx; at the other nodes the mean of the two averages over their own
+// triangles), in the same sweep as the SW-NE average.
 // Not supported: anything but the uniform grid of core/grid.h.
 // References: method notes 2, section 2.3 ("L at nodes").
 #pragma once

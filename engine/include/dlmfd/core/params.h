@@ -33,8 +33,8 @@ enum class Side { kLeft = 0, kRight = 1, kBottom = 2, kTop = 3 };
 // image (every square cut along its NW-SE diagonal): the divergence B of step (33) and the
 // wave-like step's K_V and N(V, .) of step (34). The mesh is not mirror-symmetric (x -> -x or y ->
 // -y maps it onto the other diagonal's), so a flow symmetric in the domain's mid-line is not quite
-// symmetric on it; the mean is (mesh/mirror_image.h; docs/work_precision.md (e), "The lift's mirror
-// bias").
+// symmetric on it; the mean is (mesh/grid_kernels.h, Diagonal; docs/work_precision.md (e), "The
+// lift's mirror bias").
 enum class MeshDiagonals { kSwNe, kBoth };
 
 struct DomainParams {

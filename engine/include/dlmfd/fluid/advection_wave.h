@@ -20,8 +20,9 @@
 // No linear solve in the advection part, so no iteration count: the report gives the sub-steps.
 // With domain.diagonals = "both", K_V and N(V, .) are the means of these forms on the mesh's
 // triangles (a, b, c), (a, c, d) and on the NW-SE triangles (a, b, d), (b, c, d) of each square,
-// the latter through the mirror image x -> -x (src/mesh/mirror_image.h): the step then commutes
-// with the mirrors x -> -x and y -> -y, at twice the cost of the forms. Its stability bound is the
+// all four gathered in one sweep (K_V: each cell's share of its corners' rows; N: the gradient
+// sums of fem_operators.h): the step then commutes with the mirrors x -> -x and y -> -y, at twice
+// the arithmetic of the forms and the same passes over memory. Its stability bound is the
 // SW-NE mesh's: the symbols are the means of the two meshes' (mirror images of each other, so with
 // the same bound), and the condition sigma^2 <= kappa (1 - c^2 kappa / 4) is convex in the pair.
 //
@@ -72,16 +73,20 @@ class AdvectionWave final : public VelocityAdvection {
   void Record(const AdvectionReport& result, StepReport& report) const override;
 
  private:
-  // W_T / h^2 per triangle of the cells, (a, b, c) and (a, c, d).
+  // W_T / h^2 per triangle of the cells: a, b the SW-NE pair (a, b, c), (a, c, d), or the NW-SE
+  // pair (a, b, d), (b, c, d).
   struct TriangleWeights {
     std::vector<double> w11a, w12a, w22a, w11b, w12b, w22b;
   };
   void FreezeVelocity(const double* u, const double* v);  // W_T per triangle from V
-  void ComputeWeights(const double* vx, const double* vy, TriangleWeights& w) const;
+  void ComputeWeights(const double* vx, const double* vy);
   void ApplyWaveStiffness(const double* u, const double* v, double* ku, double* kv);  // K_V
-  // K_V on the SW-NE triangles with the weights w.
-  void ApplyMeshWaveStiffness(const TriangleWeights& w, const double* u, const double* v,
-                              double* ku, double* kv);
+  // K_V on the SW-NE triangles.
+  void ApplyMeshWaveStiffness(const double* u, const double* v, double* ku, double* kv);
+  // The mean of K_V on the SW-NE and the NW-SE triangles (domain.diagonals = "both").
+  void ApplyMeanWaveStiffness(const double* u, const double* v, double* ku, double* kv);
+  // Copies the last cell column / row of each padded cell array into its ghost on a periodic side.
+  void FillPeriodicGhosts(std::vector<double>* const* cells, int count);
   void RemoveTaylorTerm();  // u1_, v1_ -= theta (dt^2/2) u_tt (steady-state correction)
   std::size_t Cell(int ci, int cj) const { return std::size_t(cj + 1) * (grid_.nx + 2) + (ci + 1); }
 
@@ -96,11 +101,11 @@ class AdvectionWave final : public VelocityAdvection {
   std::vector<double> mass_, out_mass_;  // lumped mass; outflow boundary mass (V.n)^+ M_out
   std::vector<double> vx_, vy_;          // frozen V
   TriangleWeights weights_;
-  // domain.diagonals = "both": the weights of the mirrored V (-S V_x, S V_y), and node scratch.
-  TriangleWeights mirrored_weights_;
-  std::vector<double> mirrored_u_, mirrored_v_, mirrored_ku_, mirrored_kv_;
-  std::vector<double> f1xu_, f1yu_, f2xu_, f2yu_, f1xv_, f1yv_, f2xv_,
-      f2yv_;  // fluxes, padded cells
+  TriangleWeights nwse_weights_;  // domain.diagonals = "both" only
+  // Fluxes F_T per SW-NE triangle (padded cells; the mesh's diagonals only).
+  std::vector<double> f1xu_, f1yu_, f2xu_, f2yu_, f1xv_, f1yv_, f2xv_, f2yv_;
+  // With "both": each padded cell's share of the rows of its corners a, b, c, d, for u then v.
+  std::vector<double> corners_[8];
   std::vector<double> u0_, v0_, u1_, v1_, ku_, kv_, gx_, gy_;
   std::vector<double> utt_u_, utt_v_;  // u_tt of the start, kept for the correction
   int outflow_normal_[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};

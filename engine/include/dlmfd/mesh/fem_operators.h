@@ -26,9 +26,10 @@ void LumpedMassDiagonal(const Grid& grid, const BoundaryTopology& topo, double* 
 // out = K u, K_ij = int grad phi_i . grad phi_j (5-point Laplacian in the interior).
 void ApplyStiffness(const Grid& grid, const BoundaryTopology& topo, const double* u, double* out);
 // The next three integrate on the SW-NE mesh, or with MeshDiagonals::kBoth give the mean of that
-// and the same form on the NW-SE mesh (domain.diagonals; src/mesh/mirror_image.h), at twice the
-// cost. M and K are the same on both meshes (the trapezoid lumping; the 5-point Laplacian).
-// gx = G_x f, gy = G_y f with (G_x f)_i = int phi_i d_x f_h (P1-P1 on the h-mesh).
+// and the same form on the NW-SE mesh (domain.diagonals), gathered in one sweep over the nodes
+// (src/mesh/grid_kernels.h, Diagonal): twice the arithmetic, one pass over the arguments. M and K
+// are the same on both meshes (the trapezoid lumping; the 5-point Laplacian). gx = G_x f, gy = G_y
+// f with (G_x f)_i = int phi_i d_x f_h (P1-P1 on the h-mesh).
 void ApplyIntegratedGradient(const Grid& grid, const BoundaryTopology& topo, const double* f,
                              double* gx, double* gy,
                              MeshDiagonals diagonals = MeshDiagonals::kSwNe);
