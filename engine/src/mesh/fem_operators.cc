@@ -99,9 +99,10 @@ using kernels::Diagonal;
 
 // Calls generic(im, i, ip) as SweepRow does, except that on an interior row (its neighbour rows
 // j - 1 and j + 1, no wrap) the nodes between the row's ends call interior(i): there all eight
-// neighbours lie at fixed offsets, and the mean of the two triangulations' forms has a short
-// closed form (each below), which the generic gather, summing 2 x 6 triangles, does not find
-// (floating-point sums are not reassociated).
+// neighbours lie at fixed offsets, and each form has a short closed form (below), which the
+// compiler does not find from the generic gather's sum over 6 (or 2 x 6) triangles (floating-point
+// sums are not reassociated); on the paper's grid the closed forms take about half the time
+// (docs/performance.md, "The forms' interior closed forms").
 template <typename Generic, typename Interior>
 inline void SweepRowSplit(const AxisWrap& ax, bool interior_row, Generic&& generic,
                           Interior&& interior) {
@@ -121,22 +122,32 @@ bool InteriorRow(const AxisWrap& ay, int j) {
 
 // The three forms below on the SW-NE mesh, or with both triangulations as their mean, each node's
 // row gathered from the triangles of both around it in one sweep: the arguments are read once and
-// nothing is mirrored or copied.
+// nothing is mirrored or copied. Interior nodes of interior rows by closed forms; SW-NE G:
+// (h/6) (2 (E - W) + NE - N + S - SW, 2 (N - S) + NE - E + W - SW).
 void IntegratedGradientOnMesh(const Grid& grid, const AxisWrap& ax, const AxisWrap& ay,
                               const double* f, double* gx, double* gy) {
   const double scale = grid.h / 6.0;
+  const long row = grid.NodesX();
   const int lines_y = ay.Lines();
 #pragma omp parallel for schedule(static) if (grid.NodeCount() > kParallelNodes)
   for (int j = 0; j < lines_y; ++j) {
     const CellsBeside y = FoldedRows(grid, ay, j);
+    const double* r = f + grid.Index(0, j);
     double* ox = gx + grid.Index(0, j);
     double* oy = gy + grid.Index(0, j);
-    SweepRow(
-        ax, [&](int im, int i, int ip) __attribute__((always_inline)) {
+    SweepRowSplit(
+        ax, InteriorRow(ay, j),
+        [&](int im, int i, int ip) __attribute__((always_inline)) {
           double sx, sy;
           kernels::GradientSumsAt(f, FoldedCells(im, i, ip), y, sx, sy);
           ox[i] = scale * sx;
           oy[i] = scale * sy;
+        },
+        [&](int i) __attribute__((always_inline)) {
+          const double* c = r + i;
+          const double ne = c[row + 1], sw = c[-1 - row];
+          ox[i] = scale * (2.0 * (c[1] - c[-1]) + ne - c[row] + c[-row] - sw);
+          oy[i] = scale * (2.0 * (c[row] - c[-row]) + ne - c[1] + c[-1] - sw);
         });
   }
 }
@@ -186,16 +197,23 @@ void DivergenceOnVelocityNodes(const Grid& grid, const AxisWrap& ax, const AxisW
   for (int j = 0; j < lines_y; ++j) {
     const CellsBeside y = FoldedRows(grid, ay, j);
     double* out = w + grid.Index(0, j);
+    const double* ru = u + grid.Index(0, j);
+    const double* rv = v + grid.Index(0, j);
     if (w2 == nullptr) {
-      SweepRow(
-          ax, [&](int im, int i, int ip) __attribute__((always_inline)) {
+      SweepRowSplit(
+          ax, InteriorRow(ay, j),
+          [&](int im, int i, int ip) __attribute__((always_inline)) {
             out[i] = scale * kernels::DivergenceSumsAt(u, v, FoldedCells(im, i, ip), y);
+          },
+          [&](int i) __attribute__((always_inline)) {
+            const double* a = ru + i;
+            const double* b = rv + i;
+            out[i] = scale * (2.0 * (a[1] - a[-1]) + a[row + 1] - a[row] + a[-row] - a[-1 - row] +
+                              2.0 * (b[row] - b[-row]) + b[row + 1] - b[1] + b[-1] - b[-1 - row]);
           });
       continue;
     }
     double* out2 = w2 + grid.Index(0, j);
-    const double* ru = u + grid.Index(0, j);
-    const double* rv = v + grid.Index(0, j);
     SweepRowSplit(
         ax, InteriorRow(ay, j),
         [&](int im, int i, int ip) __attribute__((always_inline)) {
@@ -276,20 +294,27 @@ void DivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo
       const CellsBeside y = FoldedRows(grid, ay, j);
       double* ou = out_u + grid.Index(0, j);
       double* ov = out_v + grid.Index(0, j);
-      if (!both) {
-        SweepRow(
-            ax, [&](int im, int i, int ip) __attribute__((always_inline)) {
-              double sx, sy;
-              kernels::GradientTransposeSumsAt(fine, FoldedCells(im, i, ip), y, sx, sy);
-              ou[i] = scale * sx;
-              ov[i] = scale * sy;
-            });
-        continue;
-      }
       // Interior rows in closed form (the node's own weight is zero), SW-NE on I_p p:
       // x -2 E - NE + N + 2 W + SW - S, y E - NE - 2 N - W + SW + 2 S; NW-SE on its own I_p p:
       // x -2 E - SE + S + 2 W + NW - N, y -E - NW - 2 N + W + SE + 2 S.
       const double* r1 = fine + grid.Index(0, j);
+      if (!both) {
+        SweepRowSplit(
+            ax, InteriorRow(ay, j),
+            [&](int im, int i, int ip) __attribute__((always_inline)) {
+              double sx, sy;
+              kernels::GradientTransposeSumsAt(fine, FoldedCells(im, i, ip), y, sx, sy);
+              ou[i] = scale * sx;
+              ov[i] = scale * sy;
+            },
+            [&](int i) __attribute__((always_inline)) {
+              const double* a = r1 + i;
+              ou[i] = scale * (2.0 * (a[-1] - a[1]) - a[row + 1] + a[row] + a[-1 - row] - a[-row]);
+              ov[i] =
+                  scale * (a[1] - a[row + 1] - 2.0 * a[row] - a[-1] + a[-1 - row] + 2.0 * a[-row]);
+            });
+        continue;
+      }
       const double* r2 = fine2 + grid.Index(0, j);
       SweepRowSplit(
           ax, InteriorRow(ay, j),
