@@ -25,6 +25,51 @@ constexpr int kMinSubsteps = 1;
 // without it a diverging run would spend hours sub-cycling one step instead of ending FAILED.
 constexpr int kMaxAdvectionSubsteps = 1000;
 
+namespace {
+
+// A cell (ci, cj) of the grid: its corners a = (ci, cj), b = (ci + 1, cj), c = (ci + 1, cj + 1),
+// d = (ci, cj + 1), its index among the cells and among the padded cells (one ghost layer).
+struct CellAt {
+  std::size_t a, b, c, d, cell, padded;
+};
+
+std::size_t PaddedCell(const Grid& grid, int ci, int cj) {
+  return std::size_t(cj + 1) * (grid.nx + 2) + (ci + 1);
+}
+
+// Calls fn(CellAt) for every cell, rows of cells in parallel.
+template <typename CellFn>
+void ForEachCell(const Grid& grid, CellFn&& fn) {
+  const int nx = grid.nx, ny = grid.ny;
+#pragma omp parallel for schedule(static)
+  for (int cj = 0; cj < ny; ++cj) {
+    for (int ci = 0; ci < nx; ++ci) {
+      fn(CellAt{grid.Index(ci, cj), grid.Index(ci + 1, cj), grid.Index(ci + 1, cj + 1),
+                grid.Index(ci, cj + 1), std::size_t(cj) * nx + ci, PaddedCell(grid, ci, cj)});
+    }
+  }
+}
+
+// A node (i, j) and the padded cells whose corner it is: a of (i, j), b of (i - 1, j), c of
+// (i - 1, j - 1), d of (i, j - 1).
+struct NodeCorners {
+  std::size_t id, as_a, as_b, as_c, as_d;
+};
+
+// Calls fn(NodeCorners) for every node, rows in parallel: the gather of the cells' shares.
+template <typename NodeFn>
+void ForEachNodeCorners(const Grid& grid, NodeFn&& fn) {
+#pragma omp parallel for schedule(static)
+  for (int j = 0; j <= grid.ny; ++j) {
+    for (int i = 0; i <= grid.nx; ++i) {
+      fn(NodeCorners{grid.Index(i, j), PaddedCell(grid, i, j), PaddedCell(grid, i - 1, j),
+                     PaddedCell(grid, i - 1, j - 1), PaddedCell(grid, i, j - 1)});
+    }
+  }
+}
+
+}  // namespace
+
 AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const FluidParams& fluid,
                              double dt, double beta, SteadyCorrection correction,
                              const SolverParams& solvers, const BoundaryData& boundary_data)
@@ -72,7 +117,6 @@ AdvectionWave::~AdvectionWave() = default;
 // W_T / h^2 = (1/24)(sum_k V_k V_k^T + S S^T) over the vertices of T, for |T| = h^2 / 2 and
 // unscaled gradients.
 void AdvectionWave::ComputeWeights(const double* vx, const double* vy) {
-  const int nx = grid_.nx, ny = grid_.ny;
   constexpr double kOneOver24 = 1.0 / 24.0;
   const bool both = diagonals_ == MeshDiagonals::kBoth;
   auto triangle = [&](std::size_t p, std::size_t q, std::size_t r, double& w11, double& w12,
@@ -83,19 +127,14 @@ void AdvectionWave::ComputeWeights(const double* vx, const double* vy) {
     w22 = kOneOver24 * (vy[p] * vy[p] + vy[q] * vy[q] + vy[r] * vy[r] + sy * sy);
   };
   TriangleWeights &w = weights_, &z = nwse_weights_;
-#pragma omp parallel for schedule(static)
-  for (int cj = 0; cj < ny; ++cj) {
-    for (int ci = 0; ci < nx; ++ci) {
-      const std::size_t a = grid_.Index(ci, cj), b = grid_.Index(ci + 1, cj),
-                        c = grid_.Index(ci + 1, cj + 1), d = grid_.Index(ci, cj + 1);
-      const std::size_t cell = std::size_t(cj) * nx + ci;
-      triangle(a, b, c, w.w11a[cell], w.w12a[cell], w.w22a[cell]);  // T1
-      triangle(a, c, d, w.w11b[cell], w.w12b[cell], w.w22b[cell]);  // T2
-      if (!both) continue;
-      triangle(a, b, d, z.w11a[cell], z.w12a[cell], z.w22a[cell]);  // T3
-      triangle(b, c, d, z.w11b[cell], z.w12b[cell], z.w22b[cell]);  // T4
-    }
-  }
+  ForEachCell(grid_, [&](const CellAt& k) {
+    const std::size_t a = k.a, b = k.b, c = k.c, d = k.d, cell = k.cell;
+    triangle(a, b, c, w.w11a[cell], w.w12a[cell], w.w22a[cell]);  // T1
+    triangle(a, c, d, w.w11b[cell], w.w12b[cell], w.w22b[cell]);  // T2
+    if (!both) return;
+    triangle(a, b, d, z.w11a[cell], z.w12a[cell], z.w22a[cell]);  // T3
+    triangle(b, c, d, z.w11b[cell], z.w12b[cell], z.w22b[cell]);  // T4
+  });
 }
 
 void AdvectionWave::FreezeVelocity(const double* u, const double* v) {
@@ -139,63 +178,50 @@ void AdvectionWave::FillPeriodicGhosts(std::vector<double>* const* cells, int co
   if (topo_.x.low == EndKind::kPeriodic) {
     for (int k = 0; k < count; ++k) {
       std::vector<double>& f = *cells[k];
-      for (int cj = 0; cj < ny; ++cj) f[Cell(-1, cj)] = f[Cell(nx - 1, cj)];
+      for (int cj = 0; cj < ny; ++cj)
+        f[PaddedCell(grid_, -1, cj)] = f[PaddedCell(grid_, nx - 1, cj)];
     }
   }
   if (topo_.y.low == EndKind::kPeriodic) {
     for (int k = 0; k < count; ++k) {
       std::vector<double>& f = *cells[k];
-      for (int ci = -1; ci < nx; ++ci) f[Cell(ci, -1)] = f[Cell(ci, ny - 1)];
+      for (int ci = -1; ci < nx; ++ci)
+        f[PaddedCell(grid_, ci, -1)] = f[PaddedCell(grid_, ci, ny - 1)];
     }
   }
 }
 
 void AdvectionWave::ApplyMeshWaveStiffness(const double* u, const double* v, double* ku,
                                            double* kv) {
-  const int nx = grid_.nx, ny = grid_.ny;
   const TriangleWeights& wt = weights_;
-  // Per-triangle fluxes F_T = W_T grad u_T (unscaled differences), both components.
-#pragma omp parallel for schedule(static)
-  for (int cj = 0; cj < ny; ++cj) {
-    for (int ci = 0; ci < nx; ++ci) {
-      const std::size_t a = grid_.Index(ci, cj), b = grid_.Index(ci + 1, cj),
-                        c = grid_.Index(ci + 1, cj + 1), d = grid_.Index(ci, cj + 1);
-      const std::size_t cell = std::size_t(cj) * nx + ci, pc = Cell(ci, cj);
-      const double w11 = wt.w11a[cell], w12 = wt.w12a[cell], w22 = wt.w22a[cell];
-      const double z11 = wt.w11b[cell], z12 = wt.w12b[cell], z22 = wt.w22b[cell];
-      double gx = u[b] - u[a], gy = u[c] - u[b];
-      f1xu_[pc] = w11 * gx + w12 * gy;
-      f1yu_[pc] = w12 * gx + w22 * gy;
-      gx = u[c] - u[d];
-      gy = u[d] - u[a];
-      f2xu_[pc] = z11 * gx + z12 * gy;
-      f2yu_[pc] = z12 * gx + z22 * gy;
-      gx = v[b] - v[a];
-      gy = v[c] - v[b];
-      f1xv_[pc] = w11 * gx + w12 * gy;
-      f1yv_[pc] = w12 * gx + w22 * gy;
-      gx = v[c] - v[d];
-      gy = v[d] - v[a];
-      f2xv_[pc] = z11 * gx + z12 * gy;
-      f2yv_[pc] = z12 * gx + z22 * gy;
-    }
-  }
   std::vector<double>* fluxes[8] = {&f1xu_, &f1yu_, &f2xu_, &f2yu_, &f1xv_, &f1yv_, &f2xv_, &f2yv_};
-  FillPeriodicGhosts(fluxes, 8);
-  // Gather: node (i, j) is a of cell (i, j), b of T1 in (i-1, j), c of (i-1, j-1), d of T2 in (i,
-  // j-1).
-#pragma omp parallel for schedule(static)
-  for (int j = 0; j <= ny; ++j) {
-    for (int i = 0; i <= nx; ++i) {
-      const std::size_t own = Cell(i, j), w = Cell(i - 1, j), sw = Cell(i - 1, j - 1),
-                        s = Cell(i, j - 1);
-      const std::size_t id = grid_.Index(i, j);
-      ku[id] = -f1xu_[own] - f2yu_[own] + f1xu_[w] - f1yu_[w] + f1yu_[sw] + f2xu_[sw] - f2xu_[s] +
-               f2yu_[s];
-      kv[id] = -f1xv_[own] - f2yv_[own] + f1xv_[w] - f1yv_[w] + f1yv_[sw] + f2xv_[sw] - f2xv_[s] +
-               f2yv_[s];
+  // Per-triangle fluxes F_T = W_T grad u_T (unscaled differences), both components of u then v.
+  ForEachCell(grid_, [&](const CellAt& k) {
+    const std::size_t a = k.a, b = k.b, c = k.c, d = k.d, cell = k.cell, pc = k.padded;
+    const double w11 = wt.w11a[cell], w12 = wt.w12a[cell], w22 = wt.w22a[cell];
+    const double z11 = wt.w11b[cell], z12 = wt.w12b[cell], z22 = wt.w22b[cell];
+    for (int comp = 0; comp < 2; ++comp) {
+      const double* f = comp == 0 ? u : v;
+      std::vector<double>* const* out = fluxes + 4 * comp;
+      double gx = f[b] - f[a], gy = f[c] - f[b];  // T1 (a, b, c)
+      (*out[0])[pc] = w11 * gx + w12 * gy;
+      (*out[1])[pc] = w12 * gx + w22 * gy;
+      gx = f[c] - f[d];  // T2 (a, c, d)
+      gy = f[d] - f[a];
+      (*out[2])[pc] = z11 * gx + z12 * gy;
+      (*out[3])[pc] = z12 * gx + z22 * gy;
     }
-  }
+  });
+  FillPeriodicGhosts(fluxes, 8);
+  // Gather: h grad phi of the node is (-1, 0) on T1 and (0, -1) on T2 as a, (1, -1) on T1 as b,
+  // (0, 1) on T1 and (1, 0) on T2 as c, (-1, 1) on T2 as d.
+  ForEachNodeCorners(grid_, [&](const NodeCorners& n) {
+    const std::size_t own = n.as_a, w = n.as_b, sw = n.as_c, s = n.as_d;
+    ku[n.id] = -f1xu_[own] - f2yu_[own] + f1xu_[w] - f1yu_[w] + f1yu_[sw] + f2xu_[sw] - f2xu_[s] +
+               f2yu_[s];
+    kv[n.id] = -f1xv_[own] - f2yv_[own] + f1xv_[w] - f1yv_[w] + f1yv_[sw] + f2xv_[sw] - f2xv_[s] +
+               f2yv_[s];
+  });
 }
 
 // The mean of K_V on the four triangles of each cell, in one sweep: each cell's share of the rows
@@ -206,52 +232,39 @@ void AdvectionWave::ApplyMeshWaveStiffness(const double* u, const double* v, dou
 //   c:  F1y + F2x  and   F4x + F4y;      d: F2y - F2x  and  F3y - F4x.
 void AdvectionWave::ApplyMeanWaveStiffness(const double* u, const double* v, double* ku,
                                            double* kv) {
-  const int nx = grid_.nx, ny = grid_.ny;
   const TriangleWeights &w1 = weights_, &w2 = nwse_weights_;
   std::vector<double>* shares[8];
   for (int k = 0; k < 8; ++k) shares[k] = &corners_[k];
-#pragma omp parallel for schedule(static)
-  for (int cj = 0; cj < ny; ++cj) {
-    for (int ci = 0; ci < nx; ++ci) {
-      const std::size_t a = grid_.Index(ci, cj), b = grid_.Index(ci + 1, cj),
-                        c = grid_.Index(ci + 1, cj + 1), d = grid_.Index(ci, cj + 1);
-      const std::size_t cell = std::size_t(cj) * nx + ci, pc = Cell(ci, cj);
-      for (int comp = 0; comp < 2; ++comp) {
-        const double* f = comp == 0 ? u : v;
-        auto flux = [&](const std::vector<double>& w11, const std::vector<double>& w12,
-                        const std::vector<double>& w22, double gx, double gy, double& fx,
-                        double& fy) {
-          fx = w11[cell] * gx + w12[cell] * gy;
-          fy = w12[cell] * gx + w22[cell] * gy;
-        };
-        double f1x, f1y, f2x, f2y, f3x, f3y, f4x, f4y;
-        flux(w1.w11a, w1.w12a, w1.w22a, f[b] - f[a], f[c] - f[b], f1x, f1y);  // T1 (a, b, c)
-        flux(w1.w11b, w1.w12b, w1.w22b, f[c] - f[d], f[d] - f[a], f2x, f2y);  // T2 (a, c, d)
-        flux(w2.w11a, w2.w12a, w2.w22a, f[b] - f[a], f[d] - f[a], f3x, f3y);  // T3 (a, b, d)
-        flux(w2.w11b, w2.w12b, w2.w22b, f[c] - f[d], f[c] - f[b], f4x, f4y);  // T4 (b, c, d)
-        std::vector<double>* const* out = shares + 4 * comp;
-        (*out[0])[pc] = 0.5 * ((-f1x - f2y) + (-f3x - f3y));
-        (*out[1])[pc] = 0.5 * ((f1x - f1y) + (f3x - f4y));
-        (*out[2])[pc] = 0.5 * ((f1y + f2x) + (f4x + f4y));
-        (*out[3])[pc] = 0.5 * ((f2y - f2x) + (f3y - f4x));
-      }
+  ForEachCell(grid_, [&](const CellAt& k) {
+    const std::size_t a = k.a, b = k.b, c = k.c, d = k.d, cell = k.cell, pc = k.padded;
+    for (int comp = 0; comp < 2; ++comp) {
+      const double* f = comp == 0 ? u : v;
+      auto flux = [&](const std::vector<double>& w11, const std::vector<double>& w12,
+                      const std::vector<double>& w22, double gx, double gy, double& fx,
+                      double& fy) {
+        fx = w11[cell] * gx + w12[cell] * gy;
+        fy = w12[cell] * gx + w22[cell] * gy;
+      };
+      double f1x, f1y, f2x, f2y, f3x, f3y, f4x, f4y;
+      flux(w1.w11a, w1.w12a, w1.w22a, f[b] - f[a], f[c] - f[b], f1x, f1y);  // T1 (a, b, c)
+      flux(w1.w11b, w1.w12b, w1.w22b, f[c] - f[d], f[d] - f[a], f2x, f2y);  // T2 (a, c, d)
+      flux(w2.w11a, w2.w12a, w2.w22a, f[b] - f[a], f[d] - f[a], f3x, f3y);  // T3 (a, b, d)
+      flux(w2.w11b, w2.w12b, w2.w22b, f[c] - f[d], f[c] - f[b], f4x, f4y);  // T4 (b, c, d)
+      std::vector<double>* const* out = shares + 4 * comp;
+      (*out[0])[pc] = 0.5 * ((-f1x - f2y) + (-f3x - f3y));
+      (*out[1])[pc] = 0.5 * ((f1x - f1y) + (f3x - f4y));
+      (*out[2])[pc] = 0.5 * ((f1y + f2x) + (f4x + f4y));
+      (*out[3])[pc] = 0.5 * ((f2y - f2x) + (f3y - f4x));
     }
-  }
+  });
   FillPeriodicGhosts(shares, 8);
-  // Gather: node (i, j) is a of cell (i, j), b of (i-1, j), c of (i-1, j-1), d of (i, j-1).
   const double *au = corners_[0].data(), *bu = corners_[1].data(), *cu = corners_[2].data(),
                *du = corners_[3].data(), *av = corners_[4].data(), *bv = corners_[5].data(),
                *cv = corners_[6].data(), *dv = corners_[7].data();
-#pragma omp parallel for schedule(static)
-  for (int j = 0; j <= ny; ++j) {
-    for (int i = 0; i <= nx; ++i) {
-      const std::size_t own = Cell(i, j), w = Cell(i - 1, j), sw = Cell(i - 1, j - 1),
-                        s = Cell(i, j - 1);
-      const std::size_t id = grid_.Index(i, j);
-      ku[id] = au[own] + bu[w] + cu[sw] + du[s];
-      kv[id] = av[own] + bv[w] + cv[sw] + dv[s];
-    }
-  }
+  ForEachNodeCorners(grid_, [&](const NodeCorners& n) {
+    ku[n.id] = au[n.as_a] + bu[n.as_b] + cu[n.as_c] + du[n.as_d];
+    kv[n.id] = av[n.as_a] + bv[n.as_b] + cv[n.as_c] + dv[n.as_d];
+  });
 }
 
 void AdvectionWave::RemoveTaylorTerm() {

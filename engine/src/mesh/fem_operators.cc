@@ -120,13 +120,62 @@ bool InteriorRow(const AxisWrap& ay, int j) {
   return j > 0 && ay.Prev(j) == j - 1 && ay.Next(j) == j + 1;
 }
 
-// The three forms below on the SW-NE mesh, or with both triangulations as their mean, each node's
-// row gathered from the triangles of both around it in one sweep: the arguments are read once and
-// nothing is mirrored or copied. Interior nodes of interior rows by closed forms; SW-NE G:
-// (h/6) (2 (E - W) + NE - N + S - SW, 2 (N - S) + NE - E + W - SW).
-void IntegratedGradientOnMesh(const Grid& grid, const AxisWrap& ax, const AxisWrap& ay,
-                              const double* f, double* gx, double* gy) {
-  const double scale = grid.h / 6.0;
+// The three forms below on the SW-NE mesh (kBoth false), or with both triangulations as their
+// mean (kBoth true), each node's row gathered from the triangles of both around it in one sweep:
+// the arguments are read once and nothing is mirrored or copied. Interior nodes of interior rows by
+// the closed forms of the Interior* functions, c the node's entry and `row` the row stride.
+
+// h/6 G at an interior node, SW-NE: (2 (E - W) + NE - N + S - SW, 2 (N - S) + NE - E + W - SW).
+[[gnu::always_inline]] inline void InteriorGradientSwNe(const double* c, long row, double& sx,
+                                                        double& sy) {
+  const double ne = c[row + 1], sw = c[-1 - row];
+  sx = 2.0 * (c[1] - c[-1]) + ne - c[row] + c[-row] - sw;
+  sy = 2.0 * (c[row] - c[-row]) + ne - c[1] + c[-1] - sw;
+}
+
+// h/12 (2 G) at an interior node, the mean: (4 (E - W) + NE - NW + SE - SW, 4 (N - S) + NE + NW -
+// SE - SW), the sum of the SW-NE rows above and the NW-SE rows 2 (E - W) + N - NW + SE - S,
+// 2 (N - S) + NW - W + E - SE.
+[[gnu::always_inline]] inline void InteriorGradientBoth(const double* c, long row, double& sx,
+                                                        double& sy) {
+  const double ne = c[row + 1], nw = c[row - 1], se = c[1 - row], sw = c[-1 - row];
+  sx = 4.0 * (c[1] - c[-1]) + ne - nw + se - sw;
+  sy = 4.0 * (c[row] - c[-row]) + ne + nw - se - sw;
+}
+
+// (6/h) (G_x u + G_y v) at an interior node, SW-NE: 2 (uE - uW) + uNE - uN + uS - uSW + 2 (vN -
+// vS) + vNE - vE + vW - vSW; NW-SE: 2 (uE - uW) + uN - uNW + uSE - uS + 2 (vN - vS) + vNW - vW + vE
+// - vSE.
+[[gnu::always_inline]] inline double InteriorDivergenceSwNe(const double* a, const double* b,
+                                                            long row) {
+  return 2.0 * (a[1] - a[-1]) + a[row + 1] - a[row] + a[-row] - a[-1 - row] +
+         2.0 * (b[row] - b[-row]) + b[row + 1] - b[1] + b[-1] - b[-1 - row];
+}
+[[gnu::always_inline]] inline double InteriorDivergenceNwSe(const double* a, const double* b,
+                                                            long row) {
+  return 2.0 * (a[1] - a[-1]) + a[row] - a[row - 1] + a[1 - row] - a[-row] +
+         2.0 * (b[row] - b[-row]) + b[row - 1] - b[-1] + b[1] - b[1 - row];
+}
+
+// (6/h) G^T q at an interior node (the node's own weight is zero), q = I_p p of the triangulation:
+// SW-NE x -2 E - NE + N + 2 W + SW - S, y E - NE - 2 N - W + SW + 2 S; NW-SE x -2 E - SE + S + 2 W
+// + NW - N, y -E - NW - 2 N + W + SE + 2 S.
+[[gnu::always_inline]] inline void InteriorGradientTransposeSwNe(const double* a, long row,
+                                                                 double& sx, double& sy) {
+  sx = 2.0 * (a[-1] - a[1]) - a[row + 1] + a[row] + a[-1 - row] - a[-row];
+  sy = a[1] - a[row + 1] - 2.0 * a[row] - a[-1] + a[-1 - row] + 2.0 * a[-row];
+}
+[[gnu::always_inline]] inline void InteriorGradientTransposeNwSe(const double* b, long row,
+                                                                 double& sx, double& sy) {
+  sx = 2.0 * (b[-1] - b[1]) - b[1 - row] + b[-row] + b[row - 1] - b[row];
+  sy = b[-1] - b[1] - b[row - 1] - 2.0 * b[row] + b[1 - row] + 2.0 * b[-row];
+}
+
+// (gx, gy) = G f on every row-owning node.
+template <bool kBoth>
+void IntegratedGradient(const Grid& grid, const AxisWrap& ax, const AxisWrap& ay, const double* f,
+                        double* gx, double* gy) {
+  const double scale = kBoth ? grid.h / 12.0 : grid.h / 6.0;  // the mean of two h/6-scaled sums
   const long row = grid.NodesX();
   const int lines_y = ay.Lines();
 #pragma omp parallel for schedule(static) if (grid.NodeCount() > kParallelNodes)
@@ -139,55 +188,32 @@ void IntegratedGradientOnMesh(const Grid& grid, const AxisWrap& ax, const AxisWr
         ax, InteriorRow(ay, j),
         [&](int im, int i, int ip) __attribute__((always_inline)) {
           double sx, sy;
-          kernels::GradientSumsAt(f, FoldedCells(im, i, ip), y, sx, sy);
+          kernels::GradientSumsAt<Diagonal::kSwNe>(f, FoldedCells(im, i, ip), y, sx, sy);
+          if constexpr (kBoth) {
+            double mx, my;
+            kernels::GradientSumsAt<Diagonal::kNwSe>(f, FoldedCells(im, i, ip), y, mx, my);
+            sx += mx;
+            sy += my;
+          }
           ox[i] = scale * sx;
           oy[i] = scale * sy;
         },
         [&](int i) __attribute__((always_inline)) {
-          const double* c = r + i;
-          const double ne = c[row + 1], sw = c[-1 - row];
-          ox[i] = scale * (2.0 * (c[1] - c[-1]) + ne - c[row] + c[-row] - sw);
-          oy[i] = scale * (2.0 * (c[row] - c[-row]) + ne - c[1] + c[-1] - sw);
-        });
-  }
-}
-
-// Interior mean: (h/12) (4 (E - W) + NE - NW + SE - SW, 4 (N - S) + NE + NW - SE - SW), the sum of
-// the SW-NE rows 2 (E - W) + NE - N + S - SW, 2 (N - S) + NE - E + W - SW and the NW-SE rows
-// 2 (E - W) + N - NW + SE - S, 2 (N - S) + NW - W + E - SE.
-void IntegratedGradientOnBoth(const Grid& grid, const AxisWrap& ax, const AxisWrap& ay,
-                              const double* f, double* gx, double* gy) {
-  const double scale = grid.h / 12.0;  // the mean of two h/6-scaled sums
-  const long row = grid.NodesX();
-  const int lines_y = ay.Lines();
-#pragma omp parallel for schedule(static) if (grid.NodeCount() > kParallelNodes)
-  for (int j = 0; j < lines_y; ++j) {
-    const CellsBeside y = FoldedRows(grid, ay, j);
-    const double* r = f + grid.Index(0, j);
-    double* ox = gx + grid.Index(0, j);
-    double* oy = gy + grid.Index(0, j);
-    SweepRowSplit(
-        ax, InteriorRow(ay, j),
-        [&](int im, int i, int ip) __attribute__((always_inline)) {
-          double sx, sy, mx, my;
-          kernels::GradientSumsAt<Diagonal::kSwNe>(f, FoldedCells(im, i, ip), y, sx, sy);
-          kernels::GradientSumsAt<Diagonal::kNwSe>(f, FoldedCells(im, i, ip), y, mx, my);
-          ox[i] = scale * (sx + mx);
-          oy[i] = scale * (sy + my);
-        },
-        [&](int i) __attribute__((always_inline)) {
-          const double* c = r + i;
-          const double ne = c[row + 1], nw = c[row - 1], se = c[1 - row], sw = c[-1 - row];
-          ox[i] = scale * (4.0 * (c[1] - c[-1]) + ne - nw + se - sw);
-          oy[i] = scale * (4.0 * (c[row] - c[-row]) + ne + nw - se - sw);
+          double sx, sy;
+          if constexpr (kBoth) {
+            InteriorGradientBoth(r + i, row, sx, sy);
+          } else {
+            InteriorGradientSwNe(r + i, row, sx, sy);
+          }
+          ox[i] = scale * sx;
+          oy[i] = scale * sy;
         });
   }
 }
 
 // w = G_x u + G_y v on every row-owning velocity node, and with both triangulations w2 the NW-SE
-// one's, in the same sweep. Interior rows in closed form, SW-NE: 2 (uE - uW) + uNE - uN + uS - uSW
-// + 2 (vN - vS) + vNE - vE + vW - vSW; NW-SE: 2 (uE - uW) + uN - uNW + uSE - uS + 2 (vN - vS) + vNW
-// - vW + vE - vSE.
+// one's, in the same sweep.
+template <bool kBoth>
 void DivergenceOnVelocityNodes(const Grid& grid, const AxisWrap& ax, const AxisWrap& ay,
                                const double* u, const double* v, double* w, double* w2) {
   const double scale = grid.h / 6.0;
@@ -197,69 +223,52 @@ void DivergenceOnVelocityNodes(const Grid& grid, const AxisWrap& ax, const AxisW
   for (int j = 0; j < lines_y; ++j) {
     const CellsBeside y = FoldedRows(grid, ay, j);
     double* out = w + grid.Index(0, j);
+    double* out2 = kBoth ? w2 + grid.Index(0, j) : nullptr;
     const double* ru = u + grid.Index(0, j);
     const double* rv = v + grid.Index(0, j);
-    if (w2 == nullptr) {
-      SweepRowSplit(
-          ax, InteriorRow(ay, j),
-          [&](int im, int i, int ip) __attribute__((always_inline)) {
-            out[i] = scale * kernels::DivergenceSumsAt(u, v, FoldedCells(im, i, ip), y);
-          },
-          [&](int i) __attribute__((always_inline)) {
-            const double* a = ru + i;
-            const double* b = rv + i;
-            out[i] = scale * (2.0 * (a[1] - a[-1]) + a[row + 1] - a[row] + a[-row] - a[-1 - row] +
-                              2.0 * (b[row] - b[-row]) + b[row + 1] - b[1] + b[-1] - b[-1 - row]);
-          });
-      continue;
-    }
-    double* out2 = w2 + grid.Index(0, j);
     SweepRowSplit(
         ax, InteriorRow(ay, j),
         [&](int im, int i, int ip) __attribute__((always_inline)) {
           const CellsBeside x = FoldedCells(im, i, ip);
           out[i] = scale * kernels::DivergenceSumsAt<Diagonal::kSwNe>(u, v, x, y);
-          out2[i] = scale * kernels::DivergenceSumsAt<Diagonal::kNwSe>(u, v, x, y);
+          if constexpr (kBoth) {
+            out2[i] = scale * kernels::DivergenceSumsAt<Diagonal::kNwSe>(u, v, x, y);
+          }
         },
         [&](int i) __attribute__((always_inline)) {
-          const double* a = ru + i;
-          const double* b = rv + i;
-          const double dx = 2.0 * (a[1] - a[-1]), dy = 2.0 * (b[row] - b[-row]);
-          out[i] = scale * (dx + a[row + 1] - a[row] + a[-row] - a[-1 - row] + dy + b[row + 1] -
-                            b[1] + b[-1] - b[-1 - row]);
-          out2[i] = scale * (dx + a[row] - a[row - 1] + a[1 - row] - a[-row] + dy + b[row - 1] -
-                             b[-1] + b[1] - b[1 - row]);
+          out[i] = scale * InteriorDivergenceSwNe(ru + i, rv + i, row);
+          if constexpr (kBoth) {
+            out2[i] = scale * InteriorDivergenceNwSe(ru + i, rv + i, row);
+          }
         });
   }
 }
 
 // B = I_p^T (G_x u + G_y v): the fine rows restricted to the 2h mesh; with both triangulations the
 // mean of the SW-NE pair's and the NW-SE pair's (each restricts with its own 2h triangles).
+template <bool kBoth>
 void Divergence(const Grid& grid, const BoundaryTopology& pressure_topo, const double* u,
-                const double* v, double* out, bool both) {
+                const double* v, double* out) {
   const AxisWrap ax(grid.nx, pressure_topo.x), ay(grid.ny, pressure_topo.y);
   const Grid coarse = grid.Coarse();
   const AxisWrap cx(coarse.nx, pressure_topo.x), cy(coarse.ny, pressure_topo.y);
   double* w = Scratch(0, grid.NodeCount());
-  double* w2 = both ? Scratch(1, grid.NodeCount()) : nullptr;
-  DivergenceOnVelocityNodes(grid, ax, ay, u, v, w, w2);
+  double* w2 = kBoth ? Scratch(1, grid.NodeCount()) : nullptr;
+  DivergenceOnVelocityNodes<kBoth>(grid, ax, ay, u, v, w, w2);
   const int lines_x = cx.Lines(), lines_y = cy.Lines();
 #pragma omp parallel for schedule(static) if (coarse.NodeCount() > kParallelNodes)
   for (int jc = 0; jc < lines_y; ++jc) {
     const Rows r = RowsAt(grid, ay, w, 2 * jc);
+    const Rows r2 = kBoth ? RowsAt(grid, ay, w2, 2 * jc) : r;
     double* o = out + coarse.Index(0, jc);
-    if (!both) {
-      for (int ic = 0; ic < lines_x; ++ic) {
-        const int i = 2 * ic;
-        o[ic] = kernels::RestrictAt(r, ax.Prev(i), i, ax.Next(i));
-      }
-      continue;
-    }
-    const Rows r2 = RowsAt(grid, ay, w2, 2 * jc);
     for (int ic = 0; ic < lines_x; ++ic) {
       const int i = 2 * ic, im = ax.Prev(i), ip = ax.Next(i);
-      o[ic] = 0.5 * (kernels::RestrictAt<Diagonal::kSwNe>(r, im, i, ip) +
-                     kernels::RestrictAt<Diagonal::kNwSe>(r2, im, i, ip));
+      const double sw_ne = kernels::RestrictAt<Diagonal::kSwNe>(r, im, i, ip);
+      if constexpr (kBoth) {
+        o[ic] = 0.5 * (sw_ne + kernels::RestrictAt<Diagonal::kNwSe>(r2, im, i, ip));
+      } else {
+        o[ic] = sw_ne;
+      }
     }
   }
   ZeroDuplicates(coarse, cx, cy, out);
@@ -267,15 +276,16 @@ void Divergence(const Grid& grid, const BoundaryTopology& pressure_topo, const d
 
 // B^T p = G^T I_p p; with both triangulations the mean of the two pairs' (each prolongs with its
 // own 2h triangles and gathers over its own h triangles), in one prolongation and one gather sweep.
+template <bool kBoth>
 void DivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo, const double* p,
-                         double* out_u, double* out_v, bool both) {
+                         double* out_u, double* out_v) {
   const AxisWrap ax(grid.nx, pressure_topo.x), ay(grid.ny, pressure_topo.y);
   const Grid coarse = grid.Coarse();
   const AxisWrap cx(coarse.nx, pressure_topo.x), cy(coarse.ny, pressure_topo.y);
   double* fine = Scratch(0, grid.NodeCount());
-  double* fine2 = both ? Scratch(1, grid.NodeCount()) : nullptr;
+  double* fine2 = kBoth ? Scratch(1, grid.NodeCount()) : nullptr;
   const int lines_x = ax.Lines(), lines_y = ay.Lines();
-  const double scale = grid.h / 6.0, half_scale = 0.5 * scale;
+  const double scale = kBoth ? 0.5 * (grid.h / 6.0) : grid.h / 6.0;
   const long row = grid.NodesX();
 #pragma omp parallel if (grid.NodeCount() > kParallelNodes)
   {
@@ -285,7 +295,7 @@ void DivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo
       const double* low = p + coarse.Index(0, cj);
       const double* high = (j % 2 != 0) ? p + coarse.Index(0, cy.Next(cj)) : nullptr;
       kernels::ProlongRow<Diagonal::kSwNe>(cx, low, high, lines_x, fine + grid.Index(0, j));
-      if (both) {
+      if constexpr (kBoth) {
         kernels::ProlongRow<Diagonal::kNwSe>(cx, low, high, lines_x, fine2 + grid.Index(0, j));
       }
     }
@@ -294,48 +304,34 @@ void DivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo
       const CellsBeside y = FoldedRows(grid, ay, j);
       double* ou = out_u + grid.Index(0, j);
       double* ov = out_v + grid.Index(0, j);
-      // Interior rows in closed form (the node's own weight is zero), SW-NE on I_p p:
-      // x -2 E - NE + N + 2 W + SW - S, y E - NE - 2 N - W + SW + 2 S; NW-SE on its own I_p p:
-      // x -2 E - SE + S + 2 W + NW - N, y -E - NW - 2 N + W + SE + 2 S.
       const double* r1 = fine + grid.Index(0, j);
-      if (!both) {
-        SweepRowSplit(
-            ax, InteriorRow(ay, j),
-            [&](int im, int i, int ip) __attribute__((always_inline)) {
-              double sx, sy;
-              kernels::GradientTransposeSumsAt(fine, FoldedCells(im, i, ip), y, sx, sy);
-              ou[i] = scale * sx;
-              ov[i] = scale * sy;
-            },
-            [&](int i) __attribute__((always_inline)) {
-              const double* a = r1 + i;
-              ou[i] = scale * (2.0 * (a[-1] - a[1]) - a[row + 1] + a[row] + a[-1 - row] - a[-row]);
-              ov[i] =
-                  scale * (a[1] - a[row + 1] - 2.0 * a[row] - a[-1] + a[-1 - row] + 2.0 * a[-row]);
-            });
-        continue;
-      }
-      const double* r2 = fine2 + grid.Index(0, j);
+      const double* r2 = kBoth ? fine2 + grid.Index(0, j) : nullptr;
       SweepRowSplit(
           ax, InteriorRow(ay, j),
           [&](int im, int i, int ip) __attribute__((always_inline)) {
             const CellsBeside x = FoldedCells(im, i, ip);
-            double sx, sy, mx, my;
+            double sx, sy;
             kernels::GradientTransposeSumsAt<Diagonal::kSwNe>(fine, x, y, sx, sy);
-            kernels::GradientTransposeSumsAt<Diagonal::kNwSe>(fine2, x, y, mx, my);
-            ou[i] = half_scale * (sx + mx);
-            ov[i] = half_scale * (sy + my);
+            if constexpr (kBoth) {
+              double mx, my;
+              kernels::GradientTransposeSumsAt<Diagonal::kNwSe>(fine2, x, y, mx, my);
+              sx += mx;
+              sy += my;
+            }
+            ou[i] = scale * sx;
+            ov[i] = scale * sy;
           },
           [&](int i) __attribute__((always_inline)) {
-            const double* a = r1 + i;
-            const double* b = r2 + i;
-            const double sx = 2.0 * (a[-1] - a[1]) - a[row + 1] + a[row] + a[-1 - row] - a[-row];
-            const double sy =
-                a[1] - a[row + 1] - 2.0 * a[row] - a[-1] + a[-1 - row] + 2.0 * a[-row];
-            const double mx = 2.0 * (b[-1] - b[1]) - b[1 - row] + b[-row] + b[row - 1] - b[row];
-            const double my = b[-1] - b[1] - b[row - 1] - 2.0 * b[row] + b[1 - row] + 2.0 * b[-row];
-            ou[i] = half_scale * (sx + mx);
-            ov[i] = half_scale * (sy + my);
+            double sx, sy;
+            InteriorGradientTransposeSwNe(r1 + i, row, sx, sy);
+            if constexpr (kBoth) {
+              double mx, my;
+              InteriorGradientTransposeNwSe(r2 + i, row, mx, my);
+              sx += mx;
+              sy += my;
+            }
+            ou[i] = scale * sx;
+            ov[i] = scale * sy;
           });
     }
   }
@@ -349,9 +345,9 @@ void ApplyIntegratedGradient(const Grid& grid, const BoundaryTopology& topo, con
                              double* gx, double* gy, MeshDiagonals diagonals) {
   const AxisWrap ax(grid.nx, topo.x), ay(grid.ny, topo.y);
   if (diagonals == MeshDiagonals::kBoth) {
-    IntegratedGradientOnBoth(grid, ax, ay, f, gx, gy);
+    IntegratedGradient<true>(grid, ax, ay, f, gx, gy);
   } else {
-    IntegratedGradientOnMesh(grid, ax, ay, f, gx, gy);
+    IntegratedGradient<false>(grid, ax, ay, f, gx, gy);
   }
   ZeroDuplicates(grid, ax, ay, gx);
   ZeroDuplicates(grid, ax, ay, gy);
@@ -359,13 +355,21 @@ void ApplyIntegratedGradient(const Grid& grid, const BoundaryTopology& topo, con
 
 void ApplyDivergence(const Grid& grid, const BoundaryTopology& pressure_topo, const double* u,
                      const double* v, double* out, MeshDiagonals diagonals) {
-  Divergence(grid, pressure_topo, u, v, out, diagonals == MeshDiagonals::kBoth);
+  if (diagonals == MeshDiagonals::kBoth) {
+    Divergence<true>(grid, pressure_topo, u, v, out);
+  } else {
+    Divergence<false>(grid, pressure_topo, u, v, out);
+  }
 }
 
 void ApplyDivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo,
                               const double* p, double* out_u, double* out_v,
                               MeshDiagonals diagonals) {
-  DivergenceTranspose(grid, pressure_topo, p, out_u, out_v, diagonals == MeshDiagonals::kBoth);
+  if (diagonals == MeshDiagonals::kBoth) {
+    DivergenceTranspose<true>(grid, pressure_topo, p, out_u, out_v);
+  } else {
+    DivergenceTranspose<false>(grid, pressure_topo, p, out_u, out_v);
+  }
 }
 
 }  // namespace dlmfd

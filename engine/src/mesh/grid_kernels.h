@@ -197,6 +197,22 @@ inline double UpperSum(const double* f, const SquareAround& s) {
 // own). kCounterClockwise: NE, NW, SW, SE. kFullSquaresFirst: NE, SW, NW, SE.
 enum class SquareOrder { kCounterClockwise, kFullSquaresFirst };
 
+// The node's part in each square around it, per triangulation (the header's T1-T4): which of the
+// lower and upper triangle touch it and h grad phi of its hat function on them (lx, ly; ux, uy).
+struct CornerRole {
+  bool lower, upper;
+  int lx, ly, ux, uy;
+};
+// Indexed by the square: 0 NE (the node is a), 1 NW (b), 2 SW (c), 3 SE (d).
+inline constexpr CornerRole kSwNeRoles[4] = {{true, true, -1, 0, 0, -1},   // T1, T2
+                                             {true, false, 1, -1, 0, 0},   // T1
+                                             {true, true, 0, 1, 1, 0},     // T1, T2
+                                             {false, true, 0, 0, -1, 1}};  // T2
+inline constexpr CornerRole kNwSeRoles[4] = {{true, false, -1, -1, 0, 0},  // T3
+                                             {true, true, 1, 0, 0, -1},    // T3, T4
+                                             {false, true, 0, 0, 1, 1},    // T4
+                                             {true, true, 0, 1, -1, 0}};   // T3, T4
+
 // Calls visit(SquareAround) for each square around the node whose cells exist: x holds node lines,
 // y row offsets (RowOffsets). Each node row is written by its node alone: rows can be computed in
 // parallel without write conflicts, and the element-wise boundary rows come out exactly. Always
@@ -206,53 +222,26 @@ template <SquareOrder kOrder = SquareOrder::kCounterClockwise, Diagonal kD = Dia
           typename Visit>
 [[gnu::always_inline]] inline void ForEachSquareAround(const CellsBeside& x, const CellsBeside& y,
                                                        Visit&& visit) {
-  auto square = [](long xlo, long xhi, long ylo, long yhi, bool lower, bool upper, int lx, int ly,
-                   int ux, int uy) {
-    return SquareAround{std::size_t(ylo + xlo),
-                        std::size_t(ylo + xhi),
-                        std::size_t(yhi + xhi),
-                        std::size_t(yhi + xlo),
-                        lower,
-                        upper,
-                        lx,
-                        ly,
-                        ux,
-                        uy};
+  constexpr const CornerRole* kRoles = kD == Diagonal::kSwNe ? kSwNeRoles : kNwSeRoles;
+  auto square = [&](bool exists, long xlo, long xhi, long ylo, long yhi, const CornerRole& r)
+      __attribute__((always_inline)) {
+    if (!exists) return;
+    visit(SquareAround{std::size_t(ylo + xlo), std::size_t(ylo + xhi), std::size_t(yhi + xhi),
+                       std::size_t(yhi + xlo), r.lower, r.upper, r.lx, r.ly, r.ux, r.uy});
   };
-  constexpr bool kSwNe = kD == Diagonal::kSwNe;
   const bool west = x.before_lo >= 0, east = x.after_lo >= 0;
   const bool south = y.before_lo >= 0, north = y.after_lo >= 0;
-  auto ne = [&] {  // the node is a: T1 and T2, or T3
-    if (!(east && north)) return;
-    if constexpr (kSwNe) {
-      visit(square(x.after_lo, x.after_hi, y.after_lo, y.after_hi, true, true, -1, 0, 0, -1));
-    } else {
-      visit(square(x.after_lo, x.after_hi, y.after_lo, y.after_hi, true, false, -1, -1, 0, 0));
-    }
+  auto ne = [&]() __attribute__((always_inline)) {
+    square(east && north, x.after_lo, x.after_hi, y.after_lo, y.after_hi, kRoles[0]);
   };
-  auto nw = [&] {  // the node is b: T1, or T3 and T4
-    if (!(west && north)) return;
-    if constexpr (kSwNe) {
-      visit(square(x.before_lo, x.before_hi, y.after_lo, y.after_hi, true, false, 1, -1, 0, 0));
-    } else {
-      visit(square(x.before_lo, x.before_hi, y.after_lo, y.after_hi, true, true, 1, 0, 0, -1));
-    }
+  auto nw = [&]() __attribute__((always_inline)) {
+    square(west && north, x.before_lo, x.before_hi, y.after_lo, y.after_hi, kRoles[1]);
   };
-  auto sw = [&] {  // the node is c: T1 and T2, or T4
-    if (!(west && south)) return;
-    if constexpr (kSwNe) {
-      visit(square(x.before_lo, x.before_hi, y.before_lo, y.before_hi, true, true, 0, 1, 1, 0));
-    } else {
-      visit(square(x.before_lo, x.before_hi, y.before_lo, y.before_hi, false, true, 0, 0, 1, 1));
-    }
+  auto sw = [&]() __attribute__((always_inline)) {
+    square(west && south, x.before_lo, x.before_hi, y.before_lo, y.before_hi, kRoles[2]);
   };
-  auto se = [&] {  // the node is d: T2, or T3 and T4
-    if (!(east && south)) return;
-    if constexpr (kSwNe) {
-      visit(square(x.after_lo, x.after_hi, y.before_lo, y.before_hi, false, true, 0, 0, -1, 1));
-    } else {
-      visit(square(x.after_lo, x.after_hi, y.before_lo, y.before_hi, true, true, 0, 1, -1, 0));
-    }
+  auto se = [&]() __attribute__((always_inline)) {
+    square(east && south, x.after_lo, x.after_hi, y.before_lo, y.before_hi, kRoles[3]);
   };
   ne();
   if constexpr (kOrder == SquareOrder::kCounterClockwise) {

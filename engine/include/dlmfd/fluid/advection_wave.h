@@ -88,7 +88,6 @@ class AdvectionWave final : public VelocityAdvection {
   // Copies the last cell column / row of each padded cell array into its ghost on a periodic side.
   void FillPeriodicGhosts(std::vector<double>* const* cells, int count);
   void RemoveTaylorTerm();  // u1_, v1_ -= theta (dt^2/2) u_tt (steady-state correction)
-  std::size_t Cell(int ci, int cj) const { return std::size_t(cj + 1) * (grid_.nx + 2) + (ci + 1); }
 
   Grid grid_;
   BoundaryTopology topo_;
