@@ -125,7 +125,7 @@ bool InteriorRow(const AxisWrap& ay, int j) {
 // the arguments are read once and nothing is mirrored or copied. Interior nodes of interior rows by
 // the closed forms of the Interior* functions, c the node's entry and `row` the row stride.
 
-// h/6 G at an interior node, SW-NE: (2 (E - W) + NE - N + S - SW, 2 (N - S) + NE - E + W - SW).
+// (6/h) G at an interior node, SW-NE: (2 (E - W) + NE - N + S - SW, 2 (N - S) + NE - E + W - SW).
 [[gnu::always_inline]] inline void InteriorGradientSwNe(const double* c, long row, double& sx,
                                                         double& sy) {
   const double ne = c[row + 1], sw = c[-1 - row];
@@ -133,9 +133,9 @@ bool InteriorRow(const AxisWrap& ay, int j) {
   sy = 2.0 * (c[row] - c[-row]) + ne - c[1] + c[-1] - sw;
 }
 
-// h/12 (2 G) at an interior node, the mean: (4 (E - W) + NE - NW + SE - SW, 4 (N - S) + NE + NW -
-// SE - SW), the sum of the SW-NE rows above and the NW-SE rows 2 (E - W) + N - NW + SE - S,
-// 2 (N - S) + NW - W + E - SE.
+// (12/h) times the mean of the two G at an interior node: (4 (E - W) + NE - NW + SE - SW, 4 (N - S)
+// + NE + NW - SE - SW), the sum of the SW-NE rows above and the NW-SE rows 2 (E - W) + N - NW + SE
+// - S, 2 (N - S) + NW - W + E - SE.
 [[gnu::always_inline]] inline void InteriorGradientBoth(const double* c, long row, double& sx,
                                                         double& sy) {
   const double ne = c[row + 1], nw = c[row - 1], se = c[1 - row], sw = c[-1 - row];
