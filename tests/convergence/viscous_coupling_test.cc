@@ -19,9 +19,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "../support/viscous_channel.h"
 #include "dlmfd/core/simulation.h"
+#include "dlmfd/particles/viscous_constraint.h"
 #include "dlmfd/scene/scene_file.h"
 
 namespace dlmfd {
@@ -117,6 +119,29 @@ TEST(ViscousCoupling, CollocationPointsAroundAFixedDiskConverge) {
   EXPECT_EQ(sim.state().step, 5);
   EXPECT_GT(sim.state().particles[0].force.x(), 0.0);
   EXPECT_EQ(sim.state().particles[0].velocity.norm(), 0.0);
+}
+
+// When the coupled PCG gives up, its error names the keys that help
+// (ViscousConstraint::RemedyText). With collocation points the coupled Stokes solves' tolerance
+// comes first, with its effective value: a disk off the nodes at D/h = 40 stalled above the target
+// with it at 1e-4 and 1e-6 and converged at 1e-8 (docs/work_precision.md, "The circle's sub-grid
+// position"). The ring mesh's advice is the multiplier keys only.
+TEST(ViscousCoupling, NonConvergenceNamesTheKeysThatHelp) {
+  for (const char* kind : {"collocation", "ring"}) {
+    const Params params =
+        LoadSceneFile(std::string(DLMFD_SOURCE_DIR) + "/cases/verification/schaefer_turek_2d1.toml",
+                      {{"particle_mesh.kind", std::string("\"") + kind + "\""},
+                       {"splitting.constraint", "\"viscous\""}});
+    const std::string remedy = ViscousConstraint::RemedyText(params);
+    EXPECT_NE(remedy.find("solvers.multiplier_max_iterations"), std::string::npos) << remedy;
+    const bool collocation = std::string(kind) == "collocation";
+    EXPECT_EQ(remedy.find("lower solvers.stokes_tolerance") != std::string::npos, collocation)
+        << remedy;
+    // The effective tolerance: 1e-2 of the multiplier tolerance 1e-4 (solvers' defaults).
+    if (collocation) {
+      EXPECT_NE(remedy.find("now 1e-06"), std::string::npos) << remedy;
+    }
+  }
 }
 
 }  // namespace

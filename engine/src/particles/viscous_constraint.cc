@@ -33,6 +33,20 @@ double MaxSpeed(const double* u, const double* v, std::size_t n) {
 
 }  // namespace
 
+std::string ViscousConstraint::RemedyText(const Params& params) {
+  std::ostringstream text;
+  text << " (";
+  if (params.particle_mesh.kind == ParticleMeshKind::kCollocation) {
+    // docs/work_precision.md, "The circle's sub-grid position": a disk off the nodes at D/h = 40
+    // stalled at 1e-4 and 1e-6 and converged with 1e-8.
+    text << "with collocation points the coupled Stokes solves' tolerance, now "
+         << StokesSettings(params).stokes_tolerance
+         << ", bounds the mismatch: lower solvers.stokes_tolerance (1e-8), or ";
+  }
+  text << "raise solvers.multiplier_max_iterations or solvers.multiplier_tolerance)";
+  return text.str();
+}
+
 SolverParams ViscousConstraint::StokesSettings(const Params& params) {
   SolverParams s = params.solvers;
   if (params.particle_mesh.kind == ParticleMeshKind::kCollocation) {
@@ -47,7 +61,8 @@ ViscousConstraint::ViscousConstraint(const Params& params, const Grid& grid)
       zero_domain_(WithZeroData(params.domain)),
       zero_data_(grid, zero_domain_),
       tolerance_(params.solvers.multiplier_tolerance),
-      max_iterations_(params.solvers.multiplier_max_iterations) {
+      max_iterations_(params.solvers.multiplier_max_iterations),
+      remedy_(RemedyText(params)) {
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
     RequireCoupledInStokes(params, p);
     const ParticleParams& q = params.particles[p];
@@ -169,8 +184,7 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
     if (it == max_iterations_) {
       std::ostringstream what;
       what << "DLM viscous coupling (33) did not converge at t = " << time << " after " << it
-           << " iterations: rigid-motion mismatch " << mismatch << " > " << target
-           << " (raise solvers.multiplier_max_iterations or solvers.multiplier_tolerance)";
+           << " iterations: rigid-motion mismatch " << mismatch << " > " << target << remedy_;
       throw SolverNotConverged(what.str());
     }
     inviscid_.SolveResponse(time, dt, particles, r_.data(), kInnerTolerance, z_.data(), su_.data(),

@@ -48,6 +48,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "dlmfd/core/grid.h"
@@ -76,6 +77,9 @@ class ViscousConstraint {
   static constexpr double kCollocationStokesShare = 1e-2;
   // The solver settings of the Stokes solves coupled with the constraint (kCollocationStokesShare).
   static SolverParams StokesSettings(const Params& params);
+  // The advice of the non-convergence error: with collocation points it names the coupled Stokes
+  // solves' tolerance (their inexact solutions make S nu = -g inconsistent, see above) first.
+  static std::string RemedyText(const Params& params);
 
   struct Outcome {
     int iterations = 0;            // outer PCG iterations
@@ -116,6 +120,7 @@ class ViscousConstraint {
   std::unique_ptr<StokesSolver> response_solver_;  // (33) with zero data and no body force
   double tolerance_;
   int max_iterations_;
+  std::string remedy_;  // RemedyText
   std::vector<Vec2> velocity_, dvelocity_;
   std::vector<double> omega_, domega_;
   std::vector<ParticleState> scratch_particles_;  // the particles at xi, for the inner solves
