@@ -124,8 +124,9 @@ TEST(ViscousCoupling, CollocationPointsAroundAFixedDiskConverge) {
 // When the coupled PCG gives up, its error names the keys that help
 // (ViscousConstraint::RemedyText). With collocation points the coupled Stokes solves' tolerance
 // comes first, with its effective value: a disk off the nodes at D/h = 40 stalled above the target
-// with it at 1e-4 and 1e-6 and converged at 1e-8 (docs/work_precision.md, "The circle's sub-grid
-// position"). The ring mesh's advice is the multiplier keys only.
+// with it at 1e-6 (the default's effective value, or set) and converged at 1e-8
+// (docs/work_precision.md, "The circle's sub-grid position"). The ring mesh's advice is the
+// multiplier keys only.
 TEST(ViscousCoupling, NonConvergenceNamesTheKeysThatHelp) {
   for (const char* kind : {"collocation", "ring"}) {
     const Params params =

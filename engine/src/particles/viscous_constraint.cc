@@ -38,7 +38,8 @@ std::string ViscousConstraint::RemedyText(const Params& params) {
   text << " (";
   if (params.particle_mesh.kind == ParticleMeshKind::kCollocation) {
     // docs/work_precision.md, "The circle's sub-grid position": a disk off the nodes at D/h = 40
-    // stalled at 1e-4 and 1e-6 and converged with 1e-8.
+    // stalled with the coupled solves at 1e-6 (the default's effective value, or set) and
+    // converged with 1e-8.
     text << "with collocation points the coupled Stokes solves' tolerance, now "
          << StokesSettings(params).stokes_tolerance
          << ", bounds the mismatch: lower solvers.stokes_tolerance (1e-8), or ";
