@@ -104,6 +104,7 @@ struct Simulation::Impl {
       report.Set("divergence", r.divergence);
       report.Set("coupling_iterations", r.iterations);
       report.Set("coupling_residual", r.residual);
+      report.Set("coupling_stokes_tolerance", r.stokes_tolerance);
     } else {
       const StokesReport r =
           stokes.Solve(force.x, force.y, state.u.data(), state.v.data(), state.p.data());

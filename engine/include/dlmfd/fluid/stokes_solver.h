@@ -67,6 +67,10 @@ class StokesSolver {
   // (boundary data written), p = p^{n+1/4}.
   StokesReport Solve(const double* fx, const double* fy, double* u, double* v, double* p);
 
+  // Replaces the relative tolerance of the stopping rule (solvers.stokes_tolerance at
+  // construction): the viscous coupling tightens it when its outer iteration stalls.
+  void set_tolerance(double tolerance) { tolerance_ = tolerance; }
+
   // sqrt(r.P^-1 r) for r = B(u, v): the residual measure of the stopping rule (for tests).
   double ResidualNorm(const double* u, const double* v);
   // The discrete divergence norm sqrt(sum (B u)^2 / M_p) of (u, v).

@@ -27,22 +27,34 @@
 // Polak-Ribiere directions, so the inexact inner solve does not stall the outer one.
 // Per iteration: one Stokes solve with zero data (the same Uzawa/PCG, relative to its own
 // response), one inner CG of (37)'s size, two fluid-sized updates.
-// Warm start: the previous step's nu, with the ring mesh only. With the collocation points it made
-// the PCG diverge after a few steps (Faxen's disk on h = 1/48: 11, 16, 12, then 46-55 iterations
-// and no convergence at step 10; on h = 1/96 at step 2, the residual falling to 6e-6 and then
-// growing). With solvers.stokes_tolerance = 1e-8 instead of 1e-4 it converged (73, 44, 40
-// iterations), so the Stokes solves' tolerance is involved; the suspected mechanism, not
-// established, is that the interior points give S many more null directions (spreadings that are
-// discrete gradients) and the carried nu seeds them. Started cold they take 8-16 iterations a step
-// at 1e-4 (ViscousCoupling.CollocationPointsConvergeEveryStep). Stopping rule: max over the points
+// Warm start: the previous step's nu, for every particle with the ring mesh, and for the fixed
+// particles only with the collocation points (WarmStarts). A moving disk's collocation points move
+// against the grid, and carried over they made the PCG diverge after a few steps (Faxen's disk on
+// h = 1/48: 11, 16, 12, then 46-55 iterations and no convergence at step 10; on h = 1/96, with the
+// coupled Stokes solves at 1e-6 (kCollocationStokesShare): 11, 112, 175, 255, 457 and no
+// convergence at step 15). The suspected mechanism, not established, is that the interior points
+// give S many more null directions (spreadings that are discrete gradients) and the carried nu
+// seeds them. Started cold a falling disk takes 8-21 iterations a step
+// (ViscousCoupling.CollocationPointsConvergeEveryStep). A fixed disk's points keep their place, and
+// its flow is where the cold start costs most: the interior lattice points' constraints, nearly
+// redundant with the boundary's where viscosity dominates, make S ill-conditioned against P (a
+// fixed disk of D = 0.1 in creeping channel flow, eta = 1, dt = 0.05, D/h = 40: 201 iterations a
+// step node-centred, 476 with the centre h/4 off the nodes; the boundary points alone take 16).
+// Warm-started the same runs take 15 then 0-1, and Schaefer-Turek 2D-1 from rest (D/h = 20,
+// dt = h) 43, 42, 27, ... then 1-3 a step instead of 22-29, 11 times less time to t = 1, with F_x
+// within 2.3e-4 of the cold start's (the multiplier tolerance;
+// ViscousCoupling.FixedDiskWarmStartsWithCollocationPoints). Stopping rule: max over the points
 // of |E u - C xi| <= tol V, tol = solvers.multiplier_tolerance, V the velocity scale of the step
 // (max |u| after the first Stokes solve, and |U| + |omega| R of every particle); throws
-// SolverNotConverged after solvers.multiplier_max_iterations. Not supported: neutrally buoyant free
-// particles (validation rejects them: their velocity would be a multiplier of the net-force
-// constraint); a warm start across a resume (the stored nu is not checkpointed: the first step
-// after a resume starts cold and agrees to the tolerance). References: Glowinski, Pan, Hesla,
-// Joseph, Periaux, J. Comput. Phys. 169 (2001) 363-426 (the constraint with viscosity, gamma > 0,
-// solved by Uzawa/CG on the multiplier); Glowinski, Finite element methods for incompressible
+// SolverNotConverged after solvers.multiplier_max_iterations. A stall (kStallWindow) tightens the
+// coupled Stokes solves a hundredfold and restarts from the current nu: the looser solves' errors
+// make S nu = -g inconsistent (kCollocationStokesShare) and leave a floor under the mismatch. Not
+// supported: neutrally buoyant free particles (validation rejects them: their velocity would be a
+// multiplier of the net-force constraint); a warm start across a resume (the stored nu is not
+// checkpointed: the first step after a resume starts cold and agrees to the tolerance; nor is a
+// tightened tolerance, which a stall after the resume tightens again). References: Glowinski, Pan,
+// Hesla, Joseph, Periaux, J. Comput. Phys. 169 (2001) 363-426 (the constraint with viscosity, gamma
+// > 0, solved by Uzawa/CG on the multiplier); Glowinski, Finite element methods for incompressible
 // viscous flow (2003), section 21 (Uzawa/PCG).
 #pragma once
 
@@ -75,18 +87,36 @@ class ViscousConstraint {
   // iterations), and so did 1e-4 against a multiplier tolerance of 1e-2. The ring mesh's sparser
   // points complete at 1e-4.
   static constexpr double kCollocationStokesShare = 1e-2;
+  // A stall of the outer PCG: kStallWindow iterations in which the mismatch never fell below
+  // kStallGain times its best value so far. It multiplies the coupled Stokes solves' tolerance by
+  // kTightening (for the rest of the run) and restarts from the current nu, while the tolerance
+  // stays >= kStokesToleranceFloor (one tightening from the collocation points' 1e-6, two from the
+  // ring mesh's 1e-4). Measured (2026-12-04) on a fixed disk of D = 0.1 in creeping channel flow
+  // (eta = 1, dt = 0.05, D/h = 40, the centre 3h/4 off the nodes): at 1e-6 the mismatch stalled at
+  // 2.4e-4 against a target of 3e-5 through 1000 iterations; at 1e-8 it converged in 287. With the
+  // rule the eight shifts 0, h/4, ..., 7h/4 converge at step 0 in 141-423 iterations (six of them
+  // tightened), where three failed before; a second tightening (to 1e-10) made them no faster.
+  static constexpr int kStallWindow = 50;
+  static constexpr double kStallGain = 0.9;
+  static constexpr double kTightening = 1e-2;
+  static constexpr double kStokesToleranceFloor = 1e-9;
   // The solver settings of the Stokes solves coupled with the constraint (kCollocationStokesShare).
   static SolverParams StokesSettings(const Params& params);
+  // Whether a particle's block of nu is carried to the next step as its warm start: always with
+  // the ring mesh; with the collocation points only when the particle is fixed (see above).
+  static bool WarmStarts(ParticleMeshKind kind, Motion motion);
   // The advice of the non-convergence error: with collocation points it names the coupled Stokes
-  // solves' tolerance (their inexact solutions make S nu = -g inconsistent, see above) first.
-  static std::string RemedyText(const Params& params);
+  // solves' tolerance (their inexact solutions make S nu = -g inconsistent, see above) first, with
+  // its value at the failure (stokes_tolerance: after any tightening).
+  static std::string RemedyText(ParticleMeshKind kind, double stokes_tolerance);
 
   struct Outcome {
-    int iterations = 0;            // outer PCG iterations
-    int stokes_iterations = 0;     // Uzawa iterations of every Stokes solve of the step
-    double stokes_residual = 0.0;  // the Uzawa residual of the first Stokes solve
-    double residual = 0.0;         // max |E u - C xi| over the points, relative to V
-    double divergence = 0.0;       // the discrete divergence norm of the final u
+    int iterations = 0;             // outer PCG iterations
+    int stokes_iterations = 0;      // Uzawa iterations of every Stokes solve of the step
+    double stokes_residual = 0.0;   // the Uzawa residual of the first Stokes solve
+    double residual = 0.0;          // max |E u - C xi| over the points, relative to V
+    double divergence = 0.0;        // the discrete divergence norm of the final u
+    double stokes_tolerance = 0.0;  // the coupled Stokes solves' tolerance at the end of the step
   };
 
   ViscousConstraint(const Params& params, const Grid& grid);
@@ -106,6 +136,11 @@ class ViscousConstraint {
   double NodalTorqueSum(std::size_t p) const { return torque_sum_[p]; }
 
  private:
+  // Restores the step's entry state (u^n, the pressure's warm start, the particles' velocities),
+  // adds the carried nu when carry (its velocity increment and the particles' response) and solves
+  // (33): the start of the outer iteration, and its restart after a stall.
+  StokesReport Start(double dt, bool carry, StokesSolver& stokes, const double* fx,
+                     const double* fy, double* u, double* v, double* p);
   // r = E u - C xi at every point, for fields (u, v) and particle velocities (vel, omega); returns
   // max |r_k|.
   double MismatchOf(const double* u, const double* v, const std::vector<Vec2>& vel,
@@ -120,7 +155,11 @@ class ViscousConstraint {
   std::unique_ptr<StokesSolver> response_solver_;  // (33) with zero data and no body force
   double tolerance_;
   int max_iterations_;
-  std::string remedy_;  // RemedyText
+  double stokes_tolerance_;  // of the coupled Stokes solves: StokesSettings, tightened on a stall
+  ParticleMeshKind kind_;
+  std::vector<double> u_in_, v_in_, p_in_;  // the step's entry state, for a restart
+  std::vector<Vec2> velocity_in_;
+  std::vector<double> omega_in_;
   std::vector<Vec2> velocity_, dvelocity_;
   std::vector<double> omega_, domega_;
   std::vector<ParticleState> scratch_particles_;  // the particles at xi, for the inner solves
