@@ -41,6 +41,25 @@ struct IterationLog : Observer {
   }
 };
 
+// The Schaefer-Turek disk (D = 0.1 at (0.2, 0.2), D/h = 20) in a 0.8 x 0.4 channel of creeping
+// flow (eta = rho = 1, Poiseuille inflow of peak 0.3, dt = 0.05, nu dt / h^2 = 2000), collocation
+// points, the viscous coupling, no output, one thread; `overrides` add keys (none of these).
+Params CreepingDisk(std::vector<SceneOverride> overrides) {
+  std::vector<SceneOverride> keys = {{"domain.size", "[0.8, 0.4]"},
+                                     {"fluid.viscosity", "1.0"},
+                                     {"particle_mesh.kind", "\"collocation\""},
+                                     {"splitting.constraint", "\"viscous\""},
+                                     {"time.dt", "0.05"},
+                                     {"output.fields_every", "0"},
+                                     {"output.particles_every", "0"},
+                                     {"output.checkpoint_every", "0"}};
+  keys.insert(keys.end(), overrides.begin(), overrides.end());
+  Params params = LoadSceneFile(
+      std::string(DLMFD_SOURCE_DIR) + "/cases/verification/schaefer_turek_2d1.toml", keys);
+  params.threads = 1;
+  return params;
+}
+
 double ChannelDrag(double dt, ConstraintCoupling coupling, double end = 0.5) {
   Params p = testing::ChannelWithFixedDisk(16, dt, 0.0, 1.0);
   p.time.end = end;
@@ -135,9 +154,8 @@ TEST(ViscousCoupling, CollocationPointsAroundAFixedDiskConverge) {
 }
 
 // The warm start of a fixed disk with collocation points (ViscousConstraint::WarmStarts): the
-// Schaefer-Turek disk (D = 0.1, D/h = 20) in a 0.8 x 0.4 channel of creeping flow (eta = rho = 1,
-// Poiseuille inflow of 0.3, dt = 0.05, nu dt / h^2 = 2000), once fixed (warm-started) and once
-// prescribed at rest (the same physics, started cold every step). Measured 2026-12-04: 128, 14, 0,
+// creeping disk (CreepingDisk) to t = 0.25, once fixed (warm-started) and once prescribed at rest
+// (the same physics, started cold every step). Measured 2026-12-04: 128, 14, 0,
 // 0, 0 outer iterations against 128 every step; F_x at t = 0.25 6.5141381 against 6.5139424 (3.0e-5
 // apart; at multiplier tolerance 1e-6 the two agree to 1e-7 at t = 0.2, 6.5139608 / 6.5139609).
 // Both runs stop at a rigid-motion mismatch of at most tol V (tol = 1e-4, V the largest velocity,
@@ -149,20 +167,8 @@ TEST(ViscousCoupling, FixedDiskWarmStartsWithCollocationPoints) {
   long settled_iterations[2];
   const char* motions[2] = {"fixed", "prescribed"};
   for (int m = 0; m < 2; ++m) {
-    Params params =
-        LoadSceneFile(std::string(DLMFD_SOURCE_DIR) + "/cases/verification/schaefer_turek_2d1.toml",
-                      {{"domain.size", "[0.8, 0.4]"},
-                       {"fluid.viscosity", "1.0"},
-                       {"particles.0.motion", std::string("\"") + motions[m] + "\""},
-                       {"particle_mesh.kind", "\"collocation\""},
-                       {"splitting.constraint", "\"viscous\""},
-                       {"time.dt", "0.05"},
-                       {"time.end", "0.25"},
-                       {"output.fields_every", "0"},
-                       {"output.particles_every", "0"},
-                       {"output.checkpoint_every", "0"}});
-    params.threads = 1;
-    Simulation sim(params);
+    Simulation sim(CreepingDisk(
+        {{"particles.0.motion", std::string("\"") + motions[m] + "\""}, {"time.end", "0.25"}}));
     IterationLog log;
     sim.AddObserver(&log);
     sim.Run();
@@ -178,8 +184,8 @@ TEST(ViscousCoupling, FixedDiskWarmStartsWithCollocationPoints) {
 }
 
 // A stall of the outer PCG tightens the coupled Stokes solves and restarts (ViscousConstraint::
-// kStallWindow): the creeping disk of the test above at D/h = 40 (h = 0.0025), its centre 5h/4 off
-// the nodes, one step, one thread. Measured 2026-12-04: without the rule the step failed (over 500
+// kStallWindow): the creeping disk (CreepingDisk) at D/h = 40 (h = 0.0025), its centre 5h/4 off
+// the nodes, one step. Measured 2026-12-04: without the rule the step failed (over 500
 // iterations with the coupled solves at 1e-6, the default's effective value; so did h/4 and 7h/4,
 // and 3h/4 on two threads stalled at a mismatch of 2.4e-4 > 3e-5 through 1000); with it the step
 // converges in 319 iterations, tightened to 1e-8. The reference F_x = 6.612541 is the same step run
@@ -187,21 +193,8 @@ TEST(ViscousCoupling, FixedDiskWarmStartsWithCollocationPoints) {
 // 233 iterations); the rule's run gave 6.612612 (1.1e-5 apart). Both stop at a mismatch of at most
 // tol V, so the bound of the test above, 2e-4 F, holds between them.
 TEST(ViscousCoupling, StallTightensTheCoupledStokesSolves) {
-  Params params =
-      LoadSceneFile(std::string(DLMFD_SOURCE_DIR) + "/cases/verification/schaefer_turek_2d1.toml",
-                    {{"domain.size", "[0.8, 0.4]"},
-                     {"domain.h", "0.0025"},
-                     {"fluid.viscosity", "1.0"},
-                     {"particles.0.center", "[0.203125, 0.2]"},
-                     {"particle_mesh.kind", "\"collocation\""},
-                     {"splitting.constraint", "\"viscous\""},
-                     {"time.dt", "0.05"},
-                     {"time.end", "0.05"},
-                     {"output.fields_every", "0"},
-                     {"output.particles_every", "0"},
-                     {"output.checkpoint_every", "0"}});
-  params.threads = 1;
-  Simulation sim(params);
+  Simulation sim(CreepingDisk(
+      {{"domain.h", "0.0025"}, {"particles.0.center", "[0.203125, 0.2]"}, {"time.end", "0.05"}}));
   IterationLog log;
   sim.AddObserver(&log);
   ASSERT_NO_THROW(sim.Run());
