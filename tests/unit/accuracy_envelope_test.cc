@@ -7,6 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -193,7 +194,8 @@ TEST(AccuracyEnvelope, ViscousNumberWithParticlesAboveTheBoundWarnsOnTheTimeStep
 
 TEST(AccuracyEnvelope, ViscousCouplingHasTheBoundItWasMeasuredTo) {
   // Schaefer-Turek at nu = 0.1: nu dt / h^2 = 20 at dt = 5e-3 warns with the default coupling,
-  // not with the constraint in the Stokes step (measured to 40); 80 at dt = 2e-2 warns with both.
+  // not with the constraint in the Stokes step (measured to 922: Faxen's disk in creeping flow);
+  // 1000 at dt = 0.25 warns with both.
   const std::vector<std::string> viscous = {"fluid.viscosity=0.1",
                                             "splitting.constraint=\"viscous\"", "splitting.alpha=1",
                                             "splitting.beta=0"};
@@ -202,12 +204,13 @@ TEST(AccuracyEnvelope, ViscousCouplingHasTheBoundItWasMeasuredTo) {
   const Params inside = Scene(kSchaeferTurek, viscous);
   for (const AccuracyWarning& w : AccuracyWarnings(inside)) EXPECT_NE(w.setting, "nu dt / h^2");
   std::vector<std::string> coarse = viscous;
-  coarse.push_back("time.dt=0.02");
+  coarse.push_back("time.dt=0.25");
   const std::vector<AccuracyWarning> w = AccuracyWarnings(Scene(kSchaeferTurek, coarse));
-  ASSERT_FALSE(w.empty());
-  EXPECT_EQ(w[0].setting, "nu dt / h^2");
-  EXPECT_EQ(w[0].allowed, "<= 40");
-  EXPECT_THAT(w[0].source, HasSubstr("Coupling the constraint with viscosity"));
+  const auto it = std::find_if(w.begin(), w.end(),
+                               [](const AccuracyWarning& a) { return a.setting == "nu dt / h^2"; });
+  ASSERT_NE(it, w.end());
+  EXPECT_EQ(it->allowed, "<= 922");
+  EXPECT_THAT(it->source, HasSubstr("Coupling the constraint with viscosity"));
 }
 
 TEST(AccuracyEnvelope, ViscousNumberWithoutParticlesHasTheLargerMeasuredBound) {
