@@ -68,8 +68,7 @@ ViscousConstraint::ViscousConstraint(const Params& params, const Grid& grid)
       zero_data_(grid, zero_domain_),
       tolerance_(params.solvers.multiplier_tolerance),
       max_iterations_(params.solvers.multiplier_max_iterations),
-      stokes_tolerance_(StokesSettings(params).stokes_tolerance),
-      kind_(params.particle_mesh.kind) {
+      stokes_tolerance_(StokesSettings(params).stokes_tolerance) {
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
     RequireCoupledInStokes(params, p);
     const ParticleParams& q = params.particles[p];
@@ -148,9 +147,6 @@ StokesReport ViscousConstraint::Start(double dt, bool carry, StokesSolver& stoke
                                       const double* fy, double* u, double* v, double* p) {
   const MultiplierPoints& points = inviscid_.points();
   const CouplingOperator& coupling = inviscid_.coupling();
-  std::copy(u_in_.begin(), u_in_.end(), u);
-  std::copy(v_in_.begin(), v_in_.end(), v);
-  std::copy(p_in_.begin(), p_in_.end(), p);
   velocity_ = velocity_in_;
   omega_ = omega_in_;
   if (carry) {
@@ -224,13 +220,16 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
       std::ostringstream what;
       what << "DLM viscous coupling (33) did not converge at t = " << time << " after " << it
            << " iterations: rigid-motion mismatch " << mismatch << " > " << target
-           << RemedyText(kind_, stokes_tolerance_);
+           << RemedyText(inviscid_.points().Kind(), stokes_tolerance_);
       throw SolverNotConverged(what.str());
     }
     if (it - best_it >= kStallWindow && stokes_tolerance_ * kTightening >= kStokesToleranceFloor) {
       stokes_tolerance_ *= kTightening;
       stokes.set_tolerance(stokes_tolerance_);
       response_solver_->set_tolerance(stokes_tolerance_);
+      std::copy(u_in_.begin(), u_in_.end(), u);
+      std::copy(v_in_.begin(), v_in_.end(), v);
+      std::copy(p_in_.begin(), p_in_.end(), p);
       outcome.stokes_iterations += Start(dt, true, stokes, fx, fy, u, v, p).iterations;
       mismatch = MismatchOf(u, v, velocity_, omega_, r_.data());
       best = mismatch;

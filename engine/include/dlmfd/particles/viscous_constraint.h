@@ -136,9 +136,10 @@ class ViscousConstraint {
   double NodalTorqueSum(std::size_t p) const { return torque_sum_[p]; }
 
  private:
-  // Restores the step's entry state (u^n, the pressure's warm start, the particles' velocities),
-  // adds the carried nu when carry (its velocity increment and the particles' response) and solves
-  // (33): the start of the outer iteration, and its restart after a stall.
+  // From the step's entry state in u, v, p (u^n and the pressure's warm start; a restart copies
+  // them back from u_in_, v_in_, p_in_) and the particles' entry velocities: adds the carried nu
+  // when carry (its velocity increment and the particles' response) and solves (33). The start of
+  // the outer iteration, and its restart after a stall.
   StokesReport Start(double dt, bool carry, StokesSolver& stokes, const double* fx,
                      const double* fy, double* u, double* v, double* p);
   // r = E u - C xi at every point, for fields (u, v) and particle velocities (vel, omega); returns
@@ -156,7 +157,6 @@ class ViscousConstraint {
   double tolerance_;
   int max_iterations_;
   double stokes_tolerance_;  // of the coupled Stokes solves: StokesSettings, tightened on a stall
-  ParticleMeshKind kind_;
   std::vector<double> u_in_, v_in_, p_in_;  // the step's entry state, for a restart
   std::vector<Vec2> velocity_in_;
   std::vector<double> omega_in_;
