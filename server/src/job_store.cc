@@ -836,16 +836,17 @@ SweepStats JobStore::StatsOfSweep(const std::string& owner, const std::string& s
   return stats;
 }
 
-void JobStore::Requeue(const std::vector<RequeueChange>& changes) {
+std::vector<JobRecord> JobStore::Requeue(const std::vector<RequeueChange>& changes) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
+  const auto read = [&](const std::string& id) {
+    Statement get(db_, std::string("SELECT ") + kColumns + " FROM jobs WHERE id = ?");
+    get.Bind(id);
+    return Query(get);
+  };
+  std::vector<JobRecord> requeued;
   for (const RequeueChange& change : changes) {
-    std::vector<JobRecord> found;
-    {
-      Statement get(db_, std::string("SELECT ") + kColumns + " FROM jobs WHERE id = ?");
-      get.Bind(change.id);
-      found = Query(get);
-    }
+    const std::vector<JobRecord> found = read(change.id);
     if (found.empty() || !IsFinished(found.front().state)) {
       throw StoreError("job " + change.id + " is not finished");
     }
@@ -877,8 +878,10 @@ void JobStore::Requeue(const std::vector<RequeueChange>& changes) {
     update.Run();
     if (update.Changes() != 1) throw StoreError("job " + change.id + " is not finished");
     WriteSceneValues(change.id, change.scene_values);
+    requeued.push_back(read(change.id).front());
   }
   transaction.Commit();
+  return requeued;
 }
 
 void JobStore::ClearFreshStart(const std::string& id) {

@@ -216,8 +216,10 @@ class JobStore {
                                       int64_t before_ordinal, int limit);
   SweepStats StatsOfSweep(const std::string& owner, const std::string& sweep_id);
   // Finished jobs back to QUEUED in one transaction, each with attempt + 1 and its ending recorded
-  // in previous_attempts. Throws StoreError (nothing changed) when one is no longer finished.
-  void Requeue(const std::vector<RequeueChange>& changes);
+  // in previous_attempts; returns them as written (QUEUED: the scheduler may take them the moment
+  // the transaction ends, so a later Get can already read RUNNING). Throws StoreError (nothing
+  // changed) when one is no longer finished.
+  std::vector<JobRecord> Requeue(const std::vector<RequeueChange>& changes);
   void ClearFreshStart(const std::string& id);
 
   // Every job of the owner, oldest first.

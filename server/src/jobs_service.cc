@@ -632,14 +632,15 @@ grpc::ServerUnaryReactor* JobsService::Retry(grpc::CallbackServerContext* contex
       change.fresh_start = !ResumesFromCheckpoint(job, change.overrides);
       plan.push_back(std::move(change));
     }
-    store_.Requeue(plan);
-    for (const RequeueChange& change : plan) {
-      auto job = store_.Get(change.id);
-      if (!job) continue;
-      spdlog::info("job {}: QUEUED again by {} (attempt {}, {})", job->id, user, job->attempt,
-                   change.fresh_start ? "fresh start" : "resumes from its checkpoint");
-      hub_.PublishState(*job);
-      *reply->add_jobs() = Reported(*job);
+    // The records as the requeue wrote them: the scheduler may start a job before a fresh read
+    // (the reply and the QUEUED event then said RUNNING, ahead of the scheduler's own event).
+    const std::vector<JobRecord> requeued = store_.Requeue(plan);
+    for (std::size_t k = 0; k < requeued.size(); ++k) {
+      const JobRecord& job = requeued[k];
+      spdlog::info("job {}: QUEUED again by {} (attempt {}, {})", job.id, user, job.attempt,
+                   plan[k].fresh_start ? "fresh start" : "resumes from its checkpoint");
+      hub_.PublishState(job);
+      *reply->add_jobs() = Reported(job);
     }
     scheduler_.Wake();
   });

@@ -286,7 +286,14 @@ TEST(StudyStore, RequeueRecordsTheAttemptAndRefusesAnUnfinishedJob) {
   store.MarkRunning("a", 10);
   store.UpdateProgress("a", 7, 0.7, 1.0);
   store.MarkFinished("a", JobState::kCancelled, "cancelled", 11);
-  store.Requeue({{"a", {"time.end=1", "time.dt=0.01"}, {}, {}, {}, 1, true}});
+  // It returns the records as written, which the Retry reply and event report: a Get after it
+  // can already read a job the scheduler started.
+  const std::vector<JobRecord> requeued =
+      store.Requeue({{"a", {"time.end=1", "time.dt=0.01"}, {}, {}, {}, 1, true}});
+  ASSERT_EQ(requeued.size(), 1u);
+  EXPECT_EQ(requeued[0].id, "a");
+  EXPECT_EQ(requeued[0].state, JobState::kQueued);
+  EXPECT_EQ(requeued[0].attempt, 2);
   auto job = store.Get("a");
   ASSERT_TRUE(job);
   EXPECT_EQ(job->state, JobState::kQueued);
