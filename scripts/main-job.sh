@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# The README's main job: start dlmfdd on a free loopback port, submit a real case at a modest
-# resolution, watch it to the end, fetch its results into runs/main-job/, draw a PNG, print the
-# summary, stop the daemon. Needs a build in build/ (scripts/build.sh).
+# The README's main job: start dlmfdd on a free loopback port and the web dashboard (dlmfd-web) in
+# front of it, submit a real case at a modest resolution, print the URL where the job can be
+# watched in a browser, watch it to the end, fetch its results into runs/main-job/, draw a PNG,
+# print the summary, stop both. Needs a build in build/ (scripts/build.sh).
 #
 #   CASE=cases/paper/...toml SETS="--set domain.h=0.02 --set time.end=1" scripts/main-job.sh
+#   WEB_PORT=7480 KEEP_WEB=1 scripts/main-job.sh   # a fixed port; keep the dashboard up at the end
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -15,8 +17,9 @@ RUNS=${RUNS:-runs}
 DLMFD="$BUILD/client/dlmfd"
 DLMFDD="$BUILD/server/dlmfdd"
 SOLVER="$BUILD/solver/dlmfd-solve"
+WEB="$BUILD/web/dlmfd-web"
 
-for binary in "$DLMFD" "$DLMFDD" "$SOLVER"; do
+for binary in "$DLMFD" "$DLMFDD" "$SOLVER" "$WEB"; do
   if [ ! -x "$binary" ]; then
     echo "main-job: $binary is missing; build first: scripts/build.sh" >&2
     exit 2
@@ -33,13 +36,38 @@ OUT="$RUNS/main-job"
 . scripts/dlmfdd_lib.sh
 
 echo "== starting dlmfdd (data in $DATA, log in $RUNS/dlmfdd.log)"
-trap stop_dlmfdd EXIT
+WEB_PID=""
+stop_all() {
+  if [ -n "$WEB_PID" ] && kill -0 "$WEB_PID" 2>/dev/null; then
+    kill -TERM "$WEB_PID" 2>/dev/null || true
+    wait "$WEB_PID" 2>/dev/null || true
+  fi
+  stop_dlmfdd
+}
+trap stop_all EXIT
 start_dlmfdd "$DATA" "$RUNS/dlmfdd.log"
+
+echo "== starting the dashboard dlmfd-web (log in $RUNS/dlmfd-web.log)"
+rm -f "$DATA/web-port"
+"$WEB" --listen "127.0.0.1:${WEB_PORT:-0}" --server "$DLMFD_SERVER" --port-file "$DATA/web-port" \
+  >"$RUNS/dlmfd-web.log" 2>&1 &
+WEB_PID=$!
+for _ in $(seq 1 150); do
+  [ -s "$DATA/web-port" ] && break
+  if ! kill -0 "$WEB_PID" 2>/dev/null; then
+    echo "dlmfd-web exited; its log:" >&2
+    cat "$RUNS/dlmfd-web.log" >&2
+    exit 5
+  fi
+  sleep 0.2
+done
+WEB_URL="http://127.0.0.1:$(tr -d '[:space:]' <"$DATA/web-port")"
 
 echo "== submitting $CASE $SETS"
 # shellcheck disable=SC2086  # SETS is a list of flags
 JOB=$("$DLMFD" submit "$CASE" $SETS --name main-job --tag main-job)
 echo "job $JOB"
+echo "watch it in a browser: $WEB_URL/jobs/$JOB  (all studies and jobs: $WEB_URL/)"
 
 echo "== watching"
 outcome=0
@@ -77,4 +105,9 @@ fi
 echo "results     $OUT/"
 [ -n "$PICTURE" ] && echo "picture     $PICTURE"
 echo "daemon log  $RUNS/dlmfdd.log"
+echo "dashboard   $WEB_URL/jobs/$JOB"
+if [ "${KEEP_WEB:-0}" = 1 ]; then
+  echo "== the daemon and the dashboard stay up at $WEB_URL/ until Ctrl-C"
+  wait "$WEB_PID" || true
+fi
 exit "$outcome"

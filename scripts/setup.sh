@@ -14,6 +14,9 @@ packages=(
   python3 python3-grpcio python3-protobuf python3-h5py python3-numpy python3-pandas
   # fields.xmf opened in ParaView offscreen by pvbatch (tests/python/paraview_test.py).
   paraview python3-paraview
+  # The web dashboard (web/, docs/dashboard.md): cpp-httplib (it brings OpenSSL, zlib and brotli),
+  # and its tests in Debian's headless Chromium driven by Selenium, screenshots read by Pillow.
+  libcpp-httplib-dev chromium chromium-driver python3-selenium python3-pil
   # A real single-node Slurm for the tests labelled slurm (scripts/slurm-dev.sh, docs/cluster.md).
   slurmctld
   slurmd
