@@ -44,18 +44,21 @@ echo "== ASan+UBSan build and tests"
 # at -O2 -g, and the tests run as fast (207 s and 209 s, server and e2e, 2 cores).
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
   -DDLMFD_SANITIZE=ON -DDLMFD_WERROR=ON -DDLMFD_BUILD_BENCH=OFF > /dev/null
-# The sanitizers guard the code that meets clients and jobs: the daemon, the CLI and the solver
-# they run (the e2e tests run every paper case's scene through the instrumented dlmfd-solve). The
-# engine's unit and convergence tests run in the release build only: under ASan they doubled the
-# sanitizer pass (build 17 minutes, tests 7, on 2 cores), which kept CI above its 30 minutes. The
-# tests labelled slurm run once, in the release build: they wait on Slurm's scheduling (minutes),
-# and the daemon's code they drive runs under the sanitizers in the server tests.
+# The sanitizers guard the code that meets clients and jobs: the daemon, the CLI, the dashboard
+# (dlmfd-web) and the solver they run (the e2e tests run every paper case's scene through the
+# instrumented dlmfd-solve). The engine's unit and convergence tests run in the release build
+# only: under ASan they doubled the sanitizer pass (build 17 minutes, tests 7, on 2 cores), which
+# kept CI above its 30 minutes. The tests labelled slurm run once, in the release build: they wait
+# on Slurm's scheduling (minutes), and the daemon's code they drive runs under the sanitizers in
+# the server tests.
 if [ "${SANITIZE_ALL:-0}" = 1 ]; then
   cmake --build build-asan -j"$jobs"
   asan_labels=(-LE slurm)
 else
-  cmake --build build-asan -j"$jobs" --target dlmfdd dlmfd dlmfd-solve server_tests e2e_tests
-  asan_labels=(-L '^(server|e2e)$')
+  cmake --build build-asan -j"$jobs" --target dlmfdd dlmfd dlmfd-solve dlmfd-web server_tests e2e_tests
+  # The dashboard meets browsers: its HTTP rules run under the sanitizers too (the Chromium test,
+  # which drives the same code through a browser for half a minute more, runs in release only).
+  asan_labels=(-L '^(server|e2e|browser)$' -E '^Dashboard\.InHeadlessChromium$')
 fi
 slurm_tests_status=0
 wait "$slurm_tests_pid" || slurm_tests_status=$?

@@ -64,13 +64,14 @@ JobWatchSet::~JobWatchSet() {
   changed_.wait(lock, [&] { return live_reactors_ == 0; });
 }
 
-void JobWatchSet::Follow(const std::string& job_id) {
+void JobWatchSet::Follow(const std::string& job_id, std::int64_t from_seq) {
   Reactor* reactor = nullptr;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (closing_) return;
     Stream& stream = streams_[job_id];
     if (stream.reactor != nullptr || stream.waiting) return;
+    stream.last_seq = std::max(stream.last_seq, from_seq);
     reactor = StartLocked(job_id, stream);
   }
   // Started outside the lock: gRPC may run a reaction on this thread.

@@ -45,8 +45,10 @@ class JobWatchSet {
   JobWatchSet(const JobWatchSet&) = delete;
   JobWatchSet& operator=(const JobWatchSet&) = delete;
 
-  // Starts a Watch of the job unless one runs or waits to restart.
-  void Follow(const std::string& job_id);
+  // Starts a Watch of the job unless one runs or waits to restart, from the events after
+  // `from_seq` (the job's last_seq when the page read it: the page loads the state as of then, so
+  // the daemon's held events before it are not sent again), or after the last one this set saw.
+  void Follow(const std::string& job_id, std::int64_t from_seq);
   bool Follows(const std::string& job_id) const;
   std::size_t Active() const;  // streams open or waiting to restart
   // Watch streams open now in this process, all sets together (/api/status).

@@ -188,7 +188,7 @@ bool Final(v1::JobState state) {
 void FollowUnfinished(LivePage& page, const v1::Job& job) {
   if (Final(job.state()) || page.watches.Follows(job.id())) return;
   if (page.watches.Active() >= static_cast<size_t>(page.context.options.max_watched_jobs)) return;
-  page.watches.Follow(job.id());
+  page.watches.Follow(job.id(), job.last_seq());
 }
 
 grpc::Status ListAll(WebContext& context, const std::string& token, v1::ListRequest request,
@@ -216,7 +216,7 @@ std::string DaemonDown(const grpc::Status& status) {
 }  // namespace
 
 grpc::Status OverviewJson(WebContext& context, const std::string& token, std::string* out,
-                          std::vector<std::string>* unfinished) {
+                          std::vector<v1::Job>* unfinished) {
   json sweeps = json::array();
   v1::ListSweepsRequest sweeps_request;
   sweeps_request.set_page_size(1000);
@@ -247,7 +247,7 @@ grpc::Status OverviewJson(WebContext& context, const std::string& token, std::st
     status = ListAll(context, token, open, &open_jobs,
                      static_cast<size_t>(context.options.max_watched_jobs));
     if (!status.ok()) return status;
-    for (const v1::Job& job : open_jobs) unfinished->push_back(job.id());
+    for (const v1::Job& job : open_jobs) unfinished->push_back(job);
   }
   *out = JsonText({{"sweeps", sweeps}, {"jobs", jobs}});
   return grpc::Status::OK;
@@ -267,15 +267,10 @@ void ServeOverviewEvents(WebContext& context, const Caller& caller, httplib::Res
   };
   page->poll = [](LivePage& p) -> std::string {
     std::string overview;
-    std::vector<std::string> unfinished;
+    std::vector<v1::Job> unfinished;
     const grpc::Status status = OverviewJson(p.context, p.token, &overview, &unfinished);
     if (!status.ok()) return DaemonDown(status);
-    for (const std::string& id : unfinished) {
-      if (!p.watches.Follows(id) &&
-          p.watches.Active() < static_cast<size_t>(p.context.options.max_watched_jobs)) {
-        p.watches.Follow(id);
-      }
-    }
+    for (const v1::Job& job : unfinished) FollowUnfinished(p, job);
     if (overview == p.last_summary) return {};
     p.last_summary = overview;
     return Sse("overview", overview);

@@ -31,6 +31,6 @@ void ServeJobEvents(WebContext& context, const Caller& caller, const std::string
 // The studies page's JSON: {"sweeps": [Sweep...], "jobs": [recent jobs outside studies]}, and the
 // unfinished jobs of both (to follow) through *unfinished when not null.
 grpc::Status OverviewJson(WebContext& context, const std::string& token, std::string* json,
-                          std::vector<std::string>* unfinished);
+                          std::vector<v1::Job>* unfinished);
 
 }  // namespace dlmfd::web

@@ -1,5 +1,6 @@
 #include "result_files.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
@@ -7,28 +8,35 @@
 
 namespace dlmfd::web {
 
-bool SafeResultPath(const std::string& path, std::string* why) {
-  if (path.empty()) return *why = "the path is empty", false;
-  if (path.size() > 4096) return *why = "the path is longer than 4096 bytes", false;
-  if (path.front() == '/') return *why = "the path is absolute", false;
+namespace {
+
+// The reason a path is refused, or "" for a safe one.
+std::string UnsafePathReason(const std::string& path) {
+  if (path.empty()) return "the path is empty";
+  if (path.size() > 4096) return "the path is longer than 4096 bytes";
+  if (path.front() == '/') return "the path is absolute";
   for (char c : path) {
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == '\\') {
-      return *why = "the path holds a control byte or a backslash", false;
+      return "the path holds a control byte or a backslash";
     }
   }
-  size_t start = 0;
-  while (start <= path.size()) {
+  for (size_t start = 0; start <= path.size();) {
     const size_t end = std::min(path.find('/', start), path.size());
     const std::string part = path.substr(start, end - start);
     if (part.empty() || part == "." || part == "..") {
-      return *why =
-                 "the path has an empty, '.' or '..' part (only files inside the job's "
-                 "results are served)",
-             false;
+      return "the path has an empty, '.' or '..' part (only files inside the job's results are "
+             "served)";
     }
     start = end + 1;
   }
-  return true;
+  return "";
+}
+
+}  // namespace
+
+bool SafeResultPath(const std::string& path, std::string* why) {
+  *why = UnsafePathReason(path);
+  return why->empty();
 }
 
 grpc::Status FetchFileTo(DaemonLink& link, const std::string& token, const std::string& job_id,
