@@ -105,9 +105,8 @@ fi
 echo "results     $OUT/"
 [ -n "$PICTURE" ] && echo "picture     $PICTURE"
 echo "daemon log  $RUNS/dlmfdd.log"
-echo "dashboard   $WEB_URL/jobs/$JOB"
 if [ "${KEEP_WEB:-0}" = 1 ]; then
-  echo "== the daemon and the dashboard stay up at $WEB_URL/ until Ctrl-C"
+  echo "== the daemon and the dashboard stay up until Ctrl-C: $WEB_URL/jobs/$JOB"
   wait "$WEB_PID" || true
 fi
 exit "$outcome"

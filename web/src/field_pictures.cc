@@ -111,6 +111,8 @@ Picture LatestFieldPicture(DaemonLink& link, const std::string& token, const std
     const std::filesystem::path png = scratch.path() / "picture.png";
     DrawFieldPicture(frame.field, frame.disks, options).image.Write(png.string());
     picture.png = ReadWhole(png);
+  } catch (const InvalidParameter& e) {
+    return Failure(400, e.what());  // a size with no room for the picture
   } catch (const Error& e) {
     return Failure(500, std::string("cannot draw the snapshot: ") + e.what());
   }

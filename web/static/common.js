@@ -25,18 +25,27 @@ dl.fill = function (node, ...children) {
   node.replaceChildren(...children.flat().filter((c) => c !== null && c !== undefined));
 };
 
-// Points the picture at `src`, one load at a time: while a picture loads (the server draws it),
-// a newer src waits and replaces the one before it, so fast snapshots never starve the picture.
-dl.setPicture = function (img, src) {
+// Points the picture at `src`, one load at a time and at most one every `every` ms: while a
+// picture loads (the server draws it) or waits its turn, a newer src replaces the one before it,
+// so snapshots written faster than pictures are drawn neither starve the picture nor keep the
+// server drawing.
+dl.setPicture = function (img, src, every) {
   if (img.dataset.want === src) return;
   img.dataset.want = src;
-  if (img.dataset.loading === "1") return;
+  img.dataset.every = String(every || 0);
+  if (img.dataset.loading === "1" || img.dataset.timer === "1") return;
   const next = () => {
-    if (img.dataset.want && img.dataset.want !== img.dataset.shown) {
-      img.dataset.loading = "1";
-      img.dataset.shown = img.dataset.want;
-      img.src = img.dataset.want;
+    if (!img.dataset.want || img.dataset.want === img.dataset.shown) return;
+    const wait = Number(img.dataset.last || 0) + Number(img.dataset.every) - Date.now();
+    if (wait > 0) {
+      img.dataset.timer = "1";
+      setTimeout(() => { img.dataset.timer = "0"; next(); }, wait);
+      return;
     }
+    img.dataset.loading = "1";
+    img.dataset.last = String(Date.now());
+    img.dataset.shown = img.dataset.want;
+    img.src = img.dataset.want;
   };
   if (!img.dataset.hooked) {
     img.dataset.hooked = "1";

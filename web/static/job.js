@@ -98,7 +98,7 @@
   }
 
   function refreshField(step) {
-    dl.setPicture(field, "/pictures/jobs/" + enc + "/field.png?width=900&height=700&v=" + (step || Date.now()));
+    dl.setPicture(field, "/pictures/jobs/" + enc + "/field.png?width=900&height=700&v=" + (step || Date.now()), 2000);
   }
 
   let logBusy = false, logAgain = false;

@@ -86,7 +86,7 @@
       thumbs.set(id, img);
     }
     const src = "/pictures/jobs/" + encodeURIComponent(id) + "/field.png?width=220&height=220&caption=0&v=" + step;
-    dl.setPicture(img, src);
+    dl.setPicture(img, src, 5000);
     return img;
   }
 
