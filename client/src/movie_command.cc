@@ -21,11 +21,11 @@
 #include "connection.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/io/field_snapshot.h"
-#include "dlmfd/viz/movie_encoder.h"
 #include "dlmfd/viz/results_frame.h"
 #include "exit_codes.h"
 #include "plot_options.h"
 #include "rpc_status.h"
+#include "run_movie.h"
 
 namespace dlmfd::cli {
 namespace {
@@ -101,30 +101,6 @@ std::vector<long> ChosenSteps(const std::string& dir, const MovieFlags& m) {
   return chosen;
 }
 
-// The colour range over the frames (inside the window; positive values for a log scale;
-// symmetric about zero, [-m, m], for a signed quantity on the diverging map).
-void CommonRange(const std::string& dir, const std::vector<long>& steps, PlotFlags& plot) {
-  double lo = HUGE_VAL, hi = -HUGE_VAL;
-  bool diverging = false;
-  for (const long step : steps) {
-    const NodeField field = Windowed(LoadResultsFrame(dir, step, plot.quantity).field, plot.window);
-    diverging = DrawsDiverging(field.quantity, plot.options);
-    for (const double v : field.values) {
-      if (!std::isfinite(v) || (plot.options.log_colours && !(v > 0.0))) continue;
-      lo = std::min(lo, v);
-      hi = std::max(hi, v);
-    }
-  }
-  if (!(lo <= hi)) return;  // no usable value anywhere: each frame's own (grey) scale
-  if (diverging) {
-    hi = std::max(std::abs(lo), std::abs(hi));
-    lo = -hi;
-  }
-  plot.options.fixed_range = true;
-  plot.options.range_min = lo;
-  plot.options.range_max = hi;
-}
-
 int MakeMovie(const std::string& dir, const std::string& run_caption, MovieFlags& m,
               PlotFlags& plot) {
   const std::vector<long> steps = ChosenSteps(dir, m);
@@ -133,27 +109,8 @@ int MakeMovie(const std::string& dir, const std::string& run_caption, MovieFlags
                      (std::isfinite(m.from) || std::isfinite(m.to) ? " inside --from/--to" : "") +
                      " (output.fields_every > 0 writes them)");
   }
-  if (!plot.options.fixed_range) CommonRange(dir, steps, plot);
-  const std::string caption = plot.options.caption;
-  std::unique_ptr<MovieEncoder> movie;
-  for (const long step : steps) {
-    const ResultsFrame frame = LoadResultsFrame(dir, step, plot.quantity);
-    PictureOptions options = plot.options;
-    options.caption = (caption.empty() ? run_caption : caption) + "\n" +
-                      FrameCaption(frame.field.quantity, frame.time, frame.step);
-    if (!movie) {
-      // The first frame sets the size: its natural one, rounded up to even sides.
-      const FieldPicture natural = DrawFrame(frame, plot, options);
-      plot.options.exact_width = natural.image.Width() + natural.image.Width() % 2;
-      plot.options.exact_height = natural.image.Height() + natural.image.Height() % 2;
-      movie = std::make_unique<MovieEncoder>(m.out, plot.options.exact_width,
-                                             plot.options.exact_height, m.fps, m.ffmpeg);
-      options.exact_width = plot.options.exact_width;
-      options.exact_height = plot.options.exact_height;
-    }
-    movie->AddFrame(DrawFrame(frame, plot, options).image.Rasterise());
-  }
-  const long frames = movie->Finish();
+  const MovieSummary movie = WriteRunMovie(dir, steps, run_caption, plot, m.out, m.fps, m.ffmpeg);
+  const long frames = movie.frames;
   std::cout << m.out << "\n";
   std::cerr << "movie: " << frames << " frames, " << plot.options.exact_width << "x"
             << plot.options.exact_height << ", " << FormatLabel(frames / m.fps) << " s at "

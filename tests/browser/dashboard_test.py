@@ -4,7 +4,8 @@ Selenium against the real dlmfd-web, the real dlmfdd on loopback and the real so
 move without reloading, opens the study, sorts and filters its table, sees the chart and the
 thumbnails drawn by viz/, opens a running job, watches its step move, cancels it and sees its
 state change, retries it, then restarts the daemon under another job's open page and sees it
-reconnect and move again, and deletes a completed job after the confirmation;
+reconnect and move again, plays a completed job's movie and deletes that job after the
+confirmation;
 a screenshot of each page is checked to be non-blank (docs/dashboard.md shows them). Closing the
 page ends its event stream and its Watch streams.
 
@@ -208,6 +209,11 @@ class DashboardTest(unittest.TestCase):
         done = self.daemon.cli("list", "--sweep", sweep, "--state", "completed", "-q").split()[0]
         b.get(self.web.url + "/jobs/" + done)
         ws.wait_for(lambda: self.text("#state") == "completed", "the completed job's page", 30)
+        # Its movie: drawn by the server from every snapshot (viz/ and ffmpeg), played here.
+        self.click("#make-movie", "Make the movie")
+        ws.wait_for(lambda: b.execute_script(
+            "const v = document.getElementById('movie'); return v.readyState >= 2 && v.videoWidth > 200"),
+            "the job's movie to load", 120)
         self.click("#delete", "Delete")
         ws.wait_for(lambda: b.find_element(By.CSS_SELECTOR, "dialog.confirm").is_displayed(),
                     "the confirmation", 10)

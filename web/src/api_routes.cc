@@ -80,7 +80,7 @@ void JsonOrError(httplib::Response& res, const grpc::Status& status, const Reply
 void SendPicture(httplib::Response& res, const Picture& picture) {
   if (picture.status != 200) return ReplyError(res, picture.status, picture.message);
   res.set_header("Cache-Control", "no-store");
-  res.set_content(picture.png, "image/png");
+  res.set_content(picture.data, "image/png");
 }
 
 // The file name of a download: the path's last part, made of safe bytes only.
@@ -434,6 +434,17 @@ void InstallApiRoutes(httplib::Server& server, WebContext& context) {
             chart.width = int(width);
             chart.height = int(height);
             SendPicture(res, SweepChartPicture(context.link, caller.token, Id(req), chart));
+          }));
+
+  server.Get(
+      std::string("/movies/jobs/") + kIdPattern + "/movie.mp4",
+      ForUser(
+          context, Access::kRead,
+          [&context](const httplib::Request& req, httplib::Response& res, const Caller& caller) {
+            const Picture movie = context.movies.Movie(context.link, caller.token, Id(req));
+            if (movie.status != 200) return ReplyError(res, movie.status, movie.message);
+            res.set_header("Cache-Control", "no-store");
+            res.set_content(movie.data, "video/mp4");
           }));
 
   // Downloads: any file of the job's results, by its path relative to them.

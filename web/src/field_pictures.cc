@@ -81,7 +81,7 @@ Picture LatestFieldPicture(DaemonLink& link, const std::string& token, const std
       << snapshot->modified_time() << '|' << size.width << 'x' << size.height << '|'
       << size.caption;
   Picture picture;
-  if (cache.Get(key.str(), &picture.png)) return picture;
+  if (cache.Get(key.str(), &picture.data)) return picture;
 
   v1::GetRequest get_request;
   get_request.set_job_id(job_id);
@@ -110,13 +110,13 @@ Picture LatestFieldPicture(DaemonLink& link, const std::string& token, const std
     }
     const std::filesystem::path png = scratch.path() / "picture.png";
     DrawFieldPicture(frame.field, frame.disks, options).image.Write(png.string());
-    picture.png = ReadWhole(png);
+    picture.data = ReadWhole(png);
   } catch (const InvalidParameter& e) {
     return Failure(400, e.what());  // a size with no room for the picture
   } catch (const Error& e) {
     return Failure(500, std::string("cannot draw the snapshot: ") + e.what());
   }
-  cache.Put(key.str(), picture.png);
+  cache.Put(key.str(), picture.data);
   return picture;
 }
 

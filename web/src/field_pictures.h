@@ -37,11 +37,11 @@ struct PictureSize {
   bool caption = true;  // the job's name, overrides, quantity, time and step above the field
 };
 
-// The outcome of drawing: a PNG, or an HTTP status and message.
+// The outcome of drawing: a PNG (or a movie), or an HTTP status and message.
 struct Picture {
   int status = 200;
   std::string message;
-  std::string png;
+  std::string data;  // the file's bytes
 };
 
 Picture LatestFieldPicture(DaemonLink& link, const std::string& token, const std::string& job_id,

@@ -8,6 +8,7 @@
 
 #include "daemon_link.h"
 #include "field_pictures.h"
+#include "job_movie.h"
 #include "session_store.h"
 #include "web_options.h"
 
@@ -19,6 +20,7 @@ struct WebContext {
   DaemonLink link;
   SessionStore sessions;
   PictureCache pictures;
+  MovieCache movies;
   std::atomic<int> live_pages{0};
   std::atomic<bool> stopping{false};
 };

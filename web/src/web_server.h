@@ -8,6 +8,7 @@
 //               POST /api/sweeps/ID/{cancel,retry,delete}
 //   pictures    GET /pictures/jobs/ID/field.png?width=&height=&caption=0
 //               GET /pictures/sweeps/ID/chart.png?x=&y=&group=&logx=1&logy=1&width=&height=
+//   movie       GET /movies/jobs/ID/movie.mp4 (job_movie.h)
 //   files       GET /files/jobs/ID/PATH (a download through the daemon's Fetch)
 //   live        GET /events/overview  /events/sweeps/ID  /events/jobs/ID (live_events.h)
 //

@@ -27,13 +27,17 @@
     button("delete", "Delete", () => act("delete"), "danger"));
   const field = dl.el("img", { class: "field", id: "field", alt: "latest field snapshot" });
   const fieldNote = dl.el("div", { class: "meta", text: "No field snapshot yet." });
+  const movie = dl.el("video", { id: "movie", controls: true, muted: true, playsinline: true });
+  const movieNote = dl.el("span", { class: "meta" });
+  const movieButton = dl.el("button", { id: "make-movie", text: "Make the movie", onclick: makeMovie });
   const positions = dl.el("canvas", { class: "chart", id: "positions" });
   const velocities = dl.el("canvas", { class: "chart", id: "velocities" });
   const log = dl.el("pre", { class: "log", id: "log" });
   const files = dl.el("tbody");
   main.append(title, meta, stateLine, stats, progress, actions,
     dl.el("div", { class: "cols" },
-      dl.el("div", { class: "panel" }, dl.el("h2", { text: "Latest field" }), field, fieldNote),
+      dl.el("div", { class: "panel" }, dl.el("h2", { text: "Latest field" }), field, fieldNote,
+        dl.el("h2", { text: "Movie" }), dl.el("div", { class: "toolbar" }, movieButton, movieNote), movie),
       dl.el("div", { class: "panel" }, dl.el("h2", { text: "Particles" }), positions, velocities)),
     dl.el("div", { class: "cols" },
       dl.el("div", { class: "panel" }, dl.el("h2", { text: "Solver log" }), log),
@@ -42,6 +46,27 @@
   field.style.display = "none";
   field.addEventListener("load", () => { field.style.display = "block"; fieldNote.textContent = ""; });
   field.addEventListener("error", () => { field.style.display = "none"; fieldNote.textContent = "No field snapshot yet."; });
+
+  // The movie of every snapshot so far, drawn by the server as `dlmfd movie` draws it.
+  movie.style.display = "none";
+  function makeMovie() {
+    const url = "/movies/jobs/" + enc + "/movie.mp4?v=" + Date.now();
+    movieButton.disabled = true;
+    movieNote.textContent = "drawing the movie: one frame per snapshot…";
+    movie.src = url;
+  }
+  movie.addEventListener("loadeddata", () => {
+    movie.style.display = "block";
+    movieButton.disabled = false;
+    movieButton.textContent = "Make it again";
+    movieNote.textContent = dl.num(movie.duration) + " s at 10 frames/s";
+  });
+  movie.addEventListener("error", async () => {
+    movieButton.disabled = false;
+    movie.style.display = "none";
+    try { await dl.api(movie.src); movieNote.textContent = "the movie cannot be played"; }
+    catch (e) { movieNote.textContent = e.message; }
+  });
 
   let live = null;
   async function act(action) {
