@@ -119,6 +119,29 @@ class WebSecurityTest(unittest.TestCase):
         self.assertEqual(code, 409, body)
         self.assertIn("failed precondition", self.error_of(body))
 
+    def test_hold_and_release_a_queued_job(self):
+        # A study of two long points, one running at a time: the second waits, QUEUED.
+        sweep = self.daemon.submit_study("hold-study", ws.study_scene().replace("end = 1.0", "end = 100.0"),
+                                         "particles.*.density=1.001,1.002", extra=("--max-running", "1"))
+        try:
+            cookie, csrf = self.login(ws.Daemon.TOKEN)
+            headers = {"Cookie": cookie, "X-CSRF-Token": csrf}
+            queued = ws.wait_for(lambda: self.daemon.cli("list", "--sweep", sweep, "--state", "queued", "-q").split(),
+                                 "a queued point", 60)[0]
+            code, _, body = self.web.request("POST", f"/api/jobs/{queued}/hold", headers=headers)
+            self.assertEqual(code, 200, body)
+            self.assertTrue(json.loads(body)["held"])
+            self.assertIn('"held":true', self.daemon.cli("show", queued, "--json").replace(" ", ""))
+            code, _, body = self.web.request("POST", f"/api/jobs/{queued}/release", headers=headers)
+            self.assertEqual(code, 200, body)
+            self.assertFalse(json.loads(body)["held"])
+            code, _, body = self.web.request("POST", f"/api/sweeps/{sweep}/cancel", headers=headers)
+            self.assertEqual(code, 200, body)
+            self.assertTrue(all(j["state"] in ("CANCELLED", "RUNNING") for j in json.loads(body)["jobs"]))
+        finally:
+            self.daemon.cli("cancel", "--sweep", sweep)
+            self.daemon.cli("watch", "--sweep", sweep, exit_codes=(0, 1))  # 1: some cancelled
+
     def test_another_users_job_and_study_are_not_found(self):
         bob = {"Authorization": "Bearer " + ws.Daemon.OTHER_TOKEN}
         for method, path in [("GET", f"/api/jobs/{self.job}"), ("GET", f"/api/sweeps/{self.sweep}"),

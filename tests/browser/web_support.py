@@ -138,14 +138,15 @@ class Daemon:
                 text += f.read()
         return text
 
-    def cli(self, *args, token=None):
-        """Runs the real CLI against this daemon; returns its stdout (raises on failure)."""
+    def cli(self, *args, token=None, exit_codes=(0,)):
+        """Runs the real CLI against this daemon; returns its stdout (raises on another exit
+        status than those given)."""
         env = dict(os.environ, DLMFD_SERVER=self.address, XDG_CONFIG_HOME=self.dir)
         env.pop("DLMFD_TOKEN", None)
         if token or (self.tokens and token is None):
             env["DLMFD_TOKEN"] = token or self.TOKEN
         result = subprocess.run([CLI, *args], env=env, capture_output=True, text=True)
-        if result.returncode != 0:
+        if result.returncode not in exit_codes:
             raise RuntimeError(f"dlmfd {' '.join(args)}: exit {result.returncode}: {result.stderr}")
         return result.stdout
 
