@@ -203,6 +203,18 @@ class DashboardTest(unittest.TestCase):
         ws.wait_for(lambda: int(self.text("#step") or 0) > step, "the step to move after the restart", 60)
         self.report_latency("job page across a daemon restart")
         self.assertTrue(b.execute_script("return window.__still_this_page === true"))
+        # The studies page too: it says the daemon is lost, then live again with the study's row.
+        b.get(self.web.url + "/")
+        ws.wait_for(lambda: self.text("#live") == "live" and b.find_elements(By.CSS_SELECTOR, row),
+                    "the studies page live", 30)
+        b.execute_script("window.__still_this_page = true")
+        self.daemon.stop_process()
+        ws.wait_for(lambda: "daemon lost" in self.text("#live") and self.text("#notice"),
+                    "the studies page to say the daemon is lost", 30)
+        self.daemon.start()
+        ws.wait_for(lambda: self.text("#live") == "live" and not self.text("#notice")
+                    and b.find_elements(By.CSS_SELECTOR, row), "the studies page live again", 60)
+        self.assertTrue(b.execute_script("return window.__still_this_page === true"))
         self.daemon.cli("cancel", "--sweep", sweep)
 
         # Delete a completed point from its page: a confirmation first, then back to the study.

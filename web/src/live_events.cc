@@ -39,6 +39,8 @@ struct LivePage {
   Clock::time_point last_summary_at;
   bool dirty = false;  // an event came since the counts were last sent
   bool started = false;
+  bool daemon_down = false;  // the daemon was last seen unreachable
+  bool call_failed = false;  // a daemon call of this poll failed
   std::string last_summary;  // the last `overview` or `sweep` JSON sent
   // Called at start and every poll_every; returns events to send.
   std::function<std::string(LivePage&)> poll;
@@ -116,7 +118,14 @@ bool Pump(LivePage& page, httplib::DataSink& sink) {
   const auto now = Clock::now();
   if (now - page.last_poll >= page.poll_every) {
     page.last_poll = now;
-    out += page.poll(page);
+    page.call_failed = false;
+    const std::string polled = page.poll(page);
+    if (!page.call_failed && page.daemon_down) {
+      out += Sse("daemon", JsonText({{"connected", true}}));
+      out += Sse("resync", JsonText({{"reason", "the daemon is back"}}));
+    }
+    page.daemon_down = page.call_failed;
+    out += polled;
   }
   const WatchBatch batch = page.watches.Next(std::chrono::milliseconds(250));
   for (const WatchItem& item : batch.items) {
@@ -134,6 +143,7 @@ bool Pump(LivePage& page, httplib::DataSink& sink) {
         }
         break;
       case WatchItem::Kind::kLost:
+        page.daemon_down = true;
         out += Sse("daemon",
                    JsonText({{"connected", false},
                              {"message", "the daemon at " + page.context.link.address() +
@@ -141,6 +151,7 @@ bool Pump(LivePage& page, httplib::DataSink& sink) {
                                              "); reconnecting"}}));
         break;
       case WatchItem::Kind::kRestored:
+        page.daemon_down = false;
         out += Sse("daemon", JsonText({{"connected", true}}));
         out += Sse("resync", JsonText({{"reason", "the daemon is back"}}));
         page.dirty = true;
@@ -208,7 +219,9 @@ grpc::Status ListAll(WebContext& context, const std::string& token, v1::ListRequ
   }
 }
 
-std::string DaemonDown(const grpc::Status& status) {
+// A daemon call of the page's poll failed: the page says so, and is told when a later poll works.
+std::string DaemonDown(LivePage& page, const grpc::Status& status) {
+  page.call_failed = true;
   return Sse("daemon",
              JsonText({{"connected", false}, {"message", "daemon: " + status.error_message()}}));
 }
@@ -260,7 +273,7 @@ void ServeOverviewEvents(WebContext& context, const Caller& caller, httplib::Res
   page->summary = [](LivePage& p) -> std::string {
     std::string overview;
     const grpc::Status status = OverviewJson(p.context, p.token, &overview, nullptr);
-    if (!status.ok()) return DaemonDown(status);
+    if (!status.ok()) return DaemonDown(p, status);
     if (overview == p.last_summary) return {};
     p.last_summary = overview;
     return Sse("overview", overview);
@@ -269,7 +282,7 @@ void ServeOverviewEvents(WebContext& context, const Caller& caller, httplib::Res
     std::string overview;
     std::vector<v1::Job> unfinished;
     const grpc::Status status = OverviewJson(p.context, p.token, &overview, &unfinished);
-    if (!status.ok()) return DaemonDown(status);
+    if (!status.ok()) return DaemonDown(p, status);
     for (const v1::Job& job : unfinished) FollowUnfinished(p, job);
     if (overview == p.last_summary) return {};
     p.last_summary = overview;
@@ -297,7 +310,7 @@ void ServeSweepEvents(WebContext& context, const Caller& caller, const std::stri
     if (s.error_code() == grpc::StatusCode::NOT_FOUND) {
       return Sse("gone", JsonText({{"sweep_id", sweep_id}, {"message", s.error_message()}}));
     }
-    if (!s.ok()) return DaemonDown(s);
+    if (!s.ok()) return DaemonDown(p, s);
     const std::string text = MessageJson(now);
     if (text == p.last_summary) return {};
     p.last_summary = text;
@@ -311,7 +324,7 @@ void ServeSweepEvents(WebContext& context, const Caller& caller, const std::stri
     if (s.error_code() == grpc::StatusCode::NOT_FOUND) {
       return Sse("gone", JsonText({{"sweep_id", sweep_id}, {"message", s.error_message()}}));
     }
-    if (!s.ok()) return DaemonDown(s);
+    if (!s.ok()) return DaemonDown(p, s);
     std::string out;
     for (const v1::Job& job : jobs) {
       auto known = p.states.find(job.id());
@@ -347,7 +360,7 @@ void ServeJobEvents(WebContext& context, const Caller& caller, const std::string
     if (s.error_code() == grpc::StatusCode::NOT_FOUND) {
       return Sse("gone", JsonText({{"job_id", job_id}, {"message", s.error_message()}}));
     }
-    if (!s.ok()) return DaemonDown(s);
+    if (!s.ok()) return DaemonDown(p, s);
     std::string out;
     auto known = p.states.find(job_id);
     if (known != p.states.end() && known->second != now.state()) out = Sse("job", MessageJson(now));
