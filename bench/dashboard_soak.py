@@ -42,6 +42,15 @@ def web_memory(web):
     return values
 
 
+def write_csv(path, rows):
+    if not rows:
+        return
+    with open(path, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        writer.writeheader()
+        writer.writerows(rows)
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--minutes", type=float, default=60.0)
@@ -85,10 +94,14 @@ def main():
                 next_restart += 15 * 60
             if time.monotonic() >= next_sample:
                 next_sample += 30
+                code, _, body = web.request("GET", "/api/overview", headers={
+                    "Authorization": "Bearer " + ws.Daemon.TOKEN})
+                if code != 200:  # the daemon is restarting: sample a moment later
+                    next_sample = time.monotonic() + 2
+                    continue
+                truth = json.loads(body)
                 memory = web_memory(web)
                 status = web.status()
-                truth = json.loads(web.request("GET", "/api/overview", headers={
-                    "Authorization": "Bearer " + ws.Daemon.TOKEN})[2])
                 ids = overview_page.execute_script(
                     "return [...document.querySelectorAll('tr[data-sweep]')].map(r => r.dataset.sweep)")
                 job_ids = study_page.execute_script(
@@ -107,6 +120,7 @@ def main():
                        "heap_study": heap[1], "one_load": one_load}
                 rows.append(row)
                 print(json.dumps(row), flush=True)
+                write_csv(args.csv, rows)
                 if len(ids) != len(set(ids)) or len(job_ids) != len(set(job_ids)) or len(job_ids) != 4:
                     failures.append(f"minute {row['minute']}: duplicate or missing rows {row}")
                 if not one_load:
@@ -127,10 +141,7 @@ def main():
             ws.stop_browser(b)
         web.stop()
         daemon.stop()
-    with open(args.csv, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        writer.writeheader()
-        writer.writerows(rows)
+    write_csv(args.csv, rows)
     print(f"{len(rows)} samples written to {args.csv}; {len(failures)} failures")
     for failure in failures:
         print("FAILED:", failure)
