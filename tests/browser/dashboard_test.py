@@ -122,10 +122,14 @@ class DashboardTest(unittest.TestCase):
         ws.wait_for(lambda: len(b.find_elements(By.CSS_SELECTOR, "#jobs-table tbody tr")) == 4,
                     "the study's 4 rows", 30)
         # A running job's progress cell moves live.
+        # A running long point (a short one may be running for a moment too).
         job_id = ws.wait_for(lambda: b.execute_script(
+            "const i = [...document.querySelectorAll('#jobs-table th')].findIndex("
+            "th => th.dataset.column === 'time.end');"
             "const r = [...document.querySelectorAll('#jobs-table tbody tr')].find("
-            "tr => tr.querySelector('td.state').textContent === 'running'); return r && r.dataset.job"),
-            "a running job in the table", 90)
+            "tr => tr.querySelector('td.state').textContent === 'running' &&"
+            " tr.children[i].textContent === '100'); return r && r.dataset.job"),
+            "a running long job in the table", 90)
         cell = f"#jobs-table tr[data-job='{job_id}'] td.progress"
         before = self.text(cell)
         ws.wait_for(lambda: self.text(cell) != before, "the running job's progress cell to move", 60)
