@@ -211,6 +211,59 @@ class WebSecurityTest(unittest.TestCase):
         code, _, _ = self.web.request("GET", "/api/overview", headers=alice)
         self.assertEqual(code, 200)
 
+    def test_https_with_a_certificate(self):
+        """--tls-cert/--tls-key serve HTTPS (here on loopback, with a self-signed certificate made
+        by openssl); the session cookie is then Secure too."""
+        import ssl
+        import http.client
+        import shutil
+        import tempfile
+        if shutil.which("openssl") is None:
+            self.skipTest("no openssl command (Debian: openssl)")
+        folder = tempfile.mkdtemp(prefix="dlmfd-web-tls-")
+        try:
+            cert, key = os.path.join(folder, "cert.pem"), os.path.join(folder, "key.pem")
+            subprocess.run(["openssl", "req", "-x509", "-newkey", "rsa:2048", "-nodes", "-days", "1",
+                            "-subj", "/CN=127.0.0.1", "-addext", "subjectAltName=IP:127.0.0.1",
+                            "-keyout", key, "-out", cert], check=True, capture_output=True)
+            web = ws.Web(self.daemon, "--tls-cert", cert, "--tls-key", key)
+            try:
+                context = ssl.create_default_context(cafile=cert)
+                connection = http.client.HTTPSConnection("127.0.0.1", web.port, context=context, timeout=60)
+                connection.request("POST", "/login", body="token=" + ws.Daemon.TOKEN, headers={
+                    "Host": f"127.0.0.1:{web.port}", "Content-Type": "application/x-www-form-urlencoded"})
+                response = connection.getresponse()
+                response.read()
+                self.assertEqual(response.status, 303)
+                cookie = response.getheader("Set-Cookie")
+                self.assertIn("Secure", cookie)
+                self.assertIn("HttpOnly", cookie)
+                connection.close()
+                # Plain HTTP to the HTTPS port gets no page.
+                with self.assertRaises(Exception):
+                    code, _, _ = web.request("GET", "/login")
+                    if code == 200:
+                        raise AssertionError("plain HTTP served")
+                    raise ConnectionError(code)
+            finally:
+                status, reports = web.stop()
+                self.assertEqual(status, 0)
+                self.assertEqual(reports, "")
+            # Beyond loopback, even with TLS, a daemon that takes calls without a token is refused.
+            tokenless = ws.Daemon(tokens=False)
+            try:
+                env = dict(os.environ)
+                env.pop("DLMFD_WEB_LISTEN", None)
+                result = subprocess.run([ws.WEB, "--server", tokenless.address, "--listen", "0.0.0.0:0",
+                                         "--tls-cert", cert, "--tls-key", key], env=env,
+                                        capture_output=True, text=True, timeout=60)
+                self.assertEqual(result.returncode, 2)
+                self.assertIn("takes calls without a token", result.stderr)
+            finally:
+                tokenless.stop()
+        finally:
+            shutil.rmtree(folder, ignore_errors=True)
+
     def test_start_rules(self):
         def start(*args):
             env = dict(os.environ)
