@@ -20,6 +20,7 @@
 #include "dlmfd/io/field_snapshot.h"
 #include "dlmfd/io/fields_xdmf.h"
 #include "dlmfd/io/particle_history.h"
+#include "dlmfd/io/results_format.h"
 #include "dlmfd/io/results_writer.h"
 #include "dlmfd/scene/scene_file.h"
 
@@ -133,6 +134,105 @@ TEST(FieldSnapshot, MismatchedStateIsAnError) {
   EXPECT_THROW(ReadFieldSnapshot(dir + "/absent.h5"), Error);
 }
 
+// Results format 2: the scene, the coordinates and the particles at the snapshot's own step.
+TEST(FieldSnapshot, DescribesItselfAndHoldsItsParticles) {
+  const std::string dir = FreshDir("snapshot_v2");
+  const Grid g{8, 6, 0.125, 0.5, -1.0};
+  const FlowState s = RandomState(g, true, 2, 11);
+  const std::string scene = "title = \"two disks\"\n[domain]\nh = 0.125\n";
+  WriteFieldSnapshot(dir + "/s.h5", g, s, SnapshotExtras{scene, {0.25, -1.5}});
+  const FieldSnapshot r = ReadFieldSnapshot(dir + "/s.h5");
+  EXPECT_EQ(r.format_version, kResultsFormatVersion);
+  EXPECT_EQ(r.scene_text, scene);
+  ASSERT_TRUE(r.has_particles);
+  ASSERT_EQ(r.particles.Count(), 2u);
+  EXPECT_EQ(r.particles.id, (std::vector<std::int64_t>{0, 1}));
+  EXPECT_EQ(r.particles.angle, (std::vector<double>{0.25, -1.5}));
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_TRUE(SameBits(r.particles.position[2 * k], s.particles[k].position.x()));
+    EXPECT_TRUE(SameBits(r.particles.position[2 * k + 1], s.particles[k].position.y()));
+    EXPECT_TRUE(SameBits(r.particles.velocity[2 * k], s.particles[k].velocity.x()));
+    EXPECT_TRUE(SameBits(r.particles.angular_velocity[k], s.particles[k].angular_velocity));
+    EXPECT_TRUE(SameBits(r.particles.torque[k], s.particles[k].torque));
+    EXPECT_TRUE(SameBits(r.particles.radius[k], s.particles[k].radius));
+  }
+  // Without angles the group has none; without particles it is empty but present.
+  WriteFieldSnapshot(dir + "/t.h5", g, s);
+  EXPECT_TRUE(ReadFieldSnapshot(dir + "/t.h5").particles.angle.empty());
+  WriteFieldSnapshot(dir + "/n.h5", g, RandomState(g, false, 0, 12));
+  EXPECT_TRUE(ReadFieldSnapshot(dir + "/n.h5").has_particles);
+  EXPECT_EQ(ReadFieldSnapshot(dir + "/n.h5").particles.Count(), 0u);
+}
+
+TEST(ResultsFormat, EveryWrittenDatasetHasUnitsAndADescription) {
+  for (const char* name : {"x",
+                           "y",
+                           "x_pressure",
+                           "y_pressure",
+                           "u",
+                           "v",
+                           "velocity",
+                           "p",
+                           "trA",
+                           "A11",
+                           "A12",
+                           "A22",
+                           "scene",
+                           "particles/id",
+                           "particles/radius",
+                           "particles/position",
+                           "particles/velocity",
+                           "particles/angle",
+                           "particles/angular_velocity",
+                           "particles/force",
+                           "particles/torque",
+                           "particles/position_xyz",
+                           "particles/velocity_xyz"}) {
+    const DatasetMeaning* m = MeaningOfDataset(ResultsFile::kSnapshot, name);
+    ASSERT_NE(m, nullptr) << name;
+    EXPECT_GT(std::strlen(m->description), 10u) << name;
+  }
+  for (const char* name : {"time", "step", "id", "radius", "position", "velocity",
+                           "angular_velocity", "force", "torque", "angle", "scene"}) {
+    ASSERT_NE(MeaningOfDataset(ResultsFile::kParticles, name), nullptr) << name;
+  }
+  EXPECT_EQ(MeaningOfDataset(ResultsFile::kParticles, "trA"), nullptr);
+  EXPECT_STREQ(MeaningOfDataset(ResultsFile::kSnapshot, "velocity")->units, "L T-1");
+  EXPECT_STREQ(MeaningOfDataset(ResultsFile::kParticles, "force")->units, "M T-2");
+  EXPECT_EQ(UnitsIn("L T-1", "cgs"), "cm s-1");
+  EXPECT_EQ(UnitsIn("M L-1 T-2", "si"), "kg m-1 s-2");
+  EXPECT_EQ(UnitsIn("1", "cgs"), "");
+  EXPECT_EQ(UnitsIn("L T-1", ""), "L T-1");
+  EXPECT_THROW(UnitsIn("L", "imperial"), InvalidParameter);
+  EXPECT_NO_THROW(CheckFormatVersion("a.h5", kResultsFormatVersion));
+  try {
+    CheckFormatVersion("a.h5", kResultsFormatVersion + 1);
+    FAIL() << "a newer version must be refused";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("version " + std::to_string(kResultsFormatVersion + 1)));
+  }
+}
+
+TEST(FieldsXdmf, KeepsGridNamesAndAddsTheParticles) {
+  const Grid g{8, 6, 0.125, 0.0, 0.0};
+  const std::string text = FieldsXdmfText(
+      g, {{"fields/snap_000000.h5", 0.0, 2, true}, {"fields/snap_000010.h5", 0.25, 2, false}},
+      false);
+  EXPECT_EQ(text.find("Name=\"step\""), std::string::npos);
+  // One temporal collection per grid, the uniform grids named as their collection at every time.
+  EXPECT_THAT(text, HasSubstr("<Grid Name=\"particles\" GridType=\"Collection\" "
+                              "CollectionType=\"Temporal\">"));
+  EXPECT_THAT(text, HasSubstr("<Grid Name=\"velocity_mesh\" GridType=\"Collection\" "
+                              "CollectionType=\"Temporal\">"));
+  EXPECT_THAT(text, HasSubstr("TopologyType=\"Polyvertex\" NumberOfElements=\"2\""));
+  EXPECT_THAT(text, HasSubstr("Dimensions=\"2 3\" NumberType=\"Float\" Precision=\"8\" "
+                              "Format=\"HDF\">fields/snap_000010.h5:/particles/position_xyz"));
+  EXPECT_THAT(text, HasSubstr("fields/snap_000000.h5:/particles/angle"));
+  EXPECT_EQ(text.find("fields/snap_000010.h5:/particles/angle"), std::string::npos);
+  EXPECT_THAT(text, HasSubstr("fields/snap_000010.h5:/particles/radius"));
+  EXPECT_EQ(FieldsXdmfText(g, {{"a.h5", 0.0}}, false).find("particles"), std::string::npos);
+}
+
 TEST(FieldsXdmf, NamesEverySnapshotWithTheMeshes) {
   const Grid g{8, 6, 0.125, 0.5, -1.0};  // an origin off zero shows the order z, y, x
   const std::string text =
@@ -177,7 +277,7 @@ TEST(ParticleHistory, AppendsReadsAndCutsBackOnResume) {
       s.time = n * 0.5;
       s.particles[2].position.x() = static_cast<double>(n);
       s.particles[1].torque = -static_cast<double>(n);
-      w->Append(s);
+      w->Append(s, {0.5 * n, -0.5 * n, 1.0});
     }
     EXPECT_EQ(w->records(), 100u);
   }
@@ -193,13 +293,17 @@ TEST(ParticleHistory, AppendsReadsAndCutsBackOnResume) {
   EXPECT_EQ(h.torque[70 * 3 + 1], -70.0);
   EXPECT_TRUE(SameBits(h.angular_velocity[5], s.particles[0].angular_velocity));
   EXPECT_TRUE(SameBits(h.force[2 * 3 * 4], -0.0));
+  EXPECT_EQ(h.format_version, kResultsFormatVersion);
+  ASSERT_EQ(h.angle.size(), 100u * 3);
+  EXPECT_EQ(h.angle[70 * 3 + 1], -35.0);
+  EXPECT_THROW(ParticleHistoryWriter::Create(dir + "/other.h5", s)->Append(s), Error);  // no angles
 
   {
     auto w = ParticleHistoryWriter::Resume(path, 59);
     EXPECT_EQ(w->records(), 60u);
     s.step = 60;
     s.time = 1234.0;
-    w->Append(s);
+    w->Append(s, {1.0, 2.0, 3.0});
   }
   h = ReadParticleHistory(path);
   ASSERT_EQ(h.records, 61u);
@@ -395,6 +499,57 @@ TEST(ResultsWriter, ResumeCutsBackToTheCheckpoint) {
   const ParticleHistory h = ReadParticleHistory(dir + "/particles.h5");
   EXPECT_EQ(h.records, 6u);  // the initial record and steps 1..5
   EXPECT_EQ(h.step.back(), 5);
+}
+
+// The writer integrates each disk's angle step by step by the trapezoidal rule (exact for an
+// angular velocity linear in t), writes it with every record, snapshot and checkpoint, and a
+// resumed writer goes on from the checkpoint's angle.
+TEST(ResultsWriter, IntegratesTheAngleAndResumesIt) {
+  const std::string dir = FreshDir("writer_angle");
+  Params params = ParseScene(
+      "[domain]\nsize = [1.0, 0.75]\nh = 0.125\n[time]\ndt = 0.1\nend = 1.0\n"
+      "[output]\ncheckpoint_every = 0.5\nfields_every = 0.3\nparticles_every = 0.2\n"
+      "[[particles]]\ncenter = [0.5, 0.4]\ndensity = 2.0\n");
+  const Grid g{8, 6, 0.125, 0.0, 0.0};
+  FlowState s = RandomState(g, false, 1, 9);
+  const auto omega = [](double t) { return 2.0 + 10.0 * t; };  // angle 2t + 5t^2
+  const auto run = [&](ResultsWriter& w, long from, long to) {
+    for (long n = from; n <= to; ++n) {
+      s.step = n;
+      s.time = n * 0.1;
+      s.particles[0].angular_velocity = omega(s.time);
+      w.OnStep(s, Report(n));
+      if (n % 2 == 0) w.OnParticles(s);
+      if (n % 3 == 0) w.OnSnapshot(s);
+      w.OnStepEnd(s);
+    }
+  };
+  s.step = 0;
+  s.time = 0.0;
+  s.particles[0].angular_velocity = omega(0.0);
+  {
+    auto w = ResultsWriter::Start(dir, params, g, s);
+    w->OnParticles(s);
+    w->OnSnapshot(s);
+    run(*w, 1, 7);
+  }
+  const FieldSnapshot at6 = ReadFieldSnapshot(dir + "/fields/snap_000006.h5");
+  EXPECT_NEAR(at6.particles.angle.at(0), 2.0 * 0.6 + 5.0 * 0.36, 1e-12);
+  EXPECT_EQ(at6.scene_text, WriteScene(params));
+  EXPECT_NEAR(ReadCheckpoint(dir + "/checkpoint.h5").particle_angles.at(0), 1.0 + 1.25, 1e-12);
+  {
+    auto w = ResultsWriter::Resume(dir, params, g, 5);
+    s.particles[0].angular_velocity = omega(0.5);
+    run(*w, 6, 10);
+    EXPECT_NEAR(w->particle_angles().at(0), 2.0 + 5.0, 1e-12);
+  }
+  const ParticleHistory h = ReadParticleHistory(dir + "/particles.h5");
+  ASSERT_EQ(h.angle.size(), h.records);
+  for (std::size_t r = 0; r < h.records; ++r)
+    EXPECT_NEAR(h.angle[r], 2.0 * h.time[r] + 5.0 * h.time[r] * h.time[r], 1e-12) << r;
+  EXPECT_EQ(h.scene_text, WriteScene(params));
+  const std::string xmf = ReadTextFile(dir + "/fields.xmf");
+  EXPECT_THAT(xmf, HasSubstr("fields/snap_000009.h5:/particles/angle"));
 }
 
 }  // namespace

@@ -15,8 +15,8 @@ std::vector<double> ReadField(hid_t f, const char* name) { return h5::ReadDouble
 
 }  // namespace
 
-void WriteCheckpoint(const std::string& path, const FlowState& state,
-                     const std::string& scene_text) {
+void WriteCheckpoint(const std::string& path, const FlowState& state, const std::string& scene_text,
+                     const std::vector<double>& particle_angles) {
   const std::string temporary = TemporaryPath(path);
   {
     h5::Handle file = h5::CreateFile(temporary);
@@ -69,6 +69,8 @@ void WriteCheckpoint(const std::string& path, const FlowState& state,
     h5::WriteDoubles(g, "density", {np}, density.data());
     h5::WriteDoubles(g, "multiplier", {multiplier.size()}, multiplier.data());
     h5::WriteInts(g, "multiplier_offset", {np + 1}, offset.data());
+    if (particle_angles.size() == np && np > 0)
+      h5::WriteDoubles(g, "angle", {np}, particle_angles.data());
     h5::Check(H5Fflush(f, H5F_SCOPE_LOCAL), "flush " + temporary);
   }
   CommitTemporary(temporary, path);
@@ -110,8 +112,10 @@ Checkpoint ReadCheckpoint(const std::string& path) {
   const auto multiplier = h5::ReadDoubles(g, "multiplier");
   const auto offset = h5::ReadInts(g, "multiplier_offset");
   const std::size_t np = id.size();
+  if (h5::Exists(g, "angle")) c.particle_angles = h5::ReadDoubles(g, "angle");
   if (offset.size() != np + 1 || position.size() != 2 * np ||
-      static_cast<std::size_t>(offset.back()) != multiplier.size()) {
+      static_cast<std::size_t>(offset.back()) != multiplier.size() ||
+      (!c.particle_angles.empty() && c.particle_angles.size() != np)) {
     throw Error("checkpoint " + path + ": inconsistent particle arrays");
   }
   for (std::size_t i = 0; i < np; ++i) {

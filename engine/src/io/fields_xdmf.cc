@@ -47,6 +47,32 @@ void Mesh(std::ostringstream& o, const Grid& g) {
   o << "        </Geometry>\n";
 }
 
+// One point per particle at (x, y, 0), with its radius, velocity, angular velocity, angle and id.
+void ParticleGrid(std::ostringstream& o, const XdmfEntry& e) {
+  const std::string n = std::to_string(e.particles);
+  o << "      <Grid Name=\"particles\" GridType=\"Uniform\">\n";
+  o << "        <Time Value=\"" << e.time << "\"/>\n";
+  o << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
+    << "\" NodesPerElement=\"1\"/>\n";
+  o << "        <Geometry GeometryType=\"XYZ\">\n";
+  HeavyItem(o, n + " 3", e.file, "particles/position_xyz", "          ");
+  o << "        </Geometry>\n";
+  const auto attribute = [&](const char* name, const char* type, const std::string& dims,
+                             const std::string& set, const char* number) {
+    o << "        <Attribute Name=\"" << name << "\" AttributeType=\"" << type
+      << "\" Center=\"Node\">\n";
+    o << "          <DataItem Dimensions=\"" << dims << "\" NumberType=\"" << number
+      << "\" Precision=\"8\" Format=\"HDF\">" << e.file << ":/" << set << "</DataItem>\n";
+    o << "        </Attribute>\n";
+  };
+  attribute("radius", "Scalar", n, "particles/radius", "Float");
+  attribute("velocity", "Vector", n + " 3", "particles/velocity_xyz", "Float");
+  attribute("angular_velocity", "Scalar", n, "particles/angular_velocity", "Float");
+  if (e.particle_angles) attribute("angle", "Scalar", n, "particles/angle", "Float");
+  attribute("id", "Scalar", n, "particles/id", "Int");
+  o << "      </Grid>\n";
+}
+
 }  // namespace
 
 std::string FieldsXdmfText(const Grid& grid, const std::vector<XdmfEntry>& entries,
@@ -57,11 +83,14 @@ std::string FieldsXdmfText(const Grid& grid, const std::vector<XdmfEntry>& entri
   o << "<?xml version=\"1.0\" ?>\n";
   o << "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n";
   o << "  <Domain>\n";
-  o << "    <Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  o << "    <Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Spatial\">\n";
+  const auto temporal = [&](const char* name) {
+    o << "    <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  };
+  temporal("velocity_mesh");
   for (const XdmfEntry& e : entries) {
-    o << "      <Grid Name=\"step\" GridType=\"Collection\" CollectionType=\"Spatial\">\n";
-    o << "        <Time Value=\"" << e.time << "\"/>\n";
     o << "      <Grid Name=\"velocity_mesh\" GridType=\"Uniform\">\n";
+    o << "        <Time Value=\"" << e.time << "\"/>\n";
     Mesh(o, grid);
     Attribute(o, grid, "Vector", e.file, "velocity");
     Scalar(o, grid, e.file, "u");
@@ -70,11 +99,25 @@ std::string FieldsXdmfText(const Grid& grid, const std::vector<XdmfEntry>& entri
       for (const char* set : {"trA", "A11", "A12", "A22"}) Scalar(o, grid, e.file, set);
     }
     o << "      </Grid>\n";
+  }
+  o << "    </Grid>\n";
+  temporal("pressure_mesh");
+  for (const XdmfEntry& e : entries) {
     o << "      <Grid Name=\"pressure_mesh\" GridType=\"Uniform\">\n";
+    o << "        <Time Value=\"" << e.time << "\"/>\n";
     Mesh(o, coarse);
     Scalar(o, coarse, e.file, "p");
     o << "      </Grid>\n";
-    o << "      </Grid>\n";
+  }
+  o << "    </Grid>\n";
+  bool particles = false;
+  for (const XdmfEntry& e : entries) particles = particles || e.particles > 0;
+  if (particles) {
+    temporal("particles");
+    for (const XdmfEntry& e : entries) {
+      if (e.particles > 0) ParticleGrid(o, e);
+    }
+    o << "    </Grid>\n";
   }
   o << "    </Grid>\n";
   o << "  </Domain>\n";

@@ -150,18 +150,60 @@ void WriteAttribute(hid_t loc, const std::string& name, std::int64_t value) {
   WriteScalarAttribute(loc, name, value, H5T_NATIVE_INT64);
 }
 
+// A variable-length UTF-8 string: h5py reads it as a Python str (a fixed-length one as bytes).
 void WriteAttribute(hid_t loc, const std::string& name, const std::string& value) {
   if (H5Aexists(loc, name.c_str()) > 0) H5Adelete(loc, name.c_str());
   Handle type(CheckId(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
-  H5Tset_size(type.get(), value.size() + 1);
-  H5Tset_strpad(type.get(), H5T_STR_NULLTERM);
+  H5Tset_size(type.get(), H5T_VARIABLE);
+  H5Tset_cset(type.get(), H5T_CSET_UTF8);
   Handle space = Space({});
   Handle attr(
       CheckId(H5Acreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
               "create attribute " + Name(loc, name)),
       H5Aclose);
-  Check(H5Awrite(attr.get(), type.get(), value.c_str()), "write attribute " + Name(loc, name));
+  const char* text = value.c_str();
+  Check(H5Awrite(attr.get(), type.get(), &text), "write attribute " + Name(loc, name));
 }
+
+void WriteText(hid_t loc, const std::string& name, const std::string& text) {
+  Handle type(CheckId(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
+  H5Tset_size(type.get(), text.size() + 1);
+  H5Tset_strpad(type.get(), H5T_STR_NULLTERM);
+  Handle space = Space({});
+  Handle set(CheckId(H5Dcreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT,
+                                H5P_DEFAULT, H5P_DEFAULT),
+                     "create " + Name(loc, name)),
+             H5Dclose);
+  Check(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, text.c_str()),
+        "write " + Name(loc, name));
+}
+
+std::string ReadText(hid_t loc, const std::string& name) {
+  Handle set(CheckId(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "open " + Name(loc, name)),
+             H5Dclose);
+  Handle type(CheckId(H5Dget_type(set.get()), "type of " + Name(loc, name)), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0)
+    throw Error("HDF5: " + Name(loc, name) + " is not a fixed-length string");
+  const std::size_t size = H5Tget_size(type.get());
+  std::string text(size, '\0');
+  Check(H5Dread(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data()),
+        "read " + Name(loc, name));
+  text.resize(text.find('\0') == std::string::npos ? size : text.find('\0'));
+  return text;
+}
+
+Handle OpenObject(hid_t loc, const std::string& name) {
+  return Handle(CheckId(H5Oopen(loc, name.c_str(), H5P_DEFAULT), "open " + Name(loc, name)),
+                H5Oclose);
+}
+
+Handle CreateGroup(hid_t loc, const std::string& name) {
+  return Handle(CheckId(H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                        "create group " + Name(loc, name)),
+                H5Gclose);
+}
+
+bool HasAttribute(hid_t loc, const std::string& name) { return H5Aexists(loc, name.c_str()) > 0; }
 
 double ReadDoubleAttribute(hid_t loc, const std::string& name) {
   Handle attr = OpenAttribute(loc, name);
@@ -180,6 +222,16 @@ std::int64_t ReadIntAttribute(hid_t loc, const std::string& name) {
 std::string ReadStringAttribute(hid_t loc, const std::string& name) {
   Handle attr = OpenAttribute(loc, name);
   Handle type(CheckId(H5Aget_type(attr.get()), "type of attribute " + Name(loc, name)), H5Tclose);
+  if (H5Tis_variable_str(type.get()) > 0) {  // written since results format 2
+    Handle memory(CheckId(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
+    H5Tset_size(memory.get(), H5T_VARIABLE);
+    H5Tset_cset(memory.get(), H5Tget_cset(type.get()));
+    char* text = nullptr;
+    Check(H5Aread(attr.get(), memory.get(), &text), "read attribute " + Name(loc, name));
+    std::string value = text != nullptr ? text : "";
+    H5free_memory(text);
+    return value;
+  }
   const std::size_t size = H5Tget_size(type.get());
   std::string value(size, '\0');
   Check(H5Aread(attr.get(), type.get(), value.data()), "read attribute " + Name(loc, name));

@@ -57,6 +57,14 @@ std::vector<std::int64_t> ReadInts(hid_t loc, const std::string& name,
 void WriteAttribute(hid_t loc, const std::string& name, double value);
 void WriteAttribute(hid_t loc, const std::string& name, std::int64_t value);
 void WriteAttribute(hid_t loc, const std::string& name, const std::string& value);
+// A scalar string dataset (texts too long for an attribute's 64 KiB: the scene of many particles).
+void WriteText(hid_t loc, const std::string& name, const std::string& text);
+std::string ReadText(hid_t loc, const std::string& name);
+// Opens a group or dataset by its path relative to `loc` (attributes are written on it).
+Handle OpenObject(hid_t loc, const std::string& name);
+Handle CreateGroup(hid_t loc, const std::string& name);
+bool HasAttribute(hid_t loc, const std::string& name);
+
 double ReadDoubleAttribute(hid_t loc, const std::string& name);
 std::int64_t ReadIntAttribute(hid_t loc, const std::string& name);
 std::string ReadStringAttribute(hid_t loc, const std::string& name);

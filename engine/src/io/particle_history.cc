@@ -4,6 +4,7 @@
 
 #include "dlmfd/core/errors.h"
 #include "hdf5_file.h"
+#include "results_attributes.h"
 
 namespace dlmfd {
 namespace {
@@ -24,7 +25,15 @@ const Series kSeries[] = {
     {"angular_velocity", 1, false},
     {"force", 2, false},
     {"torque", 1, false},
+    {"angle", 1, false},  // version 2
 };
+constexpr int kSeriesCount = 8;
+
+const char* DimensionsOf(const Series& s) {
+  return s.components == 0   ? "record"
+         : s.components == 1 ? "record particle"
+                             : "record particle component";
+}
 
 // A dataset shape without heap allocation (Append runs inside the time loop).
 struct Dims {
@@ -47,7 +56,8 @@ Dims Shape(const Series& s, hsize_t nt, hsize_t np) {
 
 struct ParticleHistoryWriter::Impl {
   h5::Handle file;
-  h5::Handle sets[7];
+  h5::Handle sets[kSeriesCount];
+  int series = kSeriesCount;  // 7 for a file of version 1 (no /angle)
   hsize_t np = 0;
   std::vector<double> buffer;  // one record of the widest series
 };
@@ -56,8 +66,10 @@ ParticleHistoryWriter::ParticleHistoryWriter(std::unique_ptr<Impl> impl)
     : impl_(std::move(impl)) {}
 ParticleHistoryWriter::~ParticleHistoryWriter() = default;
 
-std::unique_ptr<ParticleHistoryWriter> ParticleHistoryWriter::Create(const std::string& path,
-                                                                     const FlowState& state) {
+bool ParticleHistoryWriter::has_angle() const { return impl_->series == kSeriesCount; }
+
+std::unique_ptr<ParticleHistoryWriter> ParticleHistoryWriter::Create(
+    const std::string& path, const FlowState& state, const std::string& scene_text) {
   auto impl = std::make_unique<Impl>();
   impl->np = state.particles.size();
   impl->file = h5::CreateFile(path);
@@ -70,7 +82,10 @@ std::unique_ptr<ParticleHistoryWriter> ParticleHistoryWriter::Create(const std::
   }
   h5::WriteInts(f, "id", {impl->np}, ids.data());
   h5::WriteDoubles(f, "radius", {impl->np}, radii.data());
-  for (int k = 0; k < 7; ++k) {
+  h5::WriteFormat(f, kParticlesFormat, scene_text);
+  h5::Describe(f, "id", ResultsFile::kParticles, "id", "particle");
+  h5::Describe(f, "radius", ResultsFile::kParticles, "radius", "particle");
+  for (int k = 0; k < kSeriesCount; ++k) {
     const Series& s = kSeries[k];
     const Dims dims = Shape(s, 0, impl->np);
     const hsize_t maxdims[3] = {H5S_UNLIMITED, H5S_UNLIMITED, H5S_UNLIMITED};
@@ -84,6 +99,7 @@ std::unique_ptr<ParticleHistoryWriter> ParticleHistoryWriter::Create(const std::
         h5::CheckId(H5Dcreate2(f, s.name, type, space.get(), H5P_DEFAULT, plist.get(), H5P_DEFAULT),
                     std::string("create particles.h5:/") + s.name),
         H5Dclose);
+    h5::Describe(f, s.name, ResultsFile::kParticles, s.name, DimensionsOf(s));
   }
   impl->buffer.resize(std::max<std::size_t>(2 * impl->np, 1));
   h5::Check(H5Fflush(f, H5F_SCOPE_LOCAL), "flush " + path);
@@ -101,7 +117,8 @@ std::unique_ptr<ParticleHistoryWriter> ParticleHistoryWriter::Resume(const std::
   const std::vector<std::int64_t> steps = h5::ReadInts(f, "step");
   const hsize_t keep = static_cast<hsize_t>(std::count_if(
       steps.begin(), steps.end(), [last_step](std::int64_t s) { return s <= last_step; }));
-  for (int k = 0; k < 7; ++k) {
+  impl->series = h5::Exists(f, "angle") ? kSeriesCount : kSeriesCount - 1;
+  for (int k = 0; k < impl->series; ++k) {
     impl->sets[k] = h5::Handle(
         h5::CheckId(H5Dopen2(f, kSeries[k].name, H5P_DEFAULT), "open particles.h5"), H5Dclose);
     const Dims dims = Shape(kSeries[k], keep, impl->np);
@@ -114,11 +131,14 @@ std::unique_ptr<ParticleHistoryWriter> ParticleHistoryWriter::Resume(const std::
   return writer;
 }
 
-void ParticleHistoryWriter::Append(const FlowState& state) {
+void ParticleHistoryWriter::Append(const FlowState& state, const std::vector<double>& angles) {
   Impl& m = *impl_;
   if (state.particles.size() != m.np) throw Error("particles.h5: the number of particles changed");
+  if (m.series == kSeriesCount && angles.size() != m.np)
+    throw Error("particles.h5: " + std::to_string(angles.size()) + " angles for " +
+                std::to_string(m.np) + " particles");
   const hsize_t row = records_;
-  for (int k = 0; k < 7; ++k) {
+  for (int k = 0; k < m.series; ++k) {
     const Series& s = kSeries[k];
     const hid_t set = m.sets[k].get();
     const Dims dims = Shape(s, row + 1, m.np);
@@ -162,6 +182,9 @@ void ParticleHistoryWriter::Append(const FlowState& state) {
             b[2 * i] = q.force.x();
             b[2 * i + 1] = q.force.y();
             break;
+          case 7:
+            b[i] = angles[i];
+            break;
           default:
             b[i] = q.torque;
             break;
@@ -180,6 +203,7 @@ ParticleHistory ReadParticleHistory(const std::string& path) {
   h5::Handle file = h5::OpenFile(path, false);
   const hid_t f = file.get();
   ParticleHistory h;
+  h.format_version = h5::ReadFormatVersion(f, path);
   std::vector<hsize_t> dims;
   h.id = h5::ReadInts(f, "id", &dims);
   h.particles = dims.empty() ? 0 : dims[0];
@@ -192,6 +216,8 @@ ParticleHistory ReadParticleHistory(const std::string& path) {
   h.angular_velocity = h5::ReadDoubles(f, "angular_velocity");
   h.force = h5::ReadDoubles(f, "force");
   h.torque = h5::ReadDoubles(f, "torque");
+  if (h5::Exists(f, "angle")) h.angle = h5::ReadDoubles(f, "angle");
+  if (h5::Exists(f, "scene")) h.scene_text = h5::ReadText(f, "scene");
   return h;
 }
 

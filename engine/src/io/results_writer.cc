@@ -32,6 +32,23 @@ long SnapshotStep(const std::string& name) {
   return std::strtol(digits.c_str(), nullptr, 10);
 }
 
+// The angles at `step` from the records of particles.h5 (trapezoidal rule over the records): a
+// checkpoint written before results format 2 has none.
+std::vector<double> AnglesFromRecords(const std::string& path, long step, std::size_t np) {
+  std::vector<double> angles(np, 0.0);
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return angles;
+  const ParticleHistory h = ReadParticleHistory(path);
+  if (h.particles != np) return angles;
+  for (std::size_t r = 1; r < h.records && h.step[r] <= step; ++r) {
+    for (std::size_t k = 0; k < np; ++k) {
+      angles[k] += 0.5 * (h.time[r] - h.time[r - 1]) *
+                   (h.angular_velocity[r * np + k] + h.angular_velocity[(r - 1) * np + k]);
+    }
+  }
+  return angles;
+}
+
 void MakeDirectory(const std::string& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -58,7 +75,10 @@ std::unique_ptr<ResultsWriter> ResultsWriter::Start(const std::string& dir, cons
   for (const char* stale : {kXdmf, kCheckpoint, kParticles}) fs::remove(w->Path(stale));
   WriteTextAtomically(w->Path(kScene), w->scene_text_);
   w->diagnostics_ = std::make_unique<DiagnosticsWriter>(w->Path(kDiagnostics));
-  w->particles_ = ParticleHistoryWriter::Create(w->Path(kParticles), initial);
+  w->particles_ = ParticleHistoryWriter::Create(w->Path(kParticles), initial, w->scene_text_);
+  w->angles_.assign(initial.particles.size(), 0.0);
+  for (const ParticleState& q : initial.particles) w->last_omega_.push_back(q.angular_velocity);
+  w->last_time_ = initial.time;
   return w;
 }
 
@@ -79,8 +99,9 @@ std::unique_ptr<ResultsWriter> ResultsWriter::Resume(const std::string& dir, con
   }
   std::sort(kept.begin(), kept.end());
   for (const auto& [step, name] : kept) {
-    w->snapshots_.push_back(
-        {std::string(kFields) + "/" + name, ReadFieldSnapshot(w->Path(kFields) + "/" + name).time});
+    const FieldSnapshot snapshot = ReadFieldSnapshot(w->Path(kFields) + "/" + name);
+    w->snapshots_.push_back({std::string(kFields) + "/" + name, snapshot.time,
+                             snapshot.particles.Count(), !snapshot.particles.angle.empty()});
   }
   WriteFieldsXdmf(w->Path(kXdmf), grid, w->snapshots_, !params.fluid.IsNewtonian());
   if (fs::exists(w->Path(kDiagnostics))) {
@@ -88,11 +109,31 @@ std::unique_ptr<ResultsWriter> ResultsWriter::Resume(const std::string& dir, con
   } else {
     w->diagnostics_ = std::make_unique<DiagnosticsWriter>(w->Path(kDiagnostics));
   }
+  const Checkpoint checkpoint = ReadCheckpoint(w->Path(kCheckpoint));
+  const std::size_t np = checkpoint.state.particles.size();
+  w->angles_ = checkpoint.particle_angles.size() == np
+                   ? checkpoint.particle_angles
+                   : AnglesFromRecords(w->Path(kParticles), checkpoint_step, np);
+  for (const ParticleState& q : checkpoint.state.particles)
+    w->last_omega_.push_back(q.angular_velocity);
+  w->last_time_ = checkpoint.state.time;
   w->particles_ = ParticleHistoryWriter::Resume(w->Path(kParticles), checkpoint_step);
   return w;
 }
 
+void ResultsWriter::IntegrateAngles(const FlowState& state) {
+  if (state.particles.size() != angles_.size()) return;
+  const double dt = state.time - last_time_;
+  for (std::size_t k = 0; k < angles_.size(); ++k) {
+    const double omega = state.particles[k].angular_velocity;
+    angles_[k] += 0.5 * dt * (last_omega_[k] + omega);
+    last_omega_[k] = omega;
+  }
+  last_time_ = state.time;
+}
+
 void ResultsWriter::OnStep(const FlowState& state, const StepReport& report) {
+  IntegrateAngles(state);
   diagnostics_->Append(report);
   last_report_ = report;
   const double every = params_.output.checkpoint_every;
@@ -103,15 +144,16 @@ void ResultsWriter::OnStep(const FlowState& state, const StepReport& report) {
 }
 
 void ResultsWriter::OnParticles(const FlowState& state) {
-  if (particles_) particles_->Append(state);
+  if (particles_) particles_->Append(state, angles_);
 }
 
 void ResultsWriter::OnSnapshot(const FlowState& state) {
   if (params_.output.fields_every <= 0.0)
     return;  // no snapshots asked for (not even the initial one)
   const std::string relative = std::string(kFields) + "/" + SnapshotFileName(state.step);
-  WriteFieldSnapshot(Path(relative), grid_, state);
-  snapshots_.push_back({relative, state.time});
+  WriteFieldSnapshot(Path(relative), grid_, state, SnapshotExtras{scene_text_, angles_});
+  snapshots_.push_back(
+      {relative, state.time, state.particles.size(), state.particles.size() == angles_.size()});
   WriteFieldsXdmf(Path(kXdmf), grid_, snapshots_, !state.a11.empty());
 }
 
@@ -124,7 +166,7 @@ void ResultsWriter::OnStepEnd(const FlowState& state) {
 void ResultsWriter::OnStopped(const FlowState& state) { SaveCheckpoint(state); }
 
 void ResultsWriter::SaveCheckpoint(const FlowState& state) {
-  WriteCheckpoint(Path(kCheckpoint), state, scene_text_);
+  WriteCheckpoint(Path(kCheckpoint), state, scene_text_, angles_);
   if (on_checkpoint_) on_checkpoint_(state.step, state.time, kCheckpoint);
 }
 

@@ -6,23 +6,26 @@
 // (flat, as in FlowState), with fluid.stress_splitting = devss also /d11, /d12, /d22; per particle,
 // in /particles: id, position (np, 2), velocity (np, 2), angular_velocity, force (np, 2), torque,
 // radius, density, motion (0 free, 1 fixed, 2 prescribed), and the multiplier vectors concatenated
-// in multiplier with multiplier_offset (np + 1). Doubles are stored as native doubles: what is read
-// back equals what was written. Written to a temporary name and renamed, so a crash while writing
-// leaves the previous checkpoint intact.
+// in multiplier with multiplier_offset (np + 1), and (since results format 2) each particle's
+// rotation angle, /particles/angle, which the results writer integrates (results_writer.h). Doubles
+// are stored as native doubles: what is read back equals what was written. Written to a temporary
+// name and renamed, so a crash while writing leaves the previous checkpoint intact.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "dlmfd/core/state.h"
 
 namespace dlmfd {
 
-void WriteCheckpoint(const std::string& path, const FlowState& state,
-                     const std::string& scene_text);
+void WriteCheckpoint(const std::string& path, const FlowState& state, const std::string& scene_text,
+                     const std::vector<double>& particle_angles = {});
 
 struct Checkpoint {
   FlowState state;
   std::string scene_text;
+  std::vector<double> particle_angles;  // empty for a checkpoint without them
 };
 
 // Throws dlmfd::Error when the file is missing or malformed.

@@ -1,7 +1,15 @@
-// fields.xmf (design.md 3.2): an XDMF temporal collection over the field snapshots, so that
-// ParaView opens the whole series in the X-Y plane with the velocity as a vector. Each time is a
-// spatial collection of two uniform grids: "velocity_mesh" (u, v, the vector velocity, and trA,
-// A11, A12, A22 when present) and "pressure_mesh" (p on the 2h mesh).
+// fields.xmf (design.md 3.2): the field snapshots as XDMF, so that ParaView opens the whole series
+// in the X-Y plane with the velocity as a vector and the disks as points. A spatial collection
+// "fields" of temporal collections, one per grid, each over the snapshots: "velocity_mesh" (u, v,
+// the vector velocity, and trA, A11, A12, A22 when present), "pressure_mesh" (p on the 2h mesh)
+// and, when a snapshot holds its particles (results format 2) and has some, "particles": one
+// Polyvertex point per particle at its centre (x, y, 0) with the attributes radius, velocity
+// (u, v, 0), angular_velocity, angle and id, which ParaView's Glyph filter draws as disks (scale by
+// radius). A temporal collection of spatial collections (before issue 35) made ParaView 5.11's
+// XDMF Reader and Xdmf3ReaderT name the blocks "velocity_mesh[1]" from the second time on, so a
+// block selected by name had 0 points there; with one temporal collection per grid the XDMF Reader
+// keeps the names at every time and the Xdmf3 readers give the blocks in the same order at every
+// time (measured: docs/results.md).
 //
 // Each mesh is a 3DCoRectMesh of one layer, Dimensions "1 ny+1 nx+1" (slowest first, as XDMF
 // orders them), with ORIGIN_DXDYDZ geometry "0 y0 x0" and "1 h h" (z first): VTK's XDMF readers
@@ -15,6 +23,7 @@
 // referenced by relative path. Rewritten (temporary name, rename) after each snapshot.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -25,6 +34,8 @@ namespace dlmfd {
 struct XdmfEntry {
   std::string file;  // relative to the folder of fields.xmf, e.g. "fields/snap_000010.h5"
   double time = 0.0;
+  std::size_t particles = 0;     // in the snapshot's /particles group (0: no particle grid)
+  bool particle_angles = false;  // whether it has /particles/angle
 };
 
 std::string FieldsXdmfText(const Grid& grid, const std::vector<XdmfEntry>& entries,

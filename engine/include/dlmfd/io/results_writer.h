@@ -5,6 +5,13 @@
 //   time, and OnStopped: a run stopped by a signal). summary.json is not written here: it is the
 //   solver's, written when the run has ended (solver/include/dlmfd/solver/run_summary.h).
 //
+// Each particle's rotation angle since t = 0 is integrated here, step by step, from the angular
+// velocity by the trapezoidal rule, theta_{n+1} = theta_n + (t_{n+1} - t_n)(omega_n +
+// omega_{n+1})/2, the rule by which the corrector (38) moves the centre (particle_step.cc), and
+// written with every particle record, snapshot and checkpoint (results format 2, results_format.h);
+// a resumed run reads it back from the checkpoint. The engine's state has no angle: a disk's
+// dynamics do not depend on it.
+//
 // Checkpoints are written by OnStepEnd, after every observer has seen the step, so that every
 // record of a step at or before the checkpoint is on disk before the checkpoint exists. Resume()
 // cuts particles.h5 and diagnostics.csv back to the records at or before the checkpoint step, drops
@@ -54,6 +61,8 @@ class ResultsWriter : public Observer {
   const std::string& dir() const { return dir_; }
   // The report of the last step seen (its columns go into summary.json).
   const StepReport& last_report() const { return last_report_; }
+  // The particles' rotation angles at the last step seen.
+  const std::vector<double>& particle_angles() const { return angles_; }
 
   static constexpr const char* kScene = "scene.toml";
   static constexpr const char* kParticles = "particles.h5";
@@ -66,6 +75,7 @@ class ResultsWriter : public Observer {
   ResultsWriter(const std::string& dir, const Params& params, const Grid& grid);
   std::string Path(const std::string& name) const { return dir_ + "/" + name; }
   void SaveCheckpoint(const FlowState& state);
+  void IntegrateAngles(const FlowState& state);
 
   std::string dir_;
   Params params_;
@@ -74,6 +84,9 @@ class ResultsWriter : public Observer {
   std::unique_ptr<DiagnosticsWriter> diagnostics_;
   std::unique_ptr<ParticleHistoryWriter> particles_;
   std::vector<XdmfEntry> snapshots_;
+  std::vector<double> angles_;      // per particle, radians
+  std::vector<double> last_omega_;  // the angular velocities of the last step seen
+  double last_time_ = 0.0;
   StepReport last_report_;
   bool checkpoint_due_ = false;
   std::function<void(long, double, const std::string&)> on_checkpoint_;
