@@ -25,8 +25,10 @@
 #include "connection.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/io/particle_history.h"
+#include "dlmfd/io/results_format.h"
 #include "dlmfd/viz/line_chart.h"
 #include "exit_codes.h"
+#include "figure_panel.h"
 #include "rpc_status.h"
 #include "scene_differences.h"
 
@@ -37,22 +39,29 @@ namespace fs = std::filesystem;
 
 struct Quantity {
   const char* name;
-  const char* title;  // axis title
+  const char* title;       // axis title
+  const char* dimensions;  // in the scene's units (results_format.h)
 };
 
 const Quantity kQuantities[] = {
-    {"t", "t"},
-    {"x", "x of centre"},
-    {"y", "y of centre"},
-    {"u", "u (velocity x)"},
-    {"v", "v (velocity y)"},
-    {"omega", "omega (angular velocity)"},
-    {"fx", "fx (force x)"},
-    {"fy", "fy (force y)"},
-    {"torque", "torque"},
-    {"speed", "speed |U|"},
-    {"gap", "gap: min |xi - xj| - ri - rj"},
+    {"t", "t", "T"},
+    {"x", "x of centre", "L"},
+    {"y", "y of centre", "L"},
+    {"u", "u (velocity x)", "L T-1"},
+    {"v", "v (velocity y)", "L T-1"},
+    {"omega", "omega (angular velocity)", "T-1"},
+    {"fx", "fx (force x per unit length)", "M T-2"},
+    {"fy", "fy (force y per unit length)", "M T-2"},
+    {"torque", "torque per unit length", "M L T-2"},
+    {"speed", "speed |U|", "L T-1"},
+    {"gap", "gap: min |xi - xj| - ri - rj", "L"},
 };
+
+// "u (velocity x) [cm s-1]" with --units, else the title.
+std::string TitleWithUnits(const Quantity& q, const std::string& units) {
+  const std::string names = units.empty() ? "" : UnitsIn(q.dimensions, units);
+  return names.empty() ? q.title : std::string(q.title) + " [" + names + "]";
+}
 
 std::string AllowedQuantities() {
   std::string text;
@@ -257,6 +266,7 @@ struct CsvRequest {
   std::string group_column;
   bool markers = false;
   bool points_only = false;
+  std::string label;  // the series name without --group (default: the y column)
 };
 
 void AddCsvSeries(const CsvRequest& request, LineChart& chart) {
@@ -296,7 +306,8 @@ void AddCsvSeries(const CsvRequest& request, LineChart& chart) {
       throw UsageError(where + " has " + std::to_string(fields.size()) +
                        " fields; the header has " + std::to_string(header.size()));
     }
-    const std::string group = grouped ? fields[gc] : request.y_column;
+    const std::string group =
+        grouped ? fields[gc] : (request.label.empty() ? request.y_column : request.label);
     auto [it, added] = index_of_group.emplace(group, series.size());
     if (added) {
       series.emplace_back();
@@ -322,8 +333,7 @@ std::string FileStem(const std::string& text) {
 
 }  // namespace
 
-int RunChart(int argc, char** argv) {
-  if (IsSweepChart(argc, argv)) return RunSweepChart(argc, argv);  // chart_sweep.cc
+int RunChartCommand(int argc, char** argv, const PanelRequest* panel) {
   CLI::App app{
       "Draw particle quantities of results directories, or columns of a CSV file, as a line chart "
       "(PNG, SVG or PDF)."};
@@ -337,7 +347,9 @@ int RunChart(int argc, char** argv) {
   options.width = 1000;
   options.height = 700;
   bool log_x = false, log_y = false, markers = false, points_only = false;
-  std::string out;
+  std::string out, units, x_title, y_title;
+  std::vector<double> x_limits, y_limits, size;
+  double dpi = 0.0, font_points = 0.0;
   app.add_option("runs", runs.dirs, "results directories (dlmfd-solve --out, or fetched)");
   app.add_option("--y", runs.y, "quantity on the y axis: " + AllowedQuantities());
   app.add_option("--x", runs.x,
@@ -361,6 +373,27 @@ int RunChart(int argc, char** argv) {
                  "title above the legend (default: the parameters in which the runs differ)");
   app.add_flag("--points", points_only,
                "with --csv: a dot at every point and no lines (scatter plot)");
+  app.add_option("--csv-label", csv.label,
+                 "legend entry of the CSV's series without --group (default: the y column)");
+  app.add_option("--xlim", x_limits, "x axis range LO,HI (default: the data's, padded)")
+      ->expected(2)
+      ->delimiter(',');
+  app.add_option("--ylim", y_limits, "y axis range LO,HI (default: the data's, padded)")
+      ->expected(2)
+      ->delimiter(',');
+  app.add_option("--xtitle", x_title, "x axis title (default: the quantity, with --units)");
+  app.add_option("--ytitle", y_title, "y axis title (default: the quantity, with --units)");
+  app.add_option("--units", units,
+                 "unit names on the axis titles: cgs (cm, g, s), si (m, kg, s) or none")
+      ->check(CLI::IsMember({"cgs", "si", "none"}));
+  app.add_option("--size", size,
+                 "chart size in inches W,H (with --dpi; replaces --width and --height)")
+      ->expected(2)
+      ->delimiter(',');
+  app.add_option("--dpi", dpi, "resolution (default 300 with --size, else 72)")
+      ->check(CLI::Range(10.0, 4800.0));
+  app.add_option("--font-size", font_points, "text size in points at --dpi")
+      ->check(CLI::Range(2.0, 200.0));
   app.add_option("--out,-o", out,
                  "file to write: .png, .svg or .pdf (default chart_<y>_<x>.png here)");
   app.add_option("--width", options.width, "image width in pixels")->check(CLI::Range(200, 8192));
@@ -369,9 +402,37 @@ int RunChart(int argc, char** argv) {
   if (auto code = ParseArgs(app, argc, argv)) return *code;
 
   return Guarded("chart", [&] {
-    const bool csv_mode = !csv.file.empty();
-    if (csv_mode == !runs.dirs.empty())
-      throw UsageError("name results directories or --csv FILE, not both");
+    if (panel != nullptr) {
+      for (const char* flag : {"--width", "--height", "--size", "--dpi", "--font-size", "--out"}) {
+        if (app.count(flag) > 0)
+          throw UsageError(std::string(flag) + " is the figure's, not a panel's");
+      }
+      options.width = panel->width;
+      options.height = panel->height;
+    }
+    const bool csv_mode = !csv.file.empty() && runs.dirs.empty();
+    const bool reference = !csv.file.empty() && !runs.dirs.empty();  // CSV data over the runs
+    if (csv.file.empty() && runs.dirs.empty())
+      throw UsageError("name results directories, --csv FILE, or both (reference data over runs)");
+    if (reference && (csv.x_column.empty() || csv.y_column.empty()))
+      throw UsageError("--csv over results directories needs --xcol and --ycol");
+    const double out_dpi = dpi > 0.0 ? dpi : (size.empty() ? 72.0 : 300.0);
+    if (!size.empty()) {
+      if (app.count("--width") > 0 || app.count("--height") > 0)
+        throw UsageError("--size sets the chart's size; give --width and --height or --size");
+      if (!(size[0] > 0.0 && size[1] > 0.0)) throw UsageError("--size W,H needs W, H > 0 inches");
+      options.width = int(std::lround(size[0] * out_dpi));
+      options.height = int(std::lround(size[1] * out_dpi));
+      if (options.width < 200 || options.height < 150 || options.width > 16384 ||
+          options.height > 16384) {
+        throw UsageError("--size at " + std::to_string(int(out_dpi)) + " dpi is " +
+                         std::to_string(options.width) + "x" + std::to_string(options.height) +
+                         " pixels: expected 200x150 to 16384 a side");
+      }
+    }
+    if (font_points > 0.0) options.font_size = font_points * out_dpi / 72.0;
+    if (panel != nullptr) options.font_size = panel->font_size;
+    if (units == "none") units.clear();
     std::string x_name, y_name;
     if (csv_mode) {
       if (csv.x_column.empty() || csv.y_column.empty())
@@ -388,8 +449,8 @@ int RunChart(int argc, char** argv) {
       options.x_axis.title = x_name;
       options.y_axis.title = y_name;
     } else {
-      if (!csv.x_column.empty() || !csv.y_column.empty() || !csv.group_column.empty() ||
-          points_only) {
+      if (!reference && (!csv.x_column.empty() || !csv.y_column.empty() ||
+                         !csv.group_column.empty() || points_only)) {
         throw UsageError("--xcol, --ycol, --group and --points apply to --csv");
       }
       if (runs.y.empty())
@@ -398,15 +459,29 @@ int RunChart(int argc, char** argv) {
         throw UsageError(std::to_string(runs.labels.size()) + " labels for " +
                          std::to_string(runs.dirs.size()) + " results directories");
       }
-      options.x_axis.title = FindQuantity(runs.x, "--x").title;
-      options.y_axis.title = FindQuantity(runs.y, "--y").title;
+      options.x_axis.title = TitleWithUnits(FindQuantity(runs.x, "--x"), units);
+      options.y_axis.title = TitleWithUnits(FindQuantity(runs.y, "--y"), units);
       runs.markers = markers;
       x_name = runs.x;
       y_name = runs.y;
     }
     options.x_axis.scale = log_x ? AxisScale::kLog10 : AxisScale::kLinear;
     options.y_axis.scale = log_y ? AxisScale::kLog10 : AxisScale::kLinear;
-    if (options.title.empty()) options.title = y_name + " against " + x_name;
+    if (!x_title.empty()) options.x_axis.title = x_title;
+    if (!y_title.empty()) options.y_axis.title = y_title;
+    if (!x_limits.empty()) {
+      options.x_axis.fixed = true;
+      options.x_axis.lo = x_limits[0];
+      options.x_axis.hi = x_limits[1];
+    }
+    if (!y_limits.empty()) {
+      options.y_axis.fixed = true;
+      options.y_axis.lo = y_limits[0];
+      options.y_axis.hi = y_limits[1];
+    }
+    // --title "" draws none.
+    if (options.title.empty() && app.count("--title") == 0)
+      options.title = y_name + " against " + x_name;
     const std::string path =
         out.empty() ? "chart_" + FileStem(y_name) + "_" + FileStem(x_name) + ".png" : out;
     ChartPicture picture;
@@ -420,11 +495,24 @@ int RunChart(int argc, char** argv) {
         AddCsvSeries(csv, chart);
       } else {
         AddRunSeries(runs, names, chart);
+        if (reference) {
+          csv.markers = true;  // reference data: markers over the runs' lines
+          csv.points_only = points_only || !markers;
+          AddCsvSeries(csv, chart);
+        }
       }
       picture = chart.Draw();
+      picture.image.SetResolution(out_dpi);
       legend = chart.LegendText();
     } catch (const InvalidParameter& e) {
       throw UsageError(e.what());
+    }
+    if (panel != nullptr) {
+      *panel->result = std::move(picture.image);
+      std::cerr << "legend"
+                << (options.legend_title.empty() ? "" : " (" + options.legend_title + ")") << ": "
+                << legend << "\n";
+      return kExitOk;
     }
     try {
       picture.image.Write(path);
@@ -437,6 +525,15 @@ int RunChart(int argc, char** argv) {
               << ": " << legend << "\n";
     return kExitOk;
   });
+}
+
+int RunChart(int argc, char** argv) {
+  if (IsSweepChart(argc, argv)) return RunSweepChart(argc, argv);  // chart_sweep.cc
+  return RunChartCommand(argc, argv, nullptr);
+}
+
+int RunChartPanel(int argc, char** argv, const PanelRequest& request) {
+  return RunChartCommand(argc, argv, &request);
 }
 
 }  // namespace dlmfd::cli

@@ -32,6 +32,7 @@ int RunLogs(int argc, char** argv);
 int RunPlot(int argc, char** argv);
 int RunChart(int argc, char** argv);
 int RunMovie(int argc, char** argv);
+int RunFigure(int argc, char** argv);
 int RunHealth(int argc, char** argv);
 int RunTable(int argc, char** argv);
 int RunInputs(int argc, char** argv);

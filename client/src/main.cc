@@ -36,6 +36,7 @@ const Command kCommands[] = {
     {"chart", "line chart of particle quantities of runs, of CSV columns, or of a sweep (--sweep)",
      RunChart},
     {"movie", "movie (ffmpeg) of a run's snapshots with the particles and the time", RunMovie},
+    {"figure", "a multi-panel figure, (a)-(d), of plot and chart command lines", RunFigure},
     {"health", "ask the daemon whether it is serving", RunHealth},
 };
 

@@ -3,8 +3,8 @@
 // A movie of a run from its field snapshots (design.md 3.2): one frame per snapshot, each a field
 // picture (viz/field_picture.h) with the particles, the time and the colour bar, encoded by
 // Debian's ffmpeg (viz/movie_encoder.h). The colour range is the same in every frame: --range, or
-// the extremes over all the frames drawn (inside --window; [-m, m] with m the largest |value| for a
-// signed quantity, on the diverging map), so colours compare across time. The
+// the union of the frames' own ranges (inside --window; their extremes, or their percentiles for a
+// signed quantity, [-m, m] on the diverging map: CommonRange), so colours compare across time. The
 // frame size is the first frame's, rounded up to even sides (H.264 needs them).
 // JOB (not an existing directory) is a job of the daemon: its scene.toml, particles.h5 and
 // snapshots are fetched first (into --keep DIR, or a temporary folder removed afterwards), and the
@@ -145,7 +145,7 @@ int RunMovie(int argc, char** argv) {
 
   return Guarded("movie", [&] {
     try {
-      CheckPlotFlags(plot);
+      CheckPlotFlags(plot, app);
       std::error_code ec;
       const bool local = fs::is_directory(m.source, ec);
       if (m.out.empty()) {
@@ -154,7 +154,7 @@ int RunMovie(int argc, char** argv) {
         m.out = stem + "_" + FileStemOf(plot.quantity.empty() ? "trA" : plot.quantity) + ".mp4";
       }
       if (local) {
-        const std::string caption = plot.options.caption.empty() ? DirectoryCaption(m.source) : "";
+        const std::string caption = DirectoryCaption(m.source);
         return MakeMovie(m.source, caption, m, plot);
       }
       const bool temporary = m.keep.empty();

@@ -1,6 +1,7 @@
 // dlmfd plot RESULTS_DIR [--snapshot STEP] [--quantity Q] [--out FILE.png|.svg|.pdf]
 //            [--width W] [--height H] [--log] [--range MIN,MAX] [--window X0,Y0,X1,Y1]
-//            [--isolines N] [--lines-only] [--arrows N] [--caption TEXT]
+//            [--isolines N] [--lines-only] [--arrows N] [--streamlines N] [--caption TEXT]
+//            [--no-caption] [--size W,H --dpi D --font-size PT] [--units cgs|si] [--percentile P]
 // dlmfd plot --job JOB [--out FILE] ...      (the next snapshot a running job streams)
 // Draws a field of a snapshot (viz/field_picture.h) with axes, a colour bar, the particles and a
 // caption naming the run (scene title, directory or job name and its overrides), quantity, time
@@ -16,6 +17,7 @@
 #include "dlmfd/viz/node_quantities.h"
 #include "dlmfd/viz/results_frame.h"
 #include "exit_codes.h"
+#include "figure_panel.h"
 #include "plot_options.h"
 #include "rpc_status.h"
 #include "watch_session.h"
@@ -64,8 +66,11 @@ int PlotJob(const ConnectionFlags& flags, const std::string& job_id, const PlotF
         "(dlmfd fetch " +
         job_id + ") to draw " + plot.quantity);
   }
-  if (plot.options.arrows > 0)
-    throw UsageError("--arrows needs the velocity: fetch the results (dlmfd fetch " + job_id + ")");
+  if (plot.options.arrows > 0 || plot.options.streamlines > 0) {
+    throw UsageError(
+        "--arrows and --streamlines need the velocity: fetch the results (dlmfd fetch " + job_id +
+        ")");
+  }
   Connection connection(flags);
   WatchOptions options;
   options.job_id = job_id;
@@ -96,25 +101,26 @@ int PlotJob(const ConnectionFlags& flags, const std::string& job_id, const PlotF
                            "(dlmfd fetch " + job_id + ") and plot the directory",
                        kExitNotFound);
   }
-  PictureOptions picture_options = plot.options;
   const NodeField field = Windowed(FieldOfSnapshot(snapshot), plot.window);
-  picture_options.diverging = DrawsDiverging(field.quantity, picture_options);
   v1::Job job = outcome.job;  // as of its latest state change; the id at least
   if (job.id().empty()) job.set_id(job_id);
-  picture_options.caption =
-      (plot.options.caption.empty() ? JobCaption(job) : plot.options.caption) + "\n" +
-      FrameCaption(field.quantity, snapshot.time(), snapshot.step());
+  PictureOptions picture_options =
+      FrameOptions(plot, field.quantity, JobCaption(job),
+                   FrameCaption(field.quantity, snapshot.time(), snapshot.step()));
+  picture_options.diverging = DrawsDiverging(field.quantity, picture_options);
   const std::string path =
       out.empty() ? job_id + "_" + field.quantity + "_" + std::to_string(snapshot.step()) + ".png"
                   : out;
-  DrawFieldPicture(field, disks, picture_options).image.Write(path);
+  FieldPicture picture = DrawFieldPicture(field, disks, picture_options);
+  picture.image.SetResolution(OutputDpi(plot));
+  picture.image.Write(path);
   std::cout << path << "\n";
   return kExitOk;
 }
 
 }  // namespace
 
-int RunPlot(int argc, char** argv) {
+int RunPlotCommand(int argc, char** argv, const PanelRequest* panel) {
   CLI::App app{"Draw a field of a snapshot with axes, colour bar and particles (PNG, SVG or PDF)."};
   ConnectionFlags connection_flags;
   AddConnectionFlags(app, connection_flags);
@@ -137,22 +143,44 @@ int RunPlot(int argc, char** argv) {
 
   return Guarded("plot", [&] {
     try {
-      CheckPlotFlags(plot);
+      if (panel != nullptr) {
+        for (const char* flag :
+             {"--width", "--height", "--size", "--dpi", "--font-size", "--out"}) {
+          if (app.count(flag) > 0)
+            throw UsageError(std::string(flag) + " is the figure's, not a panel's");
+        }
+        if (!job_id.empty())
+          throw UsageError("a figure's panel draws a results directory, not --job");
+        plot.options.exact_width = panel->width;
+        plot.options.exact_height = panel->height;
+        plot.options.max_width = panel->width;
+        plot.options.max_height = panel->height;
+      }
+      CheckPlotFlags(plot, app);
+      if (panel != nullptr) plot.options.font_size = panel->font_size;
       if (!out.empty()) FormatOfPath(out);
       if (!job_id.empty()) return PlotJob(connection_flags, job_id, plot, out);
       ResultsFrame frame = LoadResultsFrame(results_dir, snapshot, plot.quantity);
-      PictureOptions options = plot.options;
-      options.caption =
-          (options.caption.empty() ? DirectoryCaption(results_dir) : options.caption) + "\n" +
-          FrameCaption(frame.field.quantity, frame.time, frame.step);
+      if (!frame.particles_note.empty())
+        std::cerr << "dlmfd plot: " << frame.particles_note << "\n";
+      const PictureOptions options =
+          FrameOptions(plot, frame.field.quantity,
+                       plot.no_caption || plot.caption_given ? "" : DirectoryCaption(results_dir),
+                       FrameCaption(frame.field.quantity, frame.time, frame.step));
       const std::string path =
           out.empty()
               ? (std::filesystem::path(results_dir) /
                  (FileStemOf(frame.field.quantity) + "_" + std::to_string(frame.step) + ".png"))
                     .string()
               : out;
+      if (panel != nullptr) {
+        *panel->result = std::move(DrawFrame(frame, plot, options).image);
+        return kExitOk;
+      }
       try {
-        DrawFrame(frame, plot, options).image.Write(path);
+        FieldPicture picture = DrawFrame(frame, plot, options);
+        picture.image.SetResolution(OutputDpi(plot));
+        picture.image.Write(path);
       } catch (const InvalidParameter&) {
         throw;
       } catch (const Error& e) {
@@ -164,6 +192,12 @@ int RunPlot(int argc, char** argv) {
       throw UsageError(e.what());
     }
   });
+}
+
+int RunPlot(int argc, char** argv) { return RunPlotCommand(argc, argv, nullptr); }
+
+int RunPlotPanel(int argc, char** argv, const PanelRequest& request) {
+  return RunPlotCommand(argc, argv, &request);
 }
 
 }  // namespace dlmfd::cli

@@ -1,8 +1,9 @@
 // The movie of a results directory that `dlmfd movie` writes and the web dashboard shows: one
 // frame per chosen snapshot, each a field picture (plot_options.h: DrawFrame) with the particles,
-// its caption (the run's line, then quantity, time and step) and the colour bar, the colour range
-// the same in every frame (the flags' --range, else the extremes over the frames drawn, inside the
-// window; [-m, m] for a signed quantity on the diverging map), encoded by Debian's ffmpeg
+// its caption (the run's lines, then quantity, time and step; FrameOptions) and the colour bar, the
+// colour range the same in every frame (the flags' --range, else the union of the frames' own
+// ranges, inside the window: extremes, or percentiles for a signed quantity, [-m, m] on the
+// diverging map), encoded by Debian's ffmpeg
 // (viz/movie_encoder.h). The frame size is the first frame's, rounded up to even sides (H.264).
 #pragma once
 

@@ -499,7 +499,7 @@ class ResultsFrameTest : public ::testing::Test {
       state.time = 0.01 * step;
       state.particles[0].position = Vec2(0.5 + 0.1 * step, 0.5);
       state.particles[0].angular_velocity = 2.0 + 10.0 * state.time;  // linear in t
-      history->Append(state);
+      history->Append(state, {2.0 * state.time + 5.0 * state.time * state.time});
       if (step != 5) WriteFieldSnapshot(dir_ + "/fields/" + SnapshotFileName(step), grid_, state);
     }
   }

@@ -22,11 +22,13 @@ cairo_status_t AppendToString(void* closure, const unsigned char* data, unsigned
   return CAIRO_STATUS_SUCCESS;
 }
 
-// Paints the recording onto `target` (white background first) and finishes the target.
-void Replay(cairo_surface_t* recording, cairo_surface_t* target) {
+// Paints the recording onto `target` (white background first), `scale` target units a canvas
+// pixel, and finishes the target.
+void Replay(cairo_surface_t* recording, cairo_surface_t* target, double scale = 1.0) {
   cairo_t* cr = cairo_create(target);
   cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
   cairo_paint(cr);
+  cairo_scale(cr, scale, scale);
   cairo_set_source_surface(cr, recording, 0.0, 0.0);
   cairo_paint(cr);
   cairo_destroy(cr);
@@ -118,12 +120,14 @@ Canvas::~Canvas() {
 Canvas::Canvas(Canvas&& other) noexcept
     : width_(other.width_),
       height_(other.height_),
+      dpi_(other.dpi_),
       recording_(std::exchange(other.recording_, nullptr)),
       cr_(std::exchange(other.cr_, nullptr)) {}
 
 Canvas& Canvas::operator=(Canvas&& other) noexcept {
   std::swap(width_, other.width_);
   std::swap(height_, other.height_);
+  std::swap(dpi_, other.dpi_);
   std::swap(recording_, other.recording_);
   std::swap(cr_, other.cr_);
   return *this;
@@ -288,6 +292,22 @@ void Canvas::Raster(int x, int y, const RgbImage& image) {
   cairo_surface_destroy(surface);
 }
 
+void Canvas::SetResolution(double dpi) {
+  if (!(dpi >= 10.0 && dpi <= 4800.0))
+    throw InvalidParameter("dpi", std::to_string(dpi), "10 to 4800 dots per inch");
+  dpi_ = dpi;
+}
+
+void Canvas::Place(const Canvas& other, double x, double y) {
+  cairo_surface_flush(other.recording_);
+  cairo_save(cr_);
+  cairo_rectangle(cr_, x, y, other.width_, other.height_);
+  cairo_clip(cr_);
+  cairo_set_source_surface(cr_, other.recording_, x, y);
+  cairo_paint(cr_);
+  cairo_restore(cr_);
+}
+
 void Canvas::Clip(double x, double y, double w, double h) {
   cairo_save(cr_);
   cairo_rectangle(cr_, x, y, w, h);
@@ -312,15 +332,18 @@ void Canvas::Write(const std::string& path) const {
   cairo_surface_flush(recording_);
   std::string bytes;
   cairo_surface_t* target = nullptr;
+  const double points = 72.0 / dpi_;  // points a pixel on a page
   if (format == FileFormat::kPng) {
     target = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width_, height_);
   } else if (format == FileFormat::kSvg) {
-    target = cairo_svg_surface_create_for_stream(AppendToString, &bytes, width_, height_);
+    target = cairo_svg_surface_create_for_stream(AppendToString, &bytes, width_ * points,
+                                                 height_ * points);
   } else {
-    target = cairo_pdf_surface_create_for_stream(AppendToString, &bytes, width_, height_);
+    target = cairo_pdf_surface_create_for_stream(AppendToString, &bytes, width_ * points,
+                                                 height_ * points);
   }
   CheckSurface(target, "cannot write " + path);
-  Replay(recording_, target);
+  Replay(recording_, target, format == FileFormat::kPng ? 1.0 : points);
   cairo_status_t status = CAIRO_STATUS_SUCCESS;
   if (format == FileFormat::kPng) {
     status = cairo_surface_write_to_png_stream(target, AppendToString, &bytes);

@@ -11,6 +11,7 @@
 #include "dlmfd/viz/colour_map.h"
 #include "dlmfd/viz/colour_scale.h"
 #include "dlmfd/viz/isolines.h"
+#include "dlmfd/viz/streamlines.h"
 
 namespace dlmfd {
 namespace {
@@ -105,27 +106,59 @@ double FieldPicture::BarY(double value) const {
 
 namespace {
 
-// The colour range: fixed, or the finite (positive, on a log scale) extremes of the values, or on
-// a diverging scale [-m, m] with m the largest finite |value|. Checked by ColourScale.
+// The q-quantile (q in [0, 1]) of `values` (not empty), by linear interpolation between order
+// statistics.
+double Quantile(std::vector<double> values, double q) {
+  const double at = q * double(values.size() - 1);
+  const std::size_t k = std::size_t(std::floor(at));
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  const double low = values[k];
+  if (k + 1 >= values.size()) return low;
+  const double high = *std::min_element(values.begin() + k + 1, values.end());
+  return low + (at - double(k)) * (high - low);
+}
+
+// The colour range: fixed, or the finite (positive, on a log scale) extremes of the values, or
+// their percentiles; on a diverging scale [-m, m] with m the largest (or the p-th percentile) of
+// the finite |value|. Checked by ColourScale.
 void ColourRange(const NodeField& field, const PictureOptions& options, double& lo, double& hi) {
   if (options.fixed_range) {
     lo = options.range_min;
     hi = options.range_max;
     return;
   }
-  lo = HUGE_VAL;
-  hi = -HUGE_VAL;
+  std::vector<double> usable;
+  usable.reserve(field.values.size());
   for (double v : field.values) {
-    if (std::isfinite(v) && (!options.log_colours || v > 0.0)) {
-      lo = std::min(lo, v);
-      hi = std::max(hi, v);
-    }
+    if (std::isfinite(v) && (!options.log_colours || v > 0.0)) usable.push_back(v);
   }
-  if (lo > hi) lo = hi = options.log_colours ? 1.0 : 0.0;  // no usable value
+  if (usable.empty()) {  // no usable value
+    lo = hi = options.log_colours ? 1.0 : 0.0;
+    return;
+  }
+  const double p = std::clamp(options.percentile, 50.0, 100.0) / 100.0;
   if (options.diverging) {
-    hi = std::max(std::abs(lo), std::abs(hi));
+    for (double& v : usable) v = std::abs(v);
+    hi = p < 1.0 ? Quantile(usable, p) : *std::max_element(usable.begin(), usable.end());
     lo = -hi;
+    return;
   }
+  if (p < 1.0) {
+    lo = Quantile(usable, 1.0 - p);
+    hi = Quantile(usable, p);
+  } else {
+    lo = *std::min_element(usable.begin(), usable.end());
+    hi = *std::max_element(usable.begin(), usable.end());
+  }
+}
+
+// The largest 1-2-5 number (1, 2 or 5 times a power of ten) not above `value` (> 0).
+double RoundDown125(double value) {
+  const double decade = std::pow(10.0, std::floor(std::log10(value)));
+  for (const double m : {5.0, 2.0, 1.0}) {
+    if (m * decade <= value * (1.0 + 1e-12)) return m * decade;
+  }
+  return decade;
 }
 
 double WidestLabel(const Canvas& canvas, const AxisTicks& ticks, double size) {
@@ -177,15 +210,44 @@ double DrawArrows(Canvas& canvas, const FieldPicture& p, const NodeVelocity& vel
   return longest;
 }
 
+// Streamlines over the field: white over viridis, black over cool to warm and without fill, with
+// an arrowhead at the middle of each line; returns the number of lines drawn.
+int DrawStreamlines(Canvas& canvas, const FieldPicture& p, const NodeVelocity& velocity,
+                    int columns, double line_width, bool fill) {
+  const Rgb colour = fill && !p.diverging ? kWhite : kBlack;
+  const std::vector<std::vector<double>> lines = Streamlines(velocity, columns);
+  const double head = std::max(4.0, 4.0 * line_width);
+  for (const std::vector<double>& line : lines) {
+    std::vector<double> pixels(line.size());
+    for (std::size_t k = 0; k < line.size(); k += 2) {
+      pixels[k] = p.PixelX(line[k]);
+      pixels[k + 1] = p.PixelY(line[k + 1]);
+    }
+    canvas.Polyline(pixels, line_width, colour);
+    const std::size_t mid = (line.size() / 4) * 2;  // a point near the middle
+    if (mid >= 2) {
+      const double dx = pixels[mid] - pixels[mid - 2], dy = pixels[mid + 1] - pixels[mid - 1];
+      const double length = std::hypot(dx, dy);
+      if (length > 0.0) {
+        canvas.Arrow(pixels[mid] - head * dx / length, pixels[mid + 1] - head * dy / length,
+                     pixels[mid], pixels[mid + 1], line_width, head, colour);
+      }
+    }
+  }
+  return int(lines.size());
+}
+
 }  // namespace
 
 FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutline>& disks,
                               const PictureOptions& options, const NodeVelocity* velocity) {
   CheckField(field);
-  if (options.arrows > 0) {
+  if (options.arrows > 0 || options.streamlines > 0) {
     if (velocity == nullptr) {
-      throw InvalidParameter("arrows", std::to_string(options.arrows),
-                             "0 for a field without velocity (the snapshot's u and v)");
+      throw InvalidParameter(
+          options.arrows > 0 ? "arrows" : "streamlines",
+          std::to_string(options.arrows > 0 ? options.arrows : options.streamlines),
+          "0 for a field without velocity (the snapshot's u and v)");
     }
     CheckField(velocity->u);
     CheckField(velocity->v);
@@ -201,8 +263,10 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
   const int max_width = options.exact_width > 0 ? options.exact_width : options.max_width;
   const int max_height = options.exact_height > 0 ? options.exact_height : options.max_height;
   Canvas measure(1, 1);
-  // Text sizes in pixels grow with the picture: 18 px labels in 1000 x 1000.
-  const double fs = std::clamp(std::min(max_width, max_height) / 55.0, 9.0, 24.0);
+  // Text sizes in pixels grow with the picture (18 px labels in 1000 x 1000, no upper bound: a
+  // 3000-pixel figure has 55 px text), or are the caller's.
+  const double fs = options.font_size > 0.0 ? options.font_size
+                                            : std::max(9.0, std::min(max_width, max_height) / 55.0);
   const double margin = 0.8 * fs;
   const double tick = 0.4 * fs;
   const double line_height = 1.3 * fs;
@@ -220,7 +284,7 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
     Layout l;
     // A first guess of the ticks, for the widths of their labels.
     l.top = margin + caption_height + 0.5 * fs;
-    const double bottom = tick + 0.2 * fs + 2.0 * line_height + margin;
+    const double bottom = tick + 0.2 * fs + (options.arrows > 0 ? 3.0 : 2.0) * line_height + margin;
     const double room_y_guess = max_height - l.top - bottom;
     const int y_wanted = std::clamp(int(room_y_guess / (3.0 * fs)), 2, 8);
     const AxisTicks y_guess = LinearTicks(g.y0, g.y0 + g.Height(), y_wanted);
@@ -326,6 +390,10 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
     }
     canvas.Segments(pixels, thin, isoline_colour);
   }
+  if (options.streamlines > 0) {
+    picture.streamlines_drawn =
+        DrawStreamlines(canvas, picture, *velocity, options.streamlines, thin, options.fill);
+  }
   if (options.arrows > 0)
     picture.arrow_speed = DrawArrows(canvas, picture, *velocity, options.arrows, thin);
   const double rim = std::max(1.0, fs / 10.0);
@@ -367,15 +435,19 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
                 kAxisColour, Align::kEnd, Align::kCentre);
   }
   canvas.Text(picture.panel_left + 0.5 * panel_width, panel_bottom + tick + 0.2 * fs + line_height,
-              "x", fs, kAxisColour, Align::kCentre, Align::kStart);
-  canvas.Text(shift_x + margin, picture.panel_top + 0.5 * panel_height, "y", fs, kAxisColour,
-              Align::kCentre, Align::kStart, 90.0);
+              options.x_title, fs, kAxisColour, Align::kCentre, Align::kStart);
+  canvas.Text(shift_x + margin, picture.panel_top + 0.5 * panel_height, options.y_title, fs,
+              kAxisColour, Align::kCentre, Align::kStart, 90.0);
   if (picture.arrow_speed > 0.0) {
-    const double pixels = panel_width / double(options.arrows);
-    const double ky = panel_bottom + tick + 0.2 * fs + 1.5 * line_height;
+    // The key on a row of its own below the x title: a round speed at its own length.
+    picture.key_speed = RoundDown125(picture.arrow_speed);
+    const double pixels =
+        panel_width / double(options.arrows) * picture.key_speed / picture.arrow_speed;
+    const double ky = panel_bottom + tick + 0.2 * fs + 2.5 * line_height;
     const double kx = picture.panel_left + panel_width;
     canvas.Arrow(kx - pixels, ky, kx, ky, thin, std::max(3.0, 0.3 * pixels), kBlack);
-    canvas.Text(kx - pixels - 0.4 * fs, ky, "|u| = " + FormatLabel(picture.arrow_speed), fs,
+    const std::string units = options.speed_units.empty() ? "" : " " + options.speed_units;
+    canvas.Text(kx - pixels - 0.4 * fs, ky, "|u| = " + FormatLabel(picture.key_speed) + units, fs,
                 kAxisColour, Align::kEnd, Align::kCentre);
   }
 
@@ -397,6 +469,25 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
   canvas.Raster(picture.bar_left, picture.bar_top, bar);
   canvas.StrokeRect(picture.bar_left - 0.5, picture.bar_top - 0.5, bar.width + 1.0,
                     body_height + 1.0, 1.0, kAxisColour);
+  // Triangles at the ends of the bar that the field's values exceed (their colour is the end's).
+  const double slack = 1e-12 * std::max(std::abs(lo), std::abs(hi));
+  for (const double v : field.values) {
+    if (!std::isfinite(v) || (log_colours && !(v > 0.0))) continue;
+    picture.clipped_low = picture.clipped_low || v < lo - slack;
+    picture.clipped_high = picture.clipped_high || v > hi + slack;
+  }
+  {
+    const double w = bar.width, x0 = picture.bar_left, tip = 0.8 * w;
+    const double bar_top = picture.bar_top - 1.0, bottom_y = picture.bar_top + body_height + 1.0;
+    if (picture.clipped_high) {
+      canvas.FillPolygon({x0, bar_top, x0 + w, bar_top, x0 + 0.5 * w, bar_top - tip},
+                         colours.AtFraction(1.0));
+    }
+    if (picture.clipped_low) {
+      canvas.FillPolygon({x0, bottom_y, x0 + w, bottom_y, x0 + 0.5 * w, bottom_y + tip},
+                         colours.AtFraction(0.0));
+    }
+  }
   for (const double level : picture.isovalues) {
     const double y = picture.BarY(level);
     canvas.Line(picture.bar_left, y, picture.bar_left + bar.width, y, thin, isoline_colour);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <tuple>
 
 #include "dlmfd/core/errors.h"
 
@@ -39,6 +40,12 @@ void AxisRange(double data_lo, double data_hi, AxisScale scale, double& lo, doub
   }
   lo = scale == AxisScale::kLog10 ? std::pow(10.0, t_lo) : t_lo;
   hi = scale == AxisScale::kLog10 ? std::pow(10.0, t_hi) : t_hi;
+}
+
+std::string Short(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
 }
 
 double PixelAlong(double value, double lo, double hi, AxisScale scale, int first, int count,
@@ -167,54 +174,84 @@ ChartPicture LineChart::Draw() const {
   p.y_scale = ys;
   AxisRange(x_min, x_max, xs, p.x_lo, p.x_hi);
   AxisRange(y_min, y_max, ys, p.y_lo, p.y_hi);
+  for (const auto& [axis, lo, hi, name] : {std::tuple{&options_.x_axis, &p.x_lo, &p.x_hi, "x"},
+                                           std::tuple{&options_.y_axis, &p.y_lo, &p.y_hi, "y"}}) {
+    if (!axis->fixed) continue;
+    if (!(axis->lo < axis->hi) || !std::isfinite(axis->lo) || !std::isfinite(axis->hi) ||
+        (axis->scale == AxisScale::kLog10 && !(axis->lo > 0.0))) {
+      throw InvalidParameter(std::string(name) + " limits", Short(axis->lo) + "," + Short(axis->hi),
+                             "finite LO < HI (LO > 0 on a log axis)");
+    }
+    *lo = axis->lo;
+    *hi = axis->hi;
+  }
 
   const int width = options_.width;
   const int height = options_.height;
   p.image = Canvas(width, height);
   Canvas& canvas = p.image;
-  // Text sizes in pixels grow with the picture: 15 px labels on a 1000 x 700 chart.
-  const double fs = std::clamp(std::min(width, height) / 46.0, 9.0, 28.0);
+  // Text sizes in pixels grow with the picture (15 px labels on a 1000 x 700 chart, no upper
+  // bound), or are the caller's.
+  const double fs =
+      options_.font_size > 0.0 ? options_.font_size : std::max(9.0, std::min(width, height) / 46.0);
   const double title_fs = 1.2 * fs;
   const double margin = 0.8 * fs;
   const double tick = 0.4 * fs;
   const double line_height = 1.35 * fs;
 
-  // Vertical layout first: it does not depend on the tick labels.
+  // The legend: to the right of the panel in columns of the panel's height, or, when that takes
+  // more than half the width, below the x title in rows of as many columns as the width holds.
+  const double swatch = 2.4 * fs;
+  double name_width = 0.0;
+  for (const ChartSeries& series : series_)
+    name_width = std::max(name_width, canvas.MeasureText(series.name, fs).advance);
+  const double title_width = options_.legend_title.empty()
+                                 ? 0.0
+                                 : canvas.MeasureText(options_.legend_title, fs, true).advance;
+  const double legend_title_height = options_.legend_title.empty() ? 0.0 : line_height;
+  const double column_width =
+      std::min(swatch + 0.5 * fs + name_width + margin, width - 2.0 * margin);
   const double title_height = options_.title.empty() ? 0.0 : 1.6 * title_fs;
   const double x_title_height = options_.x_axis.title.empty() ? 0.0 : line_height;
-  p.panel_top = int(std::ceil(margin + title_height + 0.5 * fs));
-  p.panel_height = int(height - p.panel_top - margin - x_title_height - line_height - tick - 1);
+  const double top = std::ceil(margin + title_height + 0.5 * fs);
+  const double side_panel_height = height - top - margin - x_title_height - line_height - tick - 1;
+  const int side_rows = std::max(1, int((side_panel_height - legend_title_height) / line_height));
+  const int side_columns = int((series_.size() + side_rows - 1) / side_rows);
+  const double side_width =
+      std::max(side_columns * column_width, title_width == 0.0 ? 0.0 : title_width + margin);
+  p.legend_below = side_width > 0.5 * width;
+  int rows_per_column = side_rows;
+  int legend_columns = side_columns;
+  double legend_width = side_width;
+  double below_height = 0.0;
+  if (p.legend_below) {
+    legend_columns = std::max(1, int((width - 2.0 * margin) / column_width));
+    const int rows = int((series_.size() + legend_columns - 1) / legend_columns);
+    rows_per_column = rows;
+    legend_width = 0.0;
+    below_height = 0.5 * fs + legend_title_height + rows * line_height;
+  }
+
+  // Vertical layout: it does not depend on the tick labels.
+  p.panel_top = int(top);
+  p.panel_height =
+      int(height - p.panel_top - margin - x_title_height - line_height - tick - 1 - below_height);
   if (p.panel_height < 32) {
     throw InvalidParameter("chart height", std::to_string(height),
-                           "room for a panel of at least 32 pixels");
+                           "room for a panel of at least 32 pixels (a taller chart, or fewer "
+                           "series in the legend)");
   }
   const int y_wanted = std::clamp(int(p.panel_height / (3.0 * fs)), 2, 8);
   p.y_ticks = ScaleTicks(p.y_lo, p.y_hi, y_wanted, ys);
 
-  // Horizontal layout: y title and labels on the left, the legend on the right, in columns.
-  const double swatch = 2.4 * fs;
-  const double name_room = 0.3 * width;
-  double name_width = options_.legend_title.empty()
-                          ? 0.0
-                          : canvas.MeasureText(options_.legend_title, fs, true).advance - swatch;
-  for (const ChartSeries& series : series_) {
-    name_width = std::max(
-        name_width, canvas.MeasureText(Fitted(canvas, series.name, fs, name_room), fs).advance);
-  }
-  const double legend_title_height = options_.legend_title.empty() ? 0.0 : line_height;
-  const int rows_per_column =
-      std::max(1, int((p.panel_height - legend_title_height) / line_height));
-  const int columns = int((series_.size() + rows_per_column - 1) / rows_per_column);
-  const double column_width = swatch + 0.5 * fs + name_width + margin;
-  const double legend_width = columns * column_width;
+  // Horizontal layout: y title and labels on the left, the legend on the right (or below).
   const double y_title_width = options_.y_axis.title.empty() ? 0.0 : line_height;
   const double y_labels = LabelsWidth(canvas, p.y_ticks, fs);
   p.panel_left = int(std::ceil(margin + y_title_width + y_labels + 0.4 * fs + tick + 1));
   p.panel_width = int(width - p.panel_left - margin - legend_width - 1);
   if (p.panel_width < 32) {
-    throw InvalidParameter(
-        "chart width", std::to_string(width),
-        "room for a panel of at least 32 pixels (fewer series or a wider chart)");
+    throw InvalidParameter("chart width", std::to_string(width),
+                           "room for a panel of at least 32 pixels (a wider chart)");
   }
   if (options_.equal_scale) {
     EqualiseScales(p);
@@ -256,8 +293,9 @@ ChartPicture LineChart::Draw() const {
     canvas.Text(margin, p.panel_top + 0.5 * p.panel_height, options_.y_axis.title, fs, kAxisColour,
                 Align::kCentre, Align::kStart, 90.0);
   }
+  const double x_title_bottom = height - margin - below_height;
   if (!options_.x_axis.title.empty()) {
-    canvas.Text(p.panel_left + 0.5 * p.panel_width, height - margin, options_.x_axis.title, fs,
+    canvas.Text(p.panel_left + 0.5 * p.panel_width, x_title_bottom, options_.x_axis.title, fs,
                 kAxisColour, Align::kCentre, Align::kEnd);
   }
 
@@ -298,16 +336,22 @@ ChartPicture LineChart::Draw() const {
   }
   canvas.Unclip();
 
-  // Legend, to the right of the panel, top aligned with it.
-  const double legend_left = panel_right + 1 + margin;
+  // Legend, to the right of the panel, top aligned with it; or below the x title, entries in rows.
+  const double legend_left = p.legend_below ? margin : panel_right + 1 + margin;
+  const double legend_top = p.legend_below ? x_title_bottom + 0.5 * fs : p.panel_top;
   if (!options_.legend_title.empty()) {
-    canvas.Text(legend_left, p.panel_top, options_.legend_title, fs, kAxisColour, Align::kStart,
-                Align::kStart, 0.0, true);
+    canvas.Text(legend_left, legend_top,
+                Fitted(canvas, options_.legend_title, fs, width - legend_left - margin), fs,
+                kAxisColour, Align::kStart, Align::kStart, 0.0, true);
   }
+  const double entry_room = column_width - swatch - 0.5 * fs - margin;
   for (std::size_t n = 0; n < series_.size(); ++n) {
-    const double left = legend_left + double(n / rows_per_column) * column_width;
-    const double mid =
-        p.panel_top + legend_title_height + (double(n % rows_per_column) + 0.5) * line_height;
+    const std::size_t column =
+        p.legend_below ? n % std::size_t(legend_columns) : n / std::size_t(rows_per_column);
+    const std::size_t row =
+        p.legend_below ? n / std::size_t(legend_columns) : n % std::size_t(rows_per_column);
+    const double left = legend_left + double(column) * column_width;
+    const double mid = legend_top + legend_title_height + (double(row) + 0.5) * line_height;
     const Rgb colour = SeriesColour(n);
     const int own_marker = SeriesMarker(n);
     const bool asked = series_[n].markers || !series_[n].lines;
@@ -316,7 +360,7 @@ ChartPicture LineChart::Draw() const {
     if (asked || own_marker > 0)
       DrawMarker(canvas, std::max(asked ? 1 : 0, own_marker), left + 0.5 * swatch, mid,
                  marker_radius, colour);
-    canvas.Text(left + swatch + 0.5 * fs, mid, Fitted(canvas, series_[n].name, fs, name_room), fs,
+    canvas.Text(left + swatch + 0.5 * fs, mid, Fitted(canvas, series_[n].name, fs, entry_room), fs,
                 kAxisColour, Align::kStart, Align::kCentre);
   }
   return p;

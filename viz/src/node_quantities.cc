@@ -33,6 +33,13 @@ bool IsSignedQuantity(const std::string& quantity) {
   return quantity == "vorticity" || quantity == "A12" || quantity == "pressure";
 }
 
+std::string QuantityDimensions(const std::string& quantity) {
+  if (quantity == "speed") return "L T-1";
+  if (quantity == "vorticity") return "T-1";
+  if (quantity == "pressure") return "M L-1 T-2";
+  return "1";
+}
+
 std::vector<std::string> DatasetsOf(const std::string& quantity) {
   if (quantity == "speed" || quantity == "vorticity") return {"u", "v"};
   if (quantity == "pressure") return {"p"};

@@ -27,6 +27,77 @@ std::string ListSteps(const std::vector<long>& steps) {
   return (shown < steps.size() ? "..., " : "") + text;
 }
 
+// Each particle's angle at record r: the stored /angle, else the trapezoidal integral of the
+// recorded angular velocity from the first record.
+std::vector<double> RecordAngles(const ParticleHistory& h, std::size_t r) {
+  const std::size_t np = h.particles;
+  if (h.angle.size() == h.records * np) {
+    return std::vector<double>(h.angle.begin() + r * np, h.angle.begin() + (r + 1) * np);
+  }
+  std::vector<double> angle(np, 0.0);
+  for (std::size_t s = 1; s <= r; ++s) {
+    for (std::size_t k = 0; k < np; ++k) {
+      angle[k] += 0.5 * (h.time[s] - h.time[s - 1]) *
+                  (h.angular_velocity[s * np + k] + h.angular_velocity[(s - 1) * np + k]);
+    }
+  }
+  return angle;
+}
+
+// The angles at time t from particles.h5 (between records: linear), or none without the file.
+std::vector<double> AnglesAt(const std::string& results_dir, double t, std::size_t np) {
+  const fs::path path = fs::path(results_dir) / "particles.h5";
+  std::error_code ec;
+  if (np == 0 || !fs::exists(path, ec)) return {};
+  const ParticleHistory h = ReadParticleHistory(path.string());
+  if (h.particles != np || h.records == 0) return {};
+  std::size_t r = 0;
+  while (r + 1 < h.records && h.time[r + 1] <= t) ++r;
+  std::vector<double> angle = RecordAngles(h, r);
+  if (r + 1 < h.records && h.time[r] < t) {
+    const std::vector<double> next = RecordAngles(h, r + 1);
+    const double w = (t - h.time[r]) / (h.time[r + 1] - h.time[r]);
+    for (std::size_t k = 0; k < np; ++k) angle[k] += w * (next[k] - angle[k]);
+  }
+  return angle;
+}
+
+// The disks of a format-1 snapshot from particles.h5: the record of its step, else interpolated
+// linearly in time between the records around it, else the nearest record (frame.particles_note).
+void DisksFromRecords(const ParticleHistory& h, ResultsFrame& frame) {
+  const std::size_t np = h.particles;
+  std::size_t a = h.records, b = h.records;  // the records at or before, and after, the snapshot
+  for (std::size_t r = 0; r < h.records; ++r) {
+    if (h.step[r] == frame.step) a = b = r;
+    if (a == r) break;
+    if (h.time[r] <= frame.time) a = r;
+    if (h.time[r] > frame.time && b == h.records) b = r;
+  }
+  double w = 0.0;
+  if (a == b) {
+    frame.particles_time = h.time[a];
+  } else if (a < h.records && b < h.records) {
+    w = (frame.time - h.time[a]) / (h.time[b] - h.time[a]);
+    frame.particles_time = frame.time;
+    frame.particles_note =
+        "particles interpolated linearly between the records at t = " + FormatLabel(h.time[a]) +
+        " and t = " + FormatLabel(h.time[b]) + " (a snapshot of results format 1 holds none)";
+  } else {
+    a = b = a < h.records ? a : b;
+    frame.particles_time = h.time[a];
+    frame.particles_note = "particles from the nearest record, at t = " + FormatLabel(h.time[a]) +
+                           " (a snapshot of results format 1 holds none)";
+  }
+  const std::vector<double> angle_a = RecordAngles(h, a);
+  const std::vector<double> angle_b = RecordAngles(h, b);
+  for (std::size_t k = 0; k < np; ++k) {
+    const std::size_t pa = (a * np + k) * 2, pb = (b * np + k) * 2;
+    frame.disks.push_back({h.position[pa] + w * (h.position[pb] - h.position[pa]),
+                           h.position[pa + 1] + w * (h.position[pb + 1] - h.position[pa + 1]),
+                           h.radius[k], angle_a[k] + w * (angle_b[k] - angle_a[k]), true});
+  }
+}
+
 }  // namespace
 
 ResultsFrame LoadResultsFrame(const std::string& results_dir, long step,
@@ -109,33 +180,21 @@ ResultsFrame LoadResultsFrame(const std::string& results_dir, long step,
   }
 
   frame.particles_time = frame.time;
+  if (snapshot.has_particles) {
+    const SnapshotParticles& q = snapshot.particles;
+    const std::vector<double> angles =
+        q.angle.empty() ? AnglesAt(results_dir, frame.time, q.Count()) : q.angle;
+    for (std::size_t k = 0; k < q.Count(); ++k) {
+      frame.disks.push_back({q.position[2 * k], q.position[2 * k + 1], q.radius[k],
+                             angles.empty() ? 0.0 : angles[k], !angles.empty()});
+    }
+    return frame;
+  }
   const fs::path particles = fs::path(results_dir) / "particles.h5";
   std::error_code ec;
   if (fs::exists(particles, ec)) {
     const ParticleHistory history = ReadParticleHistory(particles.string());
-    if (history.records > 0 && history.particles > 0) {
-      std::size_t best = 0;
-      for (std::size_t r = 0; r < history.records; ++r) {
-        if (history.step[r] == frame.step) {
-          best = r;
-          break;
-        }
-        if (std::abs(history.time[r] - frame.time) < std::abs(history.time[best] - frame.time))
-          best = r;
-      }
-      frame.particles_time = history.time[best];
-      for (std::size_t k = 0; k < history.particles; ++k) {
-        const std::size_t at = (best * history.particles + k) * 2;
-        double angle = 0.0;
-        for (std::size_t r = 1; r <= best; ++r) {
-          angle += 0.5 * (history.time[r] - history.time[r - 1]) *
-                   (history.angular_velocity[r * history.particles + k] +
-                    history.angular_velocity[(r - 1) * history.particles + k]);
-        }
-        frame.disks.push_back(
-            {history.position[at], history.position[at + 1], history.radius[k], angle, true});
-      }
-    }
+    if (history.records > 0 && history.particles > 0) DisksFromRecords(history, frame);
   }
   return frame;
 }

@@ -2,15 +2,18 @@
 // real fonts), written as PNG, SVG or PDF by the output file's extension.
 //
 // Method: every drawing operation goes to a cairo recording surface of the canvas's size (in
-// pixels for PNG, in points, 1 pixel = 1 pt, for SVG and PDF); Write replays the recording onto an
+// pixels); Write replays the recording onto an
 // image, SVG or PDF surface, so one drawing gives all three formats with vector lines and text in
-// SVG and PDF. Text uses cairo's toy font API with DejaVu Sans (fonts-dejavu-core, found through
-// fontconfig): real outlines with descenders, any size. Coordinates are continuous, y down; the
-// pixel (i, j) covers [i, i+1) x [j, j+1). Lines, circles and text are antialiased; Raster paints
-// a block of pixels exactly (nearest filter at scale 1), so field pictures keep exact colours.
-// Files are written through a temporary name and renamed (design.md 3.2).
-// Not supported: other formats, text layout beyond one line (no pango), transparency in output.
-// References: cairo 1.16 manual, https://www.cairographics.org/manual/.
+// SVG and PDF. The canvas has a resolution (dots per inch, default 72): an SVG or PDF page is
+// width x height pixels at that resolution (width * 72 / dpi points), so a figure drawn at
+// 3.5 in x 300 dpi is a 3.5 in page whose embedded field raster has 300 pixels an inch. PNG
+// files are the pixels. Text uses cairo's toy font API with DejaVu Sans (fonts-dejavu-core, found
+// through fontconfig): real outlines with descenders, any size. Coordinates are continuous, y down;
+// the pixel (i, j) covers [i, i+1) x [j, j+1). Lines, circles and text are antialiased; Raster
+// paints a block of pixels exactly (nearest filter at scale 1), so field pictures keep exact
+// colours. Files are written through a temporary name and renamed (design.md 3.2). Not supported:
+// other formats, text layout beyond one line (no pango), transparency in output. References:
+// cairo 1.16 manual, https://www.cairographics.org/manual/.
 #pragma once
 
 #include <cairo.h>
@@ -68,6 +71,12 @@ class Canvas {
 
   int Width() const { return width_; }
   int Height() const { return height_; }
+  // Dots per inch of SVG and PDF output (see the header); throws InvalidParameter unless in
+  // [10, 4800].
+  void SetResolution(double dpi);
+  double Resolution() const { return dpi_; }
+  // Draws `other` (its recording: vectors stay vectors) with its top left corner at (x, y).
+  void Place(const Canvas& other, double x, double y);
 
   void FillRect(double x, double y, double w, double h, Rgb colour);
   void StrokeRect(double x, double y, double w, double h, double line_width, Rgb colour);
@@ -112,6 +121,7 @@ class Canvas {
 
   int width_;
   int height_;
+  double dpi_ = 72.0;
   cairo_surface_t* recording_ = nullptr;
   cairo_t* cr_ = nullptr;
 };

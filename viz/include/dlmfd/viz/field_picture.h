@@ -16,21 +16,29 @@
 // movie's over all its frames) replaces the field's extremes as given; on a diverging scale zero
 // stays neutral and the sign stays the hue (colour_scale.h). The colour bar draws the same scale
 // from its bottom (min) to its top (max). A constant field takes the middle colour (no division
-// by zero); NaN/Inf pixels are grey.
+// by zero); NaN/Inf pixels are grey. A `percentile` below 100 takes the automatic range from the
+// values' percentiles instead of their extremes: [P_(100-p), P_p] of the finite values, or on a
+// diverging scale [-m, m] with m the p-th percentile of |value| (a single spike at a disk surface
+// no longer sets the scale of the whole wake); values beyond the range take the end colours and the
+// colour bar shows a triangle at each end that is exceeded.
 // Isolines: the exact level sets of the P1 field (isolines.h) at `isolines` values evenly spaced
 // inside the colour range (in log10 with log_colours), marked on the colour bar too: white over
 // viridis, black over cool to warm (white would vanish in its light middle); with fill = false
 // only the isolines are drawn, in black on white, as in the paper's figures ("isovalues of
 // trA"). Arrows: the P1 velocity at the centres of a regular lattice of
-// `arrows` columns, the longest arrow one lattice spacing; the caption's key gives the speed of
-// that length. Particles: circles of their radius at their centres (the same scale on both axes),
-// white with a black rim, with a radius drawn at their rotation angle (the angle the record's
-// angular velocity integrates to, results_frame.h), clipped to the panel.
-// CropField cuts a field down to the nodes of a window, for close-ups of particles.
-// Layout: the panel keeps the domain's aspect ratio (to within one pixel) and is as large as fits
-// in max_width x max_height with the caption above, the axes' labels and the colour bar; the image
-// is no larger. Text in DejaVu Sans (canvas.h), sized with the picture.
-// Not supported: periodic images of particles that cross a periodic side, streamlines.
+// `arrows` columns, the longest arrow one lattice spacing; the key below the panel, right of the x
+// title and clear of it, draws the largest round (1-2-5) speed not above the longest arrow's at its
+// own length. Streamlines (streamlines.h) are drawn over the field as thin lines with an arrowhead
+// at their middle. Particles: circles of their radius at their centres (the same scale on both
+// axes), white with a black rim, with a radius drawn at their rotation angle (the angle the
+// record's angular velocity integrates to, results_frame.h), clipped to the panel. CropField cuts a
+// field down to the nodes of a window, for close-ups of particles. Layout: the panel keeps the
+// domain's aspect ratio (to within one pixel) and is as large as fits in max_width x max_height
+// with the caption above, the axes' labels and the colour bar; the image is no larger. Text in
+// DejaVu Sans (canvas.h), font_size pixels (default: the picture's smaller side / 55, at least 9:
+// text grows with the picture), lines in proportion to the text, so a figure drawn at size x dpi
+// keeps its proportions at any resolution. Not supported: periodic images of particles that cross a
+// periodic side.
 #pragma once
 
 #include <string>
@@ -75,11 +83,17 @@ struct PictureOptions {
   bool fixed_range = false;  // colour range [range_min, range_max] instead of the field's
   double range_min = 0.0;
   double range_max = 1.0;
-  int isolines = 0;      // number of isovalues drawn (0: none)
-  bool fill = true;      // false: isolines only, black on white
-  int arrows = 0;        // columns of velocity arrows (0: none; needs a NodeVelocity)
-  int exact_width = 0;   // > 0: the image is exactly this wide and high (movie frames),
-  int exact_height = 0;  // the panel centred in the room it leaves
+  int isolines = 0;           // number of isovalues drawn (0: none)
+  bool fill = true;           // false: isolines only, black on white
+  int arrows = 0;             // columns of velocity arrows (0: none; needs a NodeVelocity)
+  int exact_width = 0;        // > 0: the image is exactly this wide and high (movie frames),
+  int exact_height = 0;       // the panel centred in the room it leaves
+  double font_size = 0.0;     // text size in pixels (0: the picture's smaller side / 55, >= 9)
+  double percentile = 100.0;  // automatic colour range from percentiles (see the header)
+  std::string x_title = "x";  // axis titles (with units when the caller knows them)
+  std::string y_title = "y";
+  std::string speed_units;  // after the arrow key's speed ("cm s-1"), or ""
+  int streamlines = 0;      // seed lattice columns of streamlines (0: none; needs a velocity)
 };
 
 struct FieldPicture {
@@ -99,6 +113,10 @@ struct FieldPicture {
   AxisTicks y_ticks;
   AxisTicks bar_ticks;       // of the colour bar, in field values
   double arrow_speed = 0.0;  // the speed drawn as one lattice spacing
+  double key_speed = 0.0;    // the round speed of the arrow key
+  bool clipped_low = false;  // values below / above the colour range (the bar's end triangles)
+  bool clipped_high = false;
+  int streamlines_drawn = 0;
   Grid grid;
   // Image pixel coordinates (continuous, y down) of a point of the domain.
   double PixelX(double x) const;

@@ -15,10 +15,16 @@
 // another shape as well: kPaletteSize x kDashCount x (1 + kMarkerShapes) distinct styles.
 // With equal_scale both axes show the same data length per pixel (trajectories keep their
 // shape): the range of the axis with fewer units per pixel is widened about its centre.
+// An axis with a fixed range [lo, hi] (the user's limits) shows that range exactly; points outside
+// it are clipped by the panel.
 // Layout: title on top, y-axis title written upwards left of the y tick labels, x tick labels and
 // x title below the panel, legend (with its title) to the right of the panel, in as many columns
-// as the panel's height needs; text in DejaVu Sans (canvas.h) sized with the picture.
-// Not supported: minor ticks, user-set axis ranges, a second y axis.
+// as the panel's height needs, or, when that would leave the panel less than half the width,
+// below the x title in as many columns as the width holds; legend entries are never cut (two
+// entries that differ stay different), except one wider than the whole picture. Text in DejaVu
+// Sans (canvas.h), font_size pixels (default: the smaller side / 46, at least 9; no upper bound),
+// lines in proportion.
+// Not supported: minor ticks, a second y axis.
 // References: M. Okabe, K. Ito, "Color Universal Design" (2008), https://jfly.uni-koeln.de/color/.
 #pragma once
 
@@ -44,6 +50,9 @@ struct ChartSeries {
 struct ChartAxis {
   std::string title;
   AxisScale scale = AxisScale::kLinear;
+  bool fixed = false;  // the range is [lo, hi] as given (lo < hi; > 0 on a log axis)
+  double lo = 0.0;
+  double hi = 1.0;
 };
 
 struct LineChartOptions {
@@ -54,6 +63,7 @@ struct LineChartOptions {
   ChartAxis y_axis;
   std::string legend_title;  // above the legend entries (e.g. the swept parameter)
   bool equal_scale = false;  // the same data length per pixel on both axes (linear axes only)
+  double font_size = 0.0;    // text size in pixels (0: the smaller side / 46, at least 9)
 };
 
 // The drawn chart and the mapping from data to image pixels (continuous coordinates, y down; the
@@ -70,6 +80,7 @@ struct ChartPicture {
   AxisScale y_scale = AxisScale::kLinear;
   AxisTicks x_ticks;
   AxisTicks y_ticks;
+  bool legend_below = false;  // the legend under the panel (too wide for its right)
   double PixelX(double x) const;
   double PixelY(double y) const;
 };

@@ -26,6 +26,9 @@ const std::vector<std::string>& PictureQuantities();
 std::string PictureQuantityList();
 // True for "vorticity", "A12" and "pressure" (above).
 bool IsSignedQuantity(const std::string& quantity);
+// The dimensions of a quantity in the scene's units (results_format.h): "L T-1" for the speed,
+// "T-1" for the vorticity, "M L-1 T-2" for the pressure, "1" for the conformation's.
+std::string QuantityDimensions(const std::string& quantity);
 // The snapshot datasets a quantity needs ("trA"; "u", "v"; "p"; "A11" ...).
 std::vector<std::string> DatasetsOf(const std::string& quantity);
 // omega = dv/dx - du/dy at the nodes of `grid` (at least 2 x 2 cells).

@@ -3,11 +3,14 @@
 // were at that step, ready for DrawFieldPicture.
 //
 // The snapshot is fields/snap_NNNNNN.h5 of the requested step, or the latest one. The default
-// quantity is trA when the snapshot has it (an Oldroyd-B run), else the speed. Particles come from
-// particles.h5: the record of the snapshot's step, else the record nearest in time (the particle
-// cadence need not include every field snapshot). A particle's rotation angle is the integral of
-// its recorded angular velocity from the first record (trapezoidal rule over the records; its
-// error is O(dt_record^2) times the angular acceleration).
+// quantity is trA when the snapshot has it (an Oldroyd-B run), else the speed. The particles are
+// those the snapshot holds at its own step (results format 2, field_snapshot.h), with their angle.
+// A snapshot written before that (format 1) has none: they come from particles.h5, the record of
+// the snapshot's step, else linearly interpolated in time between the two records around it (the
+// particle cadence need not include every field snapshot), else the nearest record; every case
+// but the first says so in particles_note. An angle not stored is the integral of the recorded
+// angular velocity from the first record (trapezoidal rule over the records; its error is
+// O(dt_record^2) times the angular acceleration).
 // The scene's title comes from scene.toml (line `title = "..."`) when the directory has one.
 #pragma once
 
@@ -26,7 +29,10 @@ struct ResultsFrame {
   double time = 0.0;
   long step = 0;
   std::string snapshot_path;
-  double particles_time = 0.0;  // time of the particle record used (== time when they match)
+  double particles_time = 0.0;  // time of the particle state drawn (== time when they match)
+  // "" when the particles are at the snapshot's own step; else how they were found
+  // ("interpolated between the records at t = 0.1 and 0.2"), for a warning.
+  std::string particles_note;
 };
 
 // step < 0: the latest snapshot. quantity: "" (trA if present, else speed) or one of
