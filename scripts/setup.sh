@@ -12,8 +12,12 @@ packages=(
   # The Python client (python/, docs/python.md) and its test: Debian's python3 with gRPC, protobuf,
   # h5py, numpy; pandas for its tables (tests/python/client_test.py).
   python3 python3-grpcio python3-protobuf python3-h5py python3-numpy python3-pandas
-  # fields.xmf opened in ParaView offscreen by pvbatch (tests/python/paraview_test.py).
-  paraview python3-paraview
+  # fields.xmf opened in ParaView offscreen by pvbatch, and a screenshot of it under Xvfb
+  # (tests/python/paraview_test.py); xarray for dlmfd.open (python/dlmfd/run.py); the venv and pip
+  # that install the Python package in its test; pdftotext reads the text of the pictures' PDFs
+  # (tests/e2e/publication_test.cc).
+  paraview python3-paraview xvfb xauth python3-xarray python3-venv python3-pip python3-setuptools
+  python3-wheel poppler-utils
   # The web dashboard (web/, docs/dashboard.md): cpp-httplib (it brings OpenSSL, zlib and brotli),
   # and its tests in Debian's headless Chromium driven by Selenium, screenshots read by Pillow.
   libcpp-httplib-dev chromium chromium-driver python3-selenium python3-pil

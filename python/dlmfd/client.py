@@ -10,11 +10,13 @@ and events are the generated protobuf messages (``job.id``, ``job.state``, ``eve
 
 import os
 import pathlib
+import re
+import time
 
 import grpc
 from google.protobuf import json_format
 
-from . import errors, scene_input, table
+from . import errors, scene_input, study_table
 from .axes import sweep_axes
 from .v1 import jobs_pb2, jobs_pb2_grpc
 
@@ -195,12 +197,84 @@ class Client:
                     handle.close()
                     os.remove(temporary)
         out.mkdir(parents=True, exist_ok=True)
-        job_json = json_format.MessageToJson(self.job(job_id), preserving_proto_field_name=True,
-                                             including_default_value_fields=True, indent=None)
-        temporary = out / ".job.json.part"
-        temporary.write_text(job_json + "\n")
-        os.replace(temporary, out / "job.json")
+        _write_job_json(out, self.job(job_id))
         return out
+
+    def fetch_sweep(self, sweep_id, out=None, paths=()):
+        """Fetches every job of a study (as `dlmfd fetch --sweep`): each into out/FOLDER, FOLDER
+        its point's "key=value,..." in the order of the axes (its name without parameters),
+        characters other than letters, digits and ._=,+*- made "_", a name taken twice getting
+        the job id appended; default out ./SWEEP_ID. Returns {folder path: Job}, oldest first."""
+        out = pathlib.Path(out if out is not None else sweep_id)
+        jobs = sorted(self.jobs(sweep_id=sweep_id), key=lambda j: (j.created_time, j.id))
+        if not jobs:
+            raise errors.NotFound(grpc.StatusCode.NOT_FOUND, f"study {sweep_id} has no jobs", "List")
+        fetched, taken = {}, set()
+        for job in jobs:
+            folder = point_folder(job)
+            if folder in taken:
+                folder += "." + job.id
+            taken.add(folder)
+            fetched[self.fetch(job.id, out / folder, paths)] = job
+        return fetched
+
+    def log(self, job_id, offset=0, max_bytes=0):
+        """One piece of the job's solver log (ReadLog): a LogChunk (data, offset, size,
+        finished)."""
+        return self._unary("ReadLog", jobs_pb2.ReadLogRequest(job_id=job_id, offset=offset,
+                                                              max_bytes=max_bytes))
+
+    def logs(self, job_id, follow=False, poll_seconds=1.0):
+        """The job's solver log as text (`dlmfd logs`); with follow=True, waits for what the
+        solver adds until the job has ended."""
+        text, offset = bytearray(), 0
+        while True:
+            chunk = self.log(job_id, offset)
+            text += chunk.data
+            offset = chunk.offset + len(chunk.data)
+            if offset < chunk.size:
+                continue
+            if not follow or chunk.finished:
+                return text.decode(errors="replace")
+            time.sleep(poll_seconds)
+
+    def inputs(self, job_id):
+        """The job's inputs (GetInputs): scene as submitted, overrides, scene_as_run (empty
+        before the solver wrote it)."""
+        return self._unary("GetInputs", jobs_pb2.GetInputsRequest(job_id=job_id))
+
+    def delete(self, job_ids=(), sweep_id="", force=False):
+        """Deletes jobs' records and results (Delete; force: running ones too, cancelled
+        first). Returns (deleted job ids, freed bytes)."""
+        if isinstance(job_ids, str):
+            job_ids = [job_ids]
+        response = self._unary("Delete", jobs_pb2.DeleteRequest(job_ids=list(job_ids),
+                                                                sweep_id=sweep_id, force=force))
+        return list(response.deleted), response.freed_bytes
+
+    def set_priority(self, job_id, priority):
+        """Sets a job's priority, -1000..1000, higher first (SetPriority); returns the Job."""
+        return self._unary("SetPriority", jobs_pb2.SetPriorityRequest(job_id=job_id,
+                                                                      priority=priority))
+
+    def hold(self, job_id):
+        """Keeps a queued job from starting (Hold); returns the Job."""
+        return self._unary("Hold", jobs_pb2.HoldRequest(job_id=job_id))
+
+    def release(self, job_id):
+        """Lets a held job start again (Release); returns the Job."""
+        return self._unary("Release", jobs_pb2.HoldRequest(job_id=job_id))
+
+    def health(self, timeout=None):
+        """The daemon's grpc.health.v1 status ("SERVING", "NOT_SERVING", ...), as `dlmfd
+        health`; Unavailable when nothing answers. Needs no token."""
+        check = self._channel.unary_unary("/grpc.health.v1.Health/Check",
+                                          request_serializer=lambda _: b"",
+                                          response_deserializer=_health_status)
+        try:
+            return check(None, timeout=timeout or self.timeout)
+        except grpc.RpcError as error:
+            raise errors.from_rpc_error(error, "Health/Check") from None
 
     def table(self, sweep_id="", jobs=None, tag="", states=(), frame=None):
         """One row per job, from the Table rpc (the columns of `dlmfd table`, table.py): the
@@ -220,10 +294,42 @@ class Client:
             for start in range(0, len(ids), _TABLE_IDS):
                 request = jobs_pb2.TableRequest(job_ids=ids[start:start + _TABLE_IDS])
                 rows.extend(self._unary("Table", request).rows)
-        return table.as_table(table.rows_of(rows), frame)
+        return study_table.as_table(study_table.rows_of(rows), frame)
 
 
 _TABLE_IDS = 1000  # the most job ids one Table rpc takes
+
+_HEALTH = {0: "UNKNOWN", 1: "SERVING", 2: "NOT_SERVING", 3: "SERVICE_UNKNOWN"}
+
+
+def _health_status(data):
+    """The status of a grpc.health.v1.HealthCheckResponse: its one field, 1, a varint enum (the
+    message is decoded by hand: Debian has no grpc_health package)."""
+    status, shift, k = 0, 0, 0
+    if data[:1] == b"\x08":
+        k = 1
+        while k < len(data):
+            status |= (data[k] & 0x7F) << shift
+            shift += 7
+            k += 1
+            if not data[k - 1] & 0x80:
+                break
+    return _HEALTH.get(status, str(status))
+
+
+def point_folder(job):
+    """The folder name of a study's job, as `dlmfd fetch --sweep` names it."""
+    name = ",".join(f"{p.key}={p.text}" for p in job.parameters) or job.name or job.id
+    name = re.sub(r"[^A-Za-z0-9._=,+*\-]", "_", name)
+    return (job.id if name in (".", "..") else name)[:200]
+
+
+def _write_job_json(out, job):
+    job_json = json_format.MessageToJson(job, preserving_proto_field_name=True,
+                                         including_default_value_fields=True, indent=None)
+    temporary = out / ".job.json.part"
+    temporary.write_text(job_json + "\n")
+    os.replace(temporary, out / "job.json")
 
 
 def _state_values(states):

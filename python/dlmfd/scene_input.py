@@ -11,10 +11,20 @@ import os
 import pathlib
 
 
+def _looks_like_a_path(text):
+    """One line with no "=": no scene (every TOML key-value line has one) but a file name."""
+    return "\n" not in text and "=" not in text and text.strip() != ""
+
+
 def scene_text(scene):
-    """The TOML text of a scene given as text or as a path."""
-    if isinstance(scene, os.PathLike):
-        return pathlib.Path(scene).read_text()
+    """The TOML text of a scene given as text or as a path. A path (a PathLike, or one line
+    without "=") that names no file raises FileNotFoundError naming it."""
+    if isinstance(scene, os.PathLike) or (isinstance(scene, str) and _looks_like_a_path(scene)):
+        path = pathlib.Path(scene)
+        if not path.is_file():
+            raise FileNotFoundError(f"scene file {path} does not exist" if not path.exists()
+                                    else f"scene file {path} is not a file")
+        return path.read_text()
     if isinstance(scene, str) and "\n" not in scene and os.path.isfile(scene):
         return pathlib.Path(scene).read_text()
     if not isinstance(scene, str):

@@ -61,8 +61,26 @@ def rows_of(table_rows):
     return rows
 
 
+TEXT_COLUMNS = ("job", "name", "state", "status", "reason", "dir", "title")
+
+
+def typed_columns(frame, pandas):
+    """A column whose values are numbers or None becomes numeric (None -> NaN; int64 when every
+    value is a whole number and none is missing), not object; so does one with no value at all
+    (a one-particle run's min_gap), except the text columns (TEXT_COLUMNS)."""
+    for column in frame.columns:
+        values = [v for v in frame[column] if v is not None]
+        numbers = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values)
+        if values and numbers:
+            frame[column] = pandas.to_numeric(frame[column], errors="coerce")
+        elif not values and column not in TEXT_COLUMNS:
+            frame[column] = pandas.to_numeric(frame[column], errors="coerce").astype("float64")
+    return frame
+
+
 def as_table(rows, frame=None):
-    """rows as a pandas DataFrame when frame is True, or None and pandas imports; else the list."""
+    """rows as a pandas DataFrame when frame is True, or None and pandas imports; else the list.
+    Numeric columns with missing values are float64 with NaN (typed_columns)."""
     if frame is False:
         return rows
     try:
@@ -71,4 +89,4 @@ def as_table(rows, frame=None):
         if frame:
             raise
         return rows
-    return pandas.DataFrame(rows)
+    return typed_columns(pandas.DataFrame(rows), pandas)

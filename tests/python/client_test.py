@@ -148,6 +148,42 @@ class ClientTest(unittest.TestCase):
                                        "particles.*.density=1.2]")
         self.client.cancel_sweep(sweep_id)
 
+    def test_every_verb_of_the_cli(self):
+        """health, inputs, logs, priority, hold, release, a study's fetch and delete (the CLI's
+        verbs beyond submit, watch, fetch and table)."""
+        self.assertEqual(self.client.health(), "SERVING")
+        with dlmfd.Client(self.daemon.address, token="") as anonymous:
+            self.assertEqual(anonymous.health(), "SERVING")  # needs no token
+        # Two points that run one at a time: the second waits, queued, while the first runs.
+        sweep_id, jobs = self.client.sweep(support.settling_scene(end=1.0, fields_every=0.5),
+                                           {"fluid.relaxation_time": [0.2, 0.5]},
+                                           name="verbs", max_running=1)
+        waiting = jobs[1]
+        held = self.client.hold(waiting.id)
+        self.assertTrue(held.held)
+        self.assertEqual(self.client.set_priority(waiting.id, 7).priority, 7)
+        self.assertFalse(self.client.release(waiting.id).held)
+        inputs = self.client.inputs(jobs[0].id)
+        self.assertEqual(list(inputs.overrides), ["fluid.relaxation_time=0.2"])
+        self.assertIn("[[particles]]", inputs.scene)
+        finished = [self.client.wait(j.id) for j in jobs]
+        self.assertEqual([dlmfd.state_name(j.state) for j in finished], ["COMPLETED"] * 2)
+        self.assertIn("relaxation_time = 0.2", self.client.inputs(jobs[0].id).scene_as_run)
+        log = self.client.logs(jobs[0].id)
+        self.assertIn("step", log)
+        with tempfile.TemporaryDirectory() as out:
+            fetched = self.client.fetch_sweep(sweep_id, out, paths=["summary.json"])
+            folders = sorted(os.path.basename(str(p)) for p in fetched)
+            self.assertEqual(folders, ["fluid.relaxation_time=0.2", "fluid.relaxation_time=0.5"])
+            for folder in fetched:
+                self.assertTrue(os.path.exists(os.path.join(folder, "summary.json")))
+                self.assertTrue(os.path.exists(os.path.join(folder, "job.json")))
+        deleted, freed = self.client.delete(sweep_id=sweep_id)
+        self.assertEqual(sorted(deleted), sorted(j.id for j in jobs))
+        self.assertGreater(freed, 0)
+        with self.assertRaises(dlmfd.NotFound):
+            self.client.job(jobs[0].id)
+
     def test_errors_are_exceptions_naming_the_field(self):
         with self.assertRaises(dlmfd.InvalidArgument) as bad_value:
             self.client.submit(support.settling_scene(), ["fluid.viscosity=-1"])

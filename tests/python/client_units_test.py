@@ -16,7 +16,8 @@ support.skip_unless_importable("grpc", "google.protobuf", "h5py", "numpy")
 
 import grpc  # noqa: E402
 
-from dlmfd import Range, errors, scene_input, table  # noqa: E402
+from dlmfd import Range, errors, scene_input  # noqa: E402
+from dlmfd import study_table as table  # noqa: E402
 from dlmfd.axes import sweep_axes  # noqa: E402
 from dlmfd.v1 import jobs_pb2  # noqa: E402
 

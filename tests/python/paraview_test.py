@@ -2,8 +2,10 @@
 run of dlmfd-solve, opened offscreen by pvbatch with each of ParaView's XDMF readers (XDMF2 "Xdmf
 Reader", Xdmf3ReaderS, Xdmf3ReaderT). Checks, per reader: the number of time steps and their
 times (those of the snapshots), the bounds (the X-Y plane, z = 0, x and y not swapped), the
-array names and components (velocity a 3-component vector), and at one node its coordinates and
-every value against the snapshot read with h5py (the same doubles: compared exactly).
+array names and components (velocity a 3-component vector), the block names (the same at every
+time: velocity_mesh, pressure_mesh, particles), at one node its coordinates and every value, and
+the disk's point, radius, angle and velocity against the snapshot read with h5py (the same doubles:
+compared exactly).
 
 Run by ctest (label paraview) as `python3 paraview_test.py`; exits 77 (skipped) only when
 ParaView's pvbatch is not installed (Debian: paraview, python3-paraview; scripts/setup.sh installs
@@ -65,6 +67,11 @@ class ParaViewTest(unittest.TestCase):
             with open(out) as f:
                 cls.seen = json.load(f)
 
+    @staticmethod
+    def kind_order(reader, block):
+        return ("particles" if "radius" in block["arrays"] else
+                "pressure_mesh" if "p" in block["arrays"] else "velocity_mesh")
+
     def check_reader(self, reader):
         log = self.pvbatch.stdout + self.pvbatch.stderr
         self.assertEqual(self.pvbatch.returncode, 0, log)
@@ -75,10 +82,27 @@ class ParaViewTest(unittest.TestCase):
         for snapshot, step in zip(self.snapshots, seen["steps"]):
             with h5py.File(os.path.join(self.results, "fields", snapshot), "r") as f:
                 self.assertEqual(step["time"], f.attrs["time"])
-                by_kind = {("velocity" if "velocity" in b["arrays"] else "pressure"): b
-                           for b in step["blocks"]}
-                self.assertEqual(sorted(by_kind), ["pressure", "velocity"], step["blocks"])
-                velocity, pressure = by_kind["velocity"], by_kind["pressure"]
+                # The same blocks at every time, in the same order: named velocity_mesh,
+                # pressure_mesh, particles by the XDMF Reader (a block selected by name at t = 0
+                # is there at every t); the Xdmf3 readers give them no names.
+                kinds = [("particles" if "radius" in b["arrays"] else
+                          "pressure_mesh" if "p" in b["arrays"] else "velocity_mesh")
+                         for b in step["blocks"]]
+                names = [b["name"] for b in step["blocks"]]
+                self.assertEqual(sorted(kinds), ["particles", "pressure_mesh", "velocity_mesh"])
+                self.assertEqual(kinds, [self.kind_order(reader, b) for b in seen["steps"][0]["blocks"]])
+                self.assertEqual(names, kinds if reader == "XDMFReader" else ["", "", ""])
+                by_name = dict(zip(kinds, step["blocks"]))
+                velocity, pressure = by_name["velocity_mesh"], by_name["pressure_mesh"]
+                particles = by_name["particles"]
+                self.assertEqual(particles["points"], 1)
+                self.assertEqual(particles["arrays"], {"radius": 1, "velocity": 3,
+                                                       "angular_velocity": 1, "angle": 1, "id": 1})
+                g = f["particles"]
+                self.assertEqual(particles["point"], [*g["position"][0], 0.0])
+                self.assertEqual(particles["values"]["radius"], [g["radius"][0]])
+                self.assertEqual(particles["values"]["angle"], [g["angle"][0]])
+                self.assertEqual(particles["values"]["velocity"], [*g["velocity"][0], 0.0])
                 # The X-Y plane at z = 0: x over the width 1, y over the height 2.
                 self.assertEqual(velocity["bounds"], [0.0, 1.0, 0.0, 2.0, 0.0, 0.0])
                 self.assertEqual(pressure["bounds"], [0.0, 1.0, 0.0, 2.0, 0.0, 0.0])
@@ -100,6 +124,38 @@ class ParaViewTest(unittest.TestCase):
         first = seen["steps"][0]["blocks"]
         last = seen["steps"][-1]["blocks"]
         self.assertNotEqual(first, last)
+
+    def test_screenshot_of_trA_with_the_disks(self):
+        """trA with the disk as a black glyph, rendered by pvbatch under Xvfb (what a headless
+        screenshot needs: scripts/setup.sh installs xvfb): the image is not blank (many colours
+        of the trA map) and the pixel at the disk's centre is the glyph's black, the pixels two
+        radii to its sides colours of the field."""
+        xvfb_run = shutil.which("xvfb-run")
+        self.assertIsNotNone(xvfb_run, "xvfb-run is missing (Debian: xvfb; scripts/setup.sh)")
+        png = os.path.join(self.dir, "trA.png")
+        out = os.path.join(self.dir, "screenshot.json")
+        shot = subprocess.run(
+            [xvfb_run, "-a", "-s", "-screen 0 640x800x24", PVBATCH,
+             os.path.join(os.path.dirname(__file__), "paraview_screenshot.py"),
+             os.path.join(self.results, "fields.xmf"), png, out],
+            capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
+        self.assertEqual(shot.returncode, 0, shot.stdout + shot.stderr)
+        with open(out) as f:
+            seen = json.load(f)
+        import numpy  # noqa: E402
+        from PIL import Image  # noqa: E402  (python3-pil, a dependency of python3-matplotlib)
+        image = numpy.asarray(Image.open(png).convert("RGB"))
+        self.assertEqual(image.shape[:2], (600, 300))
+        colours = {tuple(c) for c in image.reshape(-1, 3)[::7]}
+        self.assertGreater(len(colours), 20, "the screenshot is blank or flat")
+        # The disk's centre in image rows (VTK's display y goes up) is the glyph's black, and
+        # points two radii to its sides are colours of the trA field (neither black nor the
+        # white background).
+        x, y = seen["display"][0], image.shape[0] - 1 - seen["display"][1]
+        self.assertEqual(tuple(image[int(y), int(x)]), (0, 0, 0), seen)
+        for side in (-2, 2):
+            beside = tuple(image[int(y), int(x + side * seen["display_radius"])])
+            self.assertNotIn(beside, ((0, 0, 0), (255, 255, 255)), seen)
 
     def test_xdmf2_reader(self):
         self.check_reader("XDMFReader")

@@ -1,7 +1,8 @@
 # The Python tests, run by Debian's python3 (its python3-* packages: scripts/setup.sh):
 #   python    the client package (python/): its own logic (client_units_test.py), and against the
 #             real daemon on loopback (client_test.py)
-#   paraview  fields.xmf in ParaView's XDMF readers, through pvbatch (paraview_test.py)
+#   paraview  fields.xmf in ParaView's XDMF readers, through pvbatch, and a screenshot of trA with
+#             the disks as glyphs under Xvfb (paraview_test.py)
 # Each exits 77, which ctest reports as skipped, only when what it needs is not installed; the
 # message names the Debian package.
 if(EXISTS /usr/bin/python3)
@@ -21,6 +22,16 @@ set(python_env "DLMFD_BINARY_DIR=${PROJECT_BINARY_DIR}" "PYTHONDONTWRITEBYTECODE
 if(TARGET dlmfd_python)
   add_test(NAME PythonClient.OwnLogic COMMAND ${DLMFD_TEST_PYTHON} ${python_tests}/client_units_test.py -v)
   set_tests_properties(PythonClient.OwnLogic PROPERTIES LABELS python SKIP_RETURN_CODE 77
+    ENVIRONMENT "${python_env};PYTHONPATH=${DLMFD_PYTHON_DIR}")
+endif()
+if(TARGET dlmfd_python AND TARGET dlmfd-solve)
+  # dlmfd.open and dlmfd.table on real runs (run_reader_test.py); the package installed into a
+  # fresh venv by pip (package_test.py).
+  add_test(NAME PythonClient.ReadsRuns COMMAND ${DLMFD_TEST_PYTHON} ${python_tests}/run_reader_test.py -v)
+  set_tests_properties(PythonClient.ReadsRuns PROPERTIES LABELS python SKIP_RETURN_CODE 77
+    ENVIRONMENT "${python_env};PYTHONPATH=${DLMFD_PYTHON_DIR}")
+  add_test(NAME PythonClient.InstallsWithPip COMMAND ${DLMFD_TEST_PYTHON} ${python_tests}/package_test.py -v)
+  set_tests_properties(PythonClient.InstallsWithPip PROPERTIES LABELS python SKIP_RETURN_CODE 77
     ENVIRONMENT "${python_env};PYTHONPATH=${DLMFD_PYTHON_DIR}")
 endif()
 if(TARGET dlmfd_python AND TARGET dlmfdd)
