@@ -42,8 +42,8 @@ TEST(PercentileRange, ASpikeNoLongerSetsTheScaleOfASignedField) {
   EXPECT_LE(robust.value_max, 1.0);  // the 99th percentile of |value| of values in [-1, 1]
   EXPECT_GT(robust.value_max, 0.8);
   EXPECT_DOUBLE_EQ(robust.value_min, -robust.value_max);
-  EXPECT_TRUE(robust.clipped_high);  // the spike, marked by the bar's top triangle
-  EXPECT_FALSE(robust.clipped_low);
+  EXPECT_TRUE(robust.clipped_high);  // the spike (and the 1 % largest |values|): the top triangle
+  EXPECT_TRUE(robust.clipped_low);   // the saddle's corners at -1 lie beyond -m too
   // The extremes of a sequential field are not "clipped".
   options.diverging = false;
   options.percentile = 100.0;
