@@ -150,3 +150,6 @@ done
 chart "$runs"/5.1a_lambda* --y v --title "5.1a: v for three relaxation times" \
   -o "$out/5.1a_relaxation_sweep_v.png"
 ls -la "$out"
+
+# Figures 9 and 10 as (a)-(d) panels, one `dlmfd figure` each.
+bench/gallery_figures.sh "$runs" "$out" "$build" 0.0004

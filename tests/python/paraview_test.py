@@ -143,7 +143,7 @@ class ParaViewTest(unittest.TestCase):
         with open(out) as f:
             seen = json.load(f)
         import numpy  # noqa: E402
-        from PIL import Image  # noqa: E402  (python3-pil, a dependency of python3-matplotlib)
+        from PIL import Image  # noqa: E402  (python3-pil: scripts/setup.sh)
         image = numpy.asarray(Image.open(png).convert("RGB"))
         self.assertEqual(image.shape[:2], (600, 300))
         colours = {tuple(c) for c in image.reshape(-1, 3)[::7]}

@@ -344,7 +344,7 @@ ChartPicture LineChart::Draw() const {
                 Fitted(canvas, options_.legend_title, fs, width - legend_left - margin), fs,
                 kAxisColour, Align::kStart, Align::kStart, 0.0, true);
   }
-  const double entry_room = column_width - swatch - 0.5 * fs - margin;
+  const double entry_room = column_width - swatch - 0.5 * fs - margin + 1.0;  // + 1: rounding
   for (std::size_t n = 0; n < series_.size(); ++n) {
     const std::size_t column =
         p.legend_below ? n % std::size_t(legend_columns) : n / std::size_t(rows_per_column);
