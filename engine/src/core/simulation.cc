@@ -10,6 +10,11 @@
 // A step models no more than the scene needs: a Newtonian liquid (relaxation_time = 0 or
 // solvent_ratio = 1) builds no polymer, so no conformation arrays, no force and no step (35); a
 // scene without particles has no step (36)-(38).
+// The velocity the observers' snapshots see: with splitting.steady_correction = "tendency" the
+// velocity of step (33), u^{n+1/4}, the field whose steady state is the discrete steady solution
+// whatever dt (fluid/advection_wave.h; the end-of-step velocity u^{n+1} lies O(dt) from it); it is
+// kept only on the steps whose fields are written and lent to OnSnapshot by a swap, so the state
+// (u^{n+1}, what the next step and a checkpoint start from) is untouched. Otherwise u^{n+1}.
 // Initial state: u = 0 with the boundary data, the polymer's A^0, the particles of the scene at
 // rest or at their given velocities (ParticleStep::InitialStates).
 #include "dlmfd/core/simulation.h"
@@ -115,6 +120,24 @@ struct Simulation::Impl {
     report.Set("ms_stokes", Milliseconds(t0, Clock::now()));
   }
 
+  // With the tendency correction, snapshots show u^{n+1/4}: the observers' OnSnapshot sees it in
+  // place of u^{n+1} (swapped in and back, no copy).
+  struct StokesVelocityLent {
+    StokesVelocityLent(Impl& impl, bool lend)
+        : s(impl),
+          lent(lend) {
+      Swap();
+    }
+    ~StokesVelocityLent() { Swap(); }
+    void Swap() {
+      if (!lent) return;
+      s.state.u.swap(s.stokes_u);
+      s.state.v.swap(s.stokes_v);
+    }
+    Impl& s;
+    bool lent;
+  };
+
   // Step (34): u^{n+1/4} -> u^{n+2/4}.
   void AdvectVelocity(StepReport& report) {
     const auto t0 = Clock::now();
@@ -173,6 +196,8 @@ struct Simulation::Impl {
   std::unique_ptr<ParticleStep> particle_step;  // with particles only
   StepReport report;  // reused: its columns are created by the first step, overwritten after
   FlowState state;
+  // u^{n+1/4} of the last step whose fields were written (steady_correction = "tendency" only).
+  std::vector<double> stokes_u, stokes_v;
   std::vector<Observer*> observers;
 };
 
@@ -197,8 +222,23 @@ void Simulation::Step() {
   Impl& s = *impl_;
   const auto t0 = Clock::now();
   StepReport& report = s.report;
+  const OutputParams& out = s.params.output;
+  const long n = s.state.step + 1;
+  const double dt = s.params.time.dt;
+  const bool particles_due =
+      out.particles_every <= 0.0 ||
+      Period(n, dt, out.particles_every) > Period(n - 1, dt, out.particles_every);
+  const bool fields_due = out.fields_every > 0.0 &&
+                          Period(n, dt, out.fields_every) > Period(n - 1, dt, out.fields_every);
+  const bool show_stokes =
+      fields_due && s.params.splitting.steady_correction == SteadyCorrection::kTendency;
   s.boundary_data.SetTime(s.state.time + s.params.time.dt);  // the data of t_{n+1}
+  s.advection->BeginStep(s.state.u.data(), s.state.v.data());
   s.SolveStokes(report);
+  if (show_stokes) {
+    s.stokes_u.assign(s.state.u.begin(), s.state.u.end());
+    s.stokes_v.assign(s.state.v.begin(), s.state.v.end());
+  }
   s.AdvectVelocity(report);
   if (s.polymer) s.UpdateConformation(report);
   if (s.particle_step) s.MoveParticles(report);
@@ -210,18 +250,13 @@ void Simulation::Step() {
   report.time = s.state.time;
   report.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
 
-  const OutputParams& out = s.params.output;
-  const long n = s.state.step;
-  const double dt = s.params.time.dt;
-  const bool particles_due =
-      out.particles_every <= 0.0 ||
-      Period(n, dt, out.particles_every) > Period(n - 1, dt, out.particles_every);
-  const bool fields_due = out.fields_every > 0.0 &&
-                          Period(n, dt, out.fields_every) > Period(n - 1, dt, out.fields_every);
   for (Observer* o : s.observers) {
     o->OnStep(s.state, report);
     if (particles_due) o->OnParticles(s.state);
-    if (fields_due) o->OnSnapshot(s.state);
+    if (fields_due) {
+      const Impl::StokesVelocityLent lent(s, show_stokes);
+      o->OnSnapshot(s.state);
+    }
   }
   for (Observer* o : s.observers) o->OnStepEnd(s.state);
 }

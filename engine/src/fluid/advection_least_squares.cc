@@ -34,6 +34,12 @@ AdvectionLeastSquares::AdvectionLeastSquares(const Grid& grid, const DomainParam
   const std::size_t n = grid_.NodeCount();
   mass_.assign(n, 0.0);
   LumpedMassDiagonal(grid_, topo_, mass_.data());
+  tendency_ = correction == SteadyCorrection::kTendency;
+  if (tendency_) {
+    tu_.assign(grid_.NodeCount(), 0.0);
+    tv_.assign(grid_.NodeCount(), 0.0);
+    taylor_viscosity_ = 0.0;  // backward Euler's fixed point is exact: nothing to remove
+  }
   for (auto* a : {&su_,  &sv_,  &gxu_, &gyu_, &gxv_, &gyv_, &gxw_, &gyw_, &gxwv_, &gywv_, &t0u_,
                   &t0v_, &t1u_, &t1v_, &t2u_, &t2v_, &yu_,  &yv_,  &z1u_, &z1v_,  &z2u_,  &z2v_,
                   &ru_,  &rv_,  &gu_,  &gv_,  &wu_,  &wv_,  &s1_,  &s2_,  &s3_,   &s4_}) {
@@ -42,6 +48,13 @@ AdvectionLeastSquares::AdvectionLeastSquares(const Grid& grid, const DomainParam
 }
 
 AdvectionLeastSquares::~AdvectionLeastSquares() = default;
+
+void AdvectionLeastSquares::BeginStep(const double* u, const double* v) {
+  if (!tendency_) return;
+  std::copy(u, u + tu_.size(), tu_.begin());
+  std::copy(v, v + tv_.size(), tv_.begin());
+  entry_set_ = true;
+}
 
 void AdvectionLeastSquares::SetReference(const double* u, const double* v) {
   std::copy(u, u + su_.size(), su_.begin());
@@ -93,6 +106,14 @@ void AdvectionLeastSquares::Residual(const double* u, const double* v, double* o
   for (long k = 0; k < n; ++k) {
     out_u[k] = rdt * m[k] * (u[k] - su[k]) + rho * (u[k] * gxu[k] + v[k] * gyu[k]) + nub * ku[k];
     out_v[k] = rdt * m[k] * (v[k] - sv[k]) + rho * (u[k] * gxv[k] + v[k] * gyv[k]) + nub * kv[k];
+  }
+  if (tendency_) {
+    const double *ru = tu_.data(), *rv = tv_.data();
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      out_u[k] -= rho * m[k] * ru[k];
+      out_v[k] -= rho * m[k] * rv[k];
+    }
   }
   nodes_.ZeroKnown(out_u);
   nodes_.ZeroKnown(out_v);
@@ -233,6 +254,18 @@ AdvectionReport AdvectionLeastSquares::Solve(double* u, double* v) {
   AdvectionReport report;
   SetReference(u, v);
   const long n = static_cast<long>(mass_.size());
+  if (tendency_) {
+    // r = (u^{n+1/4} - u^n) / dt at the unknowns (0 without a BeginStep since the last Solve).
+    const double inv_dt = entry_set_ ? 1.0 / dt_ : 0.0;
+    entry_set_ = false;
+    const double* unknown = nodes_.unknown().data();
+    double *ru = tu_.data(), *rv = tv_.data();
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      ru[k] = unknown[k] == 0.0 ? 0.0 : (u[k] - ru[k]) * inv_dt;
+      rv[k] = unknown[k] == 0.0 ? 0.0 : (v[k] - rv[k]) * inv_dt;
+    }
+  }
   const int solves_per_p = helmholtz_ ? 2 : 0;
   // 1. T0 = T(u), y = P^-1 T0, r = T'^T y, g = P^-1 r, w = g.
   Residual(u, v, t0u_.data(), t0v_.data());
@@ -323,6 +356,15 @@ AdvectionReport AdvectionLeastSquares::Solve(double* u, double* v) {
     }
   }
   if (taylor_viscosity_ > 0.0) RemoveBackwardEulerTerm(u, v);
+  if (tendency_) {
+    const double *ru = tu_.data(), *rv = tv_.data();
+    const double dt = dt_;
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      u[k] -= dt * ru[k];
+      v[k] -= dt * rv[k];
+    }
+  }
   nodes_.SyncPeriodic(u);
   nodes_.SyncPeriodic(v);
   boundary_data_.Apply(u, v);

@@ -21,6 +21,12 @@ namespace dlmfd {
 // test checks Q = 1 and 2), and both are second order in tau; Q = 1 costs one K_V product per call
 // instead of two. The splitting's first-order error dominates the difference (docs/performance.md).
 constexpr int kMinSubsteps = 1;
+// The tendency correction's cap (header): with the wide form L(L u) in place of the compact K_V,
+// the step with the implicit viscosity of (33) is stable while |V|^4 dt^3 / (nu h^2) <= 13.8 (von
+// Neumann, constant V in every direction, both diagonals, Courant numbers 0.2-0.8 with the
+// sub-steps of max_courant 0.5: bench/wave_tendency_stability.py); half of it is used.
+constexpr double kWideFormBound = 13.8;
+constexpr double kWideFormShare = 0.5;
 // A velocity that would need more sub-steps than this is a blow-up (step (35) has the same bound):
 // without it a diverging run would spend hours sub-cycling one step instead of ending FAILED.
 constexpr int kMaxAdvectionSubsteps = 1000;
@@ -94,6 +100,12 @@ AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const
   LumpedMassDiagonal(grid_, topo_, mass_.data());
   for (auto* a : {&out_mass_, &vx_, &vy_, &u0_, &v0_, &u1_, &v1_, &ku_, &kv_, &gx_, &gy_})
     a->assign(n, 0.0);
+  tendency_ = correction == SteadyCorrection::kTendency;
+  if (tendency_) {
+    for (auto* a : {&ru_, &rv_, &srcu_, &srcv_, &epsu_, &epsv_}) a->assign(n, 0.0);
+    wide_viscosity_ = kWideFormShare * kWideFormBound * fluid.ImplicitViscosity(grid.h) /
+                      fluid.density * grid.h * grid.h;
+  }
   if (taylor_viscosity_ > 0.0) {
     utt_u_.assign(n, 0.0);
     utt_v_.assign(n, 0.0);
@@ -285,6 +297,13 @@ void AdvectionWave::RemoveTaylorTerm() {
   nodes_.SyncPeriodic(v);
 }
 
+void AdvectionWave::BeginStep(const double* u, const double* v) {
+  if (!tendency_) return;
+  std::copy(u, u + ru_.size(), ru_.begin());
+  std::copy(v, v + rv_.size(), rv_.begin());
+  entry_set_ = true;
+}
+
 void AdvectionWave::Record(const AdvectionReport& result, StepReport& report) const {
   report.Set("wave_substeps", result.iterations);
 }
@@ -314,10 +333,68 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
   const double* vy = vy_.data();
   std::copy(u, u + n, u0_.begin());
   std::copy(v, v + n, v0_.begin());
+  if (tendency_) {
+    // r = (u^{n+1/4} - u^n) / dt at the unknowns (0 without a BeginStep since the last Solve);
+    // src = M_out r - N(V, r).
+    const double inv_dt = entry_set_ ? 1.0 / dt_ : 0.0;
+    entry_set_ = false;
+    for (int c = 0; c < 2; ++c) {
+      const double* x0 = c == 0 ? u0_.data() : v0_.data();
+      double* r = c == 0 ? ru_.data() : rv_.data();
+      double* src = c == 0 ? srcu_.data() : srcv_.data();
+#pragma omp parallel for schedule(static)
+      for (long k = 0; k < n; ++k) r[k] = unknown[k] == 0.0 ? 0.0 : (x0[k] - r[k]) * inv_dt;
+      nodes_.SyncPeriodic(r);
+      ApplyIntegratedGradient(grid_, topo_, r, gx_.data(), gy_.data(), diagonals_);
+      const double* gx = gx_.data();
+      const double* gy = gy_.data();
+#pragma omp parallel for schedule(static)
+      for (long k = 0; k < n; ++k) src[k] = mo[k] * r[k] - (vx[k] * gx[k] + vy[k] * gy[k]);
+    }
+  }
   // Start: u^1 = u^0 + tau u_t + tau^2/2 u_tt, u_t = -M^-1 N(V, u^0), u_tt = -M^-1 (K_V u^0 + M_out
   // u_t).
   ApplyWaveStiffness(u0_.data(), v0_.data(), ku_.data(), kv_.data());
-  for (int c = 0; c < 2; ++c) {
+  for (int c = 0; c < 2 && tendency_; ++c) {
+    const double* x0 = c == 0 ? u0_.data() : v0_.data();
+    double* x1 = c == 0 ? u1_.data() : v1_.data();
+    const double* kx = c == 0 ? ku_.data() : kv_.data();
+    const double* r = c == 0 ? ru_.data() : rv_.data();
+    const double* src = c == 0 ? srcu_.data() : srcv_.data();
+    double* eps = c == 0 ? epsu_.data() : epsv_.data();
+    // eps first holds L u^0 = -M^-1 N(V, u^0) (0 at the Dirichlet nodes), then phi eps.
+    ApplyIntegratedGradient(grid_, topo_, x0, gx_.data(), gy_.data(), diagonals_);
+    {
+      const double* gx = gx_.data();
+      const double* gy = gy_.data();
+#pragma omp parallel for schedule(static)
+      for (long k = 0; k < n; ++k)
+        eps[k] = unknown[k] == 0.0 ? 0.0 : -(vx[k] * gx[k] + vy[k] * gy[k]) / m[k];
+    }
+    nodes_.SyncPeriodic(eps);
+    ApplyIntegratedGradient(grid_, topo_, eps, gx_.data(), gy_.data(), diagonals_);
+    const double* gx = gx_.data();
+    const double* gy = gy_.data();
+    const double dt3 = dt_ * dt_ * dt_, wide = wide_viscosity_;
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      if (unknown[k] == 0.0) {
+        x1[k] = x0[k];
+        eps[k] = 0.0;
+        continue;
+      }
+      const double ut = eps[k];
+      const double compact = -(kx[k] + mo[k] * ut) / m[k];
+      const double wide_form = -(vx[k] * gx[k] + vy[k] * gy[k]) / m[k];
+      const double utt = compact + (src[k] - mo[k] * r[k]) / m[k];  // + L r
+      x1[k] = x0[k] + tau * (ut + r[k]) + 0.5 * tau * tau * utt;
+      const double v2 = vx[k] * vx[k] + vy[k] * vy[k];
+      const double reach = dt3 * v2 * v2;  // dt^3 |V|^4
+      const double phi = reach > wide ? wide / reach : 1.0;
+      eps[k] = phi * (compact - wide_form);
+    }
+  }
+  for (int c = 0; c < 2 && !tendency_; ++c) {
     const double* x0 = c == 0 ? u0_.data() : v0_.data();
     double* x1 = c == 0 ? u1_.data() : v1_.data();
     const double* kx = c == 0 ? ku_.data() : kv_.data();
@@ -346,6 +423,8 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
     const double it2 = 1.0 / (tau * tau), i2t = 0.5 / tau;
     double *u0 = u0_.data(), *v0 = v0_.data();
     const double *u1 = u1_.data(), *v1 = v1_.data(), *ku = ku_.data(), *kv = kv_.data();
+    const double* srcu = tendency_ ? srcu_.data() : nullptr;
+    const double* srcv = tendency_ ? srcv_.data() : nullptr;
 #pragma omp parallel for schedule(static)
     for (long k = 0; k < n; ++k) {
       if (unknown[k] == 0.0) {
@@ -354,8 +433,9 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
         continue;
       }
       const double lhs = m[k] * it2 + mo[k] * i2t;
-      u0[k] = (m[k] * it2 * (2.0 * u1[k] - u0[k]) + mo[k] * i2t * u0[k] - ku[k]) / lhs;
-      v0[k] = (m[k] * it2 * (2.0 * v1[k] - v0[k]) + mo[k] * i2t * v0[k] - kv[k]) / lhs;
+      const double su = srcu ? srcu[k] : 0.0, sv = srcv ? srcv[k] : 0.0;
+      u0[k] = (m[k] * it2 * (2.0 * u1[k] - u0[k]) + mo[k] * i2t * u0[k] - ku[k] + su) / lhs;
+      v0[k] = (m[k] * it2 * (2.0 * v1[k] - v0[k]) + mo[k] * i2t * v0[k] - kv[k] + sv) / lhs;
     }
     nodes_.SyncPeriodic(u0);
     nodes_.SyncPeriodic(v0);
@@ -363,6 +443,16 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
     std::swap(v0_, v1_);
   }
   if (taylor_viscosity_ > 0.0) RemoveTaylorTerm();
+  if (tendency_) {
+    double *u1 = u1_.data(), *v1 = v1_.data();
+    const double *ru = ru_.data(), *rv = rv_.data(), *eu = epsu_.data(), *ev = epsv_.data();
+    const double dt = dt_, half_dt2 = 0.5 * dt_ * dt_;
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      u1[k] -= dt * ru[k] + half_dt2 * eu[k];
+      v1[k] -= dt * rv[k] + half_dt2 * ev[k];
+    }
+  }
   // Diffusion: (rho/dt) M u + nu_b K u = (rho/dt) M u_adv, Dirichlet data of t^{n+1}.
   if (helmholtz_) {
     double *fu = u0_.data(), *fv = v0_.data();

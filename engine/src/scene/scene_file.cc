@@ -144,10 +144,12 @@ void ReadTimeAndSplitting(TableReader& top, Params& p) {
       {{"least_squares", AdvectionScheme::kLeastSquares}, {"wave", AdvectionScheme::kWave}});
   // (ReadFluid first.) The correction's default: "taylor" in a Newtonian liquid.
   const bool corrected = p.fluid.IsNewtonian();
-  s.steady_correction = Choose<SteadyCorrection>(
-      "splitting.steady_correction",
-      splitting.String("steady_correction", corrected ? "taylor" : "none"),
-      {{"none", SteadyCorrection::kNone}, {"taylor", SteadyCorrection::kTaylor}});
+  s.steady_correction =
+      Choose<SteadyCorrection>("splitting.steady_correction",
+                               splitting.String("steady_correction", corrected ? "taylor" : "none"),
+                               {{"none", SteadyCorrection::kNone},
+                                {"taylor", SteadyCorrection::kTaylor},
+                                {"tendency", SteadyCorrection::kTendency}});
   splitting.RejectUnknown("alpha, beta, advection, constraint, steady_correction");
 }
 

@@ -115,7 +115,10 @@ std::string WriteScene(const Params& p) {
     << (p.splitting.advection == AdvectionScheme::kWave ? "wave" : "least_squares") << "\"\n";
   o << "constraint = \"" << ConstraintCouplingName(p.splitting.constraint) << "\"\n";
   o << "steady_correction = \""
-    << (p.splitting.steady_correction == SteadyCorrection::kTaylor ? "taylor" : "none") << "\"\n";
+    << (p.splitting.steady_correction == SteadyCorrection::kTaylor     ? "taylor"
+        : p.splitting.steady_correction == SteadyCorrection::kTendency ? "tendency"
+                                                                       : "none")
+    << "\"\n";
 
   const SolverParams& s = p.solvers;
   o << "\n[solvers]\n";

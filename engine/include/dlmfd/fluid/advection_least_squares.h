@@ -23,8 +23,13 @@
 // streamline diffusion dt |u|^2 (twice the wave-like step's). The correction adds theta dt M^-1
 // (N(u, u) - N(u*, u*)) to the result, node by node with theta = min(1, kappa nu_N / (dt |u*|^2)),
 // kappa = 1/2, the cap of fluid/advection_wave.h, so that (33) sees M^-1 N(u*, u*) where the cap
-// allows. Not supported: the symmetric-gradient viscous form (see StokesSolver). References:
-// Bristeau, Glowinski & Periaux, Comput. Phys. Rep. 6 (1987) 73-187; Glowinski (2003), section 26.
+// allows. Tendency correction (splitting.steady_correction = "tendency", see advection_wave.h):
+// the step solves backward Euler for the whole frozen tendency, T_c(u) - rho M_l r_c = 0 with r the
+// tendency of step (33), (u^{n+1/4} - u^n) / dt (u^n given by BeginStep), and returns u - dt r;
+// backward Euler's fixed point is exact, so at a steady state u = u^{n+1/4} and that velocity
+// solves the discrete steady equations whatever dt, with beta > 0 too (no cap). Not supported: the
+// symmetric-gradient viscous form (see StokesSolver). References: Bristeau, Glowinski & Periaux,
+// Comput. Phys. Rep. 6 (1987) 73-187; Glowinski (2003), section 26.
 #pragma once
 
 #include <array>
@@ -52,6 +57,7 @@ class AdvectionLeastSquares final : public VelocityAdvection {
 
   // In: u, v = u^{n+1/4}. Out: u, v = u^{n+2/4}.
   AdvectionReport Solve(double* u, double* v) override;
+  void BeginStep(const double* u, const double* v) override;
   // advection_iterations, advection_residual.
   void Record(const AdvectionReport& result, StepReport& report) const override;
 
@@ -95,6 +101,9 @@ class AdvectionLeastSquares final : public VelocityAdvection {
   std::vector<double> yu_, yv_, z1u_, z1v_, z2u_, z2v_;
   std::vector<double> ru_, rv_, gu_, gv_, wu_, wv_;
   std::vector<double> s1_, s2_, s3_, s4_;  // scratch
+  bool tendency_ = false;
+  bool entry_set_ = false;       // BeginStep since the last Solve
+  std::vector<double> tu_, tv_;  // u^n at BeginStep, then the Stokes tendency r
 };
 
 }  // namespace dlmfd

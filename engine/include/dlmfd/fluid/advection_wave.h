@@ -41,6 +41,28 @@
 // symbol is bounded by the Laplacian's; no test checks it. Measured: the stability limits of the
 // Newtonian runs did not move, while a polymer's did (docs/work_precision.md).
 //
+// Tendency correction (splitting.steady_correction = "tendency"; docs/work_precision.md, "The
+// splitting's fixed point"): the Taylor correction's cap leaves part of the term where the
+// streamline diffusion exceeds nu_N / 2 (near a lid, a disk, at Re 1000), and with Q > 1 the
+// sub-steps add O(dt^3) terms that do not vanish at a steady state. Here the step integrates the
+// whole frozen tendency, d_t u = L u + r, L u = -M^-1 N(V, u), r = (u^{n+1/4} - u^n) / dt the
+// tendency of step (33) (viscous, pressure, polymer and lagged multiplier forces; u^n given by
+// BeginStep), as the wave equation
+//   M u_tt + K_V u + M_out (u_t - r) + N(V, r) = 0,  u(0) = u^{n+1/4},  u_t(0) = L u(0) + r,
+// and returns u(dt) - dt r: to first order the plain advection, but every higher Taylor term acts
+// on the full tendency q = L u + r, which vanishes at a steady state. One discrete difference
+// remains: u_tt(0) = -M^-1 (K_V u + M_out L u) + L r, whose compact form of (V.grad)^2 u differs
+// from the wide one L(L u) by eps = O(h^2) (a fourth-order damping, V^2 h^2 d^4 / 4 along V: what
+// keeps the Lax-Wendroff step stable without viscosity). The step removes phi (dt^2/2) eps after
+// the sub-steps, node by node with phi = min(1, kappa C nu_N h^2 / (dt^3 |V|^4)), C = 13.8 the
+// bound below which the wide form with the implicit viscosity of (33) is stable (von Neumann,
+// constant V: bench/wave_tendency_stability.py), kappa = 1/2. Where phi = 1 the second-order term
+// is L q, and a fixed point of the splitting has q = 0 at every unknown: (33)'s velocity u^{n+1/4}
+// solves the discrete steady equations whatever dt and Q (the written velocity, core/simulation.cc;
+// u^{n+1} = u^{n+1/4} - dt r is O(dt) from it). Exact with beta = 0 (the default); the diffusion
+// part of (34) with beta > 0 is still split. Cost: two more G a component (of r and of L u), a copy
+// of u^n a step.
+//
 // References: Dean & Glowinski, C. R. Acad. Sci. Paris 325 (1997) 789-797; Glowinski, Pan, Hesla,
 // Joseph & Periaux, J. Comput. Phys. 169 (2001) 363-426.
 #pragma once
@@ -69,6 +91,7 @@ class AdvectionWave final : public VelocityAdvection {
 
   // In: u, v = u^{n+1/4}. Out: u, v = u^{n+2/4}. report.iterations = wave sub-steps Q.
   AdvectionReport Solve(double* u, double* v) override;
+  void BeginStep(const double* u, const double* v) override;
   // wave_substeps.
   void Record(const AdvectionReport& result, StepReport& report) const override;
 
@@ -107,6 +130,12 @@ class AdvectionWave final : public VelocityAdvection {
   std::vector<double> corners_[8];
   std::vector<double> u0_, v0_, u1_, v1_, ku_, kv_, gx_, gy_;
   std::vector<double> utt_u_, utt_v_;  // u_tt of the start, kept for the correction
+  bool tendency_ = false;
+  bool entry_set_ = false;           // BeginStep since the last Solve
+  double wide_viscosity_ = 0.0;      // kappa C nu_N h^2 (tendency only)
+  std::vector<double> ru_, rv_;      // u^n at BeginStep, then the Stokes tendency r
+  std::vector<double> srcu_, srcv_;  // M_out r - N(V, r)
+  std::vector<double> epsu_, epsv_;  // phi eps: the share of the compact-minus-wide term removed
   int outflow_normal_[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
   bool outflow_[4] = {false, false, false, false};
 };

@@ -38,6 +38,11 @@ inline double SteadyCorrectionShare(double streamline, double cap) {
 class VelocityAdvection {
  public:
   virtual ~VelocityAdvection() = default;
+  // Called before step (33) with u^n, the velocity the step starts from. With
+  // splitting.steady_correction = "tendency" the scheme keeps it: the tendency of (33) is
+  // (u^{n+1/4} - u^n) / dt. A Solve without a BeginStep since the last one takes that tendency as
+  // 0.
+  virtual void BeginStep(const double* /*u*/, const double* /*v*/) {}
   // In: u, v = u^{n+1/4}. Out: u, v = u^{n+2/4}.
   virtual AdvectionReport Solve(double* u, double* v) = 0;
   // Writes the scheme's columns of `report` from the result of Solve.
