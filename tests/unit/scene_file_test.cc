@@ -723,6 +723,11 @@ TEST(SceneFile, SteadyCorrectionFollowsTheLiquid) {
   }
   EXPECT_EQ(correction(""), SteadyCorrection::kTaylor);
   EXPECT_EQ(Params{}.splitting.steady_correction, SteadyCorrection::kNone);
+  // The tendency correction is named, with or without a polymer, and the scene as run keeps it.
+  const std::string tendency = "[splitting]\nsteady_correction = \"tendency\"\n";
+  EXPECT_EQ(correction(tendency), SteadyCorrection::kTendency);
+  EXPECT_EQ(correction(tendency + polymer), SteadyCorrection::kTendency);
+  EXPECT_EQ(correction(WriteScene(ParseScene(tendency))), SteadyCorrection::kTendency);
 }
 
 TEST(SceneFile, WriteSceneRoundTripsThePaperScene) {
