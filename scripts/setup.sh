@@ -1,6 +1,10 @@
 #!/usr/bin/env bash
-# Installs every build and run dependency from Debian 12's packages. Idempotent; needs root or sudo.
+# Installs every build and run dependency from Debian 12's packages, and the repository's
+# commit-msg hook (CONTRIBUTING.md). Idempotent; needs root or sudo.
 set -euo pipefail
+if git -C "$(dirname "$0")/.." rev-parse --git-dir > /dev/null 2>&1; then
+  git -C "$(dirname "$0")/.." config core.hooksPath scripts/git-hooks
+fi
 packages=(
   cmake g++ make pkg-config git
   libeigen3-dev libhdf5-dev hdf5-tools libfftw3-dev
@@ -9,6 +13,9 @@ packages=(
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
   libcairo2-dev fonts-dejavu-core ffmpeg
   libgtest-dev libgmock-dev libbenchmark-dev
+  # The code's habits checked in the tests (CONTRIBUTING.md): layout by clang-format, and
+  # clang-tidy's checks (.clang-tidy) on the files a change touches.
+  clang-format clang-tidy
   # The Python client (python/, docs/python.md) and its test: Debian's python3 with gRPC, protobuf,
   # h5py, numpy; pandas for its tables (tests/python/client_test.py).
   python3 python3-grpcio python3-protobuf python3-h5py python3-numpy python3-pandas

@@ -202,12 +202,12 @@ TEST(SimulationCoupling, FixedDiskInDrivenPeriodicBoxTakesTheBodyForceAsDrag) {
   EXPECT_GT(MaxAbs(sim.state().u), 0.0);
 }
 
-// Issue 13 point 8: cases/verification/periodic_box_large_disk.toml as shipped (a fixed disk D = 0.62
-// in a unit periodic box driven by a body force, h = 1/64, no particle_mesh.h). With the old default
-// h_p = 1/70 (h_p / h = 0.91) the multiplier CG of (37) stagnated at step 0 (500 iterations, the
-// run failed); the scene file's default 96/70 h puts it where bench/multiplier_conditioning.sh
-// measured 74-86 iterations a step (60-135 from h_p / h = 1.1 up, 284-420 at 0.5-0.75). The bound
-// 200 lies between those ranges.
+// Issue 13 point 8: cases/verification/periodic_box_large_disk.toml as shipped (a fixed disk D =
+// 0.62 in a unit periodic box driven by a body force, h = 1/64, no particle_mesh.h). With the old
+// default h_p = 1/70 (h_p / h = 0.91) the multiplier CG of (37) stagnated at step 0 (500
+// iterations, the run failed); the scene file's default 96/70 h puts it where
+// bench/multiplier_conditioning.sh measured 74-86 iterations a step (60-135 from h_p / h = 1.1 up,
+// 284-420 at 0.5-0.75). The bound 200 lies between those ranges.
 TEST(SimulationCoupling, LargeDiskInAPeriodicBoxConvergesFromStepZeroWithTheSceneDefaultMesh) {
   Params p = LoadSceneFile(std::string(DLMFD_SOURCE_DIR) +
                            "/cases/verification/periodic_box_large_disk.toml");
