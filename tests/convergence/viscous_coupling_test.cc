@@ -158,6 +158,8 @@ TEST(ViscousCoupling, CollocationPointsAroundAFixedDiskConverge) {
 // (the same physics, started cold every step). Measured 2026-12-04: 128, 14, 0,
 // 0, 0 outer iterations against 128 every step; F_x at t = 0.25 6.5141381 against 6.5139424 (3.0e-5
 // apart; at multiplier tolerance 1e-6 the two agree to 1e-7 at t = 0.2, 6.5139608 / 6.5139609).
+// With the recycled directions (FixedDiskStartsFromItsRecycledDirections): 128, 13, 0, 0, 0 and
+// 6.5140379 (1.5e-5 from the cold start).
 // Both runs stop at a rigid-motion mismatch of at most tol V (tol = 1e-4, V the largest velocity,
 // about the inflow's peak 0.3 and so the disk's velocity scale U), and a mismatch d on the disk
 // changes its Stokes drag by about (F / U) d: so |F_warm - F_cold| <= 2 tol (V / U) F, 2e-4 F with
@@ -204,6 +206,38 @@ TEST(ViscousCoupling, StallTightensTheCoupledStokesSolves) {
               log.iterations[0], log.stokes_tolerance[0], drag);
   EXPECT_NEAR(log.stokes_tolerance[0], 1e-8, 1e-12);  // one tightening from 1e-6
   EXPECT_NEAR(drag, 6.612541, 2e-4 * 6.612541);
+}
+
+// The recycled directions (particles/recycled_directions.h): around a fixed disk S is the same
+// operator at every step, so each step starts from the Galerkin correction in the span of the last
+// directions. The confined cylinder (cases/verification/confined_cylinder_oldroyd_b.toml:
+// Oldroyd-B, Wi = 0.6, the Stokes limit) at R/h = 8 with collocation points, 60 steps. Measured
+// 2026-12-04
+// (`dlmfd-solve` on this scene): 8.56 outer iterations a step over steps 11-60 before the change,
+// 3.18 with it; K = 96.46655 against 96.46745 at t = 0.3 (9e-6 apart). The test asks for at most
+// half the iterations of before, and the drag within the 2e-4 F that two runs stopping at a
+// mismatch of tol V allow (FixedDiskWarmStartsWithCollocationPoints).
+TEST(ViscousCoupling, FixedDiskStartsFromItsRecycledDirections) {
+  Params params = LoadSceneFile(
+      std::string(DLMFD_SOURCE_DIR) + "/cases/verification/confined_cylinder_oldroyd_b.toml",
+      {{"domain.h", "0.125"},
+       {"time.end", "0.3"},
+       {"particle_mesh.kind", "\"collocation\""},
+       {"splitting.constraint", "\"viscous\""},
+       {"output.fields_every", "0"},
+       {"output.particles_every", "0"}});
+  params.threads = 1;
+  Simulation sim(params);
+  IterationLog log;
+  sim.AddObserver(&log);
+  sim.Run();
+  ASSERT_EQ(log.iterations.size(), 60u);
+  double settled = 0.0;
+  for (std::size_t k = 10; k < 60; ++k) settled += static_cast<double>(log.iterations[k]) / 50.0;
+  const double drag = sim.state().particles[0].force.x();
+  std::printf("recycled: %.2f outer iterations a step over steps 11-60, K = %.7f\n", settled, drag);
+  EXPECT_LE(settled, 8.56 / 2.0);
+  EXPECT_NEAR(drag, 96.46655, 2e-4 * 96.46655);
 }
 
 // When the coupled PCG gives up, its error names the keys that help

@@ -74,6 +74,7 @@ ViscousConstraint::ViscousConstraint(const Params& params, const Grid& grid)
     const ParticleParams& q = params.particles[p];
     heavy_free_.push_back(q.motion == Motion::kFree && q.density != params.fluid.density ? 1 : 0);
   }
+  recycles_ = RecycledDirections::Used(params);
   response_solver_ = std::make_unique<StokesSolver>(
       grid, zero_domain_, WithoutBodyForce(params.fluid), params.time.dt, params.splitting.alpha,
       StokesSettings(params), zero_data_);
@@ -143,6 +144,33 @@ double ViscousConstraint::Dot(const double* a, const double* b) const {
   return s;
 }
 
+double ViscousConstraint::StartFromRecycled(double* u, double* v, double* p) {
+  const double before = MismatchOf(u, v, velocity_, omega_, r_.data());
+  if (recycled_.Count() == 0) return before;
+  const RecycledDirections::Coefficient a = recycled_.Coefficients(r_);
+  const auto add = [&](double sign) {
+    for (int i = 0; i < recycled_.Count(); ++i) {
+      const RecycledDirections::Direction& w = recycled_.At(i);
+      const double c = sign * a(i);
+      for (std::size_t q = 0; q < nu_.size(); ++q) nu_[q] += c * w.d[q];
+      for (std::size_t k = 0; k < w.du.size(); ++k) {
+        u[k] += c * w.du[k];
+        v[k] += c * w.dv[k];
+      }
+      for (std::size_t k = 0; k < w.dp.size(); ++k) p[k] += c * w.dp[k];
+      for (std::size_t k = 0; k < velocity_.size(); ++k) {
+        velocity_[k] += c * w.dvelocity[k];
+        omega_[k] += c * w.domega[k];
+      }
+    }
+  };
+  add(1.0);
+  const double after = MismatchOf(u, v, velocity_, omega_, r_.data());
+  if (after <= before) return after;
+  add(-1.0);  // the stored responses no longer fit this step: keep the warm start
+  return MismatchOf(u, v, velocity_, omega_, r_.data());
+}
+
 StokesReport ViscousConstraint::Start(double dt, bool carry, StokesSolver& stokes, const double* fx,
                                       const double* fy, double* u, double* v, double* p) {
   const MultiplierPoints& points = inviscid_.points();
@@ -207,6 +235,7 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
   }
   const double target = tolerance_ * scale;
   double mismatch = MismatchOf(u, v, velocity_, omega_, r_.data());
+  if (recycles_ && mismatch > target) mismatch = StartFromRecycled(u, v, p);
 
   // PCG on S nu = -g with P^-1 (the inner CG of (37)); Polak-Ribiere directions. A stall (no
   // kStallGain of progress in kStallWindow iterations) tightens the coupled Stokes solves and
@@ -247,6 +276,7 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
 
     outcome.stokes_iterations += Respond(dt, d_.data());
     MismatchOf(du_.data(), dv_.data(), dvelocity_, domega_, sd_.data());
+    if (recycles_) recycled_.Add(d_, sd_, du_, dv_, dp_, dvelocity_, domega_);
     const double curvature = Dot(d_.data(), sd_.data());
     if (!(curvature > 0.0)) {
       std::ostringstream what;

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "dlmfd/core/constants.h"
+#include "dlmfd/particles/recycled_directions.h"
 
 namespace dlmfd {
 namespace {
@@ -30,7 +31,10 @@ SceneFootprint EstimateFootprint(const Params& params) {
     const double r = q.Radius() / params.particle_mesh.h;
     f.multiplier_nodes = Saturated(f.multiplier_nodes + kPi * r * (r + 2.0) + 3.0 * r + 4.0);
   }
-  f.bytes = Saturated(kBytesPerNode * (f.velocity_nodes + f.multiplier_nodes));
+  const double recycled =
+      RecycledDirections::Used(params) ? RecycledDirections::kDoublesPerNode * sizeof(double) : 0.0;
+  f.bytes = Saturated(kBytesPerNode * (f.velocity_nodes + f.multiplier_nodes) +
+                      recycled * f.velocity_nodes);
   return f;
 }
 

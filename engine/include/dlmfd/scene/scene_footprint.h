@@ -15,7 +15,9 @@
 // Memory: kBytesPerNode per node of either kind. Measured (max RSS, 1 and 2 threads, h = 1/96,
 // 1/192, 1/288): 630 bytes per velocity node for the paper's 5.2 pair (Oldroyd-B, least-squares
 // advection), 570 with the wave-like advection; a Newtonian liquid needs less, and a multiplier
-// node's arrays (E, E^T, the CG vectors) well under that.
+// node's arrays (E, E^T, the CG vectors) well under that. The viscous coupling around fixed
+// particles adds its recycled PCG directions (particles/recycled_directions.h, 288 bytes a velocity
+// node).
 #pragma once
 
 #include "dlmfd/core/params.h"
