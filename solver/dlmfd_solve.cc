@@ -2,7 +2,10 @@
 //
 //   dlmfd-solve SCENE --out DIR [--set key=value]... [--resume] [--threads N] [--events FD]
 //   [--quiet]
+//   dlmfd-solve SCENE --check [--set key=value]...
 //
+// --check validates the scene as a run would and prints its grid, steps, footprint estimate and
+// accuracy settings and warnings on stdout; it runs nothing and writes no file (exit 0 or 2).
 // Exit status (dlmfd/solver/exit_codes.h): 0 completed; 1 failed while running (reason in
 // summary.json, results so far kept and closed); 2 invalid scene or arguments (message on stderr
 // naming key, value and what is allowed; nothing run); 130 cancelled by SIGINT/SIGTERM (checkpoint
@@ -30,12 +33,14 @@
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/number_text.h"
 #include "dlmfd/core/simulation.h"
+#include "dlmfd/core/time_stepping.h"
 #include "dlmfd/io/atomic_file.h"
 #include "dlmfd/io/checkpoint.h"
 #include "dlmfd/io/results_writer.h"
 #include "dlmfd/io/run_statistics.h"
 #include "dlmfd/scene/accuracy_envelope.h"
 #include "dlmfd/scene/scene_file.h"
+#include "dlmfd/scene/scene_footprint.h"
 #include "dlmfd/solver/exit_codes.h"
 #include "dlmfd/solver/run_summary.h"
 #include "event_stream.h"
@@ -69,6 +74,7 @@ struct Options {
   int threads = 0;
   int events_fd = -1;
   bool quiet = false;
+  bool check = false;
 };
 
 // One progress line on stderr about every second: step, t / end, steps/s, ETA.
@@ -171,6 +177,37 @@ void AddStatistics(const dlmfd::RunStatistics& r, dlmfd::solver::RunSummary& sum
   for (std::size_t p = 0; p < summary.particles.size(); ++p) {
     if (p < r.fall_speed.size()) summary.particles[p].fall_speed = r.fall_speed[p];
   }
+}
+
+// --check: the scene as a run would validate it, described on stdout; nothing runs.
+int Check(const Options& opt) {
+  using namespace dlmfd;
+  Params params;
+  try {
+    std::vector<SceneOverride> overrides;
+    for (const std::string& s : opt.sets) overrides.push_back(ParseOverride(s));
+    params = LoadSceneFile(opt.scene, overrides);
+  } catch (const InvalidParameter& e) {
+    spdlog::error("invalid scene or arguments: {}", e.what());
+    return kExitInvalid;
+  }
+  const Grid grid = params.domain.VelocityGrid();
+  const SceneFootprint footprint = EstimateFootprint(params);
+  std::printf("scene: %s\nmesh: %d x %d cells, h = %s\nsteps: %ld to t = %s (dt = %s)\n",
+              opt.scene.c_str(), grid.nx, grid.ny, ShortText(grid.h).c_str(),
+              StepCount(params.time), ShortText(params.time.end).c_str(),
+              ShortText(params.time.dt).c_str());
+  std::printf("particles: %zu\nmemory: about %s MiB (%s velocity nodes, %s multiplier nodes)\n",
+              params.particles.size(), ShortText(footprint.bytes / (1024.0 * 1024.0)).c_str(),
+              ShortText(footprint.velocity_nodes).c_str(),
+              ShortText(footprint.multiplier_nodes).c_str());
+  for (const AccuracySetting& s : AccuracySettings(params)) {
+    std::printf("setting: %s = %s\n", s.name.c_str(), ShortText(s.value).c_str());
+  }
+  for (const AccuracyWarning& w : AccuracyWarnings(params)) {
+    std::printf("warning: %s\n", w.Message().c_str());
+  }
+  return kExitCompleted;
 }
 
 int Run(const Options& opt, dlmfd::solver::EventStream& events) {
@@ -320,20 +357,25 @@ int main(int argc, char** argv) {
       "dlmfd-solve: DLM/FD particulate flow in an Oldroyd-B or Newtonian liquid; one scene in, one "
       "results directory out"};
   app.add_option("scene", opt.scene, "scene file (TOML, docs/scenes.md)")->required();
-  app.add_option("--out", opt.out, "results directory (docs/results.md)")->required();
+  auto* out = app.add_option("--out", opt.out, "results directory (docs/results.md)");
   app.add_option("--set", opt.sets,
                  "override a scene key: key=value (dotted, e.g. fluid.relaxation_time=2)");
   app.add_flag("--resume", opt.resume, "go on from DIR/checkpoint.h5");
   app.add_option("--threads", opt.threads, "OpenMP threads (0: the default)");
   app.add_option("--events", opt.events_fd, "write the SolverEvent stream to this file descriptor");
   app.add_flag("--quiet", opt.quiet, "no progress lines on stderr");
+  auto* check = app.add_flag("--check", opt.check,
+                             "validate the scene and describe it on stdout; run nothing");
+  check->excludes(out);
   try {
     app.parse(argc, argv);
+    if (!opt.check && opt.out.empty()) throw CLI::RequiredError("--out");
   } catch (const CLI::ParseError& e) {
     const int cli_code = app.exit(e);
     return cli_code == 0 ? 0 : kExitInvalid;
   }
   if (opt.quiet) spdlog::set_level(spdlog::level::warn);
+  if (opt.check) return Check(opt);
   InstallSignalHandlers();
   dlmfd::solver::EventStream events(opt.events_fd);
   return Run(opt, events);

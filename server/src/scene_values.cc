@@ -6,15 +6,20 @@
 #include <sstream>
 #include <system_error>
 
+#include "dlmfd/scene/toml_bounds.h"
+
 namespace dlmfd::server {
 namespace {
 
 // The value text read as TOML ("v = TEXT"); a text that is not one is a string.
 toml::table ReadValue(const std::string& text) {
-  try {
-    toml::table wrapper = toml::parse("v = " + text);
-    if (wrapper.size() == 1 && wrapper.contains("v")) return wrapper;
-  } catch (const toml::parse_error&) {}
+  // Text deeper than a scene may be (dlmfd/scene/toml_bounds.h) is a string, as unparsable text is.
+  if (scene::IsBoundedToml(text)) {
+    try {
+      toml::table wrapper = toml::parse("v = " + text);
+      if (wrapper.size() == 1 && wrapper.contains("v")) return wrapper;
+    } catch (const toml::parse_error&) {}
+  }
   toml::table wrapper;
   wrapper.insert_or_assign("v", text);
   return wrapper;

@@ -124,6 +124,14 @@ const BadScene kBadScenes[] = {
     {"DtZero", "[time]\ndt = 0.0\n", "time.dt", "0.0"},
     {"DtNegative", "[time]\ndt = -0.001\n", "time.dt", "-0.001"},
     {"EndNegative", "[time]\nend = -1.0\n", "time.end", "-1.0"},
+    // Issue 38: a run to t = 0 made no step and "completed".
+    {"EndZero", "[time]\nend = 0.0\n", "time.end", "0.0"},
+    {"EndNegativeZero", "[time]\nend = -0.0\n", "time.end", "-0.0"},
+    // Issue 38: a ring mesh coarser than the disk (even h_p = 1e300) ran.
+    {"ParticleMeshCoarserThanTheDisk",
+     "[particle_mesh]\nh = 1e300\n[[particles]]\ncenter = [0.5, 0.5]\ndiameter = 0.2\n"
+     "density = 1.5\n",
+     "particle_mesh.h", "1e+300"},
     {"DtLongerThanEnd", "[time]\ndt = 0.5\nend = 0.1\n", "time.dt", "0.5"},
     {"StepCountBeyond2To53", "[time]\ndt = 1e-300\nend = 1e300\n", "time.dt", "1e-300"},
     {"SizeNotMultipleOfH", "[domain]\nsize = [1.0, 1.0]\nh = 0.3\n", "domain.size", "[1.0, 1.0]"},
@@ -518,8 +526,36 @@ TEST(SceneFile, FixedParticleMayBeNeutrallyBuoyant) {
   EXPECT_EQ(p.particles[0].motion, Motion::kFixed);
 }
 
-TEST(SceneFile, EndZeroAllowsAnyDt) {
-  EXPECT_NO_THROW(ParseScene("[time]\ndt = 5.0\nend = 0.0\n"));
+// Issue 38: a key of 20,000 dotted parts crashed the parser (dlmfd-solve exit 139, dlmfdd with
+// every job); 200,000 parts crashed toml++ itself. Refused before parsing, naming the line.
+TEST(SceneFile, KeysOfManyPartsAndDeepNestingAreRefusedNotACrash) {
+  for (int parts : {17, 20000, 200000}) {
+    std::string key = "z";
+    for (int i = 1; i < parts; ++i) key += ".z";
+    try {
+      ParseScene("title = \"deep\"\n" + key + " = 1\n");
+      FAIL() << parts << " parts accepted";
+    } catch (const InvalidParameter& e) {
+      EXPECT_EQ(e.key(), "scene");
+      EXPECT_EQ(e.value(), "line 2");
+      EXPECT_THAT(e.allowed(), HasSubstr("at most 16 dotted parts"));
+    }
+    try {
+      ParseScene("", {{key, "1"}});
+      FAIL() << parts << " parts of an override accepted";
+    } catch (const InvalidParameter& e) {
+      EXPECT_THAT(e.what(), HasSubstr("(" + std::to_string(parts) + " parts)"));
+    }
+  }
+  // Strings and comments hold any number of dots; numbers and dates up to two.
+  EXPECT_NO_THROW(ParseScene("title = \"" + std::string(100, '.') +
+                             "\" # a.b.c.d.e.f.g.h.i.j.k.l.m."
+                             "n.o.p.q.r\n[time]\nend = 1.5e+0\ndt = 0.25\n"));
+  const std::string deep = "[fluid]\nviscosity = " + std::string(17, '[') + std::string(17, ']');
+  EXPECT_THROW(ParseScene(deep + "\n"), InvalidParameter);
+  // An override value that deep is a string, which the key's reader then names.
+  EXPECT_THROW(ParseScene("", {{"fluid.viscosity", std::string(300, '[') + std::string(300, ']')}}),
+               InvalidParameter);
 }
 
 // ----- overrides
@@ -772,7 +808,7 @@ TEST(SceneFile, WriteSceneRoundTripsAwkwardValues) {
   p.fluid.relaxation_time = 1e22;
   p.fluid.body_force = Vec2(-5e-324, 123456789012345678.0);
   p.time.dt = 0.1 + 0.2;
-  p.time.end = 0.0;
+  p.time.end = 2.0 * (0.1 + 0.2);  // two steps (an end of 0 was refused by issue 38)
   p.splitting.alpha = 1.0;
   p.splitting.beta = 0.0;
   p.splitting.advection = AdvectionScheme::kWave;

@@ -52,11 +52,12 @@ void ValidateSplitting(const SplittingParams& s, bool with_particles) {
 
 void ValidateTimeSteps(const TimeParams& time) {
   if (!(time.dt > 0.0)) throw InvalidParameter("time.dt", ExactText(time.dt), "a number > 0");
-  if (!(time.end >= 0.0)) throw InvalidParameter("time.end", ExactText(time.end), "a number >= 0");
-  if (time.end > 0.0 && time.dt > time.end) {
-    throw InvalidParameter(
-        "time.dt", ExactText(time.dt),
-        "a step <= time.end = " + ExactText(time.end) + " (unless time.end = 0)");
+  // A run to t = 0 makes no step (issue 38: it "completed" at step 0); dlmfd-solve --check
+  // validates a scene without running it.
+  if (!(time.end > 0.0)) throw InvalidParameter("time.end", ExactText(time.end), "a number > 0");
+  if (time.dt > time.end) {
+    throw InvalidParameter("time.dt", ExactText(time.dt),
+                           "a step <= time.end = " + ExactText(time.end));
   }
   RequireCountable("time.dt", time.dt, time.end, "steps");
 }

@@ -11,6 +11,7 @@
 
 #include "dlmfd/core/errors.h"
 #include "dlmfd/scene/scene_validation.h"
+#include "dlmfd/scene/toml_bounds.h"
 #include "scene_overrides.h"
 #include "toml_reader.h"
 
@@ -258,6 +259,7 @@ SceneOverride ParseOverride(const std::string& key_equals_value) {
 
 Params ParseScene(const std::string& toml_text, const std::vector<SceneOverride>& overrides,
                   const std::string& origin) {
+  scene::RequireBoundedToml(toml_text, origin);
   toml::table root;
   try {
     root = toml::parse(toml_text, origin);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/scene/toml_bounds.h"
 #include "toml_reader.h"
 
 namespace dlmfd {
@@ -37,10 +38,13 @@ bool IsIndex(const std::string& s) {
 
 // The override's value as a TOML node: a TOML value when the text is one, else a string.
 toml::table ParseValue(const std::string& text) {
-  try {
-    toml::table wrapper = toml::parse("value = " + text);
-    if (wrapper.size() == 1 && wrapper.contains("value")) return wrapper;
-  } catch (const toml::parse_error&) {}
+  // Text deeper than a scene may be (toml_bounds.h) is kept as a string, as unparsable text is.
+  if (IsBoundedToml(text)) {
+    try {
+      toml::table wrapper = toml::parse("value = " + text);
+      if (wrapper.size() == 1 && wrapper.contains("value")) return wrapper;
+    } catch (const toml::parse_error&) {}
+  }
   toml::table wrapper;
   wrapper.insert_or_assign("value", text);
   return wrapper;
@@ -52,6 +56,12 @@ bool IsSideTypeKey(const std::vector<std::string>& parts) {
 
 void ApplyOne(toml::table& root, const SceneOverride& o) {
   const std::vector<std::string> parts = SplitKey(o.key);
+  if (parts.size() > static_cast<std::size_t>(kMaxKeyParts)) {
+    throw InvalidParameter(o.key.substr(0, 64) + "... (" + std::to_string(parts.size()) + " parts)",
+                           o.value,
+                           "a dotted key of at most " + std::to_string(kMaxKeyParts) +
+                               " parts (e.g. fluid.viscosity)");
+  }
   for (const auto& p : parts) {
     if (p.empty())
       throw InvalidParameter(o.key, o.value,

@@ -141,6 +141,24 @@ void ValidateParticleRangesAndMeshes(const Params& p) {
   }
 }
 
+// The ring mesh resolves a disk only with h_p <= R: at R / h_p = 1 it is one ring of 6 nodes, and
+// coarser it stays 3 nodes however large h_p (issue 38: particle_mesh.h = 1e300 ran). After the
+// particles' own rules: a disk too small for its grid is named as such first.
+void ValidateRingMesh(const Params& p) {
+  if (p.particle_mesh.kind != ParticleMeshKind::kRing || p.particles.empty()) return;
+  std::size_t smallest = 0;
+  for (std::size_t i = 1; i < p.particles.size(); ++i) {
+    if (p.particles[i].diameter < p.particles[smallest].diameter) smallest = i;
+  }
+  const double radius = p.particles[smallest].Radius();
+  if (p.particle_mesh.h > radius) {
+    throw InvalidParameter("particle_mesh.h", ExactText(p.particle_mesh.h),
+                           "at most the radius of the smallest particle, " + ExactText(radius) +
+                               " (particles." + std::to_string(smallest) +
+                               "): a coarser ring mesh does not resolve the disk");
+  }
+}
+
 // accuracy.strict: the first setting outside the accuracy envelope rejects the scene, naming the
 // key to change and a value inside the bound (the same warning a non-strict run logs).
 void ValidateAccuracy(const Params& p) {
@@ -167,6 +185,7 @@ void ValidateScene(const Params& params) {
   ValidateParticleRangesAndMeshes(params);
   const Grid grid = params.domain.VelocityGrid();
   ValidateParticles(params, grid);
+  ValidateRingMesh(params);
   ValidateInflowStates(params, grid);
   ValidateAccuracy(params);
 }

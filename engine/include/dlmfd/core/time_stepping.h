@@ -33,7 +33,7 @@ inline long StepCount(const TimeParams& time) {
 // alpha and beta in [0, 1], gamma = 0, alpha > 0; with particles, beta = 0 unless the constraint
 // coupling is the paper's.
 void ValidateSplitting(const SplittingParams& splitting, bool with_particles);
-// dt > 0, end >= 0, dt <= end unless end = 0, end / dt <= kMaxStepCount.
+// dt > 0, end > 0, dt <= end, end / dt <= kMaxStepCount.
 void ValidateTimeSteps(const TimeParams& time);
 // Each period >= 0 (0: none, or every step for particles), end / period <= kMaxStepCount.
 void ValidateOutputPeriods(const TimeParams& time, const OutputParams& output);
