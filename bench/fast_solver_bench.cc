@@ -12,6 +12,7 @@
 
 #include "dlmfd/mesh/boundary_topology.h"
 #include "dlmfd/mesh/fem_operators.h"
+#include "dlmfd/solvers/fft_planning.h"
 #include "dlmfd/solvers/separable_helmholtz.h"
 
 namespace dlmfd {
@@ -59,6 +60,28 @@ void BM_PressureSolve(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_PressureSolve)->Unit(benchmark::kMillisecond);
+
+// The velocity and pressure solves with each FFTW planner choice (solvers/fft_planning.h): 0
+// deterministic plans (FFTW_ESTIMATE, the default since issue 38), 1 timed ones (FFTW_MEASURE).
+// Arguments: planning, grid (0 velocity, 1 pressure).
+void BM_SolvePlanning(benchmark::State& state) {
+  SetFftPlanning(state.range(0) == 0 ? FftPlanning::kDeterministic : FftPlanning::kMeasured);
+  const Grid grid = state.range(1) == 0 ? kGrid : kGrid.Coarse();
+  const SeparableHelmholtz solver = state.range(1) == 0
+                                        ? SeparableHelmholtz(grid, Walls(), 1.0 / 4e-4, 0.005, 1)
+                                        : SeparableHelmholtz(grid, NeumannAllRound(), 0.0, 1.0, 1);
+  SetFftPlanning(FftPlanning::kDeterministic);
+  const std::vector<double> f = Smooth(grid, 0.3);
+  std::vector<double> x(grid.NodeCount(), 0.0);
+  for (auto _ : state) {
+    solver.Solve(f.data(), x.data(), 0);
+    benchmark::DoNotOptimize(x.data());
+  }
+}
+BENCHMARK(BM_SolvePlanning)
+    ->ArgNames({"planning", "grid"})
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond);
 
 // u and v solved side by side, one per thread, each with its own workspace.
 void BM_TwoVelocitySolvesOnTwoThreads(benchmark::State& state) {

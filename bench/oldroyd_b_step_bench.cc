@@ -6,7 +6,9 @@
 // of a developing flow (the scene's own advection, least squares, is replaced by the wave scheme).
 // Arguments: threads, coupling (splitting.constraint: 0 paper, 1 viscous, 2 incremental), stress
 // (fluid.stress_splitting: 0 explicit, 1 devss, the default), diagonals (domain.diagonals: 0 sw_ne,
-// 1 both; both only with the default coupling and stress).
+// 1 both; both only with the default coupling and stress). BM_FftPlanning: threads, planning (0
+// deterministic FFTW_ESTIMATE plans, the default; 1 FFTW_MEASURE above 4096 points, as before
+// issue 38; solvers/fft_planning.h), at the default coupling, stress and diagonals.
 // Counters: per-substep ms (StepReport ms_stokes, ms_advection, ms_conformation, ms_particles),
 // Uzawa and DLM CG iterations, velocity node updates per second.
 //   OMP_WAIT_POLICY=active build/bench/oldroyd_b_step_bench --benchmark_counters_tabular=true
@@ -16,6 +18,7 @@
 
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/scene/scene_file.h"
+#include "dlmfd/solvers/fft_planning.h"
 #include "step_averages.h"
 
 namespace dlmfd {
@@ -53,6 +56,21 @@ BENCHMARK(BM_OldroydBStep)
     ->ArgsProduct({{1, 2}, {0, 1, 2}, {0, 1}, {0}})
     ->Args({1, 2, 1, 1})
     ->Args({2, 2, 1, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+
+// The cost of deterministic FFTW plans (issue 38): the same step with each planner choice.
+void BM_FftPlanning(benchmark::State& state) {
+  SetFftPlanning(state.range(1) == 0 ? FftPlanning::kDeterministic : FftPlanning::kMeasured);
+  Params p = PairScene(static_cast<int>(state.range(0)));
+  TimeFullSteps(state, p, kSetUpSteps);
+  SetFftPlanning(FftPlanning::kDeterministic);
+}
+
+BENCHMARK(BM_FftPlanning)
+    ->ArgNames({"threads", "planning"})
+    ->ArgsProduct({{1, 2}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dlmfd/core/ordered_sum.h"
+
 namespace dlmfd {
 
 NodeSet::NodeSet(const Grid& grid, const BoundaryTopology& topo)
@@ -27,19 +29,13 @@ NodeSet::NodeSet(const Grid& grid, const BoundaryTopology& topo)
 double NodeSet::Dot(const double* a, const double* b) const {
   const long n = static_cast<long>(unknown_.size());
   const double* w = unknown_.data();
-  double s = 0.0;
-#pragma omp parallel for reduction(+ : s) schedule(static)
-  for (long k = 0; k < n; ++k) s += w[k] * a[k] * b[k];
-  return s;
+  return OrderedSum(n, [=](long k) { return w[k] * a[k] * b[k]; });
 }
 
 double NodeSet::Dot2(const double* a1, const double* b1, const double* a2, const double* b2) const {
   const long n = static_cast<long>(unknown_.size());
   const double* w = unknown_.data();
-  double s = 0.0;
-#pragma omp parallel for reduction(+ : s) schedule(static)
-  for (long k = 0; k < n; ++k) s += w[k] * (a1[k] * b1[k] + a2[k] * b2[k]);
-  return s;
+  return OrderedSum(n, [=](long k) { return w[k] * (a1[k] * b1[k] + a2[k] * b2[k]); });
 }
 
 void NodeSet::ZeroKnown(double* x) const {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/core/ordered_sum.h"
 #include "dlmfd/mesh/fem_operators.h"
 
 namespace dlmfd {
@@ -100,10 +101,7 @@ double StokesSolver::ResidualNorm(const double* u, const double* v) {
 double StokesSolver::WeightedSquareSum(const double* r) const {
   const long np = static_cast<long>(pmass_inv_.size());
   const double* minv = pmass_inv_.data();
-  double s = 0.0;
-#pragma omp parallel for reduction(+ : s) schedule(static)
-  for (long k = 0; k < np; ++k) s += minv[k] * r[k] * r[k];
-  return s;
+  return OrderedSum(np, [=](long k) { return minv[k] * r[k] * r[k]; });
 }
 
 double StokesSolver::DivergenceNorm(const double* u, const double* v) {
@@ -138,20 +136,18 @@ StokesReport StokesSolver::Solve(const double* fx, const double* fy, double* u, 
     double* fv = fv_.data();
     const double* tu = tu_.data();
     const double* tv = tv_.data();
-    const double bx = body_force_.x(), by = body_force_.y();
-#pragma omp parallel for reduction(+ : energy_old) schedule(static)
-    for (long k = 0; k < n; ++k) {
-      energy_old += dist[k] * m[k] * (u[k] * u[k] + v[k] * v[k]);
-      fu[k] = m[k] * (rho_over_dt_ * u[k] + bx) + (fx ? fx[k] : 0.0) + tu[k];
-      fv[k] = m[k] * (rho_over_dt_ * v[k] + by) + (fy ? fy[k] : 0.0) + tv[k];
-    }
+    const double bx = body_force_.x(), by = body_force_.y(), rho_over_dt = rho_over_dt_;
+    energy_old = OrderedSum(n, [=](long k) {
+      fu[k] = m[k] * (rho_over_dt * u[k] + bx) + (fx ? fx[k] : 0.0) + tu[k];
+      fv[k] = m[k] * (rho_over_dt * v[k] + by) + (fy ? fy[k] : 0.0) + tv[k];
+      return dist[k] * m[k] * (u[k] * u[k] + v[k] * v[k]);
+    });
   }
   boundary_data_.Apply(u, v);
   SolveVelocityPair(fu_.data(), fv_.data(), u, v);
 
-  double energy_new = 0.0;
-#pragma omp parallel for reduction(+ : energy_new) schedule(static)
-  for (long k = 0; k < n; ++k) energy_new += dist[k] * m[k] * (u[k] * u[k] + v[k] * v[k]);
+  const double energy_new =
+      OrderedSum(n, [=](long k) { return dist[k] * m[k] * (u[k] * u[k] + v[k] * v[k]); });
   const double ref =
       std::max(std::sqrt(rho_over_dt_ * std::max(energy_old, energy_new)), reference_floor_);
   report.reference = ref;

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/solvers/fft_planning.h"
 #include "dlmfd/solvers/type_one_transform.h"
 
 namespace dlmfd {
@@ -340,7 +341,7 @@ SeparableHelmholtz::SeparableHelmholtz(const Grid& grid, const BoundaryTopology&
     return;
   }
   const int length = s.modes;
-  const unsigned flags = size > 4096 ? FFTW_MEASURE : FFTW_ESTIMATE;
+  const unsigned flags = FftwPlannerFlags(size);
   s.forward = fftw_plan_many_r2r(1, &length, s.uy.count, s.buffers[0], nullptr, 1, length,
                                  s.buffers[0], nullptr, 1, length, &s.transform.forward, flags);
   s.backward = fftw_plan_many_r2r(1, &length, s.uy.count, s.buffers[0], nullptr, 1, length,

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/solvers/fft_planning.h"
 
 namespace dlmfd {
 
@@ -35,7 +36,7 @@ TypeOneTransform::TypeOneTransform(Kind kind, int length, int rows, int workspac
     // (the condition of fftw_execute_dft_r2c on other arrays).
     auto plan = [&](int howmany) -> void* {
       if (howmany == 0) return nullptr;
-      const unsigned flags = std::size_t(extended_) * howmany > 4096 ? FFTW_MEASURE : FFTW_ESTIMATE;
+      const unsigned flags = FftwPlannerFlags(std::size_t(extended_) * howmany);
       fftw_plan p = fftw_plan_many_dft_r2c(
           1, &extended_, howmany, extension_[0], nullptr, 1, extended_,
           reinterpret_cast<fftw_complex*>(spectrum_buffers_[0]), nullptr, 1, spectrum_, flags);
