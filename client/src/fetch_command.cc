@@ -29,9 +29,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A relative path of a file: no "..", and no trailing '/' (which names a directory and would make
+// the file's target a directory here).
 bool SafeRelative(const std::string& path) {
   const fs::path p(path);
-  if (path.empty() || p.is_absolute()) return false;
+  if (path.empty() || p.is_absolute() || path.back() == '/') return false;
   for (const auto& part : p) {
     if (part == "..") return false;
   }
@@ -181,15 +183,16 @@ int RunFetch(int argc, char** argv) {
         !job_id.empty() ? job_id
                         : (!selection.sweep.empty() ? selection.sweep : selection.tags.front());
     const fs::path dir = out_dir.empty() ? fs::path(fallback) : fs::path(out_dir);
+    for (const std::string& p : paths) {
+      if (!SafeRelative(p))
+        throw UsageError("--path " + p +
+                         ": expected the path of a file relative to the results directory");
+    }
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec)
       return ReportError("fetch", "cannot create " + dir.string() + ": " + ec.message(),
                          kExitLocalIo);
-    for (const std::string& p : paths) {
-      if (!SafeRelative(p))
-        throw UsageError("--path " + p + ": expected a path relative to the results directory");
-    }
     Connection connection(connection_flags);
     int files = 0;
     long long bytes = 0;

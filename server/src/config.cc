@@ -242,6 +242,13 @@ std::vector<std::string> ConfigWarnings(const Config& config) {
   return warnings;
 }
 
+std::string JobDirectory(const Config& config, const std::string& job_id) {
+  if (config.executor == "slurm" && !config.slurm.shared_dir.empty()) {
+    return (fs::path(config.slurm.shared_dir) / job_id).string();
+  }
+  return (fs::path(config.data_dir) / "jobs" / job_id).string();
+}
+
 bool IsLoopbackAddress(const std::string& listen) {
   if (listen.rfind("unix:", 0) == 0) return true;
   std::string host = listen;
@@ -293,6 +300,17 @@ void ValidateConfig(Config& config) {
   if (config.listen.empty()) throw ConfigError("listen must not be empty");
   ValidateListen(config.listen);
   if (config.data_dir.empty()) throw ConfigError("data_dir must not be empty");
+  // Paths are made absolute against the directory the daemon starts in: its jobs and a Slurm
+  // job's batch script (which runs in the job directory) must not read them against another one.
+  for (std::string* path : {&config.data_dir, &config.solver, &config.slurm.shared_dir,
+                            &config.slurm.solver, &config.slurm.jobcomp_file}) {
+    if (path->empty()) continue;
+    fs::path absolute = fs::absolute(*path).lexically_normal();
+    if (!absolute.has_filename() && absolute != absolute.root_path()) {
+      absolute = absolute.parent_path();  // "dir/" -> "dir"
+    }
+    *path = absolute.string();
+  }
   if (config.max_concurrent < 1 || config.max_concurrent > kMaxConcurrentLimit) {
     throw ConfigError("max_concurrent = " + std::to_string(config.max_concurrent) +
                       " is not allowed: expected 1 to " + std::to_string(kMaxConcurrentLimit));

@@ -4,7 +4,9 @@
 // or DLMFD_CONFIG) > defaults. Each TOML key has the flag --key-with-dashes and the environment
 // variable DLMFD_KEY (docs/api.md has the table). Keys and defaults:
 //   listen            "127.0.0.1:7443" (loopback); HOST:PORT with a port 0-65535 (0: a free one)
-//   data_dir          "$XDG_DATA_HOME/dlmfd" or "~/.local/share/dlmfd"
+//   data_dir          "$XDG_DATA_HOME/dlmfd" or "~/.local/share/dlmfd"; this and the other paths
+//                     (solver, slurm_shared_dir, slurm_solver, slurm_jobcomp_file) are made
+//                     absolute against the directory the daemon starts in
 //   max_concurrent    2
 //   solver            dlmfd-solve next to the dlmfdd executable; must be an executable file
 //   tokens_file       none (lines "token user"); when set, at least one token
@@ -19,7 +21,7 @@
 //   max_wall_seconds  0 (no limit): wall time of one solver start; past it the solver is stopped
 //                     (it checkpoints) and the job ends FAILED naming the limit
 //   watcher_buffer    256 events per watcher
-//   event_ring        1024 recent events kept per job
+//   event_ring        no longer used (every event is in the job's watch log); accepted
 //   solver_threads    0: OMP_NUM_THREADS of each solver is max(1, cores / max_concurrent) unless
 //                     the daemon's own environment sets it
 //   log_level         "info"
@@ -108,6 +110,10 @@ void ValidateConfig(Config& config);
 // What is usable but unwise, one line each for the log at start: a tokens file that its group or
 // others can read.
 std::vector<std::string> ConfigWarnings(const Config& config);
+
+// The directory of a job: its results, solver log, inputs and watch log (DATA/jobs/ID, or
+// slurm_shared_dir/ID under the slurm executor).
+std::string JobDirectory(const Config& config, const std::string& job_id);
 
 // True for 127.0.0.0/8, ::1, localhost and unix: addresses.
 bool IsLoopbackAddress(const std::string& listen);

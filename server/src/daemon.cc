@@ -17,6 +17,7 @@
 
 #include "dlmfd/io/atomic_file.h"
 #include "job_proto.h"
+#include "loopback_port.h"
 #include "unreadable_request.h"
 
 namespace dlmfd::server {
@@ -59,6 +60,7 @@ void Daemon::Start() {
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   for (const auto& warning : ConfigWarnings(config_)) spdlog::warn("{}", warning);
+  RequireLoopbackPortFree(config_.listen);
   grpc::ServerBuilder builder;
   // One daemon per port: gRPC sets SO_REUSEPORT by default, and then a second daemon would bind
   // the same port and the kernel would split the clients between the two.
@@ -76,6 +78,7 @@ void Daemon::Start() {
                       ": the address is in use (by another dlmfdd?) or not available here "
                       "(change listen, --listen or DLMFD_LISTEN)");
   }
+  port_guard_ = LoopbackPortGuard(config_.listen, port_);
   // The health service answers for the server ("") and for the one service it serves.
   server_->GetHealthCheckService()->SetServingStatus(v1::Jobs::service_full_name(), true);
   scheduler_->Start();

@@ -13,6 +13,7 @@
 #include "event_hub.h"
 #include "job_store.h"
 #include "jobs_service.h"
+#include "loopback_port.h"
 #include "scheduler.h"
 
 namespace dlmfd::server {
@@ -38,6 +39,7 @@ class Daemon {
   std::unique_ptr<Scheduler> scheduler_;
   std::unique_ptr<JobsService> service_;
   std::unique_ptr<grpc::Server> server_;
+  LoopbackPortGuard port_guard_;  // the other loopback address of the port (loopback_port.h)
   int port_ = 0;
   bool stopped_ = false;
 };

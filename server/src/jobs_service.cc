@@ -249,9 +249,19 @@ JobRecord JobsService::OwnJob(const std::string& user, const std::string& job_id
 void JobsService::CheckQueueRoom(int64_t adding) {
   const int64_t unfinished = store_.CountUnfinished();
   if (unfinished + adding > config_.max_queued) {
+    const std::string limit = "max_queued = " + std::to_string(config_.max_queued);
+    if (adding == 1) {
+      throw ServiceError(StatusCode::RESOURCE_EXHAUSTED,
+                         "the queue is full: " + std::to_string(unfinished) +
+                             " unfinished jobs, at the limit of " + limit);
+    }
+    // A study or a retry of many: what it adds is what does not fit (issue 38: 10,000 points
+    // against 1 unfinished job read "1 unfinished jobs, the limit is 10000").
     throw ServiceError(StatusCode::RESOURCE_EXHAUSTED,
-                       "the queue is full: " + std::to_string(unfinished) +
-                           " unfinished jobs, the limit is " + std::to_string(config_.max_queued));
+                       "the queue has no room for " + std::to_string(adding) +
+                           " jobs: " + std::to_string(unfinished) + " unfinished and " +
+                           std::to_string(adding) + " new make " +
+                           std::to_string(unfinished + adding) + ", over the limit of " + limit);
   }
 }
 
@@ -616,6 +626,7 @@ grpc::ServerUnaryReactor* JobsService::Retry(grpc::CallbackServerContext* contex
     }
     const std::vector<JobRecord> jobs = RetryTargets(user, *request);
     CheckQueueRoom(static_cast<int64_t>(jobs.size()));
+    CheckDiskQuota(user);  // a rerun writes as much as a new job
     std::vector<RequeueChange> plan;
     for (const JobRecord& job : jobs) {
       RequeueChange change;

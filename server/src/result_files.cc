@@ -24,7 +24,8 @@ using grpc::StatusCode;
 std::vector<std::pair<std::string, fs::directory_entry>> ResultFiles(const fs::path& root) {
   std::vector<std::pair<std::string, fs::directory_entry>> files;
   std::error_code error;
-  if (!fs::is_directory(root, error)) return files;
+  // The results directory itself must not be a link either: only the job's own files are served.
+  if (!fs::is_directory(fs::symlink_status(root, error))) return files;
   for (auto it = fs::recursive_directory_iterator(root, error);
        !error && it != fs::recursive_directory_iterator(); it.increment(error)) {
     if (fs::is_regular_file(it->symlink_status(error))) {
@@ -61,6 +62,9 @@ std::string CheckedResultPath(const fs::path& root, const std::string& path) {
   RequireNoNul("path", path);
   const fs::path wanted(path);
   Require(wanted.is_relative(), "path: must be relative to the results directory");
+  Require(
+      path.empty() || path.back() != '/',
+      "path: " + CutForMessage(path) + " ends with '/': expected a file of the results directory");
   for (const auto& part : wanted) {
     Require(part != "..", "path: must not contain \"..\"");
   }
@@ -79,8 +83,11 @@ int OpenResultFile(const fs::path& root, const std::string& path) {
   const auto not_found = [&] {
     return ServiceError(StatusCode::NOT_FOUND, "file " + CutForMessage(path) + " not found");
   };
-  int fd = open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) throw not_found();
+  int fd = open(root.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == ELOOP || errno == ENOTDIR) throw refuse_link("the results directory");
+    throw not_found();
+  }
   std::vector<std::string> parts;
   for (const auto& part : fs::path(path)) {
     if (!part.empty() && part != ".") parts.push_back(part.string());

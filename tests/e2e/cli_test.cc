@@ -135,6 +135,12 @@ TEST_F(CliTest, SubmitWaitListShowFetchAndPlot) {
       Cli({"fetch", job, "--out", (root_ / "one").string(), "--path", "summary.json"});
   ASSERT_EQ(one.code, 0) << one.err;
   EXPECT_EQ(Slurp(root_ / "one" / "summary.json"), Slurp(out / "summary.json"));
+  // Issue 38: a path with a trailing slash made a directory named after the file.
+  const CliRun slash =
+      Cli({"fetch", job, "--out", (root_ / "slash").string(), "--path", "summary.json/"});
+  EXPECT_EQ(slash.code, 2) << slash.err;
+  EXPECT_THAT(slash.err, HasSubstr("expected the path of a file"));
+  EXPECT_FALSE(fs::exists(root_ / "slash" / "summary.json"));
 
   const fs::path png = root_ / "cavity.png";
   const CliRun plot =

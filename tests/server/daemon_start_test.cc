@@ -33,6 +33,27 @@ TEST(DaemonStart, ASecondDaemonOnTheSamePortExitsAndTheFirstKeepsServing) {
   EXPECT_TRUE(first.Healthy());
 }
 
+// Issue 38: a second daemon could bind [::1] on a port whose 127.0.0.1 a first one served, and
+// clients of localhost:PORT then sent their token to either.
+TEST(DaemonStart, ASecondDaemonCannotTakeTheOtherLoopbackAddressOfAPortInUse) {
+  TempDir dir;
+  DaemonProcess first(dir.path() + "/first");
+  ASSERT_TRUE(first.Start()) << first.Log();
+  const std::string port = std::to_string(first.port());
+  int tried = 0;
+  for (const std::string& listen : {"[::1]:" + port, "localhost:" + port}) {
+    DaemonProcess second(dir.path() + "/second" + std::to_string(++tried), {}, listen);
+    ExpectRefused(second, 1, "port " + port + " is in use on 127.0.0.1");
+  }
+  EXPECT_TRUE(first.Healthy());
+  // And the other way round: a daemon on [::1] keeps 127.0.0.1 of its port too.
+  const std::string v6_port = std::to_string(first.port() + 1);
+  DaemonProcess on_v6(dir.path() + "/v6", {}, "[::1]:" + v6_port);
+  if (!on_v6.Start()) GTEST_SKIP() << "no [::1]:" << v6_port << " here: " << on_v6.Log();
+  DaemonProcess on_v4(dir.path() + "/v4", {}, "127.0.0.1:" + v6_port);
+  ExpectRefused(on_v4, 1, "port " + v6_port + " is in use on 127.0.0.1");
+}
+
 TEST(DaemonStart, PortsOutsideTheirRangeAreRefusedNamingListen) {
   TempDir dir;
   int tried = 0;

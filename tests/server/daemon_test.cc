@@ -205,9 +205,28 @@ TEST(Daemon, MalformedRequestsGetTheRightCodesAndTheDaemonStaysHealthy) {
   watch_request.set_snapshot_max_width(100000);
   EXPECT_EQ(watch(watch_request), StatusCode::INVALID_ARGUMENT);
   // Queue three valid jobs (the limit), then the fourth is refused; fetch paths are checked.
-  std::string job_id;
-  for (int i = 0; i < 3; ++i) job_id = Submit(*stub, CavityRequest(100.0)).id();
-  submit(with_scene(good), StatusCode::RESOURCE_EXHAUSTED, "queue is full");
+  std::string job_id = Submit(*stub, CavityRequest(100.0)).id();
+  {
+    // A study that does not fit names what it adds (issue 38: a 10,000-point study against one
+    // unfinished job said "1 unfinished jobs, the limit is 10000").
+    v1::SubmitSweepRequest study;
+    study.set_scene(good);
+    auto* viscosity = study.add_axes();
+    viscosity->set_key("fluid.viscosity");
+    for (const char* value : {"0.1", "0.2", "0.3"}) viscosity->add_values(value);
+    v1::SubmitSweepResponse swept;
+    auto context = Context();
+    const grpc::Status status = stub->SubmitSweep(context.get(), study, &swept);
+    EXPECT_EQ(status.error_code(), StatusCode::RESOURCE_EXHAUSTED);
+    EXPECT_NE(status.error_message().find("no room for 3 jobs: 1 unfinished and 3 new make 4, "
+                                          "over the limit of max_queued = 3"),
+              std::string::npos)
+        << status.error_message();
+    ++checked;
+  }
+  for (int i = 0; i < 2; ++i) job_id = Submit(*stub, CavityRequest(100.0)).id();
+  submit(with_scene(good), StatusCode::RESOURCE_EXHAUSTED,
+         "queue is full: 3 unfinished jobs, at the limit of max_queued = 3");
   auto fetch = [&](const std::string& id, const std::string& path) {
     v1::FetchRequest request;
     request.set_job_id(id);

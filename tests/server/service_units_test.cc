@@ -596,6 +596,32 @@ TEST(ResultFiles, SymbolicLinksAndNulBytesLeadNowhere) {
   close(fd);
 }
 
+// Issue 38: a results directory that is itself a symbolic link was followed by ListFiles and Fetch;
+// a path with a trailing slash was served as the file and made the CLI create a directory.
+TEST(ResultFiles, AResultsDirectoryThatIsALinkServesNothingAndPathsNameFiles) {
+  dlmfd::testing::TempDir dir;
+  const std::filesystem::path elsewhere = dir.path() + "/elsewhere";
+  std::filesystem::create_directories(elsewhere);
+  std::ofstream(elsewhere / "secret") << "secret";
+  const std::filesystem::path root = dir.path() + "/results";
+  std::filesystem::create_directory_symlink(elsewhere, root);
+  EXPECT_TRUE(ResultFilePaths(root).empty());
+  v1::ListFilesResponse listed;
+  DescribeResultFiles(root, &listed);
+  EXPECT_EQ(listed.files_size(), 0);
+  const grpc::Status status = Guarded([&] { CheckedResultPath(root, "secret"); });
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(status.error_message().find("symbolic link"), std::string::npos)
+      << status.error_message();
+  const std::filesystem::path real = dir.path() + "/real";
+  std::filesystem::create_directories(real);
+  std::ofstream(real / "summary.json") << "{}";
+  const grpc::Status slash = Guarded([&] { CheckedResultPath(real, "summary.json/"); });
+  EXPECT_EQ(slash.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(slash.error_message().find("expected a file"), std::string::npos)
+      << slash.error_message();
+}
+
 TEST(ServiceError, MessagesCutLongValuesAndShowControlBytes) {
   EXPECT_EQ(CutForMessage("0.1"), "0.1");
   EXPECT_EQ(CutForMessage(std::string("a\0b\n", 4)), "a\\x00b\\x0a");

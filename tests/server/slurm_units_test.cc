@@ -466,6 +466,19 @@ TEST(SlurmConfig, ExecutorAndItsSettings) {
 
 // deploy/dlmfdd-slurm.toml.example loads (with a tokens file of this machine, since it listens
 // beyond loopback) and sets every slurm_* key of docs/api.md's table.
+// Issue 38: with --data-dir data (relative) every Slurm job failed: the batch script, which runs in
+// the job directory, and sbatch's --output named paths relative to the daemon's directory.
+TEST(SlurmConfig, RelativePathsAreMadeAbsoluteAgainstTheDaemonsDirectory) {
+  const fs::path here = fs::current_path();
+  const Config config = Load({"--data-dir", "data/", "--executor", "slurm", "--slurm-shared-dir",
+                              "./shared/jobs", "--slurm-jobcomp-file", "slurm/../jobcomp.txt"});
+  EXPECT_EQ(config.data_dir, (here / "data").string());
+  EXPECT_EQ(config.slurm.shared_dir, (here / "shared" / "jobs").string());
+  EXPECT_EQ(config.slurm.jobcomp_file, (here / "jobcomp.txt").string());
+  EXPECT_EQ(config.solver, "/bin/true");
+  EXPECT_EQ(Load({"--data-dir", "/tmp/d/"}).data_dir, "/tmp/d");
+}
+
 TEST(SlurmConfig, TheClusterExampleLoadsAndSetsEverySlurmKey) {
   const std::string example = std::string(DLMFD_SOURCE_DIR) + "/deploy/dlmfdd-slurm.toml.example";
   const fs::path tokens = fs::temp_directory_path() / ("tokens_" + std::to_string(getpid()));

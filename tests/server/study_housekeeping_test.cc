@@ -53,11 +53,11 @@ v1::Job Submit(v1::Jobs::Stub& stub, const std::string& scene, const std::string
   return job;
 }
 
-v1::Job Get(v1::Jobs::Stub& stub, const std::string& id) {
+v1::Job Get(v1::Jobs::Stub& stub, const std::string& id, const std::string& token = "") {
   v1::GetRequest request;
   request.set_job_id(id);
   v1::Job job;
-  auto context = Context();
+  auto context = Context(token);
   EXPECT_TRUE(stub.Get(context.get(), request, &job).ok());
   return job;
 }
@@ -474,6 +474,19 @@ TEST(JobHousekeeping, QuotaAndLimitsAreNamedErrors) {
   EXPECT_NE(over.first.error_message().find("max_user_disk_mb = 1"), std::string::npos)
       << over.first.error_message();
   EXPECT_TRUE(submit(CavityScene(0.05), bob).first.ok());  // per user
+  // A retry runs a job again and writes as much: the quota holds for it too (issue 38: a retry
+  // grew a user's jobs past a 50 MB quota to 333 MB).
+  {
+    v1::RetryRequest retry;
+    retry.add_job_ids(filler.second.id());
+    v1::RetryResponse retried;
+    auto context = Context(alice);
+    const grpc::Status refused = stub->Retry(context.get(), retry, &retried);
+    EXPECT_EQ(refused.error_code(), StatusCode::RESOURCE_EXHAUSTED);
+    EXPECT_NE(refused.error_message().find("max_user_disk_mb = 1"), std::string::npos)
+        << refused.error_message();
+    EXPECT_EQ(Get(*stub, filler.second.id(), alice).state(), v1::COMPLETED);
+  }
   // Deleting frees the quota.
   v1::DeleteRequest request;
   request.add_job_ids(filler.second.id());
