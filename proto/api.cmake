@@ -19,7 +19,13 @@ add_custom_command(
   DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${API_PROTO} ${CMAKE_CURRENT_SOURCE_DIR}/dlmfd/v1/events.proto
           protobuf::protoc)
 
-add_library(dlmfd_api_proto STATIC ${API_PB_CC} ${API_GRPC_CC})
+# The daemon's watch log records (watch_log.proto): its own file format, built with the API it
+# holds.
+dlmfd_protoc(WATCH_LOG_SRCS dlmfd/v1/watch_log.proto)
+# Generated files define names of their own in one namespace: each compiles alone.
+set_source_files_properties(${WATCH_LOG_SRCS} PROPERTIES OBJECT_DEPENDS ${API_PB_H}
+                            SKIP_UNITY_BUILD_INCLUSION ON)
+add_library(dlmfd_api_proto STATIC ${API_PB_CC} ${API_GRPC_CC} ${WATCH_LOG_SRCS})
 target_include_directories(dlmfd_api_proto PUBLIC ${PROTO_OUT})
 target_link_libraries(dlmfd_api_proto PUBLIC dlmfd_events_proto gRPC::grpc++ protobuf::libprotobuf)
 set_target_properties(dlmfd_api_proto PROPERTIES POSITION_INDEPENDENT_CODE ON)

@@ -47,13 +47,9 @@ void Daemon::Start() {
   for (const auto& id : store_->RequeueRunning(NowSeconds())) {
     spdlog::info("job {}: was RUNNING when the daemon stopped; QUEUED to resume", id);
   }
-  try {
-    journal_ = std::make_unique<SeqJournal>((fs::path(config_.data_dir) / "watch_seq").string());
-  } catch (const fs::filesystem_error& e) {
-    throw ConfigError("data_dir " + config_.data_dir + ": " + e.what());
-  }
-  hub_ = std::make_unique<EventHub>(*store_, *journal_, static_cast<size_t>(config_.event_ring));
-  hub_->Recover();
+  hub_ = std::make_unique<EventHub>(
+      *store_, [this](const std::string& id) { return JobDirectory(config_, id); });
+  hub_->Recover((fs::path(config_.data_dir) / "watch_seq").string());
   scheduler_ = std::make_unique<Scheduler>(config_, *store_, *hub_);
   service_ = std::make_unique<JobsService>(config_, *store_, *hub_, *scheduler_);
 

@@ -34,7 +34,6 @@ class Daemon {
   Config config_;
   int lock_fd_ = -1;
   std::unique_ptr<JobStore> store_;
-  std::unique_ptr<SeqJournal> journal_;
   std::unique_ptr<EventHub> hub_;
   std::unique_ptr<Scheduler> scheduler_;
   std::unique_ptr<JobsService> service_;

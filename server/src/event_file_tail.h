@@ -19,15 +19,18 @@ namespace dlmfd::server {
 
 class EventFileTail {
  public:
-  explicit EventFileTail(std::string path)
-      : path_(std::move(path)) {}
+  // start: the offset of the first event to deliver (one a reader before stopped at).
+  explicit EventFileTail(std::string path, off_t start = 0)
+      : path_(std::move(path)),
+        offset_(start) {}
   // Delivers the complete events appended since the last call; returns how many. A missing file
-  // has none yet.
+  // has none yet. During on_event, offset() is the offset just past the event.
   int ReadNew(const std::function<void(const v1::SolverEvent&)>& on_event);
+  off_t offset() const { return offset_; }
 
  private:
   std::string path_;
-  off_t offset_ = 0;
+  off_t offset_;
 };
 
 }  // namespace dlmfd::server

@@ -1,28 +1,72 @@
 #include "event_hub.h"
 
+#include <fcntl.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
-#include <deque>
-#include <optional>
+#include <cstring>
+#include <filesystem>
 #include <vector>
 
 #include "job_proto.h"
 
 namespace dlmfd::server {
+namespace fs = std::filesystem;
 
 struct EventHub::Channel {
+  explicit Channel(std::string dir)
+      : log(std::move(dir)) {}
   std::mutex mutex;
   std::string job_id;
   v1::Job job;
-  std::deque<v1::WatchEvent> ring;
-  std::optional<v1::WatchEvent> snapshot;
-  int64_t last_seq = 0;  // last issued
-  int64_t reserved = 0;  // issued numbers never exceed this (persisted)
+  WatchLog log;
+  int64_t last_seq = 0;                          // last issued
+  std::map<std::string, int64_t> high_water;     // lane -> last step published
+  std::map<std::string, int64_t> source_offset;  // solver event file -> offset past the last read
   std::vector<std::shared_ptr<WatcherQueue>> watchers;
+  bool unlogged = false;              // an event could not be logged (warned once)
   std::atomic<bool> finished{false};  // read under mutex_ alone by PublishState, FindOrCreate
 };
+
+namespace {
+
+void WakeAll(const std::vector<std::shared_ptr<WatcherQueue>>& wake) {
+  for (const auto& watcher : wake) watcher->Wake();
+}
+
+// The current state of a job as the head of a watch: a summary, numbered 0 like a Gap (it is not
+// an event of the sequence: the events a watcher has seen keep their own numbers).
+v1::WatchEvent Summary(const v1::Job& job) {
+  v1::WatchEvent summary;
+  summary.set_wall_time(NowSeconds());
+  auto* state = summary.mutable_state();
+  state->set_state(job.state());
+  state->set_reason(job.reason());
+  *state->mutable_job() = job;
+  return summary;
+}
+
+// The numbers an older daemon journaled in DATA/watch_seq (one 8-byte file per job).
+std::map<std::string, int64_t> ReadLegacyJournal(const std::string& dir) {
+  std::map<std::string, int64_t> out;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(dir, error)) {
+    const int fd = open(entry.path().c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) continue;
+    unsigned char bytes[sizeof(int64_t)];
+    const ssize_t got = pread(fd, bytes, sizeof(bytes), 0);
+    close(fd);
+    if (got != static_cast<ssize_t>(sizeof(bytes))) continue;
+    int64_t seq = 0;
+    std::memcpy(&seq, bytes, sizeof(seq));
+    if (seq > 0) out[entry.path().filename().string()] = seq;
+  }
+  return out;
+}
+
+}  // namespace
 
 std::shared_ptr<EventHub::Channel> EventHub::Find(const std::string& job_id) {
   std::lock_guard lock(mutex_);
@@ -32,57 +76,49 @@ std::shared_ptr<EventHub::Channel> EventHub::Find(const std::string& job_id) {
 
 std::shared_ptr<EventHub::Channel> EventHub::FindOrCreate(const JobRecord& job) {
   auto& slot = channels_[job.id];
-  if (!slot || slot->finished) {
-    // A channel whose final state was just delivered (not yet dropped) hands on its last number:
-    // the record passed here may predate the store's copy of it.
-    int64_t last = job.last_seq;
-    if (slot) {
-      std::lock_guard lock(slot->mutex);
-      last = slot->last_seq;
-    }
-    slot = std::make_shared<Channel>();
-    slot->job_id = job.id;
-    slot->job = ToProto(job);
-    slot->last_seq = last;
-    slot->reserved = last;
+  if (slot && !slot->finished) return slot;
+  auto channel = std::make_shared<Channel>(job_dir_(job.id));
+  channel->job_id = job.id;
+  channel->job = ToProto(job);
+  if (slot) {
+    // A channel whose final state was just delivered (not yet dropped) hands on what it knows: its
+    // last event may not be in the record passed here.
+    std::lock_guard lock(slot->mutex);
+    channel->last_seq = slot->last_seq;
+    channel->high_water = slot->high_water;
+    channel->source_offset = slot->source_offset;
+  } else {
+    const WatchLogState logged = channel->log.Recover();
+    channel->last_seq = std::max(logged.last_seq, job.last_seq);
+    channel->high_water = logged.high_water;
+    channel->source_offset = logged.source_offset;
   }
+  slot = channel;
   return slot;
 }
 
-// Assigns the sequence number, keeps the event, pushes it to the watchers; those whose send token
-// was taken are added to `wake`, to be woken after the channel lock is released. Channel locked by
-// caller.
-void EventHub::Deliver(Channel& channel, v1::WatchEvent event, WakeList& wake) {
-  if (channel.last_seq >= channel.reserved) {
-    channel.reserved = channel.last_seq + kSeqBlock;
-    store_.SetLastSeq(channel.job_id, channel.reserved);
-  }
+// Numbers the event, logs it, pushes it to the watchers; those whose send token was taken are
+// added to `wake`, to be woken after the channel lock is released. Channel locked by caller.
+void EventHub::Deliver(Channel& channel, v1::WatchEvent event, const LogOrigin& origin,
+                       bool new_timeline, WakeList& wake) {
   event.set_seq(++channel.last_seq);
-  if (!journal_.Record(channel.job_id, channel.last_seq)) {
-    spdlog::warn(
-        "job {}: watch number {} not journaled; after a kill -9 a reconnecting watcher "
-        "may be told of a Gap over numbers never issued",
-        channel.job_id, channel.last_seq);
-  }
   if (event.wall_time() == 0) event.set_wall_time(NowSeconds());
-  if (event.has_snapshot()) {
-    channel.snapshot = event;
-  } else {
-    channel.ring.push_back(event);
-    while (channel.ring.size() > ring_size_) channel.ring.pop_front();
+  if (new_timeline) channel.high_water.clear();
+  if (!origin.lane.empty()) channel.high_water[origin.lane] = origin.step;
+  if (!origin.source.empty()) channel.source_offset[origin.source] = origin.source_offset;
+  if (!channel.log.Append(event, origin, new_timeline) && !channel.unlogged) {
+    channel.unlogged = true;
+    spdlog::warn(
+        "job {}: watch event {} cannot be written to its watch log ({}); a watcher that "
+        "reconnects is told of a Gap for the events not logged",
+        channel.job_id, channel.last_seq, std::strerror(errno));
   }
   for (const auto& watcher : channel.watchers) {
     if (watcher->Push(event)) wake.push_back(watcher);
   }
 }
 
-namespace {
-void WakeAll(const std::vector<std::shared_ptr<WatcherQueue>>& wake) {
-  for (const auto& watcher : wake) watcher->Wake();
-}
-}  // namespace
-
-void EventHub::PublishState(const JobRecord& job) {
+void EventHub::PublishState(const JobRecord& job, bool new_timeline) {
   const bool final_state = IsFinished(job.state);
   std::shared_ptr<Channel> channel;
   {
@@ -99,19 +135,19 @@ void EventHub::PublishState(const JobRecord& job) {
   {
     std::lock_guard lock(channel->mutex);
     channel->job = ToProto(job);
-    // The state event's own number: last_seq reports what was issued, never the reserved block.
+    // The state event's own number: last_seq reports what was issued.
     channel->job.set_last_seq(channel->last_seq + 1);
     v1::WatchEvent event;
     auto* state = event.mutable_state();
     state->set_state(channel->job.state());
     state->set_reason(channel->job.reason());  // Slurm's reason of a job that waits there
     *state->mutable_job() = channel->job;
-    Deliver(*channel, std::move(event), wake);
-    if (IsFinished(job.state)) {
-      // No number of this channel follows: the store keeps the last one issued, and a later run
-      // of the job (a retry) continues after it.
-      store_.SetLastSeq(channel->job_id, channel->last_seq);
-      journal_.Remove(channel->job_id);
+    // The store learns a finished job's last number before the log holds its event: a daemon
+    // killed in between reports a number whose event a watcher then gets as a Gap, never a number
+    // issued twice.
+    if (final_state) store_.SetLastSeq(channel->job_id, channel->last_seq + 1);
+    Deliver(*channel, std::move(event), {}, new_timeline, wake);
+    if (final_state) {
       channel->finished = true;
       for (const auto& watcher : channel->watchers) {
         if (watcher->PushEnd()) wake.push_back(watcher);
@@ -129,16 +165,25 @@ void EventHub::PublishState(const JobRecord& job) {
   WakeAll(wake);
 }
 
-void EventHub::Publish(const std::string& job_id, v1::WatchEvent event) {
+bool EventHub::Publish(const std::string& job_id, v1::WatchEvent event, const LogOrigin& origin) {
   auto channel = Find(job_id);
-  if (!channel) return;
+  if (!channel) return false;
   WakeList wake;
   {
     std::lock_guard lock(channel->mutex);
-    if (channel->finished) return;
-    Deliver(*channel, std::move(event), wake);
+    if (channel->finished) return false;
+    if (!origin.lane.empty()) {
+      auto it = channel->high_water.find(origin.lane);
+      if (it != channel->high_water.end() && origin.step <= it->second) {
+        // Published already, from the run before a resume: read past, not sent again.
+        if (!origin.source.empty()) channel->source_offset[origin.source] = origin.source_offset;
+        return false;
+      }
+    }
+    Deliver(*channel, std::move(event), origin, false, wake);
   }
   WakeAll(wake);
+  return true;
 }
 
 bool EventHub::Attach(const JobRecord& job, int64_t from_seq,
@@ -155,47 +200,20 @@ bool EventHub::Attach(const JobRecord& job, int64_t from_seq,
       if (fresh && !IsFinished(fresh->state)) channel = FindOrCreate(*fresh);
     }
   }
-  bool token = false;
-  auto push = [&](const v1::WatchEvent& event) { token = watcher->Push(event) || token; };
   if (!channel) {
-    auto final_job = store_.Get(job.id);
-    v1::WatchEvent event;
-    event.set_seq(final_job->last_seq);
-    event.set_wall_time(final_job->finished_time);
-    auto* state = event.mutable_state();
-    state->set_state(static_cast<v1::JobState>(final_job->state));
-    state->set_reason(final_job->reason);
-    *state->mutable_job() = ToProto(*final_job);
-    push(event);
+    // Finished: its final state, then what the log holds after from_seq (a number it lacks comes
+    // as a Gap), then the end.
+    const auto final_job = store_.Get(job.id);
+    if (!final_job) return false;
+    v1::Job shown = ToProto(*final_job);
+    bool token = watcher->Start(Summary(shown), from_seq, final_job->last_seq);
     token = watcher->PushEnd() || token;
     return token;
   }
   std::lock_guard lock(channel->mutex);
-  // The current state is a summary, not a new event: it carries the watcher's own position so that
-  // the sequence numbers a watcher sees never decrease.
-  v1::WatchEvent current;
-  current.set_seq(std::min(from_seq, channel->last_seq));
-  current.set_wall_time(NowSeconds());
-  auto* state = current.mutable_state();
-  state->set_state(channel->job.state());
-  state->set_reason(channel->job.reason());
-  *state->mutable_job() = channel->job;
-  state->mutable_job()->set_last_seq(channel->last_seq);
-  push(current);
-  const int64_t first_held =
-      channel->ring.empty() ? channel->last_seq + 1 : channel->ring.front().seq();
-  if (from_seq + 1 < first_held && from_seq < channel->last_seq && from_seq > 0) {
-    v1::WatchEvent gap;
-    gap.set_wall_time(NowSeconds());
-    gap.mutable_gap()->set_from_seq(from_seq + 1);
-    gap.mutable_gap()->set_to_seq(first_held - 1);
-    gap.mutable_gap()->set_reason("older than the event buffer");
-    push(gap);
-  }
-  for (const auto& event : channel->ring) {
-    if (event.seq() > from_seq) push(event);
-  }
-  if (channel->snapshot && channel->snapshot->seq() > from_seq) push(*channel->snapshot);
+  v1::Job shown = channel->job;
+  shown.set_last_seq(channel->last_seq);
+  bool token = watcher->Start(Summary(shown), from_seq, channel->last_seq);
   if (channel->finished) {
     token = watcher->PushEnd() || token;
   } else {
@@ -217,16 +235,33 @@ void EventHub::Detach(const std::string& job_id, const WatcherQueue* watcher) {
   }
 }
 
-void EventHub::Recover() {
-  for (const auto& [id, seq] : journal_.ReadAll()) {
-    // The file outlives the store's exact number only when the daemon died in between; a job
-    // deleted since has neither.
-    if (auto job = store_.Get(id); job && job->last_seq != seq) {
-      spdlog::info("job {}: last watch number issued {} (the store held {})", id, seq,
+std::optional<int64_t> EventHub::SourceOffset(const JobRecord& job, const std::string& source) {
+  if (auto channel = Find(job.id)) {
+    std::lock_guard lock(channel->mutex);
+    auto it = channel->source_offset.find(source);
+    if (it == channel->source_offset.end()) return std::nullopt;
+    return it->second;
+  }
+  const WatchLogState logged = WatchLog(job_dir_(job.id)).Recover();
+  auto it = logged.source_offset.find(source);
+  if (it == logged.source_offset.end()) return std::nullopt;
+  return it->second;
+}
+
+void EventHub::Recover(const std::string& legacy_journal_dir) {
+  for (const auto& [id, seq] : ReadLegacyJournal(legacy_journal_dir)) {
+    // The store held the end of a reserved block; the journal the number really issued.
+    if (auto job = store_.Get(id); job && job->last_seq != seq) store_.SetLastSeq(id, seq);
+  }
+  std::error_code error;
+  fs::remove_all(legacy_journal_dir, error);
+  for (const std::string& id : store_.UnfinishedJobIds()) {
+    const int64_t logged = WatchLog(job_dir_(id)).Recover().last_seq;
+    if (auto job = store_.Get(id); job && logged > job->last_seq) {
+      spdlog::info("job {}: last watch number issued {} (the store held {})", id, logged,
                    job->last_seq);
-      store_.SetLastSeq(id, seq);
+      store_.SetLastSeq(id, logged);
     }
-    journal_.Remove(id);
   }
 }
 
@@ -234,10 +269,7 @@ void EventHub::RecordIssued() {
   std::lock_guard lock(mutex_);
   for (auto& [id, channel] : channels_) {
     std::lock_guard channel_lock(channel->mutex);
-    if (channel->reserved == channel->last_seq) continue;
     store_.SetLastSeq(id, channel->last_seq);
-    // An event after this reserves a block again.
-    channel->reserved = channel->last_seq;
   }
 }
 
@@ -249,8 +281,6 @@ int64_t EventHub::ReportedLastSeq(const JobRecord& job) {
     if (IsFinished(job.state) && !channel->finished) return channel->last_seq + 1;
     return channel->last_seq;
   }
-  // No channel: the record may have been read while one was open (its last_seq then the end of a
-  // reserved block); the store holds the last number issued once the channel is dropped.
   if (auto issued = store_.LastSeq(job.id)) return *issued;
   return job.last_seq;
 }

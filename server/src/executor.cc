@@ -14,8 +14,8 @@ namespace {
 class LocalRun : public JobRun {
  public:
   void Start(const LaunchSpec& spec) override { process_.Start(spec); }
-  void ReadEvents(const std::function<void(const v1::SolverEvent&)>& on_event) override {
-    process_.ReadEvents(on_event);
+  void ReadEvents(const EventHandler& on_event) override {
+    process_.ReadEvents([&](const v1::SolverEvent& event) { on_event(event, EventPosition{}); });
   }
   SolverExit Wait() override { return process_.Wait(); }
   void Signal(int signal_number) override { process_.Signal(signal_number); }

@@ -47,22 +47,37 @@ struct RunOutcome {
   bool retryable = false;  // an end that a new attempt from the checkpoint may cure
 };
 
+// Where a solver event was read: the run's event file ("slurm:ID") and the offset just past the
+// event in it; an empty source for a pipe, which cannot be read again.
+struct EventPosition {
+  std::string source;
+  int64_t offset = 0;
+};
+
 class JobRun {
  public:
   virtual ~JobRun() = default;
+  using EventHandler = std::function<void(const v1::SolverEvent&, const EventPosition&)>;
+  // Where the daemon before stopped reading an event source, if it read any of it.
+  using ReadFrom = std::function<std::optional<int64_t>(const std::string& source)>;
   // Takes over a run of the job that outlived the daemon (a Slurm job submitted before a daemon
   // crash or shutdown, live or ended since: job.slurm_live); true when there is one: the
-  // scheduler then skips Start. The local executor's children die with the daemon: false.
-  virtual bool Adopt(const std::string& job_dir, const JobRecord& job) {
+  // scheduler then skips Start, and its events are read on from read_from's offset. The local
+  // executor's children die with the daemon: false.
+  virtual bool Adopt(const std::string& job_dir, const JobRecord& job, const ReadFrom& read_from) {
     (void)job_dir;
     (void)job;
+    (void)read_from;
     return false;
   }
+  // True when a started run waits before it runs (a Slurm job pends in Slurm's queue): the job is
+  // shown QUEUED until the executor says it runs (OnStateChange).
+  virtual bool WaitsBeforeRunning() const { return false; }
   // Throws std::runtime_error when the run cannot be started (fork, sbatch).
   virtual void Start(const LaunchSpec& spec) = 0;
   // Start will not be called (the job was cancelled or failed before it).
   virtual void Abandon() {}
-  virtual void ReadEvents(const std::function<void(const v1::SolverEvent&)>& on_event) = 0;
+  virtual void ReadEvents(const EventHandler& on_event) = 0;
   virtual SolverExit Wait() = 0;
   virtual void Signal(int signal_number) = 0;
   // The daemon shuts down: a run that can outlive it (a Slurm job) is left running and ReadEvents

@@ -763,6 +763,15 @@ int64_t JobStore::CountUnfinished() {
   return select.Int(0);
 }
 
+std::vector<std::string> JobStore::UnfinishedJobIds() {
+  std::lock_guard lock(mutex_);
+  Statement select(db_, "SELECT id FROM jobs WHERE state IN (?, ?)");
+  select.Bind(static_cast<int>(JobState::kQueued)).Bind(static_cast<int>(JobState::kRunning));
+  std::vector<std::string> ids;
+  while (select.Step()) ids.push_back(select.Text(0));
+  return ids;
+}
+
 int JobStore::CountRunning() {
   std::lock_guard lock(mutex_);
   Statement select(db_, "SELECT COUNT(*) FROM jobs WHERE state = ?");
@@ -906,16 +915,23 @@ std::optional<JobRecord> JobStore::NextQueued() {
   return std::move(jobs.front());
 }
 
-void JobStore::MarkRunning(const std::string& id, double started_time) {
+void JobStore::MarkRunning(const std::string& id, double started_time, RunStart start) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
-  Statement update(db_,
-                   "UPDATE jobs SET state = ?, started_time = ?, attempts = attempts + 1, "
-                   "reason = '' WHERE id = ? AND state = ?");
-  update.Bind(static_cast<int>(JobState::kRunning))
-      .Bind(started_time)
-      .Bind(id)
-      .Bind(static_cast<int>(JobState::kQueued));
+  // An adopted run is no new solver start and keeps its start time; a run that waits in the
+  // executor first has none yet (SetSlurmState gives it when Slurm starts it).
+  const char* sql =
+      start == RunStart::kAdopt
+          ? "UPDATE jobs SET state = ?, reason = '' WHERE id = ? AND state = ?"
+      : start == RunStart::kWaiting
+          ? "UPDATE jobs SET state = ?, started_time = 0, attempts = attempts + 1, reason = '', "
+            "slurm_state = '', slurm_reason = '', slurm_waiting = 1 WHERE id = ? AND state = ?"
+          : "UPDATE jobs SET state = ?, started_time = ?, attempts = attempts + 1, reason = '' "
+            "WHERE id = ? AND state = ?";
+  Statement update(db_, sql);
+  update.Bind(static_cast<int>(JobState::kRunning));
+  if (start == RunStart::kRun) update.Bind(started_time);
+  update.Bind(id).Bind(static_cast<int>(JobState::kQueued));
   update.Run();
   if (update.Changes() != 1) throw StoreError("job " + id + " is not queued");
   transaction.Commit();

@@ -3,9 +3,9 @@
 // One connection in serialized use (a mutex), WAL journal, a busy timeout, a schema_version table
 // and ordered migrations applied at open. Every statement is prepared and parameterised; every
 // state change is one transaction. An accepted job is committed before Submit returns; a job id is
-// never reused. Watch sequence numbers are handed out in blocks: while a job has a channel in the
-// EventHub last_seq is the reserved high-water mark, else the last number issued (EventHub::Recover
-// takes it from the SeqJournal after a crash). Not
+// never reused. last_seq is the last watch number issued, except while a job has a channel in the
+// EventHub (which then knows it; the watch log holds it, and EventHub::Recover takes it from there
+// after a crash). Not
 // supported: several daemons on one data directory (the daemon holds an flock on it).
 //
 // Studies (schema 3): a sweeps table holds each study (name, tags, labels, axes, base overrides,
@@ -209,6 +209,7 @@ class JobStore {
   std::optional<JobRecord> Get(const std::string& id);
   std::vector<JobRecord> List(const ListFilter& filter);
   int64_t CountUnfinished();
+  std::vector<std::string> UnfinishedJobIds();
   std::vector<JobRecord> SweepJobs(const std::string& owner, const std::string& sweep_id);
   std::optional<SweepRecord> GetSweep(const std::string& owner, const std::string& sweep_id);
   // The owner's studies, newest first; tag empty: any.
@@ -232,7 +233,12 @@ class JobStore {
   // at most limit: the slurm executor hands them to Slurm together (one job array).
   std::vector<JobRecord> QueuedOfSweep(const std::string& sweep_id, int limit);
   int CountRunningOfSweep(const std::string& sweep_id);
-  void MarkRunning(const std::string& id, double started_time);
+  // QUEUED -> RUNNING. kRun: a solver starts now (attempts + 1, started_time); kWaiting: a run
+  // handed to an executor that holds it first (a Slurm submission: attempts + 1, shown QUEUED
+  // until SetSlurmState says it runs); kAdopt: a run that outlived the daemon is followed again
+  // (no new start). Throws StoreError when the job is not QUEUED.
+  enum class RunStart { kRun, kWaiting, kAdopt };
+  void MarkRunning(const std::string& id, double started_time, RunStart start = RunStart::kRun);
   // Sets a finished state; returns false when the job had already finished (nothing changed).
   bool MarkFinished(const std::string& id, JobState state, const std::string& reason, double when);
   // QUEUED -> CANCELLED atomically; false if the job was not QUEUED or is a Slurm job to adopt.

@@ -420,7 +420,7 @@ grpc::ServerWriteReactor<v1::WatchEvent>* JobsService::Watch(grpc::CallbackServe
   options.include_snapshots = request->include_snapshots();
   options.max_width = request->snapshot_max_width();
   options.max_height = request->snapshot_max_height();
-  auto queue = std::make_shared<WatcherQueue>(options);
+  auto queue = std::make_shared<WatcherQueue>(options, hub_.LogDirectory(job.id));
   auto* reactor = new WatchReactor(hub_, job.id, queue);
   bool token = false;
   status = Guarded([&] { token = hub_.Attach(job, request->from_seq(), queue); });
@@ -650,7 +650,8 @@ grpc::ServerUnaryReactor* JobsService::Retry(grpc::CallbackServerContext* contex
       const JobRecord& job = requeued[k];
       spdlog::info("job {}: QUEUED again by {} (attempt {}, {})", job.id, user, job.attempt,
                    plan[k].fresh_start ? "fresh start" : "resumes from its checkpoint");
-      hub_.PublishState(job);
+      // A fresh start is a new timeline: its steps are published again from 0 (event_hub.h).
+      hub_.PublishState(job, plan[k].fresh_start);
       *reply->add_jobs() = Reported(job);
     }
     scheduler_.Wake();

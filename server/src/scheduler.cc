@@ -73,10 +73,7 @@ Scheduler::Scheduler(const Config& config, JobStore& store, EventHub& hub)
 Scheduler::~Scheduler() { Stop(std::chrono::seconds(5)); }
 
 std::string Scheduler::JobDir(const std::string& job_id) const {
-  if (config_.executor == "slurm" && !config_.slurm.shared_dir.empty()) {
-    return (fs::path(config_.slurm.shared_dir) / job_id).string();
-  }
-  return (fs::path(config_.data_dir) / "jobs" / job_id).string();
+  return JobDirectory(config_, job_id);
 }
 
 std::string Scheduler::ResultsDir(const std::string& job_id) const {
@@ -125,8 +122,14 @@ void Scheduler::Loop() {
         if (!StartStudyBatch(*next, most - static_cast<int>(running_.size()))) break;
         continue;
       }
+      auto run = MakeJobRun(config_);
       try {
-        store_.MarkRunning(next->id, NowSeconds());
+        // A live Slurm job of a daemon before is adopted, not started (JobRun::Adopt).
+        const bool adopt = next->slurm_live && !next->slurm_job_id.empty();
+        store_.MarkRunning(next->id, NowSeconds(),
+                           adopt                       ? JobStore::RunStart::kAdopt
+                           : run->WaitsBeforeRunning() ? JobStore::RunStart::kWaiting
+                                                       : JobStore::RunStart::kRun);
         next = store_.Get(next->id);
       } catch (const std::exception& e) {
         // Cancelled between the two statements: take the next one. Still queued: the store
@@ -141,13 +144,14 @@ void Scheduler::Loop() {
         }
         continue;
       }
-      Launch(*next, MakeJobRun(config_));
+      Launch(*next, std::move(run));
     }
   }
 }
 
 void Scheduler::Launch(const JobRecord& job, std::shared_ptr<JobRun> run) {
-  spdlog::info("job {}: RUNNING (attempt {}, priority {})", job.id, job.attempts, job.priority);
+  spdlog::info("job {}: {} (attempt {}, priority {})", job.id, JobStateName(ShownState(job)),
+               job.attempts, job.priority);
   hub_.PublishState(job);
   auto& entry = running_[job.id];
   entry.process = std::move(run);
@@ -167,7 +171,8 @@ bool Scheduler::StartStudyBatch(const JobRecord& first, int room) {
     for (JobRecord& job : store_.QueuedOfSweep(first.sweep_id, room)) {
       if (running_.count(job.id)) continue;  // its previous run's thread is still ending
       try {
-        store_.MarkRunning(job.id, NowSeconds());
+        // Handed to the executor together; each waits there before it runs.
+        store_.MarkRunning(job.id, NowSeconds(), JobStore::RunStart::kWaiting);
       } catch (const std::exception&) {
         continue;  // cancelled or held since it was read
       }
@@ -221,7 +226,9 @@ void Scheduler::RunJob(JobRecord job) {
     } else {
       // A run that outlived the daemon (a Slurm job) is followed, not started again; a retry with
       // another scene starts afresh: its old checkpoint must not be resumed.
-      const bool adopted = process->Adopt(dir.string(), job);
+      const bool adopted = process->Adopt(dir.string(), job, [&](const std::string& source) {
+        return hub_.SourceOffset(job, source);
+      });
       started = adopted;
       const bool resume =
           !adopted && !job.fresh_start && fs::exists(results / ResultsWriter::kCheckpoint);
@@ -281,8 +288,13 @@ void Scheduler::RunJob(JobRecord job) {
         }
         spdlog::info("job {}: {} started{}", job.id, process->Describe(),
                      resume ? " with --resume" : "");
-        hub_.Publish(job.id, LogEvent("info", resume ? "solver resumed from results/checkpoint.h5"
-                                                     : "solver started"));
+        // A run that waits in its executor has started nothing yet: it was handed over.
+        const std::string what =
+            process->WaitsBeforeRunning()
+                ? process->Describe() + " submitted" +
+                      (resume ? " to resume from results/checkpoint.h5" : "")
+                : (resume ? "solver resumed from results/checkpoint.h5" : "solver started");
+        hub_.Publish(job.id, LogEvent("info", what));
       }
       WallTimeLimit wall_limit(process->LimitsTimeItself() ? 0 : spec.time_limit_seconds,
                                [&] { process->Signal(SIGTERM); });
@@ -290,14 +302,18 @@ void Scheduler::RunJob(JobRecord job) {
 
       std::optional<v1::Finished> finished;
       double last_store = 0;
-      process->ReadEvents([&](const v1::SolverEvent& in) {
+      process->ReadEvents([&](const v1::SolverEvent& in, const EventPosition& position) {
         v1::WatchEvent out;
         out.set_wall_time(in.wall_time());
         bool store_progress = false;
         int64_t step = 0;
         double time = 0, end_time = 0;
+        // The lane and step that order the event against a resumed solver's (event_hub.h).
+        LogOrigin origin{"", 0, position.source, position.offset};
         switch (in.event_case()) {
           case v1::SolverEvent::kStarted: {
+            origin.lane = "progress";
+            origin.step = in.started().step();
             auto* p = out.mutable_progress();
             step = in.started().step();
             time = in.started().time();
@@ -310,6 +326,8 @@ void Scheduler::RunJob(JobRecord job) {
           }
           case v1::SolverEvent::kProgress: {
             const auto& src = in.progress();
+            origin.lane = "progress";
+            origin.step = src.step();
             auto* p = out.mutable_progress();
             p->set_step(src.step());
             p->set_time(src.time());
@@ -326,9 +344,13 @@ void Scheduler::RunJob(JobRecord job) {
           }
           case v1::SolverEvent::kParticles:
             *out.mutable_particles() = in.particles();
+            origin.lane = "particles";
+            origin.step = in.particles().step();
             break;
           case v1::SolverEvent::kSnapshot: {
             const auto& src = in.snapshot();
+            origin.lane = "snapshot";
+            origin.step = src.step();
             auto* s = out.mutable_snapshot();
             s->set_nx(src.nx());
             s->set_ny(src.ny());
@@ -344,6 +366,8 @@ void Scheduler::RunJob(JobRecord job) {
             *out.mutable_log() = in.log();
             break;
           case v1::SolverEvent::kCheckpointed: {
+            origin.lane = "checkpoint";
+            origin.step = in.checkpointed().step();
             std::ostringstream text;
             text << "checkpoint at step " << in.checkpointed().step()
                  << ", t = " << in.checkpointed().time();
@@ -372,7 +396,7 @@ void Scheduler::RunJob(JobRecord job) {
           last_store = NowSeconds();
           unstored = false;
         }
-        hub_.Publish(job.id, std::move(out));
+        hub_.Publish(job.id, std::move(out), origin);
       });
       store_seen();
       const SolverExit exit = process->Wait();

@@ -80,9 +80,11 @@ std::optional<SlurmJobStatus> SlurmQueue::FromJobComp(const std::string& id) {
   return std::nullopt;
 }
 
-bool SlurmRun::Adopt(const std::string& job_dir, const JobRecord& job) {
+bool SlurmRun::Adopt(const std::string& job_dir, const JobRecord& job, const ReadFrom& read_from) {
   if (!job.slurm_live || job.slurm_job_id.empty()) return false;
   job_dir_ = job_dir;
+  // The events the daemon before logged are not read again (event_hub.h).
+  read_from_ = read_from("slurm:" + job.slurm_job_id).value_or(0);
   restarts_ = job.slurm_restarts;
   reported_ = ExecutorState{job.slurm_state, job.slurm_reason, job.slurm_waiting};
   submitted_ = true;
@@ -207,7 +209,7 @@ void SlurmRun::SetExit(const ExitFile& file) {
   exit_.code = exit_.signalled ? file.status - 128 : file.status;
 }
 
-void SlurmRun::ReadEvents(const std::function<void(const v1::SolverEvent&)>& on_event) {
+void SlurmRun::ReadEvents(const EventHandler& on_event) {
   if (submitted_) FollowUntilEnd(on_event);
 }
 
@@ -218,9 +220,10 @@ bool SlurmRun::Sleep() {
   return detached_;
 }
 
-void SlurmRun::FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>& on_event) {
-  EventFileTail tail((fs::path(job_dir_) / kSlurmEventsFile).string());
+void SlurmRun::FollowUntilEnd(const EventHandler& on_event) {
+  EventFileTail tail((fs::path(job_dir_) / kSlurmEventsFile).string(), read_from_);
   const std::string id = ExecutorId();
+  const std::string source = "slurm:" + id;
   std::string live_reason;
   int unknown = 0;  // answers of squeue since the submission that did not list the job
   SlurmQueue::Clock::time_point counted{};
@@ -231,7 +234,7 @@ void SlurmRun::FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>&
   int delivered = 0;
   auto deliver = [&](const v1::SolverEvent& event) {
     ++delivered;
-    on_event(event);
+    on_event(event, EventPosition{source, static_cast<int64_t>(tail.offset())});
   };
   auto next_poll = std::chrono::steady_clock::now();
   auto asked = [this] {
@@ -285,7 +288,7 @@ void SlurmRun::FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>&
         }
         const SlurmStateMeaning meaning = MapSlurmState(status->state, status->reason);
         if (meaning.finished) {
-          tail.ReadNew(on_event);
+          tail.ReadNew(deliver);
           exit = ReadExitFile();
           if (exit && exit->restarts >= restarts_) {
             SetExit(*exit);

@@ -100,10 +100,11 @@ class SlurmRun : public JobRun {
         queue_(std::move(queue)),
         array_(std::move(array)),
         index_(index) {}
-  bool Adopt(const std::string& job_dir, const JobRecord& job) override;
+  bool Adopt(const std::string& job_dir, const JobRecord& job, const ReadFrom& read_from) override;
+  bool WaitsBeforeRunning() const override { return true; }
   void Start(const LaunchSpec& spec) override;
   void Abandon() override;
-  void ReadEvents(const std::function<void(const v1::SolverEvent&)>& on_event) override;
+  void ReadEvents(const EventHandler& on_event) override;
   SolverExit Wait() override { return exit_; }
   void Signal(int signal_number) override;
   void Detach() override;
@@ -129,7 +130,7 @@ class SlurmRun : public JobRun {
   // sbatch for a job of its own; empty when the run was signalled while sbatch could not reach
   // slurmctld.
   std::string Submit(const BatchJob& job, const std::string& script);
-  void FollowUntilEnd(const std::function<void(const v1::SolverEvent&)>& on_event);
+  void FollowUntilEnd(const EventHandler& on_event);
   std::optional<ExitFile> ReadExitFile() const;
   // Gives OnStateChange's handler the state when it differs from the one reported last.
   void Report(const ExecutorState& state);
@@ -148,6 +149,7 @@ class SlurmRun : public JobRun {
   ExecutorState reported_;                          // Slurm's word last reported (as stored)
   SlurmQueue::Clock::time_point followed_since_{};  // submitted or adopted
   bool submitted_ = false;
+  int64_t read_from_ = 0;  // the offset of events.bin to read on from (an adopted run)
   SolverExit exit_;
   std::optional<RunOutcome> outcome_;
   mutable std::mutex mutex_;  // guards the members below (Signal and Detach come from others)

@@ -46,35 +46,17 @@ bool WatcherQueue::TakeToken() {
   return true;
 }
 
-void WatcherQueue::Drop(Entry victim, Entry* next) {
-  ++dropped_;
-  const int64_t seq = victim.event.seq();
-  std::vector<Run> runs = std::move(victim.gaps);
-  // The victim's own runs lie just before it, with nothing sent in between.
-  if (!runs.empty() && runs.back().grows) {
-    runs.back().to = seq;
-  } else {
-    runs.push_back({seq, seq, true});
+bool WatcherQueue::Start(v1::WatchEvent head, int64_t after, int64_t upto) {
+  std::lock_guard lock(mutex_);
+  head_.push_back(std::move(head));
+  taken_ = std::max<int64_t>(after, 0);
+  if (after < upto) {
+    catching_up_ = true;
+    catch_up_after_ = after;
+    catch_up_upto_ = upto;
+    taken_ = upto;
   }
-  Entry& after = next ? *next : trailing_;
-  if (!after.gaps.empty() && after.gaps.front().grows) {
-    runs.back().to = after.gaps.front().to;
-    after.gaps.erase(after.gaps.begin());
-  }
-  runs.insert(runs.end(), after.gaps.begin(), after.gaps.end());
-  after.gaps = std::move(runs);
-}
-
-bool WatcherQueue::TakeGap(Entry& entry, v1::WatchEvent* out) {
-  if (entry.gaps.empty()) return false;
-  out->Clear();
-  out->set_wall_time(NowSeconds());
-  auto* gap = out->mutable_gap();
-  gap->set_from_seq(entry.gaps.front().from);
-  gap->set_to_seq(entry.gaps.front().to);
-  gap->set_reason("slow watcher: events dropped");
-  entry.gaps.erase(entry.gaps.begin());
-  return true;
+  return TakeToken();
 }
 
 bool WatcherQueue::Push(const v1::WatchEvent& event) {
@@ -82,42 +64,30 @@ bool WatcherQueue::Push(const v1::WatchEvent& event) {
   if (closed_ || end_) return false;
   if (event.has_snapshot()) {
     if (!options_.include_snapshots) return false;
-    // A snapshot is newer than all that is queued: the trailing runs lie just before it.
-    Entry entry{event, std::move(trailing_.gaps)};
-    trailing_.gaps.clear();
-    *entry.event.mutable_snapshot() =
+    PendingSnapshot pending{event, {}};
+    *pending.event.mutable_snapshot() =
         DownsampleSnapshot(event.snapshot(), options_.max_width, options_.max_height);
     if (snapshot_) {
-      // The replaced snapshot's runs, then the snapshot as a run of its own: events of the other
-      // lane may have been sent between it and the ones dropped after it.
       ++dropped_;
-      std::vector<Run> runs = std::move(snapshot_->gaps);
-      for (auto& run : runs) run.grows = false;
-      runs.push_back({snapshot_->event.seq(), snapshot_->event.seq(), false});
-      runs.insert(runs.end(), entry.gaps.begin(), entry.gaps.end());
-      entry.gaps = std::move(runs);
+      pending.replaced = std::move(snapshot_->replaced);
+      pending.replaced.push_back(snapshot_->event.seq());
     }
-    snapshot_ = std::move(entry);
+    snapshot_ = std::move(pending);
     return TakeToken();
   }
   if (queue_.size() >= options_.capacity) {
-    auto victim = std::find_if(queue_.begin(), queue_.end(),
-                               [](const Entry& e) { return !e.event.has_state(); });
-    if (!event.has_state() && victim == queue_.end()) {
-      // The new event itself is dropped, after the trailing runs.
-      Entry dropped{event, std::move(trailing_.gaps)};
-      trailing_.gaps.clear();
-      Drop(std::move(dropped), nullptr);
-      return TakeToken();
+    // A slow watcher: what waits here is in the log; the catch-up reads it back, up to this one.
+    ++overflows_;
+    if (!catching_up_) {
+      catching_up_ = true;
+      catch_up_after_ = taken_;
     }
-    if (victim != queue_.end()) {
-      Entry dropped = std::move(*victim);
-      auto next = queue_.erase(victim);
-      Drop(std::move(dropped), next == queue_.end() ? nullptr : &*next);
-    }
+    catch_up_upto_ = event.seq();
+    queue_.clear();
+    if (snapshot_ && snapshot_->event.seq() <= event.seq()) snapshot_.reset();
+    return TakeToken();
   }
-  queue_.push_back(Entry{event, std::move(trailing_.gaps)});
-  trailing_.gaps.clear();
+  queue_.push_back(event);
   return TakeToken();
 }
 
@@ -132,35 +102,82 @@ bool WatcherQueue::Cancel() {
   std::lock_guard lock(mutex_);
   if (cancelled_ || closed_) return false;
   cancelled_ = true;
+  head_.clear();
   queue_.clear();
   snapshot_.reset();
-  trailing_.gaps.clear();
+  catching_up_ = false;
   if (sending_) return false;  // the holder sees cancelled_ at its next Pop
   sending_ = true;
   return true;
 }
 
+bool WatcherQueue::ReadCatchUp(std::unique_lock<std::mutex>& lock) {
+  const int64_t after = catch_up_after_, upto = catch_up_upto_;
+  lock.unlock();
+  if (!reader_) {
+    reader_ = std::make_unique<WatchLog::Reader>(log_dir_, after, upto, options_.include_snapshots);
+  }
+  reader_->ExtendTo(upto);
+  std::vector<v1::WatchEvent> chunk;
+  const size_t most = std::max<size_t>(1, options_.capacity / 2);
+  bool more = reader_->Next(most, chunk);
+  for (auto& event : chunk) {
+    if (event.has_snapshot()) {
+      *event.mutable_snapshot() =
+          DownsampleSnapshot(event.snapshot(), options_.max_width, options_.max_height);
+    }
+  }
+  lock.lock();
+  if (!catching_up_) return false;  // cancelled meanwhile
+  for (auto& event : chunk) head_.push_back(std::move(event));
+  if (!more && catch_up_upto_ == upto) {
+    catching_up_ = false;
+    reader_.reset();
+  }
+  return true;
+}
+
 WatcherQueue::Next WatcherQueue::Pop(v1::WatchEvent* out) {
-  std::lock_guard lock(mutex_);
-  if (cancelled_) {
-    closed_ = true;
-    return Next::kClosed;
+  std::unique_lock lock(mutex_);
+  while (true) {
+    if (cancelled_) {
+      closed_ = true;
+      return Next::kClosed;
+    }
+    if (!head_.empty()) {
+      *out = std::move(head_.front());
+      head_.pop_front();
+      Taken(out->seq());
+      return Next::kEvent;
+    }
+    if (!catching_up_) break;
+    ReadCatchUp(lock);
   }
   const bool take_snapshot =
-      snapshot_ && (queue_.empty() || snapshot_->event.seq() < queue_.front().event.seq());
+      snapshot_ && (queue_.empty() || snapshot_->event.seq() < queue_.front().seq());
   if (take_snapshot) {
-    if (TakeGap(*snapshot_, out)) return Next::kEvent;
+    if (!snapshot_->replaced.empty()) {
+      // A snapshot replaced by a newer one before it was sent: its number alone.
+      const int64_t seq = snapshot_->replaced.front();
+      snapshot_->replaced.erase(snapshot_->replaced.begin());
+      out->Clear();
+      out->set_wall_time(NowSeconds());
+      out->mutable_gap()->set_from_seq(seq);
+      out->mutable_gap()->set_to_seq(seq);
+      out->mutable_gap()->set_reason("snapshot replaced by a newer one before it was sent");
+      return Next::kEvent;
+    }
     *out = std::move(snapshot_->event);
     snapshot_.reset();
+    Taken(out->seq());
     return Next::kEvent;
   }
   if (!queue_.empty()) {
-    if (TakeGap(queue_.front(), out)) return Next::kEvent;
-    *out = std::move(queue_.front().event);
+    *out = std::move(queue_.front());
     queue_.pop_front();
+    Taken(out->seq());
     return Next::kEvent;
   }
-  if (TakeGap(trailing_, out)) return Next::kEvent;
   if (end_) {
     closed_ = true;
     return Next::kEnd;
@@ -172,6 +189,11 @@ WatcherQueue::Next WatcherQueue::Pop(v1::WatchEvent* out) {
 int64_t WatcherQueue::dropped() const {
   std::lock_guard lock(mutex_);
   return dropped_;
+}
+
+int64_t WatcherQueue::overflows() const {
+  std::lock_guard lock(mutex_);
+  return overflows_;
 }
 
 }  // namespace dlmfd::server

@@ -1,25 +1,32 @@
-// WatcherQueue: the bounded buffer between one job's event channel and one Watch stream.
+// WatcherQueue: what one Watch stream still has to send, in the order of the job's sequence
+// numbers.
 //
-// The producer (the thread that reads a solver's events) never waits: Push is O(capacity) at worst
-// and never blocks on the network. When the queue is full the oldest event that is not a state
-// change is dropped; an unsent snapshot is replaced by a newer one. Either way the watcher is told
-// where events went missing: Gaps (seq 0) come just before the event sent after the dropped ones,
-// each naming the first and last sequence numbers of one run of dropped events. A run holds only
-// dropped events: an event sent in between (a state change, a snapshot) ends it, so a Gap is never
-// wider than what was dropped. State changes are never dropped. Sending is serialised by a token:
-// whoever takes it (Push, PushEnd or Cancel returning true) owns the stream until Next returns
-// kEmpty (token given back), kEnd or kClosed (stream must be finished). Snapshots are downsampled
-// here to the watcher's requested size.
+// Every event is in the job's watch log (watch_log.h) before the hub pushes it here, so a queue
+// never has to drop one for good. It sends, in order: the head (the summary of the current state,
+// given at attach), then the catch-up (the events with seq in (after, upto], read from the log in
+// chunks as the stream drains: what the watcher missed before it attached, or what did not fit
+// since), then the live events pushed by the producer. The producer never waits: Push is O(1)
+// and never blocks on the network or the disk; when `capacity` live events are waiting (a slow
+// watcher) they are let go and the catch-up range grows over them, to be read back from the log
+// later. A newer snapshot replaces one not yet sent (a Gap names it): snapshots are the one kind
+// a slow watcher may miss (and a watcher that does not ask for snapshots never gets one; their
+// numbers are not its concern). Sending is serialised by a token: whoever takes it (Push, PushEnd,
+// Cancel or Start returning true) owns the stream until Pop returns kEmpty (token given back),
+// kEnd or kClosed (stream must be finished). The catch-up is read by the token holder outside
+// the queue's lock. Snapshots are downsampled here to the watcher's requested size.
 #pragma once
 
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "dlmfd/v1/jobs.pb.h"
+#include "watch_log.h"
 
 namespace dlmfd::server {
 
@@ -38,14 +45,19 @@ class WatcherQueue {
  public:
   enum class Next { kEvent, kEmpty, kEnd, kClosed };
 
-  explicit WatcherQueue(WatchOptions options)
-      : options_(options) {}
+  // `log_dir`: the job directory whose watch log holds the events (the catch-up reads it).
+  WatcherQueue(WatchOptions options, std::string log_dir)
+      : options_(options),
+        log_dir_(std::move(log_dir)) {}
 
   // Called by the token holder outside any lock to start sending.
   void SetWake(std::function<void()> wake) { wake_ = std::move(wake); }
-  // Enqueue; returns true when the caller took the send token and must call Wake().
+  // At attach, before any Push: the head event, then the events with seq in (after, upto] from
+  // the log (none when after >= upto). Returns true when the caller took the send token.
+  bool Start(v1::WatchEvent head, int64_t after, int64_t upto);
+  // A live event; returns true when the caller took the send token and must call Wake().
   bool Push(const v1::WatchEvent& event);
-  // No more events after those queued.
+  // No more events after those pushed.
   bool PushEnd();
   // The client went away: drop everything; returns true when the caller took the token.
   bool Cancel();
@@ -54,33 +66,35 @@ class WatcherQueue {
   // For the token holder: the next event to send.
   Next Pop(v1::WatchEvent* out);
 
+  // Snapshots replaced before they were sent.
   int64_t dropped() const;
+  // Times the live events outgrew `capacity` and were left to the catch-up.
+  int64_t overflows() const;
 
  private:
-  // A run of dropped events; a run of the event lane may grow, a replaced snapshot is a run alone.
-  struct Run {
-    int64_t from = 0, to = 0;
-    bool grows = true;
-  };
-  // An event to send, and the runs dropped just before it.
-  struct Entry {
-    v1::WatchEvent event;
-    std::vector<Run> gaps;
-  };
   bool TakeToken();
-  // Drops `victim` (an event-lane entry): its seq and its runs go before `next` (the trailing runs,
-  // which the next pushed event takes, when next is null), merged where nothing lies between.
-  void Drop(Entry victim, Entry* next);
-  // Writes the first Gap of entry into out and removes it; false when entry has none.
-  static bool TakeGap(Entry& entry, v1::WatchEvent* out);
+  // Reads the next chunk of the catch-up into head_ (lock held on entry and on return; released
+  // while reading). False when the catch-up is done.
+  bool ReadCatchUp(std::unique_lock<std::mutex>& lock);
+  void Taken(int64_t seq) { taken_ = std::max(taken_, seq); }
 
   const WatchOptions options_;
+  const std::string log_dir_;
   std::function<void()> wake_;
   mutable std::mutex mutex_;
-  std::deque<Entry> queue_;
-  std::optional<Entry> snapshot_;
-  Entry trailing_;  // only its gaps: dropped after the last queued event
-  int64_t dropped_ = 0;
+  std::deque<v1::WatchEvent> head_;  // to send first: the head, then chunks of the catch-up
+  // The catch-up: (after, upto] of the log, read by reader_ (made by the token holder).
+  bool catching_up_ = false;
+  int64_t catch_up_after_ = 0, catch_up_upto_ = 0;
+  std::unique_ptr<WatchLog::Reader> reader_;
+  std::deque<v1::WatchEvent> queue_;  // live events
+  struct PendingSnapshot {
+    v1::WatchEvent event;
+    std::vector<int64_t> replaced;  // snapshots it replaced, unsent: a Gap each before it
+  };
+  std::optional<PendingSnapshot> snapshot_;
+  int64_t taken_ = 0;  // the highest number moved to head_ or popped
+  int64_t dropped_ = 0, overflows_ = 0;
   bool sending_ = false;
   bool end_ = false;
   bool closed_ = false;

@@ -357,10 +357,15 @@ TEST(Daemon, SubmitWatchFetchEndToEnd) {
     if (event.has_progress()) ++progress;
   }
   EXPECT_GT(progress, 0);
-  // A late watch of the finished job replays its final state and ends.
+  // A late watch of the finished job: its final state as the summary (seq 0), then every event
+  // after from_seq, read from the job's watch log, and the end (issue 38: only the final state).
   auto late = WatchAll(*stub, job.id());
-  ASSERT_EQ(late.size(), 1u);
+  ASSERT_EQ(late.size(), events.size());
+  EXPECT_EQ(late[0].seq(), 0);
   EXPECT_EQ(late[0].state().state(), v1::COMPLETED);
+  for (size_t i = 1; i < late.size(); ++i) {
+    EXPECT_EQ(late[i].SerializeAsString(), events[i].SerializeAsString()) << i;
+  }
   v1::ListFilesRequest files_request;
   files_request.set_job_id(job.id());
   v1::ListFilesResponse files;
@@ -414,10 +419,11 @@ TEST(Daemon, LastSeqIsTheLastNumberIssuedNotAReservedBlock) {
   ASSERT_TRUE(stub->List(Context().get(), v1::ListRequest(), &list).ok());
   ASSERT_EQ(list.jobs_size(), 1);
   EXPECT_EQ(list.jobs(0).last_seq(), last);
-  // A late watch of the finished job starts at that number too.
-  const auto late = WatchAll(*stub, job.id());
+  // A late watch of the finished job from that number: the summary alone, numbered 0.
+  const auto late = WatchAll(*stub, job.id(), "", last);
   ASSERT_EQ(late.size(), 1u);
-  EXPECT_EQ(late[0].seq(), last);
+  EXPECT_EQ(late[0].seq(), 0);
+  EXPECT_EQ(late[0].state().job().last_seq(), last);
 }
 
 TEST(Daemon, CancelStopsARunningJobAndKeepsPartialResults) {
@@ -719,8 +725,8 @@ TEST(Daemon, AfterKillNineAWatcherThatSawEverythingIsToldOfNoGap) {
     seqs.push_back(event.seq());
   }
   EXPECT_TRUE(reader->Finish().ok());
-  // The current state at the watcher's position, then the cancel with the next number.
-  EXPECT_EQ(seqs, (std::vector<int64_t>{seen, seen + 1}));
+  // The current state (a summary, numbered 0), then the cancel with the next number.
+  EXPECT_EQ(seqs, (std::vector<int64_t>{0, seen + 1}));
   EXPECT_EQ(WaitFinished(*stub, blocker_id).state(), v1::CANCELLED);
 }
 

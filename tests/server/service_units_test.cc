@@ -19,6 +19,7 @@
 #include "service_error.h"
 #include "support/daemon_process.h"
 #include "sweep_expansion.h"
+#include "watch_log.h"
 #include "watcher_queue.h"
 
 namespace dlmfd::server {
@@ -261,6 +262,12 @@ v1::WatchEvent Progress(int64_t seq) {
   return event;
 }
 
+v1::WatchEvent LogEvent(const std::string& text) {
+  v1::WatchEvent event;
+  event.mutable_log()->set_text(text);
+  return event;
+}
+
 v1::WatchEvent Snapshot(int64_t seq) {
   v1::WatchEvent event;
   event.set_seq(seq);
@@ -271,98 +278,88 @@ v1::WatchEvent Snapshot(int64_t seq) {
   return event;
 }
 
-TEST(WatcherQueue, SlowWatcherGetsGapAndNewestEvents) {
-  WatchOptions options;
-  options.capacity = 4;
-  WatcherQueue queue(options);
-  EXPECT_TRUE(queue.Push(Progress(1)));  // takes the send token
-  for (int64_t seq = 2; seq <= 10; ++seq) EXPECT_FALSE(queue.Push(Progress(seq)));
-  v1::WatchEvent out;
-  ASSERT_EQ(queue.Pop(&out), WatcherQueue::Next::kEvent);
-  ASSERT_TRUE(out.has_gap());
-  EXPECT_EQ(out.gap().from_seq(), 1);
-  EXPECT_EQ(out.gap().to_seq(), 6);
-  std::vector<int64_t> seqs;
-  while (queue.Pop(&out) == WatcherQueue::Next::kEvent) seqs.push_back(out.seq());
-  EXPECT_EQ(seqs, (std::vector<int64_t>{7, 8, 9, 10}));
-  EXPECT_EQ(queue.dropped(), 6);
+v1::WatchEvent State(int64_t seq, v1::JobState state = v1::RUNNING) {
+  v1::WatchEvent event;
+  event.set_seq(seq);
+  event.mutable_state()->set_state(state);
+  return event;
 }
 
-TEST(WatcherQueue, StateChangesAreNeverDropped) {
-  WatchOptions options;
-  options.capacity = 2;
-  WatcherQueue queue(options);
-  v1::WatchEvent state;
-  state.set_seq(1);
-  state.mutable_state()->set_state(v1::RUNNING);
-  queue.Push(state);
-  state.set_seq(2);
-  queue.Push(state);
-  queue.Push(Progress(3));
-  EXPECT_TRUE(queue.PushEnd() == false);  // token already held
-  v1::WatchEvent out;
-  std::vector<int64_t> seqs;
-  WatcherQueue::Next next;
-  while ((next = queue.Pop(&out)) == WatcherQueue::Next::kEvent) {
-    if (!out.has_gap()) seqs.push_back(out.seq());
-  }
-  EXPECT_EQ(next, WatcherQueue::Next::kEnd);
-  EXPECT_EQ(seqs, (std::vector<int64_t>{1, 2}));
-}
+v1::WatchEvent Head() { return State(0); }
 
-TEST(WatcherQueue, AGapNamesOnlyWhatWasDroppedAndComesWhereItWas) {
-  WatchOptions options;
-  options.capacity = 3;
-  WatcherQueue queue(options);
-  auto state = [](int64_t seq) {
-    v1::WatchEvent event;
-    event.set_seq(seq);
-    event.mutable_state()->set_state(v1::RUNNING);
-    return event;
-  };
-  // State changes 1, 5, 7 are kept; progress 2, 3, 4 and 6 are dropped around them.
-  queue.Push(state(1));
-  queue.Push(Progress(2));
-  queue.Push(Progress(3));
-  queue.Push(Progress(4));
-  queue.Push(state(5));
-  queue.Push(Progress(6));
-  queue.Push(state(7));
+// What a watcher was sent after its head: "N" per event, "gap A-B" per Gap.
+std::vector<std::string> Drain(WatcherQueue& queue) {
   std::vector<std::string> sent;
   v1::WatchEvent out;
+  bool head = true;
   while (queue.Pop(&out) == WatcherQueue::Next::kEvent) {
+    if (head) {
+      EXPECT_EQ(out.seq(), 0);  // the summary
+      head = false;
+      continue;
+    }
     sent.push_back(out.has_gap() ? "gap " + std::to_string(out.gap().from_seq()) + "-" +
                                        std::to_string(out.gap().to_seq())
                                  : std::to_string(out.seq()));
   }
-  EXPECT_EQ(sent, (std::vector<std::string>{"1", "gap 2-4", "5", "gap 6-6", "7"}));
-  EXPECT_EQ(queue.dropped(), 4);
+  return sent;
+}
+
+std::vector<std::string> Numbers(int64_t from, int64_t to) {
+  std::vector<std::string> out;
+  for (int64_t seq = from; seq <= to; ++seq) out.push_back(std::to_string(seq));
+  return out;
+}
+
+// Issue 38: a slow watcher lost events; they are in the log, and it reads them back from there.
+TEST(WatcherQueue, ASlowWatcherCatchesUpFromTheLogAndMissesNothing) {
+  dlmfd::testing::TempDir dir;
+  WatchLog log(dir.path());
+  WatchOptions options;
+  options.capacity = 4;
+  WatcherQueue queue(options, dir.path());
+  EXPECT_TRUE(queue.Start(Head(), 0, 0));  // takes the send token
+  for (int64_t seq = 1; seq <= 10; ++seq) {
+    const v1::WatchEvent event = seq % 3 == 0 ? State(seq) : Progress(seq);
+    ASSERT_TRUE(log.Append(event, {}, false));
+    EXPECT_FALSE(queue.Push(event));
+  }
+  EXPECT_EQ(Drain(queue), Numbers(1, 10));
+  EXPECT_GE(queue.overflows(), 1);
+  EXPECT_EQ(queue.dropped(), 0);
+}
+
+TEST(WatcherQueue, TheCatchUpReadsItsRangeAndNamesWhatTheLogLacks) {
+  dlmfd::testing::TempDir dir;
+  WatchLog log(dir.path());
+  for (int64_t seq : {1, 2, 4, 5, 8}) ASSERT_TRUE(log.Append(Progress(seq), {}, false));
+  WatchOptions options;
+  options.capacity = 2;  // chunks of one event
+  WatcherQueue queue(options, dir.path());
+  queue.Start(Head(), 1, 6);
+  queue.Push(Progress(7));  // live, after the range
+  EXPECT_EQ(Drain(queue), (std::vector<std::string>{"2", "gap 3-3", "4", "5", "gap 6-6", "7"}));
+  WatcherQueue empty(options, dir.path() + "/none");
+  empty.Start(Head(), 0, 3);
+  EXPECT_EQ(Drain(empty), (std::vector<std::string>{"gap 1-3"}));
 }
 
 TEST(WatcherQueue, NewerSnapshotReplacesUnsentOne) {
+  dlmfd::testing::TempDir dir;
   WatchOptions options;
   options.include_snapshots = true;
-  WatcherQueue queue(options);
+  WatcherQueue queue(options, dir.path());
+  queue.Start(Head(), 0, 0);
   queue.Push(Snapshot(1));
   queue.Push(Progress(2));
   queue.Push(Snapshot(3));
-  v1::WatchEvent out;
-  std::vector<int64_t> seqs;
-  bool gap = false;
-  while (queue.Pop(&out) == WatcherQueue::Next::kEvent) {
-    if (out.has_gap()) {
-      gap = true;
-      EXPECT_EQ(out.gap().from_seq(), 1);
-    } else {
-      seqs.push_back(out.seq());
-    }
-  }
-  EXPECT_TRUE(gap);
-  EXPECT_EQ(seqs, (std::vector<int64_t>{2, 3}));
+  EXPECT_EQ(Drain(queue), (std::vector<std::string>{"2", "gap 1-1", "3"}));
+  EXPECT_EQ(queue.dropped(), 1);
 }
 
 TEST(WatcherQueue, SnapshotsOnlyWhenAskedAndCancelTakesToken) {
-  WatcherQueue queue(WatchOptions{});
+  dlmfd::testing::TempDir dir;
+  WatcherQueue queue(WatchOptions{}, dir.path());
   EXPECT_FALSE(queue.Push(Snapshot(1)));
   v1::WatchEvent out;
   EXPECT_EQ(queue.Pop(&out), WatcherQueue::Next::kEmpty);  // gives the token back
@@ -371,21 +368,60 @@ TEST(WatcherQueue, SnapshotsOnlyWhenAskedAndCancelTakesToken) {
   EXPECT_FALSE(queue.Push(Progress(2)));
 }
 
+// Snapshots' values live beside the log: a watcher that asks for them reads them whole, the
+// others skip their numbers.
+TEST(WatchLog, SnapshotsAreReadWholeOnlyByWatchersThatAskForThem) {
+  dlmfd::testing::TempDir dir;
+  WatchLog log(dir.path());
+  ASSERT_TRUE(log.Append(Progress(1), {"progress", 10, "", 0}, false));
+  ASSERT_TRUE(log.Append(Snapshot(2), {"snapshot", 10, "slurm:7", 123}, false));
+  ASSERT_TRUE(log.Append(State(3), {}, true));
+  ASSERT_TRUE(log.Append(Progress(4), {"progress", 0, "slurm:7", 456}, false));
+  const WatchLogState state = log.Recover();
+  EXPECT_EQ(state.last_seq, 4);
+  EXPECT_EQ(state.high_water, (std::map<std::string, int64_t>{{"progress", 0}}));
+  EXPECT_EQ(state.source_offset.at("slurm:7"), 456);
+  std::vector<v1::WatchEvent> with, without;
+  WatchLog::Reader(dir.path(), 0, 4, true).Next(10, with);
+  WatchLog::Reader(dir.path(), 0, 4, false).Next(10, without);
+  ASSERT_EQ(with.size(), 4u);
+  EXPECT_EQ(with[1].snapshot().values_size(), 9);
+  EXPECT_EQ(with[1].snapshot().values(8), 8.0f);
+  ASSERT_EQ(without.size(), 3u);
+  EXPECT_EQ(without[1].seq(), 3);
+  // A record cut short by a crash is cut off, and the log goes on after the last whole one.
+  const std::string path = dir.path() + "/" + WatchLog::kFile;
+  std::ofstream(path, std::ios::app) << std::string("\x20\x01\x02", 3);
+  EXPECT_EQ(log.Recover().last_seq, 4);
+  ASSERT_TRUE(log.Append(Progress(5), {}, false));
+  std::vector<v1::WatchEvent> all;
+  WatchLog::Reader(dir.path(), 3, 5, false).Next(10, all);
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[1].seq(), 5);
+}
+
 // A watcher attached to the hub at from_seq (woken by nothing: the test pops it).
 std::shared_ptr<WatcherQueue> AttachedWatcher(EventHub& hub, const JobRecord& job,
                                               int64_t from_seq) {
-  auto queue = std::make_shared<WatcherQueue>(WatchOptions{});
+  auto queue = std::make_shared<WatcherQueue>(WatchOptions{}, hub.LogDirectory(job.id));
   queue->SetWake([] {});
   hub.Attach(job, from_seq, queue);
   return queue;
 }
 
-// The sequence numbers the watcher got; no Gap, and each state event's job has its own number.
+// The sequence numbers the watcher got after its head; no Gap, and each state event's job has its
+// own number.
 std::vector<int64_t> SeqsWithoutGaps(WatcherQueue& queue) {
   std::vector<int64_t> seqs;
   v1::WatchEvent out;
+  bool head = true;
   while (queue.Pop(&out) == WatcherQueue::Next::kEvent) {
     EXPECT_FALSE(out.has_gap()) << out.DebugString();
+    if (head) {
+      EXPECT_EQ(out.seq(), 0);
+      head = false;
+      continue;
+    }
     seqs.push_back(out.seq());
     if (out.has_state()) {
       EXPECT_EQ(out.state().job().last_seq(), out.seq());
@@ -394,23 +430,31 @@ std::vector<int64_t> SeqsWithoutGaps(WatcherQueue& queue) {
   return seqs;
 }
 
-// A store holding one running job "a", its journal, and their directory.
+std::vector<int64_t> Range(int64_t from, int64_t to) {
+  std::vector<int64_t> out;
+  for (int64_t seq = from; seq <= to; ++seq) out.push_back(seq);
+  return out;
+}
+
+// A store holding one running job "a", and the directory its watch log goes to.
 struct OneRunningJob {
   OneRunningJob() {
     store.InsertJobs({MakeJob("a", 0)}, "local", "");
     store.MarkRunning("a", 1.0);
   }
+  EventHub::JobDirectory JobDir() const {
+    return [this](const std::string& id) { return dir.path() + "/jobs/" + id; };
+  }
   dlmfd::testing::TempDir dir;
   JobStore store{dir.path() + "/jobs.db"};
-  SeqJournal journal{dir.path() + "/watch_seq"};
 };
 
 TEST(EventHub, ACleanRestartResumesRightAfterTheLastNumberIssued) {
   OneRunningJob one;
   JobStore& store = one.store;
-  SeqJournal& journal = one.journal;
+  std::filesystem::create_directories(one.dir.path() + "/jobs/a");
   {
-    EventHub hub(store, journal, 16);
+    EventHub hub(store, one.JobDir());
     hub.PublishState(*store.Get("a"));  // seq 1
     for (int i = 0; i < 3; ++i) hub.Publish("a", Progress(0));
     EXPECT_EQ(hub.LastIssued("a"), 4);
@@ -418,76 +462,122 @@ TEST(EventHub, ACleanRestartResumesRightAfterTheLastNumberIssued) {
   }
   EXPECT_EQ(store.Get("a")->last_seq, 4);
   // The next daemon: a watcher that saw everything reconnects and misses nothing.
-  EventHub hub(store, journal, 16);
-  hub.Recover();
+  EventHub hub(store, one.JobDir());
+  hub.Recover(one.dir.path() + "/watch_seq");
   auto queue = AttachedWatcher(hub, *store.Get("a"), 4);
   hub.Publish("a", Progress(0));
   store.MarkFinished("a", JobState::kCompleted, "", 2.0);
   hub.PublishState(*store.Get("a"));
-  EXPECT_EQ(SeqsWithoutGaps(*queue), (std::vector<int64_t>{4, 5, 6}));
-  // A finished job's record holds the last number issued, not the end of a reserved block.
+  EXPECT_EQ(SeqsWithoutGaps(*queue), (std::vector<int64_t>{5, 6}));
   EXPECT_EQ(store.Get("a")->last_seq, 6);
 }
 
-// A daemon killed with SIGKILL writes nothing at the end: the store holds the end of the block it
-// reserved, and the journal the last number it issued. The next daemon resumes right after that
-// number, so a watcher that saw everything is told of no Gap, and Get reports no reserved number.
-TEST(EventHub, AfterAKillNumbersResumeRightAfterTheLastOneIssued) {
-  dlmfd::testing::TempDir dir;
-  JobStore store(dir.path() + "/jobs.db");
-  store.InsertJobs({MakeJob("a", 0), MakeJob("b", 0)}, "local", "");
-  store.MarkRunning("a", 1.0);
+// Issue 38: after a kill -9 the next daemon learns the last number from the log, and a watcher
+// that reconnects with the last number it saw, or with 0, gets every event once.
+TEST(EventHub, AfterAKillEveryWatcherGetsEveryEventOnceFromTheLog) {
+  OneRunningJob one;
+  JobStore& store = one.store;
+  std::filesystem::create_directories(one.dir.path() + "/jobs/a");
   {
-    SeqJournal journal(dir.path() + "/watch_seq");
-    EventHub hub(store, journal, 16);
+    EventHub hub(store, one.JobDir());
     hub.PublishState(*store.Get("a"));  // seq 1
-    hub.PublishState(*store.Get("b"));  // seq 1 of b
     for (int i = 0; i < 3; ++i) hub.Publish("a", Progress(0));
-    EXPECT_EQ(hub.LastIssued("a"), 4);
     // Killed here: no RecordIssued.
   }
-  EXPECT_EQ(store.Get("a")->last_seq, EventHub::kSeqBlock);  // reserved, not issued
-  // A job deleted while the daemon was down leaves a journal entry without a record.
-  SeqJournal journal(dir.path() + "/watch_seq");
-  ASSERT_TRUE(journal.Record("gone", 7));
-  EventHub hub(store, journal, 16);
-  hub.Recover();
+  EXPECT_EQ(store.Get("a")->last_seq, 0);
+  EventHub hub(store, one.JobDir());
+  hub.Recover(one.dir.path() + "/watch_seq");
   EXPECT_EQ(store.Get("a")->last_seq, 4);
-  EXPECT_EQ(store.Get("b")->last_seq, 1);
-  EXPECT_FALSE(store.Get("gone"));
-  EXPECT_TRUE(journal.ReadAll().empty());  // the store holds every number now
-  auto queue = AttachedWatcher(hub, *store.Get("a"), 4);
+  auto saw_all = AttachedWatcher(hub, *store.Get("a"), 4);
+  auto saw_two = AttachedWatcher(hub, *store.Get("a"), 2);
+  auto saw_none = AttachedWatcher(hub, *store.Get("a"), 0);
   hub.Publish("a", Progress(0));
-  EXPECT_EQ(store.Get("a")->last_seq, 4 + EventHub::kSeqBlock);  // a new block, after 4
-  EXPECT_EQ(journal.ReadAll(), (std::map<std::string, int64_t>{{"a", 5}}));
   store.MarkFinished("a", JobState::kCompleted, "", 2.0);
   hub.PublishState(*store.Get("a"));
-  EXPECT_EQ(SeqsWithoutGaps(*queue), (std::vector<int64_t>{4, 5, 6}));
+  EXPECT_EQ(SeqsWithoutGaps(*saw_all), (std::vector<int64_t>{5, 6}));
+  EXPECT_EQ(SeqsWithoutGaps(*saw_two), Range(3, 6));
+  EXPECT_EQ(SeqsWithoutGaps(*saw_none), Range(1, 6));
   EXPECT_EQ(store.Get("a")->last_seq, 6);
-  // A finished job's number is exact in the store: its journal entry is gone.
-  EXPECT_TRUE(journal.ReadAll().empty());
+  // Issue 38: a watch of a finished job sent only its final state, whatever from_seq said.
+  auto late = AttachedWatcher(hub, *store.Get("a"), 3);
+  EXPECT_EQ(SeqsWithoutGaps(*late), Range(4, 6));
+}
+
+// Issue 38: a resumed solver sent the particle samples of the steps since its checkpoint again,
+// under new numbers. Each lane goes by its step, across daemons; a fresh start counts anew.
+TEST(EventHub, AResumedSolversStepsAreNotPublishedAgain) {
+  OneRunningJob one;
+  JobStore& store = one.store;
+  std::filesystem::create_directories(one.dir.path() + "/jobs/a");
+  auto particles = [](int64_t step) {
+    v1::WatchEvent event;
+    event.mutable_particles()->set_step(step);
+    return event;
+  };
+  {
+    EventHub hub(store, one.JobDir());
+    hub.PublishState(*store.Get("a"));  // 1
+    for (int64_t step : {10, 20, 30}) {
+      EXPECT_TRUE(hub.Publish("a", particles(step), {"particles", step, "slurm:5", step * 100}));
+    }
+    EXPECT_TRUE(hub.Publish("a", Progress(0), {"progress", 30, "", 0}));  // 5
+  }
+  EventHub hub(store, one.JobDir());
+  hub.Recover(one.dir.path() + "/watch_seq");
+  hub.PublishState(*store.Get("a"));  // 6: the daemon's restart runs the job again
+  EXPECT_EQ(hub.SourceOffset(*store.Get("a"), "slurm:5"), 3000);
+  EXPECT_FALSE(hub.Publish("a", particles(20), {"particles", 20, "", 0}));
+  EXPECT_FALSE(hub.Publish("a", particles(30), {"particles", 30, "", 0}));
+  EXPECT_FALSE(hub.Publish("a", Progress(0), {"progress", 30, "", 0}));
+  EXPECT_TRUE(hub.Publish("a", particles(40), {"particles", 40, "", 0}));  // 7
+  EXPECT_TRUE(hub.Publish("a", LogEvent("resumed"), {}));                  // 8: no lane
+  EXPECT_EQ(hub.LastIssued("a"), 8);
+  // A retry that starts afresh: a new timeline, its steps published from 0 again.
+  store.MarkFinished("a", JobState::kFailed, "x", 2.0);
+  hub.PublishState(*store.Get("a"));  // 9
+  RequeueChange change;
+  change.id = "a";
+  change.fresh_start = true;
+  const JobRecord requeued = store.Requeue({change}).front();
+  hub.PublishState(requeued, true);  // 10
+  EXPECT_TRUE(hub.Publish("a", particles(10), {"particles", 10, "", 0}));
+  EXPECT_EQ(hub.LastIssued("a"), 11);
 }
 
 // The store commits a final state before the hub numbers its event. A record read in between
-// (Get, List) reports the number that event takes, and one read just before the hub stored its
-// last number reports that number, not the end of the reserved block: a finished job's last_seq
-// counts its final state, so a retry's first event is the number right after it.
+// (Get, List) reports the number that event takes: a finished job's last_seq counts its final
+// state, so a retry's first event is the number right after it.
 TEST(EventHub, AJobReadAsFinishedReportsItsFinalStateEventsNumber) {
   OneRunningJob one;
   JobStore& store = one.store;
-  EventHub hub(store, one.journal, 16);
+  std::filesystem::create_directories(one.dir.path() + "/jobs/a");
+  EventHub hub(store, one.JobDir());
   hub.PublishState(*store.Get("a"));  // seq 1
   hub.Publish("a", Progress(0));      // seq 2
   store.MarkFinished("a", JobState::kCompleted, "", 2.0);
   const JobRecord finished = *store.Get("a");
-  EXPECT_EQ(finished.last_seq, EventHub::kSeqBlock);  // reserved, not issued
-  EXPECT_EQ(hub.ReportedLastSeq(finished), 3);        // the final state event's, still to come
+  EXPECT_EQ(hub.ReportedLastSeq(finished), 3);  // the final state event's, still to come
   auto queue = AttachedWatcher(hub, finished, 2);
   hub.PublishState(finished);
-  EXPECT_EQ(SeqsWithoutGaps(*queue), (std::vector<int64_t>{2, 3}));
+  EXPECT_EQ(SeqsWithoutGaps(*queue), (std::vector<int64_t>{3}));
   EXPECT_EQ(hub.ChannelCount(), 0u);
   EXPECT_EQ(hub.ReportedLastSeq(finished), 3);  // the stale record: the store's number
   EXPECT_EQ(store.Get("a")->last_seq, 3);
+}
+
+// A daemon of an older version journaled its numbers in DATA/watch_seq: the next one reads them
+// once and removes the directory.
+TEST(EventHub, TheJournalOfAnOlderDaemonIsReadOnceAndRemoved) {
+  OneRunningJob one;
+  const std::string journal = one.dir.path() + "/watch_seq";
+  std::filesystem::create_directories(journal);
+  const int64_t seq = 37;
+  std::ofstream(journal + "/a", std::ios::binary).write(reinterpret_cast<const char*>(&seq), 8);
+  one.store.SetLastSeq("a", 1000);  // the end of the block it had reserved
+  EventHub hub(one.store, one.JobDir());
+  hub.Recover(journal);
+  EXPECT_EQ(one.store.Get("a")->last_seq, 37);
+  EXPECT_FALSE(std::filesystem::exists(journal));
 }
 
 TEST(Downsample, KeepsCornersAndLimits) {

@@ -190,7 +190,9 @@ TEST(Studies, RetryResumesACancelledJobAndStartsAChangedOneAfresh) {
   retry.add_overrides("time.end=2");
   retry.add_overrides("fluid.viscosity=0.02");
   ASSERT_TRUE(stub->Retry(Context().get(), retry, &retried).ok());
-  const auto fresh_events = WatchAll(*stub, id);
+  // The events of this attempt: after the retry's state event (a watch from 0 reads the whole
+  // history of the job, its earlier attempts' too).
+  const auto fresh_events = WatchAll(*stub, id, "", retried.jobs(0).last_seq());
   EXPECT_TRUE(HasLog(fresh_events, "solver started"));
   EXPECT_FALSE(HasLog(fresh_events, "solver resumed from results/checkpoint.h5"));
   const v1::Job third = WaitFinished(*stub, id);

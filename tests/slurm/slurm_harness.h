@@ -187,12 +187,14 @@ class SlurmTest : public ::testing::Test {
     }
     CancelLeftoverTestJobs();
   }
-  // SlurmFlags and more; false when the daemon did not start (its log says why).
-  bool StartDaemon(const std::vector<std::string>& more = {}) {
+  // SlurmFlags and more; false when the daemon did not start (its log says why). listen: a free
+  // loopback port, or the address of a daemon before (its clients reconnect there).
+  bool StartDaemon(const std::vector<std::string>& more = {},
+                   const std::string& listen = "127.0.0.1:0") {
     std::vector<std::string> flags = SlurmFlags(dir_.path());
     flags.insert(flags.end(), more.begin(), more.end());
     stub_.reset();
-    daemon_ = std::make_unique<DaemonProcess>(dir_.path() + "/data", flags);
+    daemon_ = std::make_unique<DaemonProcess>(dir_.path() + "/data", flags, listen);
     if (!daemon_->Start()) return false;
     stub_ = daemon_->Stub();
     return true;
