@@ -78,9 +78,9 @@ std::string NewRequestId() {
   return text;
 }
 
-PrintMode ChoosePrintMode(bool json) {
+PrintMode ChoosePrintMode(bool json, int fd) {
   if (json) return PrintMode::kJson;
-  return ::isatty(STDOUT_FILENO) ? PrintMode::kLive : PrintMode::kPlain;
+  return ::isatty(fd) ? PrintMode::kLive : PrintMode::kPlain;
 }
 
 }  // namespace dlmfd::cli

@@ -67,8 +67,9 @@ void AddLabels(const std::vector<std::string>& texts,
 int64_t TimeLimitFlag(const std::string& text);
 // A random 128-bit hex id that makes a retried Submit or SubmitSweep idempotent.
 std::string NewRequestId();
-// How `watch` prints on this stdout: live line on a terminal, plain otherwise, or JSON.
+// How `watch` prints on the descriptor it writes to (stdout by default): live line on a terminal,
+// plain otherwise, or JSON.
 enum class PrintMode;
-PrintMode ChoosePrintMode(bool json);
+PrintMode ChoosePrintMode(bool json, int fd = 1);
 
 }  // namespace dlmfd::cli

@@ -1,6 +1,8 @@
 // dlmfd submit SCENE [--set key=value]... [--tag T]... [--label k=v]... [--priority P] [--name N]
-// [--time DURATION] [--wait [--json]] Prints the job id on stdout (first line). Submit is retried
-// on UNAVAILABLE with the same client request id, so a retry never queues the job twice.
+// [--time DURATION] [--wait [--json]] Prints the job id alone on stdout, so that
+// JOB=$(dlmfd submit --wait ...) captures it; --wait's progress goes to stderr (with --json every
+// event goes to stdout, one JSON line each, after the job). Submit is retried on UNAVAILABLE with
+// the same client request id, so a retry never queues the job twice.
 #include <filesystem>
 #include <iostream>
 #include <thread>
@@ -71,7 +73,9 @@ int RunSubmit(int argc, char** argv) {
     }
     std::cout.flush();
     if (!wait) return kExitOk;
-    ProgressPrinter printer(job.id(), ChoosePrintMode(json), std::cout);
+    // The id is the output; what the job does meanwhile is for the person watching (issue 38).
+    std::ostream& progress = json ? std::cout : std::cerr;
+    ProgressPrinter printer(job.id(), ChoosePrintMode(json, json ? 1 : 2), progress);
     WatchOptions options;
     options.job_id = job.id();
     const WatchOutcome outcome = WatchJob(

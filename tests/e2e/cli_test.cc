@@ -113,9 +113,11 @@ TEST_F(CliTest, SubmitWaitListShowFetchAndPlot) {
   const CliRun submit = Cli(
       {"submit", (root_ / "cavity.toml").string(), "--tag", "e2e", "--name", "cavity", "--wait"});
   ASSERT_EQ(submit.code, 0) << submit.out << submit.err;
+  // JOB=$(dlmfd submit --wait ...) captures the id alone; the progress goes to stderr (issue 38).
   const std::string job = FirstLine(submit.out);
   ASSERT_FALSE(job.empty());
-  EXPECT_THAT(submit.out, HasSubstr(job + " completed: 10 steps"));
+  EXPECT_EQ(submit.out, job + "\n");
+  EXPECT_THAT(submit.err, HasSubstr(job + " completed: 10 steps"));
 
   const CliRun list = Cli({"list", "--tag", "e2e"});
   ASSERT_EQ(list.code, 0) << list.err;
