@@ -510,7 +510,8 @@ TEST(ResultsWriter, IntegratesTheAngleAndResumesIt) {
   Params params = ParseScene(
       "[domain]\nsize = [1.0, 0.75]\nh = 0.125\n[time]\ndt = 0.1\nend = 1.0\n"
       "[output]\ncheckpoint_every = 0.5\nfields_every = 0.3\nparticles_every = 0.2\n"
-      "[[particles]]\ncenter = [0.5, 0.4]\ndensity = 2.0\n");
+      "[[particles]]\ncenter = [0.5, 0.4]\ndensity = 2.0\n"
+      "[particle_mesh]\nh = 0.1\n");  // at most the disk's radius (a ring mesh that resolves it)
   const Grid g{8, 6, 0.125, 0.0, 0.0};
   FlowState s = RandomState(g, false, 1, 9);
   const auto omega = [](double t) { return 2.0 + 10.0 * t; };  // angle 2t + 5t^2
