@@ -29,6 +29,8 @@ fi
 echo "== release build and tests"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDLMFD_WERROR=ON > /dev/null
 cmake --build build -j"$jobs"
+echo "== clang-tidy (.clang-tidy) on the C++ files the last commit changed (CONTRIBUTING.md)"
+scripts/tidy.py --build build --since HEAD~1 -j "$jobs"
 ctest --test-dir build --output-on-failure -j"$jobs" --timeout 900 -LE slurm
 
 # The tests labelled slurm run one at a time (a resource lock) and mostly wait on Slurm's

@@ -63,7 +63,9 @@ std::vector<std::string> DifferingKeys(const std::vector<FlatScene>& scenes) {
     for (const auto& [key, value] : s) keys.emplace(key, false);
   }
   std::vector<std::string> differing;
-  for (const auto& [key, unused] : keys) {
+  for (const auto& entry : keys) {
+    // A named reference, not a structured binding: lambdas capture bindings only from C++20.
+    const std::string& key = entry.first;
     const auto value_in = [&](const FlatScene& s) {
       const auto it = s.find(key);
       return it == s.end() ? std::pair<bool, std::string>{false, ""}

@@ -61,7 +61,7 @@ struct NaiveResult {
 NaiveResult RunNaive(const Flow& flow) {
   const Grid& g = flow.grid;
   const int n = kExtensionCells, pad = n + 5;
-  auto P = [pad](int i, int j) { return std::size_t(j + 2) * pad + std::size_t(i + 2); };
+  auto P = [&](int i, int j) { return std::size_t(j + 2) * pad + std::size_t(i + 2); };
   std::vector<double> a[3], s1[3], s2[3];
   for (int c = 0; c < 3; ++c) {
     a[c].assign(std::size_t(pad) * pad, c == 1 ? 0.0 : 1.0);
