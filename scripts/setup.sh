@@ -28,6 +28,8 @@ packages=(
   # The web dashboard (web/, docs/dashboard.md): cpp-httplib (it brings OpenSSL, zlib and brotli),
   # and its tests in Debian's headless Chromium driven by Selenium, screenshots read by Pillow.
   libcpp-httplib-dev chromium chromium-driver python3-selenium python3-pil
+  # The boundary prototypes of issue 33 (bench/boundary_prototypes.py): sparse direct solves.
+  python3-scipy
   # A real single-node Slurm for the tests labelled slurm (scripts/slurm-dev.sh, docs/cluster.md).
   slurmctld
   slurmd
