@@ -8,6 +8,7 @@ and states the daemon gives once they settle, the page never reloaded. Prints a 
 it as CSV; docs/dashboard.md records a run.
 
     DLMFD_BINARY_DIR=build nice -n 10 python3 bench/dashboard_soak.py [--minutes 60] [--csv F]
+        [--restart-minutes 15] [--max-studies N]
 """
 
 import argparse
@@ -55,6 +56,10 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--minutes", type=float, default=60.0)
     parser.add_argument("--csv", default="dashboard_soak.csv")
+    # Daemon restarts closer together, and no new studies after the first few, isolate what a
+    # restart costs the web process (each restart is sampled just before the next one).
+    parser.add_argument("--restart-minutes", type=float, default=15.0)
+    parser.add_argument("--max-studies", type=int, default=1000000)
     args = parser.parse_args()
 
     daemon = ws.Daemon(tokens=True, max_concurrent=1)
@@ -79,11 +84,11 @@ def main():
             b.execute_script("window.__one_load = true")
         start = time.monotonic()
         next_sample = start
-        next_restart = start + 15 * 60
+        next_restart = start + args.restart_minutes * 60
         studies = 1
         while time.monotonic() - start < args.minutes * 60:
             unfinished = daemon.cli("list", "--state", "queued", "--state", "running", "-q").split()
-            if not unfinished:
+            if not unfinished and studies < args.max_studies:
                 daemon.submit_study(f"soak-{studies}", study_scene(), "particles.*.density=1.001,1.002",
                                     "fluid.relaxation_time=0.5,1")
                 studies += 1
@@ -91,7 +96,7 @@ def main():
                 daemon.stop_process()
                 time.sleep(2)
                 daemon.start()
-                next_restart += 15 * 60
+                next_restart += args.restart_minutes * 60
             if time.monotonic() >= next_sample:
                 next_sample += 30
                 code, _, body = web.request("GET", "/api/overview", headers={
