@@ -26,7 +26,8 @@ int RunList(int argc, char** argv) {
   app.add_option("--tag", tags, "only jobs with this tag (repeatable: every one)");
   app.add_option("--label", labels, "only jobs with this key=value label (repeatable)");
   app.add_option("--where", where,
-                 "only jobs whose effective scene has KEY=VALUE (repeatable; * for any index)");
+                 "only jobs whose effective scene has KEY=VALUE, KEY!=VALUE or KEY<NUMBER "
+                 "(also <=, >, >=) (repeatable; * for any index)");
   app.add_option("--sweep", sweep, "only jobs of this sweep");
   app.add_option("--page-size", page_size, "jobs per page, 1..1000")->check(CLI::Range(1, 1000));
   app.add_option("--page-token", page_token, "continue from a previous page");
@@ -40,10 +41,8 @@ int RunList(int argc, char** argv) {
     for (const std::string& s : states) request.add_states(ParseState(s));
     for (const std::string& t : tags) request.add_tags(t);
     AddLabels(labels, request.mutable_labels());
-    for (const std::string& w : where) {
-      SplitKeyValue("--where", w);
-      request.add_where(w);
-    }
+    // The daemon checks each (scene_values.h): one validation path.
+    for (const std::string& w : where) request.add_where(w);
     request.set_sweep_id(sweep);
     request.set_page_size(page_size);
     request.set_page_token(page_token);

@@ -123,7 +123,8 @@ class Client:
     def jobs(self, states=(), tag="", sweep_id="", tags=(), labels=None, where=None):
         """The caller's jobs, newest first, every page of List; every filter given must hold.
         states: JobState values or names; tags: jobs carrying each; labels: a dict; where: the
-        effective scene's values, a dict {"particles.*.density": 1.01} or "KEY=VALUE" texts."""
+        effective scene's values, a dict {"particles.*.density": 1.01} or texts "KEY=VALUE",
+        "KEY!=VALUE", "KEY<NUMBER" (also <=, >, >=: only numbers meet a range)."""
         request = jobs_pb2.ListRequest(states=_state_values(states), tag=tag, sweep_id=sweep_id,
                                        tags=list(tags), labels=labels or {},
                                        where=scene_input.override_texts(where), page_size=1000)

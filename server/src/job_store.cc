@@ -450,6 +450,41 @@ class Transaction {
   bool done_ = false;
 };
 
+// A scene key pattern as a GLOB: '*' matches any index; the key's other GLOB characters ('?',
+// '[') are escaped as one-character classes.
+std::string KeyGlob(const std::string& pattern) {
+  std::string glob;
+  for (char c : pattern) {
+    if (c == '?' || c == '[') {
+      glob += std::string("[") + c + "]";
+    } else {
+      glob += c;
+    }
+  }
+  return glob;
+}
+
+// SQL scene_number(TEXT): a normalised scene value (scene_values.h: numbers as the shortest text
+// that reads back, "inf", "-inf") as a number; NULL for any other value (a string, an array, a
+// boolean), which no range then matches.
+void SceneNumber(sqlite3_context* context, int, sqlite3_value** argv) {
+  const unsigned char* text = sqlite3_value_text(argv[0]);
+  if (text == nullptr || *text == '\0') {
+    sqlite3_result_null(context);
+    return;
+  }
+  const std::string value(reinterpret_cast<const char*>(text));
+  const bool numeric_characters = value == "inf" || value == "-inf" ||
+                                  value.find_first_not_of("0123456789.eE+-") == std::string::npos;
+  char* end = nullptr;
+  const double number = numeric_characters ? std::strtod(value.c_str(), &end) : 0;
+  if (!numeric_characters || end != value.c_str() + value.size()) {
+    sqlite3_result_null(context);
+  } else {
+    sqlite3_result_double(context, number);
+  }
+}
+
 }  // namespace
 
 JobStore::JobStore(const std::string& path) {
@@ -463,6 +498,10 @@ JobStore::JobStore(const std::string& path) {
   }
   try {
     sqlite3_busy_timeout(db_, 5000);
+    if (sqlite3_create_function_v2(db_, "scene_number", 1, SQLITE_UTF8 | SQLITE_DETERMINISTIC,
+                                   nullptr, SceneNumber, nullptr, nullptr, nullptr) != SQLITE_OK) {
+      throw StoreError(std::string("scene_number: ") + sqlite3_errmsg(db_));
+    }
     Exec("PRAGMA journal_mode=WAL");
     Exec("PRAGMA synchronous=NORMAL");
     Exec("PRAGMA foreign_keys=ON");
@@ -725,10 +764,11 @@ std::vector<JobRecord> JobStore::List(const ListFilter& filter) {
   for (size_t i = 0; i < filter.labels.size(); ++i) {
     sql += " AND id IN (SELECT job_id FROM job_labels WHERE key = ? AND value = ?)";
   }
-  // GLOB: '*' of a key pattern matches any index; the key's other GLOB characters ('?', '[')
-  // are escaped as one-character classes.
-  for (size_t i = 0; i < filter.values.size(); ++i) {
-    sql += " AND id IN (SELECT job_id FROM job_values WHERE key GLOB ? AND value = ?)";
+  // The ranges compare scene_number(value): the value as a number, NULL for any other value.
+  for (const auto& value : filter.values) {
+    sql += " AND id IN (SELECT job_id FROM job_values WHERE key GLOB ? AND ";
+    sql += value.op == "=" || value.op == "!=" ? "value " + value.op + " ?)"
+                                               : "scene_number(value) " + value.op + " ?)";
   }
   if (!filter.sweep_id.empty()) sql += " AND sweep_id = ?";
   if (filter.before_ordinal > 0) sql += " AND ordinal < ?";
@@ -738,21 +778,30 @@ std::vector<JobRecord> JobStore::List(const ListFilter& filter) {
   for (JobState state : filter.states) select.Bind(static_cast<int>(state));
   for (const auto& tag : tags) select.Bind(tag);
   for (const auto& [key, value] : filter.labels) select.Bind(key).Bind(value);
-  for (const auto& [pattern, value] : filter.values) {
-    std::string glob;
-    for (char c : pattern) {
-      if (c == '?' || c == '[') {
-        glob += std::string("[") + c + "]";
-      } else {
-        glob += c;
-      }
+  for (const auto& value : filter.values) {
+    select.Bind(KeyGlob(value.pattern));
+    if (value.op == "=" || value.op == "!=") {
+      select.Bind(value.value);
+    } else {
+      select.Bind(value.bound);
     }
-    select.Bind(glob).Bind(value);
   }
   if (!filter.sweep_id.empty()) select.Bind(filter.sweep_id);
   if (filter.before_ordinal > 0) select.Bind(filter.before_ordinal);
   select.Bind(filter.limit);
   return Query(select);
+}
+
+bool JobStore::SceneKeyKnown(const std::string& owner, const std::string& pattern) {
+  std::lock_guard lock(mutex_);
+  Statement any(db_, "SELECT 1 FROM jobs WHERE owner = ? LIMIT 1");
+  any.Bind(owner);
+  if (!any.Step()) return true;
+  Statement select(db_,
+                   "SELECT 1 FROM job_values JOIN jobs ON jobs.id = job_values.job_id"
+                   " WHERE jobs.owner = ? AND job_values.key GLOB ? LIMIT 1");
+  select.Bind(owner).Bind(KeyGlob(pattern));
+  return select.Step();
 }
 
 int64_t JobStore::CountUnfinished() {
@@ -863,16 +912,18 @@ std::vector<JobRecord> JobStore::Requeue(const std::vector<RequeueChange>& chang
     std::vector<AttemptRecord> attempts = job.previous_attempts;
     attempts.push_back({job.attempt, job.state, job.reason, job.started_time, job.finished_time,
                         job.step, job.time, job.overrides});
-    Statement update(db_,
-                     "UPDATE jobs SET state = ?, reason = '', started_time = 0, finished_time = 0, "
-                     "cancel_requested = 0, attempt = attempt + 1, previous_attempts = ?, "
-                     "slurm_live = 0, slurm_attempts = 0, slurm_restarts = 0, "
-                     "slurm_state = '', slurm_reason = '', slurm_waiting = 0, overrides = ?, "
-                     "parameters = ?, warnings = ?, end_time = ?, fresh_start = ?, "
-                     "step = CASE WHEN ? THEN 0 ELSE step END, "
-                     "time = CASE WHEN ? THEN 0 ELSE time END WHERE id = ? AND state IN (?, ?, ?)");
+    Statement update(
+        db_,
+        "UPDATE jobs SET state = ?, reason = '', started_time = 0, finished_time = 0, "
+        "cancel_requested = 0, attempt = attempt + 1, previous_attempts = ?, "
+        "slurm_live = 0, slurm_attempts = 0, slurm_restarts = 0, "
+        "slurm_state = '', slurm_reason = '', slurm_waiting = 0, name = ?, overrides = ?, "
+        "parameters = ?, warnings = ?, end_time = ?, fresh_start = ?, "
+        "step = CASE WHEN ? THEN 0 ELSE step END, "
+        "time = CASE WHEN ? THEN 0 ELSE time END WHERE id = ? AND state IN (?, ?, ?)");
     update.Bind(static_cast<int>(JobState::kQueued))
         .Bind(EncodeAttempts(attempts))
+        .Bind(change.name.empty() ? job.name : change.name)
         .Bind(Join(change.overrides, '\n'))
         .Bind(EncodeParameters(change.parameters))
         .Bind(EncodeWarnings(change.warnings))

@@ -169,6 +169,17 @@ struct RequeueChange {
   std::vector<AccuracyWarning> warnings;
   double end_time = 0;
   bool fresh_start = false;
+  std::string name;  // empty: unchanged
+};
+
+// One `where` filter of List on the effective scene: a key pattern ('*' matches any index), an
+// operator, and its operand: the normalised value for = and != (scene_values.h), a number for the
+// ranges <, <=, >, >= (which only a value that reads as a number can meet).
+struct SceneValueFilter {
+  std::string pattern;
+  std::string op;     // "=", "!=", "<", "<=", ">", ">="
+  std::string value;  // = and !=
+  double bound = 0;   // <, <=, >, >=
 };
 
 struct ListFilter {
@@ -178,9 +189,8 @@ struct ListFilter {
   std::string sweep_id;                       // empty: any
   std::vector<std::string> tags;              // every one of them
   std::map<std::string, std::string> labels;  // every one of them
-  // (key pattern, normalised value) pairs of the effective scene, every one of them; '*' in a key
-  // matches any index.
-  std::vector<std::pair<std::string, std::string>> values;
+  // Filters on the effective scene's values, every one of them.
+  std::vector<SceneValueFilter> values;
   int64_t before_ordinal = 0;  // 0: from the newest
   int limit = 100;
 };
@@ -208,6 +218,9 @@ class JobStore {
   std::vector<JobRecord> FindRequest(const std::string& owner, const std::string& request_key);
   std::optional<JobRecord> Get(const std::string& id);
   std::vector<JobRecord> List(const ListFilter& filter);
+  // Whether some job of the owner has a scene key that the pattern ('*': any index) matches;
+  // true when the owner has no job at all (a filter on nothing refuses nothing).
+  bool SceneKeyKnown(const std::string& owner, const std::string& pattern);
   int64_t CountUnfinished();
   std::vector<std::string> UnfinishedJobIds();
   std::vector<JobRecord> SweepJobs(const std::string& owner, const std::string& sweep_id);

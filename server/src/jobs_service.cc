@@ -97,15 +97,6 @@ std::map<std::string, std::string> ToMap(
   return {labels.begin(), labels.end()};
 }
 
-// "KEY=VALUE" of a List filter split at the first '='; INVALID_ARGUMENT naming the field.
-std::pair<std::string, std::string> SplitFilter(const std::string& field, const std::string& text) {
-  RequireNoNul(field, text);
-  const auto eq = text.find('=');
-  Require(eq != std::string::npos && eq > 0,
-          field + ": \"" + CutForMessage(text) + "\" is not allowed: expected KEY=VALUE");
-  return {text.substr(0, eq), text.substr(eq + 1)};
-}
-
 // Runs body; an error it throws keeps its status code and gains `where` ("sweep point ...").
 template <class Body>
 void Naming(const std::string& where, Body&& body) {
@@ -371,8 +362,13 @@ grpc::ServerUnaryReactor* JobsService::List(grpc::CallbackServerContext* context
       filter.labels[key] = value;
     }
     for (const auto& text : request->where()) {
-      const auto [key, value] = SplitFilter("where", text);
-      filter.values.emplace_back(key, NormalizedValue(value));
+      filter.values.push_back(ParseWhere(text));
+      // A typo in a key would silently match nothing.
+      Require(store_.SceneKeyKnown(filter.owner, filter.values.back().pattern),
+              "where: no job of yours has the scene key \"" +
+                  CutForMessage(filter.values.back().pattern) +
+                  "\" (keys are the effective scene's: fluid.viscosity, particles.*.density; "
+                  "`dlmfd inputs --as-run JOB` shows a job's)");
     }
     if (!filter.sweep_id.empty()) OwnSweep(filter.owner, filter.sweep_id);  // NOT_FOUND
     if (!request->page_token().empty()) {
@@ -640,6 +636,7 @@ grpc::ServerUnaryReactor* JobsService::Retry(grpc::CallbackServerContext* contex
         change.end_time = estimate.end_time;
       });
       change.parameters = UpdatedParameters(job.parameters, changes);
+      change.name = RenamedPoint(job.name, job.parameters, change.parameters);
       change.fresh_start = !ResumesFromCheckpoint(job, change.overrides);
       plan.push_back(std::move(change));
     }

@@ -20,6 +20,15 @@ std::string ValueOf(const std::string& override_text) {
   return eq == std::string::npos ? "" : Trimmed(override_text.substr(eq + 1));
 }
 
+// "[key=value,...]": a study point's label as SubmitSweep writes it (sweep_expansion.cc).
+std::string PointLabel(const std::vector<ParameterValue>& parameters) {
+  std::string label = "[";
+  for (size_t i = 0; i < parameters.size(); ++i) {
+    label += (i ? "," : "") + parameters[i].key + "=" + parameters[i].text;
+  }
+  return label + "]";
+}
+
 }  // namespace
 
 std::vector<std::string> MergeOverrides(const std::vector<std::string>& current,
@@ -47,6 +56,17 @@ std::vector<ParameterValue> UpdatedParameters(const std::vector<ParameterValue>&
     }
   }
   return out;
+}
+
+std::string RenamedPoint(const std::string& name, const std::vector<ParameterValue>& before,
+                         const std::vector<ParameterValue>& after) {
+  if (before.empty()) return name;
+  const std::string old_label = PointLabel(before);
+  if (name.size() < old_label.size() ||
+      name.compare(name.size() - old_label.size(), old_label.size(), old_label) != 0) {
+    return name;
+  }
+  return name.substr(0, name.size() - old_label.size()) + PointLabel(after);
 }
 
 bool ResumesFromCheckpoint(const JobRecord& job, const std::vector<std::string>& next_overrides) {

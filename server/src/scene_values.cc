@@ -3,10 +3,12 @@
 #include <toml++/toml.h>
 
 #include <charconv>
+#include <cmath>
 #include <sstream>
 #include <system_error>
 
 #include "dlmfd/scene/toml_bounds.h"
+#include "service_error.h"
 
 namespace dlmfd::server {
 namespace {
@@ -105,6 +107,35 @@ ParameterValue TypedValue(const std::string& key, const std::string& value_text)
     out.type = "string";
   }
   return out;
+}
+
+SceneValueFilter ParseWhere(const std::string& text) {
+  RequireNoNul("where", text);
+  const std::string expected =
+      "expected KEY=VALUE, KEY!=VALUE, or KEY<NUMBER (also <=, >, >=), KEY a dotted key of the "
+      "scene (* for any index)";
+  const size_t at = text.find_first_of("=!<>");
+  Require(at != std::string::npos && at > 0,
+          "where: \"" + CutForMessage(text) + "\" is not allowed: " + expected);
+  SceneValueFilter filter;
+  filter.pattern = text.substr(0, at);
+  const bool two = at + 1 < text.size() && text[at + 1] == '=' && text[at] != '=';
+  filter.op = text.substr(at, two ? 2 : 1);
+  Require(filter.op != "!", "where: \"" + CutForMessage(text) + "\" is not allowed: " + expected);
+  const std::string operand = text.substr(at + filter.op.size());
+  if (filter.op == "=" || filter.op == "!=") {
+    filter.value = NormalizedValue(operand);
+    return filter;
+  }
+  const toml::table wrapper = ReadValue(operand);
+  const toml::node& node = *wrapper.get("v");
+  const bool number = node.is_integer() || node.is_floating_point();
+  filter.bound = node.is_integer() ? static_cast<double>(*node.value<int64_t>())
+                                   : node.value<double>().value_or(NAN);
+  Require(number && !std::isnan(filter.bound),
+          "where: \"" + CutForMessage(text) + "\" is not allowed: " + filter.op +
+              " compares numbers, and \"" + CutForMessage(operand) + "\" is not one");
+  return filter;
 }
 
 }  // namespace dlmfd::server

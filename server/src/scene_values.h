@@ -10,6 +10,10 @@
 // reads back as the same double ("1" for 1 and 1.0), booleans as true/false, strings as their
 // characters, arrays as "[a, b]" of normalised elements. A text that is not a TOML value is a
 // string, as in overrides (`splitting.advection=wave`).
+//
+// A `where` filter of List is KEY OP VALUE, OP one of = != < <= > >= (the first '=', '!', '<' or
+// '>' ends the key): = and != compare normalised values, the ranges compare numbers, and only a
+// value that reads as a number meets a range (`fluid.viscosity>=0.01`, `particles.*.density<1.1`).
 #pragma once
 
 #include <string>
@@ -27,5 +31,8 @@ std::string NormalizedValue(const std::string& value_text);
 // An axis value with its type: integer, float, boolean, string or array (a number for the first
 // two).
 ParameterValue TypedValue(const std::string& key, const std::string& value_text);
+// A `where` filter's text as a filter; throws ServiceError INVALID_ARGUMENT naming `where` for a
+// text without a key or an operator, or a range whose value is not a number.
+SceneValueFilter ParseWhere(const std::string& text);
 
 }  // namespace dlmfd::server

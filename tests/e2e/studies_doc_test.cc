@@ -62,6 +62,8 @@ TEST(StudiesDoc, TheWorkedStudyRunsAsWritten) {
   EXPECT_THAT(run.out, HasSubstr("(attempt 2)"));
   EXPECT_THAT(run.out, HasSubstr("4 jobs  0 queued  0 running  4 done  0 failed"));
   EXPECT_THAT(run.out, HasSubstr("  attempt 1: failed ("));
+  // Issue 38: the retried point is named after the time step it ran with.
+  EXPECT_THAT(run.out, HasSubstr("name:        waters-king[fluid.relaxation_time=3,time.dt=0.01]"));
   for (const char* point :
        {"fluid.relaxation_time=1,time.dt=0.005", "fluid.relaxation_time=1,time.dt=0.04",
         "fluid.relaxation_time=3,time.dt=0.005", "fluid.relaxation_time=3,time.dt=0.01"}) {

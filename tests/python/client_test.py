@@ -113,6 +113,8 @@ class ClientTest(unittest.TestCase):
         self.assertEqual([dlmfd.state_name(j.state) for j in finished], ["COMPLETED"] * 2)
         found = self.client.jobs(labels={"project": "py"}, where={"fluid.relaxation_time": 0.5})
         self.assertEqual([j.id for j in found], [jobs[1].id])
+        found = self.client.jobs(sweep_id=sweep_id, where=["fluid.relaxation_time<0.3"])
+        self.assertEqual([j.id for j in found], [jobs[0].id])
 
         rows = self.client.table(sweep_id=sweep_id, frame=False)
         self.assertEqual([r["job"] for r in rows], [j.id for j in jobs])

@@ -98,6 +98,16 @@ TEST(Studies, AStudyIsStoredWithItsAxesAndFoundByTheEffectiveScene) {
   EXPECT_EQ(stub->GetSweep(Context().get(), get, &study).error_code(), grpc::StatusCode::NOT_FOUND);
   ListWhere(*stub, "", {"fluid.viscosity"}, &status);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  // Issue 38: ranges and !=, and a key no job has is named, not an empty list.
+  EXPECT_EQ(ListWhere(*stub, sweep.sweep_id(), {"fluid.viscosity>0.015"}).size(), 1u);
+  EXPECT_EQ(ListWhere(*stub, sweep.sweep_id(), {"fluid.viscosity>=0.01", "time.end<0.1"}).size(),
+            1u);
+  EXPECT_EQ(ListWhere(*stub, sweep.sweep_id(), {"fluid.viscosity!=0.01"}).size(), 1u);
+  EXPECT_EQ(ListWhere(*stub, sweep.sweep_id(), {"title<1"}).size(), 0u);  // not a number
+  ListWhere(*stub, "", {"fluid.viscosty=0.02"}, &status);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(status.error_message().find("fluid.viscosty"), std::string::npos)
+      << status.error_message();
 }
 
 TEST(Studies, AnInvalidPointRejectsTheWholeStudy) {
@@ -200,6 +210,8 @@ TEST(Studies, RetryResumesACancelledJobAndStartsAChangedOneAfresh) {
   EXPECT_EQ(third.step(), 200);
   EXPECT_EQ(third.attempt(), 3);
   EXPECT_EQ(third.parameters(0).text(), "0.02");  // the point follows the change of its axis
+  EXPECT_EQ(first.name(), sweep.sweep_id() + "[fluid.viscosity=0.01]");
+  EXPECT_EQ(third.name(), sweep.sweep_id() + "[fluid.viscosity=0.02]");  // and so does its name
   EXPECT_EQ(std::set<std::string>(third.overrides().begin(), third.overrides().end()),
             (std::set<std::string>{"fluid.viscosity=0.02", "time.end=2"}));
   // An invalid change is refused before anything is requeued.

@@ -269,27 +269,64 @@ TEST(StudyStore, ListSelectsOnTagsLabelsAndSceneValues) {
   filter.labels = {{"case", "pair"}};
   EXPECT_EQ(ids(filter), (std::vector<std::string>{"a"}));
   filter.labels = {};
-  filter.values = {{"fluid.viscosity", NormalizedValue("0.10")}};
+  filter.values = {ParseWhere("fluid.viscosity=0.10")};
   EXPECT_EQ(ids(filter), (std::vector<std::string>{"a"}));
-  filter.values = {{"particles.*.density", NormalizedValue("1.02")}};
+  filter.values = {ParseWhere("particles.*.density=1.02")};
   EXPECT_EQ(ids(filter), (std::vector<std::string>{"b", "a"}));
-  filter.values = {{"particles.*.density", NormalizedValue("1.02")},
-                   {"fluid.viscosity", NormalizedValue("0.2")}};
+  filter.values = {ParseWhere("particles.*.density=1.02"), ParseWhere("fluid.viscosity=0.2")};
   EXPECT_EQ(ids(filter), (std::vector<std::string>{"b"}));
+  // Issue 38: != and the ranges, numbers compared as numbers (0.1 < 0.15 < 0.2).
+  filter.values = {ParseWhere("fluid.viscosity!=0.1")};
+  EXPECT_EQ(ids(filter), (std::vector<std::string>{"b"}));
+  filter.values = {ParseWhere("fluid.viscosity<0.15")};
+  EXPECT_EQ(ids(filter), (std::vector<std::string>{"a"}));
+  filter.values = {ParseWhere("fluid.viscosity<=0.2"), ParseWhere("fluid.viscosity>=1e-1")};
+  EXPECT_EQ(ids(filter), (std::vector<std::string>{"b", "a"}));
+  filter.values = {ParseWhere("fluid.viscosity>0.2")};
+  EXPECT_TRUE(ids(filter).empty());
+  filter.values = {ParseWhere("particles.*.density>1.4")};
+  EXPECT_EQ(ids(filter), (std::vector<std::string>{"a"}));
+  // A key none of the owner's jobs has is unknown (a typo); an owner with no job knows every key.
+  EXPECT_TRUE(store.SceneKeyKnown("local", "fluid.viscosity"));
+  EXPECT_TRUE(store.SceneKeyKnown("local", "particles.*.density"));
+  EXPECT_FALSE(store.SceneKeyKnown("local", "fluid.viscosty"));
+  EXPECT_FALSE(store.SceneKeyKnown("local", "particles.?.density"));  // '?' is no wildcard
+  EXPECT_TRUE(store.SceneKeyKnown("nobody", "fluid.viscosty"));
+}
+
+TEST(SceneValues, WhereTakesEqualityAndRangesAndNamesWhatItRefuses) {
+  const SceneValueFilter equal = ParseWhere("particles.*.density=1.020");
+  EXPECT_EQ(equal.pattern, "particles.*.density");
+  EXPECT_EQ(equal.op, "=");
+  EXPECT_EQ(equal.value, "1.02");
+  EXPECT_EQ(ParseWhere("title!=a<b").op, "!=");
+  EXPECT_EQ(ParseWhere("title!=a<b").value, "a<b");  // the first operator ends the key
+  EXPECT_EQ(ParseWhere("title=x>=y").value, "x>=y");
+  const SceneValueFilter at_least = ParseWhere("time.dt>=1e-3");
+  EXPECT_EQ(at_least.op, ">=");
+  EXPECT_EQ(at_least.bound, 1e-3);
+  EXPECT_EQ(ParseWhere("time.dt<2").bound, 2.0);
+  EXPECT_EQ(ParseWhere("time.dt>-inf").bound, -INFINITY);
+  for (const char* bad : {"fluid.viscosity", "=1", "<1", "fluid.viscosity!1", "time.dt<abc",
+                          "time.dt<nan", "time.dt<[1, 2]", "time.dt<=", "title>\"a\""}) {
+    const grpc::Status status = StatusOf([&] { ParseWhere(bad); });
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << bad;
+    EXPECT_EQ(status.error_message().rfind("where: ", 0), 0u) << status.error_message();
+  }
 }
 
 TEST(StudyStore, RequeueRecordsTheAttemptAndRefusesAnUnfinishedJob) {
   dlmfd::testing::TempDir dir;
   JobStore store(dir.path() + "/jobs.db");
   store.InsertJobs({Job("a", "")}, "local", "");
-  EXPECT_THROW(store.Requeue({{"a", {"time.end=1"}, {}, {}, {}, 1, false}}), StoreError);
+  EXPECT_THROW(store.Requeue({{"a", {"time.end=1"}, {}, {}, {}, 1, false, ""}}), StoreError);
   store.MarkRunning("a", 10);
   store.UpdateProgress("a", 7, 0.7, 1.0);
   store.MarkFinished("a", JobState::kCancelled, "cancelled", 11);
   // It returns the records as written, which the Retry reply and event report: a Get after it
   // can already read a job the scheduler started.
   const std::vector<JobRecord> requeued =
-      store.Requeue({{"a", {"time.end=1", "time.dt=0.01"}, {}, {}, {}, 1, true}});
+      store.Requeue({{"a", {"time.end=1", "time.dt=0.01"}, {}, {}, {}, 1, true, ""}});
   ASSERT_EQ(requeued.size(), 1u);
   EXPECT_EQ(requeued[0].id, "a");
   EXPECT_EQ(requeued[0].state, JobState::kQueued);
@@ -344,6 +381,20 @@ TEST(RetryPlan, SetReplacesTheSameKeyAndResumesOnlyTheSameUnfinishedScene) {
   EXPECT_FALSE(ResumesFromCheckpoint(job, MergeOverrides(job.overrides, {"time.dt=1"})));
   job.state = JobState::kCompleted;
   EXPECT_FALSE(ResumesFromCheckpoint(job, job.overrides));
+}
+
+// Issue 38: a retried study point is named after its new parameters; a name a user gave is kept.
+TEST(RetryPlan, ARetriedPointIsRenamedAfterItsNewParameters) {
+  const std::vector<ParameterValue> before = {{"fluid.relaxation_time", "3", "integer", 3},
+                                              {"time.dt", "0.04", "float", 0.04}};
+  const auto after = UpdatedParameters(before, {"time.dt=0.01"});
+  EXPECT_EQ(RenamedPoint("wk[fluid.relaxation_time=3,time.dt=0.04]", before, after),
+            "wk[fluid.relaxation_time=3,time.dt=0.01]");
+  EXPECT_EQ(RenamedPoint("s-1f[fluid.relaxation_time=3,time.dt=0.04]", before, after),
+            "s-1f[fluid.relaxation_time=3,time.dt=0.01]");
+  EXPECT_EQ(RenamedPoint("my run", before, after), "my run");
+  EXPECT_EQ(RenamedPoint("wk[time.dt=0.04]", before, after), "wk[time.dt=0.04]");
+  EXPECT_EQ(RenamedPoint("single", {}, {}), "single");
 }
 
 }  // namespace
