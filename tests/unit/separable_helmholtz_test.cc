@@ -12,7 +12,6 @@
 #include <limits>
 #include <random>
 #include <string>
-#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -51,8 +50,11 @@ std::vector<Topology> Topologies() {
   };
 }
 
+// The last one has several blocks of rows (36 to 39 unknown rows: two of 16 and a shorter one)
+// and several pieces of modes in the solver's phases (separable_helmholtz.cc).
 std::vector<Grid> Meshes() {
-  return {Grid{6, 4, 0.25, 0.3, -0.2}, Grid{8, 6, 0.125, -1.0, 0.5}, Grid{3, 2, 0.5, 0.0, 0.0}};
+  return {Grid{6, 4, 0.25, 0.3, -0.2}, Grid{8, 6, 0.125, -1.0, 0.5}, Grid{3, 2, 0.5, 0.0, 0.0},
+          Grid{26, 38, 1.0 / 26, 0.1, -0.4}};
 }
 
 bool IsDuplicate(const Grid& g, const BoundaryTopology& t, int i, int j) {
@@ -182,51 +184,44 @@ std::string ParamName(const ::testing::TestParamInfo<Param>& info_) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllTopologies, SeparableHelmholtzTest,
-                         ::testing::Combine(::testing::Values(0, 1, 2), ::testing::Range(0, 14),
+                         ::testing::Combine(::testing::Values(0, 1, 2, 3), ::testing::Range(0, 14),
                                             ::testing::Bool()),
                          ParamName);
 
-// Two workspaces used from two threads at once give the single-thread results bit for bit.
-TEST(SeparableHelmholtzConcurrency, TwoWorkspacesInParallel) {
-  const Grid g{16, 24, 1.0 / 16};
-  const BoundaryTopology t;  // Dirichlet all round
-  SeparableHelmholtz solver(g, t, 2500.0, 0.005, 2);
-  std::vector<double> f1(g.NodeCount()), f2(g.NodeCount());
-  for (std::size_t n = 0; n < f1.size(); ++n) {
-    f1[n] = std::sin(0.1 * double(n));
-    f2[n] = std::cos(0.37 * double(n));
-  }
-  std::vector<double> x1(g.NodeCount(), 0.0), x2(g.NodeCount(), 0.0), y1 = x1, y2 = x2;
-  solver.Solve(f1.data(), y1.data(), 0);
-  solver.Solve(f2.data(), y2.data(), 0);
-  std::thread other([&] { solver.Solve(f2.data(), x2.data(), 1); });
-  solver.Solve(f1.data(), x1.data(), 0);
-  other.join();
-  EXPECT_EQ(x1, y1);
-  EXPECT_EQ(x2, y2);
-}
-
-// SolvePair gives the two single solves bit for bit, on a thread budget of 1 (the solves run one
-// after the other) and of 2 (side by side).
-TEST(SeparableHelmholtzConcurrency, SolvePairMatchesTwoSolves) {
-  const Grid g{16, 24, 1.0 / 16};
-  const BoundaryTopology t;
-  SeparableHelmholtz solver(g, t, 2500.0, 0.005, 2);
-  std::vector<double> fu(g.NodeCount()), fv(g.NodeCount());
-  for (std::size_t n = 0; n < fu.size(); ++n) {
-    fu[n] = std::sin(0.1 * double(n));
-    fv[n] = std::cos(0.37 * double(n));
-  }
-  std::vector<double> yu(g.NodeCount(), 0.0), yv = yu;
-  solver.Solve(fu.data(), yu.data(), 0);
-  solver.Solve(fv.data(), yv.data(), 0);
+// Every topology, a > 0 and a = 0, on the mesh of several row blocks and mode pieces: the same bits
+// on teams of 1, 2 and 3 threads (the phases share rows and modes; each row and mode sees the same
+// operations), and SolvePair gives the two single solves bit for bit (issue 34, point 5).
+TEST(SeparableHelmholtzThreads, SameBitsOnAnyTeamAndInPairs) {
   const int budget = omp_get_max_threads();
-  for (int threads : {1, 2}) {
-    omp_set_num_threads(threads);
-    std::vector<double> u(g.NodeCount(), 0.0), v = u;
-    solver.SolvePair(fu.data(), u.data(), fv.data(), v.data());
-    EXPECT_EQ(u, yu) << threads;
-    EXPECT_EQ(v, yv) << threads;
+  omp_set_num_threads(3);  // the solver keeps scratch for the team of its construction
+  const Grid g = Meshes()[3];
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> dist(-1.0, 1.0);
+  for (const Topology& topology : Topologies()) {
+    for (const double a : {0.0, 40.0}) {
+      const SeparableHelmholtz solver(g, topology.topo, a, 0.7, 2);
+      std::vector<double> fu(g.NodeCount()), fv(g.NodeCount()), data(g.NodeCount());
+      for (std::size_t n = 0; n < fu.size(); ++n) {
+        fu[n] = dist(gen);
+        fv[n] = dist(gen);
+        data[n] = dist(gen);
+      }
+      std::vector<double> alone_u = data, alone_v = data;
+      omp_set_num_threads(1);
+      solver.Solve(fu.data(), alone_u.data());
+      solver.Solve(fv.data(), alone_v.data());
+      for (int threads : {1, 2, 3}) {
+        omp_set_num_threads(threads);
+        std::vector<double> u = data, v = data;
+        solver.Solve(fu.data(), u.data());
+        EXPECT_EQ(u, alone_u) << topology.name << " a = " << a << ", " << threads << " threads";
+        u = data;
+        solver.SolvePair(fu.data(), u.data(), fv.data(), v.data());
+        EXPECT_EQ(u, alone_u) << topology.name << " pair, " << threads << " threads";
+        EXPECT_EQ(v, alone_v) << topology.name << " pair, " << threads << " threads";
+      }
+      omp_set_num_threads(3);
+    }
   }
   omp_set_num_threads(budget);
 }
@@ -239,9 +234,10 @@ TEST(SeparableHelmholtzErrors, RejectsBadArguments) {
   BoundaryTopology half_periodic;
   half_periodic.x.low = EndKind::kPeriodic;
   EXPECT_THROW(SeparableHelmholtz(g, half_periodic, 1.0, 1.0), InvalidParameter);
+  EXPECT_THROW(SeparableHelmholtz(g, t, 1.0, 1.0, 3), InvalidParameter);
   SeparableHelmholtz solver(g, t, 1.0, 1.0, 1);
   std::vector<double> f(g.NodeCount(), 0.0), x(g.NodeCount(), 0.0);
-  EXPECT_THROW(solver.Solve(f.data(), x.data(), 1), InvalidParameter);
+  EXPECT_THROW(solver.SolvePair(f.data(), x.data(), f.data(), x.data()), InvalidParameter);
 }
 
 }  // namespace

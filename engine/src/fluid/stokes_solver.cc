@@ -81,7 +81,7 @@ void StokesSolver::SolveVelocityPair(const double* fu, const double* fv, double*
 // g = nu M_p^-1 r + (rho/dt) K_p^-1 r; g is zero on pressure Dirichlet nodes.
 void StokesSolver::ApplyPreconditioner(const double* r, double* g) {
   std::fill(z_.begin(), z_.end(), 0.0);  // Dirichlet data p = 0 for the solve
-  pressure_solver_.Solve(r, z_.data(), 0);
+  pressure_solver_.Solve(r, z_.data());
   const long np = static_cast<long>(z_.size());
   const double* minv = pmass_inv_.data();
   const double* z = z_.data();

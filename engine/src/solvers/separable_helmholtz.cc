@@ -13,11 +13,20 @@
 // The Thomas factors of every mode (and, for periodic y, the Sherman-Morrison vector of the cyclic
 // system) are computed once here; Solve only sweeps. DD and NN use TypeOneTransform (a real DFT of
 // the odd or even extension, faster than FFTW's own RODFT00/REDFT00), the other kinds FFTW r2r.
+//
+// Threads (issue 34): a solve, or a batch of them (SolvePair), is one OpenMP region of three
+// phases, each shared by the whole team: (1) blocks of kBlockRows rows gathered and transformed
+// forward (rows are independent), (2) the tridiagonal sweeps in y on pieces of the modes (modes are
+// independent), (3) blocks transformed back and scattered. The singular case adds the sums of its
+// two means, taken per row and then over the rows in order. The blocks are the same and every mode
+// and row sees the same operations whatever the team, so the result does not depend on the thread
+// count, bit for bit (tests/unit/separable_helmholtz_test.cc).
 #include "dlmfd/solvers/separable_helmholtz.h"
 
 #include <fftw3.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 #include <new>
@@ -100,6 +109,11 @@ void CheckAxis(const char* name, int cells, const AxisBoundary& ends) {
   }
 }
 
+// Rows per block of phases (1) and (3): a block's rows and the transform's scratch stay in L2.
+constexpr int kBlockRows = TypeOneTransform::kBlockRows;
+// The sweeps' mode pieces start on whole cache lines (8 doubles) so that threads share none.
+constexpr int kModeAlign = 8;
+
 }  // namespace
 
 struct SeparableHelmholtz::Impl {
@@ -107,7 +121,8 @@ struct SeparableHelmholtz::Impl {
   BoundaryTopology topo;
   double a = 0.0, b = 0.0;
   UnknownLines ux, uy;
-  int modes = 0;  // = ux.count, the transform length
+  int modes = 0;   // = ux.count, the transform length
+  int blocks = 0;  // row blocks of kBlockRows rows (the last may be shorter)
   bool cyclic = false;
   bool singular = false;
   Transform transform{};
@@ -117,18 +132,24 @@ struct SeparableHelmholtz::Impl {
   std::vector<double> cyclic_z;      // uy.count x modes: A'^-1 u of Sherman-Morrison
   std::vector<double> cyclic_coef;   // per mode: 1 / (1 + v.z), 0 for the pinned mode
   std::vector<double> cyclic_beta_over_gamma;  // per mode: beta / gamma
-  std::vector<double*> buffers;                // rows x modes, plus one row of per-mode scratch
+  std::vector<double*> buffers;  // per system of a batch: rows x modes, plus one row of scratch
+  int teams = 1;                 // the most threads a solve uses: one transform scratch each
+  double unknown_weight = 0.0;   // singular: sum of the trapezoid weights of the unknown nodes
+  std::vector<double> row_sums;  // singular: per system and row, the partial sums of the means
   // DD and NN in x: the type-I transforms (their own inverse up to the scale) through a real DFT of
-  // the extension (type_one_transform.h); the other kinds: FFTW r2r plans.
+  // the extension (type_one_transform.h); the other kinds: FFTW r2r plans of a full block and of
+  // the last, shorter one.
   std::unique_ptr<TypeOneTransform> type_one;
-  fftw_plan forward = nullptr, backward = nullptr;
-
-  void ApplyTransform(fftw_plan plan, double* buf, int workspace) const;
+  fftw_plan forward = nullptr, backward = nullptr, forward_tail = nullptr, backward_tail = nullptr;
 
   void Factorise();
-  void Gather(const double* f, const double* x, double* buf) const;
-  void SolveModes(double* buf) const;
-  void Scatter(const double* buf, double* x) const;
+  void TransformBlock(bool forward_direction, double* buf, int block, int thread) const;
+  double RowSum(const double* f, int r) const;
+  void GatherRow(const double* f, const double* x, double mean, double* buf, int r) const;
+  void SolveModes(double* buf, int first, int last) const;
+  double ScatterRow(const double* buf, double* x, int r) const;
+  void FinishRow(double* x, double mean, int r) const;
+  void SolveBatch(int count, const double* const* f, double* const* x);
 };
 
 void SeparableHelmholtz::Impl::Factorise() {
@@ -183,120 +204,187 @@ void SeparableHelmholtz::Impl::Factorise() {
   }
 }
 
-void SeparableHelmholtz::Impl::Gather(const double* f, const double* x, double* buf) const {
-  double mean = 0.0;
-  if (singular) {
-    for (int r = 0; r < uy.count; ++r) {
-      const double* row = f + grid.Index(ux.first, uy.first + r);
-      for (int c = 0; c < ux.count; ++c) mean += row[c];
-    }
-    mean /= double(ux.count) * double(uy.count);
+void SeparableHelmholtz::Impl::TransformBlock(bool forward_direction, double* buf, int block,
+                                              int thread) const {
+  if (type_one) {
+    type_one->ApplyBlock(buf, block, thread);
+    return;
   }
-  for (int r = 0; r < uy.count; ++r) {
-    const int j = uy.first + r;
-    const double* row = f + grid.Index(ux.first, j);
-    double* out = buf + std::size_t(r) * modes;
-    for (int c = 0; c < modes; ++c) out[c] = row[c] - mean;
-    // Dirichlet data of the neighbouring columns: -b K_(unknown, Dirichlet) x_D.
-    const double wy = LineWeight(topo.y, grid.ny, j);
-    if (topo.x.low == EndKind::kDirichlet) out[0] += b * wy * x[grid.Index(0, j)];
-    if (topo.x.high == EndKind::kDirichlet) out[modes - 1] += b * wy * x[grid.Index(grid.nx, j)];
-  }
-  // Dirichlet data of the neighbouring rows.
-  if (topo.y.low == EndKind::kDirichlet) {
-    double* out = buf;
-    for (int c = 0; c < modes; ++c) {
-      const int i = ux.first + c;
-      out[c] += b * LineWeight(topo.x, grid.nx, i) * x[grid.Index(i, 0)];
-    }
-  }
-  if (topo.y.high == EndKind::kDirichlet) {
-    double* out = buf + std::size_t(uy.count - 1) * modes;
-    for (int c = 0; c < modes; ++c) {
-      const int i = ux.first + c;
-      out[c] += b * LineWeight(topo.x, grid.nx, i) * x[grid.Index(i, grid.ny)];
-    }
-  }
-  for (int c = 0; c < modes; ++c) {
-    if (pre_scale[c] == 1.0) continue;
-    for (int r = 0; r < uy.count; ++r) buf[std::size_t(r) * modes + c] *= pre_scale[c];
-  }
+  const bool tail = block == blocks - 1 && uy.count % kBlockRows != 0 && uy.count > kBlockRows;
+  fftw_plan plan =
+      forward_direction ? (tail ? forward_tail : forward) : (tail ? backward_tail : backward);
+  double* rows = buf + std::size_t(block) * kBlockRows * modes;
+  fftw_execute_r2r(plan, rows, rows);
 }
 
-void SeparableHelmholtz::Impl::SolveModes(double* buf) const {
+// The sum of f over the unknown nodes of row r (the singular case's mean, summed per row).
+double SeparableHelmholtz::Impl::RowSum(const double* f, int r) const {
+  const double* row = f + grid.Index(ux.first, uy.first + r);
+  double sum = 0.0;
+  for (int c = 0; c < ux.count; ++c) sum += row[c];
+  return sum;
+}
+
+// Row r of the transform buffer: f - mean at the unknowns, the Dirichlet data of the neighbouring
+// columns and rows (-b K_(unknown, Dirichlet) x_D), the pre-scale of the cosine kinds' ends.
+void SeparableHelmholtz::Impl::GatherRow(const double* f, const double* x, double mean, double* buf,
+                                         int r) const {
+  const int j = uy.first + r;
+  const double* row = f + grid.Index(ux.first, j);
+  double* out = buf + std::size_t(r) * modes;
+  for (int c = 0; c < modes; ++c) out[c] = row[c] - mean;
+  const double wy = LineWeight(topo.y, grid.ny, j);
+  if (topo.x.low == EndKind::kDirichlet) out[0] += b * wy * x[grid.Index(0, j)];
+  if (topo.x.high == EndKind::kDirichlet) out[modes - 1] += b * wy * x[grid.Index(grid.nx, j)];
+  const bool below = r == 0 && topo.y.low == EndKind::kDirichlet;
+  const bool above = r == uy.count - 1 && topo.y.high == EndKind::kDirichlet;
+  for (const int data_row : {below ? 0 : -1, above ? grid.ny : -1}) {
+    if (data_row < 0) continue;
+    for (int c = 0; c < modes; ++c) {
+      const int i = ux.first + c;
+      out[c] += b * LineWeight(topo.x, grid.nx, i) * x[grid.Index(i, data_row)];
+    }
+  }
+  for (int c = 0; c < modes; ++c) out[c] *= pre_scale[c];
+}
+
+// The tridiagonal solves in y of modes [first, last).
+void SeparableHelmholtz::Impl::SolveModes(double* buf, int first, int last) const {
   const int n = uy.count;
   const double scale = transform.scale;
-  if (singular) buf[0] = 0.0;  // the pinned row of the zero mode
+  if (singular && first == 0) buf[0] = 0.0;  // the pinned row of the zero mode
   {
     const double* m = inv_pivot.data();
-    for (int c = 0; c < modes; ++c) buf[c] = scale * buf[c] * m[c];
+    for (int c = first; c < last; ++c) buf[c] = scale * buf[c] * m[c];
   }
   for (int r = 1; r < n; ++r) {
     double* row = buf + std::size_t(r) * modes;
     const double* prev = row - modes;
     const double* m = inv_pivot.data() + std::size_t(r) * modes;
-    for (int c = 0; c < modes; ++c) row[c] = (scale * row[c] + b * prev[c]) * m[c];
+    for (int c = first; c < last; ++c) row[c] = (scale * row[c] + b * prev[c]) * m[c];
   }
   for (int r = n - 2; r >= 0; --r) {
     double* row = buf + std::size_t(r) * modes;
     const double* next = row + modes;
     const double* cp = upper_factor.data() + std::size_t(r) * modes;
-    for (int c = 0; c < modes; ++c) row[c] -= cp[c] * next[c];
+    for (int c = first; c < last; ++c) row[c] -= cp[c] * next[c];
   }
   if (cyclic) {
     // x = y - [(y_0 + (beta/gamma) y_{n-1}) / (1 + v.z)] z; the factor row lies past the n rows.
     double* factor = buf + std::size_t(n) * modes;
-    const double* first = buf;
-    const double* last = buf + std::size_t(n - 1) * modes;
-    for (int c = 0; c < modes; ++c) {
-      factor[c] = cyclic_coef[c] * (first[c] + cyclic_beta_over_gamma[c] * last[c]);
+    const double* top = buf;
+    const double* bottom = buf + std::size_t(n - 1) * modes;
+    for (int c = first; c < last; ++c) {
+      factor[c] = cyclic_coef[c] * (top[c] + cyclic_beta_over_gamma[c] * bottom[c]);
     }
     for (int r = 0; r < n; ++r) {
       double* row = buf + std::size_t(r) * modes;
       const double* z = cyclic_z.data() + std::size_t(r) * modes;
-      for (int c = 0; c < modes; ++c) row[c] -= factor[c] * z[c];
+      for (int c = first; c < last; ++c) row[c] -= factor[c] * z[c];
     }
   }
 }
 
-void SeparableHelmholtz::Impl::ApplyTransform(fftw_plan plan, double* buf, int workspace) const {
-  if (type_one) {
-    type_one->Apply(buf, workspace);
-  } else {
-    fftw_execute_r2r(plan, buf, buf);
-  }
+// Writes row r of the unknowns; returns its trapezoid-weighted sum in the singular case (0 else).
+double SeparableHelmholtz::Impl::ScatterRow(const double* buf, double* x, int r) const {
+  const int j = uy.first + r;
+  double* row = x + grid.Index(ux.first, j);
+  const double* in = buf + std::size_t(r) * modes;
+  for (int c = 0; c < modes; ++c) row[c] = in[c];
+  if (!singular) return 0.0;
+  const double wy = LineWeight(topo.y, grid.ny, j);
+  double weighted = 0.0;
+  for (int c = 0; c < modes; ++c)
+    weighted += wy * LineWeight(topo.x, grid.nx, ux.first + c) * row[c];
+  return weighted;
 }
 
-void SeparableHelmholtz::Impl::Scatter(const double* buf, double* x) const {
-  for (int r = 0; r < uy.count; ++r) {
-    double* row = x + grid.Index(ux.first, uy.first + r);
-    const double* in = buf + std::size_t(r) * modes;
-    for (int c = 0; c < modes; ++c) row[c] = in[c];
-  }
+// Row r less the mean (singular case), and the periodic duplicates it owns: with a periodic x the
+// last node of its row (the first and last unknown rows also those of the Dirichlet rows beyond
+// them), with a periodic y the duplicate row ny when r is row 0 (row 0 alone writes row ny, so
+// that no two threads write one node).
+void SeparableHelmholtz::Impl::FinishRow(double* x, double mean, int r) const {
+  const int j = uy.first + r;
   if (singular) {
-    double weighted = 0.0, mass = 0.0;
-    for (int r = 0; r < uy.count; ++r) {
-      const int j = uy.first + r;
-      const double wy = LineWeight(topo.y, grid.ny, j);
-      const double* row = x + grid.Index(0, j);
-      for (int c = 0; c < modes; ++c) {
-        const int i = ux.first + c;
-        const double w = wy * LineWeight(topo.x, grid.nx, i);
-        weighted += w * row[i];
-        mass += w;
-      }
-    }
-    const double mean = weighted / mass;
-    for (int r = 0; r < uy.count; ++r) {
-      double* row = x + grid.Index(ux.first, uy.first + r);
-      for (int c = 0; c < modes; ++c) row[c] -= mean;
-    }
+    double* row = x + grid.Index(ux.first, j);
+    for (int c = 0; c < modes; ++c) row[c] -= mean;
   }
   if (topo.x.low == EndKind::kPeriodic) {
-    for (int j = 0; j <= grid.ny; ++j) x[grid.Index(grid.nx, j)] = x[grid.Index(0, j)];
+    const int low = r == 0 ? 0 : j;
+    const int high = r == uy.count - 1 && !cyclic ? grid.ny : j;
+    for (int jj = low; jj <= high; ++jj) x[grid.Index(grid.nx, jj)] = x[grid.Index(0, jj)];
   }
-  if (topo.y.low == EndKind::kPeriodic) {
-    for (int i = 0; i <= grid.nx; ++i) x[grid.Index(i, grid.ny)] = x[grid.Index(i, 0)];
+  if (topo.y.low == EndKind::kPeriodic && j == 0) {
+    std::copy_n(x + grid.Index(0, 0), grid.NodesX(), x + grid.Index(0, grid.ny));
+  }
+}
+
+void SeparableHelmholtz::Impl::SolveBatch(int count, const double* const* f, double* const* x) {
+  const int rows = uy.count;
+  const int team = std::max(1, std::min(omp_get_max_threads(), teams));
+  // Mode pieces per system: enough for the team, each at least kModeAlign modes wide.
+  const int pieces =
+      std::max(1, std::min((team + count - 1) / count, std::max(1, modes / kModeAlign)));
+  auto piece_start = [&](int k) {
+    if (k >= pieces) return modes;
+    const int at = static_cast<int>((long(modes) * k) / pieces);
+    return std::min(modes, (at / kModeAlign) * kModeAlign);
+  };
+  double* sums = row_sums.data();
+#pragma omp parallel num_threads(team)
+  {
+    const int thread = omp_get_thread_num();
+    double means[2] = {0.0, 0.0};  // per system (at most 2), the same in every thread
+    if (singular) {
+#pragma omp for schedule(static)
+      for (long item = 0; item < long(count) * rows; ++item) {
+        sums[item] = RowSum(f[item / rows], static_cast<int>(item % rows));
+      }
+      for (int s = 0; s < count; ++s) {
+        double sum = 0.0;
+        for (int r = 0; r < rows; ++r) sum += sums[std::size_t(s) * rows + r];
+        means[s] = sum / (double(ux.count) * double(rows));
+      }
+    }
+#pragma omp for schedule(static)
+    for (int item = 0; item < count * blocks; ++item) {
+      const int s = item / blocks, block = item % blocks;
+      const int last = std::min(rows, (block + 1) * kBlockRows);
+      for (int r = block * kBlockRows; r < last; ++r)
+        GatherRow(f[s], x[s], means[s], buffers[s], r);
+      TransformBlock(true, buffers[s], block, thread);
+    }
+#pragma omp for schedule(static)
+    for (int item = 0; item < count * pieces; ++item) {
+      const int s = item / pieces, k = item % pieces;
+      SolveModes(buffers[s], piece_start(k), piece_start(k + 1));
+    }
+#pragma omp for schedule(static)
+    for (int item = 0; item < count * blocks; ++item) {
+      const int s = item / blocks, block = item % blocks;
+      TransformBlock(false, buffers[s], block, thread);
+      const int last = std::min(rows, (block + 1) * kBlockRows);
+      for (int r = block * kBlockRows; r < last; ++r) {
+        const double weighted = ScatterRow(buffers[s], x[s], r);
+        if (singular) {
+          sums[std::size_t(s) * rows + r] = weighted;
+        } else {
+          FinishRow(x[s], 0.0, r);
+        }
+      }
+    }
+    if (singular) {  // (the loop's closing barrier: every row's sum is in)
+      for (int s = 0; s < count; ++s) {
+        double weighted = 0.0;
+        for (int r = 0; r < rows; ++r) weighted += sums[std::size_t(s) * rows + r];
+        means[s] = weighted / unknown_weight;
+      }
+#pragma omp for schedule(static)
+      for (long item = 0; item < long(count) * rows; ++item) {
+        const int s = static_cast<int>(item / rows);
+        FinishRow(x[s], means[s], static_cast<int>(item % rows));
+      }
+    }
   }
 }
 
@@ -309,8 +397,8 @@ SeparableHelmholtz::SeparableHelmholtz(const Grid& grid, const BoundaryTopology&
     throw InvalidParameter("helmholtz a", std::to_string(a), ">= 0");
   if (!(b > 0.0) || !std::isfinite(b))
     throw InvalidParameter("helmholtz b", std::to_string(b), "> 0");
-  if (workspaces < 1)
-    throw InvalidParameter("helmholtz workspaces", std::to_string(workspaces), ">= 1");
+  if (workspaces < 1 || workspaces > 2)
+    throw InvalidParameter("helmholtz workspaces", std::to_string(workspaces), "1 or 2");
   Impl& s = *impl_;
   s.grid = grid;
   s.topo = topo;
@@ -319,6 +407,7 @@ SeparableHelmholtz::SeparableHelmholtz(const Grid& grid, const BoundaryTopology&
   s.ux = LinesOf(topo.x, grid.nx);
   s.uy = LinesOf(topo.y, grid.ny);
   s.modes = s.ux.count;
+  s.blocks = (s.uy.count + kBlockRows - 1) / kBlockRows;
   s.cyclic = topo.y.low == EndKind::kPeriodic;
   s.singular = a == 0.0 && topo.HasNullSpace();
   s.transform = TransformFor(topo.x, grid.nx);
@@ -326,6 +415,16 @@ SeparableHelmholtz::SeparableHelmholtz(const Grid& grid, const BoundaryTopology&
   if (topo.x.low == EndKind::kNeumann) s.pre_scale.front() = 2.0;
   if (topo.x.high == EndKind::kNeumann) s.pre_scale.back() = 2.0;
   s.Factorise();
+  s.teams = std::max(1, omp_get_max_threads());
+  if (s.singular) {
+    s.row_sums.assign(std::size_t(workspaces) * s.uy.count, 0.0);
+    for (int r = 0; r < s.uy.count; ++r) {
+      const double wy = LineWeight(topo.y, grid.ny, s.uy.first + r);
+      for (int c = 0; c < s.modes; ++c) {
+        s.unknown_weight += wy * LineWeight(topo.x, grid.nx, s.ux.first + c);
+      }
+    }
+  }
 
   const std::size_t size = std::size_t(s.modes) * std::size_t(s.uy.count);
   std::lock_guard<std::mutex> lock(PlannerMutex());
@@ -337,49 +436,46 @@ SeparableHelmholtz::SeparableHelmholtz(const Grid& grid, const BoundaryTopology&
   if (s.transform.forward == FFTW_RODFT00 || s.transform.forward == FFTW_REDFT00) {
     const auto kind = s.transform.forward == FFTW_RODFT00 ? TypeOneTransform::Kind::kSine
                                                           : TypeOneTransform::Kind::kCosine;
-    s.type_one = std::make_unique<TypeOneTransform>(kind, s.modes, s.uy.count, workspaces);
+    s.type_one = std::make_unique<TypeOneTransform>(kind, s.modes, s.uy.count, s.teams);
     return;
   }
+  // Plans of one block of rows, executed on every block (each starts kBlockRows rows further: the
+  // same alignment as the buffer's start), and of the last block when it is shorter.
   const int length = s.modes;
-  const unsigned flags = FftwPlannerFlags(size);
-  s.forward = fftw_plan_many_r2r(1, &length, s.uy.count, s.buffers[0], nullptr, 1, length,
-                                 s.buffers[0], nullptr, 1, length, &s.transform.forward, flags);
-  s.backward = fftw_plan_many_r2r(1, &length, s.uy.count, s.buffers[0], nullptr, 1, length,
-                                  s.buffers[0], nullptr, 1, length, &s.transform.backward, flags);
-  if (!s.forward || !s.backward) throw Error("SeparableHelmholtz: FFTW could not make a plan");
+  auto plan = [&](int howmany, fftw_r2r_kind kind) -> fftw_plan {
+    if (howmany == 0) return nullptr;
+    const unsigned flags = FftwPlannerFlags(std::size_t(length) * howmany);
+    fftw_plan p = fftw_plan_many_r2r(1, &length, howmany, s.buffers[0], nullptr, 1, length,
+                                     s.buffers[0], nullptr, 1, length, &kind, flags);
+    if (!p) throw Error("SeparableHelmholtz: FFTW could not make a plan");
+    return p;
+  };
+  const int block = std::min(s.uy.count, kBlockRows);
+  const int tail = s.uy.count > kBlockRows ? s.uy.count % kBlockRows : 0;
+  s.forward = plan(block, s.transform.forward);
+  s.backward = plan(block, s.transform.backward);
+  s.forward_tail = plan(tail, s.transform.forward);
+  s.backward_tail = plan(tail, s.transform.backward);
 }
 
 SeparableHelmholtz::~SeparableHelmholtz() {
   std::lock_guard<std::mutex> lock(PlannerMutex());
-  if (impl_->forward) fftw_destroy_plan(impl_->forward);
-  if (impl_->backward) fftw_destroy_plan(impl_->backward);
+  for (fftw_plan p : {impl_->forward, impl_->backward, impl_->forward_tail, impl_->backward_tail}) {
+    if (p) fftw_destroy_plan(p);
+  }
   impl_->type_one.reset();
   for (double* buffer : impl_->buffers) fftw_free(buffer);
 }
 
-void SeparableHelmholtz::Solve(const double* f, double* x, int workspace) const {
-  const Impl& s = *impl_;
-  if (workspace < 0 || workspace >= static_cast<int>(s.buffers.size())) {
-    throw InvalidParameter("helmholtz workspace", std::to_string(workspace),
-                           "in [0, " + std::to_string(s.buffers.size()) + ")");
-  }
-  double* buf = s.buffers[workspace];
-  s.Gather(f, x, buf);
-  s.ApplyTransform(s.forward, buf, workspace);
-  s.SolveModes(buf);
-  s.ApplyTransform(s.backward, buf, workspace);
-  s.Scatter(buf, x);
-}
+void SeparableHelmholtz::Solve(const double* f, double* x) const { impl_->SolveBatch(1, &f, &x); }
 
 void SeparableHelmholtz::SolvePair(const double* fu, double* u, const double* fv, double* v) const {
-  // num_threads(2) alone would override the caller's budget of 1 thread.
-#pragma omp parallel sections num_threads(omp_get_max_threads() >= 2 ? 2 : 1)
-  {
-#pragma omp section
-    Solve(fu, u, 0);
-#pragma omp section
-    Solve(fv, v, 1);
+  if (impl_->buffers.size() < 2) {
+    throw InvalidParameter("helmholtz workspaces", "1", "2 for SolvePair");
   }
+  const double* f[2] = {fu, fv};
+  double* x[2] = {u, v};
+  impl_->SolveBatch(2, f, x);
 }
 
 const Grid& SeparableHelmholtz::grid() const { return impl_->grid; }

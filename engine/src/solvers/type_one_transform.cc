@@ -64,8 +64,8 @@ void TypeOneTransform::Release() {
   spectrum_buffers_.clear();
 }
 
-void TypeOneTransform::ApplyBlock(double* data, int block_rows, void* plan, double* ext,
-                                  double* spectrum_data) const {
+void TypeOneTransform::TransformRows(double* data, int block_rows, void* plan, double* ext,
+                                     double* spectrum_data) const {
   const int n = length_, L = extended_;
   for (int r = 0; r < block_rows; ++r) {
     const double* in = data + std::size_t(r) * n;
@@ -93,15 +93,17 @@ void TypeOneTransform::ApplyBlock(double* data, int block_rows, void* plan, doub
   }
 }
 
+void TypeOneTransform::ApplyBlock(double* data, int block, int workspace) const {
+  const int first = block * kBlockRows;
+  const int count = std::min(kBlockRows, rows_ - first);
+  // A full block has the block plan; only the last block can be shorter (its own plan).
+  void* plan = count == std::min(rows_, kBlockRows) ? block_plan_ : tail_plan_;
+  TransformRows(data + std::size_t(first) * length_, count, plan, extension_[workspace],
+                spectrum_buffers_[workspace]);
+}
+
 void TypeOneTransform::Apply(double* data, int workspace) const {
-  double* ext = extension_[workspace];
-  double* spectrum = spectrum_buffers_[workspace];
-  const int block = std::min(rows_, kBlockRows);
-  int r = 0;
-  for (; r + block <= rows_; r += block) {
-    ApplyBlock(data + std::size_t(r) * length_, block, block_plan_, ext, spectrum);
-  }
-  if (r < rows_) ApplyBlock(data + std::size_t(r) * length_, rows_ - r, tail_plan_, ext, spectrum);
+  for (int b = 0; b < Blocks(); ++b) ApplyBlock(data, b, workspace);
 }
 
 }  // namespace dlmfd

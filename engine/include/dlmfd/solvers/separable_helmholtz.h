@@ -5,7 +5,9 @@
 // Dirichlet-Neumann / Neumann-Dirichlet -> quarter-wave transforms (RODFT01/10, REDFT01/10 pairs);
 // periodic -> real DFT. Then one tridiagonal solve in y per mode (cyclic for periodic y), swept
 // across modes so that the inner loop is contiguous. Plans and factorisations are made once, at
-// construction; Solve allocates nothing.
+// construction; Solve allocates nothing. A solve runs on the calling thread's OpenMP team (at most
+// the omp_get_max_threads() of construction), in phases shared by the team
+// (separable_helmholtz.cc), and gives the same bits on any number of threads.
 //
 // a >= 0, b > 0. With a == 0 and no Dirichlet side (HasNullSpace) the zero mode is singular: f is
 // projected to zero sum over the unknowns and x is returned with zero M_l-weighted mean.
@@ -20,7 +22,7 @@ namespace dlmfd {
 
 class SeparableHelmholtz {
  public:
-  // workspaces: how many Solve calls may run at the same time (each uses its own buffers).
+  // workspaces: 1, or 2 for SolvePair (the transform buffers of two systems).
   SeparableHelmholtz(const Grid& grid, const BoundaryTopology& topo, double a, double b,
                      int workspaces = 2);
   ~SeparableHelmholtz();
@@ -30,11 +32,12 @@ class SeparableHelmholtz {
   // On entry x holds the Dirichlet data on Dirichlet nodes (other values are ignored); on return
   // x solves (a M_l + b K) x = f at every unknown node, Dirichlet nodes unchanged, periodic
   // duplicates equal to their first node. f is read at unknown nodes only. f and x may not alias.
-  // `workspace` in [0, workspaces) selects the buffers; concurrent calls must use distinct ones.
-  void Solve(const double* f, double* x, int workspace = 0) const;
-  // The two components of a vector field, side by side: Solve(fu, u, 0) and Solve(fv, v, 1) in an
-  // OpenMP region of 2 threads, or one after the other when the caller's thread budget
-  // (omp_get_max_threads, e.g. dlmfd-solve --threads 1) is 1. Needs workspaces >= 2.
+  // One call at a time per solver (the calls share its buffers).
+  void Solve(const double* f, double* x) const;
+  // The two components of a vector field as one batch: Solve(fu, u) and Solve(fv, v), the same
+  // bits, in one OpenMP region whose phases share the two systems' rows and modes between all the
+  // threads of the team (u and v side by side on two threads, each split further on more). Needs
+  // workspaces = 2.
   void SolvePair(const double* fu, double* u, const double* fv, double* v) const;
 
   const Grid& grid() const;

@@ -14,8 +14,11 @@
 // Apply transforms `rows` contiguous rows of `length` values in place, in blocks of kBlockRows rows
 // whose extension and spectrum (about 100 KB) stay in the core's L2 cache: extending whole arrays
 // (2.4 MB each on the paper's grid) made the stores of the extension the most expensive part.
-// Plans are made at construction, which must hold the FFTW planner lock (it is not thread-safe);
-// Apply may run concurrently on distinct workspaces and allocates nothing.
+// ApplyBlock transforms one of those blocks, so that a caller can share the blocks between threads
+// (SeparableHelmholtz does); the blocks are the same whatever the thread count, so every row gets
+// the same bits. Plans are made at construction, which must hold the FFTW planner lock (it is not
+// thread-safe); Apply and ApplyBlock may run concurrently on distinct workspaces (each its own
+// extension and spectrum buffers) and allocate nothing.
 #pragma once
 
 #include <vector>
@@ -31,12 +34,16 @@ class TypeOneTransform {
   TypeOneTransform(const TypeOneTransform&) = delete;
   TypeOneTransform& operator=(const TypeOneTransform&) = delete;
 
-  void Apply(double* data, int workspace) const;
-
- private:
   static constexpr int kBlockRows = 16;
 
-  void ApplyBlock(double* data, int block_rows, void* plan, double* ext, double* spectrum) const;
+  // All rows, block after block, on the workspace's buffers.
+  void Apply(double* data, int workspace) const;
+  // The rows of block b in [0, Blocks()) (rows b kBlockRows onwards) of the rows starting at data.
+  void ApplyBlock(double* data, int block, int workspace) const;
+  int Blocks() const { return (rows_ + kBlockRows - 1) / kBlockRows; }
+
+ private:
+  void TransformRows(double* data, int block_rows, void* plan, double* ext, double* spectrum) const;
   void Release();  // plans and buffers (destructor, and a constructor that throws)
 
   Kind kind_;
