@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The serial share of each sub-step, counted in instructions (docs/performance.md, "Threads"):
+# for each sub-step of Simulation::Step (SolveStokes (33), AdvectVelocity (34), UpdateConformation
+# (35), MoveParticles (36)-(38)) callgrind counts the instructions executed inside it, on one
+# thread, and those executed inside OpenMP parallel regions (the inclusive cost of libgomp's
+# GOMP_parallel entry points, whose outlined bodies the team shares). The rest runs on one thread
+# whatever the team: its share s is the serial fraction of Amdahl's law in instructions,
+#   speed-up on T threads <= 1 / (s + (1 - s) / T),
+# which the script prints for T = 2 and 16. Instruction counts do not depend on the machine's load
+# (a shared machine's timings do), but they weigh a memory-bound copy as little as its
+# instructions; the wall-clock measure of the same fraction, from 1 and 2 threads, is
+# bench/thread_scaling.sh's.
+#
+#   bench/serial_fraction.sh SCENE [--set key=value]...   # BUILD=build END=0.002 (time.end) WORK=...
+#   bench/serial_fraction.sh cases/paper/5.2_pair_oldroyd_b.toml --set splitting.advection=wave
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+BUILD=${BUILD:-build}
+END=${END:-0.002}
+WORK=${WORK:-$(mktemp -d /tmp/serial_fraction.XXXXXX)}
+SCENE=$1
+shift
+SOLVER="$BUILD/solver/dlmfd-solve"
+mkdir -p "$WORK"
+
+echo "substep,instructions,in_parallel_regions,serial_fraction,amdahl_speedup_2,amdahl_efficiency_16"
+for sub in SolveStokes AdvectVelocity UpdateConformation MoveParticles; do
+  out="$WORK/$sub.callgrind"
+  rm -rf "$WORK/run_$sub"
+  OMP_NUM_THREADS=1 valgrind --tool=callgrind --callgrind-out-file="$out" \
+    --toggle-collect="dlmfd::Simulation::Impl::$sub*" \
+    "$SOLVER" "$SCENE" "$@" --out "$WORK/run_$sub" --threads 1 --quiet \
+    --set output.fields_every=0 --set output.checkpoint_every=0 \
+    --set "time.end=$END" \
+    >"$WORK/$sub.log" 2>&1
+  callgrind_annotate --inclusive=yes --threshold=100 "$out" 2>/dev/null |
+    awk -v name="$sub" '
+      /PROGRAM TOTALS/ { gsub(",", "", $1); total = $1 }
+      /GOMP_parallel/ { v = $1; gsub(",", "", v); par += v }
+      END {
+        if (total == 0) { printf "%s,0,0,,,\n", name; exit }
+        s = (total - par) / total
+        sp2 = 1 / (s + (1 - s) / 2); sp16 = 1 / (s + (1 - s) / 16)
+        printf "%s,%d,%d,%.4f,%.3f,%.3f\n", name, total, par, s, sp2, sp16 / 16
+      }'
+done
