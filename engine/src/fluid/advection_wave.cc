@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/core/parallel_copy.h"
 #include "dlmfd/mesh/fem_operators.h"
 
 namespace dlmfd {
@@ -151,13 +152,13 @@ void AdvectionWave::ComputeWeights(const double* vx, const double* vy) {
 
 void AdvectionWave::FreezeVelocity(const double* u, const double* v) {
   const int nx = grid_.nx, ny = grid_.ny;
-  std::copy(u, u + vx_.size(), vx_.begin());
-  std::copy(v, v + vy_.size(), vy_.begin());
+  ParallelCopy(u, static_cast<long>(vx_.size()), vx_.data());
+  ParallelCopy(v, static_cast<long>(vy_.size()), vy_.data());
   const double* vx = vx_.data();
   const double* vy = vy_.data();
   ComputeWeights(vx, vy);
   // (V.n)^+ times the lumped boundary mass on outflow sides.
-  std::fill(out_mass_.begin(), out_mass_.end(), 0.0);
+  ParallelFill(out_mass_.data(), static_cast<long>(out_mass_.size()), 0.0);
   for (int s = 0; s < 4; ++s) {
     if (!outflow_[s]) continue;
     const Side side = static_cast<Side>(s);
@@ -299,8 +300,8 @@ void AdvectionWave::RemoveTaylorTerm() {
 
 void AdvectionWave::BeginStep(const double* u, const double* v) {
   if (!tendency_) return;
-  std::copy(u, u + ru_.size(), ru_.begin());
-  std::copy(v, v + rv_.size(), rv_.begin());
+  ParallelCopy(u, static_cast<long>(ru_.size()), ru_.data());
+  ParallelCopy(v, static_cast<long>(rv_.size()), rv_.data());
   entry_set_ = true;
 }
 
@@ -331,8 +332,8 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
   const double* unknown = nodes_.unknown().data();
   const double* vx = vx_.data();
   const double* vy = vy_.data();
-  std::copy(u, u + n, u0_.begin());
-  std::copy(v, v + n, v0_.begin());
+  ParallelCopy(u, n, u0_.data());
+  ParallelCopy(v, n, v0_.data());
   if (tendency_) {
     // r = (u^{n+1/4} - u^n) / dt at the unknowns (0 without a BeginStep since the last Solve);
     // src = M_out r - N(V, r).
@@ -461,15 +462,15 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
     for (long k = 0; k < n; ++k) {
       fu[k] = rho_over_dt_ * m[k] * ua[k];
       fv[k] = rho_over_dt_ * m[k] * va[k];
+      u[k] = ua[k];
+      v[k] = va[k];
     }
-    std::copy(ua, ua + n, u);
-    std::copy(va, va + n, v);
     boundary_data_.Apply(u, v);
     helmholtz_->SolvePair(fu, u, fv, v);
     report.fast_solves = 2;
   } else {
-    std::copy(u1_.begin(), u1_.end(), u);
-    std::copy(v1_.begin(), v1_.end(), v);
+    ParallelCopy(u1_.data(), n, u);
+    ParallelCopy(v1_.data(), n, v);
     boundary_data_.Apply(u, v);
   }
   return report;
