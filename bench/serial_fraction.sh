@@ -8,11 +8,10 @@
 #   speed-up on T threads <= 1 / (s + (1 - s) / T),
 # which the script prints for T = 2 and 16. Instruction counts do not depend on the machine's load
 # (a shared machine's timings do), but they weigh a memory-bound copy as little as its
-# instructions; the wall-clock measure of the same fraction, from 1 and 2 threads, is
-# bench/thread_scaling.sh's.
+# instructions: the wall-clock speed-up from 1 to 2 threads needs a quiet machine.
 #
 #   bench/serial_fraction.sh SCENE [--set key=value]...   # BUILD=build END=0.002 (time.end) WORK=...
-#   bench/serial_fraction.sh cases/paper/5.2_pair_oldroyd_b.toml --set splitting.advection=wave
+#   bench/serial_fraction.sh cases/paper/5.2_pair_oldroyd_b.toml --set 'splitting.advection="wave"'
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
