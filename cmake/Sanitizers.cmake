@@ -1,4 +1,16 @@
-# ASan+UBSan (DLMFD_SANITIZE) or TSan (DLMFD_TSAN) for every target of the build.
+# ASan+UBSan (DLMFD_SANITIZE), TSan (DLMFD_TSAN) or libFuzzer's coverage with ASan+UBSan
+# (DLMFD_FUZZ, clang) for every target of the build.
+if(DLMFD_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "DLMFD_FUZZ needs clang: -DCMAKE_CXX_COMPILER=clang++ (scripts/fuzz.sh)")
+  endif()
+  if(DLMFD_SANITIZE OR DLMFD_TSAN)
+    message(FATAL_ERROR "DLMFD_FUZZ brings its own sanitizers: leave DLMFD_SANITIZE, DLMFD_TSAN off")
+  endif()
+  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer
+                      -fno-sanitize-recover=undefined)
+  add_link_options(-fsanitize=address,undefined)
+endif()
 if(DLMFD_SANITIZE AND DLMFD_TSAN)
   message(FATAL_ERROR "DLMFD_SANITIZE and DLMFD_TSAN cannot be combined")
 endif()

@@ -2,7 +2,8 @@
 # Sets everything up, builds, and runs the whole test suite in the release build (warnings are
 # errors), then the daemon's and the CLI's tests (labels server and e2e) in an ASan+UBSan build.
 # This is the README's test command and what CI runs. SANITIZE_ALL=1 runs every label under the
-# sanitizers (a longer run, for changes deep in the engine).
+# sanitizers (a longer run, for changes deep in the engine). Last, the fuzz targets run for
+# DLMFD_FUZZ_SECONDS (20) each (scripts/fuzz.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
@@ -73,3 +74,8 @@ echo "== ASan+UBSan tests"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS=suppressions="$PWD/scripts/lsan.supp":print_suppressions=0 \
   ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 1800 "${asan_labels[@]}"
+
+# The libFuzzer targets (issue 38): the scene parser and every rpc's request body, built with clang
+# in build-fuzz and run for a bounded time each; the daemon's jobs run the release solver.
+echo "== libFuzzer targets, ${DLMFD_FUZZ_SECONDS:-20} s each"
+DLMFD_SOLVER_BINARY="$PWD/build/solver/dlmfd-solve" scripts/fuzz.sh "${DLMFD_FUZZ_SECONDS:-20}"
