@@ -16,8 +16,9 @@ packages=(
   # The code's habits checked in the tests (CONTRIBUTING.md): layout by clang-format, and
   # clang-tidy's checks (.clang-tidy) on the files a change touches.
   clang-format clang-tidy
-  # libFuzzer (scripts/fuzz.sh, tests/fuzz): clang and its runtime libraries.
-  clang libclang-rt-14-dev
+  # libFuzzer (scripts/fuzz.sh, tests/fuzz): clang, its runtime libraries and its OpenMP (the
+  # engine is built with OpenMP there too).
+  clang libclang-rt-14-dev libomp-14-dev
   # The Python client (python/, docs/python.md) and its test: Debian's python3 with gRPC, protobuf,
   # h5py, numpy; pandas for its tables (tests/python/client_test.py).
   python3 python3-grpcio python3-protobuf python3-h5py python3-numpy python3-pandas
