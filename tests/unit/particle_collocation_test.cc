@@ -22,7 +22,8 @@ namespace {
 TEST(CollocationPoints, BoundaryPointsOnTheCircleAndInteriorPointsClearOfThem) {
   const double radius = 0.1, h = 1.0 / 48;
   for (double spacing : {1.0, 1.5, 2.0}) {
-    const CollocationPoints points(radius, h, spacing, BoundaryInterpolation::kQuadratic);
+    const CollocationPoints points(Shape::Disk(radius), h, spacing,
+                                   BoundaryInterpolation::kQuadratic);
     const int nb = static_cast<int>(std::floor(2 * kPi * radius / (spacing * h)));
     ASSERT_EQ(points.BoundaryCount(), nb);
     ASSERT_GT(points.Count(), nb);
@@ -43,9 +44,9 @@ TEST(CollocationPoints, BoundaryPointsOnTheCircleAndInteriorPointsClearOfThem) {
       }
     }
   }
-  const CollocationPoints linear(radius, h, 1.5, BoundaryInterpolation::kLinear);
+  const CollocationPoints linear(Shape::Disk(radius), h, 1.5, BoundaryInterpolation::kLinear);
   for (int k = 0; k < linear.Count(); ++k) EXPECT_FALSE(linear.Quadratic(k));
-  EXPECT_THROW(CollocationPoints(radius, h, 0.0, BoundaryInterpolation::kQuadratic),
+  EXPECT_THROW(CollocationPoints(Shape::Disk(radius), h, 0.0, BoundaryInterpolation::kQuadratic),
                InvalidParameter);
 }
 

@@ -101,7 +101,7 @@ void CouplingOperator::ThrowCrossing(double time, const MultiplierPoints& points
   const double distance = low ? coordinate - origin : origin + extent - coordinate;
   std::ostringstream what;
   what << "particle " << particle.id << " crosses the " << SideName(side) << " side at t = " << time
-       << " (gap = " << distance - points.Radius(p) << ")";
+       << " (gap = " << distance - points.BoundingRadius(p) << ")";
   throw ParticlesOverlap(what.str());
 }
 

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "dlmfd/particles/particle_rules.h"
+
 namespace dlmfd {
 
 MultiplierPoints::MultiplierPoints(const ParticleMeshParams& mesh, double fluid_h)
@@ -11,23 +13,24 @@ MultiplierPoints::MultiplierPoints(const ParticleMeshParams& mesh, double fluid_
 
 MultiplierPoints MultiplierPoints::ForScene(const Params& params) {
   MultiplierPoints points(params.particle_mesh, params.domain.h);
-  for (const ParticleParams& p : params.particles) points.Add(p.Radius());
+  for (const ParticleParams& p : params.particles) points.Add(Shape::Of(p));
   return points;
 }
 
-void MultiplierPoints::Add(double radius) {
+void MultiplierPoints::Add(const Shape& shape) {
   int found = -1;
-  for (std::size_t m = 0; m < radius_.size(); ++m) {
-    if (radius_[m] == radius) found = static_cast<int>(m);
+  for (std::size_t m = 0; m < shape_.size(); ++m) {
+    if (shape_[m] == shape) found = static_cast<int>(m);
   }
   if (found < 0) {
     if (mesh_.kind == ParticleMeshKind::kRing) {
-      meshes_.emplace_back(radius, mesh_.h);
+      RequireRingMeshShape(shape, set_of_.size());
+      meshes_.emplace_back(shape.BoundingRadius(), mesh_.h);
     } else {
-      collocation_.emplace_back(radius, fluid_h_, mesh_.spacing, mesh_.interpolation);
+      collocation_.emplace_back(shape, fluid_h_, mesh_.spacing, mesh_.interpolation);
     }
-    radius_.push_back(radius);
-    found = static_cast<int>(radius_.size()) - 1;
+    shape_.push_back(shape);
+    found = static_cast<int>(shape_.size()) - 1;
   }
   set_of_.push_back(found);
   offset_.push_back(offset_.back() + SetCount(found));

@@ -5,9 +5,9 @@
 #include <limits>
 #include <string>
 
-#include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/number_text.h"
+#include "dlmfd/particles/shape.h"
 
 namespace dlmfd {
 namespace {
@@ -63,8 +63,7 @@ void RequireNotLighterThanLiquid(const Params& params, std::size_t p) {
   const ParticleParams& q = params.particles[p];
   const double rho = params.fluid.density;
   if (q.motion != Motion::kFree || q.density == rho) return;
-  const double radius = q.Radius();
-  const double excess_mass = (q.density - rho) * kPi * radius * radius;
+  const double excess_mass = Shape::Of(q).Mass(q.density - rho);
   if (q.density > rho && !(excess_mass > 0.0)) {
     throw InvalidParameter("particles." + std::to_string(p) + ".diameter", ExactText(q.diameter),
                            "a diameter whose excess mass (rho_d - rho_L) pi R^2 is a positive "
@@ -77,6 +76,14 @@ void RequireNotLighterThanLiquid(const Params& params, std::size_t p) {
             " for a free particle (a light disk makes the excess mass (rho_d - rho_L) V "
             "of (36)-(38) negative and the multiplier problem (37) indefinite)");
   }
+}
+
+void RequireRingMeshShape(const Shape& shape, std::size_t p) {
+  if (shape.IsDisk()) return;
+  throw InvalidParameter("particle_mesh.kind", "\"ring\"",
+                         "\"collocation\" with non-circular particles (particle " +
+                             std::to_string(p) +
+                             " is an ellipse; the paper's ring mesh is built on disks only)");
 }
 
 void RequireIndexableGrid(const Params& params, const Grid& grid) {
@@ -106,6 +113,9 @@ void ValidateParticles(const Params& params, const Grid& grid) {
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
     RequireNotLighterThanLiquid(params, p);
     RequireCoupledInStokes(params, p);
+    if (params.particle_mesh.kind == ParticleMeshKind::kRing) {
+      RequireRingMeshShape(Shape::Of(params.particles[p]), p);
+    }
     RequireInside(params.domain, p, params.particles[p]);
   }
   RequireApart(params);

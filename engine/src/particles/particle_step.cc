@@ -7,7 +7,6 @@
 #include <sstream>
 #include <string>
 
-#include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/particles/multiplier_points.h"
 #include "dlmfd/particles/particle_rules.h"
@@ -41,7 +40,8 @@ ParticleStep::ParticleStep(const Params& params, const Grid& grid)
   const std::size_t n = params.particles.size();
   for (std::size_t p = 0; p < n; ++p) {
     const ParticleParams& pp = params.particles[p];
-    const double excess = (pp.density - fluid_density_) * kPi * pp.Radius() * pp.Radius();
+    shapes_.push_back(Shape::Of(pp));
+    const double excess = shapes_[p].Mass(pp.density - fluid_density_);
     const bool heavy_free = pp.motion == Motion::kFree && !constraint_.IsNeutral(p);
     inv_excess_mass_.push_back(heavy_free ? 1.0 / excess : 0.0);
     predicted_.push_back(heavy_free ? 1 : 0);
@@ -170,8 +170,7 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
   for (std::size_t p = 0; p < n; ++p) {
     lag_accel_[p].setZero();
     if (!lag_applied_) continue;
-    const double inv_inertia =
-        2.0 * inv_excess_mass_[p] / (particles[p].radius * particles[p].radius);
+    const double inv_inertia = shapes_[p].InverseMomentFromInverseMass(inv_excess_mass_[p]);
     lag_accel_[p] = -inv_excess_mass_[p] * lagged_->ForceSum(p);
     particles[p].angular_velocity -= dt * inv_inertia * lagged_->TorqueSum(p);
   }
@@ -184,8 +183,8 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
 
   for (std::size_t p = 0; p < n; ++p) {
     ParticleState& particle = particles[p];
-    const double displaced_mass = fluid_density_ * kPi * particle.radius * particle.radius;
-    const double inertia = 0.5 * particle.density * kPi * std::pow(particle.radius, 4);
+    const double displaced_mass = shapes_[p].Mass(fluid_density_);
+    const double inertia = shapes_[p].MomentOfInertia(particle.density);
     // The forces the particle exerted on the fluid nodes in (37), and in (33) when coupled there.
     Vec2 nodal_force = constraint_.NodalForceSum(p);
     double nodal_torque = constraint_.NodalTorqueSum(p);

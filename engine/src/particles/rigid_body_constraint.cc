@@ -6,7 +6,6 @@
 #include <cmath>
 #include <string>
 
-#include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/particles/particle_rules.h"
 
@@ -30,16 +29,16 @@ RigidBodyConstraint::RigidBodyConstraint(const Params& params, const Grid& grid)
   std::vector<RigidModes::Body> bodies(n);
   for (std::size_t p = 0; p < n; ++p) {
     const ParticleParams& pp = params.particles[p];
-    const double radius = pp.Radius();
-    points_.Add(radius);
-    const double excess_mass = (pp.density - fluid_density) * kPi * radius * radius;
+    const Shape shape = Shape::Of(pp);
+    points_.Add(shape);
+    const double excess_mass = shape.Mass(pp.density - fluid_density);
     const bool free = pp.motion == Motion::kFree;
     const bool neutral = free && pp.density == fluid_density;
     bodies[p].neutral = neutral;
     if (free && !neutral) {
       RequireNotLighterThanLiquid(params, p);
       bodies[p].inv_excess_mass = 1.0 / excess_mass;
-      bodies[p].inv_excess_inertia = 2.0 / (excess_mass * radius * radius);
+      bodies[p].inv_excess_inertia = shape.InverseMomentOfInertia(excess_mass);
     }
   }
   modes_ = RigidModes(points_, bodies);
@@ -73,8 +72,8 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
   double scale = 0.0, floor_weight = 0.0;
   for (std::size_t p = 0; p < n; ++p) {
     const ParticleState& particle = particles[p];
-    scale = std::max(
-        scale, particle.velocity.norm() + std::abs(particle.angular_velocity) * points_.Radius(p));
+    scale = std::max(scale, particle.velocity.norm() +
+                                std::abs(particle.angular_velocity) * points_.BoundingRadius(p));
     floor_weight += points_.RoundOffWeight(p);
   }
   scale = std::max(scale, outcome.cold_residual);

@@ -231,7 +231,7 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
 
   double scale = MaxSpeed(u, v, nodes);
   for (std::size_t k = 0; k < n; ++k) {
-    scale = std::max(scale, velocity_[k].norm() + std::abs(omega_[k]) * points.Radius(k));
+    scale = std::max(scale, velocity_[k].norm() + std::abs(omega_[k]) * points.BoundingRadius(k));
   }
   const double target = tolerance_ * scale;
   double mismatch = MismatchOf(u, v, velocity_, omega_, r_.data());

@@ -188,6 +188,9 @@ struct SolverParams {
 
 enum class Motion { kFree, kFixed, kPrescribed };
 
+// The kind of a particle's shape (particles/shape.h has the geometry).
+enum class ShapeKind { kDisk, kEllipse };
+
 struct ParticleParams {
   Vec2 center = Vec2::Zero();
   double diameter = 0.2;  // > 0

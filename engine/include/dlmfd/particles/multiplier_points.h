@@ -4,16 +4,16 @@
 // Kinds (particle_mesh.kind):
 // - ring: the ring mesh of each disk (particles/particle_mesh.h, method notes 2, section 1.1); the
 //   product is the H1 Gram matrix G = M_p + R^2 K_p of (24), per velocity component; E is P1.
-// - collocation: points on the true circle plus interior lattice points
+// - collocation: points on the true boundary of the particle's shape plus interior lattice points
 //   (particles/collocation_points.h, particle-coupling.md section 3); the product is Euclidean
 //   (G = I); E is quadratic (P2 macro-triangle) or linear at the boundary points, P1 inside.
-// One point set per distinct radius, shared by the particles of that radius. Stacking: particle p
-// owns the points Begin(p) .. End(p) - 1, and every stacked nodal array holds 2 values per point
-// (x, y).
+// One point set per distinct shape (particles/shape.h), shared by the particles of that shape.
+// Stacking: particle p owns the points Begin(p) .. End(p) - 1, and every stacked nodal array holds
+// 2 values per point (x, y).
 // Contract (what the coupling operator E, the rigid modes and the CG read): the stacking, the
-// points relative to the particle centre (they translate with it and do not rotate), the
-// interpolation rule of each point, the particle radius, the product on one particle's block, and a
-// round-off weight (about <1, 1>_G) for the CG's floor.
+// points relative to the particle centre (they translate with it; a disk's do not rotate), the
+// interpolation rule of each point, the particle's shape, the product on one particle's block, and
+// a round-off weight (about <1, 1>_G) for the CG's floor.
 #pragma once
 
 #include <cstddef>
@@ -22,6 +22,7 @@
 #include "dlmfd/core/params.h"
 #include "dlmfd/particles/collocation_points.h"
 #include "dlmfd/particles/particle_mesh.h"
+#include "dlmfd/particles/shape.h"
 
 namespace dlmfd {
 
@@ -33,9 +34,10 @@ class MultiplierPoints {
   // The points of every particle of params, in order.
   static MultiplierPoints ForScene(const Params& params);
 
-  // Appends a particle of this radius; its point set is shared with the earlier particles of the
-  // same radius. Throws InvalidParameter (see ParticleMesh, CollocationPoints).
-  void Add(double radius);
+  // Appends a particle of this shape; its point set is shared with the earlier particles of the
+  // same shape. Throws InvalidParameter (see ParticleMesh, CollocationPoints; the ring mesh is a
+  // disk's only).
+  void Add(const Shape& shape);
 
   ParticleMeshKind Kind() const { return mesh_.kind; }
   std::size_t ParticleCount() const { return set_of_.size(); }
@@ -47,7 +49,9 @@ class MultiplierPoints {
   int Count(std::size_t p) const { return SetCount(set_of_[p]); }
   // The points of particle p relative to its centre.
   const std::vector<Vec2>& Points(std::size_t p) const { return SetPoints(set_of_[p]); }
-  double Radius(std::size_t p) const { return radius_[set_of_[p]]; }
+  const Shape& ShapeOf(std::size_t p) const { return shape_[set_of_[p]]; }
+  // The radius of the smallest circle about the centre that holds particle p.
+  double BoundingRadius(std::size_t p) const { return ShapeOf(p).BoundingRadius(); }
   // True when E evaluates point k of particle p by the quadratic (P2 macro-triangle) stencil.
   bool Quadratic(std::size_t p, int k) const {
     return mesh_.kind == ParticleMeshKind::kCollocation && collocation_[set_of_[p]].Quadratic(k);
@@ -56,7 +60,7 @@ class MultiplierPoints {
   const ParticleMesh& Mesh(std::size_t p) const { return meshes_[set_of_[p]]; }
 
   // The distinct point sets; particle p uses set SetIndex(p).
-  std::size_t SetCount() const { return radius_.size(); }
+  std::size_t SetCount() const { return shape_.size(); }
   int SetIndex(std::size_t p) const { return set_of_[p]; }
   int SetCount(std::size_t m) const;
   const std::vector<Vec2>& SetPoints(std::size_t m) const;
@@ -74,7 +78,7 @@ class MultiplierPoints {
  private:
   ParticleMeshParams mesh_;
   double fluid_h_ = 0.0;
-  std::vector<double> radius_;                  // per set
+  std::vector<Shape> shape_;                    // per set
   std::vector<ParticleMesh> meshes_;            // per set, ring kind
   std::vector<CollocationPoints> collocation_;  // per set, collocation kind
   std::vector<int> set_of_;

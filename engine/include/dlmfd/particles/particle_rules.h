@@ -7,6 +7,7 @@
 //   is positive, or zero (neutrally buoyant: the rigid-mode projector handles it); a negative one
 //   makes the multiplier problem (37) indefinite, and its solver is CG.
 // - With splitting.constraint = "viscous", no free particle is neutrally buoyant.
+// - The ring mesh (particle_mesh.kind = "ring") is a disk's: other shapes need collocation points.
 // - The velocity grid has at most 2^32 - 1 nodes: E and E^T store 32-bit node indices.
 // - At t = 0 every disk lies inside the domain (crossing periodic sides only) and no two disks
 //   overlap (centre distances by the nearest periodic image).
@@ -16,6 +17,7 @@
 
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/params.h"
+#include "dlmfd/particles/shape.h"
 
 namespace dlmfd {
 
@@ -26,6 +28,9 @@ void RequireNotLighterThanLiquid(const Params& params, std::size_t p);
 // splitting.constraint = "viscous" (the coupled Stokes step (33) solves for heavy free, fixed and
 // prescribed particles; particles/viscous_constraint.h).
 void RequireCoupledInStokes(const Params& params, std::size_t p);
+// Throws InvalidParameter (particle_mesh.kind) when particle p's shape is not a disk: the ring
+// mesh of particles/particle_mesh.h is built on disks only.
+void RequireRingMeshShape(const Shape& shape, std::size_t p);
 // Throws InvalidParameter (domain.h) when `grid` has more nodes than 32-bit indices count.
 void RequireIndexableGrid(const Params& params, const Grid& grid);
 // Every rule above, for every particle of the scene (none: the grid rule does not apply).

@@ -66,6 +66,7 @@
 #include "dlmfd/particles/collision_forces.h"
 #include "dlmfd/particles/lagged_multiplier.h"
 #include "dlmfd/particles/rigid_body_constraint.h"
+#include "dlmfd/particles/shape.h"
 #include "dlmfd/particles/viscous_constraint.h"
 
 namespace dlmfd {
@@ -121,6 +122,7 @@ class ParticleStep {
   bool periodic_x_, periodic_y_;
   RigidBodyConstraint constraint_;
   CollisionForces collisions_;
+  std::vector<Shape> shapes_;            // per particle
   std::vector<double> inv_excess_mass_;  // 0 for fixed, prescribed and neutrally buoyant particles
   std::vector<char> predicted_;          // heavy free particles: (36) and (38) carry g and F'/m_e
   // Work arrays, sized once.
