@@ -202,6 +202,7 @@ void Scheduler::FinishJob(const std::string& job_id, JobState state, const std::
   hub_.PublishState(*job);
 }
 
+// NOLINTNEXTLINE(readability-function-size): predates the limit; split it when you change it
 void Scheduler::RunJob(JobRecord job) {
   std::shared_ptr<JobRun> process;
   {

@@ -220,6 +220,7 @@ bool SlurmRun::Sleep() {
   return detached_;
 }
 
+// NOLINTNEXTLINE(readability-function-size): predates the limit; split it when you change it
 void SlurmRun::FollowUntilEnd(const EventHandler& on_event) {
   EventFileTail tail((fs::path(job_dir_) / kSlurmEventsFile).string(), read_from_);
   const std::string id = ExecutorId();

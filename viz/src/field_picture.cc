@@ -239,6 +239,7 @@ int DrawStreamlines(Canvas& canvas, const FieldPicture& p, const NodeVelocity& v
 
 }  // namespace
 
+// NOLINTNEXTLINE(readability-function-size): predates the limit; split it when you change it
 FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutline>& disks,
                               const PictureOptions& options, const NodeVelocity* velocity) {
   CheckField(field);

@@ -125,6 +125,7 @@ void ConformationStep::ThrowBadNode(double time, const char* when, long k,
   throw NumericalBlowUp(msg.str());
 }
 
+// NOLINTNEXTLINE(readability-function-size): predates the limit; split it when you change it
 void ConformationStep::Advance(double time, double dt, const double* u, const double* v,
                                const unsigned char* inside_particle, double* a11, double* a12,
                                double* a22, StepReport& report) {

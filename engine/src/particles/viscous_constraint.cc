@@ -192,6 +192,7 @@ StokesReport ViscousConstraint::Start(double dt, bool carry, StokesSolver& stoke
   return stokes.Solve(fx, fy, u, v, p);
 }
 
+// NOLINTNEXTLINE(readability-function-size): predates the limit; split it when you change it
 ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, const Vec2& gravity,
                                                     StokesSolver& stokes, const double* fx,
                                                     const double* fy,
