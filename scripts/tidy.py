@@ -71,15 +71,19 @@ def main():
     if not targets:
         print("tidy: no C++ file to check")
         return 0
-    # A changed header is checked through the units of the sources beside it with the same stem,
-    # else through every unit of its directory's sources.
-    stems = {os.path.splitext(t)[0] for t in targets}
+    # A changed source is checked in the unit that compiles it; a changed header in the units of
+    # the sources with its name (include/dlmfd/particles/shape.h through src/particles/shape.cc),
+    # else in the units of the sources beside it.
+    def stem(path):
+        return os.path.splitext(os.path.basename(path))[0]
+
+    stems = {stem(t) for t in targets}
     dirs = {os.path.dirname(t) for t in targets if t.endswith((".h", ".hpp"))}
     chosen = [u for u, srcs in units.items()
-              if any(os.path.splitext(s)[0] in stems for s in srcs)
-              or any(os.path.dirname(s) in dirs for s in srcs)]
+              if any(stem(s) in stems or os.path.dirname(s) in dirs for s in srcs)]
     header_filter = "^(" + "|".join(re.escape(t) for t in targets) + ")$"
     print(f"tidy: {len(targets)} files through {len(chosen)} translation units")
+
     def tidy(unit):
         return subprocess.run(
             ["clang-tidy", "-p", args.build, "--quiet", "--extra-arg=-Wno-unknown-warning-option",
