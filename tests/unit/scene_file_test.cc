@@ -849,3 +849,24 @@ TEST(SceneFile, LoadSceneFileReadsAndNamesAMissingFile) {
 
 }  // namespace
 }  // namespace dlmfd
+
+// A --set whose text is not UTF-8 is refused (the fuzzer's finding: such a title was accepted and
+// the scene written back from it could not be read again); UTF-8 text beyond ASCII is accepted.
+TEST(SceneOverrides, TextThatIsNotUtf8IsRefusedNamingTheFlag) {
+  const std::string bad = std::string("title=\"Paper ") + '\xa8' + '\xf5' + "\"";
+  try {
+    dlmfd::ParseOverride(bad);
+    FAIL() << "accepted";
+  } catch (const dlmfd::InvalidParameter& e) {
+    EXPECT_NE(std::string(e.what()).find("--set"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("UTF-8"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(dlmfd::ParseOverride(std::string("title=\"a") + '\xc3' + "\""),
+               dlmfd::InvalidParameter);                                              // cut short
+  EXPECT_THROW(dlmfd::ParseOverride("title=\"\xc0\xaf\""), dlmfd::InvalidParameter);  // overlong
+  EXPECT_THROW(dlmfd::ParseOverride("title=\"\xed\xa0\x80\""),
+               dlmfd::InvalidParameter);  // surrogate
+  const dlmfd::SceneOverride ok =
+      dlmfd::ParseOverride("title=\"Z\xc3\xbcrich \xe2\x86\x92 \xf0\x9f\x8c\x8a\"");
+  EXPECT_EQ(ok.key, "title");
+}

@@ -18,6 +18,39 @@
 namespace dlmfd {
 namespace {
 
+// TOML text is UTF-8 (toml++ refuses a file that is not); an override's text must be too, or the
+// scene written back from it (scene.toml in the results) could not be read again.
+bool IsUtf8(const std::string& text) {
+  // The least code point of each length: shorter (overlong) forms are not UTF-8.
+  const unsigned least[] = {0, 0x80, 0x800, 0x10000};
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    int extra = -1;
+    if (c < 0x80) {
+      extra = 0;
+    } else if ((c >> 5) == 0x6) {
+      extra = 1;
+    } else if ((c >> 4) == 0xE) {
+      extra = 2;
+    } else if ((c >> 3) == 0x1E) {
+      extra = 3;
+    }
+    // Not a lead byte, or the sequence runs past the end.
+    if (extra < 0 || i + static_cast<std::size_t>(extra) >= text.size()) return false;
+    unsigned code = extra == 0 ? c : (c & (0x3Fu >> extra));
+    for (int k = 1; k <= extra; ++k) {
+      const auto d = static_cast<unsigned char>(text[i + k]);
+      if ((d & 0xC0) != 0x80) return false;
+      code = (code << 6) | (d & 0x3Fu);
+    }
+    // UTF-16 surrogates and code points past U+10FFFF are not UTF-8 either.
+    if (code < least[extra] || (code >= 0xD800 && code <= 0xDFFF) || code > 0x10FFFF) return false;
+    i += static_cast<std::size_t>(extra) + 1;
+  }
+  return true;
+}
+
 using scene::TableReader;
 
 template <typename Enum>
@@ -249,6 +282,10 @@ SceneOverride ParseOverride(const std::string& key_equals_value) {
     const auto e = s.find_last_not_of(" \t");
     return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
   };
+  if (!IsUtf8(key_equals_value)) {
+    throw InvalidParameter("--set", "(a key=value with bytes that are not UTF-8)",
+                           "UTF-8 text, as in a scene file");
+  }
   SceneOverride o{trim(key_equals_value.substr(0, eq)), trim(key_equals_value.substr(eq + 1))};
   if (o.key.empty()) {
     throw InvalidParameter("--set", key_equals_value,
