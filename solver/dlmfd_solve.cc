@@ -39,6 +39,7 @@
 #include "dlmfd/io/results_writer.h"
 #include "dlmfd/io/run_statistics.h"
 #include "dlmfd/scene/accuracy_envelope.h"
+#include "dlmfd/scene/auto_coupling.h"
 #include "dlmfd/scene/scene_file.h"
 #include "dlmfd/scene/scene_footprint.h"
 #include "dlmfd/solver/exit_codes.h"
@@ -127,6 +128,10 @@ void LogAccuracy(const dlmfd::Params& params, dlmfd::solver::EventStream& events
     settings += (settings.empty() ? "" : ", ") + s.name + " = " + dlmfd::ShortText(s.value);
   }
   spdlog::info("accuracy settings: {}", settings);
+  for (const dlmfd::ResolvedChoice& c : params.numerics.resolved) {
+    spdlog::info("numerics: {}", dlmfd::ResolvedChoiceText(c));
+    events.Log("info", "numerics: " + dlmfd::ResolvedChoiceText(c));
+  }
   for (const dlmfd::AccuracyWarning& w : dlmfd::AccuracyWarnings(params)) {
     spdlog::warn("accuracy: {}", w.Message());
     events.Log("warning", "accuracy: " + w.Message());
@@ -157,6 +162,9 @@ dlmfd::solver::RunSummary Summary(const dlmfd::Params& params, const dlmfd::Flow
   for (const dlmfd::AccuracyWarning& w : dlmfd::AccuracyWarnings(params)) {
     summary.warnings.push_back(
         {w.setting, w.value, w.allowed, w.key, w.current, w.suggested, w.source});
+  }
+  for (const dlmfd::ResolvedChoice& c : params.numerics.resolved) {
+    summary.numerics.push_back({c.key, c.value, c.rule, c.numbers});
   }
   return summary;
 }

@@ -183,6 +183,16 @@ std::string JobDetails(const v1::Job& job) {
     }
     out << "\n";
   }
+  // Schemes chosen by "auto", with the numbers behind the choice (docs/scenes.md).
+  for (const v1::NumericsChoice& c : job.numerics()) {
+    out << "numerics:    " << c.key() << " = \"" << c.value() << "\" (auto: " << c.rule();
+    for (int k = 0; k < c.numbers_size(); ++k) {
+      char value[32];
+      std::snprintf(value, sizeof(value), "%.4g", c.numbers(k).value());
+      out << (k == 0 ? "; " : ", ") << c.numbers(k).name() << " = " << value;
+    }
+    out << ")\n";
+  }
   // Settings outside the accuracy envelope: what to change, and to what (docs/scenes.md).
   for (const v1::AccuracyWarning& w : job.warnings()) {
     char value[32];

@@ -46,6 +46,17 @@ v1::Job ToProto(const JobRecord& job) {
     o->set_suggested(w.suggested);
     o->set_source(w.source);
   }
+  for (const ResolvedChoice& c : job.numerics) {
+    v1::NumericsChoice* o = out.add_numerics();
+    o->set_key(c.key);
+    o->set_value(c.value);
+    o->set_rule(c.rule);
+    for (const auto& [name, value] : c.numbers) {
+      v1::NamedNumber* n = o->add_numbers();
+      n->set_name(name);
+      n->set_value(value);
+    }
+  }
   for (const auto& [key, value] : job.labels) (*out.mutable_labels())[key] = value;
   for (const ParameterValue& p : job.parameters) {
     v1::ParameterValue* o = out.add_parameters();

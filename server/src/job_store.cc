@@ -118,6 +118,10 @@ const Migration kMigrations[] = {
     ALTER TABLE jobs ADD COLUMN slurm_waiting INTEGER NOT NULL DEFAULT 0;
     ALTER TABLE jobs ADD COLUMN time_limit_seconds INTEGER NOT NULL DEFAULT 0;
     )sql"},
+    // Schema 7: what each "auto" of a job's scene became at admission (EncodeNumerics).
+    {7, R"sql(
+    ALTER TABLE jobs ADD COLUMN numerics TEXT NOT NULL DEFAULT '';
+    )sql"},
 };
 
 // The state the API shows: a RUNNING job that Slurm holds waiting is QUEUED (ShownState).
@@ -128,7 +132,7 @@ const char kColumns[] =
     "finished_time, step, time, end_time, attempts, results_dir, scene, overrides, "
     "client_request_id, last_seq, cancel_requested, warnings, held, disk_bytes, parameters, "
     "attempt, previous_attempts, fresh_start, slurm_job_id, slurm_live, slurm_attempts, "
-    "slurm_restarts, slurm_state, slurm_reason, slurm_waiting, time_limit_seconds";
+    "slurm_restarts, slurm_state, slurm_reason, slurm_waiting, time_limit_seconds, numerics";
 
 const char kSweepColumns[] =
     "ordinal, id, owner, name, tags, labels, axes, overrides, max_running, created_time";
@@ -181,6 +185,44 @@ std::vector<AccuracyWarning> DecodeWarnings(const std::string& text) {
     w.suggested = f[5];
     w.source = f[6];
     out.push_back(std::move(w));
+  }
+  return out;
+}
+
+// One choice per line: key, value, rule and the numbers, fields separated by tabs, the numbers as
+// name=value pairs separated by semicolons (the engine writes none of these characters into them),
+// each value with 17 digits.
+std::string EncodeNumerics(const std::vector<ResolvedChoice>& choices) {
+  std::vector<std::string> lines;
+  for (const ResolvedChoice& c : choices) {
+    std::vector<std::string> numbers;
+    for (const auto& [name, value] : c.numbers) {
+      char text[40];
+      std::snprintf(text, sizeof text, "%.17g", value);
+      numbers.push_back(name + "=" + text);
+    }
+    lines.push_back(Join({c.key, c.value, c.rule, Join(numbers, ';')}, '\t'));
+  }
+  return Join(lines, '\n');
+}
+
+std::vector<ResolvedChoice> DecodeNumerics(const std::string& text) {
+  std::vector<ResolvedChoice> out;
+  for (const std::string& line : Split(text, '\n')) {
+    const std::vector<std::string> f = Split(line, '\t');
+    if (f.size() != 3 && f.size() != 4) {
+      throw StoreError("jobs.numerics: a line with " + std::to_string(f.size()) +
+                       " fields instead of 4");
+    }
+    ResolvedChoice c{f[0], f[1], f[2], {}};
+    if (f.size() == 4) {
+      for (const std::string& pair : Split(f[3], ';')) {
+        const auto eq = pair.rfind('=');
+        if (eq == std::string::npos) throw StoreError("jobs.numerics: a number without '='");
+        c.numbers.emplace_back(pair.substr(0, eq), std::strtod(pair.c_str() + eq + 1, nullptr));
+      }
+    }
+    out.push_back(std::move(c));
   }
   return out;
 }
@@ -592,6 +634,7 @@ std::vector<JobRecord> JobStore::Query(Statement& statement) {
     job.slurm_reason = statement.Text(c++);
     job.slurm_waiting = statement.Int(c++) != 0;
     job.time_limit_seconds = statement.Int(c++);
+    job.numerics = DecodeNumerics(statement.Text(c++));
     jobs.push_back(std::move(job));
   }
   for (auto& job : jobs) {
@@ -684,8 +727,8 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
     Statement insert(db_,
                      "INSERT INTO jobs (id, name, owner, state, reason, priority, sweep_id, "
                      "created_time, end_time, results_dir, scene, overrides, client_request_id, "
-                     "warnings, parameters, attempt, time_limit_seconds) "
-                     "VALUES (?, ?, ?, ?, '', ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+                     "warnings, parameters, attempt, time_limit_seconds, numerics) "
+                     "VALUES (?, ?, ?, ?, '', ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
     insert.Bind(job.id)
         .Bind(job.name)
         .Bind(job.owner)
@@ -701,7 +744,8 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
         .Bind(EncodeWarnings(job.warnings))
         .Bind(EncodeParameters(job.parameters))
         .Bind(job.attempt)
-        .Bind(job.time_limit_seconds);
+        .Bind(job.time_limit_seconds)
+        .Bind(EncodeNumerics(job.numerics));
     insert.Run();
     job.ordinal = sqlite3_last_insert_rowid(db_);
     for (const auto& tag : job.tags) {
@@ -918,7 +962,7 @@ std::vector<JobRecord> JobStore::Requeue(const std::vector<RequeueChange>& chang
         "cancel_requested = 0, attempt = attempt + 1, previous_attempts = ?, "
         "slurm_live = 0, slurm_attempts = 0, slurm_restarts = 0, "
         "slurm_state = '', slurm_reason = '', slurm_waiting = 0, name = ?, overrides = ?, "
-        "parameters = ?, warnings = ?, end_time = ?, fresh_start = ?, "
+        "parameters = ?, warnings = ?, numerics = ?, end_time = ?, fresh_start = ?, "
         "step = CASE WHEN ? THEN 0 ELSE step END, "
         "time = CASE WHEN ? THEN 0 ELSE time END WHERE id = ? AND state IN (?, ?, ?)");
     update.Bind(static_cast<int>(JobState::kQueued))
@@ -927,6 +971,7 @@ std::vector<JobRecord> JobStore::Requeue(const std::vector<RequeueChange>& chang
         .Bind(Join(change.overrides, '\n'))
         .Bind(EncodeParameters(change.parameters))
         .Bind(EncodeWarnings(change.warnings))
+        .Bind(EncodeNumerics(change.numerics))
         .Bind(change.end_time)
         .Bind(change.fresh_start ? 1 : 0)
         .Bind(change.fresh_start ? 1 : 0)

@@ -87,6 +87,7 @@ struct JobRecord {
   std::string client_request_id;
   int64_t last_seq = 0;
   std::vector<AccuracyWarning> warnings;  // found at admission (scene/accuracy_envelope.h)
+  std::vector<ResolvedChoice> numerics;   // what each "auto" of the scene became (admission)
   bool cancel_requested = false;
   bool held = false;       // a queued job kept from starting
   int64_t disk_bytes = 0;  // bytes of the job directory, counted when the job finished
@@ -170,6 +171,7 @@ struct RequeueChange {
   double end_time = 0;
   bool fresh_start = false;
   std::string name;  // empty: unchanged
+  std::vector<ResolvedChoice> numerics;
 };
 
 // One `where` filter of List on the effective scene: a key pattern ('*' matches any index), an

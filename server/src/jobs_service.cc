@@ -282,6 +282,7 @@ JobRecord JobsService::NewJob(const std::string& user, const std::string& scene,
   job.scene = scene;
   job.overrides = overrides;
   job.warnings = std::move(estimate.warnings);
+  job.numerics = std::move(estimate.numerics);
   job.scene_values = std::move(estimate.scene_values);
   job.labels = labels;
   return job;
@@ -632,6 +633,7 @@ grpc::ServerUnaryReactor* JobsService::Retry(grpc::CallbackServerContext* contex
         CheckSceneText(job.scene, change.overrides, config_.max_scene_bytes);
         SceneEstimate estimate = AdmitScene(job.scene, change.overrides, config_);
         change.warnings = std::move(estimate.warnings);
+        change.numerics = std::move(estimate.numerics);
         change.scene_values = std::move(estimate.scene_values);
         change.end_time = estimate.end_time;
       });

@@ -79,6 +79,7 @@ SceneEstimate AdmitScene(const std::string& scene, const std::vector<std::string
   estimate.nodes = static_cast<int64_t>(footprint.velocity_nodes);
   estimate.memory_mb = static_cast<int64_t>(std::ceil(mib));
   estimate.warnings = AccuracyWarnings(params);
+  estimate.numerics = params.numerics.resolved;
   estimate.scene_values = FlattenScene(WriteScene(params));
   return estimate;
 }

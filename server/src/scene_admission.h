@@ -24,6 +24,7 @@ struct SceneEstimate {
   int64_t memory_mb = 0;  // estimated peak memory of dlmfd-solve
   double end_time = 0;
   std::vector<AccuracyWarning> warnings;  // settings outside the accuracy envelope
+  std::vector<ResolvedChoice> numerics;   // what each "auto" became (scene/auto_coupling.h)
   // The effective scene (WriteScene of the validated Params), flattened (scene_values.h).
   std::vector<std::pair<std::string, std::string>> scene_values;
 };

@@ -128,11 +128,25 @@ std::string RunSummaryJson(const RunSummary& s) {
     warnings.push_back(std::move(o));
   }
   j["warnings"] = std::move(warnings);
+  Json numerics = Json::array();
+  for (const RunSummary::Choice& c : s.numerics) {
+    Json o;
+    o["key"] = c.key;
+    o["value"] = c.value;
+    o["rule"] = c.rule;
+    Json numbers = Json::object();
+    for (const auto& [name, value] : c.numbers) numbers[name] = Number(value);
+    o["numbers"] = std::move(numbers);
+    numerics.push_back(std::move(o));
+  }
+  // Only when a scheme was chosen: a scene that names every scheme keeps the layout of before.
+  if (!numerics.empty()) j["numerics"] = std::move(numerics);
   // One key per line; one line per particle (a run of many particles stays readable).
   std::string out = "{\n";
   for (auto it = j.begin(); it != j.end(); ++it) {
     out += "  " + Inline(Json(it.key())) + ": ";
-    if ((it.key() == "particles" || it.key() == "warnings") && !it->empty()) {
+    if ((it.key() == "particles" || it.key() == "warnings" || it.key() == "numerics") &&
+        !it->empty()) {
       out += "[";
       for (std::size_t k = 0; k < it->size(); ++k) {
         out += (k ? ",\n    " : "\n    ") + Inline((*it)[k]);
@@ -199,6 +213,19 @@ RunSummary ParseRunSummary(const std::string& text) {
         v.suggested = w.at("suggested").get<std::string>();
         v.source = w.at("source").get<std::string>();
         s.warnings.push_back(std::move(v));
+      }
+    }
+    if (j.contains("numerics")) {
+      for (const Json& c : j.at("numerics")) {
+        RunSummary::Choice v;
+        v.key = c.at("key").get<std::string>();
+        v.value = c.at("value").get<std::string>();
+        v.rule = c.at("rule").get<std::string>();
+        for (const auto& [name, value] : c.at("numbers").items()) {
+          v.numbers.emplace_back(name, value.is_null() ? std::numeric_limits<double>::quiet_NaN()
+                                                       : value.get<double>());
+        }
+        s.numerics.push_back(std::move(v));
       }
     }
     return s;

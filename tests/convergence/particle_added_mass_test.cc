@@ -59,6 +59,7 @@ AddedMass SettledForce(int cells) {
   params.splitting.advection = AdvectionScheme::kWave;
   params.time.dt = 1e-5;
   params.time.end = kMaxSteps * params.time.dt;
+  params.particle_mesh.kind = ParticleMeshKind::kRing;  // the mesh this study measured
   // h_p = h, a hair above so that ceil(R / h_p) is R / h_p despite round-off.
   params.particle_mesh.h = params.domain.h * (1.0 + 1e-9);
   params.threads = 1;

@@ -51,6 +51,7 @@ Rotation FreeRotation(int cells) {
   params.splitting.advection = AdvectionScheme::kWave;
   params.time.dt = kCouetteDiffusionNumber * params.domain.h * params.domain.h;
   params.time.end = kCouetteEndTime;
+  params.particle_mesh.kind = ParticleMeshKind::kRing;  // the mesh this study measured
   // h_p = h, a hair above so that ceil(R / h_p) is R / h_p despite round-off.
   params.particle_mesh.h = params.domain.h * (1.0 + 1e-9);
   params.threads = 1;

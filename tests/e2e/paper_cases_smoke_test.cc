@@ -136,11 +136,16 @@ void ExpectApartAndInside(const ParticleHistory& h, double width, double height)
 // trA >= 2. The discrete velocity is divergence-free only weakly (P1-iso-P2 against the P1 pressure
 // of the 2h mesh), so the nodal trace of L is not zero where the velocity varies on the scale of a
 // few cells, next to a disk; a compressive tr L = -2a relaxes A towards I / (1 + 2 lambda a), below
-// trA = 2. Measured minimum of trA at t = 0.02 in 5.1a (the fastest, most stretched case): 1.847 at
-// h = 1/24 and 1.844 at h = 1/48 (found 1.2-2.2 R from the disk, in its wake), i.e. a ~ 4/s against
-// |L| ~ 100/s; 5.1b and 5.3c: 1.993 and 1.986 at h = 1/24. The slack 0.25 covers that with a margin
-// and still fails on a sign or scale error of the coupling, which moves trA by O(1).
-constexpr double kTrASlack = 0.25;
+// trA = 2. Measured minimum of trA at t = 0.02 in 5.1a (the fastest, most stretched case) with the
+// ring mesh: 1.847 at h = 1/24 and 1.844 at h = 1/48 (found 1.2-2.2 R from the disk, in its wake),
+// i.e. a ~ 4/s against |L| ~ 100/s; 5.1b and 5.3c: 1.993 and 1.986 at h = 1/24. With the
+// collocation points (the default since issue 32) the least is at the disk's surface, where the
+// point forces squeeze the liquid between boundary points 2h apart: 1.747 / 1.673 at h = 1/24 /
+// 1/48 under the case file's coupling and advection, 1.730 / 1.710 with wave advection on both
+// diagonals under the incremental coupling, 1.744 / 1.796 under the paper's (2026-12-04). The
+// slack 0.4 covers those with a margin and still fails on a sign or scale error of the coupling,
+// which moves trA by O(1).
+constexpr double kTrASlack = 0.4;
 
 // max trA over the nodes within `distance` of centre, and over all nodes; min trA over all nodes.
 struct TrAStats {

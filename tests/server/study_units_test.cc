@@ -319,14 +319,14 @@ TEST(StudyStore, RequeueRecordsTheAttemptAndRefusesAnUnfinishedJob) {
   dlmfd::testing::TempDir dir;
   JobStore store(dir.path() + "/jobs.db");
   store.InsertJobs({Job("a", "")}, "local", "");
-  EXPECT_THROW(store.Requeue({{"a", {"time.end=1"}, {}, {}, {}, 1, false, ""}}), StoreError);
+  EXPECT_THROW(store.Requeue({{"a", {"time.end=1"}, {}, {}, {}, 1, false, "", {}}}), StoreError);
   store.MarkRunning("a", 10);
   store.UpdateProgress("a", 7, 0.7, 1.0);
   store.MarkFinished("a", JobState::kCancelled, "cancelled", 11);
   // It returns the records as written, which the Retry reply and event report: a Get after it
   // can already read a job the scheduler started.
   const std::vector<JobRecord> requeued =
-      store.Requeue({{"a", {"time.end=1", "time.dt=0.01"}, {}, {}, {}, 1, true, ""}});
+      store.Requeue({{"a", {"time.end=1", "time.dt=0.01"}, {}, {}, {}, 1, true, "", {}}});
   ASSERT_EQ(requeued.size(), 1u);
   EXPECT_EQ(requeued[0].id, "a");
   EXPECT_EQ(requeued[0].state, JobState::kQueued);

@@ -74,6 +74,7 @@ center = [0.2, 0.2]
 diameter = 0.1
 motion = "fixed"
 [particle_mesh]
+kind = "ring"  # the mesh whose bounds these tests check; collocation points where they say so
 h = 0.006857142857142857
 )TOML";
 
@@ -298,6 +299,7 @@ center = [0.7, 0.5]
 diameter = 0.125
 motion = "fixed"
 [particle_mesh]
+kind = "ring"
 h = 0.02142857142857143  # 96 / 70 h, the studies' ratio (and the default of a scene file)
 )TOML";
   const std::vector<AccuracyWarning> w = AccuracyWarnings(Scene(kTwo));
@@ -369,6 +371,39 @@ TEST(AccuracyEnvelope, ParticleMeshFinerThanTheBoundWarnsWithTheStudiedRatio) {
   for (const AccuracyWarning& x : AccuracyWarnings(Scene(
            kSchaeferTurek, {"particle_mesh.h=0.005", "particle_mesh.kind=\"collocation\""}))) {
     EXPECT_NE(x.setting, "h_p / h") << x.Message();
+  }
+}
+
+// The incremental coupling with particles that cross more than 0.3 of a cell a step (the paper's
+// case 5.1 at dt = 1e-3: U_p dt / h = 12.41 * 0.001 * 96 = 1.19, where the lagged multiplier
+// diverged) warns, suggesting a step that brings it to 0.3; "auto" does not pick it there.
+TEST(AccuracyEnvelope, TheIncrementalCouplingWithFastParticlesWarns) {
+  const char* const kHeavyDisk = R"TOML(
+gravity = [0.0, -981.0]
+[domain]
+size = [1.5, 6.0]
+h = 0.010416666666666666
+[fluid]
+viscosity = 0.01
+[time]
+dt = 0.001
+[[particles]]
+center = [1.125, 5.2]
+diameter = 0.2
+density = 1.5
+)TOML";
+  const std::vector<std::string> incremental = {"splitting.constraint=\"incremental\""};
+  const std::vector<AccuracyWarning> w = AccuracyWarnings(Scene(kHeavyDisk, incremental));
+  const auto lagged = std::find_if(
+      w.begin(), w.end(), [](const AccuracyWarning& x) { return x.setting == "U_p dt / h"; });
+  ASSERT_NE(lagged, w.end());
+  EXPECT_NEAR(lagged->value, 1.1916, 1e-3);
+  EXPECT_EQ(lagged->allowed, "<= 0.3");
+  EXPECT_EQ(lagged->key, "time.dt");
+  EXPECT_DOUBLE_EQ(std::stod(lagged->suggested), 0.001 / 4);
+  ExpectSuggestionSatisfies(kHeavyDisk, incremental, *lagged);
+  for (const AccuracyWarning& x : AccuracyWarnings(Scene(kHeavyDisk))) {  // auto: paper's coupling
+    EXPECT_NE(x.setting, "U_p dt / h");
   }
 }
 

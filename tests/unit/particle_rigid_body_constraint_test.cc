@@ -27,6 +27,7 @@ struct DiskScene {
   explicit DiskScene(double density, Motion motion = Motion::kFree) {
     params.domain.size = Vec2(1.0, 1.0);
     params.domain.h = 1.0 / 48;
+    params.particle_mesh.kind = ParticleMeshKind::kRing;  // these tests read the ring mesh (MeshOf)
     params.particle_mesh.h = 1.0 / 35;
     params.fluid.density = 1.0;
     ParticleParams pp;

@@ -226,7 +226,8 @@ const BadScene kBadScenes[] = {
     {"BoundaryInterpolationUnknown", "[particle_mesh]\ninterpolation = \"cubic\"\n",
      "particle_mesh.interpolation", "\"cubic\""},
     {"ParticleMeshTiny",
-     "[particle_mesh]\nh = 1e-300\n[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n",
+     "[particle_mesh]\nkind = \"ring\"\nh = 1e-300\n[[particles]]\ncenter = [0.5, 0.5]\n"
+     "density = 1.5\n",
      "particle_mesh.h", "1e-300"},
     {"CollisionRangeZero", "[collisions]\nrange = 0.0\n", "collisions.range", "0.0"},
     {"WallStiffnessNegative", "[collisions]\nwall_stiffness = -1e-5\n", "collisions.wall_stiffness",
@@ -395,6 +396,7 @@ TEST(SceneFile, FootprintCountsTheGridAndBoundsTheRingMeshes) {
   q.center = Vec2(0.5, 0.5);
   q.diameter = 0.2;
   p.particles.push_back(q);
+  p.particle_mesh.kind = ParticleMeshKind::kRing;
   p.particle_mesh.h = 1.0 / 35;  // R / h_p = 3.5: 4 rings of 5, 11, 16, 22 nodes and the centre
   const SceneFootprint f = EstimateFootprint(p);
   EXPECT_EQ(f.velocity_nodes, 33.0 * 33.0);

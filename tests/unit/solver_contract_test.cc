@@ -85,6 +85,26 @@ TEST(RunSummary, JsonHasTheContractKeysAndNoNaN) {
   EXPECT_LT(json.find("\"particles\""), json.find("\"diagnostics\""));
 }
 
+// What "auto" chose (numerics) round-trips with its numbers, in order, one line each.
+TEST(RunSummary, NumericsChoicesRoundTrip) {
+  RunSummary s;
+  s.status = "completed";
+  s.numerics = {{"splitting.constraint",
+                 "paper",
+                 "fast particles",
+                 {{"nu dt / h^2", 0.0921}, {"U_p dt / h", 1.19136}}}};
+  const std::string json = RunSummaryJson(s);
+  EXPECT_THAT(json, HasSubstr("\"numerics\": [\n    {\"key\": \"splitting.constraint\", \"value\": "
+                              "\"paper\", \"rule\": \"fast particles\", \"numbers\": {\"nu dt / "
+                              "h^2\": 0.0921, \"U_p dt / h\": 1.19136}}\n  ]"));
+  const RunSummary back = ParseRunSummary(json);
+  ASSERT_EQ(back.numerics.size(), 1u);
+  EXPECT_EQ(back.numerics[0].key, "splitting.constraint");
+  EXPECT_EQ(back.numerics[0].value, "paper");
+  EXPECT_EQ(back.numerics[0].rule, "fast particles");
+  EXPECT_EQ(back.numerics[0].numbers, s.numerics[0].numbers);
+}
+
 // The layout scripts and readers have seen since the first summary: one key per line, one line per
 // particle, integral numbers without ".0", the shortest text that reads back for the others.
 TEST(RunSummary, TextKeepsTheLayoutOfTheResultsDirectory) {

@@ -18,6 +18,7 @@ constexpr const char* kSourceViscousFluid = "docs/work_precision.md (a), (b)";
 constexpr const char* kSourceViscousCoupling =
     "docs/work_precision.md, Coupling the constraint with viscosity";
 constexpr const char* kSourceCourant = "docs/work_precision.md (b), Which settings 1";
+constexpr const char* kSourceLaggedCourant = "docs/work_precision.md, The automatic coupling";
 constexpr const char* kSourceElastic = "docs/work_precision.md (a)";
 constexpr const char* kSourceParticleMesh =
     "docs/work_precision.md, The particle mesh against the fluid mesh";
@@ -83,11 +84,8 @@ std::string AccuracyWarning::Message() const {
          ", " + source + "): set " + key + " = " + suggested + " (now " + current + ")";
 }
 
-double VelocityScale(const Params& p) {
+double ParticleVelocityScale(const Params& p) {
   double u = 0.0;
-  for (const BoundarySide& side : p.domain.sides) {
-    u = std::max(u, ProfilePeakSpeed(side));  // the data at their peak over time
-  }
   const double rho = p.fluid.density;
   const double g = p.gravity.norm();
   for (const ParticleParams& q : p.particles) {
@@ -97,6 +95,14 @@ double VelocityScale(const Params& p) {
     const double inertial = std::sqrt(0.5 * kPi * contrast * g * q.diameter);
     const double viscous = contrast * rho * g * q.diameter * q.diameter / p.fluid.viscosity;
     u = std::max(u, std::min(inertial, viscous));
+  }
+  return u;
+}
+
+double VelocityScale(const Params& p) {
+  double u = ParticleVelocityScale(p);
+  for (const BoundarySide& side : p.domain.sides) {
+    u = std::max(u, ProfilePeakSpeed(side));  // the data at their peak over time
   }
   const Vec2& f = p.fluid.body_force;
   u = std::max(u, BodyForceSpeed(p, f.x(), p.domain.size.y(), p.domain.PeriodicY()));
@@ -149,6 +155,13 @@ std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
   const double courant = VelocityScale(p) * dt / h;
   if (Above(courant, kMaxAdvectiveCourant)) {
     out.push_back(TimeStepWarning(p, "U dt / h", courant, kMaxAdvectiveCourant, kSourceCourant));
+  }
+  if (particles && coupling == ConstraintCoupling::kIncremental) {
+    const double particle_courant = ParticleVelocityScale(p) * dt / h;
+    if (Above(particle_courant, kMaxLaggedParticleCourant)) {
+      out.push_back(TimeStepWarning(p, "U_p dt / h", particle_courant, kMaxLaggedParticleCourant,
+                                    kSourceLaggedCourant));
+    }
   }
 
   // A polymer viscous on the grid's scale under devss has no elastic bounds (accuracy_envelope.h).

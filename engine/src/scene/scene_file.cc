@@ -1,7 +1,9 @@
 // Scene parsing (design.md 3.1): TOML -> Params, every key with the default of core/params.h except
-// a particle's center (required) and particle_mesh.h (kPaperParticleMeshRatio domain.h); types,
-// choices and unknown keys are checked here, values by ValidateScene (scene/scene_validation.h).
-// Every error names the key, the value and what is allowed.
+// a particle's center (required), particle_mesh.h (kPaperParticleMeshRatio domain.h) and the
+// numerics keys, whose defaults follow numerics.preset (scene/numerics_preset.h); "auto" is
+// resolved here (scene/auto_coupling.h). Types, choices and unknown keys are checked here, values
+// by ValidateScene (scene/scene_validation.h). Every error names the key, the value and what is
+// allowed.
 #include "dlmfd/scene/scene_file.h"
 
 #include <fstream>
@@ -10,6 +12,8 @@
 #include <toml++/toml.h>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/scene/auto_coupling.h"
+#include "dlmfd/scene/numerics_preset.h"
 #include "dlmfd/scene/scene_validation.h"
 #include "dlmfd/scene/toml_bounds.h"
 #include "scene_overrides.h"
@@ -64,7 +68,7 @@ Enum Choose(const std::string& key, const std::string& word,
   throw InvalidParameter(key, "\"" + word + "\"", allowed);
 }
 
-void ReadDomain(TableReader& top, Params& p) {
+void ReadDomain(TableReader& top, const NumericsDefaults& defaults, Params& p) {
   TableReader domain(top.Table("domain"), "domain");
   DomainParams& d = p.domain;
   d.size = domain.Vector("size", d.size);
@@ -102,12 +106,12 @@ void ReadDomain(TableReader& top, Params& p) {
   }
   boundary.RejectUnknown("left, right, bottom, top");
   d.diagonals =
-      Choose<MeshDiagonals>("domain.diagonals", domain.String("diagonals", "sw_ne"),
+      Choose<MeshDiagonals>("domain.diagonals", domain.String("diagonals", defaults.diagonals),
                             {{"sw_ne", MeshDiagonals::kSwNe}, {"both", MeshDiagonals::kBoth}});
   domain.RejectUnknown("size, h, boundary, diagonals");
 }
 
-void ReadFluid(TableReader& top, Params& p) {
+void ReadFluid(TableReader& top, const NumericsDefaults& defaults, Params& p) {
   TableReader fluid(top.Table("fluid"), "fluid");
   FluidParams& f = p.fluid;
   f.density = fluid.Real("density", f.density);
@@ -127,7 +131,7 @@ void ReadFluid(TableReader& top, Params& p) {
        {"log", ConformationRepresentation::kLog},
        {"sqrt", ConformationRepresentation::kSqrt}});
   f.stress_splitting = Choose<StressSplitting>(
-      "fluid.stress_splitting", fluid.String("stress_splitting", "devss"),
+      "fluid.stress_splitting", fluid.String("stress_splitting", defaults.stress_splitting),
       {{"explicit", StressSplitting::kExplicit}, {"devss", StressSplitting::kDevss}});
   // Model parameters: present only when given (ValidateScene checks them against fluid.model).
   auto optional_real = [&fluid](const char* name) -> std::optional<double> {
@@ -157,34 +161,56 @@ void ReadGravity(TableReader& top, Params& p) {
   p.gravity = at_top ? top.Vector("gravity", p.gravity) : in_fluid.Vector("gravity", p.gravity);
 }
 
-void ReadTimeAndSplitting(TableReader& top, Params& p) {
+void ReadTime(TableReader& top, Params& p) {
   TableReader time(top.Table("time"), "time");
   p.time.dt = time.Real("dt", p.time.dt);
   p.time.end = time.Real("end", p.time.end);
   time.RejectUnknown("dt, end");
+}
 
+// Read last: "auto" is resolved from the rest of the scene (scene/auto_coupling.h).
+void ReadSplitting(TableReader& top, const NumericsDefaults& defaults, Params& p) {
   TableReader splitting(top.Table("splitting"), "splitting");
-  SplittingParams& s = p.splitting;
+  const std::string word = splitting.String("constraint", defaults.constraint);
+  std::string chosen = word;
+  if (word == "auto") {
+    p.numerics.resolved.push_back(ResolveConstraintCoupling(p));
+    chosen = p.numerics.resolved.back().value;
+  }
   // The constraint first: the defaults of alpha and beta follow it.
+  SplittingParams& s = p.splitting;
   s = SplittingParams::DefaultWeights(Choose<ConstraintCoupling>(
-      "splitting.constraint", splitting.String("constraint", "incremental"),
-      {{"incremental", ConstraintCoupling::kIncremental},
+      "splitting.constraint", chosen,
+      {{"auto", ConstraintCoupling::kIncremental},  // never taken (resolved above); listed for
+                                                    // the error's allowed values
+       {"incremental", ConstraintCoupling::kIncremental},
        {"paper", ConstraintCoupling::kPaper},
        {"viscous", ConstraintCoupling::kViscous}}));
   s.alpha = splitting.Real("alpha", s.alpha);
   s.beta = splitting.Real("beta", s.beta);
   s.advection = Choose<AdvectionScheme>(
-      "splitting.advection", splitting.String("advection", "least_squares"),
+      "splitting.advection", splitting.String("advection", defaults.advection),
       {{"least_squares", AdvectionScheme::kLeastSquares}, {"wave", AdvectionScheme::kWave}});
-  // (ReadFluid first.) The correction's default: "taylor" in a Newtonian liquid.
-  const bool corrected = p.fluid.IsNewtonian();
-  s.steady_correction =
-      Choose<SteadyCorrection>("splitting.steady_correction",
-                               splitting.String("steady_correction", corrected ? "taylor" : "none"),
-                               {{"none", SteadyCorrection::kNone},
-                                {"taylor", SteadyCorrection::kTaylor},
-                                {"tendency", SteadyCorrection::kTendency}});
+  // (ReadFluid first.) The correction's default depends on the liquid.
+  s.steady_correction = Choose<SteadyCorrection>(
+      "splitting.steady_correction",
+      splitting.String("steady_correction", p.fluid.IsNewtonian()
+                                                ? defaults.steady_correction
+                                                : defaults.steady_correction_polymer),
+      {{"none", SteadyCorrection::kNone},
+       {"taylor", SteadyCorrection::kTaylor},
+       {"tendency", SteadyCorrection::kTendency}});
   splitting.RejectUnknown("alpha, beta, advection, constraint, steady_correction");
+}
+
+// numerics.preset, read first: the numerics keys' defaults follow it.
+NumericsDefaults ReadNumerics(TableReader& top, Params& p) {
+  TableReader numerics(top.Table("numerics"), "numerics");
+  p.numerics.preset = Choose<NumericsPreset>(
+      "numerics.preset", numerics.String("preset", "default"),
+      {{"default", NumericsPreset::kDefault}, {"paper", NumericsPreset::kPaper}});
+  numerics.RejectUnknown("preset");
+  return DefaultsOf(p.numerics.preset);
 }
 
 void ReadSolvers(TableReader& top, Params& p) {
@@ -203,11 +229,12 @@ void ReadSolvers(TableReader& top, Params& p) {
       "multiplier_tolerance, multiplier_max_iterations");
 }
 
-void ReadMeshCollisionsConformationOutput(TableReader& top, Params& p) {
+void ReadMeshCollisionsConformationOutput(TableReader& top, const NumericsDefaults& defaults,
+                                          Params& p) {
   TableReader mesh(top.Table("particle_mesh"), "particle_mesh");
   ParticleMeshParams& pm = p.particle_mesh;
   pm.kind = Choose<ParticleMeshKind>(
-      "particle_mesh.kind", mesh.String("kind", "ring"),
+      "particle_mesh.kind", mesh.String("kind", defaults.particle_mesh_kind),
       {{"ring", ParticleMeshKind::kRing}, {"collocation", ParticleMeshKind::kCollocation}});
   pm.h = mesh.Real("h", kPaperParticleMeshRatio * p.domain.h);  // follows the fluid mesh
   pm.spacing = mesh.Real("spacing", pm.spacing);
@@ -311,17 +338,18 @@ Params ParseScene(const std::string& toml_text, const std::vector<SceneOverride>
   Params p;
   TableReader top(&root, "");
   p.title = top.String("title", "");
-  ReadDomain(top, p);
-  ReadFluid(top, p);
+  const NumericsDefaults defaults = ReadNumerics(top, p);
+  ReadDomain(top, defaults, p);
+  ReadFluid(top, defaults, p);
   ReadGravity(top, p);
-  ReadTimeAndSplitting(top, p);
+  ReadTime(top, p);
   ReadSolvers(top, p);
-  ReadMeshCollisionsConformationOutput(top, p);
+  ReadMeshCollisionsConformationOutput(top, defaults, p);
   ReadParticles(top, p);
+  ReadSplitting(top, defaults, p);
   top.RejectUnknown(
-      "title, domain, fluid, gravity, time, splitting, solvers, particles, particle_mesh, "
-      "collisions, conformation, "
-      "output, accuracy");
+      "title, numerics, domain, fluid, gravity, time, splitting, solvers, particles, "
+      "particle_mesh, collisions, conformation, output, accuracy");
   ValidateScene(p);
   return p;
 }

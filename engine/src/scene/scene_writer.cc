@@ -4,6 +4,8 @@
 
 #include "dlmfd/conformation/relaxation_model.h"
 #include "dlmfd/core/number_text.h"
+#include "dlmfd/scene/auto_coupling.h"
+#include "dlmfd/scene/numerics_preset.h"
 #include "dlmfd/scene/scene_file.h"
 #include "toml_reader.h"
 
@@ -59,18 +61,6 @@ const char* MotionName(Motion m) {
   return "free";
 }
 
-const char* ConstraintCouplingName(ConstraintCoupling coupling) {
-  switch (coupling) {
-    case ConstraintCoupling::kViscous:
-      return "viscous";
-    case ConstraintCoupling::kIncremental:
-      return "incremental";
-    case ConstraintCoupling::kPaper:
-      break;
-  }
-  return "paper";
-}
-
 }  // namespace
 
 std::string WriteScene(const Params& p) {
@@ -78,6 +68,11 @@ std::string WriteScene(const Params& p) {
   o << "# Written by dlmfd-solve: the scene as run, every default filled in (docs/scenes.md).\n";
   o << "title = " << Quoted(p.title) << "\n";
   o << "gravity = " << Vec(p.gravity) << "\n";
+  // Only when not the default: every numerics key is written out below, so the preset
+  // changes nothing on reading; it says where the values came from.
+  if (p.numerics.preset != NumericsPreset::kDefault) {
+    o << "\n[numerics]\npreset = \"" << NumericsPresetName(p.numerics.preset) << "\"\n";
+  }
 
   o << "\n[domain]\n";
   o << "size = " << Vec(p.domain.size) << "\n";

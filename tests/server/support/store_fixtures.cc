@@ -33,6 +33,7 @@ namespace {
 
 // What each schema added (job_store.cc kMigrations), undone.
 const std::map<int, const char*, std::greater<>> kUndo = {
+    {7, "ALTER TABLE jobs DROP COLUMN numerics;"},
     {6,
      "ALTER TABLE jobs DROP COLUMN slurm_state; ALTER TABLE jobs DROP COLUMN slurm_reason; "
      "ALTER TABLE jobs DROP COLUMN slurm_waiting; ALTER TABLE jobs DROP COLUMN "

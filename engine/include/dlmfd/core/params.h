@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dlmfd/core/grid.h"
@@ -148,9 +149,11 @@ enum class ConstraintCoupling { kPaper, kViscous, kIncremental };
 // Marchuk-Yanenko weights of the viscous term: alpha in (33), beta in (34), gamma = 1 - alpha -
 // beta in (37). The engine supports gamma = 0 only (the paper's choice), which validation enforces;
 // with constraint = kViscous or kIncremental also beta = 0 (all the viscosity in the step that sees
-// the particles). The defaults are kIncremental with alpha = 1, beta = 0 (docs/work_precision.md,
-// "Coupling the constraint with viscosity"); the scene file's defaults of alpha and beta follow its
-// constraint: 1 and 0, or the paper's 1/2 and 1/2 with constraint = "paper" (DefaultWeights).
+// the particles). The struct's defaults are kIncremental with alpha = 1, beta = 0
+// (docs/work_precision.md, "Coupling the constraint with viscosity"); a scene file's constraint
+// defaults to "auto", which ParseScene resolves from the scene's numbers (scene/auto_coupling.h),
+// and its alpha and beta follow the constraint: 1 and 0, or the paper's 1/2 and 1/2 with
+// constraint = "paper" (DefaultWeights).
 struct SplittingParams {
   double alpha = 1.0;
   double beta = 0.0;
@@ -219,7 +222,10 @@ enum class BoundaryInterpolation { kQuadratic, kLinear, kBiquadratic };
 inline constexpr double kPaperParticleMeshRatio = 96.0 / 70.0;
 
 struct ParticleMeshParams {
-  ParticleMeshKind kind = ParticleMeshKind::kRing;
+  // The default since issue 32: collocation points (docs/work_precision.md (e): Schaefer-Turek Cd
+  // +0.78 % at D/h = 20 against the ring's +2.23 %, the lift's sign right from D/h = 40 on, and a
+  // multiplier CG of about one iteration a step against 12).
+  ParticleMeshKind kind = ParticleMeshKind::kCollocation;
   double h = 1.0 / 70;   // ring: multiplier mesh size > 0 (scene files: kPaperParticleMeshRatio h)
   double spacing = 2.0;  // collocation: boundary point spacing in units of domain.h, in [0.5, 4]
   BoundaryInterpolation interpolation = BoundaryInterpolation::kQuadratic;  // collocation
@@ -246,6 +252,27 @@ struct OutputParams {
   double checkpoint_every = 1.0;  // between checkpoints; 0 = none
 };
 
+// numerics.preset: the configuration the scene's numerics keys default to
+// (scene/numerics_preset.h): kDefault, the configuration measured best (issue 32); kPaper, all of
+// the paper's choices.
+enum class NumericsPreset { kDefault, kPaper };
+
+// What a scene key's "auto" became at the start of a run (scene/auto_coupling.h): the key, the
+// scene word chosen, the rule that chose it and the dimensionless numbers that rule read.
+struct ResolvedChoice {
+  std::string key;                                      // "splitting.constraint"
+  std::string value;                                    // "incremental"
+  std::string rule;                                     // why, in words
+  std::vector<std::pair<std::string, double>> numbers;  // {"nu dt / h^2", 0.092}, ...
+};
+
+struct NumericsParams {
+  NumericsPreset preset = NumericsPreset::kDefault;
+  // Not a scene key: filled by ParseScene, one entry per "auto" it resolved (the scene as run
+  // names the values chosen, so reading it back resolves nothing).
+  std::vector<ResolvedChoice> resolved;
+};
+
 // How a run treats the accuracy envelope (scene/accuracy_envelope.h): warn (default) or reject.
 struct AccuracyParams {
   bool strict = false;  // a setting outside the envelope is an invalid scene
@@ -265,6 +292,7 @@ struct Params {
   ConformationParams conformation;
   OutputParams output;
   AccuracyParams accuracy;
+  NumericsParams numerics;
   int threads = 0;  // not a scene key: set by the program (0 = OpenMP default)
 };
 

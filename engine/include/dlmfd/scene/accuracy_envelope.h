@@ -59,6 +59,12 @@
 // |f| H^2 / (8 eta), H the height across. It is an estimate: the run's own Courant number is in
 // diagnostics.csv.
 //
+// - U_p dt / h <= 0.3 with splitting.constraint = "incremental" and particles, U_p their velocity
+//   scale (ParticleVelocityScale: the particles' part of U below): the lagged multiplier acts where
+//   a particle was a step ago, and diverged on the paper's case 5.1 (a disk of rho_p / rho = 1.5,
+//   h = 1/96, collocation points, wave advection) at U_p dt / h = 0.60 and 1.19; it completed at
+//   0.30 (docs/work_precision.md, "The automatic coupling"). "auto" picks the paper's coupling
+//   there (scene/auto_coupling.h); the warning is for a scene that names "incremental".
 // - h_p / h >= 1.1 for the ring mesh (particle_mesh.h against domain.h): the accuracy studies (c)
 //   and (d) ran at h_p / h = 96 / 70 = 1.37 throughout, and a finer particle mesh makes the DLM
 //   multiplier CG (37) ill-conditioned: bench/multiplier_conditioning.sh (docs/work_precision.md,
@@ -92,6 +98,7 @@ inline constexpr double kMaxAdvectiveCourant = 0.64;       // U dt / h
 inline constexpr double kMaxElasticCourant = 0.3017;       // sqrt(eta_p / (rho lambda)) dt / h
 inline constexpr double kMaxStepPerRelaxationTime = 0.01;  // dt / lambda
 inline constexpr double kMinParticleMeshRatio = 1.1;       // h_p / h, ring mesh
+inline constexpr double kMaxLaggedParticleCourant = 0.3;   // U_p dt / h, incremental coupling
 // A polymer viscous on the grid's scale (devss only): no elastic bounds.
 inline constexpr double kMaxGridElasticity = 0.105;  // El_h = lambda eta_p / (rho h^2)
 inline constexpr double kMaxGridDeborah = 0.016;     // lambda U / h
@@ -123,5 +130,7 @@ std::vector<AccuracySetting> AccuracySettings(const Params& params);
 std::vector<AccuracyWarning> AccuracyWarnings(const Params& params);
 // The scene's velocity scale U (see above).
 double VelocityScale(const Params& params);
+// The particles' part of it: initial speeds and the fall-speed estimate of free particles.
+double ParticleVelocityScale(const Params& params);
 
 }  // namespace dlmfd

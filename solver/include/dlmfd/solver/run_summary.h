@@ -11,7 +11,9 @@
 // warnings [{setting, value, allowed, key, current, suggested, source}] (the scene's settings
 // outside the accuracy envelope, dlmfd/scene/accuracy_envelope.h; a summary without the key, from
 // an older solver, reads as none; the statistics and the particles' radius and fall_speed of an
-// older solver read as NaN).
+// older solver read as NaN), numerics [{key, value, rule, numbers {name: value}}] (what each
+// "auto" of the scene became, dlmfd/scene/auto_coupling.h; written only when there is one, and
+// absent reads as none).
 // One key per line, one line per particle. Integers stay JSON integers; a double is written as the
 // shortest text that reads back as the same double (an integral one without ".0"); non-finite
 // numbers are written as null (JSON has no NaN) and read back as NaN. Written through a temporary
@@ -73,6 +75,15 @@ struct RunSummary {
     std::string source;     // where the bound was measured
   };
   std::vector<Warning> warnings;
+  // What an "auto" of the scene became: the key, the value chosen, the rule that chose it and
+  // the dimensionless numbers the rule read.
+  struct Choice {
+    std::string key;    // "splitting.constraint"
+    std::string value;  // "incremental"
+    std::string rule;
+    std::vector<std::pair<std::string, double>> numbers;
+  };
+  std::vector<Choice> numerics;
 };
 
 // A summary.json that cannot be read or does not have the contract's shape.

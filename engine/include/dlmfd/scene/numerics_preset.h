@@ -1,0 +1,36 @@
+// numerics.preset: the configuration a scene's numerics keys default to (issue 32 point 2). A key
+// the scene sets wins over its preset; the preset only moves the defaults.
+//
+//   "default" (the default): the configuration measured best on the verification suite
+//     (docs/accuracy.md): collocation points on the true circle, both diagonals, the wave-like
+//     advection, the coupling of the constraint chosen from the scene's numbers ("auto",
+//     scene/auto_coupling.h), DEVSS for a polymer, the steady correction in a Newtonian liquid.
+//   "paper": the choices of Singh, Joseph, Hesla, Glowinski and Pan (J. Non-Newtonian Fluid Mech.
+//     91, 2000) at once: the H1 ring mesh of each disk (24), the SW-NE mesh, the least-squares
+//     advection step (34), the constraint only in the DLM step (37) with alpha = beta = 1/2
+//     (gamma = 0), the polymer stress explicit in (33), no steady correction. The paper's case
+//     files set it where they must reproduce the paper's numbers, and say so.
+//
+// The struct defaults of core/params.h are the "default" preset's (a test holds them equal).
+#pragma once
+
+#include "dlmfd/core/params.h"
+
+namespace dlmfd {
+
+// The scene words each numerics key defaults to under a preset.
+struct NumericsDefaults {
+  const char* particle_mesh_kind;         // particle_mesh.kind
+  const char* diagonals;                  // domain.diagonals
+  const char* advection;                  // splitting.advection
+  const char* constraint;                 // splitting.constraint ("auto": scene/auto_coupling.h)
+  const char* stress_splitting;           // fluid.stress_splitting
+  const char* steady_correction;          // splitting.steady_correction, Newtonian liquid
+  const char* steady_correction_polymer;  // ..., with a polymer
+};
+
+NumericsDefaults DefaultsOf(NumericsPreset preset);
+
+const char* NumericsPresetName(NumericsPreset preset);
+
+}  // namespace dlmfd

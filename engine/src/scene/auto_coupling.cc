@@ -1,0 +1,137 @@
+// splitting.constraint = "auto": the rules, one function each, tried in order
+// (scene/auto_coupling.h). A rule returns the coupling it picks, or nothing when it does not
+// apply; the evidence for each is beside it. To add a rule: write its function, put it in
+// kRules at its place in the order, pin it with a test in tests/unit/auto_coupling_test.cc and
+// list it in the header and in docs/scenes.md.
+#include "dlmfd/scene/auto_coupling.h"
+
+#include <algorithm>
+#include <optional>
+
+#include "dlmfd/core/number_text.h"
+#include "dlmfd/scene/accuracy_envelope.h"
+
+namespace dlmfd {
+namespace {
+
+struct Pick {
+  ConstraintCoupling coupling;
+  const char* rule;  // why, in words; the numbers follow it in the record
+};
+
+using Rule = std::optional<Pick> (*)(const CouplingNumbers&);
+
+// 1. Nothing to couple. The couplings differ only in their default weights then; incremental's
+// (alpha = 1, beta = 0) are the engine's default for a liquid alone.
+std::optional<Pick> NoParticles(const CouplingNumbers& n) {
+  if (n.particles) return std::nullopt;
+  return Pick{ConstraintCoupling::kIncremental, "no particles"};
+}
+
+// 2. Particles that cross a good part of a cell a step where the paper's leak is small. The lagged
+// multiplier acts where the particle was a step ago; measured on the paper's case 5.1 written
+// without numerics keys (one disk, rho_p / rho = 1.5, eta = 0.01, h = 1/96, Re about 200; wave
+// advection, collocation points, both diagonals; docs/work_precision.md, "The automatic
+// coupling"): the incremental coupling diverges at U_p dt / h = 1.19 (dt = 1e-3, step 73, and
+// again with eta = 0.05) and 0.60 (dt = 5e-4, step 235), and completes at 0.30 (dt = 2.5e-4); the
+// paper's coupling completes at 1.19. With the ring mesh the same scene completes at 1.19 under
+// wave advection and fails under least squares (docs/stability.md, "The coupling of the
+// constraint", failure 2). Such particles move by inertia: nu dt / h^2 is small there (0.092 in
+// 5.1), and so is the paper's leak; the rule asks for nu dt / h^2 inside the paper coupling's
+// envelope (<= 0.195, accuracy_envelope.h). U_p is an upper estimate: a light disk in a viscous
+// liquid falls far slower (Faxen's disk on h = 1/48 at dt = 0.024: U_p dt / h = 2.0 from U_p =
+// 1.76, against 0.21 at its speed 0.185), and there, at nu dt / h^2 = 5.5, the paper's coupling
+// falls 2.6 times too fast (-0.472 against -0.185) while the incremental one holds the speed to
+// 0.13 % (tests/convergence/lagged_reaction_test.cc).
+std::optional<Pick> FastParticles(const CouplingNumbers& n) {
+  if (!(n.particle_courant > kMaxLaggedParticleCourant)) return std::nullopt;
+  if (n.viscous_number > kMaxViscousNumberWithParticles) return std::nullopt;
+  return Pick{ConstraintCoupling::kPaper,
+              "particles cross more than 0.3 of a cell a step (U_p dt / h > 0.3), where the "
+              "lagged multiplier diverged, and nu dt / h^2 <= 0.195 keeps the paper's leak small"};
+}
+
+// 3. The rest: the lagged multiplier removes the paper's leak at the paper's cost
+// (docs/work_precision.md, "Coupling the constraint with viscosity").
+std::optional<Pick> Incremental(const CouplingNumbers& n) {
+  return Pick{ConstraintCoupling::kIncremental,
+              n.particle_courant > kMaxLaggedParticleCourant
+                  ? "nu dt / h^2 > 0.195: the paper's leak would be large"
+                  : "particles slower than 0.3 of a cell a step"};
+}
+
+constexpr Rule kRules[] = {NoParticles, FastParticles, Incremental};
+
+}  // namespace
+
+const char* ConstraintCouplingName(ConstraintCoupling coupling) {
+  switch (coupling) {
+    case ConstraintCoupling::kViscous:
+      return "viscous";
+    case ConstraintCoupling::kIncremental:
+      return "incremental";
+    case ConstraintCoupling::kPaper:
+      break;
+  }
+  return "paper";
+}
+
+std::string ResolvedChoiceText(const ResolvedChoice& c) {
+  std::string numbers;
+  for (const auto& [name, value] : c.numbers) {
+    numbers += (numbers.empty() ? "; " : ", ") + name + " = " + ShortText(value);
+  }
+  return c.key + " = \"" + c.value + "\" (auto: " + c.rule + numbers + ")";
+}
+
+CouplingNumbers ComputeCouplingNumbers(const Params& p) {
+  CouplingNumbers n;
+  const double h = p.domain.h;
+  const double dt = p.time.dt;
+  const double rho = p.fluid.density;
+  const double eta = p.fluid.viscosity;
+  n.particles = !p.particles.empty();
+  n.polymer = !p.fluid.IsNewtonian();
+  n.viscous_number = eta / rho * dt / (h * h);
+  n.particle_speed = ParticleVelocityScale(p);
+  n.particle_courant = n.particle_speed * dt / h;
+  double diameter = 0.0;
+  double densest = 0.0;
+  for (const ParticleParams& q : p.particles) {
+    diameter = std::max(diameter, q.diameter);
+    densest = std::max(densest, q.density);
+    if (q.motion != Motion::kFree) continue;
+    const double ratio = q.density / rho;
+    n.neutral_free_particle = n.neutral_free_particle || q.density == rho;
+    n.min_density_ratio = n.min_density_ratio == 0.0 ? ratio : std::min(n.min_density_ratio, ratio);
+    n.max_density_ratio = std::max(n.max_density_ratio, ratio);
+  }
+  n.particle_reynolds = rho * n.particle_speed * diameter / eta;
+  n.stokes_number = densest / rho * n.particle_reynolds / 9.0;
+  return n;
+}
+
+ResolvedChoice ResolveConstraintCoupling(const Params& params) {
+  const CouplingNumbers n = ComputeCouplingNumbers(params);
+  ResolvedChoice choice;
+  choice.key = "splitting.constraint";
+  for (Rule rule : kRules) {
+    const std::optional<Pick> pick = rule(n);
+    if (!pick) continue;
+    choice.value = ConstraintCouplingName(pick->coupling);
+    choice.rule = pick->rule;
+    break;
+  }
+  choice.numbers = {{"nu dt / h^2", n.viscous_number}, {"U_p dt / h", n.particle_courant}};
+  if (n.particles) {
+    choice.numbers.push_back({"Re_p", n.particle_reynolds});
+    choice.numbers.push_back({"St", n.stokes_number});
+    if (n.max_density_ratio > 0.0) {
+      choice.numbers.push_back({"rho_p / rho (min)", n.min_density_ratio});
+      choice.numbers.push_back({"rho_p / rho (max)", n.max_density_ratio});
+    }
+  }
+  return choice;
+}
+
+}  // namespace dlmfd
