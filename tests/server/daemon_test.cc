@@ -525,7 +525,8 @@ TEST(Daemon, TwoHundredQueuedJobsDrainWithinTheConcurrencyLimit) {
 }
 
 // dt = 0.05 on the 16 x 16 cavity: U dt / h = 0.8, outside the accuracy envelope's 0.64. The job
-// record carries the warning from admission on (Get), and still after a restart of the daemon;
+// record carries the warning and the "auto" choices from admission on (Get), and still after a
+// restart of the daemon;
 // with accuracy.strict = true the same scene is INVALID_ARGUMENT naming time.dt.
 TEST(Daemon, JobRecordCarriesTheAccuracyWarningsThroughGetAndARestart) {
   TempDir dir;
@@ -542,6 +543,14 @@ TEST(Daemon, JobRecordCarriesTheAccuracyWarningsThroughGetAndARestart) {
     EXPECT_EQ(w.current(), "0.05");
     EXPECT_EQ(w.suggested(), "0.025");
     EXPECT_NE(w.source().find("work_precision.md"), std::string::npos);
+    // And what the scene's "auto" coupling became (no particles: rule 1, scene/auto_coupling.h).
+    ASSERT_EQ(job.numerics_size(), 1);
+    EXPECT_EQ(job.numerics(0).key(), "splitting.constraint");
+    EXPECT_EQ(job.numerics(0).value(), "incremental");
+    EXPECT_EQ(job.numerics(0).rule(), "no particles");
+    ASSERT_GE(job.numerics(0).numbers_size(), 1);
+    EXPECT_EQ(job.numerics(0).numbers(0).name(), "nu dt / h^2");
+    EXPECT_DOUBLE_EQ(job.numerics(0).numbers(0).value(), 0.01 * 0.05 / (0.0625 * 0.0625));
   };
   std::string id;
   {

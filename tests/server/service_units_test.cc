@@ -108,6 +108,28 @@ TEST(JobStore, AccuracyWarningsRoundTripAndASchemaOneStoreGainsTheColumn) {
   }
 }
 
+// Schema 7 stores what each "auto" of a job's scene became: key, value, rule and the numbers in
+// their order, each number bit for bit; a job without one reads back none.
+TEST(JobStore, NumericsChoicesRoundTrip) {
+  dlmfd::testing::TempDir dir;
+  JobStore store(dir.path() + "/jobs.db");
+  JobRecord job = MakeJob("auto", 0);
+  job.numerics = {
+      {"splitting.constraint",
+       "paper",
+       "particles cross more than 0.3 of a cell a step (U_p dt / h > 0.3)",
+       {{"nu dt / h^2", 0.09216}, {"U_p dt / h", 1.1916131250474034}, {"Re_p", 248.25}}}};
+  store.InsertJobs({job, MakeJob("named", 0)}, "local", "");
+  const auto back = store.Get("auto");
+  ASSERT_TRUE(back);
+  ASSERT_EQ(back->numerics.size(), 1u);
+  EXPECT_EQ(back->numerics[0].key, job.numerics[0].key);
+  EXPECT_EQ(back->numerics[0].value, job.numerics[0].value);
+  EXPECT_EQ(back->numerics[0].rule, job.numerics[0].rule);
+  EXPECT_EQ(back->numerics[0].numbers, job.numerics[0].numbers);  // 17 digits: bit for bit
+  EXPECT_TRUE(store.Get("named")->numerics.empty());
+}
+
 TEST(JobStore, QueueOrderIsPriorityThenAge) {
   dlmfd::testing::TempDir dir;
   JobStore store(dir.path() + "/jobs.db");

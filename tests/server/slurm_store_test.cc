@@ -28,7 +28,7 @@ TEST(SlurmStore, ASchemaFourStoreGainsTheSlurmColumns) {
   }
   dlmfd::testing::RollBackSchema(path, 4);
   JobStore store(path);
-  EXPECT_EQ(JobStore::SchemaVersion(), 6);
+  EXPECT_EQ(JobStore::SchemaVersion(), 7);
   const auto old = store.Get("old");
   ASSERT_TRUE(old);
   EXPECT_EQ(old->slurm_job_id, "");
@@ -37,6 +37,7 @@ TEST(SlurmStore, ASchemaFourStoreGainsTheSlurmColumns) {
   EXPECT_EQ(old->slurm_state, "");
   EXPECT_FALSE(old->slurm_waiting);
   EXPECT_EQ(old->time_limit_seconds, 0);
+  EXPECT_TRUE(old->numerics.empty());  // schema 7's column, empty for a job admitted before it
   store.SetSlurmSubmitted("old", "77");
   EXPECT_EQ(store.Get("old")->slurm_job_id, "77");
 }
