@@ -70,7 +70,7 @@ class HostilePool {
                CavityScene(1e300),
                deep_key + " = 1\n",
                "[time]\nend = 0\n",
-               "[[particles]]\ncenter = [0.5, 0.5]\n[particle_mesh]\nh = 1e300\n",
+               "[[particles]]\ncenter = [0.5, 0.5]\n[particle_mesh]\nkind = \"ring\"\nh = 1e300\n",
                std::string(1 << 20, '#'),
                "title = \"" + std::string(100000, 'a') + "\"\n"};
   }

@@ -129,7 +129,8 @@ const BadScene kBadScenes[] = {
     {"EndNegativeZero", "[time]\nend = -0.0\n", "time.end", "-0.0"},
     // Issue 38: a ring mesh coarser than the disk (even h_p = 1e300) ran.
     {"ParticleMeshCoarserThanTheDisk",
-     "[particle_mesh]\nh = 1e300\n[[particles]]\ncenter = [0.5, 0.5]\ndiameter = 0.2\n"
+     "[particle_mesh]\nkind = \"ring\"\nh = 1e300\n[[particles]]\ncenter = [0.5, 0.5]\n"
+     "diameter = 0.2\n"
      "density = 1.5\n",
      "particle_mesh.h", "1e+300"},
     {"DtLongerThanEnd", "[time]\ndt = 0.5\nend = 0.1\n", "time.dt", "0.5"},
