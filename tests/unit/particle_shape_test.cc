@@ -197,7 +197,9 @@ TEST(Shape, MultiplierPointsOfAnEllipseLieOnItAndTheRingMeshRefusesIt) {
       EXPECT_LT(d, 0.0);
     }
   }
-  MultiplierPoints ring(ParticleMeshParams{}, h);
+  ParticleMeshParams ring_mesh;
+  ring_mesh.kind = ParticleMeshKind::kRing;  // not the default since issue 32
+  MultiplierPoints ring(ring_mesh, h);
   ring.Add(Shape::Disk(0.1));
   try {
     ring.Add(e);
