@@ -1,6 +1,7 @@
 // WriteScene: Params back to TOML, every key written (defaults filled in), reals in the shortest
 // text that reads back exactly, so that ParseScene(WriteScene(p)) gives p again.
 #include <sstream>
+#include <vector>
 
 #include "dlmfd/conformation/relaxation_model.h"
 #include "dlmfd/core/number_text.h"
@@ -61,6 +62,36 @@ const char* MotionName(Motion m) {
   return "free";
 }
 
+// [fluid]: the liquid and its polymer model.
+void WriteFluid(std::ostringstream& o, const FluidParams& f) {
+  o << "\n[fluid]\n";
+  o << "density = " << ExactText(f.density) << "\n";
+  o << "viscosity = " << ExactText(f.viscosity) << "\n";
+  o << "relaxation_time = " << ExactText(f.relaxation_time) << "\n";
+  o << "solvent_ratio = " << ExactText(f.solvent_ratio) << "\n";
+  o << "body_force = " << Vec(f.body_force) << "\n";
+  o << "model = \"" << ModelName(f.model) << "\"\n";
+  o << "conformation = \"" << RepresentationName(f.conformation) << "\"\n";
+  o << "stress_splitting = \""
+    << (f.stress_splitting == StressSplitting::kDevss ? "devss" : "explicit") << "\"\n";
+  if (f.mobility) o << "mobility = " << ExactText(*f.mobility) << "\n";
+  if (f.extensibility) o << "extensibility = " << ExactText(*f.extensibility) << "\n";
+  if (f.ptt_epsilon) o << "ptt_epsilon = " << ExactText(*f.ptt_epsilon) << "\n";
+}
+
+// [[particles]], one table each.
+void WriteParticles(std::ostringstream& o, const std::vector<ParticleParams>& particles) {
+  for (const ParticleParams& q : particles) {
+    o << "\n[[particles]]\n";
+    o << "center = " << Vec(q.center) << "\n";
+    o << "diameter = " << ExactText(q.diameter) << "\n";
+    o << "density = " << ExactText(q.density) << "\n";
+    o << "velocity = " << Vec(q.velocity) << "\n";
+    o << "angular_velocity = " << ExactText(q.angular_velocity) << "\n";
+    o << "motion = \"" << MotionName(q.motion) << "\"\n";
+  }
+}
+
 }  // namespace
 
 std::string WriteScene(const Params& p) {
@@ -85,19 +116,7 @@ std::string WriteScene(const Params& p) {
   o << "bottom = " << SideText(p.domain.side(Side::kBottom)) << "\n";
   o << "top = " << SideText(p.domain.side(Side::kTop)) << "\n";
 
-  o << "\n[fluid]\n";
-  o << "density = " << ExactText(p.fluid.density) << "\n";
-  o << "viscosity = " << ExactText(p.fluid.viscosity) << "\n";
-  o << "relaxation_time = " << ExactText(p.fluid.relaxation_time) << "\n";
-  o << "solvent_ratio = " << ExactText(p.fluid.solvent_ratio) << "\n";
-  o << "body_force = " << Vec(p.fluid.body_force) << "\n";
-  o << "model = \"" << ModelName(p.fluid.model) << "\"\n";
-  o << "conformation = \"" << RepresentationName(p.fluid.conformation) << "\"\n";
-  o << "stress_splitting = \""
-    << (p.fluid.stress_splitting == StressSplitting::kDevss ? "devss" : "explicit") << "\"\n";
-  if (p.fluid.mobility) o << "mobility = " << ExactText(*p.fluid.mobility) << "\n";
-  if (p.fluid.extensibility) o << "extensibility = " << ExactText(*p.fluid.extensibility) << "\n";
-  if (p.fluid.ptt_epsilon) o << "ptt_epsilon = " << ExactText(*p.fluid.ptt_epsilon) << "\n";
+  WriteFluid(o, p.fluid);
 
   o << "\n[time]\n";
   o << "dt = " << ExactText(p.time.dt) << "\n";
@@ -156,15 +175,7 @@ std::string WriteScene(const Params& p) {
   // the one written before the key existed.
   if (p.accuracy.strict) o << "\n[accuracy]\nstrict = true\n";
 
-  for (const ParticleParams& q : p.particles) {
-    o << "\n[[particles]]\n";
-    o << "center = " << Vec(q.center) << "\n";
-    o << "diameter = " << ExactText(q.diameter) << "\n";
-    o << "density = " << ExactText(q.density) << "\n";
-    o << "velocity = " << Vec(q.velocity) << "\n";
-    o << "angular_velocity = " << ExactText(q.angular_velocity) << "\n";
-    o << "motion = \"" << MotionName(q.motion) << "\"\n";
-  }
+  WriteParticles(o, p.particles);
   return o.str();
 }
 
