@@ -148,6 +148,7 @@ std::string JobDetails(const v1::Job& job) {
   out << "priority:    " << job.priority() << "\n"
       << "tags:        " << JoinText(job.tags(), ", ") << "\n";
   if (!job.sweep_id().empty()) out << "sweep:       " << job.sweep_id() << "\n";
+  if (!job.after().empty()) out << "after:       " << JoinText(job.after(), ", ") << "\n";
   out << "overrides:   " << JoinText(job.overrides(), " ") << "\n"
       << "progress:    step " << job.step() << ", time " << Progress(job) << "\n"
       << "created:     " << FormatTimestamp(job.created_time()) << "\n"

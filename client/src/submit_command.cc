@@ -1,8 +1,8 @@
 // dlmfd submit SCENE [--set key=value]... [--tag T]... [--label k=v]... [--priority P] [--name N]
-// [--time DURATION] [--wait [--json]] Prints the job id alone on stdout, so that
-// JOB=$(dlmfd submit --wait ...) captures it; --wait's progress goes to stderr (with --json every
-// event goes to stdout, one JSON line each, after the job). Submit is retried on UNAVAILABLE with
-// the same client request id, so a retry never queues the job twice.
+// [--time DURATION] [--after ID[,ID]...] [--wait [--json]] Prints the job id alone on stdout, so
+// that JOB=$(dlmfd submit --wait ...) captures it; --wait's progress goes to stderr (with --json
+// every event goes to stdout, one JSON line each, after the job). Submit is retried on UNAVAILABLE
+// with the same client request id, so a retry never queues the job twice.
 #include <filesystem>
 #include <iostream>
 #include <thread>
@@ -22,7 +22,7 @@ int RunSubmit(int argc, char** argv) {
   ConnectionFlags connection_flags;
   AddConnectionFlags(app, connection_flags);
   std::string scene_path, name, request_id, time_limit;
-  std::vector<std::string> overrides, tags, labels;
+  std::vector<std::string> overrides, tags, labels, after;
   int priority = 0;
   bool wait = false, json = false;
   app.add_option("scene", scene_path, "scene file (TOML)")->required();
@@ -35,6 +35,10 @@ int RunSubmit(int argc, char** argv) {
   app.add_option("--name", name, "job name (default: the scene file's stem)");
   app.add_option("--time", time_limit,
                  "wall-time limit of one run: 90m, 2h, 1h30m, 1:30:00 (default: the daemon's)");
+  app.add_option("--after", after,
+                 "start only once these jobs have COMPLETED: ID[,ID] (repeatable; one that "
+                 "fails or is cancelled cancels this job)")
+      ->delimiter(',');
   app.add_option("--request-id", request_id, "idempotency key (default: a fresh random id)");
   app.add_flag("--wait", wait, "watch the job to the end; exit 0 if it completed, 1 if not");
   app.add_flag("--json", json, "print the job (and with --wait every event) as JSON lines");
@@ -48,6 +52,7 @@ int RunSubmit(int argc, char** argv) {
       request.add_overrides(o);
     }
     for (const std::string& t : tags) request.add_tags(t);
+    for (const std::string& id : after) request.add_after(id);
     AddLabels(labels, request.mutable_labels());
     request.set_priority(priority);
     if (!time_limit.empty()) request.set_time_limit_seconds(TimeLimitFlag(time_limit));

@@ -1,6 +1,7 @@
 // dlmfd sweep SCENE [--grid key=v1,v2,...]... [--zip key=v1,v2,...]... [--range key=A:B:N]...
 //                   [--log-range key=A:B:N]... [--set k=v]... [--tag T]... [--label k=v]...
 //                   [--max-running N] [--priority P] [--name NAME] [--time DURATION]
+//                   [--after ID[,ID]...]
 // A study: one job per point. --grid and the ranges are axes of a full grid (the Cartesian
 // product); the --zip axes step together (equal lengths) and are one axis of that grid. A key may
 // hold * for every index (`particles.*.density`). Values are split at commas outside brackets and
@@ -78,7 +79,7 @@ int RunSweep(int argc, char** argv) {
   ConnectionFlags connection_flags;
   AddConnectionFlags(app, connection_flags);
   std::string scene_path, name, request_id, time_limit;
-  std::vector<std::string> grids, zips, ranges, log_ranges, overrides, tags, labels;
+  std::vector<std::string> grids, zips, ranges, log_ranges, overrides, tags, labels, after;
   int priority = 0, max_running = 0;
   bool json = false, quiet = false;
   app.add_option("scene", scene_path, "base scene file (TOML)")->required();
@@ -98,6 +99,9 @@ int RunSweep(int argc, char** argv) {
   app.add_option("--name", name, "sweep name (default: the scene file's stem)");
   app.add_option("--time", time_limit,
                  "each job's wall-time limit of one run: 90m, 2h, 1:30:00 (default: the daemon's)");
+  app.add_option("--after", after,
+                 "every job starts only once these jobs have COMPLETED: ID[,ID] (repeatable)")
+      ->delimiter(',');
   app.add_option("--request-id", request_id, "idempotency key (default: a fresh random id)");
   app.add_flag("--json", json, "print the response as one JSON line");
   app.add_flag("-q,--quiet", quiet, "print only the sweep id");
@@ -125,6 +129,7 @@ int RunSweep(int argc, char** argv) {
       request.add_overrides(o);
     }
     for (const std::string& t : tags) request.add_tags(t);
+    for (const std::string& id : after) request.add_after(id);
     request.set_priority(priority);
     request.set_name(name.empty() ? std::filesystem::path(scene_path).stem().string() : name);
     request.set_client_request_id(request_id.empty() ? NewRequestId() : request_id);

@@ -65,31 +65,34 @@ class Client:
             raise errors.from_rpc_error(error, rpc) from None
 
     def submit(self, scene, overrides=None, name="", tags=(), priority=0, request_id="",
-               labels=None, time_limit_seconds=0):
+               labels=None, time_limit_seconds=0, after=()):
         """Queues one job (Submit); returns the Job. scene: TOML text or a path; labels: a dict
         of key=value labels; time_limit_seconds: the wall time one run may take (0: the
-        daemon's limit; under Slurm its --time)."""
+        daemon's limit; under Slurm its --time); after: job ids (or Jobs) that must COMPLETE
+        before this one starts (one that fails or is cancelled cancels it)."""
         request = jobs_pb2.SubmitRequest(scene=scene_input.scene_text(scene),
                                          overrides=scene_input.override_texts(overrides),
                                          name=name, tags=list(tags), priority=priority,
                                          client_request_id=request_id, labels=labels or {},
-                                         time_limit_seconds=time_limit_seconds)
+                                         time_limit_seconds=time_limit_seconds,
+                                         after=_job_ids(after))
         return self._unary("Submit", request)
 
     def sweep(self, scene, axes=None, overrides=None, name="", tags=(), priority=0,
-              request_id="", zip=None, labels=None, max_running=0, time_limit_seconds=0):
+              request_id="", zip=None, labels=None, max_running=0, time_limit_seconds=0,
+              after=()):
         """Queues a study, one job per point (SubmitSweep); returns (sweep_id, [Job, ...]).
 
         axes: {"fluid.relaxation_time": [0.5, 1.4], "time.dt": dlmfd.Range(1e-3, 1e-2, 3,
         log=True), "particles.*.density": [...]}, a full grid; zip: {key: [values], ...} of equal
         lengths, stepping together as one axis of the grid (axes.py); labels: a dict;
         max_running: at most this many of its jobs run at once (0: no limit);
-        time_limit_seconds: each job's, as submit's."""
+        time_limit_seconds, after: each job's, as submit's."""
         request = jobs_pb2.SubmitSweepRequest(
             scene=scene_input.scene_text(scene), overrides=scene_input.override_texts(overrides),
             axes=sweep_axes(axes, zip), name=name, tags=list(tags), priority=priority,
             client_request_id=request_id, labels=labels or {}, max_running=max_running,
-            time_limit_seconds=time_limit_seconds)
+            time_limit_seconds=time_limit_seconds, after=_job_ids(after))
         response = self._unary("SubmitSweep", request)
         return response.sweep_id, list(response.jobs)
 
@@ -336,3 +339,10 @@ def _write_job_json(out, job):
 def _state_values(states):
     """JobState values from values or names ("RUNNING")."""
     return [jobs_pb2.JobState.Value(s) if isinstance(s, str) else s for s in states]
+
+
+def _job_ids(jobs):
+    """Job ids from ids or Job messages; one id alone is a list of one."""
+    if isinstance(jobs, str):
+        return [jobs]
+    return [job if isinstance(job, str) else job.id for job in jobs]

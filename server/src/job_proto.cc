@@ -81,6 +81,7 @@ v1::Job ToProto(const JobRecord& job) {
   out.set_slurm_state(job.slurm_state);
   out.set_slurm_reason(job.slurm_reason);
   out.set_time_limit_seconds(job.time_limit_seconds);
+  for (const auto& id : job.after) out.add_after(id);
   return out;
 }
 

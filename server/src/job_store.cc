@@ -122,7 +122,23 @@ const Migration kMigrations[] = {
     {7, R"sql(
     ALTER TABLE jobs ADD COLUMN numerics TEXT NOT NULL DEFAULT '';
     )sql"},
+    // Schema 8: job dependencies (afterok): a job runs only once every job it names has
+    // COMPLETED (NextQueued); one that ends otherwise, or is deleted, cancels it (Blocked).
+    {8, R"sql(
+    CREATE TABLE job_dependencies (
+      job_id TEXT NOT NULL,
+      after_id TEXT NOT NULL,
+      PRIMARY KEY (job_id, after_id));
+    CREATE INDEX job_dependencies_after ON job_dependencies (after_id);
+    )sql"},
 };
+
+// SQL true for a job j whose dependencies have not all COMPLETED (a missing one never will).
+std::string WaitsForDependency() {
+  return "EXISTS (SELECT 1 FROM job_dependencies d LEFT JOIN jobs p ON p.id = d.after_id "
+         "WHERE d.job_id = j.id AND (p.state IS NULL OR p.state != " +
+         std::to_string(static_cast<int>(JobState::kCompleted)) + "))";
+}
 
 // The state the API shows: a RUNNING job that Slurm holds waiting is QUEUED (ShownState).
 const char kShownState[] = "(CASE WHEN state = 2 AND slurm_waiting = 1 THEN 1 ELSE state END)";
@@ -445,6 +461,7 @@ class JobStore::Statement {
   }
   int64_t Int(int col) const { return sqlite3_column_int64(stmt_, col); }
   double Real(int col) const { return sqlite3_column_double(stmt_, col); }
+  bool IsNull(int col) const { return sqlite3_column_type(stmt_, col) == SQLITE_NULL; }
   std::string Text(int col) const {
     const unsigned char* text = sqlite3_column_text(stmt_, col);
     return text ? std::string(reinterpret_cast<const char*>(text),
@@ -640,8 +657,28 @@ std::vector<JobRecord> JobStore::Query(Statement& statement) {
   for (auto& job : jobs) {
     LoadTags(job);
     LoadLabels(job);
+    LoadDependencies(job);
   }
   return jobs;
+}
+
+void JobStore::LoadDependencies(JobRecord& job) {
+  Statement select(db_,
+                   "SELECT d.after_id, p.state FROM job_dependencies d LEFT JOIN jobs p "
+                   "ON p.id = d.after_id WHERE d.job_id = ? ORDER BY d.rowid");
+  select.Bind(job.id);
+  job.after.clear();
+  std::string waiting_for;
+  while (select.Step()) {
+    job.after.push_back(select.Text(0));
+    if (waiting_for.empty() && select.Int(1) != static_cast<int>(JobState::kCompleted)) {
+      waiting_for = job.after.back();
+    }
+  }
+  // Slurm's reason "Dependency", with the job that holds it back.
+  if (job.state == JobState::kQueued && !waiting_for.empty()) {
+    job.reason = "dependency: waiting for job " + waiting_for + " to complete";
+  }
 }
 
 void JobStore::LoadLabels(JobRecord& job) {
@@ -757,6 +794,11 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
       label_insert.Bind(job.id).Bind(key).Bind(value).Run();
     }
     WriteSceneValues(job.id, job.scene_values);
+    for (const auto& after : job.after) {
+      Statement dependency(
+          db_, "INSERT OR IGNORE INTO job_dependencies (job_id, after_id) VALUES (?, ?)");
+      dependency.Bind(job.id).Bind(after).Run();
+    }
     ids.push_back(job.id);
   }
   if (!request_key.empty()) {
@@ -997,14 +1039,16 @@ void JobStore::ClearFreshStart(const std::string& id) {
 std::optional<JobRecord> JobStore::NextQueued() {
   std::lock_guard lock(mutex_);
   // A study at its max_running holds its queued jobs back; others may start meanwhile; a held job
-  // waits for its Release. A job whose Slurm run outlived the daemon (slurm_live) is in Slurm's
-  // hands already: it comes first and no limit holds it back.
+  // waits for its Release, one with dependencies for them to complete. A job whose Slurm run
+  // outlived the daemon (slurm_live) is in Slurm's hands already: it comes first and no limit
+  // holds it back.
   Statement select(db_, std::string("SELECT ") + kColumns +
-                            " FROM jobs j WHERE state = ? AND held = 0 AND (slurm_live = 1 OR NOT "
+                            " FROM jobs j WHERE state = ? AND held = 0 AND (slurm_live = 1 OR (NOT "
                             "EXISTS (SELECT 1 FROM sweeps s WHERE s.id = j.sweep_id AND "
                             "s.max_running > 0 AND s.max_running <= (SELECT COUNT(*) FROM jobs r "
-                            "WHERE r.sweep_id = j.sweep_id AND r.state = ?))) "
-                            "ORDER BY slurm_live DESC, priority DESC, ordinal LIMIT 1");
+                            "WHERE r.sweep_id = j.sweep_id AND r.state = ?)) AND NOT " +
+                            WaitsForDependency() +
+                            ")) ORDER BY slurm_live DESC, priority DESC, ordinal LIMIT 1");
   select.Bind(static_cast<int>(JobState::kQueued)).Bind(static_cast<int>(JobState::kRunning));
   auto jobs = Query(select);
   if (jobs.empty()) return std::nullopt;
@@ -1154,6 +1198,8 @@ void JobStore::Delete(const std::vector<std::string>& ids) {
     Statement(db_, "DELETE FROM job_tags WHERE job_id = ?").Bind(id).Run();
     Statement(db_, "DELETE FROM job_labels WHERE job_id = ?").Bind(id).Run();
     Statement(db_, "DELETE FROM job_values WHERE job_id = ?").Bind(id).Run();
+    // Its own dependencies go; those on it stay, so that its queued dependants are cancelled.
+    Statement(db_, "DELETE FROM job_dependencies WHERE job_id = ?").Bind(id).Run();
     Statement(db_, "DELETE FROM jobs WHERE id = ?").Bind(id).Run();
   }
   // A study whose last job went is gone too: it is no longer listed, shown or found.
@@ -1192,10 +1238,34 @@ void JobStore::Delete(const std::vector<std::string>& ids) {
 std::vector<JobRecord> JobStore::QueuedOfSweep(const std::string& sweep_id, int limit) {
   std::lock_guard lock(mutex_);
   Statement select(db_, std::string("SELECT ") + kColumns +
-                            " FROM jobs WHERE sweep_id = ? AND state = ? AND held = 0 AND "
-                            "slurm_live = 0 ORDER BY priority DESC, ordinal LIMIT ?");
+                            " FROM jobs j WHERE sweep_id = ? AND state = ? AND held = 0 AND "
+                            "slurm_live = 0 AND NOT " +
+                            WaitsForDependency() + " ORDER BY priority DESC, ordinal LIMIT ?");
   select.Bind(sweep_id).Bind(static_cast<int>(JobState::kQueued)).Bind(limit);
   return Query(select);
+}
+
+std::vector<std::pair<std::string, std::string>> JobStore::Blocked() {
+  std::lock_guard lock(mutex_);
+  Statement select(db_,
+                   "SELECT d.job_id, d.after_id, p.state FROM job_dependencies d "
+                   "JOIN jobs j ON j.id = d.job_id LEFT JOIN jobs p ON p.id = d.after_id "
+                   "WHERE j.state = ? AND j.slurm_live = 0 AND (p.state IS NULL OR p.state IN "
+                   "(?, ?)) ORDER BY j.ordinal, d.rowid");
+  select.Bind(static_cast<int>(JobState::kQueued))
+      .Bind(static_cast<int>(JobState::kFailed))
+      .Bind(static_cast<int>(JobState::kCancelled));
+  std::vector<std::pair<std::string, std::string>> blocked;
+  while (select.Step()) {
+    if (!blocked.empty() && blocked.back().first == select.Text(0)) continue;
+    const std::string after = select.Text(1);
+    blocked.emplace_back(select.Text(0),
+                         select.IsNull(2)
+                             ? "dependency " + after + " was deleted"
+                             : "dependency " + after + " failed (" +
+                                   JobStateName(static_cast<JobState>(select.Int(2))) + ")");
+  }
+  return blocked;
 }
 
 int JobStore::CountRunningOfSweep(const std::string& sweep_id) {

@@ -22,6 +22,10 @@
 // (SetSlurmState). The stored state stays RUNNING (the job is in the executor's hands: the
 // scheduler's count); the API shows a waiting one QUEUED (ShownState; List's states filter and
 // StatsOfSweep's counts go by the shown state). And the job's own wall-time limit.
+// Schema 8: job dependencies (job_dependencies: job_id runs after after_id has COMPLETED, Slurm's
+// afterok). NextQueued and QueuedOfSweep skip a job until all of its dependencies COMPLETED;
+// Blocked names the queued jobs that never can (a dependency FAILED, CANCELLED or deleted), which
+// the scheduler cancels. A queued job that waits shows the reason "dependency: waiting for ...".
 #pragma once
 
 #include <array>
@@ -110,6 +114,8 @@ struct JobRecord {
   std::string slurm_state, slurm_reason;
   bool slurm_waiting = false;
   int64_t time_limit_seconds = 0;  // the job's own wall-time limit of one run; 0: the daemon's
+  // Schema 8: the jobs that must COMPLETE before this one runs (afterok), in the order given.
+  std::vector<std::string> after;
 };
 
 // The state the API shows: a job in the executor's hands that Slurm holds waiting (PENDING and
@@ -248,6 +254,10 @@ class JobStore {
   // at most limit: the slurm executor hands them to Slurm together (one job array).
   std::vector<JobRecord> QueuedOfSweep(const std::string& sweep_id, int limit);
   int CountRunningOfSweep(const std::string& sweep_id);
+  // The QUEUED jobs (not in Slurm's hands) with a dependency that ended FAILED or CANCELLED or was
+  // deleted, oldest first, each with the reason to cancel it: "dependency ID failed (FAILED)",
+  // "dependency ID was deleted".
+  std::vector<std::pair<std::string, std::string>> Blocked();
   // QUEUED -> RUNNING. kRun: a solver starts now (attempts + 1, started_time); kWaiting: a run
   // handed to an executor that holds it first (a Slurm submission: attempts + 1, shown QUEUED
   // until SetSlurmState says it runs); kAdopt: a run that outlived the daemon is followed again
@@ -294,6 +304,7 @@ class JobStore {
   std::vector<JobRecord> Query(Statement& statement);
   void LoadTags(JobRecord& job);
   void LoadLabels(JobRecord& job);
+  void LoadDependencies(JobRecord& job);
   void WriteSceneValues(const std::string& id,
                         const std::vector<std::pair<std::string, std::string>>& values);
   std::vector<SweepRecord> QuerySweeps(Statement& statement);

@@ -256,6 +256,27 @@ void JobsService::CheckQueueRoom(int64_t adding) {
   }
 }
 
+std::vector<std::string> JobsService::Dependencies(
+    const std::string& user, const google::protobuf::RepeatedPtrField<std::string>& after) {
+  constexpr int kMaxDependencies = 100;
+  Require(after.size() <= kMaxDependencies, "after: " + std::to_string(after.size()) +
+                                                " jobs, more than " +
+                                                std::to_string(kMaxDependencies));
+  std::vector<std::string> ids;
+  for (const std::string& id : after) {
+    CheckJobId(id, "after");
+    if (std::find(ids.begin(), ids.end(), id) != ids.end()) continue;
+    const JobRecord job = OwnJob(user, id);
+    if (job.state == JobState::kFailed || job.state == JobState::kCancelled) {
+      throw ServiceError(StatusCode::FAILED_PRECONDITION,
+                         "after: job " + id + " has ended " + JobStateName(job.state) +
+                             ", so a job after it would never start (retry it first)");
+    }
+    ids.push_back(id);
+  }
+  return ids;
+}
+
 SweepRecord JobsService::OwnSweep(const std::string& user, const std::string& sweep_id) {
   CheckJobId(sweep_id, "sweep_id");
   auto sweep = store_.GetSweep(user, sweep_id);
@@ -310,8 +331,10 @@ grpc::ServerUnaryReactor* JobsService::Submit(grpc::CallbackServerContext* conte
     }
     CheckQueueRoom(1);
     CheckDiskQuota(user);
+    const std::vector<std::string> after = Dependencies(user, request->after());
     JobRecord job = NewJob(user, request->scene(), overrides, request->name(), tags,
                            request->priority(), ToMap(request->labels()));
+    job.after = after;
     job.client_request_id = request->client_request_id();
     job.time_limit_seconds = request->time_limit_seconds();
     auto result = store_.InsertJobs({job}, user, key);
@@ -464,6 +487,7 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
     }
     CheckQueueRoom(static_cast<int64_t>(points.size()));
     CheckDiskQuota(user);
+    const std::vector<std::string> after = Dependencies(user, request->after());
     const std::string sweep_id = NewId('s');
     const auto labels = ToMap(request->labels());
     std::vector<JobRecord> jobs;
@@ -481,6 +505,7 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
       jobs.back().client_request_id = request->client_request_id();
       jobs.back().parameters = point.parameters;
       jobs.back().time_limit_seconds = request->time_limit_seconds();
+      jobs.back().after = after;
     }
     SweepRecord sweep;
     sweep.id = sweep_id;

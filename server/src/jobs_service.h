@@ -97,6 +97,10 @@ class JobsService final : public v1::Jobs::CallbackService {
   // The jobs a Retry names, each finished; throws as jobs.proto says.
   std::vector<JobRecord> RetryTargets(const std::string& user, const v1::RetryRequest& request);
   void CheckQueueRoom(int64_t adding);
+  // The jobs a new job runs after (SubmitRequest.after), each once, in the order given: each must
+  // be the user's (NOT_FOUND) and not have ended FAILED or CANCELLED (FAILED_PRECONDITION).
+  std::vector<std::string> Dependencies(
+      const std::string& user, const google::protobuf::RepeatedPtrField<std::string>& after);
 
   const Config& config_;
   JobStore& store_;

@@ -104,6 +104,7 @@ void Scheduler::Loop() {
         ++it;
       }
     }
+    CancelBlocked();
     const int most =
         config_.executor == "slurm" ? config_.slurm.max_submitted : config_.max_concurrent;
     while (static_cast<int>(running_.size()) < most && !Stopping()) {
@@ -145,6 +146,29 @@ void Scheduler::Loop() {
         continue;
       }
       Launch(*next, std::move(run));
+    }
+  }
+}
+
+void Scheduler::CancelBlocked() {
+  // A cancelled dependant may block its own dependants: until none is left.
+  for (int pass = 0; pass < 1000 && !Stopping(); ++pass) {
+    std::vector<std::pair<std::string, std::string>> blocked;
+    try {
+      blocked = store_.Blocked();
+    } catch (const std::exception& e) {
+      spdlog::error("scheduler: {}", e.what());
+      return;
+    }
+    if (blocked.empty()) return;
+    for (const auto& [id, reason] : blocked) {
+      try {
+        if (!store_.CancelQueued(id, reason, NowSeconds())) continue;
+        spdlog::info("job {}: CANCELLED: {}", id, reason);
+        if (auto job = store_.Get(id)) hub_.PublishState(*job);
+      } catch (const std::exception& e) {
+        spdlog::error("job {}: cannot cancel ({}): {}", id, reason, e.what());
+      }
     }
   }
 }
@@ -534,6 +558,7 @@ std::optional<JobRecord> Scheduler::CancelUnlessFinished(const std::string& job_
     job = store_.Get(job_id);
     spdlog::info("job {}: CANCELLED while queued", job_id);
     hub_.PublishState(*job);
+    Wake();  // its dependants, if any, are cancelled in turn
     return job;
   }
   // Running (or started since it was read).

@@ -1,6 +1,9 @@
 // Scheduler: runs queued jobs, highest priority first, then oldest, at most max_concurrent at once,
 // and at most a study's max_running of that study's jobs (JobStore::NextQueued skips a study at its
-// limit, so other jobs start meanwhile; a job's end wakes the loop).
+// limit, so other jobs start meanwhile; a job's end wakes the loop). A job with dependencies waits
+// until they have all COMPLETED (afterok) and is cancelled, "dependency ID failed (FAILED)", when
+// one ends otherwise or is deleted; the daemon holds it under either executor (a job is handed to
+// Slurm only when it may run; docs/cluster.md says why).
 //
 // A scheduler thread takes the next QUEUED job from the store, marks it RUNNING (one transaction,
 // attempts + 1) and gives it a runner thread. The runner writes DIR/scene.in.toml, resumes from
@@ -86,6 +89,9 @@ class Scheduler {
     bool done = false;
   };
   void Loop();
+  // Cancels the queued jobs whose dependencies can no longer all complete (JobStore::Blocked),
+  // and theirs in turn (mutex_ held).
+  void CancelBlocked();
   // Gives the job a runner thread with the run (mutex_ held).
   void Launch(const JobRecord& job, std::shared_ptr<JobRun> run);
   // Starts the queued jobs of first's study, at most room, as one submission (a Slurm job array)

@@ -2,7 +2,7 @@
 // one bash script (set -euo pipefail) run against the real dlmfdd, dlmfd-solve and dlmfd, in a
 // fresh directory where `cases/` is the repository's. The script must exit 0, and the steps the
 // page explains must have happened: a failed point, its retry in the study, one folder per point,
-// the table and the chart.
+// the table and the chart; a second stage after a first job, and a dependant of a cancelled job.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -80,6 +80,11 @@ TEST(StudiesDoc, TheWorkedStudyRunsAsWritten) {
   EXPECT_THAT(run.err, HasSubstr("legend (fluid.relaxation_time): 1; 3"));
   EXPECT_EQ(Slurp(work / "waters-king-max-trA.png").substr(0, 8),
             std::string("\x89PNG\r\n\x1a\n", 8));
+  // Issue 38: a second stage after the first (afterok), and a dependant of a cancelled job.
+  EXPECT_THAT(run.out, HasSubstr("2 jobs  0 queued  0 running  2 done  0 failed"));
+  EXPECT_THAT(run.out, HasSubstr("state:       completed\nafter:       j-"));
+  EXPECT_THAT(run.out, HasSubstr("state:       cancelled\nreason:      dependency j-"));
+  EXPECT_THAT(run.out, HasSubstr(" failed (CANCELLED)\nafter:       j-"));
   fs::remove_all(root);
 }
 

@@ -186,6 +186,23 @@ class ClientTest(unittest.TestCase):
         with self.assertRaises(dlmfd.NotFound):
             self.client.job(jobs[0].id)
 
+    def test_a_job_after_another(self):
+        """afterok: the second stage starts once the first COMPLETED; after a cancelled job the
+        daemon refuses (FailedPrecondition)."""
+        first = self.client.submit(support.settling_scene(), {"time.end": 0.004}, name="stage1")
+        second = self.client.submit(support.settling_scene(), {"time.end": 0.002},
+                                    name="stage2", after=[first])
+        self.assertEqual(list(second.after), [first.id])
+        done = [self.client.wait(j.id) for j in (first, second)]
+        self.assertEqual([dlmfd.state_name(j.state) for j in done], ["COMPLETED"] * 2)
+        self.assertGreaterEqual(done[1].started_time, done[0].finished_time)
+        blocker = self.client.submit(support.settling_scene(end=50.0), name="blocker")
+        self.client.cancel(blocker.id)
+        self.client.wait(blocker.id)
+        with self.assertRaises(dlmfd.FailedPrecondition) as refused:
+            self.client.submit(support.settling_scene(), after=blocker.id)
+        self.assertIn("after: job " + blocker.id, str(refused.exception))
+
     def test_errors_are_exceptions_naming_the_field(self):
         with self.assertRaises(dlmfd.InvalidArgument) as bad_value:
             self.client.submit(support.settling_scene(), ["fluid.viscosity=-1"])

@@ -33,6 +33,7 @@ namespace {
 
 // What each schema added (job_store.cc kMigrations), undone.
 const std::map<int, const char*, std::greater<>> kUndo = {
+    {8, "DROP TABLE job_dependencies;"},
     {7, "ALTER TABLE jobs DROP COLUMN numerics;"},
     {6,
      "ALTER TABLE jobs DROP COLUMN slurm_state; ALTER TABLE jobs DROP COLUMN slurm_reason; "
