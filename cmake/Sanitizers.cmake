@@ -22,6 +22,14 @@ if(DLMFD_SANITIZE)
   add_link_options(-fsanitize=address,undefined)
 endif()
 if(DLMFD_TSAN)
-  add_compile_options(-fsanitize=thread -fno-omit-frame-pointer)
+  # Instrumented code, but headers read as in the build of Debian's uninstrumented libraries: with
+  # __SANITIZE_THREAD__ defined, protobuf's MapFieldBase gains two members (map_field.h), so the
+  # inline code of a map field and libprotobuf's disagree on its layout (a SEGV in
+  # SyncRepeatedFieldWithMap when reflection fills SubmitRequest.labels), and abseil and gRPC
+  # switch their own TSan variants. libstdc++'s shared_ptr keeps its TSan-visible release
+  # (_GLIBCXX_TSAN); our code asks DLMFD_TSAN_BUILD (core/target_clones.h). scripts/tsan.sh.
+  add_compile_options(-fsanitize=thread -fno-omit-frame-pointer -U__SANITIZE_THREAD__
+                      -D_GLIBCXX_TSAN=1)
+  add_compile_definitions(DLMFD_TSAN_BUILD=1)
   add_link_options(-fsanitize=thread)
 endif()

@@ -51,9 +51,10 @@ shim="$build/libtsan_absl_sync.so"
 # symbols, so the uninstrumented /bin/sh of the solver wrapper below can load it too.
 c++ -std=c++17 -O1 -g -fPIC -shared -Wall -Wextra -Wpedantic -Werror \
   -o "$shim" "$root/scripts/tsan_absl_sync.cc" -ldl
-# The canary (run below, before the tests): the same compiler and flags as the daemon.
+# The canary (run below, before the tests): the same compiler and flags as the daemon
+# (cmake/Sanitizers.cmake: headers read as in the uninstrumented libraries' build).
 canary="$build/tsan_canary"
-c++ -std=c++17 -O2 -g -fno-omit-frame-pointer -fsanitize=thread \
+c++ -std=c++17 -O2 -g -fno-omit-frame-pointer -fsanitize=thread -U__SANITIZE_THREAD__ -D_GLIBCXX_TSAN=1 \
   -Wall -Wextra -Wpedantic -Werror -I"$build/proto/gen" \
   -o "$canary" "$root/scripts/tsan_canary.cc" "$build/proto/libdlmfd_api_proto.a" \
   "$build/proto/libdlmfd_events_proto.a" $(pkg-config --libs grpc++ protobuf)

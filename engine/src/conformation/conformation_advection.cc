@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dlmfd/core/target_clones.h"
+
 namespace dlmfd {
 
 ConformationAdvection::ConformationAdvection(const Grid& grid, bool periodic_x, bool periodic_y,
@@ -96,10 +98,10 @@ namespace {
 // their difference); for u > 0 this is (A_{i-2} - 6 A_{i-1} + 3 A_i + 2 A_{i+1}) / 6, for u < 0 its
 // mirror. Compiled for AVX2 and for the baseline, chosen at load time (GCC function
 // multi-versioning).
-__attribute__((target_clones("avx2", "default"))) void AdvectRow(
-    int count, const double* __restrict u, const double* __restrict v, const double* __restrict a,
-    std::ptrdiff_t sy, const double* __restrict base, double w_base, double w_in,
-    double tau_over_12h, double* __restrict out) {
+DLMFD_AVX2_CLONES void AdvectRow(int count, const double* __restrict u, const double* __restrict v,
+                                 const double* __restrict a, std::ptrdiff_t sy,
+                                 const double* __restrict base, double w_base, double w_in,
+                                 double tau_over_12h, double* __restrict out) {
   for (int i = 0; i < count; ++i) {
     const double* p = a + i;
     const double cx = p[-2] - 8.0 * (p[-1] - p[1]) - p[2];

@@ -1,12 +1,15 @@
 #include "dlmfd/conformation/pointwise_update.h"
 
+#include "dlmfd/core/target_clones.h"
+
 namespace dlmfd {
 
-__attribute__((target_clones("avx2", "default"))) void OnePanelRow(
-    int count, const OnePanelConstants& k, const double* __restrict a11,
-    const double* __restrict a12, const double* __restrict a22, const double* __restrict l11,
-    const double* __restrict l12, const double* __restrict l21, const double* __restrict l22,
-    double* __restrict o11, double* __restrict o12, double* __restrict o22) {
+DLMFD_AVX2_CLONES void OnePanelRow(int count, const OnePanelConstants& k,
+                                   const double* __restrict a11, const double* __restrict a12,
+                                   const double* __restrict a22, const double* __restrict l11,
+                                   const double* __restrict l12, const double* __restrict l21,
+                                   const double* __restrict l22, double* __restrict o11,
+                                   double* __restrict o12, double* __restrict o22) {
   constexpr double k12 = 1.0 / 12.0, k30 = 1.0 / 30.0, k56 = 1.0 / 56.0, k90 = 1.0 / 90.0;
   constexpr double k6 = 1.0 / 6.0, k20 = 1.0 / 20.0, k42 = 1.0 / 42.0, k72 = 1.0 / 72.0,
                    k110 = 1.0 / 110.0;

@@ -1,6 +1,7 @@
 #include "dlmfd/conformation/velocity_gradient.h"
 
 #include "../mesh/grid_kernels.h"
+#include "dlmfd/core/target_clones.h"
 
 namespace dlmfd {
 namespace {
@@ -36,10 +37,10 @@ GradientSum SumAround(const Grid& g, bool px, bool py, const double* u, const do
 // Interior nodes i = 1 .. count of one row (p points at node (1, j)): the closed form of the
 // 6-triangle average, or with `both` of the mean of the two triangulations' averages. Compiled for
 // AVX2 and for the baseline, chosen at load time.
-__attribute__((target_clones("avx2", "default"))) void InteriorRow(
-    bool both, int count, std::ptrdiff_t row, double inv_6h, const double* __restrict u,
-    const double* __restrict v, double* __restrict l11, double* __restrict l12,
-    double* __restrict l21, double* __restrict l22) {
+DLMFD_AVX2_CLONES void InteriorRow(bool both, int count, std::ptrdiff_t row, double inv_6h,
+                                   const double* __restrict u, const double* __restrict v,
+                                   double* __restrict l11, double* __restrict l12,
+                                   double* __restrict l21, double* __restrict l22) {
   if (!both) {
     for (int i = 0; i < count; ++i) {
       const double* p = u + i;
