@@ -36,9 +36,11 @@ cmake --build "$build" -j "$jobs" --target scene_text_fuzz rpc_request_fuzz
 seeds="$build/fuzz-seeds"
 rm -rf "$seeds" && mkdir -p "$seeds/scene" "$seeds/rpc" "$build/fuzz-artifacts"
 find "$root/cases" -name '*.toml' -exec cp {} "$seeds/scene/" \;
-python3 - "$seeds/rpc" "$root/cases/lid_driven_cavity.toml" <<'EOF'
-import pathlib, sys
+python3 - "$seeds/rpc" "$root/cases/lid_driven_cavity.toml" "$root/proto/dlmfd/v1/jobs.proto" <<'EOF'
+import pathlib, re, sys
 out, scene_path = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
+# One seed pair per rpc of the service, as many as jobs.proto declares.
+rpcs = len(re.findall(r"^\s*rpc \w+\(", pathlib.Path(sys.argv[3]).read_text(), re.M))
 # The cavity, shortened to 5 steps (the daemon here allows 20).
 scene = scene_path.read_bytes().replace(b"end = 15.0", b"end = 0.05")
 def varint(n):
@@ -50,7 +52,7 @@ def varint(n):
             return bytes(b)
 def text(field, value):
     return varint(field << 3 | 2) + varint(len(value)) + value
-for rpc in range(19):
+for rpc in range(rpcs):
     (out / f"rpc-{rpc}-empty").write_bytes(bytes([rpc]))
     (out / f"rpc-{rpc}-id").write_bytes(bytes([rpc]) + text(1, b"j-0000000000000001"))
 (out / "submit-scene").write_bytes(bytes([0]) + text(1, scene))

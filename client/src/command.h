@@ -34,6 +34,7 @@ int RunChart(int argc, char** argv);
 int RunMovie(int argc, char** argv);
 int RunFigure(int argc, char** argv);
 int RunHealth(int argc, char** argv);
+int RunUsage(int argc, char** argv);
 int RunTable(int argc, char** argv);
 int RunInputs(int argc, char** argv);
 int RunDelete(int argc, char** argv);

@@ -106,15 +106,38 @@ std::string LabelsText(const google::protobuf::Map<std::string, std::string>& la
   return out;
 }
 
+std::string ExitText(const v1::Job& job) {
+  if (job.exit_signal() > 0) return "signal " + std::to_string(job.exit_signal());
+  return job.has_exit_code() ? std::to_string(job.exit_code()) : "-";
+}
+
+std::string MemoryText(int64_t bytes) {
+  if (bytes <= 0) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / (1024.0 * 1024.0));
+  return text;
+}
+
+std::string SecondsText(double seconds) {
+  if (seconds <= 0) return "-";
+  if (seconds >= 60) return FormatDuration(seconds);
+  char text[16];
+  std::snprintf(text, sizeof text, "%.1fs", seconds);
+  return text;
+}
+
 std::string JobTable(const std::vector<v1::Job>& jobs) {
   const std::vector<std::string> header = {"ID",       "NAME", "STATE", "STEP",
-                                           "TIME/END", "PRIO", "TAGS",  "CREATED"};
+                                           "TIME/END", "PRIO", "TAGS",  "CREATED",
+                                           "ELAPSED",  "EXIT", "CPU",   "MAXRSS"};
   std::vector<std::vector<std::string>> rows = {header};
   for (const v1::Job& job : jobs) {
     const bool held = job.held() && job.state() == v1::QUEUED;
     rows.push_back({job.id(), job.name(), held ? "held" : StateName(job.state()),
                     std::to_string(job.step()), Progress(job), std::to_string(job.priority()),
-                    JoinText(job.tags(), ","), FormatTimestamp(job.created_time())});
+                    JoinText(job.tags(), ","), FormatTimestamp(job.created_time()),
+                    SecondsText(job.elapsed_seconds()), ExitText(job),
+                    SecondsText(job.cpu_seconds()), MemoryText(job.peak_memory_bytes())});
   }
   return TextTable(rows);
 }
@@ -154,8 +177,20 @@ std::string JobDetails(const v1::Job& job) {
       << "created:     " << FormatTimestamp(job.created_time()) << "\n"
       << "started:     " << FormatTimestamp(job.started_time()) << "\n"
       << "finished:    " << FormatTimestamp(job.finished_time()) << "\n";
-  if (job.started_time() > 0 && job.finished_time() > 0) {
-    out << "ran for:     " << FormatDuration(job.finished_time() - job.started_time()) << "\n";
+  if (job.elapsed_seconds() > 0) {
+    out << "elapsed:     " << SecondsText(job.elapsed_seconds())
+        << (job.finished_time() > 0 ? "" : " (so far)") << "\n";
+  }
+  if (job.has_exit_code() || job.exit_signal() > 0) {
+    out << "exit code:   " << ExitText(job) << " (of the latest solver run)\n";
+  }
+  if (job.cpu_seconds() > 0) {
+    char cpu[32];
+    std::snprintf(cpu, sizeof cpu, "%.2f s", job.cpu_seconds());
+    out << "cpu time:    " << cpu << " (user + system, this attempt)\n";
+  }
+  if (job.peak_memory_bytes() > 0) {
+    out << "peak memory: " << MemoryText(job.peak_memory_bytes()) << " (largest resident set)\n";
   }
   if (!job.labels().empty()) out << "labels:      " << LabelsText(job.labels()) << "\n";
   for (const v1::ParameterValue& p : job.parameters()) {

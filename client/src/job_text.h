@@ -28,6 +28,10 @@ std::string JoinText(const google::protobuf::RepeatedPtrField<std::string>& item
 // "k=v, k=v" in key order.
 std::string LabelsText(const google::protobuf::Map<std::string, std::string>& labels);
 // The list table: one header line and one line per job.
+// The accounting columns: "0", "signal 9", "-" (no run ended yet); "12.5 MiB"; "1m05s".
+std::string ExitText(const v1::Job& job);
+std::string MemoryText(int64_t bytes);
+std::string SecondsText(double seconds);
 std::string JobTable(const std::vector<v1::Job>& jobs);
 // "key: value" lines describing one job.
 std::string JobDetails(const v1::Job& job);

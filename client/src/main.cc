@@ -38,6 +38,7 @@ const Command kCommands[] = {
     {"movie", "movie (ffmpeg) of a run's snapshots with the particles and the time", RunMovie},
     {"figure", "a multi-panel figure, (a)-(d), of plot and chart command lines", RunFigure},
     {"health", "ask the daemon whether it is serving", RunHealth},
+    {"usage", "your disk use against your quota, your jobs per state", RunUsage},
 };
 
 void Usage(std::ostream& out) {

@@ -119,6 +119,12 @@ class Client:
                                         overrides=scene_input.override_texts(overrides))
         return list(self._unary("Retry", request).jobs)
 
+    def usage(self):
+        """What you use (GetUsage): disk_bytes against disk_quota_bytes (0: no quota), your jobs
+        per state (queued, running, completed, failed, cancelled) and the queue's room
+        (queue_unfinished of queue_limit, every user's)."""
+        return self._unary("GetUsage", jobs_pb2.GetUsageRequest())
+
     def job(self, job_id):
         """One job (Get)."""
         return self._unary("Get", jobs_pb2.GetRequest(job_id=job_id))

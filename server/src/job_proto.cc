@@ -1,5 +1,6 @@
 #include "job_proto.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "slurm_states.h"
@@ -82,6 +83,16 @@ v1::Job ToProto(const JobRecord& job) {
   out.set_slurm_reason(job.slurm_reason);
   out.set_time_limit_seconds(job.time_limit_seconds);
   for (const auto& id : job.after) out.add_after(id);
+  if (job.exit_code >= 0) out.set_exit_code(job.exit_code);
+  out.set_exit_signal(job.exit_signal);
+  out.set_cpu_seconds(job.cpu_seconds);
+  out.set_peak_memory_bytes(job.peak_memory_bytes);
+  if (job.started_time > 0) {
+    const double end = job.finished_time > 0             ? job.finished_time
+                       : job.state == JobState::kRunning ? NowSeconds()
+                                                         : job.started_time;
+    out.set_elapsed_seconds(std::max(0.0, end - job.started_time));
+  }
   return out;
 }
 

@@ -131,6 +131,15 @@ const Migration kMigrations[] = {
       PRIMARY KEY (job_id, after_id));
     CREATE INDEX job_dependencies_after ON job_dependencies (after_id);
     )sql"},
+    // Schema 9: accounting of the current attempt (sacct's ExitCode, TotalCPU, MaxRSS): the exit
+    // status of its latest solver run (-1: none yet, or a signal ended it), that signal, the CPU
+    // seconds of its runs added up and the largest peak resident set of one run (RecordUsage).
+    {9, R"sql(
+    ALTER TABLE jobs ADD COLUMN exit_code INTEGER NOT NULL DEFAULT -1;
+    ALTER TABLE jobs ADD COLUMN exit_signal INTEGER NOT NULL DEFAULT 0;
+    ALTER TABLE jobs ADD COLUMN cpu_seconds REAL NOT NULL DEFAULT 0;
+    ALTER TABLE jobs ADD COLUMN peak_memory_bytes INTEGER NOT NULL DEFAULT 0;
+    )sql"},
 };
 
 // SQL true for a job j whose dependencies have not all COMPLETED (a missing one never will).
@@ -148,7 +157,8 @@ const char kColumns[] =
     "finished_time, step, time, end_time, attempts, results_dir, scene, overrides, "
     "client_request_id, last_seq, cancel_requested, warnings, held, disk_bytes, parameters, "
     "attempt, previous_attempts, fresh_start, slurm_job_id, slurm_live, slurm_attempts, "
-    "slurm_restarts, slurm_state, slurm_reason, slurm_waiting, time_limit_seconds, numerics";
+    "slurm_restarts, slurm_state, slurm_reason, slurm_waiting, time_limit_seconds, numerics, "
+    "exit_code, exit_signal, cpu_seconds, peak_memory_bytes";
 
 const char kSweepColumns[] =
     "ordinal, id, owner, name, tags, labels, axes, overrides, max_running, created_time";
@@ -652,6 +662,10 @@ std::vector<JobRecord> JobStore::Query(Statement& statement) {
     job.slurm_waiting = statement.Int(c++) != 0;
     job.time_limit_seconds = statement.Int(c++);
     job.numerics = DecodeNumerics(statement.Text(c++));
+    job.exit_code = static_cast<int>(statement.Int(c++));
+    job.exit_signal = static_cast<int>(statement.Int(c++));
+    job.cpu_seconds = statement.Real(c++);
+    job.peak_memory_bytes = statement.Int(c++);
     jobs.push_back(std::move(job));
   }
   for (auto& job : jobs) {
@@ -1004,6 +1018,7 @@ std::vector<JobRecord> JobStore::Requeue(const std::vector<RequeueChange>& chang
         "cancel_requested = 0, attempt = attempt + 1, previous_attempts = ?, "
         "slurm_live = 0, slurm_attempts = 0, slurm_restarts = 0, "
         "slurm_state = '', slurm_reason = '', slurm_waiting = 0, name = ?, overrides = ?, "
+        "exit_code = -1, exit_signal = 0, cpu_seconds = 0, peak_memory_bytes = 0, "
         "parameters = ?, warnings = ?, numerics = ?, end_time = ?, fresh_start = ?, "
         "step = CASE WHEN ? THEN 0 ELSE step END, "
         "time = CASE WHEN ? THEN 0 ELSE time END WHERE id = ? AND state IN (?, ?, ?)");
@@ -1180,6 +1195,20 @@ bool JobStore::SetPriority(const std::string& id, int priority) {
       .Bind(static_cast<int>(JobState::kRunning))
       .Run();
   return update.Changes() == 1;
+}
+
+void JobStore::RecordUsage(const std::string& id, const RunUsage& usage) {
+  std::lock_guard lock(mutex_);
+  Statement update(db_,
+                   "UPDATE jobs SET exit_code = ?, exit_signal = ?, "
+                   "cpu_seconds = cpu_seconds + MAX(?, 0), "
+                   "peak_memory_bytes = MAX(peak_memory_bytes, ?) WHERE id = ?");
+  update.Bind(usage.exit_code)
+      .Bind(usage.exit_signal)
+      .Bind(usage.cpu_seconds)
+      .Bind(usage.peak_memory_bytes)
+      .Bind(id)
+      .Run();
 }
 
 void JobStore::SetDiskBytes(const std::string& id, int64_t bytes) {

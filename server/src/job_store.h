@@ -26,6 +26,7 @@
 // afterok). NextQueued and QueuedOfSweep skip a job until all of its dependencies COMPLETED;
 // Blocked names the queued jobs that never can (a dependency FAILED, CANCELLED or deleted), which
 // the scheduler cancels. A queued job that waits shows the reason "dependency: waiting for ...".
+// Schema 9: accounting of the current attempt (sacct's ExitCode, TotalCPU, MaxRSS; RecordUsage).
 #pragma once
 
 #include <array>
@@ -116,6 +117,19 @@ struct JobRecord {
   int64_t time_limit_seconds = 0;  // the job's own wall-time limit of one run; 0: the daemon's
   // Schema 8: the jobs that must COMPLETE before this one runs (afterok), in the order given.
   std::vector<std::string> after;
+  // Schema 9: accounting of the current attempt (RecordUsage; a retry clears it).
+  int exit_code = -1;             // the latest solver run's exit status; -1: none yet, or killed
+  int exit_signal = 0;            // the signal that ended it; 0: none
+  double cpu_seconds = 0;         // CPU seconds (user + system) of its runs, added up
+  int64_t peak_memory_bytes = 0;  // the largest peak resident set of one run
+};
+
+// How one solver run of a job ended and what it used (JobStore::RecordUsage).
+struct RunUsage {
+  int exit_code = -1;  // -1 when a signal ended it
+  int exit_signal = 0;
+  double cpu_seconds = -1;         // negative: not measured (adds nothing)
+  int64_t peak_memory_bytes = -1;  // negative: not measured
 };
 
 // The state the API shows: a job in the executor's hands that Slurm holds waiting (PENDING and
@@ -293,6 +307,9 @@ class JobStore {
   // Sets the priority of a QUEUED or RUNNING job; false when it has finished (or does not exist).
   bool SetPriority(const std::string& id, int priority);
   void SetDiskBytes(const std::string& id, int64_t bytes);
+  // A solver run of the job ended: its exit status replaces the job's, its CPU time is added, its
+  // peak memory kept when it is the largest.
+  void RecordUsage(const std::string& id, const RunUsage& usage);
   // Removes the jobs, their tags and their ids from the requests that made them (a request left
   // with no job is forgotten), and each study left with no job.
   void Delete(const std::vector<std::string>& ids);

@@ -55,6 +55,8 @@ class JobsService final : public v1::Jobs::CallbackService {
                                       const v1::ListFilesRequest* request,
                                       v1::ListFilesResponse* reply) override;
   // Housekeeping and study rpcs (jobs_service_housekeeping.cc).
+  grpc::ServerUnaryReactor* GetUsage(grpc::CallbackServerContext* context,
+                                     const v1::GetUsageRequest* request, v1::Usage* reply) override;
   grpc::ServerUnaryReactor* Table(grpc::CallbackServerContext* context,
                                   const v1::TableRequest* request,
                                   v1::TableResponse* reply) override;

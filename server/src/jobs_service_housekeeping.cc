@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <set>
 
@@ -86,6 +87,28 @@ void JobsService::CheckDiskQuota(const std::string& user) {
             " bytes, at or over max_user_disk_mb = " + std::to_string(config_.max_user_disk_mb) +
             " MiB; delete jobs (dlmfd delete) to submit more");
   }
+}
+
+grpc::ServerUnaryReactor* JobsService::GetUsage(grpc::CallbackServerContext* context,
+                                                const v1::GetUsageRequest* /*request*/,
+                                                v1::Usage* reply) {
+  return Reply(context, "GetUsage", [&] {
+    const std::string user = auth_.User(*context);
+    reply->set_user(user);
+    reply->set_disk_bytes(UserDiskBytes(
+        store_, user, [this](const std::string& id) { return fs::path(scheduler_.JobDir(id)); }));
+    reply->set_disk_quota_bytes(std::max<int64_t>(0, config_.max_user_disk_mb) * 1024 * 1024);
+    std::array<int, 6> count{};
+    for (const JobRecord& job : store_.OwnerJobs(user)) ++count[static_cast<int>(ShownState(job))];
+    reply->set_jobs(count[1] + count[2] + count[3] + count[4] + count[5]);
+    reply->set_queued(count[static_cast<int>(JobState::kQueued)]);
+    reply->set_running(count[static_cast<int>(JobState::kRunning)]);
+    reply->set_completed(count[static_cast<int>(JobState::kCompleted)]);
+    reply->set_failed(count[static_cast<int>(JobState::kFailed)]);
+    reply->set_cancelled(count[static_cast<int>(JobState::kCancelled)]);
+    reply->set_queue_unfinished(store_.CountUnfinished());
+    reply->set_queue_limit(config_.max_queued);
+  });
 }
 
 grpc::ServerUnaryReactor* JobsService::Table(grpc::CallbackServerContext* context,

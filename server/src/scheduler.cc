@@ -425,6 +425,7 @@ void Scheduler::RunJob(JobRecord job) {
       });
       store_seen();
       const SolverExit exit = process->Wait();
+      RecordUsage(job.id, exit, finished);
       const bool over_wall_time = wall_limit.End();
       const bool cancelled = cancel_requested();
       const std::string reported = finished ? finished->reason() : std::string();
@@ -480,6 +481,25 @@ void Scheduler::RunJob(JobRecord job) {
   running_[job.id].done = true;
   dirty_ = true;
   changed_.notify_all();
+}
+
+void Scheduler::RecordUsage(const std::string& job_id, const SolverExit& exit,
+                            const std::optional<v1::Finished>& finished) {
+  RunUsage usage;
+  usage.exit_code = exit.signalled ? -1 : exit.code;
+  usage.exit_signal = exit.signalled ? exit.code : 0;
+  usage.cpu_seconds = exit.cpu_seconds;
+  usage.peak_memory_bytes = exit.peak_memory_bytes;
+  // An executor that cannot measure the process (Slurm): the solver's own numbers at its end.
+  if (usage.cpu_seconds < 0 && finished) usage.cpu_seconds = finished->cpu_seconds();
+  if (usage.peak_memory_bytes < 0 && finished) {
+    usage.peak_memory_bytes = finished->peak_memory_bytes();
+  }
+  try {
+    store_.RecordUsage(job_id, usage);
+  } catch (const std::exception& e) {
+    spdlog::error("job {}: cannot record its accounting: {}", job_id, e.what());
+  }
 }
 
 void Scheduler::RecordState(const JobRecord& job, const ExecutorState& state) {

@@ -45,8 +45,10 @@
 #include <vector>
 
 #include "config.h"
+#include "dlmfd/v1/events.pb.h"
 #include "event_hub.h"
 #include "job_store.h"
+#include "solver_process.h"
 
 namespace dlmfd::server {
 
@@ -101,6 +103,9 @@ class Scheduler {
   // The executor's word on the run changed (Slurm's state and reason): stored, and published
   // when it changes what the API shows (a waiting job is QUEUED).
   void RecordState(const JobRecord& job, const ExecutorState& state);
+  // A solver run ended: its exit status, CPU time and peak memory go to the job's accounting.
+  void RecordUsage(const std::string& job_id, const SolverExit& exit,
+                   const std::optional<v1::Finished>& finished);
   // The executor ran the job again by itself (Slurm requeued it): a new attempt, still RUNNING.
   void RecordRestart(const JobRecord& job, int restarts, const std::string& reason);
   // A retryable end (Slurm TIMEOUT, NODE_FAIL, PREEMPTED, ...): the job goes back to the queue to

@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <sys/file.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -128,9 +129,16 @@ SolverExit SolverProcess::Wait() {
   while (waitid(P_PID, static_cast<id_t>(pid_), &info, WEXITED | WNOWAIT) != 0 && errno == EINTR) {}
   std::lock_guard lock(mutex_);
   int status = 0;
-  while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {}
+  rusage usage{};
+  pid_t reaped = -1;
+  while ((reaped = wait4(pid_, &status, 0, &usage)) < 0 && errno == EINTR) {}
   pid_ = -1;
   SolverExit exit;
+  if (reaped > 0) {
+    exit.cpu_seconds = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                       1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+    exit.peak_memory_bytes = static_cast<int64_t>(usage.ru_maxrss) * 1024;  // KiB
+  }
   if (WIFSIGNALED(status)) {
     exit.signalled = true;
     exit.code = WTERMSIG(status);

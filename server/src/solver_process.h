@@ -39,6 +39,10 @@ struct LaunchSpec {
 struct SolverExit {
   bool signalled = false;
   int code = 0;  // exit status, or the signal number when signalled
+  // What the run used, when the executor measured it (wait4's rusage of the child): CPU seconds
+  // (user + system) and the peak resident set in bytes; negative: not measured.
+  double cpu_seconds = -1;
+  int64_t peak_memory_bytes = -1;
 };
 
 class SolverProcess {
@@ -52,7 +56,7 @@ class SolverProcess {
   void Start(const LaunchSpec& spec);
   // Reads events until the child closes its end; calls on_event for each.
   void ReadEvents(const std::function<void(const v1::SolverEvent&)>& on_event);
-  // Waits for the child to exit and reaps it.
+  // Waits for the child to exit and reaps it (wait4: its CPU time and peak memory too).
   SolverExit Wait();
   // Sends a signal if the child has not been reaped yet (never to a recycled pid).
   void Signal(int signal_number);

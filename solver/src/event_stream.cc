@@ -1,5 +1,7 @@
 #include "event_stream.h"
 
+#include <sys/resource.h>
+
 #include <cmath>
 
 #include "dlmfd/core/time_stepping.h"
@@ -37,6 +39,12 @@ void EventStream::Finished(const std::string& status, const std::string& reason,
   f->set_steps(steps);
   f->set_time(time);
   f->set_exit_code(exit_code);
+  rusage self{};
+  if (getrusage(RUSAGE_SELF, &self) == 0) {
+    f->set_cpu_seconds(static_cast<double>(self.ru_utime.tv_sec + self.ru_stime.tv_sec) +
+                       1e-6 * static_cast<double>(self.ru_utime.tv_usec + self.ru_stime.tv_usec));
+    f->set_peak_memory_bytes(static_cast<int64_t>(self.ru_maxrss) * 1024);  // ru_maxrss: KiB
+  }
   Send(e);
 }
 

@@ -32,6 +32,7 @@ class EventStream {
   // Sets seq and wall_time, writes and flushes.
   void Send(v1::SolverEvent& event);
   void Log(const std::string& level, const std::string& text);
+  // The last event; it carries the process's CPU time and peak memory (getrusage).
   void Finished(const std::string& status, const std::string& reason, long steps, double time,
                 int exit_code);
 

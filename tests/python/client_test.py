@@ -188,7 +188,7 @@ class ClientTest(unittest.TestCase):
 
     def test_a_job_after_another(self):
         """afterok: the second stage starts once the first COMPLETED; after a cancelled job the
-        daemon refuses (FailedPrecondition)."""
+        daemon refuses (FailedPrecondition). Then the runs' accounting and the usage."""
         first = self.client.submit(support.settling_scene(), {"time.end": 0.004}, name="stage1")
         second = self.client.submit(support.settling_scene(), {"time.end": 0.002},
                                     name="stage2", after=[first])
@@ -202,6 +202,15 @@ class ClientTest(unittest.TestCase):
         with self.assertRaises(dlmfd.FailedPrecondition) as refused:
             self.client.submit(support.settling_scene(), after=blocker.id)
         self.assertIn("after: job " + blocker.id, str(refused.exception))
+        # The accounting of a run (wait4's rusage of the solver) and the caller's usage.
+        self.assertEqual(done[0].exit_code, 0)
+        self.assertTrue(done[0].HasField("exit_code"))
+        self.assertGreater(done[0].cpu_seconds, 0)
+        self.assertGreater(done[0].peak_memory_bytes, 0)
+        usage = self.client.usage()
+        self.assertGreaterEqual(usage.completed, 2)
+        self.assertGreaterEqual(usage.cancelled, 1)
+        self.assertGreater(usage.disk_bytes, 0)
 
     def test_errors_are_exceptions_naming_the_field(self):
         with self.assertRaises(dlmfd.InvalidArgument) as bad_value:

@@ -28,7 +28,7 @@ TEST(SlurmStore, ASchemaFourStoreGainsTheSlurmColumns) {
   }
   dlmfd::testing::RollBackSchema(path, 4);
   JobStore store(path);
-  EXPECT_EQ(JobStore::SchemaVersion(), 8);
+  EXPECT_EQ(JobStore::SchemaVersion(), 9);
   const auto old = store.Get("old");
   ASSERT_TRUE(old);
   EXPECT_EQ(old->slurm_job_id, "");

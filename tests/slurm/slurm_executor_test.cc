@@ -78,6 +78,42 @@ TEST_F(SlurmExecutor, OneJobEndToEndStreamsLikeALocalJob) {
   EXPECT_NE(shown.find("slurm job:   " + done.slurm_job_id()), std::string::npos) << shown;
 }
 
+// Issue 38 under Slurm: a job after another is held by the daemon until that one COMPLETED (it
+// never reaches Slurm before), and a Slurm run's accounting comes from the solver's own getrusage
+// in its last event (this cluster has no accounting storage for sacct).
+TEST_F(SlurmExecutor, ADependantReachesSlurmAfterItsDependencyAndRunsAreAccounted) {
+  ASSERT_TRUE(StartDaemon()) << daemon().Log();
+  auto* stub = this->stub();
+  const v1::Job first = Submit(*stub, DiskInCavity(0.2));
+  v1::SubmitRequest request;
+  request.set_scene(DiskInCavity(0.05));
+  request.add_after(first.id());
+  v1::Job second;
+  {
+    auto context = Context();
+    ASSERT_TRUE(stub->Submit(context.get(), request, &second).ok());
+  }
+  // Held by the daemon, not by Slurm: no Slurm job while the first has not completed.
+  const v1::Job waiting = Get(*stub, second.id());
+  if (Get(*stub, first.id()).state() != v1::COMPLETED) {
+    EXPECT_EQ(waiting.state(), v1::QUEUED);
+    EXPECT_TRUE(waiting.slurm_job_id().empty()) << waiting.slurm_job_id();
+    EXPECT_EQ(waiting.reason(), "dependency: waiting for job " + first.id() + " to complete");
+  }
+  const v1::Job first_done = WaitFinished(*stub, first.id());
+  const v1::Job second_done = WaitFinished(*stub, second.id());
+  ASSERT_EQ(first_done.state(), v1::COMPLETED) << first_done.reason() << "\n" << daemon().Log();
+  ASSERT_EQ(second_done.state(), v1::COMPLETED) << second_done.reason();
+  EXPECT_GE(second_done.started_time(), first_done.finished_time());
+  for (const v1::Job& job : {first_done, second_done}) {
+    ASSERT_TRUE(job.has_exit_code()) << job.id();
+    EXPECT_EQ(job.exit_code(), 0);
+    EXPECT_GT(job.cpu_seconds(), 0) << job.id();
+    EXPECT_GT(job.peak_memory_bytes(), 4 << 20) << job.id();
+    EXPECT_GT(job.elapsed_seconds(), 0) << job.id();
+  }
+}
+
 // Every job of this daemon is submitted held (sbatch --hold): Slurm keeps it PENDING, reason
 // JobHeldUser, until `scontrol release`.
 TEST_F(SlurmExecutor, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStartsIt) {

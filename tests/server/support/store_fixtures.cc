@@ -33,6 +33,9 @@ namespace {
 
 // What each schema added (job_store.cc kMigrations), undone.
 const std::map<int, const char*, std::greater<>> kUndo = {
+    {9,
+     "ALTER TABLE jobs DROP COLUMN exit_code; ALTER TABLE jobs DROP COLUMN exit_signal; "
+     "ALTER TABLE jobs DROP COLUMN cpu_seconds; ALTER TABLE jobs DROP COLUMN peak_memory_bytes;"},
     {8, "DROP TABLE job_dependencies;"},
     {7, "ALTER TABLE jobs DROP COLUMN numerics;"},
     {6,
