@@ -55,6 +55,7 @@ constexpr const char* kCoarseParticleH = "0.05714285714285714";
 std::vector<ParticleState> Run(const std::string& scene, double dt, double end,
                                std::vector<SceneOverride> overrides) {
   overrides.push_back({"splitting.constraint", "\"incremental\""});  // the studies' coupling
+  overrides.push_back({"domain.diagonals", "\"sw_ne\""});            // and mesh
   overrides.push_back({"time.dt", std::to_string(dt)});
   overrides.push_back({"time.end", std::to_string(end)});
   overrides.push_back({"output.fields_every", "0"});

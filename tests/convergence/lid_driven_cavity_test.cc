@@ -73,9 +73,13 @@ double Interpolate(const std::vector<double>& values, std::size_t start, std::si
 
 CentreLineErrors RunCavity(const std::string& advection) {
   const std::vector<SceneOverride> overrides = {
-      {"domain.h", "0.03125"},      {"time.dt", "0.02"},
-      {"time.end", "15.0"},         {"splitting.advection", advection},
-      {"output.fields_every", "0"}, {"output.checkpoint_every", "0"}};
+      {"domain.h", "0.03125"},
+      {"time.dt", "0.02"},
+      {"time.end", "15.0"},
+      {"splitting.advection", advection},
+      {"domain.diagonals", "\"sw_ne\""},  // the mesh of the study
+      {"output.fields_every", "0"},
+      {"output.checkpoint_every", "0"}};
   const Params params =
       LoadSceneFile(std::string(DLMFD_SOURCE_DIR) + "/cases/lid_driven_cavity.toml", overrides);
   Simulation sim(params);

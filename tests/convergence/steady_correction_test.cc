@@ -34,7 +34,11 @@ double SchaeferTurekDragAtTwo(const std::string& dt, const std::string& correcti
                                           {"time.end", "2.0"},
                                           {"output.fields_every", "0"},
                                           {"output.particles_every", "0"},
-                                          {"output.checkpoint_every", "0"}};
+                                          {"output.checkpoint_every", "0"},
+                                          // the scheme this study measured (the defaults
+                                          // before issue 32)
+                                          {"particle_mesh.kind", "\"ring\""},
+                                          {"domain.diagonals", "\"sw_ne\""}};
   if (!correction.empty()) overrides.push_back({"splitting.steady_correction", correction});
   const Params params = LoadSceneFile(
       std::string(DLMFD_SOURCE_DIR) + "/cases/verification/schaefer_turek_2d1.toml", overrides);

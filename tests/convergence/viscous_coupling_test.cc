@@ -45,14 +45,16 @@ struct IterationLog : Observer {
 // flow (eta = rho = 1, Poiseuille inflow of peak 0.3, dt = 0.05, nu dt / h^2 = 2000), collocation
 // points, the viscous coupling, no output, one thread; `overrides` add keys (none of these).
 Params CreepingDisk(std::vector<SceneOverride> overrides) {
-  std::vector<SceneOverride> keys = {{"domain.size", "[0.8, 0.4]"},
-                                     {"fluid.viscosity", "1.0"},
-                                     {"particle_mesh.kind", "\"collocation\""},
-                                     {"splitting.constraint", "\"viscous\""},
-                                     {"time.dt", "0.05"},
-                                     {"output.fields_every", "0"},
-                                     {"output.particles_every", "0"},
-                                     {"output.checkpoint_every", "0"}};
+  std::vector<SceneOverride> keys = {
+      {"domain.size", "[0.8, 0.4]"},
+      {"fluid.viscosity", "1.0"},
+      {"particle_mesh.kind", "\"collocation\""},
+      {"domain.diagonals", "\"sw_ne\""},  // the mesh of these studies
+      {"splitting.constraint", "\"viscous\""},
+      {"time.dt", "0.05"},
+      {"output.fields_every", "0"},
+      {"output.particles_every", "0"},
+      {"output.checkpoint_every", "0"}};
   keys.insert(keys.end(), overrides.begin(), overrides.end());
   Params params = LoadSceneFile(
       std::string(DLMFD_SOURCE_DIR) + "/cases/verification/schaefer_turek_2d1.toml", keys);
@@ -117,6 +119,7 @@ TEST(ViscousCoupling, CollocationPointsConvergeEveryStep) {
       LoadSceneFile(std::string(DLMFD_SOURCE_DIR) + "/cases/verification/faxen_disk_w1.toml",
                     {{"domain.h", "0.020833333333333332"},
                      {"particle_mesh.kind", "\"collocation\""},
+                     {"domain.diagonals", "\"sw_ne\""},
                      {"splitting.constraint", "\"viscous\""},
                      {"time.dt", "0.002"},
                      {"time.end", "0.06"},
@@ -140,6 +143,7 @@ TEST(ViscousCoupling, CollocationPointsAroundAFixedDiskConverge) {
   Params params =
       LoadSceneFile(std::string(DLMFD_SOURCE_DIR) + "/cases/verification/schaefer_turek_2d1.toml",
                     {{"particle_mesh.kind", "\"collocation\""},
+                     {"domain.diagonals", "\"sw_ne\""},
                      {"splitting.constraint", "\"viscous\""},
                      {"time.end", "0.025"},
                      {"output.fields_every", "0"},

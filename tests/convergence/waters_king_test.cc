@@ -65,12 +65,14 @@ struct History {
 History RunStartup(int ny, double dt, const std::string& representation = "standard",
                    const std::string& splitting = "explicit") {
   const double h = 2.0 / ny;
-  const std::vector<SceneOverride> overrides = {{"domain.h", Text(h)},
-                                                {"domain.size", "[" + Text(4 * h) + ", 2.0]"},
-                                                {"time.dt", Text(dt)},
-                                                {"time.end", Text(kEndT)},
-                                                {"fluid.conformation", representation},
-                                                {"fluid.stress_splitting", splitting}};
+  const std::vector<SceneOverride> overrides = {
+      {"domain.h", Text(h)},
+      {"domain.size", "[" + Text(4 * h) + ", 2.0]"},
+      {"time.dt", Text(dt)},
+      {"time.end", Text(kEndT)},
+      {"fluid.conformation", representation},
+      {"fluid.stress_splitting", splitting},
+      {"domain.diagonals", "\"sw_ne\""}};  // the study's mesh
   Params params = LoadSceneFile(DLMFD_SOURCE_DIR "/cases/verification/waters_king.toml", overrides);
   params.threads = 1;  // a 4 x ny grid: threads would only contend
   Simulation sim(params);

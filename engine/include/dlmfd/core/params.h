@@ -35,7 +35,9 @@ enum class Side { kLeft = 0, kRight = 1, kBottom = 2, kTop = 3 };
 // wave-like step's K_V and N(V, .) of step (34). The mesh is not mirror-symmetric (x -> -x or y ->
 // -y maps it onto the other diagonal's), so a flow symmetric in the domain's mid-line is not quite
 // symmetric on it; the mean is (mesh/grid_kernels.h, Diagonal; docs/work_precision.md (e), "The
-// lift's mirror bias").
+// lift's mirror bias"). A scene file's default is kBoth (numerics.preset, scene/numerics_preset.h:
+// the lift's sign right, Schaefer-Turek Cd +0.79 % at D/h = 20); the struct's stays the paper's
+// kSwNe, which the tests that build Params studied.
 enum class MeshDiagonals { kSwNe, kBoth };
 
 struct DomainParams {
@@ -122,6 +124,10 @@ struct TimeParams {
   double end = 1.0;  // >= 0
 };
 
+// Step (34): kLeastSquares, the paper's least-squares CG; kWave, the explicit wave-like scheme. A
+// scene file's default is kWave (numerics.preset, scene/numerics_preset.h: 3.5-4.5 times cheaper
+// and as accurate or more on every problem of docs/work_precision.md, "Which settings" 1); the
+// struct's stays the paper's kLeastSquares, which the tests that build Params studied.
 enum class AdvectionScheme { kLeastSquares, kWave };
 
 // What the advection step (34) does about the splitting's steady-state error: kNone, nothing (the

@@ -13,7 +13,10 @@
 //     (gamma = 0), the polymer stress explicit in (33), no steady correction. The paper's case
 //     files set it where they must reproduce the paper's numbers, and say so.
 //
-// The struct defaults of core/params.h are the "default" preset's (a test holds them equal).
+// The struct defaults of core/params.h are the "default" preset's for the particle mesh, the
+// coupling and the polymer stress; for the advection scheme and the diagonals they stay the
+// paper's (least squares, SW-NE): the engine's tests and benches that build Params themselves
+// studied those (a test holds this table to it).
 #pragma once
 
 #include "dlmfd/core/params.h"
