@@ -72,8 +72,8 @@ TEST(AutoCoupling, ParticlesCrossingMoreThanAThirdOfACellAStepGetThePapersCoupli
   EXPECT_NEAR(Number(c, "rho_p / rho (max)"), 1.5, 1e-15);
 }
 
-// Rule 3, at the bound's other side: the same disk at dt = 2.4e-4 (U_p dt / h = 0.286, where the
-// lagged multiplier was measured to complete at 0.298).
+// Rule 4, at rule 2's bound's other side: the same disk at dt = 2.4e-4 (U_p dt / h = 0.286, where
+// the lagged multiplier was measured to complete at 0.298).
 TEST(AutoCoupling, SlowerParticlesGetTheIncrementalCoupling) {
   const Params p = ParseScene(kPaperDisk, {{"time.dt", "0.00024"}});
   EXPECT_EQ(p.splitting.constraint, ConstraintCoupling::kIncremental);
@@ -100,6 +100,46 @@ TEST(AutoCoupling, ParticlesInAViscousLiquidKeepTheIncrementalCoupling) {
             ConstraintCoupling::kPaper);
   EXPECT_EQ(ParseScene(kPaperDisk, {{"fluid.viscosity", "0.0212"}}).splitting.constraint,
             ConstraintCoupling::kIncremental);
+}
+
+// Rule 3: creeping flow. Faxen's disk (cases/verification/faxen_disk_w1.toml, h = 1/96, dt =
+// 0.01) at rho_f = 0.1: nu dt / h^2 = 92, where the lagged multiplier was still +1.4 % at t = 1.5
+// and the viscous coupling -0.71 % from the start: "viscous". At rho_f = 0.5 (18.4, within 1 %
+// as fast as the liquid starts): "incremental".
+TEST(AutoCoupling, CreepingFlowGetsTheViscousCoupling) {
+  const std::string faxen =
+      std::string(DLMFD_SOURCE_DIR) + "/cases/verification/faxen_disk_w1.toml";
+  const Params p = LoadSceneFile(
+      faxen, {{"time.dt", "0.01"}, {"fluid.density", "0.1"}, {"particles.0.density", "0.11"}});
+  EXPECT_EQ(p.splitting.constraint, ConstraintCoupling::kViscous);
+  EXPECT_EQ(p.splitting.alpha, 1.0);
+  EXPECT_EQ(p.splitting.beta, 0.0);
+  const ResolvedChoice& c = OnlyChoice(p);
+  EXPECT_EQ(c.value, "viscous");
+  EXPECT_THAT(c.rule, HasSubstr("nu dt / h^2 > 18.5"));
+  EXPECT_NEAR(Number(c, "nu dt / h^2"), 1.0 * 0.01 * 96 * 96, 1e-9);
+  const Params q = LoadSceneFile(
+      faxen, {{"time.dt", "0.01"}, {"fluid.density", "0.5"}, {"particles.0.density", "0.51"}});
+  EXPECT_EQ(q.splitting.constraint, ConstraintCoupling::kIncremental);
+}
+
+// The confined cylinder in the Stokes limit (cases/verification/confined_cylinder_oldroyd_b.toml
+// as shipped: rho = 0.01, eta = 1, R/h = 24, dt = lambda / 120): nu dt / h^2 = 288, a fixed disk:
+// "viscous" (the fixed disk in the same channel was 16 % low at t = 1 with the lagged multiplier).
+TEST(AutoCoupling, TheConfinedCylinderInTheStokesLimitGetsTheViscousCoupling) {
+  const Params p = LoadSceneFile(std::string(DLMFD_SOURCE_DIR) +
+                                 "/cases/verification/confined_cylinder_oldroyd_b.toml");
+  EXPECT_EQ(p.splitting.constraint, ConstraintCoupling::kViscous);
+  EXPECT_NEAR(Number(OnlyChoice(p), "nu dt / h^2"), 100.0 * 0.005 * 24 * 24, 1e-6);
+}
+
+// A neutrally buoyant free particle cannot take the viscous coupling (ValidateScene): at the same
+// numbers it keeps the lagged multiplier.
+TEST(AutoCoupling, ANeutralFreeParticleKeepsTheIncrementalCouplingInCreepingFlow) {
+  const Params p = LoadSceneFile(
+      std::string(DLMFD_SOURCE_DIR) + "/cases/verification/faxen_disk_w1.toml",
+      {{"time.dt", "0.01"}, {"fluid.density", "0.1"}, {"particles.0.density", "0.1"}});
+  EXPECT_EQ(p.splitting.constraint, ConstraintCoupling::kIncremental);
 }
 
 // A scene that names its coupling gets it, and nothing is resolved.

@@ -99,6 +99,10 @@ inline constexpr double kMaxElasticCourant = 0.3017;       // sqrt(eta_p / (rho 
 inline constexpr double kMaxStepPerRelaxationTime = 0.01;  // dt / lambda
 inline constexpr double kMinParticleMeshRatio = 1.1;       // h_p / h, ring mesh
 inline constexpr double kMaxLaggedParticleCourant = 0.3;   // U_p dt / h, incremental coupling
+// nu dt / h^2 above which auto picks viscous: just above Faxen's disk at rho_f = 0.5 (18.43),
+// where the lagged multiplier settled as fast as the liquid; at 36.9 it took 70 steps more
+// (docs/validation.md, "Creeping flow at a time step set by the motion")
+inline constexpr double kMaxViscousNumberLaggedSettles = 18.5;
 // A polymer viscous on the grid's scale (devss only): no elastic bounds.
 inline constexpr double kMaxGridElasticity = 0.105;  // El_h = lambda eta_p / (rho h^2)
 inline constexpr double kMaxGridDeborah = 0.016;     // lambda U / h

@@ -11,7 +11,9 @@
 //      the viscosity in the Stokes step (33)).
 //   2. Particles that cross a good part of a cell a step, U_p dt / h > 0.3, where the paper's leak
 //      is small, nu dt / h^2 <= 0.195: "paper".
-//   3. Otherwise: "incremental".
+//   3. Creeping flow, nu dt / h^2 > 18.5, unless a free particle is neutrally buoyant: "viscous"
+//      (the lagged multiplier would take more steps to settle than the flow takes).
+//   4. Otherwise: "incremental".
 // The choice, the rule and the numbers it read go to the run's log, summary.json (`numerics`),
 // the daemon's job record and `dlmfd show`; the scene as run (scene.toml) names the coupling
 // chosen, so a resume or a rerun of it uses the same one.
@@ -31,7 +33,7 @@
 #include <string>
 
 #include "dlmfd/core/params.h"
-#include "dlmfd/scene/accuracy_envelope.h"  // kMaxLaggedParticleCourant, rule 2's bound
+#include "dlmfd/scene/accuracy_envelope.h"  // the rules' bounds
 
 namespace dlmfd {
 
