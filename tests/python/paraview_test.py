@@ -135,7 +135,10 @@ class ParaViewTest(unittest.TestCase):
         png = os.path.join(self.dir, "trA.png")
         out = os.path.join(self.dir, "screenshot.json")
         shot = subprocess.run(
-            [xvfb_run, "-a", "-s", "-screen 0 640x800x24", PVBATCH,
+            # -a alone starts every search at display 99, and two tests that start together both
+            # take it (xvfb-run's race: "bad X server connection"); start from a number of our own.
+            [xvfb_run, "-a", "-n", str(100 + os.getpid() % 20000), "-s", "-screen 0 640x800x24",
+             PVBATCH,
              os.path.join(os.path.dirname(__file__), "paraview_screenshot.py"),
              os.path.join(self.results, "fields.xmf"), png, out],
             capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
