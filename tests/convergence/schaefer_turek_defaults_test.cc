@@ -1,11 +1,11 @@
-// Schaefer-Turek 2D-1 at the defaults (issue 32 point 4): cases/verification/schaefer_turek_2d1.toml
-// as shipped, D/h = 20, with no numerics key but the advection it names (the default since issue
-// 32 too): collocation points, both diagonals, the coupling "auto" chose (incremental: a fixed
-// disk), the Taylor steady correction. Reference (the scene's title): Cd = 5.57953523384, Cl =
-// 0.010618948146 (John & Matthies 2001). The targets of issue 32: Cd within 1 % at D/h = 20, the
-// lift's sign right. Cd is steady to 1e-4 by t = 5; the lift's wake mode decays by t = 8
-// (docs/work_precision.md (e), "The lift's steady state"), so the run goes to t = 8. Measured in
-// docs/accuracy.md (D/h = 20 and 40, with the command).
+// Schaefer-Turek 2D-1 at the defaults (issue 32 point 4):
+// cases/verification/schaefer_turek_2d1.toml as shipped, D/h = 20, with no numerics key but the
+// advection it names (the default since issue 32 too): collocation points, both diagonals, the
+// coupling "auto" chose (incremental: a fixed disk), the Taylor steady correction. Reference (the
+// scene's title): Cd = 5.57953523384, Cl = 0.010618948146 (John & Matthies 2001). The targets of
+// issue 32: Cd within 1 % at D/h = 20, the lift's sign right. Cd is steady to 1e-4 by t = 5; the
+// lift's wake mode decays by t = 8 (docs/work_precision.md (e), "The lift's steady state"), so the
+// run goes to t = 8. Measured in docs/accuracy.md (D/h = 20 and 40, with the command).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -21,12 +21,12 @@ constexpr double kReferenceDrag = 5.57953523384;
 constexpr double kReferenceLift = 0.010618948146;
 
 TEST(SchaeferTurekAtTheDefaults, DragWithinOnePercentAndLiftOfTheRightSignAtDOverHTwenty) {
-  Params params = LoadSceneFile(
-      std::string(DLMFD_SOURCE_DIR) + "/cases/verification/schaefer_turek_2d1.toml",
-      {{"time.end", "8"},
-       {"output.fields_every", "0"},
-       {"output.particles_every", "0"},
-       {"output.checkpoint_every", "0"}});
+  Params params =
+      LoadSceneFile(std::string(DLMFD_SOURCE_DIR) + "/cases/verification/schaefer_turek_2d1.toml",
+                    {{"time.end", "8"},
+                     {"output.fields_every", "0"},
+                     {"output.particles_every", "0"},
+                     {"output.checkpoint_every", "0"}});
   params.threads = 1;
   EXPECT_EQ(params.particle_mesh.kind, ParticleMeshKind::kCollocation);
   EXPECT_EQ(params.domain.diagonals, MeshDiagonals::kBoth);

@@ -228,6 +228,8 @@ TEST(ViscousCoupling, FixedDiskStartsFromItsRecycledDirections) {
        {"time.end", "0.3"},
        {"particle_mesh.kind", "\"collocation\""},
        {"splitting.constraint", "\"viscous\""},
+       {"domain.diagonals", "\"sw_ne\""},             // the scheme of the measurement
+       {"splitting.advection", "\"least_squares\""},  // (the defaults before issue 32)
        {"output.fields_every", "0"},
        {"output.particles_every", "0"}});
   params.threads = 1;

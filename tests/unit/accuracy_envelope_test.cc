@@ -182,28 +182,35 @@ TEST(AccuracyEnvelope, ViscousNumberWithParticlesAboveTheBoundWarnsOnTheTimeStep
   ExpectSuggestionSatisfies(kSchaeferTurek, paper, w[0]);
   EXPECT_THAT(w[0].Message(), HasSubstr("set time.dt = " + w[0].suggested));
 
-  // The default, the lagged multiplier: its own bound, measured to 2.05.
-  const std::vector<AccuracyWarning> d =
-      AccuracyWarnings(Scene(kSchaeferTurek, {"fluid.viscosity=0.1"}));
+  // The lagged multiplier (what auto picks below nu dt / h^2 = 18.5): its own bound, measured to
+  // 2.05. Here, at 20, auto picks the viscous coupling (the next test), so the scene names it.
+  const std::vector<std::string> lagged = {"fluid.viscosity=0.1",
+                                           "splitting.constraint=\"incremental\""};
+  const std::vector<AccuracyWarning> d = AccuracyWarnings(Scene(kSchaeferTurek, lagged));
   ASSERT_FALSE(d.empty());
   EXPECT_EQ(d[0].setting, "nu dt / h^2");
   EXPECT_EQ(d[0].allowed, "<= 2.05");
   EXPECT_LE(0.1 * std::stod(d[0].suggested) / (0.005 * 0.005),
             kMaxViscousNumberIncrementalCoupling);
-  ExpectSuggestionSatisfies(kSchaeferTurek, {"fluid.viscosity=0.1"}, d[0]);
+  ExpectSuggestionSatisfies(kSchaeferTurek, lagged, d[0]);
 }
 
 TEST(AccuracyEnvelope, ViscousCouplingHasTheBoundItWasMeasuredTo) {
-  // Schaefer-Turek at nu = 0.1: nu dt / h^2 = 20 at dt = 5e-3 warns with the default coupling,
-  // not with the constraint in the Stokes step (measured to 922: Faxen's disk in creeping flow);
-  // 1000 at dt = 0.25 warns with both.
+  // Schaefer-Turek at nu = 0.1: nu dt / h^2 = 20 at dt = 5e-3 warns with the lagged multiplier,
+  // not with the constraint in the Stokes step (measured to 922: Faxen's disk in creeping flow),
+  // which is what the default, auto, picks there; 1000 at dt = 0.25 warns with both.
   const std::vector<std::string> viscous = {"fluid.viscosity=0.1",
                                             "splitting.constraint=\"viscous\"", "splitting.alpha=1",
                                             "splitting.beta=0"};
-  EXPECT_THAT(Settings(AccuracyWarnings(Scene(kSchaeferTurek, {"fluid.viscosity=0.1"}))),
-              ::testing::Contains(std::string("nu dt / h^2")));
+  EXPECT_THAT(
+      Settings(AccuracyWarnings(
+          Scene(kSchaeferTurek, {"fluid.viscosity=0.1", "splitting.constraint=\"incremental\""}))),
+      ::testing::Contains(std::string("nu dt / h^2")));
   const Params inside = Scene(kSchaeferTurek, viscous);
   for (const AccuracyWarning& w : AccuracyWarnings(inside)) EXPECT_NE(w.setting, "nu dt / h^2");
+  const Params by_default = Scene(kSchaeferTurek, {"fluid.viscosity=0.1"});
+  EXPECT_EQ(by_default.splitting.constraint, ConstraintCoupling::kViscous);
+  for (const AccuracyWarning& w : AccuracyWarnings(by_default)) EXPECT_NE(w.setting, "nu dt / h^2");
   std::vector<std::string> coarse = viscous;
   coarse.push_back("time.dt=0.25");
   const std::vector<AccuracyWarning> w = AccuracyWarnings(Scene(kSchaeferTurek, coarse));

@@ -471,9 +471,13 @@ TEST(SceneFile, EmptySceneIsAllDefaults) {
   const Params p = ParseScene("");
   Params d;
   // The defaults that follow other keys: h_p follows domain.h, the steady correction the liquid
-  // (a Newtonian one by default).
+  // (a Newtonian one by default). And the default preset's mesh and advection scheme, where the
+  // struct keeps the paper's, which the engine's tests that build Params studied
+  // (scene/numerics_preset.h).
   d.particle_mesh.h = kPaperParticleMeshRatio * d.domain.h;
   d.splitting.steady_correction = SteadyCorrection::kTaylor;
+  d.domain.diagonals = MeshDiagonals::kBoth;
+  d.splitting.advection = AdvectionScheme::kWave;
   EXPECT_EQ(WriteScene(p), WriteScene(d));
   EXPECT_EQ(p.domain.h, d.domain.h);
   EXPECT_EQ(p.fluid.viscosity, d.fluid.viscosity);
