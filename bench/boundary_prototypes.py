@@ -572,7 +572,7 @@ def table(argv):
     for path in a.csv:
         for line in open(path):
             f = line.strip().split(",")
-            if len(f) < 7 or f[0] not in ("dlm", "sharp", "cut"):
+            if len(f) < 7 or f[0] not in ("dlm", "sharp", "cut", "engine"):
                 continue
             runs.setdefault((f[0], float(f[1])), {})[float(f[2])] = (float(f[3]), float(f[6]))
     prev = {}

@@ -1,0 +1,102 @@
+// The cut-cell boundary of fixed bodies (issue 33; docs/work_precision.md, "A second-order
+// boundary"): the generalized Stokes problem of step (33), optionally with an Oseen term, on the
+// fluid part of the uniform mesh only, the no-slip condition on the bodies imposed weakly by
+// Nitsche's method on the chords of the cut elements (particles/cut_cell_geometry.h):
+//   find u (P1-iso-P2, active nodes), p (P1 on the 2h macro-triangles, active nodes) with
+//   (rho/dt) (u, v)_l + rho ((w . grad) u, v) + eta (grad u, grad v) - (p, div v) + (q, div u)
+//   - eta <d_n u, v> - eta <d_n v, u> + gamma eta / h <u, v> + <p, v . n> - <q, u . n>
+//   + g_u eta h sum_F [d_n u][d_n v] - g_p (2h)^3 / eta sum_F [d_n p][d_n q] = (f, v)
+// (n out of the fluid; the chord terms by two-point Gauss; volume terms over the fluid polygons;
+// the last two are ghost penalties on the faces of cut h-triangles and cut macro-triangles, which
+// keep small cuts well conditioned; (.,.)_l the lumped mass of the fluid part). The bodies are at
+// rest (boundary value zero). Domain sides as in step (33): Dirichlet data on walls and velocity
+// sides, do-nothing outflow (p = 0 there); periodic sides and domains without an outflow side are
+// refused. The viscous form is eta grad u : grad v, as in the engine's step (33).
+//
+// Solver: restarted GMRES on the saddle point, right-preconditioned by the block diagonal of
+//   velocity: the fast solver of (rho/dt) M_l + eta K on the whole uniform grid, then a direct
+//             solve of the cut operator on the band of unknowns within 2h of a boundary (a
+//             multiplicative correction: it carries the Nitsche and ghost terms the fast solver
+//             lacks);
+//   pressure: Cahouet-Chabard, eta M_p^-1 + (rho/dt) K_p^-1 (fast solver), M_p the lumped
+//             pressure mass of the fluid part plus the ghost penalty's diagonal (a pressure node
+//             with a small cut support gets a small M_p: with the whole cell's mass the iterations
+//             at D/h = 10 / 20 were 211 / 389, with this 104 / 130).
+// The force on a body is read from the momentum residual of the fluid forms (Nitsche and ghost
+// terms left out) with a test function equal to 1 at the nodes within 1.5 h of the body's boundary
+// and inside it: F = -sum_i Phi_i (rho (w . grad) u + eta K u - B^T p)_i (the discrete stress
+// integrated over a closed line in the fluid around the body; steady flows).
+// References: Burman & Hansbo, Appl. Numer. Math. 62 (2012) 328-341 (fictitious domain Stokes,
+// ghost penalty); Massing, Larson, Logg & Rognes, J. Sci. Comput. 61 (2014) 604-628 (Nitsche for
+// Stokes on cut meshes); Cahouet & Chabard, Int. J. Numer. Methods Fluids 8 (1988) 869-895.
+#pragma once
+
+#include <Eigen/SparseCore>
+#include <memory>
+#include <vector>
+
+#include "dlmfd/core/grid.h"
+#include "dlmfd/core/params.h"
+#include "dlmfd/fluid/boundary_data.h"
+#include "dlmfd/particles/cut_cell_geometry.h"
+
+namespace dlmfd {
+
+// The method's constants, declared once. The ghost penalties are the smaller pair of the study
+// (docs/work_precision.md, "A second-order boundary"): the penalty is most of the drag's error and
+// 0.1 / 0.01 miss 0.3 % at D/h = 20.
+struct CutCellConstants {
+  double nitsche = 20.0;          // gamma
+  double ghost_velocity = 0.01;   // g_u
+  double ghost_pressure = 0.001;  // g_p
+  double band = 2.0;              // the preconditioner's direct band, in h from the boundary
+  int restart = 120;              // GMRES restart length (80: 2.1 times the iterations at D/h 40)
+};
+
+struct CutCellReport {
+  int iterations = 0;
+  double relative_residual = 0.0;
+  int unknowns = 0;
+};
+
+class CutCellStokes {
+ public:
+  // rho_over_dt >= 0 (0: steady), viscosity > 0, density (of the Oseen term) >= 0.
+  CutCellStokes(const CutCellGeometry& geometry, const DomainParams& domain, double viscosity,
+                double density, double rho_over_dt, const CutCellConstants& constants = {});
+  ~CutCellStokes();
+  CutCellStokes(const CutCellStokes&) = delete;
+  CutCellStokes& operator=(const CutCellStokes&) = delete;
+
+  // The advecting velocity w of the Oseen term (full node arrays), or nullptr for none.
+  void SetAdvection(const double* wu, const double* wv);
+  // Solves with the Dirichlet data of `data` and the load (fu, fv) (dual, at velocity nodes; may be
+  // nullptr). u, v, p: full node arrays, the initial guess on entry (values at unknowns), the
+  // solution on return (Dirichlet data written, inactive nodes 0). Throws SolverNotConverged.
+  CutCellReport Solve(const BoundaryData& data, const double* fu, const double* fv, double* u,
+                      double* v, double* p, double tolerance, int max_iterations);
+  // The same by a sparse direct factorization of the whole saddle point (tests, small grids).
+  void SolveDirect(const BoundaryData& data, const double* fu, const double* fv, double* u,
+                   double* v, double* p);
+  // The force on body `body` (header), from a solution of Solve.
+  Vec2 Force(int body, const double* u, const double* v, const double* p) const;
+
+  std::size_t NodeCount() const;  // velocity nodes of the grid
+  int VelocityUnknowns() const;
+  int PressureUnknowns() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Steady Navier-Stokes past fixed bodies by Picard (Oseen) iterations of CutCellStokes from the
+// Stokes solution, until an Oseen solve changes the velocity by less than `change` (relative,
+// 2-norm). Returns the number of solves, Stokes included; throws SolverNotConverged after
+// max_picard Oseen solves. The Oseen term is left set to the last advecting velocity (Force reads
+// it).
+int SolveSteadyNavierStokes(CutCellStokes& flow, const BoundaryData& data, double* u, double* v,
+                            double* p, double tolerance, int max_iterations, double change,
+                            int max_picard);
+
+}  // namespace dlmfd

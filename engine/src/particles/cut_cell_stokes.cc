@@ -1,0 +1,511 @@
+#include "dlmfd/particles/cut_cell_stokes.h"
+
+#include <Eigen/SparseLU>
+#include <cmath>
+#include <sstream>
+
+#include "dlmfd/core/errors.h"
+#include "dlmfd/mesh/boundary_topology.h"
+#include "dlmfd/solvers/gmres.h"
+#include "dlmfd/solvers/separable_helmholtz.h"
+
+namespace dlmfd {
+namespace {
+
+using Sparse = Eigen::SparseMatrix<double>;
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+// The P1 basis of a triangle with first vertex x0 and gradients g, at x.
+std::array<double, 3> Basis(const Vec2& x0, const std::array<Vec2, 3>& g, const Vec2& x) {
+  return {1.0 + g[0].dot(x - x0), g[1].dot(x - x0), g[2].dot(x - x0)};
+}
+
+Vec2 NodePosition(const Grid& grid, int node) {
+  return Vec2(grid.X(node % grid.NodesX()), grid.Y(node / grid.NodesX()));
+}
+
+// The P1 basis of the macro-triangle `macro` at x, with its pressure nodes.
+std::array<double, 3> MacroBasis(const CutCellGeometry& geo, int macro, const Vec2& x) {
+  const Grid coarse = geo.grid().Coarse();
+  const std::array<int, 3> q = geo.MacroNodes(macro);
+  const double r = 1.0 / coarse.h;
+  const std::array<Vec2, 3> g = macro % 2 == 0
+                                    ? std::array<Vec2, 3>{Vec2(-r, 0.0), Vec2(r, -r), Vec2(0.0, r)}
+                                    : std::array<Vec2, 3>{Vec2(0.0, -r), Vec2(r, 0.0), Vec2(-r, r)};
+  return Basis(NodePosition(coarse, q[0]), g, x);
+}
+
+// Ghost penalty scale * |F| [d_n phi_i][d_n phi_j] over the interior faces of a uniform SW-NE mesh
+// (spacing h) shared by two active triangles, at least one of them touched. Every interior face
+// pairs a lower triangle with an upper one: the diagonal of its own square, the bottom face (the
+// upper triangle of the square below) and the right face (the upper triangle of the square to the
+// right).
+template <class Active, class Touched>
+void AddGhostPenalty(const Grid& mesh, Active active, Touched touched, double scale,
+                     Triplets& out) {
+  const double r = 1.0 / mesh.h, s2 = std::sqrt(0.5);
+  const std::array<Vec2, 3> gl{Vec2(-r, 0.0), Vec2(r, -r), Vec2(0.0, r)};
+  const std::array<Vec2, 3> gu{Vec2(0.0, -r), Vec2(r, 0.0), Vec2(-r, r)};
+  auto nodes = [&](int t) {
+    const int sq = t / 2, i = sq % mesh.nx, j = sq / mesh.nx;
+    const int n00 = static_cast<int>(mesh.Index(i, j)),
+              n01 = static_cast<int>(mesh.Index(i, j + 1));
+    return t % 2 == 0 ? std::array<int, 3>{n00, n00 + 1, n01 + 1}
+                      : std::array<int, 3>{n00, n01 + 1, n01};
+  };
+  auto face = [&](int lower, int upper, const Vec2& n, double length) {
+    if (!active(lower) || !active(upper) || !(touched(lower) || touched(upper))) return;
+    const std::array<int, 3> a = nodes(lower), b = nodes(upper);
+    std::array<int, 6> idx{a[0], a[1], a[2], b[0], b[1], b[2]};
+    std::array<double, 6> jump{};
+    for (int k = 0; k < 3; ++k) {
+      jump[k] = gl[k].dot(n);
+      jump[3 + k] = -gu[k].dot(n);
+    }
+    for (int p = 0; p < 6; ++p)
+      for (int q = 0; q < 6; ++q)
+        out.emplace_back(idx[p], idx[q], scale * length * jump[p] * jump[q]);
+  };
+  for (int j = 0; j < mesh.ny; ++j) {
+    for (int i = 0; i < mesh.nx; ++i) {
+      const int lower = 2 * (j * mesh.nx + i);
+      face(lower, lower + 1, Vec2(s2, -s2), std::sqrt(2.0) * mesh.h);
+      if (j > 0) face(lower, 2 * ((j - 1) * mesh.nx + i) + 1, Vec2(0.0, 1.0), mesh.h);
+      if (i + 1 < mesh.nx) face(lower, 2 * (j * mesh.nx + i + 1) + 1, Vec2(1.0, 0.0), mesh.h);
+    }
+  }
+}
+
+}  // namespace
+
+struct CutCellStokes::Impl {
+  const CutCellGeometry& geo;
+  Grid grid, pgrid;
+  BoundaryTopology vtopo, ptopo;
+  double eta, rho, rho_over_dt;
+  CutCellConstants constants;
+  // Full-index forms (velocity nodes n, pressure nodes np).
+  Sparse stiffness, nitsche, ghost_u, convection;  // n x n
+  Eigen::VectorXd lumped_mass;                     // n
+  Eigen::VectorXd pressure_fluid_mass;             // np: int_fluid q_Q
+  Sparse div_x, div_y, chord_x, chord_y;           // np x n: -(q, d_c u); <q, u n_c>
+  Sparse ghost_p;                                  // np x np
+  // Unknowns.
+  std::vector<int> vindex, pindex;  // full -> reduced, -1 if not an unknown
+  std::vector<int> vnodes, pnodes;  // reduced -> full
+  std::vector<int> band;            // reduced velocity unknowns of the direct band
+  // The reduced operators.
+  Sparse momentum_full, velocity, saddle, band_matrix;
+  Eigen::SparseLU<Sparse> band_lu;
+  std::unique_ptr<SeparableHelmholtz> fast_velocity, fast_pressure;
+  Eigen::VectorXd pressure_mass;  // at pressure unknowns
+  std::vector<double> work_fu, work_fv, work_u, work_v, work_fp, work_p;
+
+  Impl(const CutCellGeometry& g, const DomainParams& domain, double viscosity, double density,
+       double rdt, const CutCellConstants& c);
+  void AssembleFluidForms();
+  void AssembleChordForms();
+  void NumberUnknowns();
+  void BuildReduced();
+  void Precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z);
+  Eigen::VectorXd RightHandSide(const BoundaryData& data, const double* fu, const double* fv,
+                                std::vector<double>& gu, std::vector<double>& gv) const;
+  void Scatter(const Eigen::VectorXd& x, const std::vector<double>& gu,
+               const std::vector<double>& gv, double* u, double* v, double* p) const;
+};
+
+CutCellStokes::Impl::Impl(const CutCellGeometry& g, const DomainParams& domain, double viscosity,
+                          double density, double rdt, const CutCellConstants& c)
+    : geo(g),
+      grid(g.grid()),
+      pgrid(g.grid().Coarse()),
+      vtopo(BoundaryTopology::ForVelocity(domain)),
+      ptopo(BoundaryTopology::ForPressure(domain)),
+      eta(viscosity),
+      rho(density),
+      rho_over_dt(rdt),
+      constants(c) {
+  if (domain.PeriodicX() || domain.PeriodicY())
+    throw InvalidParameter("domain.sides", "periodic", "no periodic side with a cut-cell boundary");
+  if (ptopo.HasNullSpace())
+    throw InvalidParameter("domain.sides", "no outflow side",
+                           "an outflow side with a cut-cell boundary (it fixes the pressure)");
+  const std::size_t n = grid.NodeCount();
+  convection.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  AssembleFluidForms();
+  AssembleChordForms();
+  NumberUnknowns();
+  fast_velocity = std::make_unique<SeparableHelmholtz>(grid, vtopo, rho_over_dt, eta);
+  if (rho_over_dt > 0.0)
+    fast_pressure = std::make_unique<SeparableHelmholtz>(pgrid, ptopo, 0.0, 1.0, 1);
+  // The Schur complement's diagonal model: (M_p + G_p) / eta over the fluid part.
+  pressure_mass.resize(static_cast<Eigen::Index>(pnodes.size()));
+  const Eigen::VectorXd ghost_diagonal = ghost_p.diagonal();
+  for (std::size_t k = 0; k < pnodes.size(); ++k)
+    pressure_mass[k] = pressure_fluid_mass[pnodes[k]] + ghost_diagonal[pnodes[k]];
+  work_fu.assign(n, 0.0);
+  work_fv.assign(n, 0.0);
+  work_u.assign(n, 0.0);
+  work_v.assign(n, 0.0);
+  work_fp.assign(pgrid.NodeCount(), 0.0);
+  work_p.assign(pgrid.NodeCount(), 0.0);
+  BuildReduced();
+}
+
+// Stiffness, lumped mass and divergence over the fluid part of every active h-triangle: whole
+// triangles, and the fluid polygons of cut ones (the divergence by the one-point rule at the
+// polygon's centroid, exact for linear q times the constant div u).
+void CutCellStokes::Impl::AssembleFluidForms() {
+  const auto n = static_cast<Eigen::Index>(grid.NodeCount());
+  const auto np = static_cast<Eigen::Index>(pgrid.NodeCount());
+  Triplets k, bx, by;
+  lumped_mass = Eigen::VectorXd::Zero(n);
+  pressure_fluid_mass = Eigen::VectorXd::Zero(np);
+  auto add = [&](int t, const std::array<int, 3>& nodes, const std::array<Vec2, 3>& grads,
+                 double area, const Vec2& centroid, const std::array<double, 3>& mass_rows) {
+    const int macro = geo.MacroOf(t);
+    const std::array<int, 3> q = geo.MacroNodes(macro);
+    const std::array<double, 3> lam = MacroBasis(geo, macro, centroid);
+    for (int a = 0; a < 3; ++a) {
+      lumped_mass[nodes[a]] += mass_rows[a];
+      pressure_fluid_mass[q[a]] += area * lam[a];
+      for (int b = 0; b < 3; ++b) k.emplace_back(nodes[a], nodes[b], area * grads[a].dot(grads[b]));
+      for (int b = 0; b < 3; ++b) {
+        bx.emplace_back(q[a], nodes[b], -area * lam[a] * grads[b].x());
+        by.emplace_back(q[a], nodes[b], -area * lam[a] * grads[b].y());
+      }
+    }
+  };
+  const double whole = 0.5 * grid.h * grid.h;
+  for (int t = 0; t < geo.TriangleCount(); ++t) {
+    if (geo.State(t) != ElementState::kFluid) continue;
+    const std::array<int, 3> nodes = geo.TriangleNodes(t);
+    Vec2 centroid = Vec2::Zero();
+    for (int a : nodes) centroid += NodePosition(grid, a) / 3.0;
+    add(t, nodes, geo.TriangleGradients(t), whole, centroid,
+        {whole / 3.0, whole / 3.0, whole / 3.0});
+  }
+  for (const CutTriangle& c : geo.cut_triangles()) {
+    std::array<double, 3> rows{};
+    for (int a = 0; a < 3; ++a) rows[a] = c.mass[a][0] + c.mass[a][1] + c.mass[a][2];
+    add(c.triangle, c.nodes, c.grads, c.area, c.centroid, rows);
+  }
+  stiffness.resize(n, n);
+  stiffness.setFromTriplets(k.begin(), k.end());
+  div_x.resize(np, n);
+  div_x.setFromTriplets(bx.begin(), bx.end());
+  div_y.resize(np, n);
+  div_y.setFromTriplets(by.begin(), by.end());
+}
+
+// Nitsche's terms on the chords (two-point Gauss) and the ghost penalties.
+void CutCellStokes::Impl::AssembleChordForms() {
+  const auto n = static_cast<Eigen::Index>(grid.NodeCount());
+  const auto np = static_cast<Eigen::Index>(pgrid.NodeCount());
+  Triplets nit, cx, cy, gu, gp;
+  const double gauss[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
+  for (const CutTriangle& c : geo.cut_triangles()) {
+    const Vec2 x0 = NodePosition(grid, c.nodes[0]);
+    const double weight = 0.5 * (c.chord_b - c.chord_a).norm();
+    std::array<double, 3> dn{};
+    for (int a = 0; a < 3; ++a) dn[a] = c.grads[a].dot(c.normal);
+    const int macro = geo.MacroOf(c.triangle);
+    const std::array<int, 3> q = geo.MacroNodes(macro);
+    for (double s : gauss) {
+      const Vec2 xq = c.chord_a + s * (c.chord_b - c.chord_a);
+      const std::array<double, 3> phi = Basis(x0, c.grads, xq);
+      const std::array<double, 3> lam = MacroBasis(geo, macro, xq);
+      for (int a = 0; a < 3; ++a) {
+        for (int b = 0; b < 3; ++b) {
+          nit.emplace_back(c.nodes[a], c.nodes[b],
+                           weight * (-phi[a] * dn[b] - dn[a] * phi[b] +
+                                     constants.nitsche / grid.h * phi[a] * phi[b]));
+          cx.emplace_back(q[a], c.nodes[b], weight * lam[a] * phi[b] * c.normal.x());
+          cy.emplace_back(q[a], c.nodes[b], weight * lam[a] * phi[b] * c.normal.y());
+        }
+      }
+    }
+  }
+  AddGhostPenalty(
+      grid, [&](int t) { return geo.Active(t); },
+      [&](int t) { return geo.State(t) == ElementState::kCut; }, constants.ghost_velocity * grid.h,
+      gu);
+  AddGhostPenalty(
+      pgrid, [&](int m) { return geo.MacroActive(m); }, [&](int m) { return geo.MacroTouched(m); },
+      constants.ghost_pressure * std::pow(pgrid.h, 3), gp);
+  nitsche.resize(n, n);
+  nitsche.setFromTriplets(nit.begin(), nit.end());
+  chord_x.resize(np, n);
+  chord_x.setFromTriplets(cx.begin(), cx.end());
+  chord_y.resize(np, n);
+  chord_y.setFromTriplets(cy.begin(), cy.end());
+  ghost_u.resize(n, n);
+  ghost_u.setFromTriplets(gu.begin(), gu.end());
+  ghost_p.resize(np, np);
+  ghost_p.setFromTriplets(gp.begin(), gp.end());
+}
+
+void CutCellStokes::Impl::NumberUnknowns() {
+  vindex.assign(grid.NodeCount(), -1);
+  for (int j = 0; j <= grid.ny; ++j)
+    for (int i = 0; i <= grid.nx; ++i) {
+      const std::size_t k = grid.Index(i, j);
+      if (!vtopo.IsUnknown(grid, i, j) || !geo.NodeActive(k)) continue;
+      vindex[k] = static_cast<int>(vnodes.size());
+      vnodes.push_back(static_cast<int>(k));
+      if (geo.distance()[k] < constants.band * grid.h) band.push_back(vindex[k]);
+    }
+  pindex.assign(pgrid.NodeCount(), -1);
+  for (int j = 0; j <= pgrid.ny; ++j)
+    for (int i = 0; i <= pgrid.nx; ++i) {
+      const std::size_t k = pgrid.Index(i, j);
+      if (!ptopo.IsUnknown(pgrid, i, j) || !geo.PressureNodeActive(k)) continue;
+      pindex[k] = static_cast<int>(pnodes.size());
+      pnodes.push_back(static_cast<int>(k));
+    }
+}
+
+// The reduced saddle point [[A, 0, Bx^T], [0, A, By^T], [Bx, By, -G_p / eta]] over the unknowns,
+// and the band's factorization.
+void CutCellStokes::Impl::BuildReduced() {
+  const Sparse diag_mass = Sparse(lumped_mass.asDiagonal());
+  momentum_full =
+      rho_over_dt * diag_mass + eta * (stiffness + nitsche + ghost_u) + rho * convection;
+  const Sparse bx = div_x + chord_x, by = div_y + chord_y;
+  const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
+  Triplets a, s;
+  for (int col = 0; col < momentum_full.outerSize(); ++col)
+    for (Sparse::InnerIterator it(momentum_full, col); it; ++it) {
+      const int r = vindex[it.row()], c = vindex[col];
+      if (r < 0 || c < 0) continue;
+      a.emplace_back(r, c, it.value());
+      s.emplace_back(r, c, it.value());
+      s.emplace_back(nu + r, nu + c, it.value());
+    }
+  for (int comp = 0; comp < 2; ++comp) {
+    const Sparse& b = comp == 0 ? bx : by;
+    for (int col = 0; col < b.outerSize(); ++col)
+      for (Sparse::InnerIterator it(b, col); it; ++it) {
+        const int r = pindex[it.row()], c = vindex[col];
+        if (r < 0 || c < 0) continue;
+        s.emplace_back(2 * nu + r, comp * nu + c, it.value());
+        s.emplace_back(comp * nu + c, 2 * nu + r, it.value());
+      }
+  }
+  for (int col = 0; col < ghost_p.outerSize(); ++col)
+    for (Sparse::InnerIterator it(ghost_p, col); it; ++it) {
+      const int r = pindex[it.row()], c = pindex[col];
+      if (r >= 0 && c >= 0) s.emplace_back(2 * nu + r, 2 * nu + c, -it.value() / eta);
+    }
+  velocity.resize(nu, nu);
+  velocity.setFromTriplets(a.begin(), a.end());
+  saddle.resize(2 * nu + npu, 2 * nu + npu);
+  saddle.setFromTriplets(s.begin(), s.end());
+  std::vector<int> position(nu, -1);
+  for (std::size_t k = 0; k < band.size(); ++k) position[band[k]] = static_cast<int>(k);
+  Triplets bt;
+  for (int col = 0; col < velocity.outerSize(); ++col)
+    for (Sparse::InnerIterator it(velocity, col); it; ++it)
+      if (position[it.row()] >= 0 && position[col] >= 0)
+        bt.emplace_back(position[it.row()], position[col], it.value());
+  const auto nb = static_cast<Eigen::Index>(band.size());
+  band_matrix.resize(nb, nb);
+  band_matrix.setFromTriplets(bt.begin(), bt.end());
+  if (nb > 0) band_lu.compute(band_matrix);
+}
+
+void CutCellStokes::Impl::Precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
+  z.resize(r.size());
+  std::fill(work_fu.begin(), work_fu.end(), 0.0);
+  std::fill(work_fv.begin(), work_fv.end(), 0.0);
+  std::fill(work_u.begin(), work_u.end(), 0.0);
+  std::fill(work_v.begin(), work_v.end(), 0.0);
+  for (int k = 0; k < nu; ++k) {
+    work_fu[vnodes[k]] = r[k];
+    work_fv[vnodes[k]] = r[nu + k];
+  }
+  fast_velocity->SolvePair(work_fu.data(), work_u.data(), work_fv.data(), work_v.data());
+  for (int comp = 0; comp < 2; ++comp) {
+    const std::vector<double>& w = comp == 0 ? work_u : work_v;
+    Eigen::VectorXd zc(nu);
+    for (int k = 0; k < nu; ++k) zc[k] = w[vnodes[k]];
+    if (!band.empty()) {
+      const Eigen::VectorXd rest = r.segment(comp * nu, nu) - velocity * zc;
+      Eigen::VectorXd rb(static_cast<Eigen::Index>(band.size()));
+      for (std::size_t k = 0; k < band.size(); ++k) rb[k] = rest[band[k]];
+      const Eigen::VectorXd cb = band_lu.solve(rb);
+      for (std::size_t k = 0; k < band.size(); ++k) zc[band[k]] += cb[k];
+    }
+    z.segment(comp * nu, nu) = zc;
+  }
+  for (int k = 0; k < npu; ++k) z[2 * nu + k] = eta * r[2 * nu + k] / pressure_mass[k];
+  if (fast_pressure) {
+    std::fill(work_fp.begin(), work_fp.end(), 0.0);
+    std::fill(work_p.begin(), work_p.end(), 0.0);
+    for (int k = 0; k < npu; ++k) work_fp[pnodes[k]] = r[2 * nu + k];
+    fast_pressure->Solve(work_fp.data(), work_p.data());
+    for (int k = 0; k < npu; ++k) z[2 * nu + k] += rho_over_dt * work_p[pnodes[k]];
+  }
+}
+
+// The load at the unknowns less the coupling to the Dirichlet data (gu, gv: the data, 0 elsewhere).
+Eigen::VectorXd CutCellStokes::Impl::RightHandSide(const BoundaryData& data, const double* fu,
+                                                   const double* fv, std::vector<double>& gu,
+                                                   std::vector<double>& gv) const {
+  const std::size_t n = grid.NodeCount();
+  gu.assign(n, 0.0);
+  gv.assign(n, 0.0);
+  data.Apply(gu.data(), gv.data());
+  for (std::size_t k = 0; k < n; ++k)
+    if (vindex[k] >= 0) gu[k] = gv[k] = 0.0;
+  const Eigen::Map<const Eigen::VectorXd> du(gu.data(), static_cast<Eigen::Index>(n));
+  const Eigen::Map<const Eigen::VectorXd> dv(gv.data(), static_cast<Eigen::Index>(n));
+  const Eigen::VectorXd au = momentum_full * du, av = momentum_full * dv;
+  const Eigen::VectorXd bu = (div_x + chord_x) * du + (div_y + chord_y) * dv;
+  const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
+  Eigen::VectorXd rhs(2 * nu + npu);
+  for (int k = 0; k < nu; ++k) {
+    rhs[k] = (fu ? fu[vnodes[k]] : 0.0) - au[vnodes[k]];
+    rhs[nu + k] = (fv ? fv[vnodes[k]] : 0.0) - av[vnodes[k]];
+  }
+  for (int k = 0; k < npu; ++k) rhs[2 * nu + k] = -bu[pnodes[k]];
+  return rhs;
+}
+
+void CutCellStokes::Impl::Scatter(const Eigen::VectorXd& x, const std::vector<double>& gu,
+                                  const std::vector<double>& gv, double* u, double* v,
+                                  double* p) const {
+  const int nu = static_cast<int>(vnodes.size());
+  std::copy(gu.begin(), gu.end(), u);
+  std::copy(gv.begin(), gv.end(), v);
+  for (int k = 0; k < nu; ++k) {
+    u[vnodes[k]] = x[k];
+    v[vnodes[k]] = x[nu + k];
+  }
+  std::fill(p, p + pgrid.NodeCount(), 0.0);
+  for (std::size_t k = 0; k < pnodes.size(); ++k) p[pnodes[k]] = x[2 * nu + static_cast<int>(k)];
+}
+
+CutCellStokes::CutCellStokes(const CutCellGeometry& geometry, const DomainParams& domain,
+                             double viscosity, double density, double rho_over_dt,
+                             const CutCellConstants& constants)
+    : impl_(std::make_unique<Impl>(geometry, domain, viscosity, density, rho_over_dt, constants)) {}
+
+CutCellStokes::~CutCellStokes() = default;
+
+std::size_t CutCellStokes::NodeCount() const { return impl_->grid.NodeCount(); }
+int CutCellStokes::VelocityUnknowns() const { return static_cast<int>(impl_->vnodes.size()); }
+int CutCellStokes::PressureUnknowns() const { return static_cast<int>(impl_->pnodes.size()); }
+
+void CutCellStokes::SetAdvection(const double* wu, const double* wv) {
+  Impl& m = *impl_;
+  const auto n = static_cast<Eigen::Index>(m.grid.NodeCount());
+  m.convection.resize(n, n);
+  if (wu != nullptr) {
+    // rho ((w . grad) u, v) with w the P1 interpolant: C_ij = sum_k M_ik w_k . grad phi_j.
+    Triplets c;
+    auto add = [&](const std::array<int, 3>& nodes, const std::array<Vec2, 3>& grads,
+                   const std::array<std::array<double, 3>, 3>& mass) {
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          double value = 0.0;
+          for (int k = 0; k < 3; ++k)
+            value += mass[i][k] * (wu[nodes[k]] * grads[j].x() + wv[nodes[k]] * grads[j].y());
+          c.emplace_back(nodes[i], nodes[j], value);
+        }
+    };
+    const double e = m.grid.h * m.grid.h / 24.0;  // |T| / 12 with |T| = h^2 / 2
+    const std::array<std::array<double, 3>, 3> whole{{{2 * e, e, e}, {e, 2 * e, e}, {e, e, 2 * e}}};
+    for (int t = 0; t < m.geo.TriangleCount(); ++t)
+      if (m.geo.State(t) == ElementState::kFluid)
+        add(m.geo.TriangleNodes(t), m.geo.TriangleGradients(t), whole);
+    for (const CutTriangle& cut : m.geo.cut_triangles()) add(cut.nodes, cut.grads, cut.mass);
+    m.convection.setFromTriplets(c.begin(), c.end());
+  }
+  m.BuildReduced();
+}
+
+CutCellReport CutCellStokes::Solve(const BoundaryData& data, const double* fu, const double* fv,
+                                   double* u, double* v, double* p, double tolerance,
+                                   int max_iterations) {
+  Impl& m = *impl_;
+  std::vector<double> gu, gv;
+  const Eigen::VectorXd rhs = m.RightHandSide(data, fu, fv, gu, gv);
+  const int nu = static_cast<int>(m.vnodes.size());
+  Eigen::VectorXd x(rhs.size());
+  for (int k = 0; k < nu; ++k) {
+    x[k] = u[m.vnodes[k]];
+    x[nu + k] = v[m.vnodes[k]];
+  }
+  for (std::size_t k = 0; k < m.pnodes.size(); ++k)
+    x[2 * nu + static_cast<int>(k)] = p[m.pnodes[k]];
+  const GmresResult result =
+      SolveGmres([&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = m.saddle * in; },
+                 [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { m.Precondition(in, out); },
+                 rhs, x, tolerance, max_iterations, m.constants.restart);
+  if (!result.converged) {
+    std::ostringstream what;
+    what << "cut-cell Stokes: GMRES did not reach " << tolerance << " in " << result.iterations
+         << " iterations (relative residual " << result.relative_residual << ")";
+    throw SolverNotConverged(what.str());
+  }
+  m.Scatter(x, gu, gv, u, v, p);
+  return {result.iterations, result.relative_residual, static_cast<int>(rhs.size())};
+}
+
+void CutCellStokes::SolveDirect(const BoundaryData& data, const double* fu, const double* fv,
+                                double* u, double* v, double* p) {
+  Impl& m = *impl_;
+  std::vector<double> gu, gv;
+  const Eigen::VectorXd rhs = m.RightHandSide(data, fu, fv, gu, gv);
+  Eigen::SparseLU<Sparse> lu;
+  lu.compute(m.saddle);
+  if (lu.info() != Eigen::Success)
+    throw SolverNotConverged("cut-cell Stokes: singular saddle point");
+  m.Scatter(lu.solve(rhs), gu, gv, u, v, p);
+}
+
+Vec2 CutCellStokes::Force(int body, const double* u, const double* v, const double* p) const {
+  const Impl& m = *impl_;
+  const auto n = static_cast<Eigen::Index>(m.grid.NodeCount());
+  const auto np = static_cast<Eigen::Index>(m.pgrid.NodeCount());
+  const Eigen::Map<const Eigen::VectorXd> uu(u, n), vv(v, n), pp(p, np);
+  const Sparse a = m.eta * m.stiffness + m.rho * m.convection;
+  const Eigen::VectorXd ru = a * uu + m.div_x.transpose() * pp;
+  const Eigen::VectorXd rv = a * vv + m.div_y.transpose() * pp;
+  Vec2 force = Vec2::Zero();
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const auto node = static_cast<std::size_t>(k);
+    if (m.geo.NearestBody(node) != body || m.geo.distance()[node] >= 1.5 * m.grid.h) continue;
+    force -= Vec2(ru[k], rv[k]);
+  }
+  return force;
+}
+
+int SolveSteadyNavierStokes(CutCellStokes& flow, const BoundaryData& data, double* u, double* v,
+                            double* p, double tolerance, int max_iterations, double change,
+                            int max_picard) {
+  const std::size_t n = flow.NodeCount();
+  flow.SetAdvection(nullptr, nullptr);
+  flow.Solve(data, nullptr, nullptr, u, v, p, tolerance, max_iterations);
+  double last = 1.0;
+  for (int solve = 2; solve <= max_picard + 1; ++solve) {
+    const std::vector<double> wu(u, u + n), wv(v, v + n);
+    flow.SetAdvection(wu.data(), wv.data());
+    flow.Solve(data, nullptr, nullptr, u, v, p, tolerance, max_iterations);
+    double diff = 0.0, norm = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      diff += (u[k] - wu[k]) * (u[k] - wu[k]) + (v[k] - wv[k]) * (v[k] - wv[k]);
+      norm += u[k] * u[k] + v[k] * v[k];
+    }
+    last = std::sqrt(diff / norm);
+    if (last < change) return solve;
+  }
+  std::ostringstream what;
+  what << "cut-cell steady Navier-Stokes: the velocity still changed by " << last << " after "
+       << max_picard << " Oseen solves";
+  throw SolverNotConverged(what.str());
+}
+
+}  // namespace dlmfd
