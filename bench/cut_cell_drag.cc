@@ -10,7 +10,9 @@
 //                                                    steady Navier-Stokes by Picard iterations to
 //                                                    a velocity change of 1e-8; F_x, F_y printed
 //                                                    as C_D = 500 F_x, C_L = 500 F_y)
-// Options after the shifts: --ghost G_U --ghost-p G_P (the ghost penalties).
+// Options after the shifts: --ghost G_U --ghost-p G_P (the ghost penalties); --both (every form
+// the mean over the SW-NE and NW-SE triangulations); --direct (sparse direct solves instead of
+// GMRES); --exact-velocity (GMRES preconditioned by the velocity block's factorization).
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -52,9 +54,17 @@ int main(int argc, char** argv) {
   const double d_over_h = std::atof(argv[2]);
   std::vector<double> shifts;
   dlmfd::CutCellConstants constants;
+  bool both = false;
+  dlmfd::CutCellLinearSolver solver = dlmfd::CutCellLinearSolver::kGmres;
   for (int a = 3; a < argc; ++a) {
     const std::string arg = argv[a];
-    if (arg == "--ghost" && a + 1 < argc) {
+    if (arg == "--both") {
+      both = true;
+    } else if (arg == "--direct") {
+      solver = dlmfd::CutCellLinearSolver::kDirect;
+    } else if (arg == "--exact-velocity") {
+      solver = dlmfd::CutCellLinearSolver::kGmresExactVelocity;
+    } else if (arg == "--ghost" && a + 1 < argc) {
       constants.ghost_velocity = std::atof(argv[++a]);
     } else if (arg == "--ghost-p" && a + 1 < argc) {
       constants.ghost_pressure = std::atof(argv[++a]);
@@ -78,12 +88,15 @@ int main(int argc, char** argv) {
     body[0].shape = dlmfd::Shape::Disk(0.05);
     body[0].centre = Vec2(0.2 + shift * d.h, 0.2);
     const dlmfd::CutCellGeometry geo(g, body);
-    dlmfd::CutCellStokes flow(geo, d, c.viscosity, 1.0, 0.0, constants);
+    const dlmfd::CutCellGeometry mirror(g, body, dlmfd::CutTriangulation::kNwSe);
+    dlmfd::CutCellStokes flow =
+        both ? dlmfd::CutCellStokes(geo, mirror, d, c.viscosity, 1.0, 0.0, constants)
+             : dlmfd::CutCellStokes(geo, d, c.viscosity, 1.0, 0.0, constants);
     std::vector<double> u(g.NodeCount()), v(g.NodeCount()), p(g.Coarse().NodeCount());
     int iterations = 0;
     if (c.navier_stokes) {
       iterations = dlmfd::SolveSteadyNavierStokes(flow, data, u.data(), v.data(), p.data(), 1e-10,
-                                                  5000, 1e-8, 60);
+                                                  5000, 1e-8, 60, solver);
     } else {
       iterations =
           flow.Solve(data, nullptr, nullptr, u.data(), v.data(), p.data(), 1e-10, 5000).iterations;

@@ -35,8 +35,10 @@ double TwiceSignedArea(const Vec2& a, const Vec2& b, const Vec2& c) {
 
 }  // namespace
 
-CutCellGeometry::CutCellGeometry(const Grid& grid, const std::vector<FixedBody>& bodies)
-    : grid_(grid) {
+CutCellGeometry::CutCellGeometry(const Grid& grid, const std::vector<FixedBody>& bodies,
+                                 CutTriangulation triangulation)
+    : grid_(grid),
+      triangulation_(triangulation) {
   const std::size_t n = grid.NodeCount();
   phi_.assign(n, std::numeric_limits<double>::infinity());
   nearest_.assign(n, -1);
@@ -62,36 +64,61 @@ CutCellGeometry::CutCellGeometry(const Grid& grid, const std::vector<FixedBody>&
   ClassifyTriangles();
 }
 
+namespace {
+
+std::array<int, 3> MeshTriangleNodes(const Grid& mesh, CutTriangulation tri, int t) {
+  const int square = t / 2, i = square % mesh.nx, j = square / mesh.nx;
+  const int n00 = static_cast<int>(mesh.Index(i, j)), n10 = n00 + 1;
+  const int n01 = static_cast<int>(mesh.Index(i, j + 1)), n11 = n01 + 1;
+  if (tri == CutTriangulation::kSwNe) {
+    if (t % 2 == 0) return {n00, n10, n11};
+    return {n00, n11, n01};
+  }
+  if (t % 2 == 0) return {n00, n10, n01};
+  return {n10, n11, n01};
+}
+
+std::array<Vec2, 3> MeshTriangleGradients(double h, CutTriangulation tri, int t) {
+  const double r = 1.0 / h;
+  if (tri == CutTriangulation::kSwNe) {
+    if (t % 2 == 0) return {Vec2(-r, 0.0), Vec2(r, -r), Vec2(0.0, r)};
+    return {Vec2(0.0, -r), Vec2(r, 0.0), Vec2(-r, r)};
+  }
+  if (t % 2 == 0) return {Vec2(-r, -r), Vec2(r, 0.0), Vec2(0.0, r)};
+  return {Vec2(0.0, -r), Vec2(r, r), Vec2(-r, 0.0)};
+}
+
+}  // namespace
+
 std::array<int, 3> CutCellGeometry::TriangleNodes(int t) const {
-  const int square = t / 2, i = square % grid_.nx, j = square / grid_.nx;
-  const int n00 = static_cast<int>(grid_.Index(i, j)), n10 = n00 + 1;
-  const int n01 = static_cast<int>(grid_.Index(i, j + 1)), n11 = n01 + 1;
-  if (t % 2 == 0) return {n00, n10, n11};
-  return {n00, n11, n01};
+  return MeshTriangleNodes(grid_, triangulation_, t);
 }
 
 std::array<Vec2, 3> CutCellGeometry::TriangleGradients(int t) const {
-  const double r = 1.0 / grid_.h;
-  if (t % 2 == 0) return {Vec2(-r, 0.0), Vec2(r, -r), Vec2(0.0, r)};
-  return {Vec2(0.0, -r), Vec2(r, 0.0), Vec2(-r, r)};
+  return MeshTriangleGradients(grid_.h, triangulation_, t);
 }
 
 int CutCellGeometry::MacroOf(int t) const {
   const int square = t / 2, i = square % grid_.nx, j = square / grid_.nx;
-  // The centroid in units of h: lower (i + 2/3, j + 1/3), upper (i + 1/3, j + 2/3).
-  const double cx = i + (t % 2 == 0 ? 2.0 : 1.0) / 3.0, cy = j + (t % 2 == 0 ? 1.0 : 2.0) / 3.0;
   const int mi = i / 2, mj = j / 2;
-  const bool lower = (cx / 2.0 - mi) >= (cy / 2.0 - mj);
-  return 2 * (mj * (grid_.nx / 2) + mi) + (lower ? 0 : 1);
+  if (triangulation_ == CutTriangulation::kSwNe) {
+    // The centroid in units of h: lower (i + 2/3, j + 1/3), upper (i + 1/3, j + 2/3).
+    const double cx = i + (t % 2 == 0 ? 2.0 : 1.0) / 3.0, cy = j + (t % 2 == 0 ? 1.0 : 2.0) / 3.0;
+    const bool lower = (cx / 2.0 - mi) >= (cy / 2.0 - mj);
+    return 2 * (mj * (grid_.nx / 2) + mi) + (lower ? 0 : 1);
+  }
+  // Lower-left (i + 1/3, j + 1/3), upper-right (i + 2/3, j + 2/3).
+  const double c = (t % 2 == 0 ? 1.0 : 2.0) / 3.0;
+  const bool lower_left = ((i + c) / 2.0 - mi) + ((j + c) / 2.0 - mj) <= 1.0;
+  return 2 * (mj * (grid_.nx / 2) + mi) + (lower_left ? 0 : 1);
 }
 
 std::array<int, 3> CutCellGeometry::MacroNodes(int macro) const {
-  const Grid coarse = grid_.Coarse();
-  const int square = macro / 2, i = square % coarse.nx, j = square / coarse.nx;
-  const int n00 = static_cast<int>(coarse.Index(i, j)), n10 = n00 + 1;
-  const int n01 = static_cast<int>(coarse.Index(i, j + 1)), n11 = n01 + 1;
-  if (macro % 2 == 0) return {n00, n10, n11};
-  return {n00, n11, n01};
+  return MeshTriangleNodes(grid_.Coarse(), triangulation_, macro);
+}
+
+std::array<Vec2, 3> CutCellGeometry::MacroGradients(int macro) const {
+  return MeshTriangleGradients(2.0 * grid_.h, triangulation_, macro);
 }
 
 void CutCellGeometry::ClassifyTriangles() {

@@ -3,6 +3,7 @@
 #include <Eigen/SparseLU>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "dlmfd/core/errors.h"
 #include "dlmfd/mesh/boundary_topology.h"
@@ -24,62 +25,38 @@ Vec2 NodePosition(const Grid& grid, int node) {
   return Vec2(grid.X(node % grid.NodesX()), grid.Y(node / grid.NodesX()));
 }
 
-// The P1 basis of the macro-triangle `macro` at x, with its pressure nodes.
+// The P1 basis of the macro-triangle `macro` at x.
 std::array<double, 3> MacroBasis(const CutCellGeometry& geo, int macro, const Vec2& x) {
-  const Grid coarse = geo.grid().Coarse();
-  const std::array<int, 3> q = geo.MacroNodes(macro);
-  const double r = 1.0 / coarse.h;
-  const std::array<Vec2, 3> g = macro % 2 == 0
-                                    ? std::array<Vec2, 3>{Vec2(-r, 0.0), Vec2(r, -r), Vec2(0.0, r)}
-                                    : std::array<Vec2, 3>{Vec2(0.0, -r), Vec2(r, 0.0), Vec2(-r, r)};
-  return Basis(NodePosition(coarse, q[0]), g, x);
+  return Basis(NodePosition(geo.grid().Coarse(), geo.MacroNodes(macro)[0]),
+               geo.MacroGradients(macro), x);
 }
 
-// Ghost penalty scale * |F| [d_n phi_i][d_n phi_j] over the interior faces of a uniform SW-NE mesh
-// (spacing h) shared by two active triangles, at least one of them touched. Every interior face
-// pairs a lower triangle with an upper one: the diagonal of its own square, the bottom face (the
-// upper triangle of the square below) and the right face (the upper triangle of the square to the
-// right).
-template <class Active, class Touched>
-void AddGhostPenalty(const Grid& mesh, Active active, Touched touched, double scale,
-                     Triplets& out) {
-  const double r = 1.0 / mesh.h, s2 = std::sqrt(0.5);
-  const std::array<Vec2, 3> gl{Vec2(-r, 0.0), Vec2(r, -r), Vec2(0.0, r)};
-  const std::array<Vec2, 3> gu{Vec2(0.0, -r), Vec2(r, 0.0), Vec2(-r, r)};
-  auto nodes = [&](int t) {
-    const int sq = t / 2, i = sq % mesh.nx, j = sq / mesh.nx;
-    const int n00 = static_cast<int>(mesh.Index(i, j)),
-              n01 = static_cast<int>(mesh.Index(i, j + 1));
-    return t % 2 == 0 ? std::array<int, 3>{n00, n00 + 1, n01 + 1}
-                      : std::array<int, 3>{n00, n01 + 1, n01};
-  };
-  auto face = [&](int lower, int upper, const Vec2& n, double length) {
-    if (!active(lower) || !active(upper) || !(touched(lower) || touched(upper))) return;
-    const std::array<int, 3> a = nodes(lower), b = nodes(upper);
-    std::array<int, 6> idx{a[0], a[1], a[2], b[0], b[1], b[2]};
+// Ghost penalty scale * |F| [d_n phi_i][d_n phi_j] over the interior faces of the h-mesh (or of
+// the 2h mesh) shared by two active triangles, at least one of them touched.
+template <class Nodes, class Gradients, class Active, class Touched>
+void AddGhostPenalty(const CutCellGeometry& geo, const Grid& mesh, Nodes nodes, Gradients gradients,
+                     Active active, Touched touched, double scale, Triplets& out) {
+  geo.ForEachFace(mesh, [&](int t, int u, const Vec2& n, double length) {
+    if (!active(t) || !active(u) || !(touched(t) || touched(u))) return;
+    const std::array<int, 3> a = nodes(t), b = nodes(u);
+    const std::array<Vec2, 3> ga = gradients(t), gb = gradients(u);
+    const std::array<int, 6> idx{a[0], a[1], a[2], b[0], b[1], b[2]};
     std::array<double, 6> jump{};
     for (int k = 0; k < 3; ++k) {
-      jump[k] = gl[k].dot(n);
-      jump[3 + k] = -gu[k].dot(n);
+      jump[k] = ga[k].dot(n);
+      jump[3 + k] = -gb[k].dot(n);
     }
     for (int p = 0; p < 6; ++p)
       for (int q = 0; q < 6; ++q)
         out.emplace_back(idx[p], idx[q], scale * length * jump[p] * jump[q]);
-  };
-  for (int j = 0; j < mesh.ny; ++j) {
-    for (int i = 0; i < mesh.nx; ++i) {
-      const int lower = 2 * (j * mesh.nx + i);
-      face(lower, lower + 1, Vec2(s2, -s2), std::sqrt(2.0) * mesh.h);
-      if (j > 0) face(lower, 2 * ((j - 1) * mesh.nx + i) + 1, Vec2(0.0, 1.0), mesh.h);
-      if (i + 1 < mesh.nx) face(lower, 2 * (j * mesh.nx + i + 1) + 1, Vec2(1.0, 0.0), mesh.h);
-    }
-  }
+  });
 }
 
 }  // namespace
 
 struct CutCellStokes::Impl {
-  const CutCellGeometry& geo;
+  std::vector<const CutCellGeometry*> geos;  // one triangulation, or both (forms averaged)
+  double weight;                             // 1 / geos.size()
   Grid grid, pgrid;
   BoundaryTopology vtopo, ptopo;
   double eta, rho, rho_over_dt;
@@ -97,28 +74,43 @@ struct CutCellStokes::Impl {
   // The reduced operators.
   Sparse momentum_full, velocity, saddle, band_matrix;
   Eigen::SparseLU<Sparse> band_lu;
+  bool exact_velocity = false;  // precondition the velocity by its own factorization
+  Eigen::SparseLU<Sparse> velocity_lu;
   std::unique_ptr<SeparableHelmholtz> fast_velocity, fast_pressure;
   Eigen::VectorXd pressure_mass;  // at pressure unknowns
   std::vector<double> work_fu, work_fv, work_u, work_v, work_fp, work_p;
 
-  Impl(const CutCellGeometry& g, const DomainParams& domain, double viscosity, double density,
-       double rdt, const CutCellConstants& c);
+  Impl(std::vector<const CutCellGeometry*> g, const DomainParams& domain, double viscosity,
+       double density, double rdt, const CutCellConstants& c);
   void AssembleFluidForms();
   void AssembleChordForms();
+  void AddChordTerms(const CutCellGeometry& geo, Triplets& nit, Triplets& cx, Triplets& cy) const;
   void NumberUnknowns();
+  bool ActiveNode(std::size_t k) const {
+    for (const CutCellGeometry* geo : geos)
+      if (geo->NodeActive(k)) return true;
+    return false;
+  }
+  bool ActivePressureNode(std::size_t k) const {
+    for (const CutCellGeometry* geo : geos)
+      if (geo->PressureNodeActive(k)) return true;
+    return false;
+  }
   void BuildReduced();
   void Precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z);
+  void PreconditionVelocity(const Eigen::VectorXd& r, Eigen::VectorXd& z);
   Eigen::VectorXd RightHandSide(const BoundaryData& data, const double* fu, const double* fv,
                                 std::vector<double>& gu, std::vector<double>& gv) const;
   void Scatter(const Eigen::VectorXd& x, const std::vector<double>& gu,
                const std::vector<double>& gv, double* u, double* v, double* p) const;
 };
 
-CutCellStokes::Impl::Impl(const CutCellGeometry& g, const DomainParams& domain, double viscosity,
-                          double density, double rdt, const CutCellConstants& c)
-    : geo(g),
-      grid(g.grid()),
-      pgrid(g.grid().Coarse()),
+CutCellStokes::Impl::Impl(std::vector<const CutCellGeometry*> g, const DomainParams& domain,
+                          double viscosity, double density, double rdt, const CutCellConstants& c)
+    : geos(std::move(g)),
+      weight(1.0 / static_cast<double>(geos.size())),
+      grid(geos[0]->grid()),
+      pgrid(geos[0]->grid().Coarse()),
       vtopo(BoundaryTopology::ForVelocity(domain)),
       ptopo(BoundaryTopology::ForPressure(domain)),
       eta(viscosity),
@@ -154,41 +146,44 @@ CutCellStokes::Impl::Impl(const CutCellGeometry& g, const DomainParams& domain, 
 
 // Stiffness, lumped mass and divergence over the fluid part of every active h-triangle: whole
 // triangles, and the fluid polygons of cut ones (the divergence by the one-point rule at the
-// polygon's centroid, exact for linear q times the constant div u).
+// polygon's centroid, exact for linear q times the constant div u). Both triangulations: the mean.
 void CutCellStokes::Impl::AssembleFluidForms() {
   const auto n = static_cast<Eigen::Index>(grid.NodeCount());
   const auto np = static_cast<Eigen::Index>(pgrid.NodeCount());
   Triplets k, bx, by;
   lumped_mass = Eigen::VectorXd::Zero(n);
   pressure_fluid_mass = Eigen::VectorXd::Zero(np);
-  auto add = [&](int t, const std::array<int, 3>& nodes, const std::array<Vec2, 3>& grads,
-                 double area, const Vec2& centroid, const std::array<double, 3>& mass_rows) {
-    const int macro = geo.MacroOf(t);
-    const std::array<int, 3> q = geo.MacroNodes(macro);
-    const std::array<double, 3> lam = MacroBasis(geo, macro, centroid);
-    for (int a = 0; a < 3; ++a) {
-      lumped_mass[nodes[a]] += mass_rows[a];
-      pressure_fluid_mass[q[a]] += area * lam[a];
-      for (int b = 0; b < 3; ++b) k.emplace_back(nodes[a], nodes[b], area * grads[a].dot(grads[b]));
-      for (int b = 0; b < 3; ++b) {
-        bx.emplace_back(q[a], nodes[b], -area * lam[a] * grads[b].x());
-        by.emplace_back(q[a], nodes[b], -area * lam[a] * grads[b].y());
+  for (const CutCellGeometry* geo : geos) {
+    auto add = [&](int t, const std::array<int, 3>& nodes, const std::array<Vec2, 3>& grads,
+                   double area, const Vec2& centroid, const std::array<double, 3>& mass_rows) {
+      const int macro = geo->MacroOf(t);
+      const std::array<int, 3> q = geo->MacroNodes(macro);
+      const std::array<double, 3> lam = MacroBasis(*geo, macro, centroid);
+      const double wa = weight * area;
+      for (int a = 0; a < 3; ++a) {
+        lumped_mass[nodes[a]] += weight * mass_rows[a];
+        pressure_fluid_mass[q[a]] += wa * lam[a];
+        for (int b = 0; b < 3; ++b) {
+          k.emplace_back(nodes[a], nodes[b], wa * grads[a].dot(grads[b]));
+          bx.emplace_back(q[a], nodes[b], -wa * lam[a] * grads[b].x());
+          by.emplace_back(q[a], nodes[b], -wa * lam[a] * grads[b].y());
+        }
       }
+    };
+    const double whole = 0.5 * grid.h * grid.h;
+    for (int t = 0; t < geo->TriangleCount(); ++t) {
+      if (geo->State(t) != ElementState::kFluid) continue;
+      const std::array<int, 3> nodes = geo->TriangleNodes(t);
+      Vec2 centroid = Vec2::Zero();
+      for (int a : nodes) centroid += NodePosition(grid, a) / 3.0;
+      add(t, nodes, geo->TriangleGradients(t), whole, centroid,
+          {whole / 3.0, whole / 3.0, whole / 3.0});
     }
-  };
-  const double whole = 0.5 * grid.h * grid.h;
-  for (int t = 0; t < geo.TriangleCount(); ++t) {
-    if (geo.State(t) != ElementState::kFluid) continue;
-    const std::array<int, 3> nodes = geo.TriangleNodes(t);
-    Vec2 centroid = Vec2::Zero();
-    for (int a : nodes) centroid += NodePosition(grid, a) / 3.0;
-    add(t, nodes, geo.TriangleGradients(t), whole, centroid,
-        {whole / 3.0, whole / 3.0, whole / 3.0});
-  }
-  for (const CutTriangle& c : geo.cut_triangles()) {
-    std::array<double, 3> rows{};
-    for (int a = 0; a < 3; ++a) rows[a] = c.mass[a][0] + c.mass[a][1] + c.mass[a][2];
-    add(c.triangle, c.nodes, c.grads, c.area, c.centroid, rows);
+    for (const CutTriangle& c : geo->cut_triangles()) {
+      std::array<double, 3> rows{};
+      for (int a = 0; a < 3; ++a) rows[a] = c.mass[a][0] + c.mass[a][1] + c.mass[a][2];
+      add(c.triangle, c.nodes, c.grads, c.area, c.centroid, rows);
+    }
   }
   stiffness.resize(n, n);
   stiffness.setFromTriplets(k.begin(), k.end());
@@ -198,15 +193,13 @@ void CutCellStokes::Impl::AssembleFluidForms() {
   div_y.setFromTriplets(by.begin(), by.end());
 }
 
-// Nitsche's terms on the chords (two-point Gauss) and the ghost penalties.
-void CutCellStokes::Impl::AssembleChordForms() {
-  const auto n = static_cast<Eigen::Index>(grid.NodeCount());
-  const auto np = static_cast<Eigen::Index>(pgrid.NodeCount());
-  Triplets nit, cx, cy, gu, gp;
+// Nitsche's terms on the chords (two-point Gauss) of one triangulation, weighted.
+void CutCellStokes::Impl::AddChordTerms(const CutCellGeometry& geo, Triplets& nit, Triplets& cx,
+                                        Triplets& cy) const {
   const double gauss[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
   for (const CutTriangle& c : geo.cut_triangles()) {
     const Vec2 x0 = NodePosition(grid, c.nodes[0]);
-    const double weight = 0.5 * (c.chord_b - c.chord_a).norm();
+    const double w = weight * 0.5 * (c.chord_b - c.chord_a).norm();
     std::array<double, 3> dn{};
     for (int a = 0; a < 3; ++a) dn[a] = c.grads[a].dot(c.normal);
     const int macro = geo.MacroOf(c.triangle);
@@ -218,21 +211,34 @@ void CutCellStokes::Impl::AssembleChordForms() {
       for (int a = 0; a < 3; ++a) {
         for (int b = 0; b < 3; ++b) {
           nit.emplace_back(c.nodes[a], c.nodes[b],
-                           weight * (-phi[a] * dn[b] - dn[a] * phi[b] +
-                                     constants.nitsche / grid.h * phi[a] * phi[b]));
-          cx.emplace_back(q[a], c.nodes[b], weight * lam[a] * phi[b] * c.normal.x());
-          cy.emplace_back(q[a], c.nodes[b], weight * lam[a] * phi[b] * c.normal.y());
+                           w * (-phi[a] * dn[b] - dn[a] * phi[b] +
+                                constants.nitsche / grid.h * phi[a] * phi[b]));
+          cx.emplace_back(q[a], c.nodes[b], w * lam[a] * phi[b] * c.normal.x());
+          cy.emplace_back(q[a], c.nodes[b], w * lam[a] * phi[b] * c.normal.y());
         }
       }
     }
   }
-  AddGhostPenalty(
-      grid, [&](int t) { return geo.Active(t); },
-      [&](int t) { return geo.State(t) == ElementState::kCut; }, constants.ghost_velocity * grid.h,
-      gu);
-  AddGhostPenalty(
-      pgrid, [&](int m) { return geo.MacroActive(m); }, [&](int m) { return geo.MacroTouched(m); },
-      constants.ghost_pressure * std::pow(pgrid.h, 3), gp);
+}
+
+// Nitsche's terms and the ghost penalties.
+void CutCellStokes::Impl::AssembleChordForms() {
+  const auto n = static_cast<Eigen::Index>(grid.NodeCount());
+  const auto np = static_cast<Eigen::Index>(pgrid.NodeCount());
+  Triplets nit, cx, cy, gu, gp;
+  for (const CutCellGeometry* geo : geos) {
+    AddChordTerms(*geo, nit, cx, cy);
+    AddGhostPenalty(
+        *geo, grid, [&](int t) { return geo->TriangleNodes(t); },
+        [&](int t) { return geo->TriangleGradients(t); }, [&](int t) { return geo->Active(t); },
+        [&](int t) { return geo->State(t) == ElementState::kCut; },
+        weight * constants.ghost_velocity * grid.h, gu);
+    AddGhostPenalty(
+        *geo, pgrid, [&](int m) { return geo->MacroNodes(m); },
+        [&](int m) { return geo->MacroGradients(m); }, [&](int m) { return geo->MacroActive(m); },
+        [&](int m) { return geo->MacroTouched(m); },
+        weight * constants.ghost_pressure * std::pow(pgrid.h, 3), gp);
+  }
   nitsche.resize(n, n);
   nitsche.setFromTriplets(nit.begin(), nit.end());
   chord_x.resize(np, n);
@@ -250,16 +256,16 @@ void CutCellStokes::Impl::NumberUnknowns() {
   for (int j = 0; j <= grid.ny; ++j)
     for (int i = 0; i <= grid.nx; ++i) {
       const std::size_t k = grid.Index(i, j);
-      if (!vtopo.IsUnknown(grid, i, j) || !geo.NodeActive(k)) continue;
+      if (!vtopo.IsUnknown(grid, i, j) || !ActiveNode(k)) continue;
       vindex[k] = static_cast<int>(vnodes.size());
       vnodes.push_back(static_cast<int>(k));
-      if (geo.distance()[k] < constants.band * grid.h) band.push_back(vindex[k]);
+      if (geos[0]->distance()[k] < constants.band * grid.h) band.push_back(vindex[k]);
     }
   pindex.assign(pgrid.NodeCount(), -1);
   for (int j = 0; j <= pgrid.ny; ++j)
     for (int i = 0; i <= pgrid.nx; ++i) {
       const std::size_t k = pgrid.Index(i, j);
-      if (!ptopo.IsUnknown(pgrid, i, j) || !geo.PressureNodeActive(k)) continue;
+      if (!ptopo.IsUnknown(pgrid, i, j) || !ActivePressureNode(k)) continue;
       pindex[k] = static_cast<int>(pnodes.size());
       pnodes.push_back(static_cast<int>(k));
     }
@@ -312,11 +318,31 @@ void CutCellStokes::Impl::BuildReduced() {
   band_matrix.resize(nb, nb);
   band_matrix.setFromTriplets(bt.begin(), bt.end());
   if (nb > 0) band_lu.compute(band_matrix);
+  if (exact_velocity) velocity_lu.compute(velocity);
 }
 
 void CutCellStokes::Impl::Precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
   const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
   z.resize(r.size());
+  if (exact_velocity) {
+    z.segment(0, nu) = velocity_lu.solve(r.segment(0, nu));
+    z.segment(nu, nu) = velocity_lu.solve(r.segment(nu, nu));
+  } else {
+    PreconditionVelocity(r, z);
+  }
+  for (int k = 0; k < npu; ++k) z[2 * nu + k] = eta * r[2 * nu + k] / pressure_mass[k];
+  if (fast_pressure) {
+    std::fill(work_fp.begin(), work_fp.end(), 0.0);
+    std::fill(work_p.begin(), work_p.end(), 0.0);
+    for (int k = 0; k < npu; ++k) work_fp[pnodes[k]] = r[2 * nu + k];
+    fast_pressure->Solve(work_fp.data(), work_p.data());
+    for (int k = 0; k < npu; ++k) z[2 * nu + k] += rho_over_dt * work_p[pnodes[k]];
+  }
+}
+
+// The fast solver of the uniform operator, then the direct band correction.
+void CutCellStokes::Impl::PreconditionVelocity(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  const int nu = static_cast<int>(vnodes.size());
   std::fill(work_fu.begin(), work_fu.end(), 0.0);
   std::fill(work_fv.begin(), work_fv.end(), 0.0);
   std::fill(work_u.begin(), work_u.end(), 0.0);
@@ -338,14 +364,6 @@ void CutCellStokes::Impl::Precondition(const Eigen::VectorXd& r, Eigen::VectorXd
       for (std::size_t k = 0; k < band.size(); ++k) zc[band[k]] += cb[k];
     }
     z.segment(comp * nu, nu) = zc;
-  }
-  for (int k = 0; k < npu; ++k) z[2 * nu + k] = eta * r[2 * nu + k] / pressure_mass[k];
-  if (fast_pressure) {
-    std::fill(work_fp.begin(), work_fp.end(), 0.0);
-    std::fill(work_p.begin(), work_p.end(), 0.0);
-    for (int k = 0; k < npu; ++k) work_fp[pnodes[k]] = r[2 * nu + k];
-    fast_pressure->Solve(work_fp.data(), work_p.data());
-    for (int k = 0; k < npu; ++k) z[2 * nu + k] += rho_over_dt * work_p[pnodes[k]];
   }
 }
 
@@ -390,13 +408,29 @@ void CutCellStokes::Impl::Scatter(const Eigen::VectorXd& x, const std::vector<do
 CutCellStokes::CutCellStokes(const CutCellGeometry& geometry, const DomainParams& domain,
                              double viscosity, double density, double rho_over_dt,
                              const CutCellConstants& constants)
-    : impl_(std::make_unique<Impl>(geometry, domain, viscosity, density, rho_over_dt, constants)) {}
+    : impl_(std::make_unique<Impl>(std::vector<const CutCellGeometry*>{&geometry}, domain,
+                                   viscosity, density, rho_over_dt, constants)) {}
+
+CutCellStokes::CutCellStokes(const CutCellGeometry& sw_ne, const CutCellGeometry& nw_se,
+                             const DomainParams& domain, double viscosity, double density,
+                             double rho_over_dt, const CutCellConstants& constants)
+    : impl_(std::make_unique<Impl>(std::vector<const CutCellGeometry*>{&sw_ne, &nw_se}, domain,
+                                   viscosity, density, rho_over_dt, constants)) {
+  if (sw_ne.triangulation() != CutTriangulation::kSwNe ||
+      nw_se.triangulation() != CutTriangulation::kNwSe)
+    throw std::invalid_argument("CutCellStokes: the SW-NE geometry first, then the NW-SE one");
+}
 
 CutCellStokes::~CutCellStokes() = default;
 
 std::size_t CutCellStokes::NodeCount() const { return impl_->grid.NodeCount(); }
 int CutCellStokes::VelocityUnknowns() const { return static_cast<int>(impl_->vnodes.size()); }
 int CutCellStokes::PressureUnknowns() const { return static_cast<int>(impl_->pnodes.size()); }
+
+void CutCellStokes::SetExactVelocityPreconditioner(bool exact) {
+  impl_->exact_velocity = exact;
+  impl_->BuildReduced();
+}
 
 void CutCellStokes::SetAdvection(const double* wu, const double* wv) {
   Impl& m = *impl_;
@@ -412,15 +446,17 @@ void CutCellStokes::SetAdvection(const double* wu, const double* wv) {
           double value = 0.0;
           for (int k = 0; k < 3; ++k)
             value += mass[i][k] * (wu[nodes[k]] * grads[j].x() + wv[nodes[k]] * grads[j].y());
-          c.emplace_back(nodes[i], nodes[j], value);
+          c.emplace_back(nodes[i], nodes[j], m.weight * value);
         }
     };
     const double e = m.grid.h * m.grid.h / 24.0;  // |T| / 12 with |T| = h^2 / 2
     const std::array<std::array<double, 3>, 3> whole{{{2 * e, e, e}, {e, 2 * e, e}, {e, e, 2 * e}}};
-    for (int t = 0; t < m.geo.TriangleCount(); ++t)
-      if (m.geo.State(t) == ElementState::kFluid)
-        add(m.geo.TriangleNodes(t), m.geo.TriangleGradients(t), whole);
-    for (const CutTriangle& cut : m.geo.cut_triangles()) add(cut.nodes, cut.grads, cut.mass);
+    for (const CutCellGeometry* geo : m.geos) {
+      for (int t = 0; t < geo->TriangleCount(); ++t)
+        if (geo->State(t) == ElementState::kFluid)
+          add(geo->TriangleNodes(t), geo->TriangleGradients(t), whole);
+      for (const CutTriangle& cut : geo->cut_triangles()) add(cut.nodes, cut.grads, cut.mass);
+    }
     m.convection.setFromTriplets(c.begin(), c.end());
   }
   m.BuildReduced();
@@ -477,7 +513,8 @@ Vec2 CutCellStokes::Force(int body, const double* u, const double* v, const doub
   Vec2 force = Vec2::Zero();
   for (Eigen::Index k = 0; k < n; ++k) {
     const auto node = static_cast<std::size_t>(k);
-    if (m.geo.NearestBody(node) != body || m.geo.distance()[node] >= 1.5 * m.grid.h) continue;
+    const CutCellGeometry& geo = *m.geos[0];
+    if (geo.NearestBody(node) != body || geo.distance()[node] >= 1.5 * m.grid.h) continue;
     force -= Vec2(ru[k], rv[k]);
   }
   return force;
@@ -485,15 +522,23 @@ Vec2 CutCellStokes::Force(int body, const double* u, const double* v, const doub
 
 int SolveSteadyNavierStokes(CutCellStokes& flow, const BoundaryData& data, double* u, double* v,
                             double* p, double tolerance, int max_iterations, double change,
-                            int max_picard) {
+                            int max_picard, CutCellLinearSolver solver) {
   const std::size_t n = flow.NodeCount();
+  flow.SetExactVelocityPreconditioner(solver == CutCellLinearSolver::kGmresExactVelocity);
+  auto solve_once = [&] {
+    if (solver == CutCellLinearSolver::kDirect) {
+      flow.SolveDirect(data, nullptr, nullptr, u, v, p);
+    } else {
+      flow.Solve(data, nullptr, nullptr, u, v, p, tolerance, max_iterations);
+    }
+  };
   flow.SetAdvection(nullptr, nullptr);
-  flow.Solve(data, nullptr, nullptr, u, v, p, tolerance, max_iterations);
+  solve_once();
   double last = 1.0;
   for (int solve = 2; solve <= max_picard + 1; ++solve) {
     const std::vector<double> wu(u, u + n), wv(v, v + n);
     flow.SetAdvection(wu.data(), wv.data());
-    flow.Solve(data, nullptr, nullptr, u, v, p, tolerance, max_iterations);
+    solve_once();
     double diff = 0.0, norm = 0.0;
     for (std::size_t k = 0; k < n; ++k) {
       diff += (u[k] - wu[k]) * (u[k] - wu[k]) + (v[k] - wv[k]) * (v[k] - wv[k]);

@@ -18,14 +18,18 @@
 // union of four h-triangles of the same diagonal side) are active when they hold an active
 // h-triangle and touched when they hold a cut one.
 //
-// Triangle numbering: square (i, j) holds triangle 2 (j nx + i) (lower: nodes (i, j), (i+1, j),
-// (i+1, j+1)) and 2 (j nx + i) + 1 (upper: (i, j), (i+1, j+1), (i, j+1)); the same on the 2h grid.
+// Triangle numbering: square (i, j) holds triangles 2 (j nx + i) and 2 (j nx + i) + 1; on the
+// SW-NE triangulation (the paper's) the lower (i, j), (i+1, j), (i+1, j+1) and the upper (i, j),
+// (i+1, j+1), (i, j+1); on its mirror image, NW-SE, the lower-left (i, j), (i+1, j), (i, j+1) and
+// the upper-right (i+1, j), (i+1, j+1), (i, j+1). The same on the 2h grid, whose macro-triangles
+// are the unions of four h-triangles of the same triangulation.
 // Periodic sides are not supported (the caller refuses them).
 // Reference: Burman, Claus, Hansbo, Larson & Massing, "CutFEM: discretizing geometry and partial
 // differential equations", Int. J. Numer. Methods Eng. 104 (2015) 472-501.
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "dlmfd/core/grid.h"
@@ -42,6 +46,7 @@ struct FixedBody {
 };
 
 enum class ElementState : unsigned char { kFluid, kCut, kSolid };
+enum class CutTriangulation { kSwNe, kNwSe };
 
 struct CutTriangle {
   int triangle = 0;             // h-triangle index (header)
@@ -57,9 +62,11 @@ struct CutTriangle {
 
 class CutCellGeometry {
  public:
-  CutCellGeometry(const Grid& grid, const std::vector<FixedBody>& bodies);
+  CutCellGeometry(const Grid& grid, const std::vector<FixedBody>& bodies,
+                  CutTriangulation triangulation = CutTriangulation::kSwNe);
 
   const Grid& grid() const { return grid_; }
+  CutTriangulation triangulation() const { return triangulation_; }
   int TriangleCount() const { return 2 * grid_.nx * grid_.ny; }
   // The three velocity nodes of h-triangle t and their P1 gradients.
   std::array<int, 3> TriangleNodes(int t) const;
@@ -67,6 +74,12 @@ class CutCellGeometry {
   // The macro-triangle (2h grid) that holds h-triangle t, and its three pressure nodes.
   int MacroOf(int t) const;
   std::array<int, 3> MacroNodes(int macro) const;
+  std::array<Vec2, 3> MacroGradients(int macro) const;
+  // The triangles t (a lower or lower-left one, even) and u (upper or upper-right, odd) of each
+  // interior face, its unit normal (any orientation) and length, on this grid's triangulation
+  // (h-mesh) or on the 2h mesh: visits f(t, u, normal, length).
+  template <class Visit>
+  void ForEachFace(const Grid& mesh, Visit f) const;
 
   ElementState State(int t) const { return state_[t]; }
   bool Active(int t) const { return state_[t] != ElementState::kSolid; }
@@ -87,11 +100,27 @@ class CutCellGeometry {
   void BuildCut(int t);
 
   Grid grid_;
+  CutTriangulation triangulation_;
   std::vector<double> phi_;
   std::vector<int> nearest_;  // per node: the body of smallest distance
   std::vector<ElementState> state_;
   std::vector<CutTriangle> cuts_;
   std::vector<unsigned char> node_active_, macro_active_, macro_touched_, pressure_active_;
 };
+
+template <class Visit>
+void CutCellGeometry::ForEachFace(const Grid& mesh, Visit f) const {
+  const double s2 = std::sqrt(0.5);
+  const bool sw_ne = triangulation_ == CutTriangulation::kSwNe;
+  for (int j = 0; j < mesh.ny; ++j) {
+    for (int i = 0; i < mesh.nx; ++i) {
+      const int t = 2 * (j * mesh.nx + i);
+      f(t, t + 1, sw_ne ? Vec2(s2, -s2) : Vec2(s2, s2), std::sqrt(2.0) * mesh.h);
+      if (j > 0) f(t, 2 * ((j - 1) * mesh.nx + i) + 1, Vec2(0.0, 1.0), mesh.h);
+      if (sw_ne && i + 1 < mesh.nx) f(t, 2 * (j * mesh.nx + i + 1) + 1, Vec2(1.0, 0.0), mesh.h);
+      if (!sw_ne && i > 0) f(t, 2 * (j * mesh.nx + i - 1) + 1, Vec2(1.0, 0.0), mesh.h);
+    }
+  }
+}
 
 }  // namespace dlmfd

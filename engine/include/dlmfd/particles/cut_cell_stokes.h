@@ -11,7 +11,8 @@
 // keep small cuts well conditioned; (.,.)_l the lumped mass of the fluid part). The bodies are at
 // rest (boundary value zero). Domain sides as in step (33): Dirichlet data on walls and velocity
 // sides, do-nothing outflow (p = 0 there); periodic sides and domains without an outflow side are
-// refused. The viscous form is eta grad u : grad v, as in the engine's step (33).
+// refused. The viscous form is eta grad u : grad v, as in the engine's step (33). On one
+// triangulation (the paper's SW-NE) or on both, every form then the mean of the two.
 //
 // Solver: restarted GMRES on the saddle point, right-preconditioned by the block diagonal of
 //   velocity: the fast solver of (rho/dt) M_l + eta K on the whole uniform grid, then a direct
@@ -64,10 +65,18 @@ class CutCellStokes {
   // rho_over_dt >= 0 (0: steady), viscosity > 0, density (of the Oseen term) >= 0.
   CutCellStokes(const CutCellGeometry& geometry, const DomainParams& domain, double viscosity,
                 double density, double rho_over_dt, const CutCellConstants& constants = {});
+  // The mean of every form on the SW-NE and the NW-SE triangulations (the counterpart of
+  // domain.diagonals = "both": mirror-symmetric). The geometries must outlive the solver.
+  CutCellStokes(const CutCellGeometry& sw_ne, const CutCellGeometry& nw_se,
+                const DomainParams& domain, double viscosity, double density, double rho_over_dt,
+                const CutCellConstants& constants = {});
   ~CutCellStokes();
   CutCellStokes(const CutCellStokes&) = delete;
   CutCellStokes& operator=(const CutCellStokes&) = delete;
 
+  // Precondition the velocity block by its own sparse factorization instead of the fast solvers
+  // (steady Oseen problems, which the Laplacian does not precondition).
+  void SetExactVelocityPreconditioner(bool exact);
   // The advecting velocity w of the Oseen term (full node arrays), or nullptr for none.
   void SetAdvection(const double* wu, const double* wv);
   // Solves with the Dirichlet data of `data` and the load (fu, fv) (dual, at velocity nodes; may be
@@ -95,8 +104,14 @@ class CutCellStokes {
 // 2-norm). Returns the number of solves, Stokes included; throws SolverNotConverged after
 // max_picard Oseen solves. The Oseen term is left set to the last advecting velocity (Force reads
 // it).
+// How the Oseen solves are done: GMRES with the fast solvers (header), GMRES with the velocity
+// block's own factorization as its preconditioner, or SolveDirect. With the fast solvers GMRES
+// stalls on the Oseen problem of Schaefer-Turek 2D-1 at D/h = 20 (relative residual 5.6e-2 after
+// 5000 iterations): the Laplacian does not precondition the channel's advection (U L / nu = 660).
+enum class CutCellLinearSolver { kGmres, kGmresExactVelocity, kDirect };
 int SolveSteadyNavierStokes(CutCellStokes& flow, const BoundaryData& data, double* u, double* v,
                             double* p, double tolerance, int max_iterations, double change,
-                            int max_picard);
+                            int max_picard,
+                            CutCellLinearSolver solver = CutCellLinearSolver::kGmres);
 
 }  // namespace dlmfd
