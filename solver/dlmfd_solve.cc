@@ -280,6 +280,15 @@ int Run(const Options& opt, dlmfd::solver::EventStream& events) {
     e.mutable_checkpointed()->set_file(file);
     events.Send(e);
   });
+  // A checkpoint written before it stored the angles: the results' angles (the records'
+  // angular velocities integrated) are the state's.
+  if (opt.resume && checkpoint.particle_angles.empty()) {
+    std::vector<ParticleState>& particles = sim->mutable_state().particles;
+    const std::vector<double>& angles = results->particle_angles();
+    for (std::size_t p = 0; p < particles.size() && p < angles.size(); ++p) {
+      particles[p].angle = angles[p];
+    }
+  }
   const long first_step = sim->state().step;
   EventObserver event_observer(&events, params, sim->grid());
   ProgressLine progress(opt.quiet, first_step, sim->TotalSteps(), params.time.end);

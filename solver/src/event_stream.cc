@@ -106,6 +106,11 @@ void EventObserver::OnParticles(const FlowState& state) {
     out->set_fy(q.force.y());
     out->set_torque(q.torque);
     out->set_radius(q.radius);
+    out->set_angle(q.angle);
+    const bool disk = q.shape == ShapeKind::kDisk;
+    out->set_shape(disk ? "disk" : "ellipse");
+    out->set_semi_axis_a(disk ? q.radius : q.semi_axes.x());
+    out->set_semi_axis_b(disk ? q.radius : q.semi_axes.y());
   }
   stream_->Send(particles_event_);
 }

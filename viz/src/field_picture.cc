@@ -402,9 +402,24 @@ FieldPicture DrawFieldPicture(const NodeField& field, const std::vector<DiskOutl
   for (const DiskOutline& disk : disks) {
     const double cx = picture.PixelX(disk.x);
     const double cy = picture.PixelY(disk.y);
-    const double r = disk.radius * scale;
-    canvas.FillCircle(cx, cy, r, kWhite);
-    canvas.StrokeCircle(cx, cy, r, rim, kBlack);
+    double r = disk.radius * scale;
+    if (disk.semi_a > 0.0 && disk.semi_b > 0.0) {
+      // An ellipse: a polygon of 96 points on its boundary (pixel y points down).
+      std::vector<double> xy;
+      const double c = std::cos(disk.angle), s = std::sin(disk.angle);
+      for (int k = 0; k <= 96; ++k) {
+        const double t = 2.0 * kPi * k / 96;
+        const double bx = disk.semi_a * std::cos(t), by = disk.semi_b * std::sin(t);
+        xy.push_back(cx + scale * (c * bx - s * by));
+        xy.push_back(cy - scale * (s * bx + c * by));
+      }
+      canvas.FillPolygon(xy, kWhite);
+      canvas.Polyline(xy, rim, kBlack);
+      r = disk.semi_a * scale;  // the mark runs along the body's x axis to the boundary
+    } else {
+      canvas.FillCircle(cx, cy, r, kWhite);
+      canvas.StrokeCircle(cx, cy, r, rim, kBlack);
+    }
     if (disk.has_angle)
       canvas.Line(cx, cy, cx + r * std::cos(disk.angle), cy - r * std::sin(disk.angle), rim,
                   kBlack);

@@ -44,6 +44,14 @@ std::vector<double> RecordAngles(const ParticleHistory& h, std::size_t r) {
   return angle;
 }
 
+// An ellipse of particles.h5 (shape 1) drawn as one.
+void SetEllipse(const ParticleHistory& h, std::size_t k, DiskOutline& disk) {
+  if (h.shape.size() != h.particles || h.shape[k] != 1 || h.semi_axes.size() != 2 * h.particles)
+    return;
+  disk.semi_a = h.semi_axes[2 * k];
+  disk.semi_b = h.semi_axes[2 * k + 1];
+}
+
 // The angles at time t from particles.h5 (between records: linear), or none without the file.
 std::vector<double> AnglesAt(const std::string& results_dir, double t, std::size_t np) {
   const fs::path path = fs::path(results_dir) / "particles.h5";
@@ -95,6 +103,7 @@ void DisksFromRecords(const ParticleHistory& h, ResultsFrame& frame) {
     frame.disks.push_back({h.position[pa] + w * (h.position[pb] - h.position[pa]),
                            h.position[pa + 1] + w * (h.position[pb + 1] - h.position[pa + 1]),
                            h.radius[k], angle_a[k] + w * (angle_b[k] - angle_a[k]), true});
+    SetEllipse(h, k, frame.disks.back());
   }
 }
 
@@ -187,6 +196,10 @@ ResultsFrame LoadResultsFrame(const std::string& results_dir, long step,
     for (std::size_t k = 0; k < q.Count(); ++k) {
       frame.disks.push_back({q.position[2 * k], q.position[2 * k + 1], q.radius[k],
                              angles.empty() ? 0.0 : angles[k], !angles.empty()});
+      if (q.semi_axes.size() == 3 * q.Count() && q.semi_axes[3 * k] != q.semi_axes[3 * k + 1]) {
+        frame.disks.back().semi_a = q.semi_axes[3 * k];
+        frame.disks.back().semi_b = q.semi_axes[3 * k + 1];
+      }
     }
     return frame;
   }

@@ -1,6 +1,7 @@
 #include "dlmfd/conformation/oldroyd_b_polymer.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "../mesh/grid_kernels.h"
 #include "dlmfd/conformation/polymer_force.h"
@@ -99,6 +100,13 @@ void OldroydBPolymer::MarkParticleNodes(const std::vector<ParticleState>& partic
       for (int ii = i_lo; ii <= i_hi; ++ii) {
         const double dx = grid_.X(ii) - q.position.x();
         if (dx * dx + dy * dy >= r * r) continue;
+        // An ellipse: inside in its body frame, (dx, dy) turned back by its angle.
+        if (q.shape == ShapeKind::kEllipse) {
+          const double c = std::cos(q.angle), s = std::sin(q.angle);
+          const double bx = (c * dx + s * dy) / q.semi_axes.x();
+          const double by = (c * dy - s * dx) / q.semi_axes.y();
+          if (bx * bx + by * by >= 1.0) continue;
+        }
         const int i = px ? kernels::Wrap(ii, grid_.nx) : ii;
         inside_particle_[grid_.Index(i, j)] = 1;
         // The repeated last node of a periodic line mirrors the first.

@@ -311,7 +311,13 @@ void Simulation::Restore(const FlowState& state) {
           std::to_string(s.state.particles[p].multiplier.size()) + " (the same scene)");
     }
   }
+  // The shapes come from the scene (a checkpoint stores the bounding radius only).
+  std::vector<ParticleState> initial = impl_->state.particles;
   impl_->state = state;
+  for (std::size_t p = 0; p < initial.size(); ++p) {
+    impl_->state.particles[p].shape = initial[p].shape;
+    impl_->state.particles[p].semi_axes = initial[p].semi_axes;
+  }
 }
 
 const Params& Simulation::params() const { return impl_->params; }

@@ -129,6 +129,7 @@ Checkpoint ReadCheckpoint(const std::string& path) {
     q.torque = torque[i];
     q.radius = radius[i];
     q.density = density[i];
+    if (!c.particle_angles.empty()) q.angle = c.particle_angles[i];
     q.multiplier.assign(multiplier.begin() + offset[i], multiplier.begin() + offset[i + 1]);
     s.particles.push_back(std::move(q));
   }

@@ -66,6 +66,7 @@ void WriteParticles(hid_t file, const FlowState& state, const std::vector<double
   const hsize_t np = state.particles.size();
   std::vector<std::int64_t> id;
   std::vector<double> radius, position, velocity, omega, force, torque, position3, velocity3;
+  std::vector<double> semi_axes;  // (a, b, 0): the ellipse's glyph scale in ParaView
   for (const ParticleState& q : state.particles) {
     position3.insert(position3.end(), {q.position.x(), q.position.y(), 0.0});
     velocity3.insert(velocity3.end(), {q.velocity.x(), q.velocity.y(), 0.0});
@@ -76,6 +77,9 @@ void WriteParticles(hid_t file, const FlowState& state, const std::vector<double
     omega.push_back(q.angular_velocity);
     force.insert(force.end(), {q.force.x(), q.force.y()});
     torque.push_back(q.torque);
+    const bool disk = q.shape == ShapeKind::kDisk;
+    semi_axes.insert(semi_axes.end(),
+                     {disk ? q.radius : q.semi_axes.x(), disk ? q.radius : q.semi_axes.y(), 0.0});
   }
   h5::WriteInts(g, "id", {np}, id.data());
   h5::WriteDoubles(g, "radius", {np}, radius.data());
@@ -86,16 +90,17 @@ void WriteParticles(hid_t file, const FlowState& state, const std::vector<double
   h5::WriteDoubles(g, "torque", {np}, torque.data());
   h5::WriteDoubles(g, "position_xyz", {np, 3}, position3.data());
   h5::WriteDoubles(g, "velocity_xyz", {np, 3}, velocity3.data());
-  std::vector<std::string> names = {"id",       "radius",           "position",
-                                    "velocity", "angular_velocity", "force",
-                                    "torque",   "position_xyz",     "velocity_xyz"};
+  h5::WriteDoubles(g, "semi_axes", {np, 3}, semi_axes.data());
+  std::vector<std::string> names = {
+      "id",    "radius", "position",     "velocity",     "angular_velocity",
+      "force", "torque", "position_xyz", "velocity_xyz", "semi_axes"};
   if (angles.size() == np) {
     h5::WriteDoubles(g, "angle", {np}, angles.data());
     names.push_back("angle");
   }
   for (const std::string& name : names) {
     const bool vector = name == "position" || name == "velocity" || name == "force" ||
-                        name.find("_xyz") != std::string::npos;
+                        name == "semi_axes" || name.find("_xyz") != std::string::npos;
     h5::Describe(g, name, ResultsFile::kSnapshot, "particles/" + name,
                  vector ? "particle component" : "particle");
   }
@@ -199,9 +204,11 @@ FieldSnapshot ReadFieldSnapshot(const std::string& path) {
     q.force = h5::ReadDoubles(g, "force");
     q.torque = h5::ReadDoubles(g, "torque");
     q.angle = ReadOptional(g, "angle");
+    q.semi_axes = ReadOptional(g, "semi_axes");
     const std::size_t np = q.id.size();
     if (q.radius.size() != np || q.position.size() != 2 * np || q.velocity.size() != 2 * np ||
-        q.angular_velocity.size() != np || (!q.angle.empty() && q.angle.size() != np)) {
+        q.angular_velocity.size() != np || (!q.angle.empty() && q.angle.size() != np) ||
+        (!q.semi_axes.empty() && q.semi_axes.size() != 3 * np)) {
       throw Error(path + ": the datasets of /particles disagree on the number of particles");
     }
     s.has_particles = true;

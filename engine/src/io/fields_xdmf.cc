@@ -47,7 +47,8 @@ void Mesh(std::ostringstream& o, const Grid& g) {
   o << "        </Geometry>\n";
 }
 
-// One point per particle at (x, y, 0), with its radius, velocity, angular velocity, angle and id.
+// One point per particle at (x, y, 0), with its radius, velocity, angular velocity, angle, id and
+// semi-axes (a, b, 0).
 void ParticleGrid(std::ostringstream& o, const XdmfEntry& e) {
   const std::string n = std::to_string(e.particles);
   o << "      <Grid Name=\"particles\" GridType=\"Uniform\">\n";
@@ -69,6 +70,8 @@ void ParticleGrid(std::ostringstream& o, const XdmfEntry& e) {
   attribute("velocity", "Vector", n + " 3", "particles/velocity_xyz", "Float");
   attribute("angular_velocity", "Scalar", n, "particles/angular_velocity", "Float");
   if (e.particle_angles) attribute("angle", "Scalar", n, "particles/angle", "Float");
+  if (e.particle_semi_axes)
+    attribute("semi_axes", "Vector", n + " 3", "particles/semi_axes", "Float");
   attribute("id", "Scalar", n, "particles/id", "Int");
   o << "      </Grid>\n";
 }

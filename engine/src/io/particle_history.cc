@@ -75,16 +75,25 @@ std::unique_ptr<ParticleHistoryWriter> ParticleHistoryWriter::Create(
   impl->file = h5::CreateFile(path);
   const hid_t f = impl->file.get();
   std::vector<std::int64_t> ids;
-  std::vector<double> radii;
+  std::vector<std::int64_t> shapes;
+  std::vector<double> radii, semi_axes;
   for (const auto& q : state.particles) {
     ids.push_back(q.id);
     radii.push_back(q.radius);
+    shapes.push_back(q.shape == ShapeKind::kEllipse ? 1 : 0);
+    const bool disk = q.shape == ShapeKind::kDisk;
+    semi_axes.insert(semi_axes.end(),
+                     {disk ? q.radius : q.semi_axes.x(), disk ? q.radius : q.semi_axes.y()});
   }
   h5::WriteInts(f, "id", {impl->np}, ids.data());
   h5::WriteDoubles(f, "radius", {impl->np}, radii.data());
+  h5::WriteInts(f, "shape", {impl->np}, shapes.data());
+  h5::WriteDoubles(f, "semi_axes", {impl->np, 2}, semi_axes.data());
   h5::WriteFormat(f, kParticlesFormat, scene_text);
   h5::Describe(f, "id", ResultsFile::kParticles, "id", "particle");
   h5::Describe(f, "radius", ResultsFile::kParticles, "radius", "particle");
+  h5::Describe(f, "shape", ResultsFile::kParticles, "shape", "particle");
+  h5::Describe(f, "semi_axes", ResultsFile::kParticles, "semi_axes", "particle component");
   for (int k = 0; k < kSeriesCount; ++k) {
     const Series& s = kSeries[k];
     const Dims dims = Shape(s, 0, impl->np);
@@ -208,6 +217,8 @@ ParticleHistory ReadParticleHistory(const std::string& path) {
   h.id = h5::ReadInts(f, "id", &dims);
   h.particles = dims.empty() ? 0 : dims[0];
   h.radius = h5::ReadDoubles(f, "radius");
+  if (h5::Exists(f, "shape")) h.shape = h5::ReadInts(f, "shape");
+  if (h5::Exists(f, "semi_axes")) h.semi_axes = h5::ReadDoubles(f, "semi_axes");
   h.time = h5::ReadDoubles(f, "time", &dims);
   h.records = dims.empty() ? 0 : dims[0];
   h.step = h5::ReadInts(f, "step");

@@ -42,9 +42,13 @@ const MeaningTable& SnapshotMeanings() {
       {"particles/velocity_xyz",
        {"L T-1", "particle velocity (u, v, 0): the vector of fields.xmf's particle grid"}},
       {"particles/angular_velocity", {"T-1", "particle angular velocity, counter-clockwise"}},
+      {"particles/semi_axes",
+       {"L",
+        "particle semi-axes (a, b, 0) along its body's x and y axes, (R, R, 0) for a disk: "
+        "the scale of an ellipse glyph turned by angle in ParaView"}},
       {"particles/angle",
        {"rad",
-        "particle rotation since t = 0, counter-clockwise: the angular velocity "
+        "particle orientation, counter-clockwise: the scene's angle plus the angular velocity "
         "integrated step by step (trapezoidal rule, as the corrector (38) moves the centre)"}},
       {"particles/force",
        {"M T-2", "force of the fluid on the particle over the last step, per unit length"}},
@@ -60,15 +64,23 @@ const MeaningTable& ParticleMeanings() {
       {"time", {"T", "simulated time of each record"}},
       {"step", {"1", "time step of each record"}},
       {"id", {"1", "particle id, as in the scene's [[particles]] order"}},
-      {"radius", {"L", "particle radius"}},
+      {"radius",
+       {"L",
+        "particle radius: a disk's, an ellipse's bounding radius max(a, b) (its longer "
+        "semi-axis)"}},
+      {"shape", {"1", "particle shape: 0 disk, 1 ellipse (the scene's particles.shape)"}},
+      {"semi_axes",
+       {"L",
+        "particle semi-axes (a, b) along its body's x and y axes, (R, R) for a disk; the "
+        "body's x axis is turned by angle from the domain's"}},
       {"position", {"L", "particle centre (x, y) at each record"}},
       {"velocity", {"L T-1", "particle velocity (u, v) at each record"}},
       {"angular_velocity", {"T-1", "particle angular velocity at each record, counter-clockwise"}},
       {"angle",
        {"rad",
-        "particle rotation since t = 0 at each record, counter-clockwise: the angular "
-        "velocity integrated step by step (trapezoidal rule, as the corrector (38) moves "
-        "the centre)"}},
+        "particle orientation at each record, counter-clockwise: the scene's angle plus the "
+        "angular velocity integrated step by step (trapezoidal rule, as the corrector (38) "
+        "moves the centre)"}},
       {"force",
        {"M T-2", "force of the fluid on the particle over the last step, per unit length"}},
       {"torque",

@@ -76,9 +76,7 @@ std::unique_ptr<ResultsWriter> ResultsWriter::Start(const std::string& dir, cons
   WriteTextAtomically(w->Path(kScene), w->scene_text_);
   w->diagnostics_ = std::make_unique<DiagnosticsWriter>(w->Path(kDiagnostics));
   w->particles_ = ParticleHistoryWriter::Create(w->Path(kParticles), initial, w->scene_text_);
-  w->angles_.assign(initial.particles.size(), 0.0);
-  for (const ParticleState& q : initial.particles) w->last_omega_.push_back(q.angular_velocity);
-  w->last_time_ = initial.time;
+  for (const ParticleState& q : initial.particles) w->angles_.push_back(q.angle);
   return w;
 }
 
@@ -101,7 +99,8 @@ std::unique_ptr<ResultsWriter> ResultsWriter::Resume(const std::string& dir, con
   for (const auto& [step, name] : kept) {
     const FieldSnapshot snapshot = ReadFieldSnapshot(w->Path(kFields) + "/" + name);
     w->snapshots_.push_back({std::string(kFields) + "/" + name, snapshot.time,
-                             snapshot.particles.Count(), !snapshot.particles.angle.empty()});
+                             snapshot.particles.Count(), !snapshot.particles.angle.empty(),
+                             !snapshot.particles.semi_axes.empty()});
   }
   WriteFieldsXdmf(w->Path(kXdmf), grid, w->snapshots_, !params.fluid.IsNewtonian());
   if (fs::exists(w->Path(kDiagnostics))) {
@@ -114,26 +113,17 @@ std::unique_ptr<ResultsWriter> ResultsWriter::Resume(const std::string& dir, con
   w->angles_ = checkpoint.particle_angles.size() == np
                    ? checkpoint.particle_angles
                    : AnglesFromRecords(w->Path(kParticles), checkpoint_step, np);
-  for (const ParticleState& q : checkpoint.state.particles)
-    w->last_omega_.push_back(q.angular_velocity);
-  w->last_time_ = checkpoint.state.time;
   w->particles_ = ParticleHistoryWriter::Resume(w->Path(kParticles), checkpoint_step);
   return w;
 }
 
-void ResultsWriter::IntegrateAngles(const FlowState& state) {
+void ResultsWriter::TakeAngles(const FlowState& state) {
   if (state.particles.size() != angles_.size()) return;
-  const double dt = state.time - last_time_;
-  for (std::size_t k = 0; k < angles_.size(); ++k) {
-    const double omega = state.particles[k].angular_velocity;
-    angles_[k] += 0.5 * dt * (last_omega_[k] + omega);
-    last_omega_[k] = omega;
-  }
-  last_time_ = state.time;
+  for (std::size_t k = 0; k < angles_.size(); ++k) angles_[k] = state.particles[k].angle;
 }
 
 void ResultsWriter::OnStep(const FlowState& state, const StepReport& report) {
-  IntegrateAngles(state);
+  TakeAngles(state);
   diagnostics_->Append(report);
   last_report_ = report;
   const double every = params_.output.checkpoint_every;
@@ -152,8 +142,8 @@ void ResultsWriter::OnSnapshot(const FlowState& state) {
     return;  // no snapshots asked for (not even the initial one)
   const std::string relative = std::string(kFields) + "/" + SnapshotFileName(state.step);
   WriteFieldSnapshot(Path(relative), grid_, state, SnapshotExtras{scene_text_, angles_});
-  snapshots_.push_back(
-      {relative, state.time, state.particles.size(), state.particles.size() == angles_.size()});
+  snapshots_.push_back({relative, state.time, state.particles.size(),
+                        state.particles.size() == angles_.size(), true});
   WriteFieldsXdmf(Path(kXdmf), grid_, snapshots_, !state.a11.empty());
 }
 

@@ -7,6 +7,12 @@
 #include <utility>
 
 namespace dlmfd {
+namespace {
+
+// The z component of r x f.
+double Cross(const Vec2& r, const Vec2& f) { return r.x() * f.y() - r.y() * f.x(); }
+
+}  // namespace
 
 CollisionForces::CollisionForces(const Params& params, const Grid& grid, std::vector<double> radii)
     : grid_(grid),
@@ -27,6 +33,44 @@ CollisionForces::CollisionForces(const Params& params, const Grid& grid, std::ve
   cell_h_ = grid.Height() / cells_y_;
   head_.assign(std::size_t(cells_x_) * std::size_t(cells_y_), -1);
   next_.assign(radii_.size(), -1);
+  torques_.assign(radii_.size(), 0.0);
+}
+
+void CollisionForces::SetShapes(const std::vector<Shape>& shapes) {
+  shapes_ = shapes;
+  any_shape_ = false;
+  area_radius_.clear();
+  for (const Shape& shape : shapes_) {
+    any_shape_ = any_shape_ || !shape.IsDisk();
+    area_radius_.push_back(std::sqrt(shape.SemiAxes().x() * shape.SemiAxes().y()));
+  }
+}
+
+void CollisionForces::AddShapedPair(int i, int j, const std::vector<Vec2>& positions,
+                                    const Vec2& delta, std::vector<Vec2>& forces, int& contacts) {
+  const Contact c = PairOf(i, j, positions, delta);
+  if (!(c.gap < range_)) return;
+  const double g = c.gap;
+  const Vec2 f =
+      inv_eps_p_ * (area_radius_[i] + area_radius_[j] + g) * (range_ - g) * (range_ - g) * c.normal;
+  const Vec2 at = 0.5 * (c.point_a + c.point_b);
+  forces[i] += f;
+  forces[j] -= f;
+  torques_[i] += Cross(at - positions[i], f);
+  torques_[j] -= Cross(at - (positions[i] - delta), f);
+  ++contacts;
+}
+
+void CollisionForces::AddShapedWall(int i, const Vec2& x, const Vec2& inward, double dist,
+                                    std::vector<Vec2>& forces, int& contacts) {
+  const Contact c = WallContact(Placed(i, x), inward, dist);
+  if (!(2.0 * c.gap < range_)) return;
+  const double g = c.gap;
+  const Vec2 f =
+      inv_eps_w_ * 2.0 * (area_radius_[i] + g) * (range_ - 2.0 * g) * (range_ - 2.0 * g) * inward;
+  forces[i] += f;
+  torques_[i] += Cross(c.point_a - x, f);
+  ++contacts;
 }
 
 Vec2 CollisionForces::MinimumImage(Vec2 delta) const {
@@ -83,11 +127,14 @@ int CollisionForces::NeighbourCells(int cx, int cy, int* cells) const {
 int CollisionForces::Compute(const std::vector<Vec2>& positions, std::vector<Vec2>& forces) {
   const std::size_t n = positions.size();
   for (std::size_t i = 0; i < n; ++i) forces[i].setZero();
+  std::fill(torques_.begin(), torques_.end(), 0.0);
   int contacts = 0;
   ForEachNearPair(positions, [&](int i, int j, const Vec2& delta) {
     const double reach = radii_[i] + radii_[j] + range_;
     const double d = delta.norm();
-    if (d < reach) {
+    if (d < reach && (Shaped(i) || Shaped(j))) {
+      AddShapedPair(i, j, positions, delta, forces, contacts);  // bounding circles within reach
+    } else if (d < reach) {
       const Vec2 f = inv_eps_p_ * (reach - d) * (reach - d) * delta;
       forces[i] += f;
       forces[j] -= f;
@@ -103,6 +150,10 @@ int CollisionForces::Compute(const std::vector<Vec2>& positions, std::vector<Vec
     const Vec2 away[4] = {Vec2(1, 0), Vec2(-1, 0), Vec2(0, 1), Vec2(0, -1)};
     for (int s = 0; s < 4; ++s) {
       if (!wall_[s]) continue;
+      if (Shaped(static_cast<int>(i))) {
+        AddShapedWall(static_cast<int>(i), x, away[s], dist[s], forces, contacts);
+        continue;
+      }
       const double d = 2.0 * dist[s];  // centre to mirror image
       if (d < reach) {
         forces[i] += inv_eps_w_ * (reach - d) * (reach - d) * d * away[s];
@@ -125,7 +176,9 @@ CollisionForces::SurfaceGaps CollisionForces::Gaps(const std::vector<Vec2>& posi
   gaps.pair = gaps.wall = kNone;
   const std::size_t n = positions.size();
   auto consider = [&](int i, int j, const Vec2& delta) {
-    const double g = delta.norm() - radii_[i] - radii_[j];
+    double g = delta.norm() - radii_[i] - radii_[j];
+    // Another shape: its proper distance where the bounding circles come near (< one cell).
+    if ((Shaped(i) || Shaped(j)) && g < cell_size_) g = PairOf(i, j, positions, delta).gap;
     if (std::isnan(gaps.pair) || g < gaps.pair) {
       gaps.pair = g;
       gaps.first = i;
@@ -148,9 +201,12 @@ CollisionForces::SurfaceGaps CollisionForces::Gaps(const std::vector<Vec2>& posi
     const Vec2& x = positions[i];
     const double dist[4] = {x.x() - grid_.x0, grid_.x0 + grid_.Width() - x.x(), x.y() - grid_.y0,
                             grid_.y0 + grid_.Height() - x.y()};
+    const Vec2 away[4] = {Vec2(1, 0), Vec2(-1, 0), Vec2(0, 1), Vec2(0, -1)};
     for (int s = 0; s < 4; ++s) {
       if (!wall_[s]) continue;
-      const double g = dist[s] - radii_[i];
+      const double g = Shaped(static_cast<int>(i))
+                           ? WallContact(Placed(static_cast<int>(i), x), away[s], dist[s]).gap
+                           : dist[s] - radii_[i];
       if (std::isnan(gaps.wall) || g < gaps.wall) {
         gaps.wall = g;
         gaps.wall_particle = static_cast<int>(i);

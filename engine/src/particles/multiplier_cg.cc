@@ -146,13 +146,16 @@ double MultiplierCg::GramDot(const ConstraintOperators& op, const double* a, con
 }
 
 void MultiplierCg::AddParticularForces(const ConstraintOperators& op, double dt,
-                                       const Vec2* net_force, double* u, double* v) {
+                                       const Vec2* net_force, const double* net_torque, double* u,
+                                       double* v) {
   if (!op.modes.AnyNeutral() || net_force == nullptr) return;
   bool have_net_force = false;
   for (std::size_t p = 0; p < op.points.ParticleCount(); ++p) {
-    if (!op.modes.IsNeutral(p) || net_force[p].isZero()) continue;
+    const double torque = net_torque == nullptr ? 0.0 : net_torque[p];
+    if (!op.modes.IsNeutral(p) || (net_force[p].isZero() && torque == 0.0)) continue;
     have_net_force = true;
-    op.modes.ParticularForces(op.points, p, net_force[p], nu_.data() + 2 * op.points.Begin(p));
+    op.modes.ParticularForces(op.points, p, net_force[p], torque,
+                              nu_.data() + 2 * op.points.Begin(p));
   }
   if (!have_net_force) return;
   Respond(op, dt, nu_.data());

@@ -19,7 +19,7 @@ MultiplierPoints MultiplierPoints::ForScene(const Params& params) {
 
 void MultiplierPoints::Add(const Shape& shape) {
   int found = -1;
-  for (std::size_t m = 0; m < shape_.size(); ++m) {
+  for (std::size_t m = 0; m < shape_.size() && !shape.TurnsWithAngle(); ++m) {
     if (shape_[m] == shape) found = static_cast<int>(m);
   }
   if (found < 0) {
@@ -31,6 +31,9 @@ void MultiplierPoints::Add(const Shape& shape) {
     }
     shape_.push_back(shape);
     found = static_cast<int>(shape_.size()) - 1;
+    turned_.emplace_back();
+    set_angle_.push_back(0.0);
+    if (shape.TurnsWithAngle()) turned_[found] = collocation_[found].points();
   }
   set_of_.push_back(found);
   offset_.push_back(offset_.back() + SetCount(found));
@@ -41,7 +44,17 @@ int MultiplierPoints::SetCount(std::size_t m) const {
 }
 
 const std::vector<Vec2>& MultiplierPoints::SetPoints(std::size_t m) const {
-  return mesh_.kind == ParticleMeshKind::kRing ? meshes_[m].nodes() : collocation_[m].points();
+  if (mesh_.kind == ParticleMeshKind::kRing) return meshes_[m].nodes();
+  return shape_[m].TurnsWithAngle() ? turned_[m] : collocation_[m].points();
+}
+
+bool MultiplierPoints::Turn(std::size_t p, double theta) {
+  const std::size_t m = set_of_[p];
+  if (!shape_[m].TurnsWithAngle() || set_angle_[m] == theta) return false;
+  const std::vector<Vec2>& body = collocation_[m].points();
+  for (std::size_t k = 0; k < body.size(); ++k) turned_[m][k] = Rotate(theta, body[k]);
+  set_angle_[m] = theta;
+  return true;
 }
 
 void MultiplierPoints::ApplySetProduct(std::size_t m, const double* in, double* out) const {

@@ -51,6 +51,15 @@ ParticleStep::ParticleStep(const Params& params, const Grid& grid)
     a->assign(n, Vec2::Zero());
   }
   omega_old_.assign(n, 0.0);
+  angle_old_.assign(n, 0.0);
+  for (const Shape& shape : shapes_) shaped_ = shaped_ || !shape.IsDisk();
+  if (shaped_) {
+    collisions_.SetShapes(shapes_);
+    angles_.assign(n, 0.0);
+    torque0_.assign(n, 0.0);
+    torque_average_.assign(n, 0.0);
+    mean_rate_.assign(n, 0.0);
+  }
   if (params.splitting.constraint == ConstraintCoupling::kViscous && n > 0) {
     viscous_ = std::make_unique<ViscousConstraint>(params, grid);
     u_start_.assign(n, Vec2::Zero());
@@ -89,8 +98,12 @@ void ParticleStep::Predict(double dt, const Vec2& gravity, std::vector<ParticleS
     collision_average_[p].setZero();
   }
   max_contacts_ = 0;
+  if (shaped_) std::fill(torque_average_.begin(), torque_average_.end(), 0.0);
   for (int k = 1; k <= substeps_; ++k) {
+    // The angles along the sub-steps: theta^n + omega^n t (omega is not predicted).
+    TurnCollisions((k - 1.0) / substeps_ * dt, omega_old_);
     max_contacts_ = std::max(max_contacts_, collisions_.Compute(x_, f0_));
+    if (shaped_) torque0_ = collisions_.Torques();
     for (std::size_t p = 0; p < n; ++p) {
       u_star_[p] =
           predicted_[p]
@@ -98,7 +111,13 @@ void ParticleStep::Predict(double dt, const Vec2& gravity, std::vector<ParticleS
               : u_[p];
       x_star_[p] = x_[p] + 0.5 * (u_[p] + u_star_[p]) * tau;
     }
+    TurnCollisions(static_cast<double>(k) / substeps_ * dt, omega_old_);
     collisions_.Compute(x_star_, f1_);
+    if (shaped_) {
+      for (std::size_t p = 0; p < n; ++p) {
+        torque_average_[p] += 0.5 * (torque0_[p] + collisions_.Torques()[p]) / substeps_;
+      }
+    }
     for (std::size_t p = 0; p < n; ++p) {
       const Vec2 average = 0.5 * (f0_[p] + f1_[p]);
       collision_average_[p] += average / substeps_;
@@ -111,7 +130,26 @@ void ParticleStep::Predict(double dt, const Vec2& gravity, std::vector<ParticleS
   for (std::size_t p = 0; p < n; ++p) {
     particles[p].position = x_[p];
     particles[p].velocity = u_[p];
+    // theta^{n+2/4} = theta^n + dt omega^n (omega is not predicted).
+    particles[p].angle = angle_old_[p] + dt * omega_old_[p];
+    // The collision torque of other shapes than disks: omega* = omega^n + dt T'_avg / I_e.
+    if (shaped_ && predicted_[p]) {
+      particles[p].angular_velocity +=
+          dt * shapes_[p].InverseMomentFromInverseMass(inv_excess_mass_[p]) * torque_average_[p];
+    }
   }
+}
+
+void ParticleStep::TurnTo(const std::vector<ParticleState>& particles) {
+  if (!shaped_) return;
+  for (std::size_t p = 0; p < angles_.size(); ++p) angles_[p] = particles[p].angle;
+  collisions_.SetAngles(angles_);
+}
+
+void ParticleStep::TurnCollisions(double elapsed, const std::vector<double>& rate) {
+  if (!shaped_) return;
+  for (std::size_t p = 0; p < angles_.size(); ++p) angles_[p] = angle_old_[p] + elapsed * rate[p];
+  collisions_.SetAngles(angles_);
 }
 
 void ParticleStep::Correct(double dt, std::vector<ParticleState>& particles) {
@@ -119,11 +157,19 @@ void ParticleStep::Correct(double dt, std::vector<ParticleState>& particles) {
   const double tau = dt / substeps_;
   const double push = dt * dt / (2.0 * substeps_);
   for (std::size_t p = 0; p < n; ++p) x_[p] = x_old_[p];
+  // The angles along the sub-steps: theta^n + (omega^n + omega^{n+1})/2 t.
+  if (shaped_) {
+    for (std::size_t p = 0; p < n; ++p) {
+      mean_rate_[p] = 0.5 * (omega_old_[p] + particles[p].angular_velocity);
+    }
+  }
   for (int k = 1; k <= substeps_; ++k) {
+    TurnCollisions((k - 1.0) / substeps_ * dt, mean_rate_);
     collisions_.Compute(x_, f0_);
     for (std::size_t p = 0; p < n; ++p) {
       x_star_[p] = x_[p] + 0.5 * (u_old_[p] + particles[p].velocity) * tau;
     }
+    TurnCollisions(static_cast<double>(k) / substeps_ * dt, mean_rate_);
     collisions_.Compute(x_star_, f1_);
     for (std::size_t p = 0; p < n; ++p) {
       x_[p] = x_star_[p] + inv_excess_mass_[p] * 0.5 * (f0_[p] + f1_[p]) * push;
@@ -134,12 +180,15 @@ void ParticleStep::Correct(double dt, std::vector<ParticleState>& particles) {
     if (periodic_x_) x.x() -= grid_.Width() * std::floor((x.x() - grid_.x0) / grid_.Width());
     if (periodic_y_) x.y() -= grid_.Height() * std::floor((x.y() - grid_.y0) / grid_.Height());
     particles[p].position = x;
+    // theta^{n+1} = theta^n + (omega^n + omega^{n+1})/2 dt, the trapezoid rule of X's corrector.
+    particles[p].angle = angle_old_[p] + 0.5 * (omega_old_[p] + particles[p].angular_velocity) * dt;
   }
 }
 
 void ParticleStep::CheckSeparated(double time, const std::vector<ParticleState>& particles) {
   int first = -10, second = -10;
   for (std::size_t p = 0; p < particles.size(); ++p) x_[p] = particles[p].position;
+  TurnTo(particles);
   const double gap = collisions_.MinGap(x_, &first, &second);
   if (!(gap < 0.0)) return;  // NaN: nothing to measure
   std::ostringstream what;
@@ -162,6 +211,7 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
     x_old_[p] = particles[p].position;
     u_old_[p] = coupled_ ? u_start_[p] : particles[p].velocity;
     omega_old_[p] = coupled_ ? omega_start_[p] : particles[p].angular_velocity;
+    angle_old_[p] = particles[p].angle;
   }
   // The reaction of the lagged multiplier nu^n, which acted on the fluid in (33) (D^-1 = 0 but
   // for the heavy free particles): a force over the predictor's sub-steps beside g, so that the
@@ -178,7 +228,8 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
   // the viscous drag in the same solve; the predictor then carries the collision forces only.
   Predict(dt, coupled_ ? Vec2(Vec2::Zero()) : gravity_, particles);
   const RigidBodyConstraint::Outcome outcome =
-      constraint_.Enforce(time + dt, dt, particles, u, v, collision_average_.data(), lag_applied_);
+      constraint_.Enforce(time + dt, dt, particles, u, v, collision_average_.data(), lag_applied_,
+                          shaped_ ? torque_average_.data() : nullptr);
   Correct(dt, particles);
 
   for (std::size_t p = 0; p < n; ++p) {
@@ -205,6 +256,7 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
   lag_applied_ = false;
 
   for (std::size_t p = 0; p < n; ++p) x_[p] = particles[p].position;
+  TurnTo(particles);
   report.Set("multiplier_iterations", outcome.iterations);
   report.Set("multiplier_residual", outcome.residual);
   report.Set("multiplier_warm_start", outcome.warm_start ? 1.0 : 0.0);
@@ -229,6 +281,9 @@ std::vector<ParticleState> ParticleStep::InitialStates(const Params& params) {
     s.angular_velocity = pp.angular_velocity;
     s.radius = pp.Radius();
     s.density = pp.density;
+    s.angle = pp.angle;
+    s.shape = pp.shape;
+    s.semi_axes = pp.shape == ShapeKind::kDisk ? Vec2(pp.Radius(), pp.Radius()) : pp.semi_axes;
     s.motion = pp.motion;
     s.multiplier.assign(2 * static_cast<std::size_t>(points.Count(p)), 0.0);
     states.push_back(std::move(s));

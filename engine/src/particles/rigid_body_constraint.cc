@@ -57,10 +57,12 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
 RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt,
                                                           std::vector<ParticleState>& particles,
                                                           double* u, double* v,
-                                                          const Vec2* net_force, bool increment) {
+                                                          const Vec2* net_force, bool increment,
+                                                          const double* net_torque) {
   Outcome outcome;
   const std::size_t n = particles.size();
   if (n == 0) return outcome;
+  Orient(particles);
   coupling_.Build(time, dt, points_, particles);
   const ConstraintOperators op{points_, coupling_, modes_};
   cg_.Start(particles);
@@ -78,7 +80,7 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
   }
   scale = std::max(scale, outcome.cold_residual);
   cg_.ProjectMismatch(op);
-  cg_.AddParticularForces(op, dt, net_force, u, v);
+  cg_.AddParticularForces(op, dt, net_force, net_torque, u, v);
   const double cold = cg_.MismatchNorm2(op);
   const double threshold = std::max(tolerance_ * tolerance_ * cold,
                                     kRoundOffFloor * kRoundOffFloor * scale * scale * floor_weight);
@@ -114,7 +116,14 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
 
 void RigidBodyConstraint::Locate(double time, double dt,
                                  const std::vector<ParticleState>& particles) {
+  Orient(particles);
   coupling_.Build(time, dt, points_, particles);
+}
+
+void RigidBodyConstraint::Orient(const std::vector<ParticleState>& particles) {
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    if (points_.Turn(p, particles[p].angle)) modes_.Refresh(points_, points_.SetIndex(p));
+  }
 }
 
 int RigidBodyConstraint::SolveResponse(double time, double dt,

@@ -15,33 +15,35 @@ RigidModes::RigidModes(const MultiplierPoints& points, const std::vector<Body>& 
   }
   gram_rigid_.resize(points.SetCount());
   rigid_gram_inverse_.resize(points.SetCount());
-  for (std::size_t m = 0; m < points.SetCount(); ++m) {
-    const std::vector<Vec2>& nodes = points.SetPoints(m);
-    const int count = points.SetCount(m);
-    const std::size_t size = 2 * static_cast<std::size_t>(count);
-    std::vector<double> mode(size);
-    std::vector<double>& gc = gram_rigid_[m];
-    gc.assign(3 * size, 0.0);
-    for (int c = 0; c < 3; ++c) {
-      for (int k = 0; k < count; ++k) {
-        const Vec2 r = nodes[k];
-        const Vec2 e = c == 0 ? Vec2(1.0, 0.0) : (c == 1 ? Vec2(0.0, 1.0) : Perp(r));
-        mode[2 * k] = e.x();
-        mode[2 * k + 1] = e.y();
-      }
-      points.ApplySetProduct(m, mode.data(), gc.data() + c * size);
+  for (std::size_t m = 0; m < points.SetCount(); ++m) BuildSet(points, m);
+}
+
+void RigidModes::BuildSet(const MultiplierPoints& points, std::size_t m) {
+  const std::vector<Vec2>& nodes = points.SetPoints(m);
+  const int count = points.SetCount(m);
+  const std::size_t size = 2 * static_cast<std::size_t>(count);
+  std::vector<double> mode(size);
+  std::vector<double>& gc = gram_rigid_[m];
+  gc.assign(3 * size, 0.0);
+  for (int c = 0; c < 3; ++c) {
+    for (int k = 0; k < count; ++k) {
+      const Vec2 r = nodes[k];
+      const Vec2 e = c == 0 ? Vec2(1.0, 0.0) : (c == 1 ? Vec2(0.0, 1.0) : Perp(r));
+      mode[2 * k] = e.x();
+      mode[2 * k + 1] = e.y();
     }
-    Eigen::Matrix3d s = Eigen::Matrix3d::Zero();  // C^T G C, column a = C^T (G C)_a
-    for (int a = 0; a < 3; ++a) {
-      for (int k = 0; k < count; ++k) {
-        const Vec2 gc_k(gc[a * size + 2 * k], gc[a * size + 2 * k + 1]);
-        s(0, a) += gc_k.x();
-        s(1, a) += gc_k.y();
-        s(2, a) += Perp(nodes[k]).dot(gc_k);
-      }
-    }
-    rigid_gram_inverse_[m] = (0.5 * (s + s.transpose())).inverse();
+    points.ApplySetProduct(m, mode.data(), gc.data() + c * size);
   }
+  Eigen::Matrix3d s = Eigen::Matrix3d::Zero();  // C^T G C, column a = C^T (G C)_a
+  for (int a = 0; a < 3; ++a) {
+    for (int k = 0; k < count; ++k) {
+      const Vec2 gc_k(gc[a * size + 2 * k], gc[a * size + 2 * k + 1]);
+      s(0, a) += gc_k.x();
+      s(1, a) += gc_k.y();
+      s(2, a) += Perp(nodes[k]).dot(gc_k);
+    }
+  }
+  rigid_gram_inverse_[m] = (0.5 * (s + s.transpose())).inverse();
 }
 
 Eigen::Vector3d RigidModes::RigidPart(const MultiplierPoints& points, std::size_t p,
@@ -97,9 +99,9 @@ void RigidModes::ProjectForces(const MultiplierPoints& points, double* f) const 
 }
 
 void RigidModes::ParticularForces(const MultiplierPoints& points, std::size_t p,
-                                  const Vec2& net_force, double* f) const {
-  const Eigen::Vector3d t =
-      rigid_gram_inverse_[points.SetIndex(p)] * Eigen::Vector3d(net_force.x(), net_force.y(), 0.0);
+                                  const Vec2& net_force, double net_torque, double* f) const {
+  const Eigen::Vector3d t = rigid_gram_inverse_[points.SetIndex(p)] *
+                            Eigen::Vector3d(net_force.x(), net_force.y(), net_torque);
   const std::size_t size = 2 * static_cast<std::size_t>(points.Count(p));
   const double* gc = gram_rigid_[points.SetIndex(p)].data();
   for (std::size_t q = 0; q < size; ++q) {

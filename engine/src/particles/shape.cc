@@ -60,28 +60,26 @@ double ClosestPointRoot(double r0, double z0, double z1, double g) {
   return s;
 }
 
-// Distance from (y0, y1), y0, y1 >= 0, to the ellipse with semi-axes e0 >= e1 along x and y
+// The closest point of the ellipse with semi-axes e0 >= e1 along x and y to (y0, y1), y0, y1 >= 0
 // (Eberly 2013, section 2.9).
-double DistanceToEllipse(double e0, double e1, double y0, double y1) {
+Vec2 ClosestOnEllipse(double e0, double e1, double y0, double y1) {
   if (y1 > 0.0) {
     if (y0 > 0.0) {
       const double z0 = y0 / e0, z1 = y1 / e1;
       const double g = z0 * z0 + z1 * z1 - 1.0;
-      if (g == 0.0) return 0.0;
+      if (g == 0.0) return Vec2(y0, y1);
       const double r0 = (e0 / e1) * (e0 / e1);
       const double s = ClosestPointRoot(r0, z0, z1, g);
-      const double x0 = r0 * y0 / (s + r0), x1 = y1 / (s + 1.0);
-      return std::hypot(x0 - y0, x1 - y1);
+      return Vec2(r0 * y0 / (s + r0), y1 / (s + 1.0));
     }
-    return std::abs(y1 - e1);
+    return Vec2(0.0, e1);
   }
   const double numer0 = e0 * y0, denom0 = e0 * e0 - e1 * e1;
   if (numer0 < denom0) {
     const double xde0 = numer0 / denom0;
-    const double x0 = e0 * xde0, x1 = e1 * std::sqrt(1.0 - xde0 * xde0);
-    return std::hypot(x0 - y0, x1);
+    return Vec2(e0 * xde0, e1 * std::sqrt(1.0 - xde0 * xde0));
   }
-  return std::abs(y0 - e0);
+  return Vec2(e0, 0.0);
 }
 
 }  // namespace
@@ -101,7 +99,15 @@ Shape Shape::Ellipse(double a, double b) {
   return Shape(ShapeKind::kEllipse, a, b);
 }
 
-Shape Shape::Of(const ParticleParams& p) { return Disk(p.Radius()); }
+Shape Shape::Of(const ParticleParams& p) {
+  if (p.shape == ShapeKind::kEllipse) return Ellipse(p.semi_axes.x(), p.semi_axes.y());
+  return Disk(p.Radius());
+}
+
+Shape Shape::Of(const ParticleState& p) {
+  if (p.shape == ShapeKind::kEllipse) return Ellipse(p.semi_axes.x(), p.semi_axes.y());
+  return Disk(p.radius);
+}
 
 double Shape::Area() const { return kPi * a_ * b_; }
 
@@ -138,10 +144,24 @@ bool Shape::Inside(const Vec2& r) const {
 
 double Shape::SignedDistance(const Vec2& r) const {
   if (IsDisk()) return r.norm() - a_;
+  const double d = (ClosestBoundaryPoint(r) - r).norm();
+  return Inside(r) ? -d : d;
+}
+
+Vec2 Shape::ClosestBoundaryPoint(const Vec2& r) const {
+  if (IsDisk()) {
+    const double n = r.norm();
+    return n > 0.0 ? Vec2(a_ * r / n) : Vec2(a_, 0.0);
+  }
   const double x = std::abs(r.x()), y = std::abs(r.y());
   // Eberly's form wants the longer semi-axis first.
-  const double d = a_ >= b_ ? DistanceToEllipse(a_, b_, x, y) : DistanceToEllipse(b_, a_, y, x);
-  return Inside(r) ? -d : d;
+  Vec2 q = a_ >= b_ ? ClosestOnEllipse(a_, b_, x, y) : ClosestOnEllipse(b_, a_, y, x);
+  if (a_ < b_) q = Vec2(q.y(), q.x());
+  return Vec2(std::copysign(q.x(), r.x()), std::copysign(q.y(), r.y()));
+}
+
+Vec2 Shape::Normal(const Vec2& boundary_point) const {
+  return Vec2(boundary_point.x() / (a_ * a_), boundary_point.y() / (b_ * b_)).normalized();
 }
 
 Vec2 Shape::Support(const Vec2& direction) const {

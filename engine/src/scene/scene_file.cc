@@ -12,6 +12,7 @@
 #include <toml++/toml.h>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/core/number_text.h"
 #include "dlmfd/scene/auto_coupling.h"
 #include "dlmfd/scene/numerics_preset.h"
 #include "dlmfd/scene/scene_validation.h"
@@ -272,6 +273,30 @@ void ReadMeshCollisionsConformationOutput(TableReader& top, const NumericsDefaul
   accuracy.RejectUnknown("strict");
 }
 
+// A particle's shape: shape = "disk" (the default) with its diameter, or "ellipse" with
+// semi_axes = [a, b] (along the body's x and y axes); angle (radians) turns the body's x axis from
+// the domain's at t = 0. Each shape refuses the other's size key.
+void ReadShape(TableReader& r, ParticleParams& q) {
+  q.shape = Choose<ShapeKind>(r.Key("shape"), r.String("shape", "disk"),
+                              {{"disk", ShapeKind::kDisk}, {"ellipse", ShapeKind::kEllipse}});
+  if (q.shape == ShapeKind::kDisk) {
+    if (r.Has("semi_axes")) {
+      throw InvalidParameter(r.Key("semi_axes"), VecText(r.Vector("semi_axes", std::nullopt)),
+                             "absent for a disk (give diameter), or shape = \"ellipse\"");
+    }
+    q.diameter = r.Real("diameter", q.diameter);
+  } else {
+    if (r.Has("diameter")) {
+      throw InvalidParameter(r.Key("diameter"), ExactText(r.Real("diameter", std::nullopt)),
+                             "absent for an ellipse (give semi_axes = [a, b]), or shape = "
+                             "\"disk\"");
+    }
+    const Vec2 axes = r.Vector("semi_axes", std::nullopt);
+    q.SetEllipse(axes.x(), axes.y());
+  }
+  q.angle = r.Real("angle", q.angle);
+}
+
 void ReadParticles(TableReader& top, Params& p) {
   const toml::array* array = top.Array("particles");
   p.particles.clear();
@@ -284,14 +309,15 @@ void ReadParticles(TableReader& top, Params& p) {
     TableReader r(table, prefix);
     ParticleParams q;
     q.center = r.Vector("center", std::nullopt);
-    q.diameter = r.Real("diameter", q.diameter);
+    ReadShape(r, q);
     q.density = r.Real("density", q.density);
     q.velocity = r.Vector("velocity", q.velocity);
     q.angular_velocity = r.Real("angular_velocity", q.angular_velocity);
     q.motion = Choose<Motion>(
         r.Key("motion"), r.String("motion", "free"),
         {{"free", Motion::kFree}, {"fixed", Motion::kFixed}, {"prescribed", Motion::kPrescribed}});
-    r.RejectUnknown("center, diameter, density, velocity, angular_velocity, motion");
+    r.RejectUnknown(
+        "center, shape, diameter, semi_axes, angle, density, velocity, angular_velocity, motion");
     p.particles.push_back(q);
   }
 }

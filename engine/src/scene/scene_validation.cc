@@ -2,6 +2,7 @@
 // rules the modules own; see scene/scene_validation.h.
 #include "dlmfd/scene/scene_validation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -39,6 +40,20 @@ void RequireHalfOpenUnit(const std::string& key, double x) {
 }
 void RequireAtLeastOne(const std::string& key, int n) {
   if (n < 1) throw InvalidParameter(key, std::to_string(n), "an integer >= 1");
+}
+
+void RequireFinite(const std::string& key, double x) {
+  if (!std::isfinite(x)) throw InvalidParameter(key, ExactText(x), "a finite number");
+}
+// Both semi-axes > 0 and finite, the longer at most kMaxEllipseAspect times the shorter.
+void RequireEllipseAxes(const std::string& key, const Vec2& axes) {
+  const double a = axes.x(), b = axes.y();
+  const bool positive = a > 0.0 && b > 0.0 && std::isfinite(a) && std::isfinite(b);
+  if (!positive || std::max(a, b) > kMaxEllipseAspect * std::min(a, b)) {
+    throw InvalidParameter(key, VecText(axes),
+                           "[a, b], two numbers > 0 with max / min <= " +
+                               ShortText(kMaxEllipseAspect) + " (the ellipse's semi-axes)");
+  }
 }
 
 // `length` holds an even number >= 4 of cells of h, within 1e-9 relative. Called after the node
@@ -126,8 +141,14 @@ void ValidateMeshCollisionsConformation(const Params& p) {
 void ValidateParticleRangesAndMeshes(const Params& p) {
   for (std::size_t i = 0; i < p.particles.size(); ++i) {
     const std::string prefix = "particles." + std::to_string(i);
-    RequirePositive(prefix + ".diameter", p.particles[i].diameter);
-    RequirePositive(prefix + ".density", p.particles[i].density);
+    const ParticleParams& q = p.particles[i];
+    if (q.shape == ShapeKind::kEllipse) {
+      RequireEllipseAxes(prefix + ".semi_axes", q.semi_axes);
+    } else {
+      RequirePositive(prefix + ".diameter", q.diameter);
+    }
+    RequireFinite(prefix + ".angle", q.angle);
+    RequirePositive(prefix + ".density", q.density);
   }
   const SceneFootprint footprint = EstimateFootprint(p);
   if (!(footprint.multiplier_nodes <= kMaxMultiplierNodes)) {

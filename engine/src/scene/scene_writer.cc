@@ -84,7 +84,15 @@ void WriteParticles(std::ostringstream& o, const std::vector<ParticleParams>& pa
   for (const ParticleParams& q : particles) {
     o << "\n[[particles]]\n";
     o << "center = " << Vec(q.center) << "\n";
-    o << "diameter = " << ExactText(q.diameter) << "\n";
+    // Only for an ellipse or a turned particle: a disk's scene text stays the one written before
+    // the keys existed (a checkpoint's --resume compares it).
+    if (q.shape == ShapeKind::kEllipse) {
+      o << "shape = \"ellipse\"\n";
+      o << "semi_axes = " << Vec(q.semi_axes) << "\n";
+    } else {
+      o << "diameter = " << ExactText(q.diameter) << "\n";
+    }
+    if (q.angle != 0.0) o << "angle = " << ExactText(q.angle) << "\n";
     o << "density = " << ExactText(q.density) << "\n";
     o << "velocity = " << Vec(q.velocity) << "\n";
     o << "angular_velocity = " << ExactText(q.angular_velocity) << "\n";

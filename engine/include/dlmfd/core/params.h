@@ -202,12 +202,27 @@ enum class ShapeKind { kDisk, kEllipse };
 
 struct ParticleParams {
   Vec2 center = Vec2::Zero();
-  double diameter = 0.2;  // > 0
-  double density = 1.0;   // > 0 (free particles: != fluid density)
+  // Disk: its diameter > 0. Ellipse: the diameter of the disk of the same area, 2 sqrt(a b) (set by
+  // SetEllipse; the scene declares semi_axes instead).
+  double diameter = 0.2;
+  double density = 1.0;  // > 0 (free particles: != fluid density)
   Vec2 velocity = Vec2::Zero();
   double angular_velocity = 0.0;
   Motion motion = Motion::kFree;
-  double Radius() const { return 0.5 * diameter; }
+  ShapeKind shape = ShapeKind::kDisk;
+  Vec2 semi_axes = Vec2::Zero();  // ellipse: (a, b) along the body's x and y axes, > 0
+  double angle = 0.0;             // orientation at t = 0: the body's x axis from the domain's x
+  // The radius of the smallest circle about the centre that holds the particle: D / 2 for a disk,
+  // max(a, b) for an ellipse.
+  double Radius() const {
+    if (shape == ShapeKind::kDisk) return 0.5 * diameter;
+    return semi_axes.x() > semi_axes.y() ? semi_axes.x() : semi_axes.y();
+  }
+  void SetEllipse(double a, double b) {
+    shape = ShapeKind::kEllipse;
+    semi_axes = Vec2(a, b);
+    diameter = 2.0 * std::sqrt(a * b);
+  }
 };
 
 // The multiplier points of the DLM step (37): the H1 ring mesh of each disk (paper (24), method

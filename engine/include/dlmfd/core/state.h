@@ -18,8 +18,11 @@ struct ParticleState {
   double angular_velocity = 0.0;
   Vec2 force = Vec2::Zero();  // hydrodynamic force on the particle over the last step
   double torque = 0.0;        // hydrodynamic torque on the particle over the last step
-  double radius = 0.0;
+  double radius = 0.0;        // the bounding radius: R of a disk, max(a, b) of an ellipse
   double density = 0.0;
+  double angle = 0.0;  // theta: the body's x axis from the domain's x axis, d theta / dt = omega
+  ShapeKind shape = ShapeKind::kDisk;
+  Vec2 semi_axes = Vec2::Zero();  // (a, b); (R, R) for a disk
   Motion motion = Motion::kFree;
   std::vector<double> multiplier;  // DLM nodal forces of the last step (warm start); may be empty
 };

@@ -51,6 +51,7 @@ struct SnapshotParticles {
   std::vector<double> position, velocity, force;  // np * 2
   std::vector<double> angular_velocity, torque;   // np
   std::vector<double> angle;                      // np, or empty
+  std::vector<double> semi_axes;  // np * 3: (a, b, 0), (R, R, 0) for a disk; empty before issue 37
   std::size_t Count() const { return id.size(); }
 };
 

@@ -34,8 +34,9 @@ namespace dlmfd {
 struct XdmfEntry {
   std::string file;  // relative to the folder of fields.xmf, e.g. "fields/snap_000010.h5"
   double time = 0.0;
-  std::size_t particles = 0;     // in the snapshot's /particles group (0: no particle grid)
-  bool particle_angles = false;  // whether it has /particles/angle
+  std::size_t particles = 0;        // in the snapshot's /particles group (0: no particle grid)
+  bool particle_angles = false;     // whether it has /particles/angle
+  bool particle_semi_axes = false;  // whether it has /particles/semi_axes (issue 37 on)
 };
 
 std::string FieldsXdmfText(const Grid& grid, const std::vector<XdmfEntry>& entries,

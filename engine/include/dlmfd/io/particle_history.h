@@ -54,6 +54,8 @@ struct ParticleHistory {
   std::vector<std::int64_t> step;
   std::vector<std::int64_t> id;
   std::vector<double> radius;
+  std::vector<std::int64_t> shape;  // per particle: 0 disk, 1 ellipse; empty in older files
+  std::vector<double> semi_axes;    // np * 2: (a, b), (R, R) for a disk; empty in older files
   std::vector<double> position, velocity, force;  // nt * np * 2, row-major
   std::vector<double> angular_velocity, torque;   // nt * np
   std::vector<double> angle;                      // nt * np; empty in version 1

@@ -5,12 +5,11 @@
 //   time, and OnStopped: a run stopped by a signal). summary.json is not written here: it is the
 //   solver's, written when the run has ended (solver/include/dlmfd/solver/run_summary.h).
 //
-// Each particle's rotation angle since t = 0 is integrated here, step by step, from the angular
-// velocity by the trapezoidal rule, theta_{n+1} = theta_n + (t_{n+1} - t_n)(omega_n +
-// omega_{n+1})/2, the rule by which the corrector (38) moves the centre (particle_step.cc), and
-// written with every particle record, snapshot and checkpoint (results format 2, results_format.h);
-// a resumed run reads it back from the checkpoint. The engine's state has no angle: a disk's
-// dynamics do not depend on it.
+// Each particle's orientation angle theta is the engine's (ParticleState::angle, integrated by the
+// corrector (38) with the trapezoidal rule theta_{n+1} = theta_n + dt (omega_n + omega_{n+1})/2
+// from the scene's initial angle; particles/particle_step.h): an ellipse's dynamics depend on it.
+// It is written with every particle record, snapshot and checkpoint (results format 2,
+// results_format.h); a resumed run reads it back from the checkpoint.
 //
 // Checkpoints are written by OnStepEnd, after every observer has seen the step, so that every
 // record of a step at or before the checkpoint is on disk before the checkpoint exists. Resume()
@@ -75,7 +74,7 @@ class ResultsWriter : public Observer {
   ResultsWriter(const std::string& dir, const Params& params, const Grid& grid);
   std::string Path(const std::string& name) const { return dir_ + "/" + name; }
   void SaveCheckpoint(const FlowState& state);
-  void IntegrateAngles(const FlowState& state);
+  void TakeAngles(const FlowState& state);
 
   std::string dir_;
   Params params_;
@@ -84,9 +83,7 @@ class ResultsWriter : public Observer {
   std::unique_ptr<DiagnosticsWriter> diagnostics_;
   std::unique_ptr<ParticleHistoryWriter> particles_;
   std::vector<XdmfEntry> snapshots_;
-  std::vector<double> angles_;      // per particle, radians
-  std::vector<double> last_omega_;  // the angular velocities of the last step seen
-  double last_time_ = 0.0;
+  std::vector<double> angles_;  // per particle, radians
   StepReport last_report_;
   bool checkpoint_due_ = false;
   std::function<void(long, double, const std::string&)> on_checkpoint_;

@@ -5,6 +5,15 @@
 // and for every non-periodic side with the mirror image X_i' of X_i across it, d_i = |X_i - X_i'|:
 //   F_iw = (1/eps_w) (X_i - X_i') (2 R_i + rho - d_i)^2          for d_i < 2 R_i + rho.
 // rho = collisions.range * h; eps_p, eps_w from the scene. Periodic sides wrap (minimum image).
+// Particles of other shapes (SetShapes; an ellipse) by the proper distance (contact_distance.h),
+// not their bounding circles: with the gap g between the surfaces, the closest points and the
+// unit normal n from j to i, the same laws read, for g < rho,
+//   F_ij = (1/eps_p) (R_i + R_j + g) (rho - g)^2 n,   F_iw = (1/eps_w) 2 (R_i + g) (rho - 2 g)^2 n,
+// with R = sqrt(a b) the radius of the disk of the same area (for two disks R_i + R_j + g = d_ij
+// and this is (14); for a disk and a wall 2 (R + g) = d_i and this is (15)), acting at the contact
+// point (the midpoint of the closest points; a wall's: the particle's point nearest to it), so a
+// force off the centre line carries a torque T_i = (c - X_i) x F_i. Pairs of disks and disks at
+// walls keep the paper's arithmetic exactly.
 // Discrete method: cell lists with cells of side >= 2 R_max + rho, so only the 3 x 3 neighbouring
 // cells can interact: building and sweeping cost O(N). Storage is allocated at construction.
 // Not supported: a periodic length shorter than 2 (2 R_max + rho) (a pair would interact through
@@ -19,6 +28,8 @@
 
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/params.h"
+#include "dlmfd/particles/contact_distance.h"
+#include "dlmfd/particles/shape.h"
 
 namespace dlmfd {
 
@@ -31,7 +42,15 @@ class CollisionForces {
   // contacts.
   int Compute(const std::vector<Vec2>& positions, std::vector<Vec2>& forces);
 
-  // The true smallest surface gaps at the given centres: over every pair, d - R_i - R_j (minimum
+  // The shapes of the particles (one per particle; all disks when never called), and their angles
+  // for the following Compute and Gaps calls.
+  void SetShapes(const std::vector<Shape>& shapes);
+  void SetAngles(const std::vector<double>& angles) { angles_ = angles; }
+  // The torques of the collision forces about each centre in the last Compute (0 for disks).
+  const std::vector<double>& Torques() const { return torques_; }
+
+  // The true smallest surface gaps at the given centres (and angles, for other shapes than disks:
+  // their proper distance): over every pair, d - R_i - R_j (minimum
   // image across periodic sides), and over every particle and non-periodic side, the distance to
   // the side minus R_i. The cell lists find the closest pair when it is nearer than
   // CellSize() - 2 R_max (no pair outside neighbouring cells can be nearer); otherwise every pair
@@ -62,6 +81,20 @@ class CollisionForces {
   double Range() const { return range_; }
 
  private:
+  // Whether the pair or the particle needs the proper distance (not two disks).
+  bool Shaped(int i) const { return any_shape_ && !shapes_[i].IsDisk(); }
+  PlacedShape Placed(int i, const Vec2& centre) const {
+    return PlacedShape{&shapes_[i], centre, angles_.empty() ? 0.0 : angles_[i]};
+  }
+  // The contact of i and j (delta = X_i - X_j, minimum image).
+  Contact PairOf(int i, int j, const std::vector<Vec2>& positions, const Vec2& delta) const {
+    return PairContact(Placed(i, positions[i]), Placed(j, positions[i] - delta));
+  }
+  // The force and torques of a pair or a wall by the proper distance, added when in range.
+  void AddShapedPair(int i, int j, const std::vector<Vec2>& positions, const Vec2& delta,
+                     std::vector<Vec2>& forces, int& contacts);
+  void AddShapedWall(int i, const Vec2& x, const Vec2& inward, double dist,
+                     std::vector<Vec2>& forces, int& contacts);
   int CellOf(const Vec2& x) const;
   void BuildCells(const std::vector<Vec2>& positions);
   // Indices of the distinct neighbouring cells of cell (cx, cy), itself included; returns the
@@ -77,6 +110,9 @@ class CollisionForces {
   int cells_x_, cells_y_;
   double cell_w_, cell_h_;
   std::vector<int> head_, next_;  // linked cell lists
+  bool any_shape_ = false;        // some particle is not a disk
+  std::vector<Shape> shapes_;
+  std::vector<double> angles_, torques_, area_radius_;  // per particle; R = sqrt(a b)
 };
 
 template <class Visit>

@@ -66,10 +66,10 @@ class MultiplierCg {
   void ProjectMismatch(const ConstraintOperators& op) {
     op.modes.ProjectMismatch(op.points, g_.data());
   }
-  // nu = G C S^-1 (net_force[p], 0) on every neutral particle p (nullptr: none), and u, (U, omega)
-  // and g follow.
+  // nu = G C S^-1 (net_force[p], net_torque[p]) on every neutral particle p (net_force nullptr:
+  // none; net_torque nullptr: zero torques), and u, (U, omega) and g follow.
   void AddParticularForces(const ConstraintOperators& op, double dt, const Vec2* net_force,
-                           double* u, double* v);
+                           const double* net_torque, double* u, double* v);
   // <g, g>_G.
   double MismatchNorm2(const ConstraintOperators& op) { return GramDot(op, g_.data(), g_.data()); }
   // Adds the stored multipliers of the particles (less their net force and torque on a neutral

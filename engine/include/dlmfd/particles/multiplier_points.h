@@ -7,11 +7,14 @@
 // - collocation: points on the true boundary of the particle's shape plus interior lattice points
 //   (particles/collocation_points.h, particle-coupling.md section 3); the product is Euclidean
 //   (G = I); E is quadratic (P2 macro-triangle) or linear at the boundary points, P1 inside.
-// One point set per distinct shape (particles/shape.h), shared by the particles of that shape.
+// One point set per distinct shape (particles/shape.h), shared by the particles of that shape;
+// a shape that turns with its particle (an ellipse) has a set of its own per particle, its points
+// the body-frame points turned by the particle's angle theta (Turn: r = Rot(theta) r_body).
 // Stacking: particle p owns the points Begin(p) .. End(p) - 1, and every stacked nodal array holds
 // 2 values per point (x, y).
 // Contract (what the coupling operator E, the rigid modes and the CG read): the stacking, the
-// points relative to the particle centre (they translate with it; a disk's do not rotate), the
+// points relative to the particle centre (they translate with it; a disk's do not rotate, an
+// ellipse's turn with it), the
 // interpolation rule of each point, the particle's shape, the product on one particle's block, and
 // a round-off weight (about <1, 1>_G) for the CG's floor.
 #pragma once
@@ -38,6 +41,11 @@ class MultiplierPoints {
   // same shape. Throws InvalidParameter (see ParticleMesh, CollocationPoints; the ring mesh is a
   // disk's only).
   void Add(const Shape& shape);
+  // Turns the points of particle p to the angle theta (r = Rot(theta) r_body); returns whether they
+  // moved (never for a disk, nor when theta is the angle they already have).
+  bool Turn(std::size_t p, double theta);
+  // Whether particle p's points turn with it (its own set, an ellipse's).
+  bool Turns(std::size_t p) const { return ShapeOf(p).TurnsWithAngle(); }
 
   ParticleMeshKind Kind() const { return mesh_.kind; }
   std::size_t ParticleCount() const { return set_of_.size(); }
@@ -81,6 +89,8 @@ class MultiplierPoints {
   std::vector<Shape> shape_;                    // per set
   std::vector<ParticleMesh> meshes_;            // per set, ring kind
   std::vector<CollocationPoints> collocation_;  // per set, collocation kind
+  std::vector<std::vector<Vec2>> turned_;       // per set: the turned points of a turning shape
+  std::vector<double> set_angle_;               // per set: the angle of turned_
   std::vector<int> set_of_;
   std::vector<std::size_t> offset_ = {0};
 };

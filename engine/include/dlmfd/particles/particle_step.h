@@ -8,14 +8,18 @@
 //          U*^k = U^{k-1} + (g + F'(X^{k-1}) / m_e) dt/K,  X*^k = X^{k-1} + (U^{k-1} + U*^k)/2
 //          dt/K, U^k  = U^{k-1} + (g + (F'(X^{k-1}) + F'(X*^k)) / (2 m_e)) dt/K, X^k  = X^{k-1} +
 //          (U^{k-1} + U^k)/2 dt/K;   U^{n+2/4} = U^K, X^{n+2/4} = X^K;
-//        omega is not predicted (central forces).
+//        omega is not predicted (central forces; other shapes than disks:
+//        omega^{n+2/4} = omega^n + dt T'_avg / I_e with the sub-steps' mean collision torque, or
+//        T'_avg passed to the fluid by a neutral one); theta^{n+2/4} = theta^n + dt omega^n.
 //   (37) particles/rigid_body_constraint.h at X^{n+2/4}.
 //   (38) X^{n+1,0} = X^n; for k = 1..K:
 //          X*^k = X^{k-1} + (U^n + U^{n+1})/2 dt/K,
 //          X^k  = X*^k + (F'(X^{k-1}) + F'(X*^k)) / (2 m_e) dt^2/(2K)     (dt^2/(2K), not
 //          (dt/K)^2/2).
-//   m_e = (1 - rho_L/rho_d) M, M = rho_d pi R^2, I = M R^2/2. Fixed particles stay; prescribed ones
-//   move at their given velocity; neither feels F'.
+//   theta^{n+1} = theta^n + (omega^n + omega^{n+1})/2 dt (the angle; an ellipse's points turn).
+//   m_e = (1 - rho_L/rho_d) M, M = rho_d pi R^2, I = M R^2/2 (an ellipse: M = rho_d pi a b,
+//   I = M (a^2 + b^2)/4). Fixed particles stay; prescribed ones move at their given velocity;
+//   neither feels F'.
 //   Force exerted by the fluid (notes 1.6): F_h = -sum nu + rho_L pi R^2 ((U^{n+1} - U^n)/dt - g),
 //   T_h = -sum r_perp . nu + (rho_L/rho_d) I (omega^{n+1} - omega^n)/dt. F_h includes the
 //   hydrostatic buoyancy -rho_L pi R^2 g, because the fluid steps carry no gravity.
@@ -51,7 +55,7 @@
 // lag was spread at one place and its increment found at another. Those were failures 1, 3 and 4
 // of docs/stability.md ("The coupling of the constraint"): with the force over the sub-steps
 // X^{n+2/4} lies within dt^2 |dU/dt| / 2 of X^{n+1} and all three runs complete.
-// Not supported: free particles with rho_d < rho_L; gamma != 0; non-circular particles.
+// Not supported: free particles with rho_d < rho_L; gamma != 0.
 // References: Glowinski et al., J. Comput. Phys. 169 (2001) 363-426; Singh, Joseph, Hesla,
 // Glowinski, Pan, J. Non-Newtonian Fluid Mech. 91 (2000) 165-188 (the paper); method notes 2,
 // part 1.
@@ -114,6 +118,10 @@ class ParticleStep {
   void Predict(double dt, const Vec2& gravity, std::vector<ParticleState>& particles);
   void Correct(double dt, std::vector<ParticleState>& particles);
   void CheckSeparated(double time, const std::vector<ParticleState>& particles);
+  // The collision forces see the particles turned to theta^n + elapsed rate (other shapes than
+  // disks only), or to their angles.
+  void TurnCollisions(double elapsed, const std::vector<double>& rate);
+  void TurnTo(const std::vector<ParticleState>& particles);
 
   Grid grid_;
   Vec2 gravity_;
@@ -128,7 +136,10 @@ class ParticleStep {
   // Work arrays, sized once.
   std::vector<Vec2> x_old_, u_old_, x_, x_star_, u_, u_star_, f0_, f1_, collision_average_;
   std::vector<Vec2> lag_accel_;  // -C^T nu^n / m_e of the lagged multiplier (incremental only)
-  std::vector<double> omega_old_;
+  std::vector<double> omega_old_, angle_old_;
+  bool shaped_ = false;  // some particle is not a disk: collisions by the proper distance
+  std::vector<double> angles_, torque0_, mean_rate_;
+  std::vector<double> torque_average_;  // T'_avg: the predictor's mean collision torque
   int max_contacts_ = 0;
   std::unique_ptr<ViscousConstraint> viscous_;  // splitting.constraint = "viscous" only
   bool coupled_ = false;                        // CoupleStokes ran in this step

@@ -5,7 +5,9 @@
 //   rho_L h^2 (u - u*)/dt = E^T nu,   m_e (U - U*)/dt = -sum_k nu_k,
 //   j_e (omega - omega*)/dt = -sum_k r_perp_k . nu_k,   E u = U + omega r_perp_k at every point k,
 // with nu = G lambda the nodal forces, G = M_p + R^2 K_p the H1 Gram matrix of (24), m_e = (rho_d -
-// rho_L) pi R^2, j_e = m_e R^2 / 2. Fixed and prescribed particles keep U and omega.
+// rho_L) pi R^2, j_e = m_e R^2 / 2 (an ellipse: m_e = (rho_d - rho_L) pi a b, j_e = m_e (a^2 + b^2)
+// / 4, its points turned to the particle's angle first). Fixed and prescribed particles keep U and
+// omega.
 // The room, by concept (each header says its part):
 //   particles/multiplier_points.h  the multiplier points (the ring mesh of each disk, or
 //                                  collocation points on the circle) and G;
@@ -35,7 +37,7 @@
 // it straight to the fluid); (U, omega) becomes their multiplier:
 //   rho_L h^2 (u - u*)/dt = E^T nu,   C^T nu = f,   E u = C (U, omega).
 // Exact elimination, with nu = G lambda and the G-orthogonal projector P = I - C S^-1 C^T G
-// (S = C^T G C, 3x3 per mesh, constant because the mesh translates without rotating):
+// (S = C^T G C, 3x3 per mesh, constant while the mesh translates; rebuilt when it turns):
 //   lambda = lambda_f + P mu with lambda_f = C S^-1 f (so C^T G lambda_f = f, C^T G P = 0), and
 //   P (E u* + dt E M^-1 E^T G lambda) = 0 for mu: the operator P E M^-1 E^T G is self-adjoint and
 //   positive on range(P) in <., .>_G, so the same CG runs on it with the residual and the response
@@ -89,12 +91,14 @@ class RigidBodyConstraint {
   Outcome Enforce(double time, double dt, std::vector<ParticleState>& particles, double* u,
                   double* v);
   // The same, with net_force[p] the force a neutrally buoyant free particle p passes to the fluid
-  // (its predictor collision force F'_avg); ignored for the other particles. nullptr means zero.
+  // (its predictor collision force F'_avg) and net_torque[p] its torque (an ellipse's collisions);
+  // ignored for the other particles. nullptr means zero.
   // With increment (splitting.constraint = "incremental", particles/lagged_multiplier.h) the
   // stored multiplier has acted already: the CG finds its increment nu from a zero start and the
   // particles hold multiplier += nu on return (a neutral particle, not lagged: multiplier = nu).
   Outcome Enforce(double time, double dt, std::vector<ParticleState>& particles, double* u,
-                  double* v, const Vec2* net_force, bool increment = false);
+                  double* v, const Vec2* net_force, bool increment = false,
+                  const double* net_torque = nullptr);
 
   // The inviscid Schur complement of (37) as an operator, for the viscous coupling of the Stokes
   // step (particles/viscous_constraint.h), in two calls: Locate builds E at the particles'
@@ -129,6 +133,10 @@ class RigidBodyConstraint {
   double NodalTorqueSum(std::size_t particle) const { return torque_sum_[particle]; }
 
  private:
+  // Turns the points of the particles whose shape turns (ellipses) to their angles, and their
+  // rigid modes with them; Enforce and Locate call it before building E.
+  void Orient(const std::vector<ParticleState>& particles);
+
   double tolerance_;
   MultiplierPoints points_;
   RigidModes modes_;

@@ -10,11 +10,12 @@
 // particles (their motion is not moved by the forces).
 // Neutrally buoyant free particles (rho_d = rho_L): the momentum equations become C^T nu = f
 // (method notes in particles/rigid_body_constraint.h), solved with the G-orthogonal projector
-// P = I - C S^-1 C^T G, S = C^T G C (3x3 per point set, constant: the points translate without
-// rotating). Here: S^-1 and G C per point set, the G-weighted rigid part S^-1 (G C)^T a of a nodal
-// field, P on mismatches (a -= C S^-1 (G C)^T a), its transpose on forces (f -= G C S^-1 C^T f) and
-// the particular forces G C S^-1 (F, 0) whose net force is F and net torque 0. Not supported: free
-// particles lighter than the liquid (RigidBodyConstraint rejects them).
+// P = I - C S^-1 C^T G, S = C^T G C (3x3 per point set, constant while the points translate;
+// rebuilt when an ellipse's points turn). Here: S^-1 and G C per point set, the G-weighted rigid
+// part S^-1 (G C)^T a of a nodal field, P on mismatches (a -= C S^-1 (G C)^T a), its transpose on
+// forces (f -= G C S^-1 C^T f) and the particular forces G C S^-1 (F, T) whose net force is F and
+// net torque T (a disk's collisions have T = 0). Not supported: free particles lighter than the
+// liquid (RigidBodyConstraint rejects them).
 #pragma once
 
 #include <cstddef>
@@ -43,6 +44,9 @@ class RigidModes {
   RigidModes() = default;
   // bodies[p] for every particle of points.
   RigidModes(const MultiplierPoints& points, const std::vector<Body>& bodies);
+
+  // G C and S^-1 of point set m again, after its points turned (MultiplierPoints::Turn).
+  void Refresh(const MultiplierPoints& points, std::size_t m) { BuildSet(points, m); }
 
   bool IsNeutral(std::size_t p) const { return neutral_[p] != 0; }
   bool AnyNeutral() const { return any_neutral_; }
@@ -80,11 +84,14 @@ class RigidModes {
   // f -= G C S^-1 C^T f for particle p (f: its block), and on every neutral particle (stacked).
   void ProjectForcesOf(const MultiplierPoints& points, std::size_t p, double* f) const;
   void ProjectForces(const MultiplierPoints& points, double* f) const;
-  // f = G C S^-1 (net_force, 0) on the block of particle p: C^T f = (net_force, 0).
+  // f = G C S^-1 (net_force, net_torque) on the block of particle p: C^T f = (net_force,
+  // net_torque).
   void ParticularForces(const MultiplierPoints& points, std::size_t p, const Vec2& net_force,
-                        double* f) const;
+                        double net_torque, double* f) const;
 
  private:
+  void BuildSet(const MultiplierPoints& points, std::size_t m);
+
   std::vector<double> inv_excess_mass_, inv_excess_inertia_;  // per particle: D^-1
   std::vector<char> neutral_;
   bool any_neutral_ = false;

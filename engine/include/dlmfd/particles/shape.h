@@ -5,7 +5,7 @@
 // particle's angle theta from the domain's (x_world = X + Rot(theta) r_body). Kinds:
 // - disk of radius R: the paper's particle; its geometry does not depend on theta.
 // - ellipse with semi-axes a (along the body's x axis) and b (along its y axis): boundary
-//   (x/a)^2 + (y/b)^2 = 1. (Its geometry is here; scenes do not declare ellipses yet.)
+//   (x/a)^2 + (y/b)^2 = 1 (scene keys shape = "ellipse", semi_axes = [a, b], angle).
 // Per unit length (2D), with rho_d the density: area |P| = pi a b, mass M = rho_d pi a b, moment of
 // inertia about the centre I = M (a^2 + b^2) / 4 (a disk: M R^2 / 2; a disk's numbers are
 // computed in the engine's historical operation order, so its runs are bit for bit unchanged).
@@ -26,8 +26,13 @@
 #include <vector>
 
 #include "dlmfd/core/params.h"
+#include "dlmfd/core/state.h"
 
 namespace dlmfd {
+
+// The most elongated ellipse a scene may declare: max(a, b) / min(a, b) <= 8 (its perimeter's
+// quadrature is checked there; particle_shape_test).
+inline constexpr double kMaxEllipseAspect = 8.0;
 
 // A point on the boundary, in the body frame, and the outward unit normal there.
 struct BoundaryPoint {
@@ -44,6 +49,8 @@ class Shape {
   static Shape Ellipse(double a, double b);
   // The shape a scene gives particle `p`.
   static Shape Of(const ParticleParams& p);
+  // The shape of a particle's state (its kind, semi-axes and bounding radius).
+  static Shape Of(const ParticleState& p);
 
   ShapeKind kind() const { return kind_; }
   bool IsDisk() const { return kind_ == ShapeKind::kDisk; }
@@ -70,6 +77,10 @@ class Shape {
   bool Inside(const Vec2& r) const;
   // Body frame: the distance to the boundary, negative inside.
   double SignedDistance(const Vec2& r) const;
+  // Body frame: the boundary point nearest to r (for r at the centre of a disk, (R, 0)).
+  Vec2 ClosestBoundaryPoint(const Vec2& r) const;
+  // Body frame: the outward unit normal at a boundary point.
+  Vec2 Normal(const Vec2& boundary_point) const;
   // Body frame: the boundary point x maximising direction . x (direction != 0).
   Vec2 Support(const Vec2& direction) const;
   // floor(Perimeter() / spacing), at least 3 (1e-9 guards a whole quotient from round-off).

@@ -61,8 +61,10 @@ struct DiskOutline {
   double x = 0.0;
   double y = 0.0;
   double radius = 0.0;
-  double angle = 0.0;      // rotation since t = 0, radians, counter-clockwise
+  double angle = 0.0;      // orientation, radians, counter-clockwise
   bool has_angle = false;  // draw the rotation mark
+  // An ellipse: its semi-axes along the body's x and y axes (turned by angle); 0: a disk.
+  double semi_a = 0.0, semi_b = 0.0;
 };
 
 // The velocity at the nodes, for arrows (u and v on the same grid).
