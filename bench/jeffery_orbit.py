@@ -39,9 +39,24 @@ def main():
         if hi < lo:  # passed the integer lo
             s = (phase[i - 1] - lo) / (phase[i - 1] - phase[i])
             crossings.append(t[i - 1] + s * (t[i] - t[i - 1]))
+    # The first quarter period measured: from the first broadside crossing to the next aligned
+    # one (theta = -pi, -2 pi, ...), T / 4 by the orbit's symmetry (the CI test's measure).
+    if crossings:
+        aligned = theta / math.pi
+        for i in range(1, len(t)):
+            if t[i - 1] >= crossings[0] and math.floor(aligned[i]) < math.floor(aligned[i - 1]):
+                lo = math.floor(aligned[i - 1])
+                s = (aligned[i - 1] - lo) / (aligned[i - 1] - aligned[i])
+                quarter = t[i - 1] + s * (t[i] - t[i - 1]) - crossings[0]
+                line_quarter = 100.0 * (4.0 * quarter / period - 1.0)
+                break
+        else:
+            line_quarter = None
     halves = np.diff(crossings[1:]) if len(crossings) > 2 else np.array([])
     line = {"records": len(t), "t_end": t[-1], "crossings": len(crossings),
             "period_jeffery": period}
+    if crossings and line_quarter is not None:
+        line["quarter_error_pct"] = line_quarter
     if halves.size:
         measured = 2.0 * halves.mean()
         line["period"] = measured
