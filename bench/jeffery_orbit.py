@@ -7,8 +7,8 @@ rotation and its angular velocity against Jeffery's law.
 Jeffery (1922), in 2D (Bretherton 1962): d theta / dt = -G (r^2 sin^2 theta + cos^2 theta) / (r^2 + 1)
 for an ellipse of aspect ratio r in the shear u = G y, period T = 2 pi (r + 1/r) / G. The angle
 passes theta = -pi/2 - k pi (broadside to the flow, fastest) once every half period: the measured
-half periods are the times between successive crossings (linear interpolation between records),
-skipping the first crossing (the liquid's start-up). Jeffery's law is checked over the last half
+half periods are the times between successive crossings (linear interpolation between records;
+the first comes at about T / 4, long after the liquid's start-up time rho H^2 / eta). Jeffery's law is checked over the last half
 period: max |omega - omega_J(theta)| / max |omega_J|. Prints one line of key = value.
 """
 import argparse
@@ -52,7 +52,7 @@ def main():
                 break
         else:
             line_quarter = None
-    halves = np.diff(crossings[1:]) if len(crossings) > 2 else np.array([])
+    halves = np.diff(crossings) if len(crossings) > 1 else np.array([])
     line = {"records": len(t), "t_end": t[-1], "crossings": len(crossings),
             "period_jeffery": period}
     if crossings and line_quarter is not None:
@@ -62,7 +62,7 @@ def main():
         line["period"] = measured
         line["period_error_pct"] = 100.0 * (measured / period - 1.0)
         line["half_period_spread_pct"] = 100.0 * (halves.max() - halves.min()) / halves.mean()
-        last = (t >= crossings[-2]) & (t <= crossings[-1])
+        last = (t >= crossings[-2]) & (t <= crossings[-1])  # the last half period
         jeffery = -g * (r * r * np.sin(theta[last]) ** 2 + np.cos(theta[last]) ** 2) / (r * r + 1)
         line["omega_law_error_pct"] = 100.0 * np.max(np.abs(omega[last] - jeffery)) / np.max(
             np.abs(jeffery))

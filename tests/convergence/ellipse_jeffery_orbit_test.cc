@@ -1,10 +1,10 @@
 // Jeffery's orbit, the small version (issue 37, point 2; the study: docs/validation.md,
 // "Jeffery's orbit", bench/jeffery_orbit.sh): a neutrally buoyant ellipse r = a / b = 2 at the
-// centre of a plane Couette flow (cases/shapes/jeffery_orbit.toml: a = 0.2, channel H = 2 with walls
-// at -1 and +1 moving at -1 and +1, G = 1, periodic length 2, rho = 1, eta = 4, Re = 0.01) turns
-// from broadside (theta = -pi/2) to aligned with the flow (theta = -pi) in a quarter of Jeffery's
-// period, T / 4 = pi (r + 1/r) / (2 G) (Jeffery 1922; Bretherton 1962 for the elliptic cylinder),
-// on the case's own grid, h = 1/32 (b / h = 3.2), dt = 5e-4 (nu dt / h^2 = 2.048).
+// centre of a plane Couette flow (cases/shapes/jeffery_orbit.toml: a = 0.2, channel H = 2 with
+// walls at -1 and +1 moving at -1 and +1, G = 1, periodic length 2, rho = 1, eta = 4, Re = 0.01)
+// turns from broadside (theta = -pi/2) to aligned with the flow (theta = -pi) in a quarter of
+// Jeffery's period, T / 4 = pi (r + 1/r) / (2 G) (Jeffery 1922; Bretherton 1962 for the elliptic
+// cylinder), on the case's own grid, h = 1/32 (b / h = 3.2), dt = 5e-4 (nu dt / h^2 = 2.048).
 // Asserted within the study's bound (see kQuarterTolerance).
 #include <gtest/gtest.h>
 
@@ -45,9 +45,10 @@ TEST(EllipseJefferyOrbit, AQuarterTurnTakesAQuarterOfJefferysPeriod) {
   }
   ASSERT_GT(aligned, 0.0);
   const double error = (aligned - broadside) / quarter - 1.0;
-  std::printf("broadside at t = %.4f, aligned at t = %.4f: quarter period %.4f against %.4f "
-              "(%+.3f %%)\n",
-              broadside, aligned, aligned - broadside, quarter, 100.0 * error);
+  std::printf(
+      "broadside at t = %.4f, aligned at t = %.4f: quarter period %.4f against %.4f "
+      "(%+.3f %%)\n",
+      broadside, aligned, aligned - broadside, quarter, 100.0 * error);
   EXPECT_LT(std::abs(error), kQuarterTolerance);
 }
 

@@ -502,10 +502,10 @@ TEST(ResultsWriter, ResumeCutsBackToTheCheckpoint) {
   EXPECT_EQ(h.step.back(), 5);
 }
 
-// The writer integrates each disk's angle step by step by the trapezoidal rule (exact for an
-// angular velocity linear in t), writes it with every record, snapshot and checkpoint, and a
-// resumed writer goes on from the checkpoint's angle.
-TEST(ResultsWriter, IntegratesTheAngleAndResumesIt) {
+// The writer writes each particle's angle, the engine's (ParticleState::angle, integrated by the
+// corrector: particles/particle_step.h; here set as the engine would for omega = 2 + 10 t), with
+// every record, snapshot and checkpoint, and a resumed writer goes on from the checkpoint's angle.
+TEST(ResultsWriter, WritesTheEnginesAngleAndResumesIt) {
   const std::string dir = FreshDir("writer_angle");
   Params params = ParseScene(
       "[domain]\nsize = [1.0, 0.75]\nh = 0.125\n[time]\ndt = 0.1\nend = 1.0\n"
@@ -520,6 +520,7 @@ TEST(ResultsWriter, IntegratesTheAngleAndResumesIt) {
       s.step = n;
       s.time = n * 0.1;
       s.particles[0].angular_velocity = omega(s.time);
+      s.particles[0].angle = 2.0 * s.time + 5.0 * s.time * s.time;
       w.OnStep(s, Report(n));
       if (n % 2 == 0) w.OnParticles(s);
       if (n % 3 == 0) w.OnSnapshot(s);
@@ -541,6 +542,7 @@ TEST(ResultsWriter, IntegratesTheAngleAndResumesIt) {
   EXPECT_NEAR(ReadCheckpoint(dir + "/checkpoint.h5").particle_angles.at(0), 1.0 + 1.25, 1e-12);
   {
     auto w = ResultsWriter::Resume(dir, params, g, 5);
+    EXPECT_NEAR(w->particle_angles().at(0), 1.0 + 1.25, 1e-12);
     s.particles[0].angular_velocity = omega(0.5);
     run(*w, 6, 10);
     EXPECT_NEAR(w->particle_angles().at(0), 2.0 + 5.0, 1e-12);
