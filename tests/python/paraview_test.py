@@ -97,11 +97,15 @@ class ParaViewTest(unittest.TestCase):
                 particles = by_name["particles"]
                 self.assertEqual(particles["points"], 1)
                 self.assertEqual(particles["arrays"], {"radius": 1, "velocity": 3,
-                                                       "angular_velocity": 1, "angle": 1, "id": 1})
+                                                       "angular_velocity": 1, "angle": 1, "id": 1,
+                                                       "semi_axes": 3})
                 g = f["particles"]
                 self.assertEqual(particles["point"], [*g["position"][0], 0.0])
                 self.assertEqual(particles["values"]["radius"], [g["radius"][0]])
                 self.assertEqual(particles["values"]["angle"], [g["angle"][0]])
+                # The glyph's scale of an ellipse, (a, b, 0); a disk's (R, R, 0).
+                self.assertEqual(particles["values"]["semi_axes"], [*g["semi_axes"][0]])
+                self.assertEqual(particles["values"]["semi_axes"], [g["radius"][0]] * 2 + [0.0])
                 self.assertEqual(particles["values"]["velocity"], [*g["velocity"][0], 0.0])
                 # The X-Y plane at z = 0: x over the width 1, y over the height 2.
                 self.assertEqual(velocity["bounds"], [0.0, 1.0, 0.0, 2.0, 0.0, 0.0])
