@@ -94,7 +94,7 @@ class DashboardTest(unittest.TestCase):
         # A 4-job study: two short points (they complete: results, chart, thumbnails) and two
         # long ones (minutes of solver each, cancelled at the end: progress to watch, a job to cancel); two run at once.
         sweep = self.daemon.submit_study("dashboard-study", ws.study_scene(),
-                                         "time.end=0.4,100", "particles.*.density=1.001,1.002")
+                                         "time.end=0.4,1000", "particles.*.density=1.001,1.002")
 
         # Sign in with the token through the form; the browser then holds only a session cookie.
         b.get(self.web.url + "/")
@@ -128,7 +128,7 @@ class DashboardTest(unittest.TestCase):
             "th => th.dataset.column === 'time.end');"
             "const r = [...document.querySelectorAll('#jobs-table tbody tr')].find("
             "tr => tr.querySelector('td.state').textContent === 'running' &&"
-            " tr.children[i].textContent === '100'); return r && r.dataset.job"),
+            " tr.children[i].textContent === '1000'); return r && r.dataset.job"),
             "a running long job in the table", 90)
         cell = f"#jobs-table tr[data-job='{job_id}'] td.progress"
         before = self.text(cell)

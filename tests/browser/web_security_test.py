@@ -121,7 +121,7 @@ class WebSecurityTest(unittest.TestCase):
 
     def test_hold_and_release_a_queued_job(self):
         # A study of two long points, one running at a time: the second waits, QUEUED.
-        sweep = self.daemon.submit_study("hold-study", ws.study_scene().replace("end = 1.0", "end = 100.0"),
+        sweep = self.daemon.submit_study("hold-study", ws.study_scene().replace("end = 1.0", "end = 1000.0"),
                                          "particles.*.density=1.001,1.002", extra=("--max-running", "1"))
         try:
             cookie, csrf = self.login(ws.Daemon.TOKEN)
