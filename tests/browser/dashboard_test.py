@@ -131,9 +131,16 @@ class DashboardTest(unittest.TestCase):
             " tr.children[i].textContent === '1000'); return r && r.dataset.job"),
             "a running long job in the table", 90)
         cell = f"#jobs-table tr[data-job='{job_id}'] td.progress"
+        header = f"#jobs-table th[data-column='particles.*.density']"
+        # The table updates in place: the header and the job's link a user points at are the
+        # same elements after live progress (a page that rebuilt them would swallow clicks).
+        b.execute_script("window.__pointed = [document.querySelector(arguments[0]),"
+                         " document.querySelector(arguments[1])]",
+                         header, f"#jobs-table tr[data-job='{job_id}'] td a")
         before = self.text(cell)
         ws.wait_for(lambda: self.text(cell) != before, "the running job's progress cell to move", 60)
-        header = f"#jobs-table th[data-column='particles.*.density']"
+        self.assertEqual(b.execute_script("return window.__pointed.map(e => e.isConnected)"),
+                         [True, True], "the header and the link survive live progress")
         self.click(header, "the density header")
 
         def column(name):

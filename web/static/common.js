@@ -169,6 +169,35 @@ dl.bar = function (fraction, label) {
   return dl.el("span", { class: "bar", title: pct + "%" }, fill, dl.el("span", { class: "bar-label", text: label !== undefined ? label : pct + "%" }));
 };
 
+// Brings a table section (tbody or thead) to `items` in place: one row per key, kept across calls,
+// each cell rebuilt only when its signature changed, rows moved only when their order changed. Live
+// updates then neither replace what a user is about to click (a header, a link) nor redo the DOM
+// work of what did not change. `cellsOf(item)` gives [{ sig, make }], `make()` building the <td>
+// or <th>; `rowAttrs(key)` the new row's attributes.
+dl.syncRows = function (section, items, keyOf, cellsOf, rowAttrs) {
+  const old = section.dlRows || new Map();
+  const kept = new Map();
+  const order = items.map((item) => {
+    const key = keyOf(item);
+    const entry = old.get(key) || { tr: dl.el("tr", rowAttrs ? rowAttrs(key) : {}), sigs: [] };
+    const cells = cellsOf(item);
+    cells.forEach((cell, i) => {
+      if (entry.sigs[i] === cell.sig && entry.tr.children[i]) return;
+      const node = cell.make();
+      if (entry.tr.children[i]) entry.tr.replaceChild(node, entry.tr.children[i]);
+      else entry.tr.append(node);
+      entry.sigs[i] = cell.sig;
+    });
+    while (entry.tr.children.length > cells.length) entry.tr.lastChild.remove();
+    entry.sigs.length = cells.length;
+    kept.set(key, entry);
+    return entry.tr;
+  });
+  section.dlRows = kept;
+  const now = section.children;
+  if (now.length !== order.length || order.some((tr, i) => now[i] !== tr)) section.replaceChildren(...order);
+};
+
 // A modal question; resolves true when confirmed.
 dl.confirm = function (text, action) {
   return new Promise((resolve) => {

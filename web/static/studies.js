@@ -17,23 +17,32 @@
     dl.el("div", { class: "scroll" }, dl.el("table", { class: "grid", id: "jobs" },
       head("job", "id", "state", "progress", "created"), jobs)));
 
-  const count = (n) => dl.el("td", { class: "num count" + (n ? "" : " zero"), text: String(n || 0) });
+  const count = (n) => ({ sig: String(n || 0), make: () => dl.el("td", { class: "num count" + (n ? "" : " zero"), text: String(n || 0) }) });
+  const cell = (sig, make) => ({ sig, make });
+  const text = (t, cls) => cell(t, () => dl.el("td", { class: cls, text: t }));
+  const empty = (span, t) => [cell(t, () => dl.el("td", { colspan: span, class: "empty", text: t }))];
 
+  function studyCells(s) {
+    if (!s) return empty(10, "No studies yet: dlmfd sweep SCENE --grid KEY=V1,V2 ... starts one.");
+    return [cell(s.name || s.id, () => dl.el("td", {}, dl.el("a", { href: "/studies/" + encodeURIComponent(s.id), text: s.name || s.id }))),
+      text(s.id, "muted"), count(s.jobs), count(s.queued), count(s.running), count(s.completed), count(s.failed), count(s.cancelled),
+      cell(String(s.progress), () => dl.el("td", {}, dl.bar(s.progress))), text(dl.when(s.created_time))];
+  }
+
+  function jobCells(j) {
+    if (!j) return empty(5, "None.");
+    const label = dl.num(j.time) + " / " + dl.num(j.end_time), fraction = dl.fraction(j);
+    return [cell(j.name || j.id, () => dl.el("td", {}, dl.el("a", { href: "/jobs/" + encodeURIComponent(j.id), text: j.name || j.id }))),
+      text(j.id), cell(j.state + "|" + j.held, () => dl.el("td", {}, dl.badge(j.state, j.held))),
+      cell(fraction + "|" + label, () => dl.el("td", {}, dl.bar(fraction, label))), text(dl.when(j.created_time))];
+  }
+
+  // In place (dl.syncRows): the overview arrives again on every event of an unfinished job, and a
+  // link rebuilt under the pointer would swallow the user's click.
   function render(overview) {
-    const rows = overview.sweeps.map((s) => dl.el("tr", { "data-sweep": s.id },
-      dl.el("td", {}, dl.el("a", { href: "/studies/" + encodeURIComponent(s.id), text: s.name || s.id })),
-      dl.el("td", { class: "muted", text: s.id }),
-      count(s.jobs), count(s.queued), count(s.running), count(s.completed), count(s.failed), count(s.cancelled),
-      dl.el("td", {}, dl.bar(s.progress)),
-      dl.el("td", { text: dl.when(s.created_time) })));
-    studies.replaceChildren(...(rows.length ? rows : [dl.el("tr", {}, dl.el("td", { colspan: 10, class: "empty", text: "No studies yet: dlmfd sweep SCENE --grid KEY=V1,V2 ... starts one." }))]));
-    const jobRows = overview.jobs.map((j) => dl.el("tr", { "data-job": j.id },
-      dl.el("td", {}, dl.el("a", { href: "/jobs/" + encodeURIComponent(j.id), text: j.name || j.id })),
-      dl.el("td", { text: j.id }),
-      dl.el("td", {}, dl.badge(j.state, j.held)),
-      dl.el("td", {}, dl.bar(dl.fraction(j), dl.num(j.time) + " / " + dl.num(j.end_time))),
-      dl.el("td", { text: dl.when(j.created_time) })));
-    jobs.replaceChildren(...(jobRows.length ? jobRows : [dl.el("tr", {}, dl.el("td", { colspan: 5, class: "empty", text: "None." }))]));
+    const orNone = (list) => (list.length ? list : [null]);
+    dl.syncRows(studies, orNone(overview.sweeps), (s) => (s ? s.id : ""), studyCells, (id) => (id ? { "data-sweep": id } : {}));
+    dl.syncRows(jobs, orNone(overview.jobs), (j) => (j ? j.id : ""), jobCells, (id) => (id ? { "data-job": id } : {}));
   }
 
   async function reload() {

@@ -107,38 +107,48 @@
     return desc ? -r : r;
   }
 
+  function headerCell(c) {
+    const sorted = state.sort.column === c ? (state.sort.desc ? "sorted-desc" : "sorted-asc") : "";
+    return { sig: c + "|" + sorted, make: () => {
+      const th = dl.el("th", { text: c === "thumb" ? "field" : c, "data-column": c });
+      if (c === "thumb") return th;
+      th.classList.add("sortable");
+      if (sorted) th.classList.add(sorted);
+      th.addEventListener("click", () => {
+        state.sort = { column: c, desc: state.sort.column === c ? !state.sort.desc : false };
+        render();
+      });
+      return th;
+    } };
+  }
+
+  function bodyCell(r, c) {
+    const live = r.live;
+    if (c === "thumb") {
+      const img = thumbFor(r.id, live.snapshot_step || 0);  // kept across renders; only its src moves
+      return { sig: "thumb", make: () => dl.el("td", {}, img) };
+    }
+    if (c === "name") return { sig: "name|" + r.name, make: () => dl.el("td", {}, dl.el("a", { href: "/jobs/" + encodeURIComponent(r.id), text: r.name || r.id })) };
+    if (c === "state") return { sig: "state|" + live.state + "|" + live.held, make: () => dl.el("td", { class: "state" }, dl.badge(live.state, live.held)) };
+    if (c === "progress") {
+      const eta = live.state === "RUNNING" && isFinite(live.eta_seconds) ? "  ETA " + dl.duration(live.eta_seconds) : "";
+      const fraction = dl.fraction(live), label = "t " + dl.num(live.time) + " / " + dl.num(live.end_time) + eta;
+      return { sig: "progress|" + fraction + "|" + label, make: () => dl.el("td", { class: "progress" }, dl.bar(fraction, label)) };
+    }
+    const v = r.cells[c];
+    return { sig: c + "|" + typeof v + "|" + dl.num(v), make: () => dl.el("td", { class: typeof v === "number" ? "num" : "", text: dl.num(v) }) };
+  }
+
+  // Updates the table in place (dl.syncRows): progress events arrive many times a second, and a
+  // header or link rebuilt under the pointer would swallow the user's click.
   function render() {
     const columns = shownColumns();
-    thead.replaceChildren(dl.el("tr", {}, columns.map((c) => {
-      const th = dl.el("th", { text: c === "thumb" ? "field" : c, "data-column": c });
-      if (c !== "thumb") {
-        th.classList.add("sortable");
-        if (state.sort.column === c) th.classList.add(state.sort.desc ? "sorted-desc" : "sorted-asc");
-        th.addEventListener("click", () => {
-          state.sort = { column: c, desc: state.sort.column === c ? !state.sort.desc : false };
-          render();
-        });
-      }
-      return th;
-    })));
+    dl.syncRows(thead, [columns], () => "header", (cs) => cs.map(headerCell));
     let rows = [...state.rows.values()];
     if (state.stateFilter) rows = rows.filter((r) => dl.stateName(r.live.state) === state.stateFilter);
     if (state.filter) rows = rows.filter((r) => columns.some((c) => c !== "thumb" && String(dl.num(value(r, c)) || "").toLowerCase().includes(state.filter)) || r.id.includes(state.filter));
     rows.sort(compare);
-    tbody.replaceChildren(...rows.map((r) => {
-      const live = r.live;
-      return dl.el("tr", { "data-job": r.id }, columns.map((c) => {
-        if (c === "thumb") return dl.el("td", {}, thumbFor(r.id, live.snapshot_step || 0));
-        if (c === "name") return dl.el("td", {}, dl.el("a", { href: "/jobs/" + encodeURIComponent(r.id), text: r.name || r.id }));
-        if (c === "state") return dl.el("td", { class: "state" }, dl.badge(live.state, live.held));
-        if (c === "progress") {
-          const eta = live.state === "RUNNING" && isFinite(live.eta_seconds) ? "  ETA " + dl.duration(live.eta_seconds) : "";
-          return dl.el("td", { class: "progress" }, dl.bar(dl.fraction(live), "t " + dl.num(live.time) + " / " + dl.num(live.end_time) + eta));
-        }
-        const v = r.cells[c];
-        return dl.el("td", { class: typeof v === "number" ? "num" : "", text: dl.num(v) });
-      }));
-    }));
+    dl.syncRows(tbody, rows, (r) => r.id, (r) => columns.map((c) => bodyCell(r, c)), (id) => ({ "data-job": id }));
     document.getElementById("row-count").textContent = rows.length + " of " + state.rows.size + " jobs";
   }
 
