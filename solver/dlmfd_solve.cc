@@ -212,6 +212,9 @@ int Check(const Options& opt) {
   for (const AccuracySetting& s : AccuracySettings(params)) {
     std::printf("setting: %s = %s\n", s.name.c_str(), ShortText(s.value).c_str());
   }
+  for (const ResolvedChoice& c : params.numerics.resolved) {
+    std::printf("numerics: %s\n", ResolvedChoiceText(c).c_str());
+  }
   for (const AccuracyWarning& w : AccuracyWarnings(params)) {
     std::printf("warning: %s\n", w.Message().c_str());
   }

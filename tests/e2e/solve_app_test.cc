@@ -145,6 +145,8 @@ TEST(SolveApp, ADeepKeyIsAnInvalidSceneAndCheckDescribesAScene) {
   EXPECT_THAT(text, HasSubstr("mesh: 16 x 16 cells"));
   EXPECT_THAT(text, HasSubstr("steps: 2 to t = 0.1"));
   EXPECT_THAT(text, HasSubstr("warning: "));  // dt = 0.05 is outside the envelope
+  // What `auto` resolves is said before a run too (a liquid alone: the lagged multiplier).
+  EXPECT_THAT(text, HasSubstr("numerics: splitting.constraint = \"incremental\""));
   EXPECT_FALSE(fs::exists(dir + "/out"));
   EXPECT_EQ(Shell(testing::kSolver + " " + scene + " --check --set time.end=0 2>&1").second, 2);
   EXPECT_EQ(Shell(testing::kSolver + " " + scene + " 2>&1").second,

@@ -43,3 +43,12 @@ endif()
 add_test(NAME ParaView.OpensFieldsXmf COMMAND ${DLMFD_TEST_PYTHON} ${python_tests}/paraview_test.py -v)
 set_tests_properties(ParaView.OpensFieldsXmf PROPERTIES LABELS paraview SKIP_RETURN_CODE 77
   ENVIRONMENT "${python_env}")
+if(TARGET dlmfd-solve)
+  # Issue 32 point 3: every file of cases/, its numerics keys removed, is admitted and takes its
+  # first step at the defaults (bench/cases_at_defaults.py runs them to their ends: docs/accuracy.md).
+  add_test(NAME CaseFiles.EveryCaseStepsAtTheDefaults
+           COMMAND ${DLMFD_TEST_PYTHON} ${PROJECT_SOURCE_DIR}/bench/cases_at_defaults.py --steps 1
+                   --solve $<TARGET_FILE:dlmfd-solve> --out ${CMAKE_CURRENT_BINARY_DIR}/cases_at_defaults
+           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(CaseFiles.EveryCaseStepsAtTheDefaults PROPERTIES LABELS e2e)
+endif()
