@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <random>
 #include <set>
 
@@ -173,10 +174,18 @@ class WatchReactor final : public grpc::ServerWriteReactor<v1::WatchEvent> {
   }
 
   void OnCancel() override {
+    const std::lock_guard lock(cancel_mutex_);
     if (queue_->Cancel()) Pump();
   }
 
+  // gRPC runs OnDone after OnCancel has returned, but that order is carried by an atomic counter
+  // inside libgrpc++ (1.51's ServerCallbackCall::CallOnCancel runs OnCancel on its executor, then
+  // decrements the call's counter there). The teardown below frees the queue that OnCancel used,
+  // so the reactor orders it after OnCancel itself: OnCancel's unlock happens before this lock.
+  // Uncontended in practice; without it ThreadSanitizer reported the queue freed here while
+  // OnCancel's Cancel() was its previous user (issue 38).
   void OnDone() override {
+    { const std::lock_guard lock(cancel_mutex_); }
     hub_.Detach(job_id_, queue_.get());
     delete this;
   }
@@ -203,6 +212,7 @@ class WatchReactor final : public grpc::ServerWriteReactor<v1::WatchEvent> {
   const std::string job_id_;
   std::shared_ptr<WatcherQueue> queue_;
   v1::WatchEvent current_;
+  std::mutex cancel_mutex_;  // held by OnCancel; OnDone takes it before the teardown
 };
 
 // A write reactor that only reports an error.
