@@ -16,6 +16,7 @@
 #include <sstream>
 #include <utility>
 
+#include "executor.h"
 #include "service_error.h"
 
 namespace dlmfd::server {
@@ -206,9 +207,9 @@ void ValidateSolver(const std::string& solver) {
 // Throws unless executor is local or slurm and the slurm_* values are in their ranges. The slurm
 // solver is not checked here: it is a path on the nodes, which the daemon's machine may not have.
 void ValidateExecutor(Config& config) {
-  if (config.executor != "local" && config.executor != "slurm") {
+  if (!IsExecutorName(config.executor)) {
     throw ConfigError("executor = \"" + CutForMessage(config.executor) +
-                      "\" is not allowed: expected local or slurm");
+                      "\" is not allowed: expected " + ExecutorNamesText());
   }
   auto range = [](const char* key, int value, int least, int most) {
     if (value < least || value > most) {
@@ -240,13 +241,6 @@ std::vector<std::string> ConfigWarnings(const Config& config) {
     }
   }
   return warnings;
-}
-
-std::string JobDirectory(const Config& config, const std::string& job_id) {
-  if (config.executor == "slurm" && !config.slurm.shared_dir.empty()) {
-    return (fs::path(config.slurm.shared_dir) / job_id).string();
-  }
-  return (fs::path(config.data_dir) / "jobs" / job_id).string();
 }
 
 bool IsLoopbackAddress(const std::string& listen) {

@@ -111,10 +111,6 @@ void ValidateConfig(Config& config);
 // others can read.
 std::vector<std::string> ConfigWarnings(const Config& config);
 
-// The directory of a job: its results, solver log, inputs and watch log (DATA/jobs/ID, or
-// slurm_shared_dir/ID under the slurm executor).
-std::string JobDirectory(const Config& config, const std::string& job_id);
-
 // True for 127.0.0.0/8, ::1, localhost and unix: addresses.
 bool IsLoopbackAddress(const std::string& listen);
 

@@ -47,10 +47,11 @@ void Daemon::Start() {
   for (const auto& id : store_->RequeueRunning(NowSeconds())) {
     spdlog::info("job {}: was RUNNING when the daemon stopped; QUEUED to resume", id);
   }
+  executor_ = MakeExecutor(config_);
   hub_ = std::make_unique<EventHub>(
-      *store_, [this](const std::string& id) { return JobDirectory(config_, id); });
+      *store_, [this](const std::string& id) { return executor_->JobDirectory(id); });
   hub_->Recover((fs::path(config_.data_dir) / "watch_seq").string());
-  scheduler_ = std::make_unique<Scheduler>(config_, *store_, *hub_);
+  scheduler_ = std::make_unique<Scheduler>(config_, *executor_, *store_, *hub_);
   service_ = std::make_unique<JobsService>(config_, *store_, *hub_, *scheduler_);
 
   grpc::EnableDefaultHealthCheckService(true);

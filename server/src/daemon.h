@@ -11,6 +11,7 @@
 
 #include "config.h"
 #include "event_hub.h"
+#include "executor.h"
 #include "job_store.h"
 #include "jobs_service.h"
 #include "loopback_port.h"
@@ -33,6 +34,7 @@ class Daemon {
  private:
   Config config_;
   int lock_fd_ = -1;
+  std::unique_ptr<Executor> executor_;
   std::unique_ptr<JobStore> store_;
   std::unique_ptr<EventHub> hub_;
   std::unique_ptr<Scheduler> scheduler_;

@@ -1,64 +1,56 @@
 #include "executor.h"
 
+#include <functional>
 #include <map>
-#include <memory>
-#include <mutex>
 
-#include "slurm_array.h"
+#include "local_executor.h"
 #include "slurm_executor.h"
 
 namespace dlmfd::server {
 namespace {
 
-// The local executor: dlmfd-solve as a child process of the daemon.
-class LocalRun : public JobRun {
- public:
-  void Start(const LaunchSpec& spec) override { process_.Start(spec); }
-  void ReadEvents(const EventHandler& on_event) override {
-    process_.ReadEvents([&](const v1::SolverEvent& event) { on_event(event, EventPosition{}); });
-  }
-  SolverExit Wait() override { return process_.Wait(); }
-  void Signal(int signal_number) override { process_.Signal(signal_number); }
-  std::string Describe() const override { return "solver pid " + std::to_string(process_.pid()); }
+using Factory = std::function<std::unique_ptr<Executor>(const Config&)>;
 
- private:
-  SolverProcess process_;
-};
-
-// One squeue poll for every live run of this configuration.
-std::shared_ptr<SlurmQueue> SharedQueue(const Config& config) {
-  static std::mutex mutex;
-  static std::map<const Config*, std::weak_ptr<SlurmQueue>> shared;
-  std::lock_guard lock(mutex);
-  auto queue = shared[&config].lock();
-  if (!queue) {
-    queue = std::make_shared<SlurmQueue>(config.slurm);
-    shared[&config] = queue;
-  }
-  return queue;
+// The one place that maps the `executor` setting to an implementation.
+const std::map<std::string, Factory>& Executors() {
+  static const std::map<std::string, Factory> executors = {
+      {"local", [](const Config& c) { return std::make_unique<LocalExecutor>(c); }},
+      {"slurm", [](const Config& c) { return std::make_unique<SlurmExecutor>(c); }},
+  };
+  return executors;
 }
 
 }  // namespace
 
-std::shared_ptr<JobRun> MakeJobRun(const Config& config) {
-  if (config.executor == "slurm") return std::make_shared<SlurmRun>(config, SharedQueue(config));
-  return std::make_shared<LocalRun>();
+std::vector<std::shared_ptr<JobRun>> Executor::NewStudyRuns(const std::string& study, int count,
+                                                            int throttle) {
+  (void)study;
+  (void)throttle;
+  std::vector<std::shared_ptr<JobRun>> runs;
+  for (int i = 0; i < count; ++i) runs.push_back(NewRun());
+  return runs;
 }
 
-bool SubmitsStudiesTogether(const Config& config) { return config.executor == "slurm"; }
+std::unique_ptr<Executor> MakeExecutor(const Config& config) {
+  const auto found = Executors().find(config.executor);
+  if (found == Executors().end()) {
+    throw ConfigError("executor = \"" + config.executor + "\" is not allowed: expected " +
+                      ExecutorNamesText());
+  }
+  return found->second(config);
+}
 
-std::vector<std::shared_ptr<JobRun>> MakeStudyRuns(const Config& config, const std::string& study,
-                                                   int count, int throttle) {
-  std::vector<std::shared_ptr<JobRun>> runs;
-  if (!SubmitsStudiesTogether(config)) {
-    for (int i = 0; i < count; ++i) runs.push_back(MakeJobRun(config));
-    return runs;
+bool IsExecutorName(const std::string& name) { return Executors().count(name) > 0; }
+
+std::string ExecutorNamesText() {
+  std::string text;
+  size_t left = Executors().size();
+  for (const auto& [name, factory] : Executors()) {
+    text += name;
+    --left;
+    text += left > 1 ? ", " : left == 1 ? " or " : "";
   }
-  auto array = std::make_shared<SlurmArray>(config, "dlmfd-" + study, count, throttle);
-  for (int i = 0; i < count; ++i) {
-    runs.push_back(std::make_shared<SlurmRun>(config, SharedQueue(config), array, i));
-  }
-  return runs;
+  return text;
 }
 
 }  // namespace dlmfd::server

@@ -1,24 +1,30 @@
-// JobRun: one attempt of a job, as the scheduler drives it, whatever runs the solver.
+// The executors: what runs the solver for the scheduler. Two levels, one interface each:
+//   Executor  the daemon's one executor (MakeExecutor, from the `executor` setting; config.h,
+//             docs/api.md): its capacity (runs in its hands at once), its limits (the daemon's
+//             time limit of one run, and whether it enforces it itself), where a job's directory
+//             lives, and the runs it launches, one job at a time or a study's jobs together.
+//   JobRun    one attempt of a job: launch (Start), adopt (a run that outlived the daemon), poll
+//             (ReadEvents: returns when the run has ended and every event it wrote has been
+//             delivered, then Wait), cancel (Signal; Detach at the daemon's shutdown).
+// Implementations: local (local_executor.h: dlmfd-solve as a child process, events on a pipe) and
+// slurm (slurm_executor.h: a batch script submitted with sbatch, events through a file in the
+// shared job directory, states from squeue and the jobcomp file). No other code names them.
 //
-// The scheduler's runner thread calls Start, then ReadEvents (returns when the run has ended and
-// every event it wrote has been delivered), then Wait; Signal may come from any thread at any
-// time (SIGTERM: cancel or daemon shutdown, the solver checkpoints and exits 130; SIGKILL: now).
-// Executors, chosen by the daemon's `executor` setting (config.h, docs/api.md):
-//   local  SolverProcess (solver_process.h): dlmfd-solve as a child process, events on a pipe.
-//   slurm  SlurmRun (slurm_executor.h): a batch script submitted with sbatch, events through a
-//          file in the shared job directory, states from squeue and the jobcomp file.
-// OnStateChange reports the executor's word on the run (a Slurm job PENDING for a reason, then
-// RUNNING): the scheduler stores it, and the API shows a run that has not started QUEUED.
-// Outcome lets an executor name an end that the solver's exit status cannot tell (a Slurm
+// The scheduler's runner thread calls Start, then ReadEvents, then Wait; Signal may come from any
+// thread at any time (SIGTERM: cancel or daemon shutdown, the solver checkpoints and exits 130;
+// SIGKILL: now). OnStateChange reports the executor's word on the run (a Slurm job PENDING for a
+// reason, then RUNNING): the scheduler stores it, and the API shows a run that has not started
+// QUEUED. Outcome lets an executor name an end that the solver's exit status cannot tell (a Slurm
 // TIMEOUT, NODE_FAIL or OUT_OF_MEMORY); the scheduler uses it instead of the exit-status mapping,
 // and queues the job again when it is retryable and the executor's attempts allow.
 // A study's queued jobs may be handed over together (SubmitsStudiesTogether: a Slurm job array):
-// the scheduler starts a runner for each with a run of MakeStudyRuns; a runner that will not call
+// the scheduler starts a runner for each with a run of NewStudyRuns; a runner that will not call
 // Start calls Abandon, so that the others do not wait for it.
 #pragma once
 
 #include <signal.h>
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -83,9 +89,6 @@ class JobRun {
   // The daemon shuts down: a run that can outlive it (a Slurm job) is left running and ReadEvents
   // returns (Wait then gives SIGTERM); the local executor's solver gets SIGTERM and checkpoints.
   virtual void Detach() { Signal(SIGTERM); }
-  // True when the executor enforces the run's time limit itself (Slurm's --time, which counts
-  // the time the job runs, not the time it waits); else the scheduler stops the run past it.
-  virtual bool LimitsTimeItself() const { return false; }
   // A line for the daemon's log once started: "solver pid 123", "Slurm job 45".
   virtual std::string Describe() const = 0;
   // The executor's id of the run once started or adopted (the Slurm job id); empty otherwise.
@@ -102,13 +105,41 @@ class JobRun {
   virtual void OnStateChange(StateHandler handler) { (void)handler; }
 };
 
-// The run of the configured executor.
-std::shared_ptr<JobRun> MakeJobRun(const Config& config);
-// True when the executor hands a study's queued jobs over together (slurm: one job array).
-bool SubmitsStudiesTogether(const Config& config);
-// The runs of `count` jobs of the study `study` (its id) handed over together, at most `throttle`
-// of them running at once (0: no limit); the scheduler gives the i-th to the i-th job.
-std::vector<std::shared_ptr<JobRun>> MakeStudyRuns(const Config& config, const std::string& study,
-                                                   int count, int throttle);
+// The daemon's time limit of one run of a job under an executor (job_time_limit.h).
+struct DaemonTimeLimit {
+  int64_t seconds = 0;   // 0: none
+  std::string settings;  // the settings that set it, for messages ("max_wall_seconds")
+};
+
+class Executor {
+ public:
+  virtual ~Executor() = default;
+  // The most runs in its hands at once (local: max_concurrent solvers; slurm: slurm_max_submitted
+  // jobs, running or waiting in Slurm's queue).
+  virtual int Capacity() const = 0;
+  // The daemon's limit of one run; a job may ask for less (job_time_limit.h).
+  virtual DaemonTimeLimit TimeLimit() const = 0;
+  // True when the executor enforces a run's time limit itself (Slurm's --time, which counts the
+  // time the job runs, not the time it waits); else the scheduler stops the run past it.
+  virtual bool LimitsTimeItself() const { return false; }
+  // The directory of a job: its results, solver log, inputs and watch log.
+  virtual std::string JobDirectory(const std::string& job_id) const = 0;
+  // A run for one job.
+  virtual std::shared_ptr<JobRun> NewRun() = 0;
+  // True when a study's queued jobs are handed over together (slurm: one job array).
+  virtual bool SubmitsStudiesTogether() const { return false; }
+  // The runs of `count` jobs of the study `study` (its id) handed over together, at most
+  // `throttle` of them running at once (0: no limit); the scheduler gives the i-th to the i-th
+  // job. By default, a run of its own for each.
+  virtual std::vector<std::shared_ptr<JobRun>> NewStudyRuns(const std::string& study, int count,
+                                                            int throttle);
+};
+
+// The configured executor (config.executor); throws ConfigError for an unknown name.
+std::unique_ptr<Executor> MakeExecutor(const Config& config);
+// True when `name` is an executor's (the `executor` setting's allowed values).
+bool IsExecutorName(const std::string& name);
+// The allowed values for messages: "local or slurm".
+std::string ExecutorNamesText();
 
 }  // namespace dlmfd::server

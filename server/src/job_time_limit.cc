@@ -7,33 +7,24 @@
 
 namespace dlmfd::server {
 
-int64_t DaemonTimeLimit(const Config& config) {
-  int64_t limit = config.max_wall_seconds;
-  if (config.executor == "slurm" && config.slurm.time_limit_minutes > 0) {
-    const int64_t slurm = int64_t{config.slurm.time_limit_minutes} * 60;
-    limit = limit > 0 ? std::min(limit, slurm) : slurm;
-  }
-  return limit;
+DaemonTimeLimit Tighter(const DaemonTimeLimit& a, const DaemonTimeLimit& b) {
+  if (a.seconds <= 0) return b;
+  if (b.seconds <= 0) return a;
+  return {std::min(a.seconds, b.seconds), a.settings + ", " + b.settings};
 }
 
-void CheckTimeLimit(int64_t seconds, const Config& config) {
-  const int64_t daemon = DaemonTimeLimit(config);
-  const int64_t most = daemon > 0 ? std::min(daemon, kMostTimeLimitSeconds) : kMostTimeLimitSeconds;
-  std::string where = "365 days";
-  if (daemon > 0) {
-    where = config.executor == "slurm" && config.slurm.time_limit_minutes > 0
-                ? (config.max_wall_seconds > 0 ? "max_wall_seconds, slurm_time_limit_minutes"
-                                               : "slurm_time_limit_minutes")
-                : "max_wall_seconds";
-  }
+void CheckTimeLimit(int64_t seconds, const DaemonTimeLimit& daemon) {
+  const bool limited = daemon.seconds > 0;
+  const int64_t most =
+      limited ? std::min(daemon.seconds, kMostTimeLimitSeconds) : kMostTimeLimitSeconds;
   Require(seconds >= 0 && seconds <= most,
           "time_limit_seconds = " + std::to_string(seconds) +
               " is not allowed: expected 0 (the daemon's limit) or 1 to " + std::to_string(most) +
-              " (" + where + ")");
+              " (" + (limited ? daemon.settings : std::string("365 days")) + ")");
 }
 
-int64_t EffectiveTimeLimit(int64_t seconds, const Config& config) {
-  return seconds > 0 ? seconds : DaemonTimeLimit(config);
+int64_t EffectiveTimeLimit(int64_t seconds, const DaemonTimeLimit& daemon) {
+  return seconds > 0 ? seconds : daemon.seconds;
 }
 
 int64_t SlurmTimeMinutes(int64_t seconds) { return (seconds + 59) / 60; }

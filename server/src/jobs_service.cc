@@ -328,7 +328,7 @@ grpc::ServerUnaryReactor* JobsService::Submit(grpc::CallbackServerContext* conte
     CheckLabels(request->name(), tags, request->priority(), request->client_request_id(),
                 overrides.size());
     CheckJobLabels(request->labels());
-    CheckTimeLimit(request->time_limit_seconds(), config_);
+    CheckTimeLimit(request->time_limit_seconds(), scheduler_.executor().TimeLimit());
     const std::string key =
         request->client_request_id().empty() ? "" : "submit:" + request->client_request_id();
     if (!key.empty()) {
@@ -474,7 +474,7 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
     CheckJobLabels(request->labels());
     Require(request->max_running() >= 0, "max_running = " + std::to_string(request->max_running()) +
                                              " is not allowed: expected 0 (no limit) or more");
-    CheckTimeLimit(request->time_limit_seconds(), config_);
+    CheckTimeLimit(request->time_limit_seconds(), scheduler_.executor().TimeLimit());
     for (const auto& axis : request->axes()) {
       RequireNoNul("axes: a key", axis.key());
       RequireNoNul("axes: " + axis.key() + " zip", axis.zip());

@@ -65,15 +65,16 @@ v1::WatchEvent LogEvent(const std::string& level, const std::string& text) {
 
 }  // namespace
 
-Scheduler::Scheduler(const Config& config, JobStore& store, EventHub& hub)
+Scheduler::Scheduler(const Config& config, Executor& executor, JobStore& store, EventHub& hub)
     : config_(config),
+      executor_(executor),
       store_(store),
       hub_(hub) {}
 
 Scheduler::~Scheduler() { Stop(std::chrono::seconds(5)); }
 
 std::string Scheduler::JobDir(const std::string& job_id) const {
-  return JobDirectory(config_, job_id);
+  return executor_.JobDirectory(job_id);
 }
 
 std::string Scheduler::ResultsDir(const std::string& job_id) const {
@@ -105,8 +106,7 @@ void Scheduler::Loop() {
       }
     }
     CancelBlocked();
-    const int most =
-        config_.executor == "slurm" ? config_.slurm.max_submitted : config_.max_concurrent;
+    const int most = executor_.Capacity();
     while (static_cast<int>(running_.size()) < most && !Stopping()) {
       std::optional<JobRecord> next;
       try {
@@ -119,11 +119,11 @@ void Scheduler::Loop() {
       // A retried job whose previous run's thread has not ended yet: wait for it (its end wakes
       // this loop), so one job never has two runners.
       if (running_.count(next->id)) break;
-      if (SubmitsStudiesTogether(config_) && !next->sweep_id.empty() && !next->slurm_live) {
+      if (executor_.SubmitsStudiesTogether() && !next->sweep_id.empty() && !next->slurm_live) {
         if (!StartStudyBatch(*next, most - static_cast<int>(running_.size()))) break;
         continue;
       }
-      auto run = MakeJobRun(config_);
+      auto run = executor_.NewRun();
       try {
         // A live Slurm job of a daemon before is adopted, not started (JobRun::Adopt).
         const bool adopt = next->slurm_live && !next->slurm_job_id.empty();
@@ -206,7 +206,7 @@ bool Scheduler::StartStudyBatch(const JobRecord& first, int room) {
     spdlog::error("study {}: cannot start: {}", first.sweep_id, e.what());
   }
   if (batch.empty()) return false;
-  auto runs = MakeStudyRuns(config_, first.sweep_id, static_cast<int>(batch.size()), throttle);
+  auto runs = executor_.NewStudyRuns(first.sweep_id, static_cast<int>(batch.size()), throttle);
   for (size_t i = 0; i < batch.size(); ++i) Launch(batch[i], runs[i]);
   return true;
 }
@@ -269,7 +269,7 @@ void Scheduler::RunJob(JobRecord job) {
       spec.overrides = job.overrides;
       spec.resume = resume;
       spec.lock_fd = lock_fd;
-      spec.time_limit_seconds = EffectiveTimeLimit(job.time_limit_seconds, config_);
+      spec.time_limit_seconds = EffectiveTimeLimit(job.time_limit_seconds, executor_.TimeLimit());
       if (config_.solver_threads > 0) {
         spec.environment.push_back("OMP_NUM_THREADS=" + std::to_string(config_.solver_threads));
       } else if (!std::getenv("OMP_NUM_THREADS")) {
@@ -321,7 +321,7 @@ void Scheduler::RunJob(JobRecord job) {
                 : (resume ? "solver resumed from results/checkpoint.h5" : "solver started");
         hub_.Publish(job.id, LogEvent("info", what));
       }
-      WallTimeLimit wall_limit(process->LimitsTimeItself() ? 0 : spec.time_limit_seconds,
+      WallTimeLimit wall_limit(executor_.LimitsTimeItself() ? 0 : spec.time_limit_seconds,
                                [&] { process->Signal(SIGTERM); });
       if (cancel_requested()) process->Signal(SIGTERM);
 

@@ -52,13 +52,14 @@
 
 namespace dlmfd::server {
 
+class Executor;
 class JobRun;
 struct ExecutorState;
 struct RunOutcome;
 
 class Scheduler {
  public:
-  Scheduler(const Config& config, JobStore& store, EventHub& hub);
+  Scheduler(const Config& config, Executor& executor, JobStore& store, EventHub& hub);
   ~Scheduler();
   Scheduler(const Scheduler&) = delete;
   Scheduler& operator=(const Scheduler&) = delete;
@@ -81,6 +82,7 @@ class Scheduler {
   void WaitUntilStopped(const std::string& job_id);
 
   std::string JobDir(const std::string& job_id) const;
+  const Executor& executor() const { return executor_; }
   std::string ResultsDir(const std::string& job_id) const;
 
  private:
@@ -116,6 +118,7 @@ class Scheduler {
   bool Stopping() const { return stopping_.load(); }
 
   const Config& config_;
+  Executor& executor_;
   JobStore& store_;
   EventHub& hub_;
   std::mutex mutex_;

@@ -12,6 +12,8 @@
 #include "dlmfd/io/atomic_file.h"
 #include "dlmfd/solver/exit_codes.h"
 #include "event_file_tail.h"
+#include "job_time_limit.h"
+#include "local_executor.h"
 #include "scene_admission.h"
 #include "slurm_array.h"
 #include "slurm_states.h"
@@ -391,6 +393,33 @@ void SlurmRun::Detach() {
     signalled_.notify_all();
   }
   if (!submitted && array_) array_->Signal(index_);
+}
+
+DaemonTimeLimit SlurmExecutor::TimeLimit() const {
+  DaemonTimeLimit slurm;
+  if (config_.slurm.time_limit_minutes > 0) {
+    slurm = {int64_t{config_.slurm.time_limit_minutes} * 60, "slurm_time_limit_minutes"};
+  }
+  return Tighter(WallSecondsLimit(config_), slurm);
+}
+
+std::string SlurmExecutor::JobDirectory(const std::string& job_id) const {
+  if (config_.slurm.shared_dir.empty()) return DataJobDirectory(config_, job_id);
+  return (fs::path(config_.slurm.shared_dir) / job_id).string();
+}
+
+std::shared_ptr<JobRun> SlurmExecutor::NewRun() {
+  return std::make_shared<SlurmRun>(config_, queue_);
+}
+
+std::vector<std::shared_ptr<JobRun>> SlurmExecutor::NewStudyRuns(const std::string& study,
+                                                                 int count, int throttle) {
+  auto array = std::make_shared<SlurmArray>(config_, "dlmfd-" + study, count, throttle);
+  std::vector<std::shared_ptr<JobRun>> runs;
+  for (int i = 0; i < count; ++i) {
+    runs.push_back(std::make_shared<SlurmRun>(config_, queue_, array, i));
+  }
+  return runs;
 }
 
 }  // namespace dlmfd::server

@@ -1,5 +1,10 @@
-// SlurmRun: one attempt of a job as a Slurm batch job or array task (the `slurm` executor,
-// executor.h; docs/cluster.md).
+// The slurm executor (executor.h; docs/cluster.md): SlurmExecutor hands at most
+// slurm_max_submitted jobs to Slurm at once, a study's queued jobs together as one job array
+// (slurm_array.h); the daemon's time limit is the smaller of max_wall_seconds and
+// slurm_time_limit_minutes, and Slurm enforces it (--time); job directories live in
+// slurm_shared_dir when it is set (else DATA/jobs). One SlurmQueue answers every run's polls.
+//
+// SlurmRun: one attempt of a job as a Slurm batch job or array task.
 //
 // Start writes the batch script (slurm_commands.h) into the job directory, which lives on the
 // filesystem the nodes share (slurm_shared_dir), and submits it with sbatch --parsable:
@@ -7,7 +12,7 @@
 // scene's memory estimate (scene_admission.h, scene/scene_footprint.h) plus kProcessHeadroomMb,
 // --output the job's solver.log, --time and --signal=B:USR1@N from the run's time limit
 // (LaunchSpec::time_limit_seconds: the job's, else the daemon's; job_time_limit.h), partition,
-// account, qos and the extra options. A run of a study's batch (MakeStudyRuns)
+// account, qos and the extra options. A run of a study's batch (NewStudyRuns)
 // joins its SlurmArray instead (slurm_array.h: one sbatch --array for the study's queued jobs).
 // While sbatch cannot reach slurmctld (TransientSlurmError) it is run again every
 // kSbatchRetryInterval until it answers or the run is signalled. The Slurm id ("123", an array
@@ -113,7 +118,6 @@ class SlurmRun : public JobRun {
   std::optional<RunOutcome> Outcome() const override { return outcome_; }
   void OnRestart(RestartHandler handler) override { on_restart_ = std::move(handler); }
   void OnStateChange(StateHandler handler) override { on_state_ = std::move(handler); }
-  bool LimitsTimeItself() const override { return true; }
 
  private:
   struct ExitFile {
@@ -159,6 +163,25 @@ class SlurmRun : public JobRun {
   bool asked_ = false;  // the daemon signalled the Slurm job (cancel, wall time)
   bool detached_ = false;
   int pending_signal_ = 0;  // a signal that came before the Slurm id
+};
+
+class SlurmExecutor : public Executor {
+ public:
+  explicit SlurmExecutor(const Config& config)
+      : config_(config),
+        queue_(std::make_shared<SlurmQueue>(config.slurm)) {}
+  int Capacity() const override { return config_.slurm.max_submitted; }
+  DaemonTimeLimit TimeLimit() const override;
+  bool LimitsTimeItself() const override { return true; }
+  std::string JobDirectory(const std::string& job_id) const override;
+  std::shared_ptr<JobRun> NewRun() override;
+  bool SubmitsStudiesTogether() const override { return true; }
+  std::vector<std::shared_ptr<JobRun>> NewStudyRuns(const std::string& study, int count,
+                                                    int throttle) override;
+
+ private:
+  const Config& config_;
+  const std::shared_ptr<SlurmQueue> queue_;
 };
 
 }  // namespace dlmfd::server

@@ -16,6 +16,7 @@
 #include "config.h"
 #include "dlmfd/solver/event_file.h"
 #include "event_file_tail.h"
+#include "executor.h"
 #include "job_time_limit.h"
 #include "service_error.h"
 #include "slurm_commands.h"
@@ -146,24 +147,27 @@ TEST(SlurmCommands, SbatchArgumentsCarryTheJobAndTheSettings) {
 
 TEST(JobTimeLimitUnits, TheJobsOwnElseTheDaemonsAndNeverMore) {
   Config config;
-  EXPECT_EQ(DaemonTimeLimit(config), 0);
-  EXPECT_EQ(EffectiveTimeLimit(0, config), 0);
-  EXPECT_EQ(EffectiveTimeLimit(600, config), 600);
-  EXPECT_NO_THROW(CheckTimeLimit(kMostTimeLimitSeconds, config));
-  EXPECT_THROW(CheckTimeLimit(kMostTimeLimitSeconds + 1, config), ServiceError);
-  EXPECT_THROW(CheckTimeLimit(-1, config), ServiceError);
+  const auto daemon_limit = [&config] { return MakeExecutor(config)->TimeLimit(); };
+  EXPECT_EQ(daemon_limit().seconds, 0);
+  EXPECT_EQ(EffectiveTimeLimit(0, daemon_limit()), 0);
+  EXPECT_EQ(EffectiveTimeLimit(600, daemon_limit()), 600);
+  EXPECT_NO_THROW(CheckTimeLimit(kMostTimeLimitSeconds, daemon_limit()));
+  EXPECT_THROW(CheckTimeLimit(kMostTimeLimitSeconds + 1, daemon_limit()), ServiceError);
+  EXPECT_THROW(CheckTimeLimit(-1, daemon_limit()), ServiceError);
   config.max_wall_seconds = 7200;
-  EXPECT_EQ(DaemonTimeLimit(config), 7200);
+  EXPECT_EQ(daemon_limit().seconds, 7200);
   // slurm_time_limit_minutes counts under the slurm executor only; the smaller limit wins.
   config.slurm.time_limit_minutes = 90;
-  EXPECT_EQ(DaemonTimeLimit(config), 7200);
+  EXPECT_EQ(daemon_limit().seconds, 7200);
+  EXPECT_FALSE(MakeExecutor(config)->LimitsTimeItself());
   config.executor = "slurm";
-  EXPECT_EQ(DaemonTimeLimit(config), 5400);
-  EXPECT_EQ(EffectiveTimeLimit(0, config), 5400);
-  EXPECT_EQ(EffectiveTimeLimit(60, config), 60);
-  EXPECT_NO_THROW(CheckTimeLimit(5400, config));
+  EXPECT_TRUE(MakeExecutor(config)->LimitsTimeItself());
+  EXPECT_EQ(daemon_limit().seconds, 5400);
+  EXPECT_EQ(EffectiveTimeLimit(0, daemon_limit()), 5400);
+  EXPECT_EQ(EffectiveTimeLimit(60, daemon_limit()), 60);
+  EXPECT_NO_THROW(CheckTimeLimit(5400, daemon_limit()));
   try {
-    CheckTimeLimit(5401, config);
+    CheckTimeLimit(5401, daemon_limit());
     ADD_FAILURE() << "5401 s accepted over slurm_time_limit_minutes = 90";
   } catch (const ServiceError& e) {
     EXPECT_EQ(e.code(), grpc::StatusCode::INVALID_ARGUMENT);
@@ -171,6 +175,9 @@ TEST(JobTimeLimitUnits, TheJobsOwnElseTheDaemonsAndNeverMore) {
               "time_limit_seconds = 5401 is not allowed: expected 0 (the daemon's limit) or 1 to "
               "5400 (max_wall_seconds, slurm_time_limit_minutes)");
   }
+  config.max_wall_seconds = 0;
+  EXPECT_EQ(daemon_limit().seconds, 5400);
+  EXPECT_EQ(daemon_limit().settings, "slurm_time_limit_minutes");
   EXPECT_EQ(SlurmTimeMinutes(1), 1);
   EXPECT_EQ(SlurmTimeMinutes(60), 1);
   EXPECT_EQ(SlurmTimeMinutes(61), 2);
@@ -427,6 +434,27 @@ Config Load(const std::vector<std::string>& args) {
   LoadConfig(
       static_cast<int>(argv.size()), argv.data(), [](const char*) { return nullptr; }, config);
   return config;
+}
+
+// What the scheduler asks of an executor (executor.h), by configuration alone.
+TEST(SlurmConfig, EachExecutorsCapacityLimitsAndJobDirectories) {
+  Config local = Load({"--data-dir", "/tmp/d", "--max-concurrent", "3", "--slurm-shared-dir",
+                       "/shared", "--slurm-max-submitted", "20"});
+  const auto runs_locally = MakeExecutor(local);
+  EXPECT_EQ(runs_locally->Capacity(), 3);
+  EXPECT_EQ(runs_locally->JobDirectory("j-1"), "/tmp/d/jobs/j-1");
+  EXPECT_FALSE(runs_locally->SubmitsStudiesTogether());
+  EXPECT_EQ(runs_locally->NewStudyRuns("s-1", 2, 1).size(), 2u);
+  Config slurm = local;
+  slurm.executor = "slurm";
+  const auto runs_in_slurm = MakeExecutor(slurm);
+  EXPECT_EQ(runs_in_slurm->Capacity(), 20);
+  EXPECT_EQ(runs_in_slurm->JobDirectory("j-1"), "/shared/j-1");
+  EXPECT_TRUE(runs_in_slurm->SubmitsStudiesTogether());
+  slurm.slurm.shared_dir.clear();
+  EXPECT_EQ(MakeExecutor(slurm)->JobDirectory("j-1"), "/tmp/d/jobs/j-1");
+  slurm.executor = "pbs";
+  EXPECT_THROW(MakeExecutor(slurm), ConfigError);
 }
 
 TEST(SlurmConfig, ExecutorAndItsSettings) {
