@@ -150,7 +150,10 @@ std::string WaitsForDependency() {
 }
 
 // The state the API shows: a RUNNING job that Slurm holds waiting is QUEUED (ShownState).
-const char kShownState[] = "(CASE WHEN state = 2 AND slurm_waiting = 1 THEN 1 ELSE state END)";
+const std::string kShownState =
+    "(CASE WHEN state = " + std::to_string(static_cast<int>(JobState::kRunning)) +
+    " AND slurm_waiting = 1 THEN " + std::to_string(static_cast<int>(JobState::kQueued)) +
+    " ELSE state END)";
 
 const char kColumns[] =
     "ordinal, id, name, owner, state, reason, priority, sweep_id, created_time, started_time, "
@@ -410,27 +413,6 @@ std::vector<StoredAxis> DecodeAxes(const std::string& text) {
 }
 
 }  // namespace
-
-bool IsFinished(JobState state) {
-  return state == JobState::kCompleted || state == JobState::kFailed ||
-         state == JobState::kCancelled;
-}
-
-const char* JobStateName(JobState state) {
-  switch (state) {
-    case JobState::kQueued:
-      return "QUEUED";
-    case JobState::kRunning:
-      return "RUNNING";
-    case JobState::kCompleted:
-      return "COMPLETED";
-    case JobState::kFailed:
-      return "FAILED";
-    case JobState::kCancelled:
-      return "CANCELLED";
-  }
-  return "UNKNOWN";
-}
 
 // A prepared statement with positional binding; finalised on destruction.
 class JobStore::Statement {
@@ -1021,7 +1003,9 @@ std::vector<JobRecord> JobStore::Requeue(const std::vector<RequeueChange>& chang
         "exit_code = -1, exit_signal = 0, cpu_seconds = 0, peak_memory_bytes = 0, "
         "parameters = ?, warnings = ?, numerics = ?, end_time = ?, fresh_start = ?, "
         "step = CASE WHEN ? THEN 0 ELSE step END, "
-        "time = CASE WHEN ? THEN 0 ELSE time END WHERE id = ? AND state IN (?, ?, ?)");
+        "time = CASE WHEN ? THEN 0 ELSE time END WHERE id = ? AND state IN " +
+            JobStatesBefore(JobTransition::kRetry));
+    CheckTransition(JobTransition::kRetry, JobState::kQueued);
     update.Bind(static_cast<int>(JobState::kQueued))
         .Bind(EncodeAttempts(attempts))
         .Bind(change.name.empty() ? job.name : change.name)
@@ -1033,10 +1017,7 @@ std::vector<JobRecord> JobStore::Requeue(const std::vector<RequeueChange>& chang
         .Bind(change.fresh_start ? 1 : 0)
         .Bind(change.fresh_start ? 1 : 0)
         .Bind(change.fresh_start ? 1 : 0)
-        .Bind(change.id)
-        .Bind(static_cast<int>(JobState::kCompleted))
-        .Bind(static_cast<int>(JobState::kFailed))
-        .Bind(static_cast<int>(JobState::kCancelled));
+        .Bind(change.id);
     update.Run();
     if (update.Changes() != 1) throw StoreError("job " + change.id + " is not finished");
     WriteSceneValues(change.id, change.scene_values);
@@ -1075,18 +1056,18 @@ void JobStore::MarkRunning(const std::string& id, double started_time, RunStart 
   Transaction transaction(db_);
   // An adopted run is no new solver start and keeps its start time; a run that waits in the
   // executor first has none yet (SetSlurmState gives it when Slurm starts it).
-  const char* sql =
-      start == RunStart::kAdopt
-          ? "UPDATE jobs SET state = ?, reason = '' WHERE id = ? AND state = ?"
+  const char* set =
+      start == RunStart::kAdopt ? "UPDATE jobs SET state = ?, reason = ''"
       : start == RunStart::kWaiting
           ? "UPDATE jobs SET state = ?, started_time = 0, attempts = attempts + 1, reason = '', "
-            "slurm_state = '', slurm_reason = '', slurm_waiting = 1 WHERE id = ? AND state = ?"
-          : "UPDATE jobs SET state = ?, started_time = ?, attempts = attempts + 1, reason = '' "
-            "WHERE id = ? AND state = ?";
-  Statement update(db_, sql);
+            "slurm_state = '', slurm_reason = '', slurm_waiting = 1"
+          : "UPDATE jobs SET state = ?, started_time = ?, attempts = attempts + 1, reason = ''";
+  CheckTransition(JobTransition::kStart, JobState::kRunning);
+  Statement update(db_, std::string(set) + " WHERE id = ? AND state IN " +
+                            JobStatesBefore(JobTransition::kStart));
   update.Bind(static_cast<int>(JobState::kRunning));
   if (start == RunStart::kRun) update.Bind(started_time);
-  update.Bind(id).Bind(static_cast<int>(JobState::kQueued));
+  update.Bind(id);
   update.Run();
   if (update.Changes() != 1) throw StoreError("job " + id + " is not queued");
   transaction.Commit();
@@ -1096,16 +1077,13 @@ bool JobStore::MarkFinished(const std::string& id, JobState state, const std::st
                             double when) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
+  CheckTransition(JobTransition::kFinish, state);
   Statement update(db_,
                    "UPDATE jobs SET state = ?, reason = ?, finished_time = ?, slurm_live = 0, "
                    "slurm_state = '', slurm_reason = '', slurm_waiting = 0 "
-                   "WHERE id = ? AND state IN (?, ?)");
-  update.Bind(static_cast<int>(state))
-      .Bind(reason)
-      .Bind(when)
-      .Bind(id)
-      .Bind(static_cast<int>(JobState::kQueued))
-      .Bind(static_cast<int>(JobState::kRunning));
+                   "WHERE id = ? AND state IN " +
+                       JobStatesBefore(JobTransition::kFinish));
+  update.Bind(static_cast<int>(state)).Bind(reason).Bind(when).Bind(id);
   update.Run();
   bool changed = update.Changes() == 1;
   transaction.Commit();
@@ -1115,14 +1093,12 @@ bool JobStore::MarkFinished(const std::string& id, JobState state, const std::st
 bool JobStore::CancelQueued(const std::string& id, const std::string& reason, double when) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
+  CheckTransition(JobTransition::kCancelQueued, JobState::kCancelled);
   Statement update(db_,
                    "UPDATE jobs SET state = ?, reason = ?, finished_time = ?, cancel_requested = 1 "
-                   "WHERE id = ? AND state = ? AND slurm_live = 0");
-  update.Bind(static_cast<int>(JobState::kCancelled))
-      .Bind(reason)
-      .Bind(when)
-      .Bind(id)
-      .Bind(static_cast<int>(JobState::kQueued));
+                   "WHERE id = ? AND slurm_live = 0 AND state IN " +
+                       JobStatesBefore(JobTransition::kCancelQueued));
+  update.Bind(static_cast<int>(JobState::kCancelled)).Bind(reason).Bind(when).Bind(id);
   update.Run();
   bool changed = update.Changes() == 1;
   transaction.Commit();
@@ -1158,23 +1134,23 @@ std::vector<std::string> JobStore::RequeueRunning(double now) {
   Transaction transaction(db_);
   std::vector<std::string> ids;
   {
-    Statement select(
-        db_, "SELECT id FROM jobs WHERE state = ? AND cancel_requested = 0 ORDER BY ordinal");
-    select.Bind(static_cast<int>(JobState::kRunning));
+    Statement select(db_, "SELECT id FROM jobs WHERE cancel_requested = 0 AND state IN " +
+                              JobStatesBefore(JobTransition::kDaemonStart) + " ORDER BY ordinal");
     while (select.Step()) ids.push_back(select.Text(0));
   }
   {
     // A cancel that was requested before the crash is honoured: the job does not run again.
+    CheckTransition(JobTransition::kDaemonStart, JobState::kCancelled);
     Statement cancel(db_,
                      "UPDATE jobs SET state = ?, reason = 'cancelled', finished_time = ? "
-                     "WHERE state = ? AND cancel_requested = 1");
-    cancel.Bind(static_cast<int>(JobState::kCancelled))
-        .Bind(now)
-        .Bind(static_cast<int>(JobState::kRunning))
-        .Run();
+                     "WHERE cancel_requested = 1 AND state IN " +
+                         JobStatesBefore(JobTransition::kDaemonStart));
+    cancel.Bind(static_cast<int>(JobState::kCancelled)).Bind(now).Run();
   }
-  Statement update(db_, "UPDATE jobs SET state = ?, reason = 'daemon restarted' WHERE state = ?");
-  update.Bind(static_cast<int>(JobState::kQueued)).Bind(static_cast<int>(JobState::kRunning)).Run();
+  CheckTransition(JobTransition::kDaemonStart, JobState::kQueued);
+  Statement update(db_, "UPDATE jobs SET state = ?, reason = 'daemon restarted' WHERE state IN " +
+                            JobStatesBefore(JobTransition::kDaemonStart));
+  update.Bind(static_cast<int>(JobState::kQueued)).Run();
   transaction.Commit();
   return ids;
 }
@@ -1347,7 +1323,7 @@ void JobStore::EndAttempt(const std::string& id, const AttemptEnd& end) {
     get.Bind(id);
     found = Query(get);
   }
-  if (found.empty() || found.front().state != JobState::kRunning) {
+  if (found.empty() || !TransitionFrom(JobTransition::kEndAttempt, found.front().state)) {
     throw StoreError("job " + id + " is not running");
   }
   const JobRecord& job = found.front();
@@ -1357,12 +1333,14 @@ void JobStore::EndAttempt(const std::string& id, const AttemptEnd& end) {
   // Slurm ran the job again by itself: it stays RUNNING, its restarts are recorded. Otherwise
   // the daemon queues it again.
   const bool restarted = end.slurm_restarts > 0;
+  const JobState next = restarted ? JobState::kRunning : JobState::kQueued;
+  CheckTransition(JobTransition::kEndAttempt, next);
   Statement update(db_,
                    "UPDATE jobs SET state = ?, reason = ?, attempt = attempt + 1, "
                    "previous_attempts = ?, started_time = ?, slurm_live = ?, "
                    "slurm_attempts = slurm_attempts + ?, slurm_restarts = ?, slurm_state = '', "
                    "slurm_reason = '', slurm_waiting = 0 WHERE id = ?");
-  update.Bind(static_cast<int>(restarted ? JobState::kRunning : JobState::kQueued))
+  update.Bind(static_cast<int>(next))
       .Bind(restarted ? std::string() : end.reason)
       .Bind(EncodeAttempts(attempts))
       .Bind(restarted ? end.when : 0.0)

@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "dlmfd/scene/accuracy_envelope.h"
+#include "job_states.h"
 
 struct sqlite3;
 
@@ -48,11 +49,6 @@ class StoreError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
-
-// Values equal dlmfd.v1.JobState.
-enum class JobState { kQueued = 1, kRunning = 2, kCompleted = 3, kFailed = 4, kCancelled = 5 };
-bool IsFinished(JobState state);
-const char* JobStateName(JobState state);
 
 // One coordinate of a job's point in its study (dlmfd.v1.ParameterValue).
 struct ParameterValue {
