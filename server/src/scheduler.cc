@@ -21,6 +21,7 @@
 #include "job_proto.h"
 #include "job_time_limit.h"
 #include "service_error.h"
+#include "solver_events.h"
 #include "solver_process.h"
 #include "wall_time_limit.h"
 
@@ -226,261 +227,227 @@ void Scheduler::FinishJob(const std::string& job_id, JobState state, const std::
   hub_.PublishState(*job);
 }
 
-// NOLINTNEXTLINE(readability-function-size): predates the limit; split it when you change it
-void Scheduler::RunJob(JobRecord job) {
-  std::shared_ptr<JobRun> process;
-  {
-    std::lock_guard lock(mutex_);
-    process = running_[job.id].process;
-  }
-  auto cancel_requested = [&] {
-    std::lock_guard lock(mutex_);
-    return running_[job.id].cancel;
-  };
+// One attempt of a job in its runner thread: what its stages share.
+struct Scheduler::Attempt {
+  JobRecord job;
+  std::shared_ptr<JobRun> run;
+  fs::path dir, results;
   int lock_fd = -1;
   bool started = false;  // Start was called, or an earlier run adopted
+  bool adopted = false;
+  LaunchSpec spec;
+  std::optional<v1::Finished> finished;
+  // The latest progress, stored at most once a second while running and at the end of each
+  // attempt, so that a recorded attempt has the step it reached.
+  int64_t seen_step = 0;
+  double seen_time = 0;
+  bool unstored = false;
+  double last_store = 0;
+};
+
+bool Scheduler::CancelRequested(const std::string& job_id) {
+  std::lock_guard lock(mutex_);
+  return running_[job_id].cancel;
+}
+
+void Scheduler::RunJob(JobRecord job) {
+  Attempt attempt;
+  attempt.job = std::move(job);
+  {
+    std::lock_guard lock(mutex_);
+    attempt.run = running_[attempt.job.id].process;
+  }
   std::optional<RunOutcome> outcome;
   try {
-    const fs::path dir = JobDir(job.id);
-    const fs::path results = ResultsDir(job.id);
-    fs::create_directories(dir);
-    lock_fd = LockDirectory(dir.string(), [&] { return Stopping() || cancel_requested(); });
-    if (lock_fd < 0) {
-      if (!Stopping())
-        outcome = RunOutcome{JobState::kCancelled, "cancelled before the solver started"};
-    } else {
-      // A run that outlived the daemon (a Slurm job) is followed, not started again; a retry with
-      // another scene starts afresh: its old checkpoint must not be resumed.
-      const bool adopted = process->Adopt(dir.string(), job, [&](const std::string& source) {
-        return hub_.SourceOffset(job, source);
-      });
-      started = adopted;
-      const bool resume =
-          !adopted && !job.fresh_start && fs::exists(results / ResultsWriter::kCheckpoint);
-      if (!resume && !adopted) fs::remove_all(results);
-      fs::create_directories(results);
-      if (job.fresh_start) store_.ClearFreshStart(job.id);
-      WriteTextAtomically((dir / "scene.in.toml").string(), job.scene);
-      LaunchSpec spec;
-      spec.solver = config_.solver;
-      spec.scene_path = (dir / "scene.in.toml").string();
-      spec.results_dir = results.string();
-      spec.log_path = (dir / "solver.log").string();
-      spec.overrides = job.overrides;
-      spec.resume = resume;
-      spec.lock_fd = lock_fd;
-      spec.time_limit_seconds = EffectiveTimeLimit(job.time_limit_seconds, executor_.TimeLimit());
-      if (config_.solver_threads > 0) {
-        spec.environment.push_back("OMP_NUM_THREADS=" + std::to_string(config_.solver_threads));
-      } else if (!std::getenv("OMP_NUM_THREADS")) {
-        // Concurrent solvers share the cores; oversubscribed OpenMP teams spin and crawl.
-        const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-        spec.environment.push_back("OMP_NUM_THREADS=" +
-                                   std::to_string(std::max(1, cores / config_.max_concurrent)));
-      }
-      if (access(spec.solver.c_str(), X_OK) != 0) {
-        throw std::runtime_error("cannot execute the solver " + spec.solver);
-      }
-      // The latest progress, stored at most once a second while running and at the end of each
-      // attempt, so that a recorded attempt has the step it reached.
-      int64_t seen_step = 0;
-      double seen_time = 0;
-      bool unstored = false;
-      auto store_seen = [&] {
-        if (!unstored) return;
-        store_.UpdateProgress(job.id, seen_step, seen_time, job.end_time);
-        unstored = false;
-      };
-      process->OnRestart([&](int restarts, const std::string& reason) {
-        store_seen();
-        RecordRestart(job, restarts, reason);
-      });
-      process->OnStateChange([&](const ExecutorState& state) { RecordState(job, state); });
-      if (adopted) {
-        spdlog::info("job {}: {} adopted (it outlived the daemon's previous run)", job.id,
-                     process->Describe());
-        hub_.Publish(job.id, LogEvent("info", process->Describe() + " adopted"));
-        // A cancel asked for while it waited to be adopted.
-        if (auto now = store_.Get(job.id); now && now->cancel_requested) {
-          std::lock_guard lock(mutex_);
-          running_[job.id].cancel = true;
-        }
-      } else {
-        started = true;
-        process->Start(spec);
-        if (const std::string id = process->ExecutorId(); !id.empty()) {
-          store_.SetSlurmSubmitted(job.id, id);
-        }
-        spdlog::info("job {}: {} started{}", job.id, process->Describe(),
-                     resume ? " with --resume" : "");
-        // A run that waits in its executor has started nothing yet: it was handed over.
-        const std::string what =
-            process->WaitsBeforeRunning()
-                ? process->Describe() + " submitted" +
-                      (resume ? " to resume from results/checkpoint.h5" : "")
-                : (resume ? "solver resumed from results/checkpoint.h5" : "solver started");
-        hub_.Publish(job.id, LogEvent("info", what));
-      }
-      WallTimeLimit wall_limit(executor_.LimitsTimeItself() ? 0 : spec.time_limit_seconds,
-                               [&] { process->Signal(SIGTERM); });
-      if (cancel_requested()) process->Signal(SIGTERM);
-
-      std::optional<v1::Finished> finished;
-      double last_store = 0;
-      process->ReadEvents([&](const v1::SolverEvent& in, const EventPosition& position) {
-        v1::WatchEvent out;
-        out.set_wall_time(in.wall_time());
-        bool store_progress = false;
-        int64_t step = 0;
-        double time = 0, end_time = 0;
-        // The lane and step that order the event against a resumed solver's (event_hub.h).
-        LogOrigin origin{"", 0, position.source, position.offset};
-        switch (in.event_case()) {
-          case v1::SolverEvent::kStarted: {
-            origin.lane = "progress";
-            origin.step = in.started().step();
-            auto* p = out.mutable_progress();
-            step = in.started().step();
-            time = in.started().time();
-            end_time = in.started().end_time();
-            p->set_step(step);
-            p->set_time(time);
-            p->set_end_time(end_time);
-            store_progress = true;
-            break;
-          }
-          case v1::SolverEvent::kProgress: {
-            const auto& src = in.progress();
-            origin.lane = "progress";
-            origin.step = src.step();
-            auto* p = out.mutable_progress();
-            p->set_step(src.step());
-            p->set_time(src.time());
-            p->set_end_time(src.end_time());
-            p->set_steps_per_second(src.steps_per_second());
-            p->set_eta_seconds(src.eta_seconds());
-            p->set_max_tra(src.max_tra());
-            p->set_min_eig_a(src.min_eig_a());
-            step = src.step();
-            time = src.time();
-            end_time = src.end_time();
-            store_progress = NowSeconds() - last_store >= kProgressStoreInterval;
-            break;
-          }
-          case v1::SolverEvent::kParticles:
-            *out.mutable_particles() = in.particles();
-            origin.lane = "particles";
-            origin.step = in.particles().step();
-            break;
-          case v1::SolverEvent::kSnapshot: {
-            const auto& src = in.snapshot();
-            origin.lane = "snapshot";
-            origin.step = src.step();
-            auto* s = out.mutable_snapshot();
-            s->set_nx(src.nx());
-            s->set_ny(src.ny());
-            *s->mutable_values() = src.values();
-            s->set_time(src.time());
-            s->set_step(src.step());
-            s->set_quantity(src.quantity());
-            s->set_width(src.nx() * src.h());
-            s->set_height(src.ny() * src.h());
-            break;
-          }
-          case v1::SolverEvent::kLog:
-            *out.mutable_log() = in.log();
-            break;
-          case v1::SolverEvent::kCheckpointed: {
-            origin.lane = "checkpoint";
-            origin.step = in.checkpointed().step();
-            std::ostringstream text;
-            text << "checkpoint at step " << in.checkpointed().step()
-                 << ", t = " << in.checkpointed().time();
-            out = LogEvent("info", text.str());
-            break;
-          }
-          case v1::SolverEvent::kFinished:
-            finished = in.finished();
-            step = in.finished().steps();
-            time = in.finished().time();
-            end_time = job.end_time;
-            store_progress = true;
-            out = LogEvent("info", "solver finished: " + in.finished().status());
-            break;
-          default:
-            return;
-        }
-        if (in.has_started() || in.has_progress() || in.has_finished()) {
-          seen_step = step;
-          seen_time = time;
-          unstored = true;
-        }
-        if (store_progress) {
-          if (end_time > 0) job.end_time = end_time;
-          store_.UpdateProgress(job.id, step, time, job.end_time);
-          last_store = NowSeconds();
-          unstored = false;
-        }
-        hub_.Publish(job.id, std::move(out), origin);
-      });
-      store_seen();
-      const SolverExit exit = process->Wait();
-      RecordUsage(job.id, exit, finished);
-      const bool over_wall_time = wall_limit.End();
-      const bool cancelled = cancel_requested();
-      const std::string reported = finished ? finished->reason() : std::string();
-      const auto exited = [&exit](int code) { return !exit.signalled && exit.code == code; };
-      if (over_wall_time && !cancelled && !exited(solver::kExitCompleted) &&
-          !exited(solver::kExitFailed)) {
-        const std::string limit =
-            job.time_limit_seconds > 0
-                ? "the job's time_limit_seconds = " + std::to_string(job.time_limit_seconds)
-                : "max_wall_seconds = " + std::to_string(config_.max_wall_seconds);
-        outcome =
-            RunOutcome{JobState::kFailed, "wall time limit: the solver ran longer than " + limit +
-                                              " and was stopped (its checkpoint is kept)"};
-      } else if (Stopping() && (exited(solver::kExitCancelled) || exit.signalled)) {
-        spdlog::info("job {}: solver stopped for the daemon's shutdown; stays RUNNING to resume",
-                     job.id);
-      } else if (auto ended = process->Outcome(); ended && !(cancelled && ended->retryable)) {
-        outcome = std::move(ended);
-      } else if (exited(solver::kExitCompleted)) {
-        outcome = RunOutcome{JobState::kCompleted, ""};
-      } else if (exited(solver::kExitFailed)) {
-        std::string reason = !reported.empty() ? reported : SummaryReason(results);
-        outcome = RunOutcome{JobState::kFailed, reason.empty() ? "solver failed" : reason};
-      } else if (exited(solver::kExitInvalid)) {
-        std::string reason = !reported.empty() ? reported : LastLogLine(dir / "solver.log");
-        outcome = RunOutcome{JobState::kFailed, "invalid scene or arguments: " + reason};
-      } else if (exited(solver::kExitCancelled) ||
-                 (cancelled && exit.signalled && exit.code == SIGTERM)) {
-        outcome = RunOutcome{JobState::kCancelled, cancelled ? "cancelled" : "solver interrupted"};
-      } else if (exit.signalled) {
-        outcome =
-            RunOutcome{JobState::kFailed, "solver killed by signal " + std::to_string(exit.code)};
-      } else {
-        outcome =
-            RunOutcome{JobState::kFailed, "solver exited with status " + std::to_string(exit.code)};
-      }
-    }
+    outcome = RunAttempt(attempt);
   } catch (const std::exception& e) {
     outcome = RunOutcome{JobState::kFailed, e.what()};
   }
-  if (!started) process->Abandon();
-  if (lock_fd >= 0) close(lock_fd);
-  if (outcome) {
-    try {
-      if (!(outcome->retryable && Requeue(job, *outcome))) {
-        FinishJob(job.id, outcome->state, outcome->reason);
-      }
-    } catch (const std::exception& e) {
-      spdlog::error("job {}: cannot record the end: {}", job.id, e.what());
-    }
-  }
+  if (!attempt.started) attempt.run->Abandon();
+  if (attempt.lock_fd >= 0) close(attempt.lock_fd);
+  if (outcome) RecordEnd(attempt.job, *outcome);
   std::lock_guard lock(mutex_);
-  running_[job.id].done = true;
+  running_[attempt.job.id].done = true;
   dirty_ = true;
   changed_.notify_all();
+}
+
+std::optional<RunOutcome> Scheduler::RunAttempt(Attempt& a) {
+  a.dir = JobDir(a.job.id);
+  a.results = ResultsDir(a.job.id);
+  fs::create_directories(a.dir);
+  a.lock_fd =
+      LockDirectory(a.dir.string(), [&] { return Stopping() || CancelRequested(a.job.id); });
+  if (a.lock_fd < 0) {
+    if (Stopping()) return std::nullopt;
+    return RunOutcome{JobState::kCancelled, "cancelled before the solver started"};
+  }
+  PrepareLaunch(a);
+  StartOrAdopt(a);
+  WallTimeLimit wall_limit(executor_.LimitsTimeItself() ? 0 : a.spec.time_limit_seconds,
+                           [&] { a.run->Signal(SIGTERM); });
+  if (CancelRequested(a.job.id)) a.run->Signal(SIGTERM);
+  a.run->ReadEvents([&](const v1::SolverEvent& in, const EventPosition& position) {
+    OnSolverEvent(a, in, position);
+  });
+  StoreSeenProgress(a);
+  const SolverExit exit = a.run->Wait();
+  RecordUsage(a.job.id, exit, a.finished);
+  const bool over_wall_time = wall_limit.End();
+  return EndOf(a, exit, over_wall_time);
+}
+
+void Scheduler::PrepareLaunch(Attempt& a) {
+  // A run that outlived the daemon (a Slurm job) is followed, not started again; a retry with
+  // another scene starts afresh: its old checkpoint must not be resumed.
+  a.adopted = a.run->Adopt(a.dir.string(), a.job, [&](const std::string& source) {
+    return hub_.SourceOffset(a.job, source);
+  });
+  a.started = a.adopted;
+  const bool resume =
+      !a.adopted && !a.job.fresh_start && fs::exists(a.results / ResultsWriter::kCheckpoint);
+  if (!resume && !a.adopted) fs::remove_all(a.results);
+  fs::create_directories(a.results);
+  if (a.job.fresh_start) store_.ClearFreshStart(a.job.id);
+  WriteTextAtomically((a.dir / "scene.in.toml").string(), a.job.scene);
+  LaunchSpec& spec = a.spec;
+  spec.solver = config_.solver;
+  spec.scene_path = (a.dir / "scene.in.toml").string();
+  spec.results_dir = a.results.string();
+  spec.log_path = (a.dir / "solver.log").string();
+  spec.overrides = a.job.overrides;
+  spec.resume = resume;
+  spec.lock_fd = a.lock_fd;
+  spec.time_limit_seconds = EffectiveTimeLimit(a.job.time_limit_seconds, executor_.TimeLimit());
+  if (config_.solver_threads > 0) {
+    spec.environment.push_back("OMP_NUM_THREADS=" + std::to_string(config_.solver_threads));
+  } else if (!std::getenv("OMP_NUM_THREADS")) {
+    // Concurrent solvers share the cores; oversubscribed OpenMP teams spin and crawl.
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    spec.environment.push_back("OMP_NUM_THREADS=" +
+                               std::to_string(std::max(1, cores / config_.max_concurrent)));
+  }
+  if (access(spec.solver.c_str(), X_OK) != 0) {
+    throw std::runtime_error("cannot execute the solver " + spec.solver);
+  }
+}
+
+void Scheduler::StartOrAdopt(Attempt& a) {
+  const JobRecord& job = a.job;
+  a.run->OnRestart([this, &a](int restarts, const std::string& reason) {
+    StoreSeenProgress(a);
+    RecordRestart(a.job, restarts, reason);
+  });
+  a.run->OnStateChange([this, &a](const ExecutorState& state) { RecordState(a.job, state); });
+  if (a.adopted) {
+    spdlog::info("job {}: {} adopted (it outlived the daemon's previous run)", job.id,
+                 a.run->Describe());
+    hub_.Publish(job.id, LogEvent("info", a.run->Describe() + " adopted"));
+    // A cancel asked for while it waited to be adopted.
+    if (auto now = store_.Get(job.id); now && now->cancel_requested) {
+      std::lock_guard lock(mutex_);
+      running_[job.id].cancel = true;
+    }
+    return;
+  }
+  a.started = true;
+  a.run->Start(a.spec);
+  if (const std::string id = a.run->ExecutorId(); !id.empty()) {
+    store_.SetSlurmSubmitted(job.id, id);
+  }
+  const bool resume = a.spec.resume;
+  spdlog::info("job {}: {} started{}", job.id, a.run->Describe(), resume ? " with --resume" : "");
+  // A run that waits in its executor has started nothing yet: it was handed over.
+  const std::string what =
+      a.run->WaitsBeforeRunning()
+          ? a.run->Describe() + " submitted" +
+                (resume ? " to resume from results/checkpoint.h5" : "")
+          : (resume ? "solver resumed from results/checkpoint.h5" : "solver started");
+  hub_.Publish(job.id, LogEvent("info", what));
+}
+
+void Scheduler::OnSolverEvent(Attempt& a, const v1::SolverEvent& in,
+                              const EventPosition& position) {
+  auto published = PublishedEventOf(in);
+  if (!published) return;
+  // Where it was read orders it against a resumed solver's events (event_hub.h).
+  published->origin.source = position.source;
+  published->origin.source_offset = position.offset;
+  bool store_now = in.has_started();
+  if (in.has_finished()) {
+    a.finished = in.finished();
+    published->end_time = a.job.end_time;
+    store_now = true;
+  } else if (in.has_progress()) {
+    store_now = NowSeconds() - a.last_store >= kProgressStoreInterval;
+  }
+  if (published->reports_progress) {
+    a.seen_step = published->step;
+    a.seen_time = published->time;
+    a.unstored = true;
+  }
+  if (store_now) {
+    if (published->end_time > 0) a.job.end_time = published->end_time;
+    store_.UpdateProgress(a.job.id, published->step, published->time, a.job.end_time);
+    a.last_store = NowSeconds();
+    a.unstored = false;
+  }
+  hub_.Publish(a.job.id, std::move(published->event), published->origin);
+}
+
+void Scheduler::StoreSeenProgress(Attempt& a) {
+  if (!a.unstored) return;
+  store_.UpdateProgress(a.job.id, a.seen_step, a.seen_time, a.job.end_time);
+  a.unstored = false;
+}
+
+std::optional<RunOutcome> Scheduler::EndOf(const Attempt& a, const SolverExit& exit,
+                                           bool over_wall_time) {
+  const JobRecord& job = a.job;
+  const bool cancelled = CancelRequested(job.id);
+  const std::string reported = a.finished ? a.finished->reason() : std::string();
+  const auto exited = [&exit](int code) { return !exit.signalled && exit.code == code; };
+  if (over_wall_time && !cancelled && !exited(solver::kExitCompleted) &&
+      !exited(solver::kExitFailed)) {
+    const std::string limit =
+        job.time_limit_seconds > 0
+            ? "the job's time_limit_seconds = " + std::to_string(job.time_limit_seconds)
+            : "max_wall_seconds = " + std::to_string(config_.max_wall_seconds);
+    return RunOutcome{JobState::kFailed, "wall time limit: the solver ran longer than " + limit +
+                                             " and was stopped (its checkpoint is kept)"};
+  }
+  if (Stopping() && (exited(solver::kExitCancelled) || exit.signalled)) {
+    spdlog::info("job {}: solver stopped for the daemon's shutdown; stays RUNNING to resume",
+                 job.id);
+    return std::nullopt;
+  }
+  if (auto ended = a.run->Outcome(); ended && !(cancelled && ended->retryable)) return ended;
+  if (exited(solver::kExitCompleted)) return RunOutcome{JobState::kCompleted, ""};
+  if (exited(solver::kExitFailed)) {
+    std::string reason = !reported.empty() ? reported : SummaryReason(a.results);
+    return RunOutcome{JobState::kFailed, reason.empty() ? "solver failed" : reason};
+  }
+  if (exited(solver::kExitInvalid)) {
+    std::string reason = !reported.empty() ? reported : LastLogLine(a.dir / "solver.log");
+    return RunOutcome{JobState::kFailed, "invalid scene or arguments: " + reason};
+  }
+  if (exited(solver::kExitCancelled) || (cancelled && exit.signalled && exit.code == SIGTERM)) {
+    return RunOutcome{JobState::kCancelled, cancelled ? "cancelled" : "solver interrupted"};
+  }
+  if (exit.signalled) {
+    return RunOutcome{JobState::kFailed, "solver killed by signal " + std::to_string(exit.code)};
+  }
+  return RunOutcome{JobState::kFailed, "solver exited with status " + std::to_string(exit.code)};
+}
+
+void Scheduler::RecordEnd(const JobRecord& job, const RunOutcome& outcome) {
+  try {
+    if (!(outcome.retryable && Requeue(job, outcome))) {
+      FinishJob(job.id, outcome.state, outcome.reason);
+    }
+  } catch (const std::exception& e) {
+    spdlog::error("job {}: cannot record the end: {}", job.id, e.what());
+  }
 }
 
 void Scheduler::RecordUsage(const std::string& job_id, const SolverExit& exit,

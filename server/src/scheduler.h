@@ -54,6 +54,7 @@ namespace dlmfd::server {
 
 class Executor;
 class JobRun;
+struct EventPosition;
 struct ExecutorState;
 struct RunOutcome;
 
@@ -101,7 +102,22 @@ class Scheduler {
   // Starts the queued jobs of first's study, at most room, as one submission (a Slurm job array)
   // with the study's throttle (mutex_ held); false when none could start.
   bool StartStudyBatch(const JobRecord& first, int room);
+  // One attempt of a job, in its runner thread, stage by stage (scheduler.cc's Attempt holds what
+  // they share): RunAttempt locks the job directory, PrepareLaunch decides adopt / resume /
+  // fresh and writes the inputs, StartOrAdopt hands the run to the executor, OnSolverEvent
+  // publishes and stores each event while the run is followed, EndOf maps its end to an outcome,
+  // RecordEnd queues it again or finishes it.
+  struct Attempt;
   void RunJob(JobRecord job);
+  std::optional<RunOutcome> RunAttempt(Attempt& attempt);
+  void PrepareLaunch(Attempt& attempt);
+  void StartOrAdopt(Attempt& attempt);
+  void OnSolverEvent(Attempt& attempt, const v1::SolverEvent& in, const EventPosition& position);
+  void StoreSeenProgress(Attempt& attempt);
+  std::optional<RunOutcome> EndOf(const Attempt& attempt, const SolverExit& exit,
+                                  bool over_wall_time);
+  void RecordEnd(const JobRecord& job, const RunOutcome& outcome);
+  bool CancelRequested(const std::string& job_id);
   // The executor's word on the run changed (Slurm's state and reason): stored, and published
   // when it changes what the API shows (a waiting job is QUEUED).
   void RecordState(const JobRecord& job, const ExecutorState& state);
