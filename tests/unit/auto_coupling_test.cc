@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "dlmfd/scene/scene_file.h"
 
@@ -140,6 +141,52 @@ TEST(AutoCoupling, ANeutralFreeParticleKeepsTheIncrementalCouplingInCreepingFlow
       std::string(DLMFD_SOURCE_DIR) + "/cases/verification/faxen_disk_w1.toml",
       {{"time.dt", "0.01"}, {"fluid.density", "0.1"}, {"particles.0.density", "0.1"}});
   EXPECT_EQ(p.splitting.constraint, ConstraintCoupling::kIncremental);
+}
+
+// Rule 4: a particle that turns. The settling ellipse (cases/shapes/settling_ellipse.toml: a / b
+// = 2, rho_p / rho = 1.1, U_p dt / h = 0.167, nu dt / h^2 = 0.10) blew up at t = 0.03 with the
+// lagged multiplier: "paper". No bound on a / b or rho_p / rho (a / b = 1.0001 blew up too), so the
+// other side is the shape itself: the disk of the same area, the ellipse neutrally buoyant (not
+// lagged), fixed (it does not turn) or prescribed without rotation keep "incremental"; prescribed
+// to rotate it turns: "paper".
+TEST(AutoCoupling, AParticleThatTurnsGetsThePapersCoupling) {
+  const std::string ellipse = std::string(DLMFD_SOURCE_DIR) + "/cases/shapes/settling_ellipse.toml";
+  const Params p = LoadSceneFile(ellipse);
+  EXPECT_EQ(p.splitting.constraint, ConstraintCoupling::kPaper);
+  const ResolvedChoice& c = OnlyChoice(p);
+  EXPECT_THAT(c.rule, HasSubstr("a particle that turns"));
+  EXPECT_LT(Number(c, "U_p dt / h"), kMaxLaggedParticleCourant);
+  EXPECT_EQ(
+      LoadSceneFile(ellipse, {{"particles.0.semi_axes", "[0.0884, 0.08838]"}}).splitting.constraint,
+      ConstraintCoupling::kPaper);
+  const auto coupling = [&](std::vector<SceneOverride> overrides) {
+    return LoadSceneFile(ellipse, overrides).splitting.constraint;
+  };
+  EXPECT_EQ(coupling({{"particles.0.density", "1.0"}}), ConstraintCoupling::kIncremental);
+  EXPECT_EQ(coupling({{"particles.0.motion", "\"fixed\""}}), ConstraintCoupling::kIncremental);
+  EXPECT_EQ(coupling({{"particles.0.motion", "\"prescribed\""}}), ConstraintCoupling::kIncremental);
+  EXPECT_EQ(
+      coupling({{"particles.0.motion", "\"prescribed\""}, {"particles.0.angular_velocity", "1.0"}}),
+      ConstraintCoupling::kPaper);
+  // The disk of the same area: the same numbers, the lagged multiplier.
+  std::string disk = R"TOML(
+gravity = [0.0, -981.0]
+[domain]
+size = [1.0, 6.0]
+h = 0.015625
+[fluid]
+viscosity = 0.05
+[time]
+dt = 0.0005
+end = 2.0
+[[particles]]
+center = [0.5, 5.2]
+diameter = 0.17677669529663687
+density = 1.1
+)TOML";
+  const Params d = ParseScene(disk);
+  EXPECT_EQ(d.splitting.constraint, ConstraintCoupling::kIncremental);
+  EXPECT_NEAR(Number(OnlyChoice(d), "U_p dt / h"), Number(c, "U_p dt / h"), 1e-9);
 }
 
 // A scene that names its coupling gets it, and nothing is resolved.

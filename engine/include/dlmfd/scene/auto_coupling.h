@@ -13,7 +13,9 @@
 //      is small, nu dt / h^2 <= 0.195: "paper".
 //   3. Creeping flow, nu dt / h^2 > 18.5, unless a free particle is neutrally buoyant: "viscous"
 //      (the lagged multiplier would take more steps to settle than the flow takes).
-//   4. Otherwise: "incremental".
+//   4. A particle whose shape turns (an ellipse), free and heavier than the liquid or prescribed
+//      to rotate: "paper" (the lagged multiplier blew up on every such particle measured).
+//   5. Otherwise: "incremental".
 // The choice, the rule and the numbers it read go to the run's log, summary.json (`numerics`),
 // the daemon's job record and `dlmfd show`; the scene as run (scene.toml) names the coupling
 // chosen, so a resume or a rerun of it uses the same one.
@@ -40,6 +42,9 @@ namespace dlmfd {
 struct CouplingNumbers {
   bool particles = false;
   bool neutral_free_particle = false;  // a free particle as dense as the liquid
+  // A particle that turns (not a disk) and whose multiplier the incremental coupling would lag:
+  // free and not neutrally buoyant, or prescribed with an angular velocity.
+  bool lagged_turning_particle = false;
   bool polymer = false;
   double viscous_number = 0.0;     // nu dt / h^2
   double particle_speed = 0.0;     // U_p
