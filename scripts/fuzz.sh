@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The libFuzzer targets of tests/fuzz (issue 38 point 1), built with clang in build-fuzz (coverage
-# + ASan + UBSan) and each run for a bounded time: the scene parser (scene_text_fuzz, seeded with
-# the scenes of cases/) and every rpc of dlmfd.v1.Jobs against the real daemon in the process
+# + ASan + UBSan) and run side by side, each for a bounded time: the scene parser
+# (scene_text_fuzz, seeded with the scenes of cases/) and every rpc of dlmfd.v1.Jobs against the
+# real daemon in the process
 # (rpc_request_fuzz, seeded with one readable request per rpc). A crash, a sanitizer report, an
 # answer jobs.proto does not promise, or a stuck input (-timeout) fails the run; libFuzzer leaves
 # the input that did it as build-fuzz/fuzz-artifacts/crash-* (reproduce: TARGET FILE).
@@ -58,23 +59,31 @@ for rpc in range(rpcs):
 (out / "submit-scene").write_bytes(bytes([0]) + text(1, scene))
 EOF
 
-# Each target in its own corpus directory (new inputs land there), seeds read alongside.
+# Each target in its own corpus directory (new inputs land there), seeds read alongside. The two
+# targets run side by side, one core each (CI has two): the step takes one run's time, not two.
 export ASAN_OPTIONS="abort_on_error=1:detect_leaks=0" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export DLMFD_SOLVER_BINARY="$solver"
-status=0
-for target in scene_text_fuzz rpc_request_fuzz; do
+targets=(scene_text_fuzz rpc_request_fuzz)
+declare -A pids
+for target in "${targets[@]}"; do
   corpus="$build/fuzz-corpus/$target"
   mkdir -p "$corpus"
   seed_dir="$seeds/scene"
   [[ "$target" == rpc_request_fuzz ]] && seed_dir="$seeds/rpc"
   echo "== $target for $seconds s"
-  if ! "$build/tests/fuzz/$target" -max_total_time="$seconds" -timeout=60 -rss_limit_mb=4096 \
-      -max_len=65536 -print_final_stats=1 -artifact_prefix="$build/fuzz-artifacts/$target-" \
-      "$corpus" "$seed_dir" > "$build/$target.log" 2>&1; then
+  "$build/tests/fuzz/$target" -max_total_time="$seconds" -timeout=60 -rss_limit_mb=4096 \
+    -max_len=65536 -print_final_stats=1 -artifact_prefix="$build/fuzz-artifacts/$target-" \
+    "$corpus" "$seed_dir" > "$build/$target.log" 2>&1 &
+  pids[$target]=$!
+done
+status=0
+for target in "${targets[@]}"; do
+  if ! wait "${pids[$target]}"; then
     status=1
     echo "fuzz.sh: $target found a failure:" >&2
     tail -n 60 "$build/$target.log" >&2
   else
+    echo "== $target"
     grep -E '^stat::(number_of_executed_units|new_units_added|peak_rss_mb)' "$build/$target.log" || true
   fi
 done
