@@ -77,11 +77,11 @@ std::optional<Pick> CreepingFlow(const CouplingNumbers& n) {
 // iterations against 7). Lagged, the pairs act at the next step's positions, where they no longer
 // cancel, and the run blows up as the particle crosses about a cell. Measured on
 // cases/shapes/settling_ellipse.toml (docs/validation.md, "The lagged multiplier on a turning
-// shape"): it failed for a / b = 1.0001, 1.25, 2 and 4 at rho_p / rho = 1.1 to 3 (13 of 15), at
-// dt = 5e-4 and 2.5e-4, h = 1/64 and 1/128, on either mesh, by t = 0.006-0.05, where the disk of
-// the same area completed every run but those beyond rule 2's bound; the paper's coupling
-// completed all. So no bound on a / b or rho_p / rho: every such particle. A neutrally buoyant one
-// is not lagged (particles/lagged_multiplier.h), a fixed one does not turn.
+// shape"): 13 of 19 ellipse runs failed, at a / b = 1.0001, 1.25, 2 and 4, rho_p / rho = 1.1 to
+// 3, dt = 5e-4 and 2.5e-4, h = 1/64 and 1/128, on either mesh, by t = 0.006-0.05 (to t = 0.1),
+// where the disk of the same area completed its three runs and the paper's coupling every ellipse
+// run tried. So no bound on a / b or rho_p / rho: every such particle. A neutrally buoyant one is
+// not lagged (particles/lagged_multiplier.h), a fixed one does not turn.
 std::optional<Pick> TurningShapes(const CouplingNumbers& n) {
   if (!n.lagged_turning_particle) return std::nullopt;
   return Pick{ConstraintCoupling::kPaper,
