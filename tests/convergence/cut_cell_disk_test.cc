@@ -22,13 +22,12 @@
 #include <cstdio>
 #include <vector>
 
+#include "../support/cut_cell_creeping.h"
 #include "dlmfd/fluid/boundary_data.h"
 #include "dlmfd/particles/cut_cell_stokes.h"
 
 namespace dlmfd {
 namespace {
-
-constexpr double kCutCreepingReference = 6.487;
 
 double CutCreepingDrag(double d_over_h, double shift) {
   DomainParams d;

@@ -114,8 +114,12 @@ std::vector<SceneCase> Cases() {
       {"CollocationPoints", Disk(0.5, 0.5, 1.5), {"particle_mesh.kind=collocation"}, ""},
       {"ParticleMeshKindUnknown",
        Disk(0.5, 0.5, 1.5),
-       {"particle_mesh.kind=cut_cell"},
+       {"particle_mesh.kind=cut_cells"},
        "particle_mesh.kind"},
+      {"CutCellWithAFreeParticle",
+       Disk(0.5, 0.5, 1.5),
+       {"particle_mesh.kind=cut_cell"},
+       "particles.0.motion"},
       // The accuracy envelope (scene/accuracy_envelope.h): a warning for both, a rejection for
       // both with accuracy.strict = true.
       // U dt / h = 0.8 > 0.64; D / h = 3.2 < 120.

@@ -218,8 +218,31 @@ const BadScene kBadScenes[] = {
      "solvers.multiplier_max_iterations", "10.5"},
     {"WaveCourantZero", "[solvers]\nwave_max_courant = 0.0\n", "solvers.wave_max_courant", "0.0"},
     {"ParticleMeshHZero", "[particle_mesh]\nh = 0.0\n", "particle_mesh.h", "0.0"},
-    {"ParticleMeshKindUnknown", "[particle_mesh]\nkind = \"cut_cell\"\n", "particle_mesh.kind",
-     "\"cut_cell\""},
+    {"ParticleMeshKindUnknown", "[particle_mesh]\nkind = \"cut_cells\"\n", "particle_mesh.kind",
+     "\"cut_cells\""},
+    {"CutCellWithAFreeParticle",
+     "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"
+     "[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n",
+     "particles.0.motion", "\"free\""},
+    {"CutCellWithAPolymer",
+     "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"
+     "[fluid]\nrelaxation_time = 0.1\nsolvent_ratio = 0.5\n"
+     "[[particles]]\ncenter = [0.5, 0.5]\nmotion = \"fixed\"\n",
+     "fluid.relaxation_time", "0.1"},
+    {"CutCellWithViscosityInAdvection",
+     "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"
+     "[splitting]\nconstraint = \"paper\"\n[[particles]]\ncenter = [0.5, 0.5]\nmotion = "
+     "\"fixed\"\n",
+     "splitting.beta", "0.5"},
+    {"CutCellWithPeriodicSides",
+     "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nleft = { type = \"periodic\" }\n"
+     "right = { type = \"periodic\" }\ntop = { type = \"outflow\" }\n[[particles]]\n"
+     "center = [0.5, 0.5]\nmotion = \"fixed\"\n",
+     "domain.boundary.left.type", "\"periodic\""},
+    {"CutCellWithoutOutflow",
+     "[particle_mesh]\nkind = \"cut_cell\"\n[[particles]]\ncenter = [0.5, 0.5]\nmotion = "
+     "\"fixed\"\n",
+     "domain.boundary", "(no outflow side)"},
     {"CollocationSpacingBelowHalf", "[particle_mesh]\nkind = \"collocation\"\nspacing = 0.25\n",
      "particle_mesh.spacing", "0.25"},
     {"CollocationSpacingAboveFour", "[particle_mesh]\nspacing = 5.0\n", "particle_mesh.spacing",

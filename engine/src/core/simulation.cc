@@ -7,6 +7,9 @@
 //   AdvectVelocity (34)     the VelocityAdvection scheme of splitting.advection;
 //   UpdateConformation (35) OldroydBPolymer (conformation module: modulus, A^0, inflow A_L, force);
 //   MoveParticles (36)-(38) ParticleStep (predictor, DLM multiplier, corrector), in place on u.
+// With particle_mesh.kind = "cut_cell" the (fixed) particles are cut out of the mesh instead:
+// step (33) is CutCellStep's (particles/cut_cell_step.h), which also gives their force, and there
+// is no step (36)-(38).
 // A step models no more than the scene needs: a Newtonian liquid (relaxation_time = 0 or
 // solvent_ratio = 1) builds no polymer, so no conformation arrays, no force and no step (35); a
 // scene without particles has no step (36)-(38).
@@ -33,6 +36,7 @@
 #include "dlmfd/fluid/boundary_data.h"
 #include "dlmfd/fluid/stokes_solver.h"
 #include "dlmfd/fluid/velocity_advection.h"
+#include "dlmfd/particles/cut_cell_step.h"
 #include "dlmfd/particles/particle_step.h"
 
 namespace dlmfd {
@@ -82,7 +86,11 @@ struct Simulation::Impl {
     boundary_data.Apply(state.u.data(), state.v.data());
     if (!p.particles.empty()) {
       state.particles = ParticleStep::InitialStates(p);
-      particle_step = std::make_unique<ParticleStep>(p, grid);
+      if (p.particle_mesh.kind == ParticleMeshKind::kCutCell) {
+        cut_cells = std::make_unique<CutCellStep>(p, grid);
+      } else {
+        particle_step = std::make_unique<ParticleStep>(p, grid);
+      }
     }
     if (viscoelastic) {
       polymer = std::make_unique<OldroydBPolymer>(p, grid);
@@ -102,7 +110,10 @@ struct Simulation::Impl {
       particle_step->LagMultiplier(state.time, params.time.dt, state.particles, state.u.data(),
                                    state.v.data());
     }
-    if (particle_step && particle_step->CouplesStokes()) {
+    if (cut_cells) {
+      cut_cells->Solve(boundary_data, state.particles, state.u.data(), state.v.data(),
+                       state.p.data(), report);
+    } else if (particle_step && particle_step->CouplesStokes()) {
       const ViscousConstraint::Outcome r = particle_step->CoupleStokes(
           state.time + params.time.dt, params.time.dt, stokes, force.x, force.y, state.particles,
           state.u.data(), state.v.data(), state.p.data());
@@ -195,7 +206,8 @@ struct Simulation::Impl {
   std::unique_ptr<VelocityAdvection> advection;
   bool viscoelastic;
   std::unique_ptr<OldroydBPolymer> polymer;     // viscoelastic only
-  std::unique_ptr<ParticleStep> particle_step;  // with particles only
+  std::unique_ptr<ParticleStep> particle_step;  // with particles only, but cut cells
+  std::unique_ptr<CutCellStep> cut_cells;       // particle_mesh.kind = "cut_cell" only
   StepReport report;  // reused: its columns are created by the first step, overwritten after
   FlowState state;
   // u^{n+1/4} of the last step whose fields were written (steady_correction = "tendency" only).

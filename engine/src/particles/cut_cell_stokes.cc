@@ -73,6 +73,8 @@ struct CutCellStokes::Impl {
   std::vector<int> band;            // reduced velocity unknowns of the direct band
   // The reduced operators.
   Sparse momentum_full, velocity, saddle, band_matrix;
+  // Row-major copies for the products of the iteration; bt = [Bx^T; By^T] over the unknowns.
+  Eigen::SparseMatrix<double, Eigen::RowMajor> saddle_rows, velocity_rows, bt;
   Eigen::SparseLU<Sparse> band_lu;
   bool exact_velocity = false;  // precondition the velocity by its own factorization
   Eigen::SparseLU<Sparse> velocity_lu;
@@ -305,8 +307,11 @@ void CutCellStokes::Impl::BuildReduced() {
     }
   velocity.resize(nu, nu);
   velocity.setFromTriplets(a.begin(), a.end());
+  velocity_rows = velocity;
   saddle.resize(2 * nu + npu, 2 * nu + npu);
   saddle.setFromTriplets(s.begin(), s.end());
+  saddle_rows = saddle;
+  bt = saddle_rows.block(0, 2 * nu, 2 * nu, npu);
   std::vector<int> position(nu, -1);
   for (std::size_t k = 0; k < band.size(); ++k) position[band[k]] = static_cast<int>(k);
   Triplets bt;
@@ -324,19 +329,22 @@ void CutCellStokes::Impl::BuildReduced() {
 void CutCellStokes::Impl::Precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
   const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
   z.resize(r.size());
-  if (exact_velocity) {
-    z.segment(0, nu) = velocity_lu.solve(r.segment(0, nu));
-    z.segment(nu, nu) = velocity_lu.solve(r.segment(nu, nu));
-  } else {
-    PreconditionVelocity(r, z);
-  }
-  for (int k = 0; k < npu; ++k) z[2 * nu + k] = eta * r[2 * nu + k] / pressure_mass[k];
+  // The pressure first: z_p = -S^-1 r_p with Cahouet-Chabard's S^-1.
+  for (int k = 0; k < npu; ++k) z[2 * nu + k] = -eta * r[2 * nu + k] / pressure_mass[k];
   if (fast_pressure) {
     std::fill(work_fp.begin(), work_fp.end(), 0.0);
     std::fill(work_p.begin(), work_p.end(), 0.0);
     for (int k = 0; k < npu; ++k) work_fp[pnodes[k]] = r[2 * nu + k];
     fast_pressure->Solve(work_fp.data(), work_p.data());
-    for (int k = 0; k < npu; ++k) z[2 * nu + k] += rho_over_dt * work_p[pnodes[k]];
+    for (int k = 0; k < npu; ++k) z[2 * nu + k] -= rho_over_dt * work_p[pnodes[k]];
+  }
+  // Then the velocity of r_u - B^T z_p (block upper-triangular).
+  Eigen::VectorXd ru = r.head(2 * nu) - bt * z.tail(npu);
+  if (exact_velocity) {
+    z.segment(0, nu) = velocity_lu.solve(ru.segment(0, nu));
+    z.segment(nu, nu) = velocity_lu.solve(ru.segment(nu, nu));
+  } else {
+    PreconditionVelocity(ru, z);
   }
 }
 
@@ -357,7 +365,7 @@ void CutCellStokes::Impl::PreconditionVelocity(const Eigen::VectorXd& r, Eigen::
     Eigen::VectorXd zc(nu);
     for (int k = 0; k < nu; ++k) zc[k] = w[vnodes[k]];
     if (!band.empty()) {
-      const Eigen::VectorXd rest = r.segment(comp * nu, nu) - velocity * zc;
+      const Eigen::VectorXd rest = r.segment(comp * nu, nu) - velocity_rows * zc;
       Eigen::VectorXd rb(static_cast<Eigen::Index>(band.size()));
       for (std::size_t k = 0; k < band.size(); ++k) rb[k] = rest[band[k]];
       const Eigen::VectorXd cb = band_lu.solve(rb);
@@ -477,7 +485,7 @@ CutCellReport CutCellStokes::Solve(const BoundaryData& data, const double* fu, c
   for (std::size_t k = 0; k < m.pnodes.size(); ++k)
     x[2 * nu + static_cast<int>(k)] = p[m.pnodes[k]];
   const GmresResult result =
-      SolveGmres([&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = m.saddle * in; },
+      SolveGmres([&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = m.saddle_rows * in; },
                  [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { m.Precondition(in, out); },
                  rhs, x, tolerance, max_iterations, m.constants.restart);
   if (!result.converged) {
@@ -503,22 +511,37 @@ void CutCellStokes::SolveDirect(const BoundaryData& data, const double* fu, cons
 }
 
 Vec2 CutCellStokes::Force(int body, const double* u, const double* v, const double* p) const {
+  return Load(body, Vec2::Zero(), u, v, p, nullptr, nullptr).force;
+}
+
+CutCellStokes::BodyLoad CutCellStokes::Load(int body, const Vec2& centre, const double* u,
+                                            const double* v, const double* p, const double* fu,
+                                            const double* fv) const {
   const Impl& m = *impl_;
   const auto n = static_cast<Eigen::Index>(m.grid.NodeCount());
   const auto np = static_cast<Eigen::Index>(m.pgrid.NodeCount());
   const Eigen::Map<const Eigen::VectorXd> uu(u, n), vv(v, n), pp(p, np);
   const Sparse a = m.eta * m.stiffness + m.rho * m.convection;
-  const Eigen::VectorXd ru = a * uu + m.div_x.transpose() * pp;
-  const Eigen::VectorXd rv = a * vv + m.div_y.transpose() * pp;
-  Vec2 force = Vec2::Zero();
+  Eigen::VectorXd ru = a * uu + m.div_x.transpose() * pp;
+  Eigen::VectorXd rv = a * vv + m.div_y.transpose() * pp;
+  if (m.rho_over_dt > 0.0) {
+    ru += m.rho_over_dt * m.lumped_mass.cwiseProduct(uu);
+    rv += m.rho_over_dt * m.lumped_mass.cwiseProduct(vv);
+  }
+  BodyLoad load;
+  const CutCellGeometry& geo = *m.geos[0];
   for (Eigen::Index k = 0; k < n; ++k) {
     const auto node = static_cast<std::size_t>(k);
-    const CutCellGeometry& geo = *m.geos[0];
     if (geo.NearestBody(node) != body || geo.distance()[node] >= 1.5 * m.grid.h) continue;
-    force -= Vec2(ru[k], rv[k]);
+    const Vec2 r(ru[k] - (fu ? fu[k] : 0.0), rv[k] - (fv ? fv[k] : 0.0));
+    const Vec2 arm = NodePosition(m.grid, static_cast<int>(k)) - centre;
+    load.force -= r;
+    load.torque -= arm.x() * r.y() - arm.y() * r.x();
   }
-  return force;
+  return load;
 }
+
+const Eigen::VectorXd& CutCellStokes::FluidMass() const { return impl_->lumped_mass; }
 
 int SolveSteadyNavierStokes(CutCellStokes& flow, const BoundaryData& data, double* u, double* v,
                             double* p, double tolerance, int max_iterations, double change,

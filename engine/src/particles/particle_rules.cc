@@ -107,9 +107,52 @@ void RequireCoupledInStokes(const Params& params, std::size_t p) {
           "splitting.constraint = \"paper\"");
 }
 
+void RequireCutCellScene(const Params& params) {
+  if (params.particle_mesh.kind != ParticleMeshKind::kCutCell || params.particles.empty()) return;
+  const std::string with = " with particle_mesh.kind = \"cut_cell\"";
+  for (std::size_t p = 0; p < params.particles.size(); ++p) {
+    const Motion motion = params.particles[p].motion;
+    if (motion == Motion::kFixed) continue;
+    throw InvalidParameter("particles." + std::to_string(p) + ".motion",
+                           motion == Motion::kFree ? "\"free\"" : "\"prescribed\"",
+                           "\"fixed\"" + with +
+                               " (cut cells hold bodies at rest only, so far), or "
+                               "particle_mesh.kind = \"collocation\" for moving particles");
+  }
+  if (!params.fluid.IsNewtonian()) {
+    throw InvalidParameter("fluid.relaxation_time", ExactText(params.fluid.relaxation_time),
+                           "0 (a Newtonian liquid)" + with +
+                               " (the polymer is not supported with cut cells yet), or "
+                               "particle_mesh.kind = \"collocation\"");
+  }
+  if (params.splitting.beta != 0.0) {
+    throw InvalidParameter("splitting.beta", ExactText(params.splitting.beta),
+                           "0 (and splitting.alpha = 1)" + with +
+                               ": the advection step (34) does not see the bodies, so viscosity "
+                               "there would leak through them");
+  }
+  const char* const names[4] = {"left", "right", "bottom", "top"};
+  bool outflow = false;
+  for (int s = 0; s < 4; ++s) {
+    const SideType type = params.domain.sides[s].type;
+    outflow = outflow || type == SideType::kOutflow;
+    if (type == SideType::kPeriodic) {
+      throw InvalidParameter(std::string("domain.boundary.") + names[s] + ".type", "\"periodic\"",
+                             "\"wall\", \"velocity\" or \"outflow\"" + with +
+                                 " (periodic sides are not supported with cut cells yet)");
+    }
+  }
+  if (!outflow) {
+    throw InvalidParameter("domain.boundary", "(no outflow side)",
+                           "at least one side of type \"outflow\"" + with +
+                               " (it fixes the pressure of the cut-cell step)");
+  }
+}
+
 void ValidateParticles(const Params& params, const Grid& grid) {
   if (params.particles.empty()) return;
   RequireIndexableGrid(params, grid);
+  RequireCutCellScene(params);
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
     RequireNotLighterThanLiquid(params, p);
     RequireCoupledInStokes(params, p);

@@ -271,7 +271,14 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
 std::vector<ParticleState> ParticleStep::InitialStates(const Params& params) {
   std::vector<ParticleState> states;
   const Grid grid = params.domain.VelocityGrid();
-  const MultiplierPoints points = MultiplierPoints::ForScene(params);
+  // The scene rules of the particles (inside the domain, apart, DLM well posed), defined once in
+  // particles/particle_rules.h and applied by the scene validation too.
+  ValidateParticles(params, grid);
+  // Cut cells (particles/cut_cell_step.h) have no multipliers.
+  const bool multipliers = params.particle_mesh.kind != ParticleMeshKind::kCutCell;
+  const MultiplierPoints points = multipliers
+                                      ? MultiplierPoints::ForScene(params)
+                                      : MultiplierPoints(params.particle_mesh, params.domain.h);
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
     const ParticleParams& pp = params.particles[p];
     ParticleState s;
@@ -285,12 +292,9 @@ std::vector<ParticleState> ParticleStep::InitialStates(const Params& params) {
     s.shape = pp.shape;
     s.semi_axes = pp.shape == ShapeKind::kDisk ? Vec2(pp.Radius(), pp.Radius()) : pp.semi_axes;
     s.motion = pp.motion;
-    s.multiplier.assign(2 * static_cast<std::size_t>(points.Count(p)), 0.0);
+    if (multipliers) s.multiplier.assign(2 * static_cast<std::size_t>(points.Count(p)), 0.0);
     states.push_back(std::move(s));
   }
-  // The scene rules of the particles (inside the domain, apart, DLM well posed), defined once in
-  // particles/particle_rules.h and applied by the scene validation too.
-  ValidateParticles(params, grid);
   return states;
 }
 

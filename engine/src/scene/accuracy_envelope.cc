@@ -123,6 +123,7 @@ std::vector<AccuracySetting> AccuracySettings(const Params& p) {
   for (std::size_t i = 0; i < p.particles.size(); ++i) {
     const std::string which = " (particles." + std::to_string(i) + ")";
     s.push_back({"D / h" + which, p.particles[i].diameter / h});
+    if (p.particle_mesh.kind == ParticleMeshKind::kCutCell) continue;  // no multiplier points
     // The multiplier point spacing: h_p of the ring mesh, c h on the collocation circle.
     const double point_spacing = p.particle_mesh.kind == ParticleMeshKind::kRing
                                      ? p.particle_mesh.h

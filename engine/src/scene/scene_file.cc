@@ -234,9 +234,11 @@ void ReadMeshCollisionsConformationOutput(TableReader& top, const NumericsDefaul
                                           Params& p) {
   TableReader mesh(top.Table("particle_mesh"), "particle_mesh");
   ParticleMeshParams& pm = p.particle_mesh;
-  pm.kind = Choose<ParticleMeshKind>(
-      "particle_mesh.kind", mesh.String("kind", defaults.particle_mesh_kind),
-      {{"ring", ParticleMeshKind::kRing}, {"collocation", ParticleMeshKind::kCollocation}});
+  pm.kind = Choose<ParticleMeshKind>("particle_mesh.kind",
+                                     mesh.String("kind", defaults.particle_mesh_kind),
+                                     {{"ring", ParticleMeshKind::kRing},
+                                      {"collocation", ParticleMeshKind::kCollocation},
+                                      {"cut_cell", ParticleMeshKind::kCutCell}});
   pm.h = mesh.Real("h", kPaperParticleMeshRatio * p.domain.h);  // follows the fluid mesh
   pm.spacing = mesh.Real("spacing", pm.spacing);
   pm.interpolation = Choose<BoundaryInterpolation>(

@@ -21,7 +21,9 @@ SceneFootprint EstimateFootprint(const Params& params) {
   const double ny = std::round(d.size.y() / d.h);
   f.velocity_nodes = Saturated((nx + 1.0) * (ny + 1.0));
   const bool collocation = params.particle_mesh.kind == ParticleMeshKind::kCollocation;
+  const bool cut_cell = params.particle_mesh.kind == ParticleMeshKind::kCutCell;
   for (const ParticleParams& q : params.particles) {
+    if (cut_cell) continue;  // no multipliers
     if (collocation) {
       const double r = q.Radius() / d.h;
       f.multiplier_nodes = Saturated(f.multiplier_nodes + kPi * r * r +

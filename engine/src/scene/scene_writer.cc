@@ -154,7 +154,10 @@ std::string WriteScene(const Params& p) {
 
   o << "\n[particle_mesh]\n";
   o << "kind = \""
-    << (p.particle_mesh.kind == ParticleMeshKind::kCollocation ? "collocation" : "ring") << "\"\n";
+    << (p.particle_mesh.kind == ParticleMeshKind::kCollocation ? "collocation"
+        : p.particle_mesh.kind == ParticleMeshKind::kCutCell   ? "cut_cell"
+                                                               : "ring")
+    << "\"\n";
   o << "h = " << ExactText(p.particle_mesh.h) << "\n";
   o << "spacing = " << ExactText(p.particle_mesh.spacing) << "\n";
   o << "interpolation = \""

@@ -227,8 +227,10 @@ struct ParticleParams {
 
 // The multiplier points of the DLM step (37): the H1 ring mesh of each disk (paper (24), method
 // notes 2, section 1.1) or collocation points on the true circle plus interior points
-// (particle-coupling.md section 3; particles/collocation_points.h).
-enum class ParticleMeshKind { kRing, kCollocation };
+// (particle-coupling.md section 3; particles/collocation_points.h). kCutCell has no multipliers:
+// fixed bodies are cut out of the mesh and step (33) imposes their no-slip condition by Nitsche's
+// method (particles/cut_cell_step.h; fixed particles in a Newtonian liquid only, issue 33).
+enum class ParticleMeshKind { kRing, kCollocation, kCutCell };
 // How E evaluates the fluid velocity at a collocation boundary point: the 6-node P2 basis of the
 // 2h macro-triangle that holds it, P1 on the h-triangle, or the 9-node biquadratic (Q2) basis of
 // the 2h macro-square that holds it, which is mirror-symmetric where the triangles are not.

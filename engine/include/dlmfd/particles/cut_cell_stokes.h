@@ -14,15 +14,19 @@
 // refused. The viscous form is eta grad u : grad v, as in the engine's step (33). On one
 // triangulation (the paper's SW-NE) or on both, every form then the mean of the two.
 //
-// Solver: restarted GMRES on the saddle point, right-preconditioned by the block diagonal of
-//   velocity: the fast solver of (rho/dt) M_l + eta K on the whole uniform grid, then a direct
+// Solver: restarted GMRES on the saddle point [[A, B^T], [B, -G_p / eta]], right-preconditioned by
+// the block upper triangle [[A~, B^T], [0, -S~]]: z_p = -S~^-1 r_p, then z_u = A~^-1 (r_u - B^T
+// z_p) (half the iterations of the block diagonal in the time loop: 15 against 33 a step for
+// Schaefer-Turek at D/h = 20; docs/work_precision.md, "A second-order boundary: the time loop"),
+// with
+//   A~^-1:    the fast solver of (rho/dt) M_l + eta K on the whole uniform grid, then a direct
 //             solve of the cut operator on the band of unknowns within 2h of a boundary (a
 //             multiplicative correction: it carries the Nitsche and ghost terms the fast solver
 //             lacks);
-//   pressure: Cahouet-Chabard, eta M_p^-1 + (rho/dt) K_p^-1 (fast solver), M_p the lumped
+//   S~^-1:    Cahouet-Chabard, eta M_p^-1 + (rho/dt) K_p^-1 (fast solver), M_p the lumped
 //             pressure mass of the fluid part plus the ghost penalty's diagonal (a pressure node
 //             with a small cut support gets a small M_p: with the whole cell's mass the iterations
-//             at D/h = 10 / 20 were 211 / 389, with this 104 / 130).
+//             at D/h = 10 / 20 were 211 / 389, with this 104 / 130, block diagonal).
 // The force on a body is read from the momentum residual of the fluid forms (Nitsche and ghost
 // terms left out) with a test function equal to 1 at the nodes within 1.5 h of the body's boundary
 // and inside it: F = -sum_i Phi_i (rho (w . grad) u + eta K u - B^T p)_i (the discrete stress
@@ -52,6 +56,11 @@ struct CutCellConstants {
   double ghost_pressure = 0.001;  // g_p
   double band = 2.0;              // the preconditioner's direct band, in h from the boundary
   int restart = 120;              // GMRES restart length (80: 2.1 times the iterations at D/h 40)
+  // Step (33) in the time loop (particles/cut_cell_step.h): GMRES's relative residual and its
+  // iteration limit. Schaefer-Turek at D/h = 20, C_D at t = 2 with 1e-6 / 1e-7 / 1e-8 / 1e-10:
+  // 5.59059 / 5.59056 / 5.59056 / 5.59056, 9.1 / 12.1 / 15.9 / 22.1 iterations a step.
+  double step_tolerance = 1e-7;
+  int step_max_iterations = 2000;
 };
 
 struct CutCellReport {
@@ -87,8 +96,21 @@ class CutCellStokes {
   // The same by a sparse direct factorization of the whole saddle point (tests, small grids).
   void SolveDirect(const BoundaryData& data, const double* fu, const double* fv, double* u,
                    double* v, double* p);
-  // The force on body `body` (header), from a solution of Solve.
+  // The force on body `body` (header), from a solution of Solve without a load.
   Vec2 Force(int body, const double* u, const double* v, const double* p) const;
+  // The force and the torque about `centre` on body `body` from a solution of Solve with the load
+  // (fu, fv) (nullptr: none): F = -sum_i Phi_i R_i, T = -sum_i Phi_i (x_i - centre) x R_i with R
+  // the momentum residual of the fluid forms, the mass term (rho/dt) M_l u and the load included
+  // (so in a time step the inertia of the fluid near the body counts).
+  struct BodyLoad {
+    Vec2 force = Vec2::Zero();
+    double torque = 0.0;
+  };
+  BodyLoad Load(int body, const Vec2& centre, const double* u, const double* v, const double* p,
+                const double* fu, const double* fv) const;
+  // The lumped mass of the fluid part at each velocity node (0 at nodes without fluid): the load
+  // of a field f is M_l f.
+  const Eigen::VectorXd& FluidMass() const;
 
   std::size_t NodeCount() const;  // velocity nodes of the grid
   int VelocityUnknowns() const;

@@ -36,7 +36,7 @@ inline GmresResult SolveGmres(const LinearMap& apply, const LinearMap& precondit
   }
   const Eigen::Index n = b.size();
   Eigen::VectorXd r(n), w(n), z(n);
-  std::vector<Eigen::VectorXd> v(restart + 1, Eigen::VectorXd(n));
+  std::vector<Eigen::VectorXd> v(restart + 1);  // the Krylov basis, allocated as it grows
   Eigen::MatrixXd hess = Eigen::MatrixXd::Zero(restart + 1, restart);
   Eigen::VectorXd cs(restart), sn(restart), g(restart + 1);
   while (true) {
