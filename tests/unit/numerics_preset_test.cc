@@ -79,7 +79,7 @@ TEST(NumericsPreset, TheDefaultPresetIsTheMeasuredConfiguration) {
   EXPECT_EQ(p.fluid.stress_splitting, StressSplitting::kDevss);
   EXPECT_EQ(p.fluid.stress_splitting, d.fluid.stress_splitting);
   EXPECT_EQ(p.splitting.steady_correction, SteadyCorrection::kNone);  // with a polymer
-  EXPECT_EQ(ParseScene("").splitting.steady_correction, SteadyCorrection::kTaylor);  // without
+  EXPECT_EQ(ParseScene("").splitting.steady_correction, SteadyCorrection::kTendency);  // without
 }
 
 TEST(NumericsPreset, TheSceneAsRunNamesThePresetAndReadsBackTheSame) {

@@ -498,7 +498,7 @@ TEST(SceneFile, EmptySceneIsAllDefaults) {
   // struct keeps the paper's, which the engine's tests that build Params studied
   // (scene/numerics_preset.h).
   d.particle_mesh.h = kPaperParticleMeshRatio * d.domain.h;
-  d.splitting.steady_correction = SteadyCorrection::kTaylor;
+  d.splitting.steady_correction = SteadyCorrection::kTendency;
   d.domain.diagonals = MeshDiagonals::kBoth;
   d.splitting.advection = AdvectionScheme::kWave;
   EXPECT_EQ(WriteScene(p), WriteScene(d));
@@ -792,10 +792,10 @@ TEST(SceneFile, SteadyCorrectionFollowsTheLiquid) {
   const std::string polymer = "[fluid]\nrelaxation_time = 1.0\nsolvent_ratio = 0.5\n";
   for (const std::string advection : {"least_squares", "wave"}) {
     const std::string scheme = "[splitting]\nadvection = \"" + advection + "\"\n";
-    EXPECT_EQ(correction(scheme), SteadyCorrection::kTaylor) << advection;
+    EXPECT_EQ(correction(scheme), SteadyCorrection::kTendency) << advection;
     EXPECT_EQ(correction(scheme + polymer), SteadyCorrection::kNone) << advection;
     EXPECT_EQ(correction(scheme + "[fluid]\nrelaxation_time = 1.0\nsolvent_ratio = 1.0\n"),
-              SteadyCorrection::kTaylor)
+              SteadyCorrection::kTendency)
         << advection;
     EXPECT_EQ(correction(scheme + "steady_correction = \"none\"\n"), SteadyCorrection::kNone)
         << advection;
@@ -803,7 +803,7 @@ TEST(SceneFile, SteadyCorrectionFollowsTheLiquid) {
               SteadyCorrection::kTaylor)
         << advection;
   }
-  EXPECT_EQ(correction(""), SteadyCorrection::kTaylor);
+  EXPECT_EQ(correction(""), SteadyCorrection::kTendency);
   EXPECT_EQ(Params{}.splitting.steady_correction, SteadyCorrection::kNone);
   // The tendency correction is named, with or without a polymer, and the scene as run keeps it.
   const std::string tendency = "[splitting]\nsteady_correction = \"tendency\"\n";

@@ -7,7 +7,7 @@ NumericsDefaults DefaultsOf(NumericsPreset preset) {
   if (preset == NumericsPreset::kPaper) {
     return {"ring", "sw_ne", "least_squares", "paper", "explicit", "none", "none"};
   }
-  return {"collocation", "both", "wave", "auto", "devss", "taylor", "none"};
+  return {"collocation", "both", "wave", "auto", "devss", "tendency", "none"};
 }
 
 const char* NumericsPresetName(NumericsPreset preset) {

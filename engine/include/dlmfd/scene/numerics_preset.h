@@ -4,9 +4,8 @@
 //   "default" (the default): the configuration measured best on the verification suite
 //     (docs/accuracy.md): collocation points on the true circle, the coupling of the constraint
 //     chosen from the scene's numbers ("auto", scene/auto_coupling.h), DEVSS for a polymer, the
-//     steady correction in a Newtonian liquid; the SW-NE mesh and the least-squares advection for
-//     now (both diagonals and the wave-like advection are measured better and not yet the
-//     default: docs/accuracy.md, "What the defaults do not have yet").
+//     steady correction in a Newtonian liquid, both diagonals of every square and the wave-like
+//     advection.
 //   "paper": the choices of Singh, Joseph, Hesla, Glowinski and Pan (J. Non-Newtonian Fluid Mech.
 //     91, 2000) at once: the H1 ring mesh of each disk (24), the SW-NE mesh, the least-squares
 //     advection step (34), the constraint only in the DLM step (37) with alpha = beta = 1/2
