@@ -1,7 +1,7 @@
 """Run by pvbatch under Xvfb: trA of fields.xmf with the disks drawn as glyphs, saved as a PNG, the
 way a user of ParaView's GUI draws it (docs/results.md, "fields.xmf in ParaView").
 
-    xvfb-run pvbatch paraview_screenshot.py FIELDS_XMF OUT_PNG OUT_JSON
+    DISPLAY=:N pvbatch paraview_screenshot.py FIELDS_XMF OUT_PNG OUT_JSON   (N: an X server, e.g. Xvfb)
 
 Opens the file with the XDMF Reader, takes the block velocity_mesh (selected by its name) coloured
 by trA and the block particles through a Glyph filter (a sphere of diameter 1 scaled by 2 radius: seen from +z the
