@@ -140,7 +140,46 @@ const Migration kMigrations[] = {
     ALTER TABLE jobs ADD COLUMN cpu_seconds REAL NOT NULL DEFAULT 0;
     ALTER TABLE jobs ADD COLUMN peak_memory_bytes INTEGER NOT NULL DEFAULT 0;
     )sql"},
+    // Schema 10: the slurm executor's record of a job (schemas 5 and 6) in a table of its own, a
+    // row for each job that was handed to Slurm since it was submitted or retried; the jobs
+    // table keeps what every executor shares. Rows of schema 9 move with their values.
+    {10, R"sql(
+    CREATE TABLE slurm_jobs (
+      job_id TEXT PRIMARY KEY REFERENCES jobs (id) ON DELETE CASCADE,
+      slurm_job_id TEXT NOT NULL DEFAULT '',
+      live INTEGER NOT NULL DEFAULT 0,
+      attempts INTEGER NOT NULL DEFAULT 0,
+      restarts INTEGER NOT NULL DEFAULT 0,
+      state TEXT NOT NULL DEFAULT '',
+      reason TEXT NOT NULL DEFAULT '',
+      waiting INTEGER NOT NULL DEFAULT 0);
+    INSERT INTO slurm_jobs (job_id, slurm_job_id, live, attempts, restarts, state, reason, waiting)
+      SELECT id, slurm_job_id, slurm_live, slurm_attempts, slurm_restarts, slurm_state,
+             slurm_reason, slurm_waiting FROM jobs
+      WHERE slurm_job_id != '' OR slurm_live != 0 OR slurm_attempts != 0 OR slurm_waiting != 0;
+    ALTER TABLE jobs DROP COLUMN slurm_job_id;
+    ALTER TABLE jobs DROP COLUMN slurm_live;
+    ALTER TABLE jobs DROP COLUMN slurm_attempts;
+    ALTER TABLE jobs DROP COLUMN slurm_restarts;
+    ALTER TABLE jobs DROP COLUMN slurm_state;
+    ALTER TABLE jobs DROP COLUMN slurm_reason;
+    ALTER TABLE jobs DROP COLUMN slurm_waiting;
+    )sql"},
 };
+
+// A job's row as the store reads it: the jobs table with its Slurm record (schema 10), under the
+// column names of schemas 5 and 6; a job never handed to Slurm reads the defaults.
+const char kJobRows[] =
+    "(SELECT jobs.*, COALESCE(s.slurm_job_id, '') AS slurm_job_id, "
+    "COALESCE(s.live, 0) AS slurm_live, COALESCE(s.attempts, 0) AS slurm_attempts, "
+    "COALESCE(s.restarts, 0) AS slurm_restarts, COALESCE(s.state, '') AS slurm_state, "
+    "COALESCE(s.reason, '') AS slurm_reason, COALESCE(s.waiting, 0) AS slurm_waiting "
+    "FROM jobs LEFT JOIN slurm_jobs s ON s.job_id = jobs.id)";
+
+// SQL true for the job named `job` whose Slurm job is live (submitted, its end not recorded).
+std::string SlurmLive(const std::string& job) {
+  return "EXISTS (SELECT 1 FROM slurm_jobs s WHERE s.job_id = " + job + ".id AND s.live = 1)";
+}
 
 // SQL true for a job j whose dependencies have not all COMPLETED (a missing one never will).
 std::string WaitsForDependency() {
@@ -162,6 +201,11 @@ const char kColumns[] =
     "attempt, previous_attempts, fresh_start, slurm_job_id, slurm_live, slurm_attempts, "
     "slurm_restarts, slurm_state, slurm_reason, slurm_waiting, time_limit_seconds, numerics, "
     "exit_code, exit_signal, cpu_seconds, peak_memory_bytes";
+
+// SELECT of kColumns from kJobRows under the name `as`.
+std::string SelectJobs(const std::string& as = "jobs") {
+  return std::string("SELECT ") + kColumns + " FROM " + kJobRows + " " + as;
+}
 
 const char kSweepColumns[] =
     "ordinal, id, owner, name, tags, labels, axes, overrides, max_running, created_time";
@@ -732,7 +776,7 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
     select.Bind(owner).Bind(request_key);
     if (select.Step()) {
       for (const auto& id : Split(select.Text(0), ',')) {
-        Statement get(db_, std::string("SELECT ") + kColumns + " FROM jobs WHERE id = ?");
+        Statement get(db_, SelectJobs() + " WHERE id = ?");
         get.Bind(id);
         for (auto& job : Query(get)) result.jobs.push_back(std::move(job));
       }
@@ -814,7 +858,7 @@ std::vector<JobRecord> JobStore::FindRequest(const std::string& owner,
   select.Bind(owner).Bind(request_key);
   if (!select.Step()) return jobs;
   for (const auto& id : Split(select.Text(0), ',')) {
-    Statement get(db_, std::string("SELECT ") + kColumns + " FROM jobs WHERE id = ?");
+    Statement get(db_, SelectJobs() + " WHERE id = ?");
     get.Bind(id);
     for (auto& job : Query(get)) jobs.push_back(std::move(job));
   }
@@ -823,7 +867,7 @@ std::vector<JobRecord> JobStore::FindRequest(const std::string& owner,
 
 std::optional<JobRecord> JobStore::Get(const std::string& id) {
   std::lock_guard lock(mutex_);
-  Statement select(db_, std::string("SELECT ") + kColumns + " FROM jobs WHERE id = ?");
+  Statement select(db_, SelectJobs() + " WHERE id = ?");
   select.Bind(id);
   auto jobs = Query(select);
   if (jobs.empty()) return std::nullopt;
@@ -832,7 +876,7 @@ std::optional<JobRecord> JobStore::Get(const std::string& id) {
 
 std::vector<JobRecord> JobStore::List(const ListFilter& filter) {
   std::lock_guard lock(mutex_);
-  std::string sql = std::string("SELECT ") + kColumns + " FROM jobs WHERE owner = ?";
+  std::string sql = SelectJobs() + " WHERE owner = ?";
   if (!filter.states.empty()) {
     sql += std::string(" AND ") + kShownState + " IN (";
     for (size_t i = 0; i < filter.states.size(); ++i) sql += i ? ", ?" : "?";
@@ -913,8 +957,7 @@ int JobStore::CountRunning() {
 
 std::vector<JobRecord> JobStore::SweepJobs(const std::string& owner, const std::string& sweep_id) {
   std::lock_guard lock(mutex_);
-  Statement select(db_, std::string("SELECT ") + kColumns +
-                            " FROM jobs WHERE owner = ? AND sweep_id = ? ORDER BY ordinal");
+  Statement select(db_, SelectJobs() + " WHERE owner = ? AND sweep_id = ? ORDER BY ordinal");
   select.Bind(owner).Bind(sweep_id);
   return Query(select);
 }
@@ -954,7 +997,8 @@ SweepStats JobStore::StatsOfSweep(const std::string& owner, const std::string& s
                        "THEN MIN(1.0, MAX(0.0, time / end_time)) ELSE 0.0 END), "
                        "MIN(CASE WHEN slurm_waiting = 1 THEN NULL ELSE NULLIF(started_time, 0) "
                        "END), MAX(finished_time) "
-                       "FROM jobs WHERE owner = ? AND sweep_id = ? GROUP BY 1");
+                       "FROM " +
+                       kJobRows + " jobs WHERE owner = ? AND sweep_id = ? GROUP BY 1");
   select.Bind(static_cast<int>(JobState::kCompleted))
       .Bind(static_cast<int>(JobState::kFailed))
       .Bind(static_cast<int>(JobState::kCancelled))
@@ -980,7 +1024,7 @@ std::vector<JobRecord> JobStore::Requeue(const std::vector<RequeueChange>& chang
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
   const auto read = [&](const std::string& id) {
-    Statement get(db_, std::string("SELECT ") + kColumns + " FROM jobs WHERE id = ?");
+    Statement get(db_, SelectJobs() + " WHERE id = ?");
     get.Bind(id);
     return Query(get);
   };
@@ -994,17 +1038,15 @@ std::vector<JobRecord> JobStore::Requeue(const std::vector<RequeueChange>& chang
     std::vector<AttemptRecord> attempts = job.previous_attempts;
     attempts.push_back({job.attempt, job.state, job.reason, job.started_time, job.finished_time,
                         job.step, job.time, job.overrides});
-    Statement update(
-        db_,
-        "UPDATE jobs SET state = ?, reason = '', started_time = 0, finished_time = 0, "
-        "cancel_requested = 0, attempt = attempt + 1, previous_attempts = ?, "
-        "slurm_live = 0, slurm_attempts = 0, slurm_restarts = 0, "
-        "slurm_state = '', slurm_reason = '', slurm_waiting = 0, name = ?, overrides = ?, "
-        "exit_code = -1, exit_signal = 0, cpu_seconds = 0, peak_memory_bytes = 0, "
-        "parameters = ?, warnings = ?, numerics = ?, end_time = ?, fresh_start = ?, "
-        "step = CASE WHEN ? THEN 0 ELSE step END, "
-        "time = CASE WHEN ? THEN 0 ELSE time END WHERE id = ? AND state IN " +
-            JobStatesBefore(JobTransition::kRetry));
+    Statement update(db_,
+                     "UPDATE jobs SET state = ?, reason = '', started_time = 0, finished_time = 0, "
+                     "cancel_requested = 0, attempt = attempt + 1, previous_attempts = ?, "
+                     "name = ?, overrides = ?, "
+                     "exit_code = -1, exit_signal = 0, cpu_seconds = 0, peak_memory_bytes = 0, "
+                     "parameters = ?, warnings = ?, numerics = ?, end_time = ?, fresh_start = ?, "
+                     "step = CASE WHEN ? THEN 0 ELSE step END, "
+                     "time = CASE WHEN ? THEN 0 ELSE time END WHERE id = ? AND state IN " +
+                         JobStatesBefore(JobTransition::kRetry));
     CheckTransition(JobTransition::kRetry, JobState::kQueued);
     update.Bind(static_cast<int>(JobState::kQueued))
         .Bind(EncodeAttempts(attempts))
@@ -1020,6 +1062,8 @@ std::vector<JobRecord> JobStore::Requeue(const std::vector<RequeueChange>& chang
         .Bind(change.id);
     update.Run();
     if (update.Changes() != 1) throw StoreError("job " + change.id + " is not finished");
+    // A retry starts the Slurm record afresh (slurm_max_attempts counts from here).
+    Statement(db_, "DELETE FROM slurm_jobs WHERE job_id = ?").Bind(change.id).Run();
     WriteSceneValues(change.id, change.scene_values);
     requeued.push_back(read(change.id).front());
   }
@@ -1038,8 +1082,8 @@ std::optional<JobRecord> JobStore::NextQueued() {
   // waits for its Release, one with dependencies for them to complete. A job whose Slurm run
   // outlived the daemon (slurm_live) is in Slurm's hands already: it comes first and no limit
   // holds it back.
-  Statement select(db_, std::string("SELECT ") + kColumns +
-                            " FROM jobs j WHERE state = ? AND held = 0 AND (slurm_live = 1 OR (NOT "
+  Statement select(db_, SelectJobs("j") +
+                            " WHERE state = ? AND held = 0 AND (slurm_live = 1 OR (NOT "
                             "EXISTS (SELECT 1 FROM sweeps s WHERE s.id = j.sweep_id AND "
                             "s.max_running > 0 AND s.max_running <= (SELECT COUNT(*) FROM jobs r "
                             "WHERE r.sweep_id = j.sweep_id AND r.state = ?)) AND NOT " +
@@ -1059,8 +1103,7 @@ void JobStore::MarkRunning(const std::string& id, double started_time, RunStart 
   const char* set =
       start == RunStart::kAdopt ? "UPDATE jobs SET state = ?, reason = ''"
       : start == RunStart::kWaiting
-          ? "UPDATE jobs SET state = ?, started_time = 0, attempts = attempts + 1, reason = '', "
-            "slurm_state = '', slurm_reason = '', slurm_waiting = 1"
+          ? "UPDATE jobs SET state = ?, started_time = 0, attempts = attempts + 1, reason = ''"
           : "UPDATE jobs SET state = ?, started_time = ?, attempts = attempts + 1, reason = ''";
   CheckTransition(JobTransition::kStart, JobState::kRunning);
   Statement update(db_, std::string(set) + " WHERE id = ? AND state IN " +
@@ -1070,6 +1113,13 @@ void JobStore::MarkRunning(const std::string& id, double started_time, RunStart 
   update.Bind(id);
   update.Run();
   if (update.Changes() != 1) throw StoreError("job " + id + " is not queued");
+  if (start == RunStart::kWaiting) {
+    Statement(db_,
+              "INSERT INTO slurm_jobs (job_id, waiting) VALUES (?, 1) ON CONFLICT (job_id) DO "
+              "UPDATE SET state = '', reason = '', waiting = 1")
+        .Bind(id)
+        .Run();
+  }
   transaction.Commit();
 }
 
@@ -1079,13 +1129,19 @@ bool JobStore::MarkFinished(const std::string& id, JobState state, const std::st
   Transaction transaction(db_);
   CheckTransition(JobTransition::kFinish, state);
   Statement update(db_,
-                   "UPDATE jobs SET state = ?, reason = ?, finished_time = ?, slurm_live = 0, "
-                   "slurm_state = '', slurm_reason = '', slurm_waiting = 0 "
+                   "UPDATE jobs SET state = ?, reason = ?, finished_time = ? "
                    "WHERE id = ? AND state IN " +
                        JobStatesBefore(JobTransition::kFinish));
   update.Bind(static_cast<int>(state)).Bind(reason).Bind(when).Bind(id);
   update.Run();
-  bool changed = update.Changes() == 1;
+  const bool changed = update.Changes() == 1;
+  if (changed) {  // the Slurm id stays for `dlmfd show`
+    Statement(db_,
+              "UPDATE slurm_jobs SET live = 0, state = '', reason = '', waiting = 0 "
+              "WHERE job_id = ?")
+        .Bind(id)
+        .Run();
+  }
   transaction.Commit();
   return changed;
 }
@@ -1096,7 +1152,8 @@ bool JobStore::CancelQueued(const std::string& id, const std::string& reason, do
   CheckTransition(JobTransition::kCancelQueued, JobState::kCancelled);
   Statement update(db_,
                    "UPDATE jobs SET state = ?, reason = ?, finished_time = ?, cancel_requested = 1 "
-                   "WHERE id = ? AND slurm_live = 0 AND state IN " +
+                   "WHERE id = ? AND NOT " +
+                       SlurmLive("jobs") + " AND state IN " +
                        JobStatesBefore(JobTransition::kCancelQueued));
   update.Bind(static_cast<int>(JobState::kCancelled)).Bind(reason).Bind(when).Bind(id);
   update.Run();
@@ -1157,7 +1214,8 @@ std::vector<std::string> JobStore::RequeueRunning(double now) {
 
 bool JobStore::SetHeld(const std::string& id, bool held) {
   std::lock_guard lock(mutex_);
-  Statement update(db_, "UPDATE jobs SET held = ? WHERE id = ? AND state = ? AND slurm_live = 0");
+  Statement update(
+      db_, "UPDATE jobs SET held = ? WHERE id = ? AND state = ? AND NOT " + SlurmLive("jobs"));
   update.Bind(held ? 1 : 0).Bind(id).Bind(static_cast<int>(JobState::kQueued)).Run();
   return update.Changes() == 1;
 }
@@ -1205,6 +1263,7 @@ void JobStore::Delete(const std::vector<std::string>& ids) {
     Statement(db_, "DELETE FROM job_values WHERE job_id = ?").Bind(id).Run();
     // Its own dependencies go; those on it stay, so that its queued dependants are cancelled.
     Statement(db_, "DELETE FROM job_dependencies WHERE job_id = ?").Bind(id).Run();
+    Statement(db_, "DELETE FROM slurm_jobs WHERE job_id = ?").Bind(id).Run();
     Statement(db_, "DELETE FROM jobs WHERE id = ?").Bind(id).Run();
   }
   // A study whose last job went is gone too: it is no longer listed, shown or found.
@@ -1242,8 +1301,8 @@ void JobStore::Delete(const std::vector<std::string>& ids) {
 
 std::vector<JobRecord> JobStore::QueuedOfSweep(const std::string& sweep_id, int limit) {
   std::lock_guard lock(mutex_);
-  Statement select(db_, std::string("SELECT ") + kColumns +
-                            " FROM jobs j WHERE sweep_id = ? AND state = ? AND held = 0 AND "
+  Statement select(db_, SelectJobs("j") +
+                            " WHERE sweep_id = ? AND state = ? AND held = 0 AND "
                             "slurm_live = 0 AND NOT " +
                             WaitsForDependency() + " ORDER BY priority DESC, ordinal LIMIT ?");
   select.Bind(sweep_id).Bind(static_cast<int>(JobState::kQueued)).Bind(limit);
@@ -1255,8 +1314,9 @@ std::vector<std::pair<std::string, std::string>> JobStore::Blocked() {
   Statement select(db_,
                    "SELECT d.job_id, d.after_id, p.state FROM job_dependencies d "
                    "JOIN jobs j ON j.id = d.job_id LEFT JOIN jobs p ON p.id = d.after_id "
-                   "WHERE j.state = ? AND j.slurm_live = 0 AND (p.state IS NULL OR p.state IN "
-                   "(?, ?)) ORDER BY j.ordinal, d.rowid");
+                   "WHERE j.state = ? AND NOT " +
+                       SlurmLive("j") +
+                       " AND (p.state IS NULL OR p.state IN (?, ?)) ORDER BY j.ordinal, d.rowid");
   select.Bind(static_cast<int>(JobState::kQueued))
       .Bind(static_cast<int>(JobState::kFailed))
       .Bind(static_cast<int>(JobState::kCancelled));
@@ -1284,9 +1344,10 @@ int JobStore::CountRunningOfSweep(const std::string& sweep_id) {
 void JobStore::SetSlurmSubmitted(const std::string& id, const std::string& slurm_job_id) {
   std::lock_guard lock(mutex_);
   Statement(db_,
-            "UPDATE jobs SET slurm_job_id = ?, slurm_live = 1, slurm_attempts = slurm_attempts + "
-            "1, slurm_restarts = 0, slurm_state = 'PENDING', slurm_reason = '', "
-            "slurm_waiting = 1 WHERE id = ?")
+            "INSERT INTO slurm_jobs (job_id, slurm_job_id, live, attempts, restarts, state, "
+            "reason, waiting) SELECT id, ?, 1, 1, 0, 'PENDING', '', 1 FROM jobs WHERE id = ? "
+            "ON CONFLICT (job_id) DO UPDATE SET slurm_job_id = excluded.slurm_job_id, live = 1, "
+            "attempts = attempts + 1, restarts = 0, state = 'PENDING', reason = '', waiting = 1")
       .Bind(slurm_job_id)
       .Bind(id)
       .Run();
@@ -1295,23 +1356,34 @@ void JobStore::SetSlurmSubmitted(const std::string& id, const std::string& slurm
 bool JobStore::SetSlurmState(const std::string& id, const std::string& slurm_state,
                              const std::string& slurm_reason, bool waiting, double now) {
   std::lock_guard lock(mutex_);
+  Transaction transaction(db_);
+  const std::string live_of_running =
+      "FROM slurm_jobs s JOIN jobs ON jobs.id = s.job_id WHERE s.job_id = ? AND s.live = 1 AND "
+      "jobs.state = " +
+      std::to_string(static_cast<int>(JobState::kRunning));
+  // A job that Slurm held waiting and now runs starts now.
+  if (!waiting) {
+    Statement(db_, "UPDATE jobs SET started_time = ? WHERE id IN (SELECT s.job_id " +
+                       live_of_running + " AND s.waiting = 1)")
+        .Bind(now)
+        .Bind(id)
+        .Run();
+  }
   Statement update(db_,
-                   "UPDATE jobs SET slurm_state = ?, slurm_reason = ?, started_time = CASE WHEN "
-                   "slurm_waiting = 1 AND ? = 0 THEN ? ELSE started_time END, slurm_waiting = ? "
-                   "WHERE id = ? AND state = ? AND slurm_live = 1 AND (slurm_state != ? OR "
-                   "slurm_reason != ? OR slurm_waiting != ?)");
+                   "UPDATE slurm_jobs SET state = ?, reason = ?, waiting = ? WHERE job_id IN "
+                   "(SELECT s.job_id " +
+                       live_of_running + ") AND (state != ? OR reason != ? OR waiting != ?)");
   update.Bind(slurm_state)
       .Bind(slurm_reason)
       .Bind(waiting ? 1 : 0)
-      .Bind(now)
-      .Bind(waiting ? 1 : 0)
       .Bind(id)
-      .Bind(static_cast<int>(JobState::kRunning))
       .Bind(slurm_state)
       .Bind(slurm_reason)
       .Bind(waiting ? 1 : 0);
   update.Run();
-  return update.Changes() == 1;
+  const bool changed = update.Changes() == 1;
+  transaction.Commit();
+  return changed;
 }
 
 void JobStore::EndAttempt(const std::string& id, const AttemptEnd& end) {
@@ -1319,7 +1391,7 @@ void JobStore::EndAttempt(const std::string& id, const AttemptEnd& end) {
   Transaction transaction(db_);
   std::vector<JobRecord> found;
   {
-    Statement get(db_, std::string("SELECT ") + kColumns + " FROM jobs WHERE id = ?");
+    Statement get(db_, SelectJobs() + " WHERE id = ?");
     get.Bind(id);
     found = Query(get);
   }
@@ -1337,13 +1409,16 @@ void JobStore::EndAttempt(const std::string& id, const AttemptEnd& end) {
   CheckTransition(JobTransition::kEndAttempt, next);
   Statement update(db_,
                    "UPDATE jobs SET state = ?, reason = ?, attempt = attempt + 1, "
-                   "previous_attempts = ?, started_time = ?, slurm_live = ?, "
-                   "slurm_attempts = slurm_attempts + ?, slurm_restarts = ?, slurm_state = '', "
-                   "slurm_reason = '', slurm_waiting = 0 WHERE id = ?");
+                   "previous_attempts = ?, started_time = ? WHERE id = ?");
   update.Bind(static_cast<int>(next))
       .Bind(restarted ? std::string() : end.reason)
       .Bind(EncodeAttempts(attempts))
       .Bind(restarted ? end.when : 0.0)
+      .Bind(id)
+      .Run();
+  Statement(db_,
+            "UPDATE slurm_jobs SET live = ?, attempts = attempts + ?, restarts = ?, state = '', "
+            "reason = '', waiting = 0 WHERE job_id = ?")
       .Bind(restarted ? 1 : 0)
       .Bind(restarted ? 1 : 0)
       .Bind(restarted ? end.slurm_restarts : 0)
@@ -1354,8 +1429,7 @@ void JobStore::EndAttempt(const std::string& id, const AttemptEnd& end) {
 
 std::vector<JobRecord> JobStore::OwnerJobs(const std::string& owner) {
   std::lock_guard lock(mutex_);
-  Statement select(
-      db_, std::string("SELECT ") + kColumns + " FROM jobs WHERE owner = ? ORDER BY ordinal");
+  Statement select(db_, SelectJobs() + " WHERE owner = ? ORDER BY ordinal");
   select.Bind(owner);
   return Query(select);
 }

@@ -27,6 +27,8 @@
 // Blocked names the queued jobs that never can (a dependency FAILED, CANCELLED or deleted), which
 // the scheduler cancels. A queued job that waits shows the reason "dependency: waiting for ...".
 // Schema 9: accounting of the current attempt (sacct's ExitCode, TotalCPU, MaxRSS; RecordUsage).
+// Schema 10: the Slurm record of schemas 5 and 6 in a table of its own (slurm_jobs, a row for each
+// job handed to Slurm since its submission or retry); JobRecord reads it as before.
 #pragma once
 
 #include <array>

@@ -5,9 +5,13 @@
 // stays RUNNING) and a requeue after a retryable end (QUEUED again); an end or a retry clears the
 // mark. A job that Slurm holds waiting is QUEUED for the API (Get, List's states, a study's
 // counts) with Slurm's reason, and RUNNING from its start in Slurm; its own time limit is kept.
+// Schema 10 moves the Slurm record to a table of its own: a store written under schema 9 keeps
+// every value, and the jobs table has no Slurm column left.
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 
 #include <string>
+#include <vector>
 
 #include "job_proto.h"
 #include "job_store.h"
@@ -28,7 +32,7 @@ TEST(SlurmStore, ASchemaFourStoreGainsTheSlurmColumns) {
   }
   dlmfd::testing::RollBackSchema(path, 4);
   JobStore store(path);
-  EXPECT_EQ(JobStore::SchemaVersion(), 9);
+  EXPECT_EQ(JobStore::SchemaVersion(), 10);
   const auto old = store.Get("old");
   ASSERT_TRUE(old);
   EXPECT_EQ(old->slurm_job_id, "");
@@ -192,6 +196,93 @@ TEST(SlurmStore, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStartsIt) {
   ASSERT_TRUE(store.MarkFinished("b", JobState::kCompleted, "", 30.0));
   EXPECT_EQ(store.Get("b")->slurm_state, "");
   EXPECT_FALSE(store.SetSlurmState("b", "COMPLETING", "", false, 31.0));  // not RUNNING
+}
+
+// The names of the columns of `table` and the number of its rows, read by SQLite directly.
+struct TableShape {
+  std::vector<std::string> columns;
+  int64_t rows = 0;
+};
+TableShape ShapeOf(const std::string& path, const std::string& table) {
+  sqlite3* db = nullptr;
+  EXPECT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  TableShape shape;
+  sqlite3_stmt* info = nullptr;
+  EXPECT_EQ(
+      sqlite3_prepare_v2(db, ("PRAGMA table_info(" + table + ")").c_str(), -1, &info, nullptr),
+      SQLITE_OK);
+  while (sqlite3_step(info) == SQLITE_ROW) {
+    shape.columns.emplace_back(reinterpret_cast<const char*>(sqlite3_column_text(info, 1)));
+  }
+  sqlite3_finalize(info);
+  sqlite3_stmt* count = nullptr;
+  EXPECT_EQ(sqlite3_prepare_v2(db, ("SELECT COUNT(*) FROM " + table).c_str(), -1, &count, nullptr),
+            SQLITE_OK);
+  if (sqlite3_step(count) == SQLITE_ROW) shape.rows = sqlite3_column_int64(count, 0);
+  sqlite3_finalize(count);
+  sqlite3_close(db);
+  return shape;
+}
+
+TEST(SlurmStore, ASchemaNineStoreMovesItsSlurmRecordsToTheirOwnTable) {
+  dlmfd::testing::TempDir dir;
+  const std::string path = dir.path() + "/jobs.db";
+  {
+    JobStore store(path);
+    store.InsertJobs({StoreJob("waiting"), StoreJob("ended"), StoreJob("local")}, "local", "");
+  }
+  // As the daemon of schema 9 left it: a job Slurm holds waiting after a restart of its array
+  // task, one whose Slurm job ended, and one the local executor ran.
+  dlmfd::testing::RollBackSchema(path, 9);
+  const std::string running = std::to_string(static_cast<int>(JobState::kRunning));
+  const std::string completed = std::to_string(static_cast<int>(JobState::kCompleted));
+  dlmfd::testing::ExecuteOnStore(
+      path,
+      "UPDATE jobs SET state = " + running +
+          ", slurm_job_id = '40_1', slurm_live = 1, slurm_attempts = 2, slurm_restarts = 1, "
+          "slurm_state = 'PENDING', slurm_reason = 'BeginTime', slurm_waiting = 1 "
+          "WHERE id = 'waiting';"
+          "UPDATE jobs SET state = " +
+          completed +
+          ", slurm_job_id = '41', slurm_attempts = 1 WHERE id = 'ended';"
+          "UPDATE jobs SET state = " +
+          completed + ", started_time = 5 WHERE id = 'local';",
+      "writing schema 9's Slurm columns");
+  ASSERT_EQ(ShapeOf(path, "jobs").columns.size(), 41u);
+  JobStore store(path);
+  // The jobs table keeps no Slurm column; the two Slurm jobs have a row each.
+  for (const std::string& column : ShapeOf(path, "jobs").columns) {
+    EXPECT_EQ(column.rfind("slurm_", 0), std::string::npos) << column;
+  }
+  EXPECT_EQ(ShapeOf(path, "jobs").columns.size(), 34u);
+  EXPECT_EQ(ShapeOf(path, "slurm_jobs").rows, 2);
+  const JobRecord waiting = *store.Get("waiting");
+  EXPECT_EQ(waiting.slurm_job_id, "40_1");
+  EXPECT_TRUE(waiting.slurm_live);
+  EXPECT_EQ(waiting.slurm_attempts, 2);
+  EXPECT_EQ(waiting.slurm_restarts, 1);
+  EXPECT_EQ(waiting.slurm_state, "PENDING");
+  EXPECT_EQ(waiting.slurm_reason, "BeginTime");
+  EXPECT_TRUE(waiting.slurm_waiting);
+  EXPECT_EQ(ShownState(waiting), JobState::kQueued);
+  const JobRecord ended = *store.Get("ended");
+  EXPECT_EQ(ended.slurm_job_id, "41");
+  EXPECT_FALSE(ended.slurm_live);
+  EXPECT_EQ(ended.slurm_attempts, 1);
+  const JobRecord local = *store.Get("local");
+  EXPECT_EQ(local.slurm_job_id, "");
+  EXPECT_EQ(local.slurm_attempts, 0);
+  EXPECT_EQ(local.started_time, 5.0);
+  // The moved record works on: Slurm starts the waiting job, its end is recorded, a deleted job
+  // takes its Slurm row with it.
+  EXPECT_TRUE(store.SetSlurmState("waiting", "RUNNING", "", false, 60.0));
+  EXPECT_EQ(store.Get("waiting")->started_time, 60.0);
+  EXPECT_EQ(ShownState(*store.Get("waiting")), JobState::kRunning);
+  ASSERT_TRUE(store.MarkFinished("waiting", JobState::kCompleted, "", 70.0));
+  EXPECT_FALSE(store.Get("waiting")->slurm_live);
+  EXPECT_EQ(store.Get("waiting")->slurm_job_id, "40_1");
+  store.Delete({"ended"});
+  EXPECT_EQ(ShapeOf(path, "slurm_jobs").rows, 1);
 }
 
 }  // namespace

@@ -100,7 +100,7 @@ TEST(JobStoreSchemaFour, AppliesOverSchemaTwoAndHoldsPriorityAndDelete) {
   // Back to schema 2: a store written before schemas 3 and later.
   RollBackSchema(path, 2);
   JobStore store(path);
-  EXPECT_EQ(JobStore::SchemaVersion(), 9);
+  EXPECT_EQ(JobStore::SchemaVersion(), 10);
   auto old = store.Get("old");
   ASSERT_TRUE(old);
   EXPECT_FALSE(old->held);

@@ -230,8 +230,8 @@ TEST_F(SlurmExecutor, ADaemonKilledBeforeItStoredTheSlurmIdFollowsTheJobInsteadO
   daemon().Kill(SIGKILL);
   daemon().Wait();
   ExecuteOnStore(dir() + "/data/jobs.db",
-                 "UPDATE jobs SET slurm_job_id = '', slurm_live = 0, slurm_attempts = 0 "
-                 "WHERE id = '" +
+                 "UPDATE slurm_jobs SET slurm_job_id = '', live = 0, attempts = 0 "
+                 "WHERE job_id = '" +
                      id + "';",
                  "forgetting the Slurm id");
   fs::remove(fs::path(running.results_dir()).parent_path() / "slurm.id");

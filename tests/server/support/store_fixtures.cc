@@ -33,6 +33,18 @@ namespace {
 
 // What each schema added (job_store.cc kMigrations), undone.
 const std::map<int, const char*, std::greater<>> kUndo = {
+    {10,
+     "ALTER TABLE jobs ADD COLUMN slurm_job_id TEXT NOT NULL DEFAULT ''; "
+     "ALTER TABLE jobs ADD COLUMN slurm_live INTEGER NOT NULL DEFAULT 0; "
+     "ALTER TABLE jobs ADD COLUMN slurm_attempts INTEGER NOT NULL DEFAULT 0; "
+     "ALTER TABLE jobs ADD COLUMN slurm_restarts INTEGER NOT NULL DEFAULT 0; "
+     "ALTER TABLE jobs ADD COLUMN slurm_state TEXT NOT NULL DEFAULT ''; "
+     "ALTER TABLE jobs ADD COLUMN slurm_reason TEXT NOT NULL DEFAULT ''; "
+     "ALTER TABLE jobs ADD COLUMN slurm_waiting INTEGER NOT NULL DEFAULT 0; "
+     "UPDATE jobs SET slurm_job_id = s.slurm_job_id, slurm_live = s.live, "
+     "slurm_attempts = s.attempts, slurm_restarts = s.restarts, slurm_state = s.state, "
+     "slurm_reason = s.reason, slurm_waiting = s.waiting FROM slurm_jobs s "
+     "WHERE s.job_id = jobs.id; DROP TABLE slurm_jobs;"},
     {9,
      "ALTER TABLE jobs DROP COLUMN exit_code; ALTER TABLE jobs DROP COLUMN exit_signal; "
      "ALTER TABLE jobs DROP COLUMN cpu_seconds; ALTER TABLE jobs DROP COLUMN peak_memory_bytes;"},
