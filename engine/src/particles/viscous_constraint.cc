@@ -68,7 +68,8 @@ ViscousConstraint::ViscousConstraint(const Params& params, const Grid& grid)
       zero_data_(grid, zero_domain_),
       tolerance_(params.solvers.multiplier_tolerance),
       max_iterations_(params.solvers.multiplier_max_iterations),
-      stokes_tolerance_(StokesSettings(params).stokes_tolerance) {
+      base_stokes_tolerance_(StokesSettings(params).stokes_tolerance),
+      stokes_tolerance_(base_stokes_tolerance_) {
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
     RequireCoupledInStokes(params, p);
     const ParticleParams& q = params.particles[p];
@@ -212,6 +213,7 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
   std::copy(u, u + nodes, u_in_.begin());
   std::copy(v, v + nodes, v_in_.begin());
   std::copy(p, p + pnodes, p_in_.begin());
+  stokes_tolerance_ = base_stokes_tolerance_;  // a stall tightens it for its own step only
   stokes.set_tolerance(stokes_tolerance_);
   response_solver_->set_tolerance(stokes_tolerance_);
 

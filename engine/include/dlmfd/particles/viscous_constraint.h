@@ -54,11 +54,10 @@
 // make S nu = -g inconsistent (kCollocationStokesShare) and leave a floor under the mismatch. Not
 // supported: neutrally buoyant free particles (validation rejects them: their velocity would be a
 // multiplier of the net-force constraint); a warm start across a resume (the stored nu is not
-// checkpointed: the first step after a resume starts cold and agrees to the tolerance; nor is a
-// tightened tolerance, which a stall after the resume tightens again). References: Glowinski, Pan,
-// Hesla, Joseph, Periaux, J. Comput. Phys. 169 (2001) 363-426 (the constraint with viscosity, gamma
-// > 0, solved by Uzawa/CG on the multiplier); Glowinski, Finite element methods for incompressible
-// viscous flow (2003), section 21 (Uzawa/PCG).
+// checkpointed: the first step after a resume starts cold and agrees to the tolerance). References:
+// Glowinski, Pan, Hesla, Joseph, Periaux, J. Comput. Phys. 169 (2001) 363-426 (the constraint with
+// viscosity, gamma > 0, solved by Uzawa/CG on the multiplier); Glowinski, Finite element methods
+// for incompressible viscous flow (2003), section 21 (Uzawa/PCG).
 #pragma once
 
 #include <cstddef>
@@ -93,8 +92,11 @@ class ViscousConstraint {
   static constexpr double kCollocationStokesShare = 1e-2;
   // A stall of the outer PCG: kStallWindow iterations in which the mismatch never fell below
   // kStallGain times its best value so far. It multiplies the coupled Stokes solves' tolerance by
-  // kTightening (for the rest of the run) and restarts from the current nu, while the tolerance
-  // stays >= kStokesToleranceFloor (one tightening from the collocation points' 1e-6, two from the
+  // kTightening for the rest of that step and restarts from the current nu (the next step starts
+  // again from StokesSettings: the cold start is where the stalls were seen, and a tolerance kept
+  // tight for the run cost 1.46 times the Stokes iterations a step of the confined cylinder;
+  // docs/work_precision.md, "The viscous coupling's cost"), while the tolerance stays
+  // >= kStokesToleranceFloor (one tightening from the collocation points' 1e-6, two from the
   // ring mesh's 1e-4). Measured (2026-12-04) on a fixed disk of D = 0.1 in creeping channel flow
   // (eta = 1, dt = 0.05, D/h = 40, the centre 3h/4 off the nodes): at 1e-6 the mismatch stalled at
   // 2.4e-4 against a target of 3e-5 through 1000 iterations; at 1e-8 it converged in 287. With the
@@ -164,7 +166,8 @@ class ViscousConstraint {
   std::unique_ptr<StokesSolver> response_solver_;  // (33) with zero data and no body force
   double tolerance_;
   int max_iterations_;
-  double stokes_tolerance_;  // of the coupled Stokes solves: StokesSettings, tightened on a stall
+  double base_stokes_tolerance_;  // of the coupled Stokes solves at a step's start: StokesSettings
+  double stokes_tolerance_;       // the same, tightened on a stall for the rest of that step
   std::vector<double> u_in_, v_in_, p_in_;  // the step's entry state, for a restart
   std::vector<Vec2> velocity_in_;
   std::vector<double> omega_in_;
