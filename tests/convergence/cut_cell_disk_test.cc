@@ -30,14 +30,7 @@ namespace dlmfd {
 namespace {
 
 double CutCreepingDrag(double d_over_h, double shift) {
-  DomainParams d;
-  d.size = Vec2(0.8, 0.4);
-  d.h = 0.1 / d_over_h;
-  BoundarySide& inflow = d.sides[static_cast<int>(Side::kLeft)];
-  inflow.type = SideType::kVelocity;
-  inflow.profile = Profile::kPoiseuille;
-  inflow.max = Vec2(0.3, 0.0);
-  d.sides[static_cast<int>(Side::kRight)].type = SideType::kOutflow;
+  const DomainParams d = CutCreepingChannel(d_over_h);
   const Grid g = d.VelocityGrid();
   std::vector<FixedBody> body(1);
   body[0].shape = Shape::Disk(0.05);

@@ -17,26 +17,13 @@
 #include <cmath>
 #include <vector>
 
+#include "../support/cut_cell_creeping.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/fluid/boundary_data.h"
 #include "dlmfd/particles/cut_cell_stokes.h"
 
 namespace dlmfd {
 namespace {
-
-// The creeping fixed disk of docs/work_precision.md ("The circle's sub-grid position"): D = 0.1 at
-// (0.2 + shift h, 0.2) in a 0.8 x 0.4 channel, Poiseuille inflow of maximum 0.3, eta = 1.
-DomainParams CutChannel(double d_over_h) {
-  DomainParams d;
-  d.size = Vec2(0.8, 0.4);
-  d.h = 0.1 / d_over_h;
-  BoundarySide& inflow = d.sides[static_cast<int>(Side::kLeft)];
-  inflow.type = SideType::kVelocity;
-  inflow.profile = Profile::kPoiseuille;
-  inflow.max = Vec2(0.3, 0.0);
-  d.sides[static_cast<int>(Side::kRight)].type = SideType::kOutflow;
-  return d;
-}
 
 std::vector<FixedBody> CutDisk(double x, double y, double radius) {
   std::vector<FixedBody> b(1);
@@ -107,7 +94,7 @@ TEST(CutCellGeometry, BoundaryPiecesOnMeshEdgesAreKept) {
 }
 
 TEST(CutCellStokes, IterativeSolveIsTheDirectSolve) {
-  const DomainParams d = CutChannel(10.0);
+  const DomainParams d = CutCreepingChannel(10.0);
   const Grid g = d.VelocityGrid();
   const CutCellGeometry geo(g, CutDisk(0.2 + 0.3 * d.h, 0.2 + 0.1 * d.h, 0.05));
   const BoundaryData data(g, d);
@@ -150,7 +137,7 @@ TEST(CutCellStokes, DragIsThePrototypes) {
   // a mesh edge, which the prototype misses (BoundaryPiecesOnMeshEdgesAreKept).
   const double cases[][3] = {{10.0, 0.5, 6.5336}, {20.0, 0.0, 6.50193}};
   for (const auto& [d_over_h, shift, prototype] : cases) {
-    const DomainParams d = CutChannel(d_over_h);
+    const DomainParams d = CutCreepingChannel(d_over_h);
     const Grid g = d.VelocityGrid();
     const CutCellGeometry geo(g, CutDisk(0.2 + shift * d.h, 0.2, 0.05));
     CutCellStokes flow(geo, d, 1.0, 1.0, 0.0);
@@ -167,7 +154,7 @@ TEST(CutCellStokes, BothTriangulationsAreMirrorSymmetric) {
   // A disk on the channel's mid-line, off the nodes in x: the flow is symmetric in y, so F_y = 0.
   // On the SW-NE mesh alone F_y / F_x = -0.10 % at D/h = 20 (the mesh's mirror bias, the size of
   // Schaefer-Turek's lift); the mean of the forms on both triangulations is mirror-symmetric.
-  const DomainParams d = CutChannel(20.0);
+  const DomainParams d = CutCreepingChannel(20.0);
   const Grid g = d.VelocityGrid();
   const std::vector<FixedBody> disk = CutDisk(0.2 + 0.3 * d.h, 0.2, 0.05);
   const CutCellGeometry sw_ne(g, disk), nw_se(g, disk, CutTriangulation::kNwSe);
@@ -184,7 +171,7 @@ TEST(CutCellStokes, BothTriangulationsAreMirrorSymmetric) {
 }
 
 TEST(CutCellStokes, RefusesPeriodicSidesAndNoOutflow) {
-  DomainParams d = CutChannel(10.0);
+  DomainParams d = CutCreepingChannel(10.0);
   const Grid g = d.VelocityGrid();
   const CutCellGeometry geo(g, CutDisk(0.2, 0.2, 0.05));
   DomainParams closed = d;
