@@ -63,11 +63,6 @@ SolverParams StokesSettings(const Params& p) {
   return coupled ? ViscousConstraint::StokesSettings(p) : p.solvers;
 }
 
-// Index of the output period that t_n = n dt falls in; deterministic in n.
-long Period(long n, double dt, double every) {
-  return static_cast<long>(std::floor(static_cast<double>(n) * dt / every + 1e-9));
-}
-
 }  // namespace
 
 struct Simulation::Impl {
@@ -241,9 +236,9 @@ void Simulation::Step() {
   const double dt = s.params.time.dt;
   const bool particles_due =
       out.particles_every <= 0.0 ||
-      Period(n, dt, out.particles_every) > Period(n - 1, dt, out.particles_every);
-  const bool fields_due = out.fields_every > 0.0 &&
-                          Period(n, dt, out.fields_every) > Period(n - 1, dt, out.fields_every);
+      OutputPeriod(n, dt, out.particles_every) > OutputPeriod(n - 1, dt, out.particles_every);
+  const bool fields_due = out.fields_every > 0.0 && OutputPeriod(n, dt, out.fields_every) >
+                                                        OutputPeriod(n - 1, dt, out.fields_every);
   const bool show_stokes =
       fields_due && s.params.splitting.steady_correction == SteadyCorrection::kTendency;
   s.boundary_data.SetTime(s.state.time + s.params.time.dt);  // the data of t_{n+1}

@@ -5,11 +5,10 @@
 
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/number_text.h"
+#include "dlmfd/core/side_names.h"
 
 namespace dlmfd {
 namespace {
-
-const char* const kSideNames[4] = {"left", "right", "bottom", "top"};
 
 // The normal component of the side's data (value for uniform, max otherwise).
 double NormalComponent(Side side, const BoundarySide& b) {
@@ -49,7 +48,7 @@ void ValidateBoundaryProfiles(const DomainParams& domain) {
     const Side side = static_cast<Side>(s);
     const BoundarySide& b = domain.side(side);
     if (b.type != SideType::kVelocity) continue;
-    const std::string prefix = std::string("domain.boundary.") + kSideNames[s];
+    const std::string prefix = std::string("domain.boundary.") + SideName(s);
     if (!(b.ramp_time >= 0.0 && std::isfinite(b.ramp_time))) {
       throw InvalidParameter(prefix + ".ramp_time", ExactText(b.ramp_time),
                              "a finite number >= 0 (0: steady data)");

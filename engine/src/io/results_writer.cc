@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/core/time_stepping.h"
 #include "dlmfd/io/atomic_file.h"
 #include "dlmfd/io/checkpoint.h"
 #include "dlmfd/io/field_snapshot.h"
@@ -16,11 +17,6 @@ namespace fs = std::filesystem;
 
 namespace dlmfd {
 namespace {
-
-// Index of the output period that t_n = n dt falls in (the rule of Simulation's output cadence).
-long Period(long n, double dt, double every) {
-  return static_cast<long>(std::floor(static_cast<double>(n) * dt / every + 1e-9));
-}
 
 // The step of "snap_NNNNNN.h5", or -1 for any other name.
 long SnapshotStep(const std::string& name) {
@@ -127,8 +123,8 @@ void ResultsWriter::OnStep(const FlowState& state, const StepReport& report) {
   diagnostics_->Append(report);
   last_report_ = report;
   const double every = params_.output.checkpoint_every;
-  if (every > 0.0 &&
-      Period(state.step, params_.time.dt, every) > Period(state.step - 1, params_.time.dt, every)) {
+  if (every > 0.0 && OutputPeriod(state.step, params_.time.dt, every) >
+                         OutputPeriod(state.step - 1, params_.time.dt, every)) {
     checkpoint_due_ = true;
   }
 }

@@ -8,17 +8,9 @@
 #include "../mesh/macro_triangle_stencil.h"
 #include "../mesh/point_location.h"
 #include "dlmfd/core/errors.h"
+#include "dlmfd/core/side_names.h"
 
 namespace dlmfd {
-
-namespace {
-
-const char* SideName(int s) {
-  static const char* const kNames[4] = {"left", "right", "bottom", "top"};
-  return kNames[s];
-}
-
-}  // namespace
 
 CouplingOperator::CouplingOperator(const Params& params, const Grid& grid, std::size_t max_points)
     : grid_(grid),

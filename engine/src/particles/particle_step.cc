@@ -8,6 +8,7 @@
 #include <string>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/core/side_names.h"
 #include "dlmfd/particles/multiplier_points.h"
 #include "dlmfd/particles/particle_rules.h"
 
@@ -19,11 +20,6 @@ std::vector<double> Radii(const Params& params) {
   std::vector<double> radii;
   for (const auto& p : params.particles) radii.push_back(p.Radius());
   return radii;
-}
-
-const char* SideName(int s) {
-  static const char* const kNames[4] = {"left", "right", "bottom", "top"};
-  return kNames[s];
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/number_text.h"
+#include "dlmfd/core/side_names.h"
 #include "dlmfd/core/time_stepping.h"
 #include "dlmfd/fluid/boundary_profile.h"
 #include "dlmfd/particles/collocation_points.h"
@@ -24,7 +25,6 @@ namespace dlmfd {
 namespace {
 
 constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
-const char* const kSideNames[4] = {"left", "right", "bottom", "top"};
 
 void RequirePositive(const std::string& key, double x) {
   if (!(x > 0.0)) throw InvalidParameter(key, ExactText(x), "a number > 0");
@@ -94,8 +94,8 @@ void ValidateDomain(const Params& p) {
       const int odd = first ? s + 1 : s;
       const int even = first ? s : s + 1;
       throw InvalidParameter(
-          std::string("domain.boundary.") + kSideNames[odd] + ".type", "(not periodic)",
-          std::string("\"periodic\", because domain.boundary.") + kSideNames[even] +
+          std::string("domain.boundary.") + SideName(odd) + ".type", "(not periodic)",
+          std::string("\"periodic\", because domain.boundary.") + SideName(even) +
               " is periodic (periodic sides come in pairs: left with right, bottom with top)");
     }
   }

@@ -30,6 +30,13 @@ inline long StepCount(const TimeParams& time) {
   return static_cast<long>(std::llround(time.end / time.dt));
 }
 
+// The index of the output period that t_n = n dt falls in, floor(n dt / every) (every > 0; a
+// 1e-9 allowance lets a period that ends on a step count that step); deterministic in n. An
+// output is due at step n when the index grows from step n - 1.
+inline long OutputPeriod(long n, double dt, double every) {
+  return static_cast<long>(std::floor(static_cast<double>(n) * dt / every + 1e-9));
+}
+
 // alpha and beta in [0, 1], gamma = 0, alpha > 0; with particles, beta = 0 unless the constraint
 // coupling is the paper's.
 void ValidateSplitting(const SplittingParams& splitting, bool with_particles);
