@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "clock.h"
 #include "dlmfd/io/atomic_file.h"
 #include "job_proto.h"
 #include "loopback_port.h"
@@ -44,7 +45,7 @@ void Daemon::Start() {
                       lock_path + " is locked)");
   }
   store_ = std::make_unique<JobStore>((fs::path(config_.data_dir) / "jobs.db").string());
-  for (const auto& id : store_->RequeueRunning(NowSeconds())) {
+  for (const auto& id : store_->RequeueRunning(SystemClock().Now())) {
     spdlog::info("job {}: was RUNNING when the daemon stopped; QUEUED to resume", id);
   }
   executor_ = MakeExecutor(config_);

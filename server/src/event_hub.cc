@@ -38,9 +38,9 @@ void WakeAll(const std::vector<std::shared_ptr<WatcherQueue>>& wake) {
 
 // The current state of a job as the head of a watch: a summary, numbered 0 like a Gap (it is not
 // an event of the sequence: the events a watcher has seen keep their own numbers).
-v1::WatchEvent Summary(const v1::Job& job) {
+v1::WatchEvent Summary(const v1::Job& job, double now) {
   v1::WatchEvent summary;
-  summary.set_wall_time(NowSeconds());
+  summary.set_wall_time(now);
   auto* state = summary.mutable_state();
   state->set_state(job.state());
   state->set_reason(job.reason());
@@ -79,7 +79,7 @@ std::shared_ptr<EventHub::Channel> EventHub::FindOrCreate(const JobRecord& job) 
   if (slot && !slot->finished) return slot;
   auto channel = std::make_shared<Channel>(job_dir_(job.id));
   channel->job_id = job.id;
-  channel->job = ToProto(job);
+  channel->job = ToProto(job, clock_.Now());
   if (slot) {
     // A channel whose final state was just delivered (not yet dropped) hands on what it knows: its
     // last event may not be in the record passed here.
@@ -102,7 +102,7 @@ std::shared_ptr<EventHub::Channel> EventHub::FindOrCreate(const JobRecord& job) 
 void EventHub::Deliver(Channel& channel, v1::WatchEvent event, const LogOrigin& origin,
                        bool new_timeline, WakeList& wake) {
   event.set_seq(++channel.last_seq);
-  if (event.wall_time() == 0) event.set_wall_time(NowSeconds());
+  if (event.wall_time() == 0) event.set_wall_time(clock_.Now());
   if (new_timeline) channel.high_water.clear();
   if (!origin.lane.empty()) channel.high_water[origin.lane] = origin.step;
   if (!origin.source.empty()) channel.source_offset[origin.source] = origin.source_offset;
@@ -134,7 +134,7 @@ void EventHub::PublishState(const JobRecord& job, bool new_timeline) {
   WakeList wake;
   {
     std::lock_guard lock(channel->mutex);
-    channel->job = ToProto(job);
+    channel->job = ToProto(job, clock_.Now());
     // The state event's own number: last_seq reports what was issued.
     channel->job.set_last_seq(channel->last_seq + 1);
     v1::WatchEvent event;
@@ -205,15 +205,15 @@ bool EventHub::Attach(const JobRecord& job, int64_t from_seq,
     // as a Gap), then the end.
     const auto final_job = store_.Get(job.id);
     if (!final_job) return false;
-    v1::Job shown = ToProto(*final_job);
-    bool token = watcher->Start(Summary(shown), from_seq, final_job->last_seq);
+    v1::Job shown = ToProto(*final_job, clock_.Now());
+    bool token = watcher->Start(Summary(shown, clock_.Now()), from_seq, final_job->last_seq);
     token = watcher->PushEnd() || token;
     return token;
   }
   std::lock_guard lock(channel->mutex);
   v1::Job shown = channel->job;
   shown.set_last_seq(channel->last_seq);
-  bool token = watcher->Start(Summary(shown), from_seq, channel->last_seq);
+  bool token = watcher->Start(Summary(shown, clock_.Now()), from_seq, channel->last_seq);
   if (channel->finished) {
     token = watcher->PushEnd() || token;
   } else {

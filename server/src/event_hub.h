@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "clock.h"
 #include "dlmfd/v1/jobs.pb.h"
 #include "job_store.h"
 #include "watch_log.h"
@@ -43,9 +44,11 @@ class EventHub {
   // The directory of a job, where its watch log lives.
   using JobDirectory = std::function<std::string(const std::string& job_id)>;
 
-  EventHub(JobStore& store, JobDirectory job_dir)
+  // clock: the wall_time of the events it stamps (clock.h).
+  EventHub(JobStore& store, JobDirectory job_dir, Clock& clock = SystemClock())
       : store_(store),
-        job_dir_(std::move(job_dir)) {}
+        job_dir_(std::move(job_dir)),
+        clock_(clock) {}
 
   // At start, before any event: every unfinished job's last_seq from its watch log (a daemon
   // killed with SIGKILL did not store it), and the numbers a daemon of an older version left in
@@ -92,6 +95,7 @@ class EventHub {
 
   JobStore& store_;
   const JobDirectory job_dir_;
+  Clock& clock_;
   std::mutex mutex_;  // guards channels_ and serialises channel creation with final state changes
   std::map<std::string, std::shared_ptr<Channel>> channels_;
 };

@@ -7,7 +7,7 @@
 
 namespace dlmfd::server {
 
-v1::Job ToProto(const JobRecord& job) {
+v1::Job ToProto(const JobRecord& job, double now) {
   v1::Job out;
   out.set_id(job.id);
   out.set_name(job.name);
@@ -89,7 +89,7 @@ v1::Job ToProto(const JobRecord& job) {
   out.set_peak_memory_bytes(job.peak_memory_bytes);
   if (job.started_time > 0) {
     const double end = job.finished_time > 0             ? job.finished_time
-                       : job.state == JobState::kRunning ? NowSeconds()
+                       : job.state == JobState::kRunning ? now
                                                          : job.started_time;
     out.set_elapsed_seconds(std::max(0.0, end - job.started_time));
   }
@@ -128,10 +128,6 @@ v1::Sweep ToProto(const SweepRecord& sweep, const SweepStats& stats) {
   out.set_first_started_time(stats.first_started_time);
   out.set_last_finished_time(stats.last_finished_time);
   return out;
-}
-
-double NowSeconds() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
 }  // namespace dlmfd::server

@@ -7,9 +7,9 @@
 
 namespace dlmfd::server {
 
-v1::Job ToProto(const JobRecord& job);
+// now: the time a running job's elapsed_seconds counts to (a Clock's, clock.h).
+v1::Job ToProto(const JobRecord& job, double now);
 // A study and where its jobs stand.
 v1::Sweep ToProto(const SweepRecord& sweep, const SweepStats& stats);
-double NowSeconds();
 
 }  // namespace dlmfd::server

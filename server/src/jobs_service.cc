@@ -225,15 +225,17 @@ class FailedStream final : public grpc::ServerWriteReactor<Message> {
 
 }  // namespace
 
-JobsService::JobsService(const Config& config, JobStore& store, EventHub& hub, Scheduler& scheduler)
+JobsService::JobsService(const Config& config, JobStore& store, EventHub& hub, Scheduler& scheduler,
+                         Clock& clock)
     : config_(config),
       store_(store),
       hub_(hub),
+      clock_(clock),
       scheduler_(scheduler),
       auth_(config.tokens) {}
 
 v1::Job JobsService::Reported(const JobRecord& job) {
-  v1::Job out = ToProto(job);
+  v1::Job out = ToProto(job, clock_.Now());
   out.set_last_seq(hub_.ReportedLastSeq(job));
   return out;
 }
@@ -307,7 +309,7 @@ JobRecord JobsService::NewJob(const std::string& user, const std::string& scene,
   job.state = JobState::kQueued;
   job.priority = priority;
   job.tags = tags;
-  job.created_time = NowSeconds();
+  job.created_time = clock_.Now();
   job.end_time = estimate.end_time;
   job.results_dir = fs::absolute(scheduler_.ResultsDir(job.id)).string();
   job.scene = scene;
@@ -335,7 +337,7 @@ grpc::ServerUnaryReactor* JobsService::Submit(grpc::CallbackServerContext* conte
       auto earlier = store_.FindRequest(user, key);
       if (!earlier.empty()) {
         CheckSameRequest(request->client_request_id(), earlier, request->scene(), {overrides});
-        *reply = ToProto(earlier.front());
+        *reply = ToProto(earlier.front(), clock_.Now());
         return;
       }
     }
@@ -348,7 +350,7 @@ grpc::ServerUnaryReactor* JobsService::Submit(grpc::CallbackServerContext* conte
     job.client_request_id = request->client_request_id();
     job.time_limit_seconds = request->time_limit_seconds();
     auto result = store_.InsertJobs({job}, user, key);
-    *reply = ToProto(result.jobs.front());
+    *reply = ToProto(result.jobs.front(), clock_.Now());
     if (!result.existed) {
       spdlog::info("job {}: QUEUED by {} (priority {})", job.id, user, job.priority);
       scheduler_.Wake();
@@ -491,7 +493,7 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
         for (const auto& point : points) point_overrides.push_back(point.overrides);
         CheckSameRequest(request->client_request_id(), earlier, request->scene(), point_overrides);
         reply->set_sweep_id(earlier.front().sweep_id);
-        for (const auto& job : earlier) *reply->add_jobs() = ToProto(job);
+        for (const auto& job : earlier) *reply->add_jobs() = ToProto(job, clock_.Now());
         return;
       }
     }
@@ -526,10 +528,10 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
     sweep.axes = plan.axes;
     sweep.overrides.assign(request->overrides().begin(), request->overrides().end());
     sweep.max_running = request->max_running();
-    sweep.created_time = NowSeconds();
+    sweep.created_time = clock_.Now();
     auto result = store_.InsertJobs(std::move(jobs), user, key, &sweep);
     reply->set_sweep_id(result.jobs.front().sweep_id);
-    for (const auto& job : result.jobs) *reply->add_jobs() = ToProto(job);
+    for (const auto& job : result.jobs) *reply->add_jobs() = ToProto(job, clock_.Now());
     if (!result.existed) {
       spdlog::info("sweep {}: {} jobs QUEUED by {}", sweep_id, result.jobs.size(), user);
       scheduler_.Wake();
@@ -552,7 +554,7 @@ grpc::ServerUnaryReactor* JobsService::CancelSweep(grpc::CallbackServerContext* 
       if (!IsFinished(job.state)) scheduler_.CancelUnlessFinished(job.id);
     }
     for (const auto& job : store_.SweepJobs(user, request->sweep_id())) {
-      *reply->add_jobs() = ToProto(job);
+      *reply->add_jobs() = ToProto(job, clock_.Now());
     }
   });
 }

@@ -23,7 +23,9 @@ namespace dlmfd::server {
 
 class JobsService final : public v1::Jobs::CallbackService {
  public:
-  JobsService(const Config& config, JobStore& store, EventHub& hub, Scheduler& scheduler);
+  // clock: the creation times it records and the elapsed times it reports (clock.h).
+  JobsService(const Config& config, JobStore& store, EventHub& hub, Scheduler& scheduler,
+              Clock& clock = SystemClock());
 
   grpc::ServerUnaryReactor* Submit(grpc::CallbackServerContext* context,
                                    const v1::SubmitRequest* request, v1::Job* reply) override;
@@ -107,6 +109,7 @@ class JobsService final : public v1::Jobs::CallbackService {
   const Config& config_;
   JobStore& store_;
   EventHub& hub_;
+  Clock& clock_;
   Scheduler& scheduler_;
   Authenticator auth_;
 };

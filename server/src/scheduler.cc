@@ -66,11 +66,13 @@ v1::WatchEvent LogEvent(const std::string& level, const std::string& text) {
 
 }  // namespace
 
-Scheduler::Scheduler(const Config& config, Executor& executor, JobStore& store, EventHub& hub)
+Scheduler::Scheduler(const Config& config, Executor& executor, JobStore& store, EventHub& hub,
+                     Clock& clock)
     : config_(config),
       executor_(executor),
       store_(store),
-      hub_(hub) {}
+      hub_(hub),
+      clock_(clock) {}
 
 Scheduler::~Scheduler() { Stop(std::chrono::seconds(5)); }
 
@@ -128,7 +130,7 @@ void Scheduler::Loop() {
       try {
         // A live Slurm job of a daemon before is adopted, not started (JobRun::Adopt).
         const bool adopt = next->slurm_live && !next->slurm_job_id.empty();
-        store_.MarkRunning(next->id, NowSeconds(),
+        store_.MarkRunning(next->id, clock_.Now(),
                            adopt                       ? JobStore::RunStart::kAdopt
                            : run->WaitsBeforeRunning() ? JobStore::RunStart::kWaiting
                                                        : JobStore::RunStart::kRun);
@@ -164,7 +166,7 @@ void Scheduler::CancelBlocked() {
     if (blocked.empty()) return;
     for (const auto& [id, reason] : blocked) {
       try {
-        if (!store_.CancelQueued(id, reason, NowSeconds())) continue;
+        if (!store_.CancelQueued(id, reason, clock_.Now())) continue;
         spdlog::info("job {}: CANCELLED: {}", id, reason);
         if (auto job = store_.Get(id)) hub_.PublishState(*job);
       } catch (const std::exception& e) {
@@ -197,7 +199,7 @@ bool Scheduler::StartStudyBatch(const JobRecord& first, int room) {
       if (running_.count(job.id)) continue;  // its previous run's thread is still ending
       try {
         // Handed to the executor together; each waits there before it runs.
-        store_.MarkRunning(job.id, NowSeconds(), JobStore::RunStart::kWaiting);
+        store_.MarkRunning(job.id, clock_.Now(), JobStore::RunStart::kWaiting);
       } catch (const std::exception&) {
         continue;  // cancelled or held since it was read
       }
@@ -215,7 +217,7 @@ bool Scheduler::StartStudyBatch(const JobRecord& first, int room) {
 void Scheduler::FinishJob(const std::string& job_id, JobState state, const std::string& reason) {
   // Counted first, so that a finished job always has its bytes: the solver has exited.
   store_.SetDiskBytes(job_id, DirectoryBytes(JobDir(job_id)));
-  if (!store_.MarkFinished(job_id, state, reason, NowSeconds())) return;
+  if (!store_.MarkFinished(job_id, state, reason, clock_.Now())) return;
   auto job = store_.Get(job_id);
   if (!job) return;
   if (state == JobState::kCompleted) {
@@ -284,8 +286,9 @@ std::optional<RunOutcome> Scheduler::RunAttempt(Attempt& a) {
   }
   PrepareLaunch(a);
   StartOrAdopt(a);
-  WallTimeLimit wall_limit(executor_.LimitsTimeItself() ? 0 : a.spec.time_limit_seconds,
-                           [&] { a.run->Signal(SIGTERM); });
+  WallTimeLimit wall_limit(
+      executor_.LimitsTimeItself() ? 0 : a.spec.time_limit_seconds, [&] { a.run->Signal(SIGTERM); },
+      clock_);
   if (CancelRequested(a.job.id)) a.run->Signal(SIGTERM);
   a.run->ReadEvents([&](const v1::SolverEvent& in, const EventPosition& position) {
     OnSolverEvent(a, in, position);
@@ -379,7 +382,7 @@ void Scheduler::OnSolverEvent(Attempt& a, const v1::SolverEvent& in,
     published->end_time = a.job.end_time;
     store_now = true;
   } else if (in.has_progress()) {
-    store_now = NowSeconds() - a.last_store >= kProgressStoreInterval;
+    store_now = clock_.Now() - a.last_store >= kProgressStoreInterval;
   }
   if (published->reports_progress) {
     a.seen_step = published->step;
@@ -389,7 +392,7 @@ void Scheduler::OnSolverEvent(Attempt& a, const v1::SolverEvent& in,
   if (store_now) {
     if (published->end_time > 0) a.job.end_time = published->end_time;
     store_.UpdateProgress(a.job.id, published->step, published->time, a.job.end_time);
-    a.last_store = NowSeconds();
+    a.last_store = clock_.Now();
     a.unstored = false;
   }
   hub_.Publish(a.job.id, std::move(published->event), published->origin);
@@ -471,7 +474,7 @@ void Scheduler::RecordUsage(const std::string& job_id, const SolverExit& exit,
 
 void Scheduler::RecordState(const JobRecord& job, const ExecutorState& state) {
   try {
-    if (!store_.SetSlurmState(job.id, state.state, state.reason, state.waiting, NowSeconds())) {
+    if (!store_.SetSlurmState(job.id, state.state, state.reason, state.waiting, clock_.Now())) {
       return;
     }
     if (auto now = store_.Get(job.id)) {
@@ -489,7 +492,7 @@ void Scheduler::RecordRestart(const JobRecord& job, int restarts, const std::str
     AttemptEnd end;
     end.state = JobState::kCancelled;
     end.reason = reason;
-    end.when = NowSeconds();
+    end.when = clock_.Now();
     end.slurm_restarts = restarts;
     store_.EndAttempt(job.id, end);
     if (auto now = store_.Get(job.id)) {
@@ -511,7 +514,7 @@ bool Scheduler::Requeue(const JobRecord& job, const RunOutcome& outcome) {
   end.reason = outcome.reason + "; queued again to resume from the checkpoint: Slurm attempt " +
                std::to_string(now->slurm_attempts + 1) +
                " of slurm_max_attempts = " + std::to_string(config_.slurm.max_attempts);
-  end.when = NowSeconds();
+  end.when = clock_.Now();
   store_.SetDiskBytes(job.id, DirectoryBytes(JobDir(job.id)));
   store_.EndAttempt(job.id, end);
   spdlog::warn("job {}: {}", job.id, end.reason);
@@ -541,7 +544,7 @@ std::optional<JobRecord> Scheduler::CancelUnlessFinished(const std::string& job_
   auto job = store_.Get(job_id);
   if (!job) throw ServiceError(grpc::StatusCode::NOT_FOUND, "job " + job_id + " not found");
   if (IsFinished(job->state)) return std::nullopt;
-  if (job->state == JobState::kQueued && store_.CancelQueued(job_id, "cancelled", NowSeconds())) {
+  if (job->state == JobState::kQueued && store_.CancelQueued(job_id, "cancelled", clock_.Now())) {
     job = store_.Get(job_id);
     spdlog::info("job {}: CANCELLED while queued", job_id);
     hub_.PublishState(*job);

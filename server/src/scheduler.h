@@ -44,6 +44,7 @@
 #include <thread>
 #include <vector>
 
+#include "clock.h"
 #include "config.h"
 #include "dlmfd/v1/events.pb.h"
 #include "event_hub.h"
@@ -60,7 +61,9 @@ struct RunOutcome;
 
 class Scheduler {
  public:
-  Scheduler(const Config& config, Executor& executor, JobStore& store, EventHub& hub);
+  // clock: the times it records and the job time limits it applies (clock.h).
+  Scheduler(const Config& config, Executor& executor, JobStore& store, EventHub& hub,
+            Clock& clock = SystemClock());
   ~Scheduler();
   Scheduler(const Scheduler&) = delete;
   Scheduler& operator=(const Scheduler&) = delete;
@@ -137,6 +140,7 @@ class Scheduler {
   Executor& executor_;
   JobStore& store_;
   EventHub& hub_;
+  Clock& clock_;
   std::mutex mutex_;
   std::condition_variable changed_;
   std::map<std::string, Running> running_;

@@ -1,24 +1,26 @@
 // WallTimeLimit: calls `on_over` once when a solver start has run `seconds` of wall time (0:
-// never), from a thread of its own; End() stops the clock and tells whether the limit was reached.
+// never) on `clock` (clock.h), from a thread of its own; End() stops the clock and tells whether
+// the limit was reached.
 #pragma once
 
-#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <mutex>
 #include <thread>
 
+#include "clock.h"
+
 namespace dlmfd::server {
 
 class WallTimeLimit {
  public:
-  WallTimeLimit(int64_t seconds, std::function<void()> on_over) {
+  WallTimeLimit(int64_t seconds, std::function<void()> on_over, Clock& clock = SystemClock()) {
     if (seconds <= 0) return;
-    thread_ = std::thread([this, seconds, on_over = std::move(on_over)] {
+    const double deadline = clock.Now() + static_cast<double>(seconds);
+    thread_ = std::thread([this, &clock, deadline, on_over = std::move(on_over)] {
       std::unique_lock lock(mutex_);
-      if (!ended_changed_.wait_for(lock, std::chrono::seconds(seconds),
-                                   [this] { return ended_; })) {
+      if (!clock.WaitUntil(lock, ended_changed_, deadline, [this] { return ended_; })) {
         over_ = true;
         on_over();
       }

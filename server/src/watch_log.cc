@@ -151,11 +151,12 @@ WatchLogState WatchLog::Recover() const {
   return state;
 }
 
-WatchLog::Reader::Reader(std::string dir, int64_t after, int64_t upto, bool snapshots)
+WatchLog::Reader::Reader(std::string dir, int64_t after, int64_t upto, bool snapshots, Clock& clock)
     : dir_(std::move(dir)),
       expected_(after + 1),
       upto_(upto),
-      snapshots_(snapshots) {
+      snapshots_(snapshots),
+      clock_(clock) {
   fd_ = open((fs::path(dir_) / kFile).c_str(), O_RDONLY | O_CLOEXEC);
 }
 
@@ -188,7 +189,7 @@ bool WatchLog::Reader::ReadRecord(v1::WatchLogRecord& record) {
 
 void WatchLog::Reader::PushGap(int64_t to, std::vector<v1::WatchEvent>& out) {
   v1::WatchEvent gap;
-  gap.set_wall_time(NowSeconds());
+  gap.set_wall_time(clock_.Now());
   gap.mutable_gap()->set_from_seq(expected_);
   gap.mutable_gap()->set_to_seq(to);
   gap.mutable_gap()->set_reason("not in the job's watch log (issued before the daemon kept one)");

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "clock.h"
 #include "dlmfd/v1/jobs.pb.h"
 #include "dlmfd/v1/watch_log.pb.h"
 
@@ -58,7 +59,9 @@ class WatchLog {
   // are simply not a watcher's concern.
   class Reader {
    public:
-    Reader(std::string dir, int64_t after, int64_t upto, bool snapshots);
+    // clock: the wall_time of the Gaps it makes (clock.h).
+    Reader(std::string dir, int64_t after, int64_t upto, bool snapshots,
+           Clock& clock = SystemClock());
     ~Reader();
     Reader(const Reader&) = delete;
     Reader& operator=(const Reader&) = delete;
@@ -75,6 +78,7 @@ class WatchLog {
     int64_t expected_;  // the next number to deliver
     int64_t upto_;
     bool snapshots_;
+    Clock& clock_;
     int fd_ = -1;
     int64_t read_pos_ = 0;  // the file offset the next read starts at
     std::string buffer_;    // bytes read, the first parsed_ of them parsed

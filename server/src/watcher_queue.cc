@@ -115,7 +115,8 @@ bool WatcherQueue::ReadCatchUp(std::unique_lock<std::mutex>& lock) {
   const int64_t after = catch_up_after_, upto = catch_up_upto_;
   lock.unlock();
   if (!reader_) {
-    reader_ = std::make_unique<WatchLog::Reader>(log_dir_, after, upto, options_.include_snapshots);
+    reader_ = std::make_unique<WatchLog::Reader>(log_dir_, after, upto, options_.include_snapshots,
+                                                 *options_.clock);
   }
   reader_->ExtendTo(upto);
   std::vector<v1::WatchEvent> chunk;
@@ -161,7 +162,7 @@ WatcherQueue::Next WatcherQueue::Pop(v1::WatchEvent* out) {
       const int64_t seq = snapshot_->replaced.front();
       snapshot_->replaced.erase(snapshot_->replaced.begin());
       out->Clear();
-      out->set_wall_time(NowSeconds());
+      out->set_wall_time(options_.clock->Now());
       out->mutable_gap()->set_from_seq(seq);
       out->mutable_gap()->set_to_seq(seq);
       out->mutable_gap()->set_reason("snapshot replaced by a newer one before it was sent");

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "clock.h"
 #include "dlmfd/v1/jobs.pb.h"
 #include "watch_log.h"
 
@@ -35,6 +36,7 @@ struct WatchOptions {
   bool include_snapshots = false;
   int max_width = 0;  // 0: as sent
   int max_height = 0;
+  Clock* clock = &SystemClock();  // the wall_time of the Gaps it makes (clock.h)
 };
 
 // Nearest-node downsampling of a (ny+1) x (nx+1) node field to at most max_width x max_height

@@ -160,17 +160,18 @@ TEST(SlurmStore, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStartsIt) {
   const JobRecord b = *store.Get("b");
   EXPECT_EQ(b.state, JobState::kRunning);  // in the executor's hands: the scheduler's count
   EXPECT_EQ(ShownState(b), JobState::kQueued);
-  const v1::Job shown = ToProto(b);
+  const v1::Job shown = ToProto(b, 15.0);
   EXPECT_EQ(shown.state(), v1::QUEUED);
   EXPECT_EQ(shown.slurm_state(), "PENDING");
   EXPECT_EQ(shown.slurm_reason(), "JobArrayTaskLimit");
   EXPECT_EQ(shown.started_time(), 0.0);
   EXPECT_NE(shown.reason().find("Slurm: PENDING"), std::string::npos) << shown.reason();
   EXPECT_NE(shown.reason().find("JobArrayTaskLimit"), std::string::npos) << shown.reason();
-  const v1::Job running = ToProto(*store.Get("a"));
+  const v1::Job running = ToProto(*store.Get("a"), 15.0);
   EXPECT_EQ(running.state(), v1::RUNNING);
   EXPECT_EQ(running.reason(), "");
   EXPECT_EQ(running.started_time(), 12.0);  // Slurm started it
+  EXPECT_EQ(running.elapsed_seconds(), 3.0);
   EXPECT_EQ(running.time_limit_seconds(), 5400);
   // List's states and the study's counts go by the shown state; the scheduler's by the stored.
   ListFilter queued;
@@ -190,7 +191,7 @@ TEST(SlurmStore, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStartsIt) {
   EXPECT_EQ(store.CountRunningOfSweep("s-1"), 2);
   // Slurm starts b: RUNNING from then.
   EXPECT_TRUE(store.SetSlurmState("b", "RUNNING", "", false, 20.0));
-  EXPECT_EQ(ToProto(*store.Get("b")).state(), v1::RUNNING);
+  EXPECT_EQ(ToProto(*store.Get("b"), 20.0).state(), v1::RUNNING);
   EXPECT_EQ(store.Get("b")->started_time, 20.0);
   // An end clears Slurm's word.
   ASSERT_TRUE(store.MarkFinished("b", JobState::kCompleted, "", 30.0));
