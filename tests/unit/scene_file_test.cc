@@ -107,6 +107,18 @@ TEST_P(BadSceneTest, RejectedNamingKeyValueAndAllowed) {
 }
 
 const BadScene kBadScenes[] = {
+    // domain.flow_rate: only in a channel periodic in one direction, Dirichlet across it.
+    {"FlowRateInAClosedBox", "[domain]\nflow_rate = 0.0\n", "domain.flow_rate", "0.0"},
+    {"FlowRateFullyPeriodic",
+     "[domain]\nflow_rate = 0.5\n[domain.boundary]\nleft = { type = \"periodic\" }\n"
+     "right = { type = \"periodic\" }\nbottom = { type = \"periodic\" }\n"
+     "top = { type = \"periodic\" }\n",
+     "domain.flow_rate", "0.5"},
+    {"FlowRateBesideAnOutflow",
+     "[domain]\nflow_rate = 0.0\n[domain.boundary]\nleft = { type = \"outflow\" }\n"
+     "bottom = { type = \"periodic\" }\ntop = { type = \"periodic\" }\n",
+     "domain.boundary.left.type", "\"outflow\""},
+    {"FlowRateNotANumber", "[domain]\nflow_rate = \"zero\"\n", "domain.flow_rate", "\"zero\""},
     {"UnknownTopKey", "visc = 1.0\n", "visc", "1.0"},
     {"UnknownFluidKey", "[fluid]\nviscosty = 0.1\n", "fluid.viscosty", "0.1"},
     {"FluidNotATable", "fluid = 1.0\n", "fluid", "1.0"},
@@ -728,6 +740,7 @@ void ExpectSameParams(const Params& a, const Params& b) {
   EXPECT_EQ(a.splitting.advection, b.splitting.advection);
   EXPECT_EQ(a.splitting.steady_correction, b.splitting.steady_correction);
   EXPECT_EQ(a.domain.diagonals, b.domain.diagonals);
+  EXPECT_EQ(a.domain.flow_rate, b.domain.flow_rate);
   EXPECT_EQ(a.solvers.stokes_tolerance, b.solvers.stokes_tolerance);
   EXPECT_EQ(a.solvers.stokes_max_iterations, b.solvers.stokes_max_iterations);
   EXPECT_EQ(a.solvers.advection_tolerance, b.solvers.advection_tolerance);
@@ -810,6 +823,18 @@ TEST(SceneFile, SteadyCorrectionFollowsTheLiquid) {
   EXPECT_EQ(correction(tendency), SteadyCorrection::kTendency);
   EXPECT_EQ(correction(tendency + polymer), SteadyCorrection::kTendency);
   EXPECT_EQ(correction(WriteScene(ParseScene(tendency))), SteadyCorrection::kTendency);
+}
+
+TEST(SceneFile, FlowRateIsReadAndRoundTrips) {
+  const Params p = ParseScene(
+      "[domain]\nflow_rate = -0.25\n[domain.boundary]\nleft = { type = \"periodic\" }\n"
+      "right = { type = \"periodic\" }\ntop = { type = \"velocity\", value = [1.0, 0.0] }\n");
+  ASSERT_TRUE(p.domain.flow_rate.has_value());
+  EXPECT_EQ(*p.domain.flow_rate, -0.25);
+  const Params q = ParseScene(WriteScene(p), {}, "written");
+  ASSERT_TRUE(q.domain.flow_rate.has_value());
+  EXPECT_EQ(*q.domain.flow_rate, -0.25);
+  EXPECT_FALSE(ParseScene("").domain.flow_rate.has_value());
 }
 
 TEST(SceneFile, WriteSceneRoundTripsThePaperScene) {

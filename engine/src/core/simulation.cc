@@ -118,12 +118,14 @@ struct Simulation::Impl {
       report.Set("coupling_iterations", r.iterations);
       report.Set("coupling_residual", r.residual);
       report.Set("coupling_stokes_tolerance", r.stokes_tolerance);
+      if (stokes.flux_control()) report.Set("mean_pressure_gradient", r.mean_pressure_gradient);
     } else {
       const StokesReport r =
           stokes.Solve(force.x, force.y, state.u.data(), state.v.data(), state.p.data());
       report.Set("stokes_iterations", r.iterations);
       report.Set("stokes_residual", r.residual);
       report.Set("divergence", r.divergence);
+      if (stokes.flux_control()) report.Set("mean_pressure_gradient", r.mean_pressure_gradient);
     }
     report.Set("ms_stokes", Milliseconds(t0, Clock::now()));
   }
@@ -255,6 +257,10 @@ void Simulation::Step() {
   s.state.time = static_cast<double>(s.state.step) * s.params.time.dt;
   s.CheckFinite();
   report.Set("cfl", s.MaxSpeed() * s.params.time.dt / s.grid.h);
+  // domain.flow_rate: the rate of u^{n+1}, O(dt) off the target that (33) holds to round-off.
+  if (const FluxControl* flux = s.stokes.flux_control()) {
+    report.Set("flow_rate", flux->FlowRate(s.state.u.data(), s.state.v.data()));
+  }
   report.step = s.state.step;
   report.time = s.state.time;
   report.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();

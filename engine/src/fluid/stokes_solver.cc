@@ -70,6 +70,23 @@ StokesSolver::StokesSolver(const Grid& grid, const DomainParams& domain, const F
   for (std::size_t k = 0; k < n; ++k) area += dist[k] * mass_[k];
   reference_floor_ =
       kQuietFlow * DataSpeed(grid_, fluid, dt, boundary_data_) * std::sqrt(rho_over_dt_ * area);
+  if (domain.flow_rate) flux_ = MakeFluxControl(domain);
+}
+
+// The unit response u_e of fluid/flux_control.h: A u_e = M_l e with zero Dirichlet data.
+std::unique_ptr<FluxControl> StokesSolver::MakeFluxControl(const DomainParams& domain) {
+  const std::size_t n = grid_.NodeCount();
+  std::vector<double> fu(n, 0.0), fv(n, 0.0), ue(n, 0.0), ve(n, 0.0), weights(n, 0.0);
+  std::vector<double>& force = domain.PeriodicX() ? fu : fv;
+  for (std::size_t k = 0; k < n; ++k) {
+    force[k] = mass_[k];
+    weights[k] = vnodes_.distinct()[k] * mass_[k];
+  }
+  SolveVelocityPair(fu.data(), fv.data(), ue.data(), ve.data());
+  vnodes_.SyncPeriodic(ue.data());
+  vnodes_.SyncPeriodic(ve.data());
+  return std::make_unique<FluxControl>(grid_, domain, std::move(weights), std::move(ue),
+                                       std::move(ve));
 }
 
 StokesSolver::~StokesSolver() = default;
@@ -218,6 +235,7 @@ StokesReport StokesSolver::Solve(const double* fx, const double* fy, double* u, 
   // r = B u at the unknown nodes, carried by the recursion (equal to a fresh B u up to round-off);
   // M_p^-1 is 0 at the known ones, so this is DivergenceNorm(u, v) without another B.
   report.divergence = std::sqrt(WeightedSquareSum(r_.data()));
+  if (flux_) report.mean_pressure_gradient = flux_->Hold(u, v);
   return report;
 }
 

@@ -40,7 +40,7 @@ RecycledDirections::Coefficient RecycledDirections::Coefficients(
 void RecycledDirections::Add(const std::vector<double>& d, const std::vector<double>& sd,
                              const std::vector<double>& du, const std::vector<double>& dv,
                              const std::vector<double>& dp, const std::vector<Vec2>& dvelocity,
-                             const std::vector<double>& domega) {
+                             const std::vector<double>& domega, double dgradient) {
   if (Count() < kCapacity) {
     stored_.emplace_back();
     next_ = Count() - 1;
@@ -53,6 +53,7 @@ void RecycledDirections::Add(const std::vector<double>& d, const std::vector<dou
   w.dp = dp;
   w.dvelocity = dvelocity;
   w.domega = domega;
+  w.dgradient = dgradient;
   next_ = (next_ + 1) % kCapacity;
 }
 

@@ -11,12 +11,14 @@
 namespace dlmfd {
 namespace {
 
-// The sides of the scene with every boundary value zero: the data of the response problems.
+// The sides of the scene with every boundary value zero: the data of the response problems
+// (which hold a zero flow rate under domain.flow_rate).
 DomainParams WithZeroData(DomainParams domain) {
   for (BoundarySide& side : domain.sides) {
     side.value = Vec2::Zero();
     side.max = Vec2::Zero();
   }
+  if (domain.flow_rate) domain.flow_rate = 0.0;
   return domain;
 }
 
@@ -133,6 +135,7 @@ int ViscousConstraint::Respond(double dt, const double* dir) {
   coupling.CopyPeriodicDuplicates(du_.data(), dv_.data());
   const StokesReport r =
       response_solver_->Solve(nullptr, nullptr, du_.data(), dv_.data(), dp_.data());
+  dgradient_ = r.mean_pressure_gradient;
   for (std::size_t p = 0; p < points.ParticleCount(); ++p) {
     inviscid_.modes().Response(points, p, dt, dir + 2 * points.Begin(p), dvelocity_[p], domega_[p]);
   }
@@ -145,7 +148,7 @@ double ViscousConstraint::Dot(const double* a, const double* b) const {
   return s;
 }
 
-double ViscousConstraint::StartFromRecycled(double* u, double* v, double* p) {
+double ViscousConstraint::StartFromRecycled(double* u, double* v, double* p, double& gradient) {
   const double before = MismatchOf(u, v, velocity_, omega_, r_.data());
   if (recycled_.Count() == 0) return before;
   const RecycledDirections::Coefficient a = recycled_.Coefficients(r_);
@@ -159,6 +162,7 @@ double ViscousConstraint::StartFromRecycled(double* u, double* v, double* p) {
         v[k] += c * w.dv[k];
       }
       for (std::size_t k = 0; k < w.dp.size(); ++k) p[k] += c * w.dp[k];
+      gradient += c * w.dgradient;
       for (std::size_t k = 0; k < velocity_.size(); ++k) {
         velocity_[k] += c * w.dvelocity[k];
         omega_[k] += c * w.domega[k];
@@ -231,6 +235,7 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
   const StokesReport first = Start(dt, warm, stokes, fx, fy, u, v, p);
   outcome.stokes_iterations = first.iterations;
   outcome.stokes_residual = first.residual;
+  double gradient = first.mean_pressure_gradient;
 
   double scale = MaxSpeed(u, v, nodes);
   for (std::size_t k = 0; k < n; ++k) {
@@ -238,7 +243,7 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
   }
   const double target = tolerance_ * scale;
   double mismatch = MismatchOf(u, v, velocity_, omega_, r_.data());
-  if (recycles_ && mismatch > target) mismatch = StartFromRecycled(u, v, p);
+  if (recycles_ && mismatch > target) mismatch = StartFromRecycled(u, v, p, gradient);
 
   // PCG on S nu = -g with P^-1 (the inner CG of (37)); Polak-Ribiere directions. A stall (no
   // kStallGain of progress in kStallWindow iterations) tightens the coupled Stokes solves and
@@ -262,7 +267,9 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
       std::copy(u_in_.begin(), u_in_.end(), u);
       std::copy(v_in_.begin(), v_in_.end(), v);
       std::copy(p_in_.begin(), p_in_.end(), p);
-      outcome.stokes_iterations += Start(dt, true, stokes, fx, fy, u, v, p).iterations;
+      const StokesReport restart = Start(dt, true, stokes, fx, fy, u, v, p);
+      outcome.stokes_iterations += restart.iterations;
+      gradient = restart.mean_pressure_gradient;
       mismatch = MismatchOf(u, v, velocity_, omega_, r_.data());
       best = mismatch;
       best_it = restart_it = it;
@@ -279,7 +286,7 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
 
     outcome.stokes_iterations += Respond(dt, d_.data());
     MismatchOf(du_.data(), dv_.data(), dvelocity_, domega_, sd_.data());
-    if (recycles_) recycled_.Add(d_, sd_, du_, dv_, dp_, dvelocity_, domega_);
+    if (recycles_) recycled_.Add(d_, sd_, du_, dv_, dp_, dvelocity_, domega_, dgradient_);
     const double curvature = Dot(d_.data(), sd_.data());
     if (!(curvature > 0.0)) {
       std::ostringstream what;
@@ -294,6 +301,7 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
       v[k] += step * dv_[k];
     }
     for (std::size_t k = 0; k < pnodes; ++k) p[k] += step * dp_[k];
+    gradient += step * dgradient_;
     for (std::size_t k = 0; k < n; ++k) {
       velocity_[k] += step * dvelocity_[k];
       omega_[k] += step * domega_[k];
@@ -310,6 +318,7 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
   outcome.residual = scale > 0.0 ? mismatch / scale : 0.0;
   outcome.divergence = stokes.DivergenceNorm(u, v);
   outcome.stokes_tolerance = stokes_tolerance_;
+  outcome.mean_pressure_gradient = gradient;
 
   for (std::size_t k = 0; k < n; ++k) {
     if (particles[k].motion == Motion::kFree) {

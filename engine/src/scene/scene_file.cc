@@ -109,7 +109,8 @@ void ReadDomain(TableReader& top, const NumericsDefaults& defaults, Params& p) {
   d.diagonals =
       Choose<MeshDiagonals>("domain.diagonals", domain.String("diagonals", defaults.diagonals),
                             {{"sw_ne", MeshDiagonals::kSwNe}, {"both", MeshDiagonals::kBoth}});
-  domain.RejectUnknown("size, h, boundary, diagonals");
+  if (domain.Has("flow_rate")) d.flow_rate = domain.Real("flow_rate", std::nullopt);
+  domain.RejectUnknown("size, h, boundary, diagonals, flow_rate");
 }
 
 void ReadFluid(TableReader& top, const NumericsDefaults& defaults, Params& p) {

@@ -71,6 +71,34 @@ void RequireEvenCells(const DomainParams& d, double length) {
   }
 }
 
+// domain.flow_rate (fluid/flux_control.h): a finite number, in a channel periodic in exactly one
+// direction whose other two sides are Dirichlet (wall or velocity), so that the unit response to
+// the mean pressure gradient is a solenoidal profile across the channel.
+void ValidateFlowRate(const DomainParams& d) {
+  if (!d.flow_rate) return;
+  if (!std::isfinite(*d.flow_rate)) {
+    throw InvalidParameter("domain.flow_rate", ExactText(*d.flow_rate),
+                           "a finite number (the volume flux per unit depth along the periodic "
+                           "direction; 0 for sedimentation without end walls)");
+  }
+  const std::string allowed =
+      "a channel periodic in one direction: either bottom and top \"periodic\" with left and "
+      "right \"wall\" or \"velocity\", or left and right \"periodic\" with bottom and top "
+      "\"wall\" or \"velocity\" (or leave domain.flow_rate out)";
+  if (d.PeriodicX() == d.PeriodicY()) {
+    throw InvalidParameter("domain.flow_rate", ExactText(*d.flow_rate),
+                           allowed + std::string("; this domain is periodic in ") +
+                               (d.PeriodicX() ? "both directions" : "neither direction"));
+  }
+  const int first = d.PeriodicX() ? 2 : 0;  // the cross-stream sides
+  for (int s = first; s < first + 2; ++s) {
+    if (d.sides[s].type == SideType::kOutflow) {
+      throw InvalidParameter(std::string("domain.boundary.") + SideName(s) + ".type", "\"outflow\"",
+                             "\"wall\" or \"velocity\" with domain.flow_rate (" + allowed + ")");
+    }
+  }
+}
+
 void ValidateDomain(const Params& p) {
   const DomainParams& d = p.domain;
   if (!(d.size.x() > 0.0 && d.size.y() > 0.0)) {
@@ -100,6 +128,7 @@ void ValidateDomain(const Params& p) {
     }
   }
   ValidateBoundaryProfiles(d);
+  ValidateFlowRate(d);
 }
 
 void ValidateFluid(const FluidParams& f) {

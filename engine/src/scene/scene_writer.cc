@@ -118,6 +118,7 @@ std::string WriteScene(const Params& p) {
   o << "h = " << ExactText(p.domain.h) << "\n";
   o << "diagonals = \"" << (p.domain.diagonals == MeshDiagonals::kBoth ? "both" : "sw_ne")
     << "\"\n";
+  if (p.domain.flow_rate) o << "flow_rate = " << ExactText(*p.domain.flow_rate) << "\n";
   o << "\n[domain.boundary]\n";
   o << "left = " << SideText(p.domain.side(Side::kLeft)) << "\n";
   o << "right = " << SideText(p.domain.side(Side::kRight)) << "\n";

@@ -45,6 +45,11 @@ struct DomainParams {
   double h = 1.0 / 32;         // velocity mesh size
   BoundarySide sides[4];       // indexed by Side
   MeshDiagonals diagonals = MeshDiagonals::kSwNe;
+  // domain.flow_rate: in a channel periodic in one direction (the other two sides Dirichlet), the
+  // volume flux per unit depth through a cross-section that a uniform mean pressure gradient
+  // holds each step (fluid/flux_control.h); 0 for sedimentation without end walls. Absent: no
+  // control (the body force drives the flow).
+  std::optional<double> flow_rate;
   const BoundarySide& side(Side s) const { return sides[static_cast<int>(s)]; }
   bool PeriodicX() const { return side(Side::kLeft).type == SideType::kPeriodic; }
   bool PeriodicY() const { return side(Side::kBottom).type == SideType::kPeriodic; }

@@ -27,7 +27,8 @@
 // rest, so a liquid at rest, whose velocity is the round-off of its data, costs no iterations
 // (issue 13 point 8). Moving flows are 1e-8 and more of U_data, where the floor does not bind.
 // Pressure: mean-free (M_p-weighted) when every side is Dirichlet or periodic; p = 0 on outflow
-// sides. Throws SolverNotConverged after stokes_max_iterations.
+// sides. Throws SolverNotConverged after stokes_max_iterations. With domain.flow_rate the solve
+// ends by holding the flow rate with the mean pressure gradient (fluid/flux_control.h).
 //
 // Not supported: the symmetric-gradient form 2 eta_N D:D (it couples the components).
 // References: Glowinski, Finite element methods for incompressible viscous flow (2003), sections
@@ -40,6 +41,7 @@
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/params.h"
 #include "dlmfd/fluid/boundary_data.h"
+#include "dlmfd/fluid/flux_control.h"
 #include "dlmfd/fluid/node_set.h"
 #include "dlmfd/mesh/boundary_topology.h"
 #include "dlmfd/solvers/separable_helmholtz.h"
@@ -52,6 +54,7 @@ struct StokesReport {
   double reference = 0.0;  // ref of the stopping rule
   double divergence =
       0.0;  // sqrt(sum_Q (B u)_Q^2 / M_p,Q) over unknown Q: the L2 norm of the discrete divergence
+  double mean_pressure_gradient = 0.0;  // G of domain.flow_rate (fluid/flux_control.h), else 0
 };
 
 class StokesSolver {
@@ -80,11 +83,14 @@ class StokesSolver {
   const BoundaryTopology& pressure_topology() const { return ptopo_; }
   const NodeSet& velocity_nodes() const { return vnodes_; }
   const NodeSet& pressure_nodes() const { return pnodes_; }
+  // The flow-rate control of domain.flow_rate, or nullptr.
+  const FluxControl* flux_control() const { return flux_.get(); }
 
  private:
   void ApplyPreconditioner(const double* r, double* g);
   double WeightedSquareSum(const double* r) const;  // sum_Q M_p,Q^-1 r_Q^2 over the unknown nodes
   void SolveVelocityPair(const double* fu, const double* fv, double* u, double* v);
+  std::unique_ptr<FluxControl> MakeFluxControl(const DomainParams& domain);
 
   Grid grid_, pgrid_;
   BoundaryTopology vtopo_, ptopo_;
@@ -101,6 +107,7 @@ class StokesSolver {
   std::vector<double> mass_, pmass_, pmass_inv_;  // pmass_: 0 at known nodes
   std::vector<double> fu_, fv_, ubar_, vbar_, tu_, tv_;  // velocity work
   std::vector<double> r_, g_, w_, sw_, z_;               // pressure work
+  std::unique_ptr<FluxControl> flux_;                    // domain.flow_rate only
 };
 
 }  // namespace dlmfd

@@ -1,0 +1,160 @@
+// The flow rate held by the mean pressure gradient (domain.flow_rate, fluid/flux_control.h).
+// Plane Poiseuille flow at a given rate in a channel periodic along y: the steady discrete profile
+// is the parabola v = G x (W - x) / (2 eta) at the nodes (the P1 stiffness with lumped mass is
+// the 3-point stencil, exact on parabolas), whose lumped-mass (trapezoid) rate is
+//   Q_h = G (W^3 - h^2 W) / (12 eta),
+// so the steady gradient is G = 12 eta Q / (W^3 - h^2 W); the rate is Q at every step to round-off
+// (one scalar a step, exact by linearity). A body force along the channel with a zero rate is all
+// taken by the gradient: G = -f and the liquid stays at rest. A settling disk's Stokes step holds a
+// zero rate to round-off (the snapshots of the tendency correction show u^{n+1/4}).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "../support/max_norms.h"
+#include "dlmfd/core/simulation.h"
+
+namespace dlmfd {
+namespace {
+
+class RateLog : public Observer {
+ public:
+  void OnStep(const FlowState&, const StepReport& report) override {
+    gradient.push_back(report.Get("mean_pressure_gradient", NAN));
+    rate.push_back(report.Get("flow_rate", NAN));
+  }
+  std::vector<double> gradient, rate;
+};
+
+// A channel W = 1 wide (walls left and right), periodic along y with period 0.5, at rest.
+Params PeriodicChannel(double flow_rate) {
+  Params p;
+  p.domain.size = Vec2(1.0, 0.5);
+  p.domain.h = 1.0 / 16;
+  p.domain.sides[static_cast<int>(Side::kBottom)].type = SideType::kPeriodic;
+  p.domain.sides[static_cast<int>(Side::kTop)].type = SideType::kPeriodic;
+  p.domain.flow_rate = flow_rate;
+  p.fluid.density = 1.0;
+  p.fluid.viscosity = 1.0;
+  p.time.dt = 0.05;
+  p.time.end = 100 * 0.05;
+  p.output.fields_every = 0.0;
+  p.output.particles_every = 0.0;
+  p.output.checkpoint_every = 0.0;
+  p.threads = 1;
+  return p;
+}
+
+TEST(FluxControl, PoiseuilleFlowAtAGivenRate) {
+  const double rate = 0.1, eta = 1.0, width = 1.0, h = 1.0 / 16;
+  Simulation sim(PeriodicChannel(rate));
+  RateLog log;
+  sim.AddObserver(&log);
+  sim.Run();
+  ASSERT_EQ(log.rate.size(), 100u);
+  for (double q : log.rate) EXPECT_NEAR(q, rate, 1e-14);
+  const double gradient = 12.0 * eta * rate / (width * width * width - h * h * width);
+  EXPECT_NEAR(log.gradient.back(), gradient, 1e-12 * gradient);
+  const Grid& grid = sim.grid();
+  std::vector<double> parabola(grid.NodeCount()), v = sim.state().v;
+  for (int j = 0; j <= grid.ny; ++j) {
+    for (int i = 0; i <= grid.nx; ++i) {
+      const double x = grid.X(i);
+      parabola[grid.Index(i, j)] = gradient * x * (width - x) / (2.0 * eta);
+    }
+  }
+  EXPECT_LT(testing::MaxAbsDiff(v, parabola), 1e-12);
+  EXPECT_LT(testing::MaxAbs(sim.state().u), 1e-14);
+}
+
+TEST(FluxControl, ZeroRateTakesTheBodyForce) {
+  Params p = PeriodicChannel(0.0);
+  p.fluid.body_force = Vec2(0.0, 3.0);
+  p.time.end = 5 * p.time.dt;
+  Simulation sim(p);
+  RateLog log;
+  sim.AddObserver(&log);
+  sim.Run();
+  for (std::size_t n = 0; n < log.rate.size(); ++n) {
+    EXPECT_NEAR(log.gradient[n], -3.0, 1e-13) << "step " << n + 1;
+    EXPECT_NEAR(log.rate[n], 0.0, 1e-15) << "step " << n + 1;
+  }
+  EXPECT_LT(testing::MaxAbs(sim.state().v), 1e-14);
+}
+
+// The rate of u^{n+1/4}, the Stokes step's velocity that the tendency correction's snapshots show:
+// the lumped mass is h^2 at the interior nodes, and the walls' nodes have v = 0. With the round-off
+// scale sum |v| h^2 / L beside it.
+class StokesRate : public Observer {
+ public:
+  explicit StokesRate(const Grid& grid)
+      : grid_(grid) {}
+  void OnSnapshot(const FlowState& state) override {
+    double q = 0.0, scale = 0.0;
+    for (int j = 0; j < grid_.ny; ++j) {  // the row ny repeats the row 0
+      for (int i = 1; i < grid_.nx; ++i) {
+        const double v = state.v[grid_.Index(i, j)];
+        q += v * grid_.h * grid_.h;
+        scale += std::abs(v) * grid_.h * grid_.h;
+      }
+    }
+    rate.push_back(q / grid_.Height());
+    round_off.push_back(scale / grid_.Height());
+  }
+  Grid grid_;
+  std::vector<double> rate, round_off;
+};
+
+// A disk D = 0.2, rho_p / rho = 1.1, falls in a channel 1 wide, periodic along y with period 2, at
+// zero rate (cases/periodic/disk_periodic_zero_flux.toml on h = 1/32), under each coupling of the
+// constraint: the rate of the Stokes step's velocity is zero to round-off at every step; the
+// gradient then balances the suspension's weight, at least phi (rho_p - rho) |g| = 1.541 (the
+// walls' shear adds to it while the liquid beside the disk climbs).
+TEST(FluxControl, SettlingDiskAtZeroRate) {
+  for (ConstraintCoupling coupling : {ConstraintCoupling::kIncremental, ConstraintCoupling::kPaper,
+                                      ConstraintCoupling::kViscous}) {
+    Params p;
+    p.domain.size = Vec2(1.0, 2.0);
+    p.domain.h = 1.0 / 32;
+    p.domain.sides[static_cast<int>(Side::kBottom)].type = SideType::kPeriodic;
+    p.domain.sides[static_cast<int>(Side::kTop)].type = SideType::kPeriodic;
+    p.domain.flow_rate = 0.0;
+    p.fluid.density = 1.0;
+    p.fluid.viscosity = 0.05;
+    p.gravity = Vec2(0.0, -981.0);
+    p.splitting = SplittingParams::DefaultWeights(coupling);
+    p.splitting.steady_correction = SteadyCorrection::kTendency;
+    p.time.dt = 5e-4;
+    p.time.end = 40 * 5e-4;
+    p.output.fields_every = 5e-4;
+    p.output.particles_every = 0.0;
+    p.output.checkpoint_every = 0.0;
+    p.threads = 1;
+    ParticleParams disk;
+    disk.center = Vec2(0.5, 1.0);
+    disk.diameter = 0.2;
+    disk.density = 1.1;
+    p.particles.push_back(disk);
+    Simulation sim(p);
+    RateLog log;
+    StokesRate stokes(sim.grid());
+    sim.AddObserver(&log);
+    sim.AddObserver(&stokes);
+    sim.Run();
+    const int c = static_cast<int>(coupling);
+    ASSERT_EQ(stokes.rate.size(), 40u) << "coupling " << c;  // every step
+    for (std::size_t n = 0; n < stokes.rate.size(); ++n) {
+      EXPECT_LE(std::abs(stokes.rate[n]), 1e-13 * stokes.round_off[n])
+          << "coupling " << c << ", step " << n + 1;
+    }
+    const double weight = 0.25 * M_PI * 0.04 * 0.1 * 981.0 / 2.0;
+    EXPECT_GT(log.gradient.back(), weight) << "coupling " << c;
+    std::printf("coupling %d: G = %.6g, end-of-step rate %.3g, Stokes rate %.3g (scale %.3g)\n", c,
+                log.gradient.back(), log.rate.back(), stokes.rate.back(), stokes.round_off.back());
+  }
+}
+
+}  // namespace
+}  // namespace dlmfd
