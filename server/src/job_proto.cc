@@ -87,7 +87,8 @@ v1::Job ToProto(const JobRecord& job, double now) {
   out.set_exit_signal(job.exit_signal);
   out.set_cpu_seconds(job.cpu_seconds);
   out.set_peak_memory_bytes(job.peak_memory_bytes);
-  if (job.started_time > 0) {
+  // Counted from the start shown: a job Slurm holds waiting has none yet, so no elapsed time.
+  if (out.started_time() > 0) {
     const double end = job.finished_time > 0             ? job.finished_time
                        : job.state == JobState::kRunning ? now
                                                          : job.started_time;

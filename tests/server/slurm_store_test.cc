@@ -165,6 +165,7 @@ TEST(SlurmStore, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStartsIt) {
   EXPECT_EQ(shown.slurm_state(), "PENDING");
   EXPECT_EQ(shown.slurm_reason(), "JobArrayTaskLimit");
   EXPECT_EQ(shown.started_time(), 0.0);
+  EXPECT_EQ(shown.elapsed_seconds(), 0.0);  // no start shown, no time counted
   EXPECT_NE(shown.reason().find("Slurm: PENDING"), std::string::npos) << shown.reason();
   EXPECT_NE(shown.reason().find("JobArrayTaskLimit"), std::string::npos) << shown.reason();
   const v1::Job running = ToProto(*store.Get("a"), 15.0);
