@@ -128,25 +128,34 @@ AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const
 AdvectionWave::~AdvectionWave() = default;
 
 // W_T / h^2 = (1/24)(sum_k V_k V_k^T + S S^T) over the vertices of T, for |T| = h^2 / 2 and
-// unscaled gradients.
+// unscaled gradients. The products V_k V_k^T of the cell's four corners are formed once and shared
+// by its two (or, on both diagonals, four) triangles.
 void AdvectionWave::ComputeWeights(const double* vx, const double* vy) {
   constexpr double kOneOver24 = 1.0 / 24.0;
   const bool both = diagonals_ == MeshDiagonals::kBoth;
-  auto triangle = [&](std::size_t p, std::size_t q, std::size_t r, double& w11, double& w12,
-                      double& w22) {
-    const double sx = vx[p] + vx[q] + vx[r], sy = vy[p] + vy[q] + vy[r];
-    w11 = kOneOver24 * (vx[p] * vx[p] + vx[q] * vx[q] + vx[r] * vx[r] + sx * sx);
-    w12 = kOneOver24 * (vx[p] * vy[p] + vx[q] * vy[q] + vx[r] * vy[r] + sx * sy);
-    w22 = kOneOver24 * (vy[p] * vy[p] + vy[q] * vy[q] + vy[r] * vy[r] + sy * sy);
-  };
   TriangleWeights &w = weights_, &z = nwse_weights_;
   ForEachCell(grid_, [&](const CellAt& k) {
-    const std::size_t a = k.a, b = k.b, c = k.c, d = k.d, cell = k.cell;
-    triangle(a, b, c, w.w11a[cell], w.w12a[cell], w.w22a[cell]);  // T1
-    triangle(a, c, d, w.w11b[cell], w.w12b[cell], w.w22b[cell]);  // T2
+    const std::size_t corner[4] = {k.a, k.b, k.c, k.d};
+    double x[4], y[4], xx[4], xy[4], yy[4];
+    for (int m = 0; m < 4; ++m) {
+      x[m] = vx[corner[m]];
+      y[m] = vy[corner[m]];
+      xx[m] = x[m] * x[m];
+      xy[m] = x[m] * y[m];
+      yy[m] = y[m] * y[m];
+    }
+    auto triangle = [&](int p, int q, int r, double& w11, double& w12, double& w22) {
+      const double sx = x[p] + x[q] + x[r], sy = y[p] + y[q] + y[r];
+      w11 = kOneOver24 * (xx[p] + xx[q] + xx[r] + sx * sx);
+      w12 = kOneOver24 * (xy[p] + xy[q] + xy[r] + sx * sy);
+      w22 = kOneOver24 * (yy[p] + yy[q] + yy[r] + sy * sy);
+    };
+    const std::size_t cell = k.cell;
+    triangle(0, 1, 2, w.w11a[cell], w.w12a[cell], w.w22a[cell]);  // T1 = (a, b, c)
+    triangle(0, 2, 3, w.w11b[cell], w.w12b[cell], w.w22b[cell]);  // T2 = (a, c, d)
     if (!both) return;
-    triangle(a, b, d, z.w11a[cell], z.w12a[cell], z.w22a[cell]);  // T3
-    triangle(b, c, d, z.w11b[cell], z.w12b[cell], z.w22b[cell]);  // T4
+    triangle(0, 1, 3, z.w11a[cell], z.w12a[cell], z.w22a[cell]);  // T3 = (a, b, d)
+    triangle(1, 2, 3, z.w11b[cell], z.w12b[cell], z.w22b[cell]);  // T4 = (b, c, d)
   });
 }
 

@@ -384,10 +384,26 @@ template <Diagonal kD = Diagonal::kSwNe>
 // P1 interpolation I_p from the 2h-grid along one fine row: `low` is coarse row j/2, `high` the
 // next coarse row for odd j (null for even j). Odd-odd fine nodes are midpoints of the diagonal of
 // a 2h-square, so they average its SW and NE coarse values (SW-NE) or its NW and SE ones (NW-SE).
+// The pairs (2 ci, 2 ci + 1) whose coarse neighbour ci + 1 needs no wrap go first, without a
+// branch or a wrap per node (the same sums, so the same bits); the rest by the general rule.
 template <Diagonal kD = Diagonal::kSwNe>
 inline void ProlongRow(const AxisWrap& cx, const double* low, const double* high, int fine_lines,
                        double* out) {
-  for (int i = 0; i < fine_lines; ++i) {
+  const int pairs = std::max(0, std::min(fine_lines / 2, cx.cells - 1));
+  if (high) {
+    for (int ci = 0; ci < pairs; ++ci) {
+      out[2 * ci] = 0.5 * (low[ci] + high[ci]);
+      out[2 * ci + 1] =
+          kD == Diagonal::kSwNe ? 0.5 * (low[ci] + high[ci + 1]) : 0.5 * (low[ci + 1] + high[ci]);
+    }
+  } else {
+    for (int ci = 0; ci < pairs; ++ci) {
+      out[2 * ci] = low[ci];
+      out[2 * ci + 1] =
+          kD == Diagonal::kSwNe ? 0.5 * (low[ci] + low[ci + 1]) : 0.5 * (low[ci + 1] + low[ci]);
+    }
+  }
+  for (int i = 2 * pairs; i < fine_lines; ++i) {
     const int ci = i / 2;
     if (i % 2 == 0) {
       out[i] = high ? 0.5 * (low[ci] + high[ci]) : low[ci];
