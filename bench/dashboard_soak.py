@@ -108,14 +108,14 @@ def main():
                 memory = web_memory(web)
                 status = web.status()
                 ids = overview_page.execute_script(
-                    "return [...document.querySelectorAll('tr[data-sweep]')].map(r => r.dataset.sweep)")
+                    "return [...document.querySelectorAll('tr[data-study]')].map(r => r.dataset.study)")
                 job_ids = study_page.execute_script(
                     "return [...document.querySelectorAll('#jobs-table tbody tr')].map(r => r.dataset.job)")
                 heap = [b.execute_script("return performance.memory ? performance.memory.usedJSHeapSize : 0")
                         for b in (overview_page, study_page)]
                 one_load = all(b.execute_script("return window.__one_load === true")
                                for b in (overview_page, study_page))
-                expected = [s["id"] for s in truth["sweeps"]]
+                expected = [s["id"] for s in truth["studies"]]
                 row = {"minute": round((time.monotonic() - start) / 60, 2), "studies": studies,
                        "rss_kib": memory["VmRSS"], "threads": memory["Threads"], "fds": memory["fds"],
                        "live_pages": status["live_pages"], "watch_streams": status["watch_streams"],
@@ -134,9 +134,9 @@ def main():
                     # The page may be a fraction of a second behind: look again after 2 s.
                     time.sleep(2)
                     ids = overview_page.execute_script(
-                        "return [...document.querySelectorAll('tr[data-sweep]')].map(r => r.dataset.sweep)")
+                        "return [...document.querySelectorAll('tr[data-study]')].map(r => r.dataset.study)")
                     expected = [s["id"] for s in json.loads(web.request("GET", "/api/overview", headers={
-                        "Authorization": "Bearer " + ws.Daemon.TOKEN})[2])["sweeps"]]
+                        "Authorization": "Bearer " + ws.Daemon.TOKEN})[2])["studies"]]
                     if set(ids) != set(expected):
                         failures.append(f"minute {row['minute']}: the studies page shows {len(ids)} "
                                         f"studies, the daemon {len(expected)}")

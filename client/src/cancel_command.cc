@@ -1,4 +1,4 @@
-// dlmfd cancel JOB...  |  dlmfd cancel --sweep ID  |  dlmfd cancel --tag T...
+// dlmfd cancel JOB...  |  dlmfd cancel --study ID  |  dlmfd cancel --tag T...
 // A running job stops at a step boundary and keeps its partial results; the reply may still say
 // "running (cancel requested)" until the solver has exited. For a study or a tag, the unfinished
 // jobs are cancelled and the finished ones left as they are.
@@ -39,16 +39,16 @@ int RunCancel(int argc, char** argv) {
   AddSelectionFlags(app, selection, jobs_option);
   if (auto code = ParseArgs(app, argc, argv)) return *code;
   if (job_ids.empty() && selection.empty())
-    return ReportError("cancel", "name a job id, --sweep ID or --tag T", kExitUsage);
+    return ReportError("cancel", "name a job id, --study ID or --tag T", kExitUsage);
 
   return Guarded("cancel", [&] {
     Connection connection(connection_flags);
-    if (!selection.sweep.empty() && selection.tags.empty()) {
+    if (!selection.study.empty() && selection.tags.empty()) {
       auto context = connection.UnaryContext();
-      v1::CancelSweepRequest request;
-      request.set_sweep_id(selection.sweep);
-      v1::CancelSweepResponse response;
-      const grpc::Status status = connection.jobs().CancelSweep(context.get(), request, &response);
+      v1::CancelStudyRequest request;
+      request.set_study_id(selection.study);
+      v1::CancelStudyResponse response;
+      const grpc::Status status = connection.jobs().CancelStudy(context.get(), request, &response);
       if (!status.ok()) return ReportRpcError("cancel", status);
       std::cout << JobTable({response.jobs().begin(), response.jobs().end()});
       return kExitOk;

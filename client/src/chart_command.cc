@@ -529,7 +529,7 @@ int RunChartCommand(int argc, char** argv, const PanelRequest* panel) {
 }
 
 int RunChart(int argc, char** argv) {
-  if (IsSweepChart(argc, argv)) return RunSweepChart(argc, argv);  // chart_sweep.cc
+  if (IsStudyChart(argc, argv)) return RunStudyChart(argc, argv);  // chart_study.cc
   return RunChartCommand(argc, argv, nullptr);
 }
 

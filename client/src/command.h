@@ -22,7 +22,7 @@ struct Command {
 };
 
 int RunSubmit(int argc, char** argv);
-int RunSweep(int argc, char** argv);
+int RunStudy(int argc, char** argv);
 int RunList(int argc, char** argv);
 int RunShow(int argc, char** argv);
 int RunWatch(int argc, char** argv);
@@ -41,10 +41,10 @@ int RunDelete(int argc, char** argv);
 int RunPriority(int argc, char** argv);
 int RunHold(int argc, char** argv);
 int RunRelease(int argc, char** argv);
-// `dlmfd chart --sweep ...`: a quantity of a sweep against a parameter (chart_sweep.cc).
-bool IsSweepChart(int argc, char** argv);
-int RunSweepChart(int argc, char** argv);
-int RunSweeps(int argc, char** argv);
+// `dlmfd chart --study ...`: a quantity of a study against a parameter (chart_study.cc).
+bool IsStudyChart(int argc, char** argv);
+int RunStudyChart(int argc, char** argv);
+int RunStudies(int argc, char** argv);
 int RunRetry(int argc, char** argv);
 
 // Parses argv into `app`; returns an exit code when the command must stop (help: 0, error: 2).
@@ -66,7 +66,7 @@ void AddLabels(const std::vector<std::string>& texts,
                google::protobuf::Map<std::string, std::string>* labels);
 // --time's duration in seconds (time_limit_text.h); throws UsageError saying what is expected.
 int64_t TimeLimitFlag(const std::string& text);
-// A random 128-bit hex id that makes a retried Submit or SubmitSweep idempotent.
+// A random 128-bit hex id that makes a retried Submit or SubmitStudy idempotent.
 std::string NewRequestId();
 // How `watch` prints on the descriptor it writes to (stdout by default): live line on a terminal,
 // plain otherwise, or JSON.

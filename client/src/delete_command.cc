@@ -1,4 +1,4 @@
-// dlmfd delete JOB... | --sweep ID  [--force]
+// dlmfd delete JOB... | --study ID  [--force]
 // Removes the jobs' records and directories (results, log, inputs) on the daemon. A queued job is
 // cancelled first; a running one only with --force (cancelled, then deleted once its solver has
 // stopped). Nothing is deleted when one of the jobs cannot be.
@@ -12,25 +12,25 @@
 namespace dlmfd::cli {
 
 int RunDelete(int argc, char** argv) {
-  CLI::App app{"Delete jobs or a sweep: their records and results."};
+  CLI::App app{"Delete jobs or a study: their records and results."};
   ConnectionFlags connection_flags;
   AddConnectionFlags(app, connection_flags);
   std::vector<std::string> job_ids;
-  std::string sweep;
+  std::string study;
   bool force = false;
   auto* jobs_option = app.add_option("job", job_ids, "job ids");
-  auto* sweep_option = app.add_option("--sweep", sweep, "every job of this sweep");
-  jobs_option->excludes(sweep_option);
+  auto* study_option = app.add_option("--study", study, "every job of this study");
+  jobs_option->excludes(study_option);
   app.add_flag("--force", force, "also running jobs (they are cancelled first)");
   if (auto code = ParseArgs(app, argc, argv)) return *code;
-  if (job_ids.empty() && sweep.empty())
-    return ReportError("delete", "name job ids or --sweep ID", kExitUsage);
+  if (job_ids.empty() && study.empty())
+    return ReportError("delete", "name job ids or --study ID", kExitUsage);
 
   return Guarded("delete", [&] {
     Connection connection(connection_flags);
     v1::DeleteRequest request;
     for (const std::string& id : job_ids) request.add_job_ids(id);
-    request.set_sweep_id(sweep);
+    request.set_study_id(study);
     request.set_force(force);
     v1::DeleteResponse response;
     // A forced delete waits for running solvers to stop at a step boundary.

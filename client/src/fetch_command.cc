@@ -1,5 +1,5 @@
 // dlmfd fetch JOB [--out DIR] [--path FILE]...
-// dlmfd fetch --sweep S | --tag T... [--out DIR] [--path FILE]...
+// dlmfd fetch --study S | --tag T... [--out DIR] [--path FILE]...
 // A study arrives as one folder per point, named by its parameter values
 // (DIR/fluid.relaxation_time=0.5,particles.*.density=1.02/), a job without parameters under its
 // name; characters outside [A-Za-z0-9._=,+*-] become '_', and a name taken twice gets the job id.
@@ -171,17 +171,17 @@ int RunFetch(int argc, char** argv) {
   auto* job_option = app.add_option("job", job_id, "job id");
   AddSelectionFlags(app, selection, job_option);
   app.add_option("--out,-o", out_dir,
-                 "directory to write into (default: ./<job id>, ./<sweep id> or ./<tag>)");
+                 "directory to write into (default: ./<job id>, ./<study id> or ./<tag>)");
   app.add_option("--path", paths,
                  "one file, relative to the results directory (repeatable; default: all)");
   if (auto code = ParseArgs(app, argc, argv)) return *code;
   if (job_id.empty() && selection.empty())
-    return ReportError("fetch", "name a job id, --sweep ID or --tag T", kExitUsage);
+    return ReportError("fetch", "name a job id, --study ID or --tag T", kExitUsage);
 
   return Guarded("fetch", [&] {
     const std::string fallback =
         !job_id.empty() ? job_id
-                        : (!selection.sweep.empty() ? selection.sweep : selection.tags.front());
+                        : (!selection.study.empty() ? selection.study : selection.tags.front());
     const fs::path dir = out_dir.empty() ? fs::path(fallback) : fs::path(out_dir);
     for (const std::string& p : paths) {
       if (!SafeRelative(p))

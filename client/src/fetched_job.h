@@ -1,5 +1,5 @@
 // The job a fetched results directory came from: `dlmfd fetch` writes DIR/job.json (the job as
-// `dlmfd show JOB --json` prints it, one line: id, name, overrides, parameters, sweep, tags, state
+// `dlmfd show JOB --json` prints it, one line: id, name, overrides, parameters, study, tags, state
 // at the fetch, ...) next to the solver's files, because the solver's own files know the scene as
 // run (scene.toml, overrides applied) but not the job's name or which keys were overridden.
 // `dlmfd plot DIR` and `dlmfd movie DIR` read it back to caption a fetched run as they caption

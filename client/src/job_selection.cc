@@ -3,11 +3,11 @@
 namespace dlmfd::cli {
 
 void AddSelectionFlags(CLI::App& app, JobSelection& selection, CLI::Option* ids) {
-  auto* sweep = app.add_option("--sweep", selection.sweep, "every job of this study");
+  auto* study = app.add_option("--study", selection.study, "every job of this study");
   auto* tags = app.add_option("--tag", selection.tags,
                               "every job carrying this tag (repeatable: all of them)");
   if (ids != nullptr) {
-    ids->excludes(sweep);
+    ids->excludes(study);
     ids->excludes(tags);
   }
 }
@@ -15,7 +15,7 @@ void AddSelectionFlags(CLI::App& app, JobSelection& selection, CLI::Option* ids)
 grpc::Status SelectJobs(Connection& connection, const JobSelection& selection,
                         std::vector<v1::Job>& jobs) {
   v1::ListRequest request;
-  request.set_sweep_id(selection.sweep);
+  request.set_study_id(selection.study);
   for (const std::string& tag : selection.tags) request.add_tags(tag);
   request.set_page_size(1000);
   for (;;) {
@@ -30,7 +30,7 @@ grpc::Status SelectJobs(Connection& connection, const JobSelection& selection,
 }
 
 std::string SelectionName(const JobSelection& selection) {
-  if (!selection.sweep.empty()) return "sweep " + selection.sweep;
+  if (!selection.study.empty()) return "study " + selection.study;
   std::string tags;
   for (const std::string& tag : selection.tags) tags += (tags.empty() ? "" : ",") + tag;
   return "tag " + tags;

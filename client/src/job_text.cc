@@ -170,7 +170,7 @@ std::string JobDetails(const v1::Job& job) {
   if (!job.reason().empty()) out << "reason:      " << job.reason() << "\n";
   out << "priority:    " << job.priority() << "\n"
       << "tags:        " << JoinText(job.tags(), ", ") << "\n";
-  if (!job.sweep_id().empty()) out << "sweep:       " << job.sweep_id() << "\n";
+  if (!job.study_id().empty()) out << "study:       " << job.study_id() << "\n";
   if (!job.after().empty()) out << "after:       " << JoinText(job.after(), ", ") << "\n";
   out << "overrides:   " << JoinText(job.overrides(), " ") << "\n"
       << "progress:    step " << job.step() << ", time " << Progress(job) << "\n"

@@ -1,4 +1,4 @@
-// dlmfd list [--state S]... [--tag T]... [--label k=v]... [--where KEY=VALUE]... [--sweep ID]
+// dlmfd list [--state S]... [--tag T]... [--label k=v]... [--where KEY=VALUE]... [--study ID]
 //            [--page-size N] [--page-token T | --all] [--json | -q]
 // Every filter given must hold. --where matches the effective scene (the scene file, the overrides
 // and the defaults, as the solver runs it): `--where particles.*.density=1.5`.
@@ -17,7 +17,7 @@ int RunList(int argc, char** argv) {
   ConnectionFlags connection_flags;
   AddConnectionFlags(app, connection_flags);
   std::vector<std::string> states, tags, labels, where;
-  std::string sweep, page_token;
+  std::string study, page_token;
   int page_size = 50;
   bool all = false, json = false, quiet = false;
   app.add_option("--state", states,
@@ -28,7 +28,7 @@ int RunList(int argc, char** argv) {
   app.add_option("--where", where,
                  "only jobs whose effective scene has KEY=VALUE, KEY!=VALUE or KEY<NUMBER "
                  "(also <=, >, >=) (repeatable; * for any index)");
-  app.add_option("--sweep", sweep, "only jobs of this sweep");
+  app.add_option("--study", study, "only jobs of this study");
   app.add_option("--page-size", page_size, "jobs per page, 1..1000")->check(CLI::Range(1, 1000));
   app.add_option("--page-token", page_token, "continue from a previous page");
   app.add_flag("--all", all, "fetch every page");
@@ -43,7 +43,7 @@ int RunList(int argc, char** argv) {
     AddLabels(labels, request.mutable_labels());
     // The daemon checks each (scene_values.h): one validation path.
     for (const std::string& w : where) request.add_where(w);
-    request.set_sweep_id(sweep);
+    request.set_study_id(study);
     request.set_page_size(page_size);
     request.set_page_token(page_token);
     Connection connection(connection_flags);

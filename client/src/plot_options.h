@@ -1,6 +1,6 @@
 // The drawing flags that `dlmfd plot` and `dlmfd movie` share (quantity, size, colour scale,
 // window, isolines, arrows) and the captions that name a run: its scene title and directory, or a
-// job's name and overrides (the swept parameters of a sweep's job; also for a directory that
+// job's name and overrides (the swept parameters of a study's job; also for a directory that
 // dlmfd fetch wrote, from its job.json), then quantity, time and step.
 #pragma once
 
@@ -66,7 +66,7 @@ std::string FrameCaption(const std::string& quantity, double time, long step);
 // as a paragraph of its own, SettingsCaption: the run's real mesh, time step and liquid.
 // Throws InvalidParameter for a job.json that is not a job's JSON.
 std::string DirectoryCaption(const std::string& results_dir);
-// "<job name>  |  key = value, ..." (the overrides as submitted, numbers by SettingText; a sweep's
+// "<job name>  |  key = value, ..." (the overrides as submitted, numbers by SettingText; a study's
 // point is among them).
 std::string JobCaption(const v1::Job& job);
 // The quantity as a file-name part: letters, digits, '-' and '_' ("log10(trA/2)" -> "log10_trA_2").

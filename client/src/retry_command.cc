@@ -1,4 +1,4 @@
-// dlmfd retry JOB...  |  dlmfd retry --sweep S [--state failed,cancelled]  |  --tag T...
+// dlmfd retry JOB...  |  dlmfd retry --study S [--state failed,cancelled]  |  --tag T...
 //             [--set key=value]... [--json]
 // Reruns finished jobs from their stored scene and overrides (plus --set, which replaces an
 // override of the same key): each keeps its id and its study, its attempt number goes up and the
@@ -25,16 +25,16 @@ int RunRetry(int argc, char** argv) {
   auto* jobs_option = app.add_option("job", job_ids, "job ids (each must have finished)");
   AddSelectionFlags(app, selection, jobs_option);
   app.add_option("--state", states,
-                 "with --sweep or --tag: the states to rerun, completed|failed|cancelled "
+                 "with --study or --tag: the states to rerun, completed|failed|cancelled "
                  "(repeatable or comma list; default failed,cancelled)")
       ->delimiter(',');
   app.add_option("--set", overrides, "change a scene key for the rerun: key=value (repeatable)");
   app.add_flag("--json", json, "one JSON line per requeued job");
   if (auto code = ParseArgs(app, argc, argv)) return *code;
   if (job_ids.empty() && selection.empty())
-    return ReportError("retry", "name a job id, --sweep ID or --tag T", kExitUsage);
+    return ReportError("retry", "name a job id, --study ID or --tag T", kExitUsage);
   if (!job_ids.empty() && !states.empty())
-    return ReportError("retry", "--state goes with --sweep or --tag", kExitUsage);
+    return ReportError("retry", "--state goes with --study or --tag", kExitUsage);
 
   return Guarded("retry", [&] {
     v1::RetryRequest request;
@@ -60,8 +60,8 @@ int RunRetry(int argc, char** argv) {
         return ReportError("retry", "no job of " + SelectionName(selection) + " to rerun",
                            kExitConflict);
       }
-    } else if (!selection.sweep.empty()) {
-      request.set_sweep_id(selection.sweep);
+    } else if (!selection.study.empty()) {
+      request.set_study_id(selection.study);
       for (v1::JobState s : wanted) request.add_states(s);
     } else {
       for (const std::string& id : job_ids) request.add_job_ids(id);

@@ -1,4 +1,4 @@
-// dlmfd show JOB [--json]  |  dlmfd show --sweep S [--json]  |  dlmfd show --tag T... [--json]
+// dlmfd show JOB [--json]  |  dlmfd show --study S [--json]  |  dlmfd show --tag T... [--json]
 // A study shows its axes, limit and counts, then its jobs; a tag its counts, then its jobs.
 #include <iostream>
 
@@ -24,7 +24,7 @@ int RunShow(int argc, char** argv) {
   app.add_flag("--json", json, "the job (or the study, then its jobs) as JSON lines");
   if (auto code = ParseArgs(app, argc, argv)) return *code;
   if (job_id.empty() && selection.empty())
-    return ReportError("show", "name a job id, --sweep ID or --tag T", kExitUsage);
+    return ReportError("show", "name a job id, --study ID or --tag T", kExitUsage);
 
   return Guarded("show", [&] {
     Connection connection(connection_flags);
@@ -38,26 +38,26 @@ int RunShow(int argc, char** argv) {
       std::cout << (json ? ToJsonLine(job) + "\n" : JobDetails(job));
       return kExitOk;
     }
-    if (!selection.sweep.empty()) {
+    if (!selection.study.empty()) {
       auto context = connection.UnaryContext();
-      v1::GetSweepRequest request;
-      request.set_sweep_id(selection.sweep);
-      v1::Sweep sweep;
-      const grpc::Status status = connection.jobs().GetSweep(context.get(), request, &sweep);
+      v1::GetStudyRequest request;
+      request.set_study_id(selection.study);
+      v1::Study study;
+      const grpc::Status status = connection.jobs().GetStudy(context.get(), request, &study);
       if (!status.ok()) return ReportRpcError("show", status);
-      std::cout << (json ? ToJsonLine(sweep) + "\n" : SweepDetails(sweep));
+      std::cout << (json ? ToJsonLine(study) + "\n" : StudyDetails(study));
     }
     std::vector<v1::Job> jobs;
     const grpc::Status status = SelectJobs(connection, selection, jobs);
     if (!status.ok()) return ReportRpcError("show", status);
-    if (jobs.empty() && selection.sweep.empty()) {
+    if (jobs.empty() && selection.study.empty()) {
       return ReportError("show", "no job carries " + SelectionName(selection), kExitNotFound);
     }
     if (json) {
       for (const v1::Job& job : jobs) std::cout << ToJsonLine(job) << "\n";
       return kExitOk;
     }
-    if (selection.sweep.empty()) {
+    if (selection.study.empty()) {
       const StudyCounts counts = CountJobs(jobs);
       std::cout << FitToWidth(StudyFields(SelectionName(selection), counts, -1), std::string::npos)
                 << "\n";

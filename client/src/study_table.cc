@@ -86,11 +86,11 @@ StudyTable StudyTable::Select(const std::vector<std::string>& names) const {
   return out;
 }
 
-grpc::Status FetchTableRows(Connection& connection, const std::string& sweep_id,
+grpc::Status FetchTableRows(Connection& connection, const std::string& study_id,
                             const std::vector<std::string>& job_ids, v1::TableResponse* out) {
   auto context = connection.UnaryContext();
   v1::TableRequest request;
-  request.set_sweep_id(sweep_id);
+  request.set_study_id(study_id);
   for (const std::string& id : job_ids) request.add_job_ids(id);
   return connection.jobs().Table(context.get(), request, out);
 }

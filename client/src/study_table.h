@@ -1,5 +1,5 @@
 // A study as a table: the rows of the Table rpc (jobs.proto) flattened into named columns, the
-// same for `dlmfd table` (CSV, JSON) and `dlmfd chart --sweep` (a column against a parameter).
+// same for `dlmfd table` (CSV, JSON) and `dlmfd chart --study` (a column against a parameter).
 //
 // Columns, in this order: job, name, state, one per parameter key (the overrides, typed; in the
 // order first met), then status, reason, steps, time, wall_seconds, fall_speed, min_gap,
@@ -32,9 +32,9 @@ struct StudyTable {
   StudyTable Select(const std::vector<std::string>& names) const;
 };
 
-// The rows of a sweep (sweep_id non-empty) or of the named jobs; throws UsageError or returns
+// The rows of a study (study_id non-empty) or of the named jobs; throws UsageError or returns
 // the rpc's status through *status.
-grpc::Status FetchTableRows(Connection& connection, const std::string& sweep_id,
+grpc::Status FetchTableRows(Connection& connection, const std::string& study_id,
                             const std::vector<std::string>& job_ids, v1::TableResponse* out);
 StudyTable FlattenTable(const v1::TableResponse& response);
 

@@ -75,10 +75,10 @@ std::vector<LineField> StudyFields(const std::string& label, const StudyCounts& 
           {"ETA " + FormatDuration(eta_seconds), 8}};
 }
 
-std::string SweepTable(const std::vector<v1::Sweep>& sweeps, double now) {
+std::string StudyListText(const std::vector<v1::Study>& studies, double now) {
   std::vector<std::vector<std::string>> rows = {{"ID", "NAME", "TAGS", "JOBS", "QUEUED", "RUNNING",
                                                  "DONE", "FAILED", "CANCELLED", "PROGRESS", "AGE"}};
-  for (const v1::Sweep& s : sweeps) {
+  for (const v1::Study& s : studies) {
     rows.push_back({s.id(), s.name(), JoinText(s.tags(), ","), std::to_string(s.jobs()),
                     std::to_string(s.queued()), std::to_string(s.running()),
                     std::to_string(s.completed()), std::to_string(s.failed()),
@@ -88,7 +88,7 @@ std::string SweepTable(const std::vector<v1::Sweep>& sweeps, double now) {
   return TextTable(rows);
 }
 
-std::string AxisText(const v1::SweepAxis& axis) {
+std::string AxisText(const v1::StudyAxis& axis) {
   std::string text = axis.key() + "=" + JoinText(axis.values(), ",");
   if (axis.has_range()) {
     // The range as given, each bound as the shortest text that reads back as it.
@@ -103,14 +103,14 @@ std::string AxisText(const v1::SweepAxis& axis) {
   return text;
 }
 
-std::string SweepDetails(const v1::Sweep& s) {
+std::string StudyDetails(const v1::Study& s) {
   std::ostringstream out;
-  out << "sweep:       " << s.id() << "\n"
+  out << "study:       " << s.id() << "\n"
       << "name:        " << s.name() << "\n"
       << "owner:       " << s.owner() << "\n"
       << "tags:        " << JoinText(s.tags(), ", ") << "\n";
   if (!s.labels().empty()) out << "labels:      " << LabelsText(s.labels()) << "\n";
-  for (const v1::SweepAxis& axis : s.axes()) {
+  for (const v1::StudyAxis& axis : s.axes()) {
     out << "axis:        " << AxisText(axis)
         << (axis.zip().empty() ? "" : "  (zipped: " + axis.zip() + ")") << "\n";
   }

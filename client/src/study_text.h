@@ -1,4 +1,4 @@
-// How studies look: the `sweeps` table, the details of one study, and the aggregate of a set of
+// How studies look: the `studies` table, the details of one study, and the aggregate of a set of
 // jobs (a study or a tag) that `show` and `watch` print.
 //
 // Aggregate ETA: the work of a job is its simulated time over its end time (a finished job counts
@@ -29,12 +29,12 @@ double StudyEta(const StudyCounts& counts, double now);
 std::vector<LineField> StudyFields(const std::string& label, const StudyCounts& counts,
                                    double eta_seconds);
 
-// The `sweeps` table: ID, NAME, TAGS, JOBS, QUEUED, RUNNING, DONE, FAILED, CANCELLED, PROGRESS,
+// The `studies` table: ID, NAME, TAGS, JOBS, QUEUED, RUNNING, DONE, FAILED, CANCELLED, PROGRESS,
 // AGE.
-std::string SweepTable(const std::vector<v1::Sweep>& sweeps, double now);
+std::string StudyListText(const std::vector<v1::Study>& studies, double now);
 // "key: value" lines describing one study (its axes, limit, counts).
-std::string SweepDetails(const v1::Sweep& sweep);
-// The text of an axis as `sweep` takes it back ("key=v1,v2", "key=lin:1:2:5").
-std::string AxisText(const v1::SweepAxis& axis);
+std::string StudyDetails(const v1::Study& study);
+// The text of an axis as `study` takes it back ("key=v1,v2", "key=lin:1:2:5").
+std::string AxisText(const v1::StudyAxis& axis);
 
 }  // namespace dlmfd::cli

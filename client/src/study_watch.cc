@@ -24,7 +24,7 @@ extern "C" void OnStudyInterrupt(int) { g_study_interrupted.store(true); }
 
 nlohmann::ordered_json CountsJson(const JobSelection& selection, const StudyCounts& c, double eta) {
   nlohmann::ordered_json j;
-  if (!selection.sweep.empty()) j["sweep"] = selection.sweep;
+  if (!selection.study.empty()) j["study"] = selection.study;
   if (!selection.tags.empty()) j["tags"] = selection.tags;
   j["jobs"] = c.jobs;
   j["queued"] = c.queued;
@@ -44,7 +44,7 @@ int WatchStudy(Connection& connection, const JobSelection& selection, PrintMode 
   g_study_interrupted.store(false);
   std::signal(SIGINT, OnStudyInterrupt);
   std::signal(SIGTERM, OnStudyInterrupt);
-  const std::string label = !selection.sweep.empty() ? selection.sweep : SelectionName(selection);
+  const std::string label = !selection.study.empty() ? selection.study : SelectionName(selection);
   std::map<std::string, v1::JobState> seen;
   std::string last_counts;
   bool line_shown = false;
@@ -101,8 +101,8 @@ int WatchStudy(Connection& connection, const JobSelection& selection, PrintMode 
     if (g_study_interrupted.load()) {
       if (line_shown) out << "\n" << std::flush;
       std::cerr << "dlmfd watch: interrupted; the jobs go on (dlmfd cancel --"
-                << (selection.sweep.empty() ? "tag " + selection.tags.front()
-                                            : "sweep " + selection.sweep)
+                << (selection.study.empty() ? "tag " + selection.tags.front()
+                                            : "study " + selection.study)
                 << " stops them)\n";
       code = kExitInterrupted;
       break;

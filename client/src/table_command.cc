@@ -1,5 +1,5 @@
-// dlmfd table --sweep S | JOB...  [--format csv|json] [--columns a,b,...]
-// One row per job of the sweep (or per job named) with its parameters as typed values and the
+// dlmfd table --study S | JOB...  [--format csv|json] [--columns a,b,...]
+// One row per job of the study (or per job named) with its parameters as typed values and the
 // quantities of its summary.json (study_table.h lists the columns). CSV on stdout by default.
 #include <iostream>
 
@@ -12,26 +12,26 @@
 namespace dlmfd::cli {
 
 int RunTable(int argc, char** argv) {
-  CLI::App app{"Tabulate the summaries of a sweep's jobs (or of the jobs named)."};
+  CLI::App app{"Tabulate the summaries of a study's jobs (or of the jobs named)."};
   ConnectionFlags connection_flags;
   AddConnectionFlags(app, connection_flags);
   std::vector<std::string> job_ids, columns;
-  std::string sweep, format = "csv";
+  std::string study, format = "csv";
   auto* jobs_option = app.add_option("job", job_ids, "job ids");
-  auto* sweep_option = app.add_option("--sweep", sweep, "every job of this sweep");
-  jobs_option->excludes(sweep_option);
+  auto* study_option = app.add_option("--study", study, "every job of this study");
+  jobs_option->excludes(study_option);
   app.add_option("--format", format, "csv (default) or json")
       ->check(CLI::IsMember({"csv", "json"}));
   app.add_option("--columns", columns, "only these columns, in this order (comma separated)")
       ->delimiter(',');
   if (auto code = ParseArgs(app, argc, argv)) return *code;
-  if (job_ids.empty() && sweep.empty())
-    return ReportError("table", "name job ids or --sweep ID", kExitUsage);
+  if (job_ids.empty() && study.empty())
+    return ReportError("table", "name job ids or --study ID", kExitUsage);
 
   return Guarded("table", [&] {
     Connection connection(connection_flags);
     v1::TableResponse response;
-    const grpc::Status status = FetchTableRows(connection, sweep, job_ids, &response);
+    const grpc::Status status = FetchTableRows(connection, study, job_ids, &response);
     if (!status.ok()) return ReportRpcError("table", status);
     StudyTable table = FlattenTable(response);
     if (!columns.empty()) table = table.Select(columns);

@@ -1,4 +1,4 @@
-// The text of a job's wall-time limit on the command line (`dlmfd submit/sweep --time`): a
+// The text of a job's wall-time limit on the command line (`dlmfd submit/study --time`): a
 // duration in seconds for SubmitRequest.time_limit_seconds.
 //
 // Accepted, as a researcher who uses Slurm writes it:

@@ -1,5 +1,5 @@
 // dlmfd watch JOB [--json] [--snapshots] [--from-seq N] [--reconnect-seconds S]
-// dlmfd watch --sweep S | --tag T... [--json] [--interval SECONDS]
+// dlmfd watch --study S | --tag T... [--json] [--interval SECONDS]
 // Exit status: 0 when the job (every job of the study) completed, 1 when one failed or was
 // cancelled, 130 on Ctrl-C (the jobs go on), or the code of the rpc error.
 #include <iostream>
@@ -39,7 +39,7 @@ int RunWatch(int argc, char** argv) {
       ->check(CLI::Range(0.1, 3600.0));
   if (auto code = ParseArgs(app, argc, argv)) return *code;
   if (options.job_id.empty() && selection.empty())
-    return ReportError("watch", "name a job id, --sweep ID or --tag T", kExitUsage);
+    return ReportError("watch", "name a job id, --study ID or --tag T", kExitUsage);
   if (!json) options.include_snapshots = false;
 
   return Guarded("watch", [&] {

@@ -4,7 +4,7 @@ summary of a local results directory.
 
     python -m dlmfd --server 127.0.0.1:7443 submit scene.toml --set time.end=1 --wait
     python -m dlmfd list --state running
-    python -m dlmfd table --sweep s-3f2a          # the daemon's table, as CSV
+    python -m dlmfd table --study s-3f2a          # the daemon's table, as CSV
     python -m dlmfd table runs/a runs/b           # a local table of results directories
 
 Exit codes follow the CLI's (docs/cli.md): 2 usage or INVALID_ARGUMENT, 3 NOT_FOUND, 4
@@ -51,33 +51,33 @@ def _parser():
     s.add_argument("--tag", action="append", default=[])
     s.add_argument("--priority", type=int, default=0)
     s.add_argument("--wait", action="store_true", help="watch to the end; exit 1 unless completed")
-    s = verbs.add_parser("sweep", help="queue a study: --grid KEY=V1,V2 (repeatable)")
+    s = verbs.add_parser("study", help="queue a study: --grid KEY=V1,V2 (repeatable)")
     s.add_argument("scene")
     s.add_argument("--grid", action="append", default=[], metavar="KEY=V1,V2,...")
     s.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
     s.add_argument("--name", default="")
     s.add_argument("--tag", action="append", default=[])
     s.add_argument("--max-running", type=int, default=0)
-    verbs.add_parser("sweeps", help="your studies").add_argument("--tag", default="")
+    verbs.add_parser("studies", help="your studies").add_argument("--tag", default="")
     s = verbs.add_parser("list", help="your jobs, newest first")
     s.add_argument("--state", action="append", default=[])
     s.add_argument("--tag", default="")
-    s.add_argument("--sweep", default="")
-    s = verbs.add_parser("show", help="one job, or a study with --sweep")
+    s.add_argument("--study", default="")
+    s = verbs.add_parser("show", help="one job, or a study with --study")
     s.add_argument("job", nargs="?")
-    s.add_argument("--sweep", default="")
+    s.add_argument("--study", default="")
     verbs.add_parser("watch", help="a job's events to its end").add_argument("job")
     s = verbs.add_parser("cancel", help="jobs, or a study's unfinished jobs")
     s.add_argument("jobs", nargs="*")
-    s.add_argument("--sweep", default="")
+    s.add_argument("--study", default="")
     s = verbs.add_parser("retry", help="rerun finished jobs")
     s.add_argument("jobs", nargs="*")
-    s.add_argument("--sweep", default="")
+    s.add_argument("--study", default="")
     s.add_argument("--state", action="append", default=[])
     s.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
     s = verbs.add_parser("fetch", help="a job's results, or every job of a study")
     s.add_argument("job", nargs="?")
-    s.add_argument("--sweep", default="")
+    s.add_argument("--study", default="")
     s.add_argument("--out")
     s.add_argument("--path", action="append", default=[])
     s = verbs.add_parser("logs", help="a job's solver log")
@@ -86,12 +86,12 @@ def _parser():
     s = verbs.add_parser("inputs", help="a job's scene as submitted (or --as-run)")
     s.add_argument("job")
     s.add_argument("--as-run", action="store_true")
-    s = verbs.add_parser("table", help="a study's table (--sweep), or of local results dirs")
+    s = verbs.add_parser("table", help="a study's table (--study), or of local results dirs")
     s.add_argument("dirs", nargs="*")
-    s.add_argument("--sweep", default="")
+    s.add_argument("--study", default="")
     s = verbs.add_parser("delete", help="jobs' records and results")
     s.add_argument("jobs", nargs="*")
-    s.add_argument("--sweep", default="")
+    s.add_argument("--study", default="")
     s.add_argument("--force", action="store_true")
     s = verbs.add_parser("priority", help="a queued job's priority, -1000..1000")
     s.add_argument("job")
@@ -108,7 +108,7 @@ def _grid(texts):
     for text in texts:
         key, _, values = text.partition("=")
         if not key or not values:
-            raise SystemExit(f"python -m dlmfd sweep: --grid {text}: expected KEY=V1,V2,...")
+            raise SystemExit(f"python -m dlmfd study: --grid {text}: expected KEY=V1,V2,...")
         axes[key] = values.split(",")
     return axes
 
@@ -123,37 +123,37 @@ def _run(args, client):
             job = client.wait(job.id)
             print(_job_line(job), file=sys.stderr)
             return 0 if state_name(job.state) == "COMPLETED" else 1
-    elif verb == "sweep":
-        sweep_id, jobs = client.sweep(args.scene, _grid(args.grid), overrides=args.set,
+    elif verb == "study":
+        study_id, jobs = client.submit_study(args.scene, _grid(args.grid), overrides=args.set,
                                       name=args.name, tags=args.tag, max_running=args.max_running)
-        print(sweep_id)
+        print(study_id)
         for job in jobs:
             print(_job_line(job))
-    elif verb == "sweeps":
-        for study in client.sweeps(tag=args.tag):
+    elif verb == "studies":
+        for study in client.studies(tag=args.tag):
             print(_json(study))
     elif verb == "list":
         for job in client.jobs(states=[s.upper() for s in args.state], tag=args.tag,
-                               sweep_id=args.sweep):
+                               study_id=args.study):
             print(_job_line(job))
     elif verb == "show":
-        print(_json(client.study(args.sweep) if args.sweep else client.job(args.job)))
+        print(_json(client.study(args.study) if args.study else client.job(args.job)))
     elif verb == "watch":
         for event in client.watch(args.job):
             print(_json(event))
         return 0 if state_name(client.job(args.job).state) == "COMPLETED" else 1
     elif verb == "cancel":
-        jobs = client.cancel_sweep(args.sweep) if args.sweep else [client.cancel(j)
+        jobs = client.cancel_study(args.study) if args.study else [client.cancel(j)
                                                                    for j in args.jobs]
         for job in jobs:
             print(_job_line(job))
     elif verb == "retry":
-        for job in client.retry(args.jobs, sweep_id=args.sweep,
+        for job in client.retry(args.jobs, study_id=args.study,
                                 states=[s.upper() for s in args.state], overrides=args.set):
             print(_job_line(job))
     elif verb == "fetch":
-        if args.sweep:
-            for folder, job in client.fetch_sweep(args.sweep, args.out, args.path).items():
+        if args.study:
+            for folder, job in client.fetch_study(args.study, args.out, args.path).items():
                 print(f"{folder}  {job.id}  {state_name(job.state)}")
         else:
             print(client.fetch(args.job, args.out, args.path))
@@ -171,10 +171,10 @@ def _run(args, client):
                 print(f"# --set {override}")
             sys.stdout.write(inputs.scene)
     elif verb == "table":
-        frame = local_table(args.dirs) if args.dirs else client.table(sweep_id=args.sweep)
+        frame = local_table(args.dirs) if args.dirs else client.table(study_id=args.study)
         sys.stdout.write(frame.to_csv(index=False))
     elif verb == "delete":
-        deleted, freed = client.delete(args.jobs, sweep_id=args.sweep, force=args.force)
+        deleted, freed = client.delete(args.jobs, study_id=args.study, force=args.force)
         print("\n".join(deleted))
         print(f"deleted {len(deleted)} jobs, {freed} bytes freed", file=sys.stderr)
     elif verb == "priority":

@@ -1,4 +1,4 @@
-"""The axes of a study (SubmitSweep, docs/cli.md "sweep"), from Python values.
+"""The axes of a study (SubmitStudy, docs/cli.md "study"), from Python values.
 
 ``axes`` maps a dotted scene key (``*`` for every index of an array: ``particles.*.density``) to a
 list of values (TOML value texts of scene_input.toml_value) or to a ``Range``; together they form a
@@ -23,17 +23,17 @@ class Range:
 
 def _axis(key, values, zip_name=""):
     if isinstance(values, Range):
-        return jobs_pb2.SweepAxis(key=key, zip=zip_name, range=jobs_pb2.SweepRange(
+        return jobs_pb2.StudyAxis(key=key, zip=zip_name, range=jobs_pb2.AxisRange(
             start=values.start, stop=values.stop, count=values.count, logarithmic=values.log))
     if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
         raise TypeError(f"axis {key}: expected a list of values or a dlmfd.Range, "
                         f"got {type(values).__name__}")
-    return jobs_pb2.SweepAxis(key=key, zip=zip_name,
+    return jobs_pb2.StudyAxis(key=key, zip=zip_name,
                               values=[scene_input.toml_value(v) for v in values])
 
 
-def sweep_axes(axes=None, zip=None):
-    """The SweepAxis messages of grid axes and of one group of zipped axes."""
+def study_axes(axes=None, zip=None):
+    """The StudyAxis messages of grid axes and of one group of zipped axes."""
     out = [_axis(key, values) for key, values in (axes or {}).items()]
     out += [_axis(key, values, "zip") for key, values in (zip or {}).items()]
     return out

@@ -17,7 +17,7 @@ import grpc
 from google.protobuf import json_format
 
 from . import errors, scene_input, study_table
-from .axes import sweep_axes
+from .axes import study_axes
 from .v1 import jobs_pb2, jobs_pb2_grpc
 
 FINISHED_STATES = (jobs_pb2.COMPLETED, jobs_pb2.FAILED, jobs_pb2.CANCELLED)
@@ -78,43 +78,43 @@ class Client:
                                          after=_job_ids(after))
         return self._unary("Submit", request)
 
-    def sweep(self, scene, axes=None, overrides=None, name="", tags=(), priority=0,
-              request_id="", zip=None, labels=None, max_running=0, time_limit_seconds=0,
-              after=()):
-        """Queues a study, one job per point (SubmitSweep); returns (sweep_id, [Job, ...]).
+    def submit_study(self, scene, axes=None, overrides=None, name="", tags=(), priority=0,
+                     request_id="", zip=None, labels=None, max_running=0, time_limit_seconds=0,
+                     after=()):
+        """Queues a study, one job per point (SubmitStudy); returns (study_id, [Job, ...]).
 
         axes: {"fluid.relaxation_time": [0.5, 1.4], "time.dt": dlmfd.Range(1e-3, 1e-2, 3,
         log=True), "particles.*.density": [...]}, a full grid; zip: {key: [values], ...} of equal
         lengths, stepping together as one axis of the grid (axes.py); labels: a dict;
         max_running: at most this many of its jobs run at once (0: no limit);
         time_limit_seconds, after: each job's, as submit's."""
-        request = jobs_pb2.SubmitSweepRequest(
+        request = jobs_pb2.SubmitStudyRequest(
             scene=scene_input.scene_text(scene), overrides=scene_input.override_texts(overrides),
-            axes=sweep_axes(axes, zip), name=name, tags=list(tags), priority=priority,
+            axes=study_axes(axes, zip), name=name, tags=list(tags), priority=priority,
             client_request_id=request_id, labels=labels or {}, max_running=max_running,
             time_limit_seconds=time_limit_seconds, after=_job_ids(after))
-        response = self._unary("SubmitSweep", request)
-        return response.sweep_id, list(response.jobs)
+        response = self._unary("SubmitStudy", request)
+        return response.study_id, list(response.jobs)
 
-    def sweeps(self, tag=""):
-        """The caller's studies (Sweep messages: axes, counts per state, progress), newest first."""
+    def studies(self, tag=""):
+        """The caller's studies (Study messages: axes, counts per state, progress), newest first."""
         found, token = [], ""
         while True:
-            page = self._unary("ListSweeps", jobs_pb2.ListSweepsRequest(tag=tag, page_size=1000,
-                                                                        page_token=token))
-            found.extend(page.sweeps)
+            page = self._unary("ListStudies", jobs_pb2.ListStudiesRequest(
+                tag=tag, page_size=1000, page_token=token))
+            found.extend(page.studies)
             token = page.next_page_token
             if not token:
                 return found
 
-    def study(self, sweep_id):
-        """One study (GetSweep): its axes, labels, limit on running jobs and counts per state."""
-        return self._unary("GetSweep", jobs_pb2.GetSweepRequest(sweep_id=sweep_id))
+    def study(self, study_id):
+        """One study (GetStudy): its axes, labels, limit on running jobs and counts per state."""
+        return self._unary("GetStudy", jobs_pb2.GetStudyRequest(study_id=study_id))
 
-    def retry(self, job_ids=(), sweep_id="", states=(), overrides=None):
-        """Reruns finished jobs (Retry): the ones named, or the sweep's in `states` (default
+    def retry(self, job_ids=(), study_id="", states=(), overrides=None):
+        """Reruns finished jobs (Retry): the ones named, or the study's in `states` (default
         FAILED and CANCELLED); overrides replace or add to each job's. Returns the requeued jobs."""
-        request = jobs_pb2.RetryRequest(job_ids=list(job_ids), sweep_id=sweep_id,
+        request = jobs_pb2.RetryRequest(job_ids=list(job_ids), study_id=study_id,
                                         states=_state_values(states),
                                         overrides=scene_input.override_texts(overrides))
         return list(self._unary("Retry", request).jobs)
@@ -129,12 +129,12 @@ class Client:
         """One job (Get)."""
         return self._unary("Get", jobs_pb2.GetRequest(job_id=job_id))
 
-    def jobs(self, states=(), tag="", sweep_id="", tags=(), labels=None, where=None):
+    def jobs(self, states=(), tag="", study_id="", tags=(), labels=None, where=None):
         """The caller's jobs, newest first, every page of List; every filter given must hold.
         states: JobState values or names; tags: jobs carrying each; labels: a dict; where: the
         effective scene's values, a dict {"particles.*.density": 1.01} or texts "KEY=VALUE",
         "KEY!=VALUE", "KEY<NUMBER" (also <=, >, >=: only numbers meet a range)."""
-        request = jobs_pb2.ListRequest(states=_state_values(states), tag=tag, sweep_id=sweep_id,
+        request = jobs_pb2.ListRequest(states=_state_values(states), tag=tag, study_id=study_id,
                                        tags=list(tags), labels=labels or {},
                                        where=scene_input.override_texts(where), page_size=1000)
         found = []
@@ -149,9 +149,9 @@ class Client:
         """Cancels a job (Cancel); returns the Job."""
         return self._unary("Cancel", jobs_pb2.CancelRequest(job_id=job_id))
 
-    def cancel_sweep(self, sweep_id):
-        """Cancels every unfinished job of a sweep (CancelSweep); returns the jobs."""
-        return list(self._unary("CancelSweep", jobs_pb2.CancelSweepRequest(sweep_id=sweep_id)).jobs)
+    def cancel_study(self, study_id):
+        """Cancels every unfinished job of a study (CancelStudy); returns the jobs."""
+        return list(self._unary("CancelStudy", jobs_pb2.CancelStudyRequest(study_id=study_id)).jobs)
 
     def watch(self, job_id, from_seq=0, snapshots=False, snapshot_max_width=0,
               snapshot_max_height=0):
@@ -210,15 +210,15 @@ class Client:
         _write_job_json(out, self.job(job_id))
         return out
 
-    def fetch_sweep(self, sweep_id, out=None, paths=()):
-        """Fetches every job of a study (as `dlmfd fetch --sweep`): each into out/FOLDER, FOLDER
+    def fetch_study(self, study_id, out=None, paths=()):
+        """Fetches every job of a study (as `dlmfd fetch --study`): each into out/FOLDER, FOLDER
         its point's "key=value,..." in the order of the axes (its name without parameters),
         characters other than letters, digits and ._=,+*- made "_", a name taken twice getting
-        the job id appended; default out ./SWEEP_ID. Returns {folder path: Job}, oldest first."""
-        out = pathlib.Path(out if out is not None else sweep_id)
-        jobs = sorted(self.jobs(sweep_id=sweep_id), key=lambda j: (j.created_time, j.id))
+        the job id appended; default out ./STUDY_ID. Returns {folder path: Job}, oldest first."""
+        out = pathlib.Path(out if out is not None else study_id)
+        jobs = sorted(self.jobs(study_id=study_id), key=lambda j: (j.created_time, j.id))
         if not jobs:
-            raise errors.NotFound(grpc.StatusCode.NOT_FOUND, f"study {sweep_id} has no jobs", "List")
+            raise errors.NotFound(grpc.StatusCode.NOT_FOUND, f"study {study_id} has no jobs", "List")
         fetched, taken = {}, set()
         for job in jobs:
             folder = point_folder(job)
@@ -253,13 +253,13 @@ class Client:
         before the solver wrote it)."""
         return self._unary("GetInputs", jobs_pb2.GetInputsRequest(job_id=job_id))
 
-    def delete(self, job_ids=(), sweep_id="", force=False):
+    def delete(self, job_ids=(), study_id="", force=False):
         """Deletes jobs' records and results (Delete; force: running ones too, cancelled
         first). Returns (deleted job ids, freed bytes)."""
         if isinstance(job_ids, str):
             job_ids = [job_ids]
         response = self._unary("Delete", jobs_pb2.DeleteRequest(job_ids=list(job_ids),
-                                                                sweep_id=sweep_id, force=force))
+                                                                study_id=study_id, force=force))
         return list(response.deleted), response.freed_bytes
 
     def set_priority(self, job_id, priority):
@@ -286,18 +286,18 @@ class Client:
         except grpc.RpcError as error:
             raise errors.from_rpc_error(error, "Health/Check") from None
 
-    def table(self, sweep_id="", jobs=None, tag="", states=(), frame=None):
+    def table(self, study_id="", jobs=None, tag="", states=(), frame=None):
         """One row per job, from the Table rpc (the columns of `dlmfd table`, table.py): the
-        sweep's jobs, oldest first; or `jobs` (ids or Job messages), in that order; or the jobs
-        with the tag, states (and sweep) given, oldest first.
+        study's jobs, oldest first; or `jobs` (ids or Job messages), in that order; or the jobs
+        with the tag, states (and study) given, oldest first.
 
         frame: True for a pandas DataFrame, False for a list of dicts, None for a DataFrame when
         pandas imports."""
-        if jobs is None and sweep_id and not tag and not states:
-            rows = list(self._unary("Table", jobs_pb2.TableRequest(sweep_id=sweep_id)).rows)
+        if jobs is None and study_id and not tag and not states:
+            rows = list(self._unary("Table", jobs_pb2.TableRequest(study_id=study_id)).rows)
         else:
             if jobs is None:
-                jobs = sorted(self.jobs(states=states, tag=tag, sweep_id=sweep_id),
+                jobs = sorted(self.jobs(states=states, tag=tag, study_id=study_id),
                               key=lambda j: (j.created_time, j.id))
             ids = [j if isinstance(j, str) else j.id for j in jobs]
             rows = []
@@ -328,7 +328,7 @@ def _health_status(data):
 
 
 def point_folder(job):
-    """The folder name of a study's job, as `dlmfd fetch --sweep` names it."""
+    """The folder name of a study's job, as `dlmfd fetch --study` names it."""
     name = ",".join(f"{p.key}={p.text}" for p in job.parameters) or job.name or job.id
     name = re.sub(r"[^A-Za-z0-9._=,+*\-]", "_", name)
     return (job.id if name in (".", "..") else name)[:200]

@@ -43,7 +43,7 @@ class InvalidArgument(DlmfdError):
 
 
 class NotFound(DlmfdError):
-    """NOT_FOUND: no such job, sweep or file for this user."""
+    """NOT_FOUND: no such job, study or file for this user."""
 
 
 class Unauthenticated(DlmfdError):

@@ -1,4 +1,4 @@
-"""What a notebook hands to submit and sweep: scene text, overrides and axis values.
+"""What a notebook hands to submit and study: scene text, overrides and axis values.
 
 A scene is TOML text, or a path (a pathlib.Path, or a str naming an existing file and holding no
 newline) whose text is sent. Overrides are the ``key=value`` texts of ``dlmfd-solve --set``

@@ -22,7 +22,7 @@ v1::Job ToProto(const JobRecord& job, double now) {
   }
   out.set_priority(job.priority);
   for (const auto& tag : job.tags) out.add_tags(tag);
-  out.set_sweep_id(job.sweep_id);
+  out.set_study_id(job.study_id);
   out.set_created_time(job.created_time);
   out.set_started_time(job.slurm_waiting && job.state == JobState::kRunning ? 0.0
                                                                             : job.started_time);
@@ -97,15 +97,15 @@ v1::Job ToProto(const JobRecord& job, double now) {
   return out;
 }
 
-v1::Sweep ToProto(const SweepRecord& sweep, const SweepStats& stats) {
-  v1::Sweep out;
-  out.set_id(sweep.id);
-  out.set_name(sweep.name);
-  out.set_owner(sweep.owner);
-  for (const auto& tag : sweep.tags) out.add_tags(tag);
-  for (const auto& [key, value] : sweep.labels) (*out.mutable_labels())[key] = value;
-  for (const StoredAxis& a : sweep.axes) {
-    v1::SweepAxis* o = out.add_axes();
+v1::Study ToProto(const StudyRecord& study, const StudyStats& stats) {
+  v1::Study out;
+  out.set_id(study.id);
+  out.set_name(study.name);
+  out.set_owner(study.owner);
+  for (const auto& tag : study.tags) out.add_tags(tag);
+  for (const auto& [key, value] : study.labels) (*out.mutable_labels())[key] = value;
+  for (const StoredAxis& a : study.axes) {
+    v1::StudyAxis* o = out.add_axes();
     o->set_key(a.key);
     o->set_zip(a.zip);
     for (const auto& value : a.values) o->add_values(value);
@@ -116,9 +116,9 @@ v1::Sweep ToProto(const SweepRecord& sweep, const SweepStats& stats) {
       o->mutable_range()->set_logarithmic(a.logarithmic);
     }
   }
-  for (const auto& text : sweep.overrides) out.add_overrides(text);
-  out.set_max_running(sweep.max_running);
-  out.set_created_time(sweep.created_time);
+  for (const auto& text : study.overrides) out.add_overrides(text);
+  out.set_max_running(study.max_running);
+  out.set_created_time(study.created_time);
   out.set_jobs(stats.jobs);
   out.set_queued(stats.count[static_cast<size_t>(JobState::kQueued)]);
   out.set_running(stats.count[static_cast<size_t>(JobState::kRunning)]);

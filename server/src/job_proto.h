@@ -10,6 +10,6 @@ namespace dlmfd::server {
 // now: the time a running job's elapsed_seconds counts to (a Clock's, clock.h).
 v1::Job ToProto(const JobRecord& job, double now);
 // A study and where its jobs stand.
-v1::Sweep ToProto(const SweepRecord& sweep, const SweepStats& stats);
+v1::Study ToProto(const StudyRecord& study, const StudyStats& stats);
 
 }  // namespace dlmfd::server

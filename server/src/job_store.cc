@@ -165,6 +165,16 @@ const Migration kMigrations[] = {
     ALTER TABLE jobs DROP COLUMN slurm_reason;
     ALTER TABLE jobs DROP COLUMN slurm_waiting;
     )sql"},
+    // Schema 11: one word for one concept (issue 39 point 5): the table of studies and a job's
+    // study column take the name users see (`dlmfd study`); rows keep their values.
+    {11, R"sql(
+    ALTER TABLE sweeps RENAME TO studies;
+    ALTER TABLE jobs RENAME COLUMN sweep_id TO study_id;
+    DROP INDEX IF EXISTS sweeps_owner;
+    CREATE INDEX studies_owner ON studies (owner, ordinal DESC);
+    DROP INDEX IF EXISTS jobs_sweep;
+    CREATE INDEX jobs_study ON jobs (owner, study_id);
+    )sql"},
 };
 
 // A job's row as the store reads it: the jobs table with its Slurm record (schema 10), under the
@@ -195,7 +205,7 @@ const std::string kShownState =
     " ELSE state END)";
 
 const char kColumns[] =
-    "ordinal, id, name, owner, state, reason, priority, sweep_id, created_time, started_time, "
+    "ordinal, id, name, owner, state, reason, priority, study_id, created_time, started_time, "
     "finished_time, step, time, end_time, attempts, results_dir, scene, overrides, "
     "client_request_id, last_seq, cancel_requested, warnings, held, disk_bytes, parameters, "
     "attempt, previous_attempts, fresh_start, slurm_job_id, slurm_live, slurm_attempts, "
@@ -207,7 +217,7 @@ std::string SelectJobs(const std::string& as = "jobs") {
   return std::string("SELECT ") + kColumns + " FROM " + kJobRows + " " + as;
 }
 
-const char kSweepColumns[] =
+const char kStudyColumns[] =
     "ordinal, id, owner, name, tags, labels, axes, overrides, max_running, created_time";
 
 std::string Join(const std::vector<std::string>& parts, char sep) {
@@ -422,7 +432,7 @@ std::string EncodeLabels(const std::map<std::string, std::string>& labels) {
 
 std::map<std::string, std::string> DecodeLabels(const std::string& text) {
   std::map<std::string, std::string> out;
-  for (const auto& f : DecodeRecords(text, 2, "sweeps.labels")) out[f[0]] = f[1];
+  for (const auto& f : DecodeRecords(text, 2, "studies.labels")) out[f[0]] = f[1];
   return out;
 }
 
@@ -441,7 +451,7 @@ std::string EncodeAxes(const std::vector<StoredAxis>& axes) {
 
 std::vector<StoredAxis> DecodeAxes(const std::string& text) {
   std::vector<StoredAxis> out;
-  for (const auto& f : DecodeRecords(text, 6, "sweeps.axes")) {
+  for (const auto& f : DecodeRecords(text, 6, "studies.axes")) {
     StoredAxis a;
     a.key = f[0];
     a.zip = f[1];
@@ -658,7 +668,7 @@ std::vector<JobRecord> JobStore::Query(Statement& statement) {
     job.state = static_cast<JobState>(statement.Int(c++));
     job.reason = statement.Text(c++);
     job.priority = static_cast<int>(statement.Int(c++));
-    job.sweep_id = statement.Text(c++);
+    job.study_id = statement.Text(c++);
     job.created_time = statement.Real(c++);
     job.started_time = statement.Real(c++);
     job.finished_time = statement.Real(c++);
@@ -738,24 +748,24 @@ void JobStore::WriteSceneValues(const std::string& id,
   }
 }
 
-std::vector<SweepRecord> JobStore::QuerySweeps(Statement& statement) {
-  std::vector<SweepRecord> sweeps;
+std::vector<StudyRecord> JobStore::QueryStudies(Statement& statement) {
+  std::vector<StudyRecord> studies;
   while (statement.Step()) {
-    SweepRecord sweep;
+    StudyRecord study;
     int c = 0;
-    sweep.ordinal = statement.Int(c++);
-    sweep.id = statement.Text(c++);
-    sweep.owner = statement.Text(c++);
-    sweep.name = statement.Text(c++);
-    sweep.tags = Split(statement.Text(c++), ',');
-    sweep.labels = DecodeLabels(statement.Text(c++));
-    sweep.axes = DecodeAxes(statement.Text(c++));
-    sweep.overrides = Split(statement.Text(c++), '\n');
-    sweep.max_running = static_cast<int>(statement.Int(c++));
-    sweep.created_time = statement.Real(c++);
-    sweeps.push_back(std::move(sweep));
+    study.ordinal = statement.Int(c++);
+    study.id = statement.Text(c++);
+    study.owner = statement.Text(c++);
+    study.name = statement.Text(c++);
+    study.tags = Split(statement.Text(c++), ',');
+    study.labels = DecodeLabels(statement.Text(c++));
+    study.axes = DecodeAxes(statement.Text(c++));
+    study.overrides = Split(statement.Text(c++), '\n');
+    study.max_running = static_cast<int>(statement.Int(c++));
+    study.created_time = statement.Real(c++);
+    studies.push_back(std::move(study));
   }
-  return sweeps;
+  return studies;
 }
 
 void JobStore::LoadTags(JobRecord& job) {
@@ -767,7 +777,7 @@ void JobStore::LoadTags(JobRecord& job) {
 
 JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const std::string& owner,
                                             const std::string& request_key,
-                                            const SweepRecord* sweep) {
+                                            const StudyRecord* study) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
   InsertResult result;
@@ -784,25 +794,25 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
       return result;
     }
   }
-  if (sweep != nullptr) {
+  if (study != nullptr) {
     Statement insert(db_,
-                     "INSERT INTO sweeps (id, owner, name, tags, labels, axes, overrides, "
+                     "INSERT INTO studies (id, owner, name, tags, labels, axes, overrides, "
                      "max_running, created_time) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
-    insert.Bind(sweep->id)
-        .Bind(sweep->owner)
-        .Bind(sweep->name)
-        .Bind(Join(sweep->tags, ','))
-        .Bind(EncodeLabels(sweep->labels))
-        .Bind(EncodeAxes(sweep->axes))
-        .Bind(Join(sweep->overrides, '\n'))
-        .Bind(sweep->max_running)
-        .Bind(sweep->created_time)
+    insert.Bind(study->id)
+        .Bind(study->owner)
+        .Bind(study->name)
+        .Bind(Join(study->tags, ','))
+        .Bind(EncodeLabels(study->labels))
+        .Bind(EncodeAxes(study->axes))
+        .Bind(Join(study->overrides, '\n'))
+        .Bind(study->max_running)
+        .Bind(study->created_time)
         .Run();
   }
   std::vector<std::string> ids;
   for (auto& job : jobs) {
     Statement insert(db_,
-                     "INSERT INTO jobs (id, name, owner, state, reason, priority, sweep_id, "
+                     "INSERT INTO jobs (id, name, owner, state, reason, priority, study_id, "
                      "created_time, end_time, results_dir, scene, overrides, client_request_id, "
                      "warnings, parameters, attempt, time_limit_seconds, numerics) "
                      "VALUES (?, ?, ?, ?, '', ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
@@ -811,7 +821,7 @@ JobStore::InsertResult JobStore::InsertJobs(std::vector<JobRecord> jobs, const s
         .Bind(job.owner)
         .Bind(static_cast<int>(job.state))
         .Bind(job.priority)
-        .Bind(job.sweep_id)
+        .Bind(job.study_id)
         .Bind(job.created_time)
         .Bind(job.end_time)
         .Bind(job.results_dir)
@@ -896,7 +906,7 @@ std::vector<JobRecord> JobStore::List(const ListFilter& filter) {
     sql += value.op == "=" || value.op == "!=" ? "value " + value.op + " ?)"
                                                : "scene_number(value) " + value.op + " ?)";
   }
-  if (!filter.sweep_id.empty()) sql += " AND sweep_id = ?";
+  if (!filter.study_id.empty()) sql += " AND study_id = ?";
   if (filter.before_ordinal > 0) sql += " AND ordinal < ?";
   sql += " ORDER BY ordinal DESC LIMIT ?";
   Statement select(db_, sql);
@@ -912,7 +922,7 @@ std::vector<JobRecord> JobStore::List(const ListFilter& filter) {
       select.Bind(value.bound);
     }
   }
-  if (!filter.sweep_id.empty()) select.Bind(filter.sweep_id);
+  if (!filter.study_id.empty()) select.Bind(filter.study_id);
   if (filter.before_ordinal > 0) select.Bind(filter.before_ordinal);
   select.Bind(filter.limit);
   return Query(select);
@@ -955,28 +965,28 @@ int JobStore::CountRunning() {
   return static_cast<int>(select.Int(0));
 }
 
-std::vector<JobRecord> JobStore::SweepJobs(const std::string& owner, const std::string& sweep_id) {
+std::vector<JobRecord> JobStore::StudyJobs(const std::string& owner, const std::string& study_id) {
   std::lock_guard lock(mutex_);
-  Statement select(db_, SelectJobs() + " WHERE owner = ? AND sweep_id = ? ORDER BY ordinal");
-  select.Bind(owner).Bind(sweep_id);
+  Statement select(db_, SelectJobs() + " WHERE owner = ? AND study_id = ? ORDER BY ordinal");
+  select.Bind(owner).Bind(study_id);
   return Query(select);
 }
 
-std::optional<SweepRecord> JobStore::GetSweep(const std::string& owner,
-                                              const std::string& sweep_id) {
+std::optional<StudyRecord> JobStore::GetStudy(const std::string& owner,
+                                              const std::string& study_id) {
   std::lock_guard lock(mutex_);
   Statement select(
-      db_, std::string("SELECT ") + kSweepColumns + " FROM sweeps WHERE owner = ? AND id = ?");
-  select.Bind(owner).Bind(sweep_id);
-  auto sweeps = QuerySweeps(select);
-  if (sweeps.empty()) return std::nullopt;
-  return std::move(sweeps.front());
+      db_, std::string("SELECT ") + kStudyColumns + " FROM studies WHERE owner = ? AND id = ?");
+  select.Bind(owner).Bind(study_id);
+  auto studies = QueryStudies(select);
+  if (studies.empty()) return std::nullopt;
+  return std::move(studies.front());
 }
 
-std::vector<SweepRecord> JobStore::ListSweeps(const std::string& owner, const std::string& tag,
-                                              int64_t before_ordinal, int limit) {
+std::vector<StudyRecord> JobStore::ListStudies(const std::string& owner, const std::string& tag,
+                                               int64_t before_ordinal, int limit) {
   std::lock_guard lock(mutex_);
-  std::string sql = std::string("SELECT ") + kSweepColumns + " FROM sweeps WHERE owner = ?";
+  std::string sql = std::string("SELECT ") + kStudyColumns + " FROM studies WHERE owner = ?";
   if (!tag.empty()) sql += " AND instr(',' || tags || ',', ',' || ? || ',') > 0";
   if (before_ordinal > 0) sql += " AND ordinal < ?";
   sql += " ORDER BY ordinal DESC LIMIT ?";
@@ -985,10 +995,10 @@ std::vector<SweepRecord> JobStore::ListSweeps(const std::string& owner, const st
   if (!tag.empty()) select.Bind(tag);
   if (before_ordinal > 0) select.Bind(before_ordinal);
   select.Bind(limit);
-  return QuerySweeps(select);
+  return QueryStudies(select);
 }
 
-SweepStats JobStore::StatsOfSweep(const std::string& owner, const std::string& sweep_id) {
+StudyStats JobStore::StatsOfStudy(const std::string& owner, const std::string& study_id) {
   std::lock_guard lock(mutex_);
   Statement select(db_,
                    std::string("SELECT ") + kShownState +
@@ -998,13 +1008,13 @@ SweepStats JobStore::StatsOfSweep(const std::string& owner, const std::string& s
                        "MIN(CASE WHEN slurm_waiting = 1 THEN NULL ELSE NULLIF(started_time, 0) "
                        "END), MAX(finished_time) "
                        "FROM " +
-                       kJobRows + " jobs WHERE owner = ? AND sweep_id = ? GROUP BY 1");
+                       kJobRows + " jobs WHERE owner = ? AND study_id = ? GROUP BY 1");
   select.Bind(static_cast<int>(JobState::kCompleted))
       .Bind(static_cast<int>(JobState::kFailed))
       .Bind(static_cast<int>(JobState::kCancelled))
       .Bind(owner)
-      .Bind(sweep_id);
-  SweepStats stats;
+      .Bind(study_id);
+  StudyStats stats;
   while (select.Step()) {
     const int64_t state = select.Int(0);
     const int count = static_cast<int>(select.Int(1));
@@ -1084,9 +1094,9 @@ std::optional<JobRecord> JobStore::NextQueued() {
   // holds it back.
   Statement select(db_, SelectJobs("j") +
                             " WHERE state = ? AND held = 0 AND (slurm_live = 1 OR (NOT "
-                            "EXISTS (SELECT 1 FROM sweeps s WHERE s.id = j.sweep_id AND "
+                            "EXISTS (SELECT 1 FROM studies s WHERE s.id = j.study_id AND "
                             "s.max_running > 0 AND s.max_running <= (SELECT COUNT(*) FROM jobs r "
-                            "WHERE r.sweep_id = j.sweep_id AND r.state = ?)) AND NOT " +
+                            "WHERE r.study_id = j.study_id AND r.state = ?)) AND NOT " +
                             WaitsForDependency() +
                             ")) ORDER BY slurm_live DESC, priority DESC, ordinal LIMIT 1");
   select.Bind(static_cast<int>(JobState::kQueued)).Bind(static_cast<int>(JobState::kRunning));
@@ -1253,11 +1263,11 @@ void JobStore::SetDiskBytes(const std::string& id, int64_t bytes) {
 void JobStore::Delete(const std::vector<std::string>& ids) {
   std::lock_guard lock(mutex_);
   Transaction transaction(db_);
-  std::set<std::string> sweeps;
+  std::set<std::string> studies;
   for (const std::string& id : ids) {
-    Statement sweep(db_, "SELECT sweep_id FROM jobs WHERE id = ? AND sweep_id != ''");
-    sweep.Bind(id);
-    if (sweep.Step()) sweeps.insert(sweep.Text(0));
+    Statement study(db_, "SELECT study_id FROM jobs WHERE id = ? AND study_id != ''");
+    study.Bind(id);
+    if (study.Step()) studies.insert(study.Text(0));
     Statement(db_, "DELETE FROM job_tags WHERE job_id = ?").Bind(id).Run();
     Statement(db_, "DELETE FROM job_labels WHERE job_id = ?").Bind(id).Run();
     Statement(db_, "DELETE FROM job_values WHERE job_id = ?").Bind(id).Run();
@@ -1267,11 +1277,11 @@ void JobStore::Delete(const std::vector<std::string>& ids) {
     Statement(db_, "DELETE FROM jobs WHERE id = ?").Bind(id).Run();
   }
   // A study whose last job went is gone too: it is no longer listed, shown or found.
-  for (const std::string& sweep : sweeps) {
+  for (const std::string& study : studies) {
     Statement(db_,
-              "DELETE FROM sweeps WHERE id = ? AND NOT EXISTS "
-              "(SELECT 1 FROM jobs WHERE jobs.sweep_id = sweeps.id)")
-        .Bind(sweep)
+              "DELETE FROM studies WHERE id = ? AND NOT EXISTS "
+              "(SELECT 1 FROM jobs WHERE jobs.study_id = studies.id)")
+        .Bind(study)
         .Run();
   }
   // A request keeps the jobs it made that still exist; one with none left is forgotten, so that
@@ -1299,13 +1309,13 @@ void JobStore::Delete(const std::vector<std::string>& ids) {
   transaction.Commit();
 }
 
-std::vector<JobRecord> JobStore::QueuedOfSweep(const std::string& sweep_id, int limit) {
+std::vector<JobRecord> JobStore::QueuedOfStudy(const std::string& study_id, int limit) {
   std::lock_guard lock(mutex_);
   Statement select(db_, SelectJobs("j") +
-                            " WHERE sweep_id = ? AND state = ? AND held = 0 AND "
+                            " WHERE study_id = ? AND state = ? AND held = 0 AND "
                             "slurm_live = 0 AND NOT " +
                             WaitsForDependency() + " ORDER BY priority DESC, ordinal LIMIT ?");
-  select.Bind(sweep_id).Bind(static_cast<int>(JobState::kQueued)).Bind(limit);
+  select.Bind(study_id).Bind(static_cast<int>(JobState::kQueued)).Bind(limit);
   return Query(select);
 }
 
@@ -1333,10 +1343,10 @@ std::vector<std::pair<std::string, std::string>> JobStore::Blocked() {
   return blocked;
 }
 
-int JobStore::CountRunningOfSweep(const std::string& sweep_id) {
+int JobStore::CountRunningOfStudy(const std::string& study_id) {
   std::lock_guard lock(mutex_);
-  Statement select(db_, "SELECT COUNT(*) FROM jobs WHERE sweep_id = ? AND state = ?");
-  select.Bind(sweep_id).Bind(static_cast<int>(JobState::kRunning));
+  Statement select(db_, "SELECT COUNT(*) FROM jobs WHERE study_id = ? AND state = ?");
+  select.Bind(study_id).Bind(static_cast<int>(JobState::kRunning));
   select.Step();
   return static_cast<int>(select.Int(0));
 }

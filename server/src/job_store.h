@@ -8,7 +8,8 @@
 // after a crash). Not
 // supported: several daemons on one data directory (the daemon holds an flock on it).
 //
-// Studies (schema 3): a sweeps table holds each study (name, tags, labels, axes, base overrides,
+// Studies (schema 3; the table and the jobs' column named `study` since schema 11, `sweep`
+// before): a studies table holds each study (name, tags, labels, axes, base overrides,
 // max_running); job_labels the key=value labels of each job; job_values the effective scene of
 // each job flattened to dotted keys with normalised value texts (scene_values.h), which List's
 // `where` filter matches in SQL; jobs gain the point's typed parameters, the attempt number, the
@@ -21,9 +22,9 @@
 // Schema 6: Slurm's state and reason of the live Slurm job and whether Slurm holds it waiting
 // (SetSlurmState). The stored state stays RUNNING (the job is in the executor's hands: the
 // scheduler's count); the API shows a waiting one QUEUED (ShownState; List's states filter and
-// StatsOfSweep's counts go by the shown state). And the job's own wall-time limit.
+// StatsOfStudy's counts go by the shown state). And the job's own wall-time limit.
 // Schema 8: job dependencies (job_dependencies: job_id runs after after_id has COMPLETED, Slurm's
-// afterok). NextQueued and QueuedOfSweep skip a job until all of its dependencies COMPLETED;
+// afterok). NextQueued and QueuedOfStudy skip a job until all of its dependencies COMPLETED;
 // Blocked names the queued jobs that never can (a dependency FAILED, CANCELLED or deleted), which
 // the scheduler cancels. A queued job that waits shows the reason "dependency: waiting for ...".
 // Schema 9: accounting of the current attempt (sacct's ExitCode, TotalCPU, MaxRSS; RecordUsage).
@@ -79,7 +80,7 @@ struct JobRecord {
   std::string reason;
   int priority = 0;
   std::vector<std::string> tags;
-  std::string sweep_id;
+  std::string study_id;
   double created_time = 0, started_time = 0, finished_time = 0;
   int64_t step = 0;
   double time = 0, end_time = 0;
@@ -158,7 +159,7 @@ struct StoredAxis {
   bool logarithmic = false;
 };
 
-struct SweepRecord {
+struct StudyRecord {
   std::string id;
   std::string owner;
   std::string name;
@@ -172,7 +173,7 @@ struct SweepRecord {
 };
 
 // Where a study's jobs stand, from one aggregate query.
-struct SweepStats {
+struct StudyStats {
   std::array<int, 6> count{};  // indexed by the shown JobState (ShownState; 0 unused)
   int jobs = 0;
   double progress_sum = 0;  // sum over jobs of min(1, time / end_time), finished jobs 1
@@ -206,7 +207,7 @@ struct ListFilter {
   std::string owner;
   std::vector<JobState> states;               // empty: any
   std::string tag;                            // empty: any
-  std::string sweep_id;                       // empty: any
+  std::string study_id;                       // empty: any
   std::vector<std::string> tags;              // every one of them
   std::map<std::string, std::string> labels;  // every one of them
   // Filters on the effective scene's values, every one of them.
@@ -230,9 +231,9 @@ class JobStore {
     std::vector<JobRecord> jobs;
     bool existed = false;
   };
-  // With `sweep`, the study's row is inserted in the same transaction.
+  // With `study`, the study's row is inserted in the same transaction.
   InsertResult InsertJobs(std::vector<JobRecord> jobs, const std::string& owner,
-                          const std::string& request_key, const SweepRecord* sweep = nullptr);
+                          const std::string& request_key, const StudyRecord* study = nullptr);
 
   // The jobs created by an earlier request with this key, or empty.
   std::vector<JobRecord> FindRequest(const std::string& owner, const std::string& request_key);
@@ -243,12 +244,12 @@ class JobStore {
   bool SceneKeyKnown(const std::string& owner, const std::string& pattern);
   int64_t CountUnfinished();
   std::vector<std::string> UnfinishedJobIds();
-  std::vector<JobRecord> SweepJobs(const std::string& owner, const std::string& sweep_id);
-  std::optional<SweepRecord> GetSweep(const std::string& owner, const std::string& sweep_id);
+  std::vector<JobRecord> StudyJobs(const std::string& owner, const std::string& study_id);
+  std::optional<StudyRecord> GetStudy(const std::string& owner, const std::string& study_id);
   // The owner's studies, newest first; tag empty: any.
-  std::vector<SweepRecord> ListSweeps(const std::string& owner, const std::string& tag,
-                                      int64_t before_ordinal, int limit);
-  SweepStats StatsOfSweep(const std::string& owner, const std::string& sweep_id);
+  std::vector<StudyRecord> ListStudies(const std::string& owner, const std::string& tag,
+                                       int64_t before_ordinal, int limit);
+  StudyStats StatsOfStudy(const std::string& owner, const std::string& study_id);
   // Finished jobs back to QUEUED in one transaction, each with attempt + 1 and its ending recorded
   // in previous_attempts; returns them as written (QUEUED: the scheduler may take them the moment
   // the transaction ends, so a later Get can already read RUNNING). Throws StoreError (nothing
@@ -264,8 +265,8 @@ class JobStore {
   std::optional<JobRecord> NextQueued();
   // The QUEUED jobs of a study that are neither held nor in Slurm's hands, in NextQueued's order,
   // at most limit: the slurm executor hands them to Slurm together (one job array).
-  std::vector<JobRecord> QueuedOfSweep(const std::string& sweep_id, int limit);
-  int CountRunningOfSweep(const std::string& sweep_id);
+  std::vector<JobRecord> QueuedOfStudy(const std::string& study_id, int limit);
+  int CountRunningOfStudy(const std::string& study_id);
   // The QUEUED jobs (not in Slurm's hands) with a dependency that ended FAILED or CANCELLED or was
   // deleted, oldest first, each with the reason to cancel it: "dependency ID failed (FAILED)",
   // "dependency ID was deleted".
@@ -322,7 +323,7 @@ class JobStore {
   void LoadDependencies(JobRecord& job);
   void WriteSceneValues(const std::string& id,
                         const std::vector<std::pair<std::string, std::string>>& values);
-  std::vector<SweepRecord> QuerySweeps(Statement& statement);
+  std::vector<StudyRecord> QueryStudies(Statement& statement);
 
   std::mutex mutex_;
   sqlite3* db_ = nullptr;

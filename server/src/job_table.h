@@ -1,7 +1,7 @@
 // The rows of the Table rpc (jobs.proto): a job's parameters, typed, and the quantities of its
 // results/summary.json (solver/include/dlmfd/solver/run_summary.h, docs/results.md).
 //
-// Parameters are the job's overrides "key=value" (for a sweep: the base overrides and the point's),
+// Parameters are the job's overrides "key=value" (for a study: the base overrides and the point's),
 // each value typed as TOML reads a scalar: an integer (decimal, with optional sign and '_'
 // separators), a float (with a '.', an exponent, inf or nan), true/false, a basic string in double
 // quotes (its escapes left as written), else the text as given (an array, a table).

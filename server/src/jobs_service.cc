@@ -18,7 +18,7 @@
 #include "scene_admission.h"
 #include "scene_values.h"
 #include "service_error.h"
-#include "sweep_expansion.h"
+#include "study_expansion.h"
 #include "watcher_queue.h"
 
 namespace dlmfd::server {
@@ -98,7 +98,7 @@ std::map<std::string, std::string> ToMap(
   return {labels.begin(), labels.end()};
 }
 
-// Runs body; an error it throws keeps its status code and gains `where` ("sweep point ...").
+// Runs body; an error it throws keeps its status code and gains `where` ("study point ...").
 template <class Body>
 void Naming(const std::string& where, Body&& body) {
   const grpc::Status status = Guarded(std::forward<Body>(body));
@@ -289,11 +289,11 @@ std::vector<std::string> JobsService::Dependencies(
   return ids;
 }
 
-SweepRecord JobsService::OwnSweep(const std::string& user, const std::string& sweep_id) {
-  CheckJobId(sweep_id, "sweep_id");
-  auto sweep = store_.GetSweep(user, sweep_id);
-  if (!sweep) throw ServiceError(StatusCode::NOT_FOUND, "sweep " + sweep_id + " not found");
-  return *sweep;
+StudyRecord JobsService::OwnStudy(const std::string& user, const std::string& study_id) {
+  CheckJobId(study_id, "study_id");
+  auto study = store_.GetStudy(user, study_id);
+  if (!study) throw ServiceError(StatusCode::NOT_FOUND, "study " + study_id + " not found");
+  return *study;
 }
 
 JobRecord JobsService::NewJob(const std::string& user, const std::string& scene,
@@ -381,9 +381,9 @@ grpc::ServerUnaryReactor* JobsService::List(grpc::CallbackServerContext* context
       filter.states.push_back(static_cast<JobState>(state));
     }
     RequireNoNul("tag", request->tag());
-    RequireNoNul("sweep_id", request->sweep_id());
+    RequireNoNul("study_id", request->study_id());
     filter.tag = request->tag();
-    filter.sweep_id = request->sweep_id();
+    filter.study_id = request->study_id();
     Require(
         request->tags_size() + static_cast<int>(request->labels().size()) + request->where_size() <=
             kMaxFilters,
@@ -406,7 +406,7 @@ grpc::ServerUnaryReactor* JobsService::List(grpc::CallbackServerContext* context
                   "\" (keys are the effective scene's: fluid.viscosity, particles.*.density; "
                   "`dlmfd inputs --as-run JOB` shows a job's)");
     }
-    if (!filter.sweep_id.empty()) OwnSweep(filter.owner, filter.sweep_id);  // NOT_FOUND
+    if (!filter.study_id.empty()) OwnStudy(filter.owner, filter.study_id);  // NOT_FOUND
     if (!request->page_token().empty()) {
       const std::string& token = request->page_token();
       Require(token.size() <= 18 && std::all_of(token.begin(), token.end(),
@@ -465,10 +465,10 @@ grpc::ServerWriteReactor<v1::WatchEvent>* JobsService::Watch(grpc::CallbackServe
   return reactor;
 }
 
-grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* context,
-                                                   const v1::SubmitSweepRequest* request,
-                                                   v1::SubmitSweepResponse* reply) {
-  return Reply(context, "SubmitSweep", [&] {
+grpc::ServerUnaryReactor* JobsService::SubmitStudy(grpc::CallbackServerContext* context,
+                                                   const v1::SubmitStudyRequest* request,
+                                                   v1::SubmitStudyResponse* reply) {
+  return Reply(context, "SubmitStudy", [&] {
     const std::string user = auth_.User(*context);
     const auto tags = ToVector(request->tags());
     CheckLabels(request->name(), tags, request->priority(), request->client_request_id(),
@@ -482,17 +482,17 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
       RequireNoNul("axes: " + axis.key() + " zip", axis.zip());
       for (const auto& value : axis.values()) RequireNoNul("axes: " + axis.key() + " value", value);
     }
-    const SweepPlan plan = ExpandSweep(*request, config_.max_queued);
-    const std::vector<SweepPoint>& points = plan.points;
+    const StudyPlan plan = ExpandStudy(*request, config_.max_queued);
+    const std::vector<StudyPoint>& points = plan.points;
     const std::string key =
-        request->client_request_id().empty() ? "" : "sweep:" + request->client_request_id();
+        request->client_request_id().empty() ? "" : "study:" + request->client_request_id();
     if (!key.empty()) {
       auto earlier = store_.FindRequest(user, key);
       if (!earlier.empty()) {
         std::vector<std::vector<std::string>> point_overrides;
         for (const auto& point : points) point_overrides.push_back(point.overrides);
         CheckSameRequest(request->client_request_id(), earlier, request->scene(), point_overrides);
-        reply->set_sweep_id(earlier.front().sweep_id);
+        reply->set_study_id(earlier.front().study_id);
         for (const auto& job : earlier) *reply->add_jobs() = ToProto(job, clock_.Now());
         return;
       }
@@ -500,69 +500,69 @@ grpc::ServerUnaryReactor* JobsService::SubmitSweep(grpc::CallbackServerContext* 
     CheckQueueRoom(static_cast<int64_t>(points.size()));
     CheckDiskQuota(user);
     const std::vector<std::string> after = Dependencies(user, request->after());
-    const std::string sweep_id = NewId('s');
+    const std::string study_id = NewId('s');
     const auto labels = ToMap(request->labels());
     std::vector<JobRecord> jobs;
-    for (const SweepPoint& point : points) {
+    for (const StudyPoint& point : points) {
       std::vector<std::string> job_tags = tags;
-      job_tags.push_back(sweep_id);
+      job_tags.push_back(study_id);
       const std::string name =
-          (request->name().empty() ? sweep_id : request->name()) + "[" + point.label + "]";
+          (request->name().empty() ? study_id : request->name()) + "[" + point.label + "]";
       // Whatever the point's admission throws keeps its status (ToStatus) and names the point.
-      Naming("sweep point " + point.label, [&] {
+      Naming("study point " + point.label, [&] {
         jobs.push_back(NewJob(user, request->scene(), point.overrides, name, job_tags,
                               request->priority(), labels));
       });
-      jobs.back().sweep_id = sweep_id;
+      jobs.back().study_id = study_id;
       jobs.back().client_request_id = request->client_request_id();
       jobs.back().parameters = point.parameters;
       jobs.back().time_limit_seconds = request->time_limit_seconds();
       jobs.back().after = after;
     }
-    SweepRecord sweep;
-    sweep.id = sweep_id;
-    sweep.owner = user;
-    sweep.name = request->name().empty() ? sweep_id : request->name();
-    sweep.tags = tags;
-    sweep.labels = labels;
-    sweep.axes = plan.axes;
-    sweep.overrides.assign(request->overrides().begin(), request->overrides().end());
-    sweep.max_running = request->max_running();
-    sweep.created_time = clock_.Now();
-    auto result = store_.InsertJobs(std::move(jobs), user, key, &sweep);
-    reply->set_sweep_id(result.jobs.front().sweep_id);
+    StudyRecord study;
+    study.id = study_id;
+    study.owner = user;
+    study.name = request->name().empty() ? study_id : request->name();
+    study.tags = tags;
+    study.labels = labels;
+    study.axes = plan.axes;
+    study.overrides.assign(request->overrides().begin(), request->overrides().end());
+    study.max_running = request->max_running();
+    study.created_time = clock_.Now();
+    auto result = store_.InsertJobs(std::move(jobs), user, key, &study);
+    reply->set_study_id(result.jobs.front().study_id);
     for (const auto& job : result.jobs) *reply->add_jobs() = ToProto(job, clock_.Now());
     if (!result.existed) {
-      spdlog::info("sweep {}: {} jobs QUEUED by {}", sweep_id, result.jobs.size(), user);
+      spdlog::info("study {}: {} jobs QUEUED by {}", study_id, result.jobs.size(), user);
       scheduler_.Wake();
     }
   });
 }
 
-grpc::ServerUnaryReactor* JobsService::CancelSweep(grpc::CallbackServerContext* context,
-                                                   const v1::CancelSweepRequest* request,
-                                                   v1::CancelSweepResponse* reply) {
-  return Reply(context, "CancelSweep", [&] {
+grpc::ServerUnaryReactor* JobsService::CancelStudy(grpc::CallbackServerContext* context,
+                                                   const v1::CancelStudyRequest* request,
+                                                   v1::CancelStudyResponse* reply) {
+  return Reply(context, "CancelStudy", [&] {
     const std::string user = auth_.User(*context);
-    Require(!request->sweep_id().empty(), "sweep_id: empty");
-    RequireNoNul("sweep_id", request->sweep_id());
-    auto jobs = store_.SweepJobs(user, request->sweep_id());
+    Require(!request->study_id().empty(), "study_id: empty");
+    RequireNoNul("study_id", request->study_id());
+    auto jobs = store_.StudyJobs(user, request->study_id());
     if (jobs.empty()) {
-      throw ServiceError(StatusCode::NOT_FOUND, "sweep " + request->sweep_id() + " not found");
+      throw ServiceError(StatusCode::NOT_FOUND, "study " + request->study_id() + " not found");
     }
     for (const auto& job : jobs) {
       if (!IsFinished(job.state)) scheduler_.CancelUnlessFinished(job.id);
     }
-    for (const auto& job : store_.SweepJobs(user, request->sweep_id())) {
+    for (const auto& job : store_.StudyJobs(user, request->study_id())) {
       *reply->add_jobs() = ToProto(job, clock_.Now());
     }
   });
 }
 
-grpc::ServerUnaryReactor* JobsService::ListSweeps(grpc::CallbackServerContext* context,
-                                                  const v1::ListSweepsRequest* request,
-                                                  v1::ListSweepsResponse* reply) {
-  return Reply(context, "ListSweeps", [&] {
+grpc::ServerUnaryReactor* JobsService::ListStudies(grpc::CallbackServerContext* context,
+                                                   const v1::ListStudiesRequest* request,
+                                                   v1::ListStudiesResponse* reply) {
+  return Reply(context, "ListStudies", [&] {
     const std::string user = auth_.User(*context);
     Require(request->page_size() >= 0 && request->page_size() <= kMaxPageSize,
             "page_size = " + std::to_string(request->page_size()) +
@@ -578,33 +578,33 @@ grpc::ServerUnaryReactor* JobsService::ListSweeps(grpc::CallbackServerContext* c
       Require(before > 0, "page_token: malformed");
     }
     const int limit = request->page_size() == 0 ? kDefaultPageSize : request->page_size();
-    auto sweeps = store_.ListSweeps(user, request->tag(), before, limit + 1);
-    const bool more = static_cast<int>(sweeps.size()) == limit + 1;
-    if (more) sweeps.pop_back();
-    for (const auto& sweep : sweeps) {
-      *reply->add_sweeps() = ToProto(sweep, store_.StatsOfSweep(user, sweep.id));
+    auto studies = store_.ListStudies(user, request->tag(), before, limit + 1);
+    const bool more = static_cast<int>(studies.size()) == limit + 1;
+    if (more) studies.pop_back();
+    for (const auto& study : studies) {
+      *reply->add_studies() = ToProto(study, store_.StatsOfStudy(user, study.id));
     }
-    if (more) reply->set_next_page_token(std::to_string(sweeps.back().ordinal));
+    if (more) reply->set_next_page_token(std::to_string(studies.back().ordinal));
   });
 }
 
-grpc::ServerUnaryReactor* JobsService::GetSweep(grpc::CallbackServerContext* context,
-                                                const v1::GetSweepRequest* request,
-                                                v1::Sweep* reply) {
-  return Reply(context, "GetSweep", [&] {
+grpc::ServerUnaryReactor* JobsService::GetStudy(grpc::CallbackServerContext* context,
+                                                const v1::GetStudyRequest* request,
+                                                v1::Study* reply) {
+  return Reply(context, "GetStudy", [&] {
     const std::string user = auth_.User(*context);
-    const SweepRecord sweep = OwnSweep(user, request->sweep_id());
-    *reply = ToProto(sweep, store_.StatsOfSweep(user, sweep.id));
+    const StudyRecord study = OwnStudy(user, request->study_id());
+    *reply = ToProto(study, store_.StatsOfStudy(user, study.id));
   });
 }
 
 std::vector<JobRecord> JobsService::RetryTargets(const std::string& user,
                                                  const v1::RetryRequest& request) {
-  Require((request.job_ids_size() > 0) != !request.sweep_id().empty(),
-          "job_ids, sweep_id: give job ids or a sweep id, not both and not neither");
+  Require((request.job_ids_size() > 0) != !request.study_id().empty(),
+          "job_ids, study_id: give job ids or a study id, not both and not neither");
   std::vector<JobRecord> jobs;
   if (request.job_ids_size() > 0) {
-    Require(request.states_size() == 0, "states: only with sweep_id");
+    Require(request.states_size() == 0, "states: only with study_id");
     Require(request.job_ids_size() <= kMaxPageSize,
             "job_ids: more than " + std::to_string(kMaxPageSize));
     std::set<std::string> seen;
@@ -620,7 +620,7 @@ std::vector<JobRecord> JobsService::RetryTargets(const std::string& user,
     }
     return jobs;
   }
-  const SweepRecord sweep = OwnSweep(user, request.sweep_id());
+  const StudyRecord study = OwnStudy(user, request.study_id());
   std::set<JobState> states;
   for (int state : request.states()) {
     Require(state >= static_cast<int>(JobState::kQueued) &&
@@ -632,7 +632,7 @@ std::vector<JobRecord> JobsService::RetryTargets(const std::string& user,
     states.insert(static_cast<JobState>(state));
   }
   if (states.empty()) states = {JobState::kFailed, JobState::kCancelled};
-  for (auto& job : store_.SweepJobs(user, sweep.id)) {
+  for (auto& job : store_.StudyJobs(user, study.id)) {
     if (states.count(job.state)) jobs.push_back(std::move(job));
   }
   if (jobs.empty()) {
@@ -640,7 +640,7 @@ std::vector<JobRecord> JobsService::RetryTargets(const std::string& user,
     for (JobState state : states)
       names += (names.empty() ? "" : ", ") + std::string(JobStateName(state));
     throw ServiceError(StatusCode::FAILED_PRECONDITION,
-                       "sweep " + sweep.id + " has no job in the states " + names);
+                       "study " + study.id + " has no job in the states " + names);
   }
   return jobs;
 }

@@ -37,17 +37,17 @@ class JobsService final : public v1::Jobs::CallbackService {
                                    const v1::CancelRequest* request, v1::Job* reply) override;
   grpc::ServerWriteReactor<v1::WatchEvent>* Watch(grpc::CallbackServerContext* context,
                                                   const v1::WatchRequest* request) override;
-  grpc::ServerUnaryReactor* SubmitSweep(grpc::CallbackServerContext* context,
-                                        const v1::SubmitSweepRequest* request,
-                                        v1::SubmitSweepResponse* reply) override;
-  grpc::ServerUnaryReactor* CancelSweep(grpc::CallbackServerContext* context,
-                                        const v1::CancelSweepRequest* request,
-                                        v1::CancelSweepResponse* reply) override;
-  grpc::ServerUnaryReactor* ListSweeps(grpc::CallbackServerContext* context,
-                                       const v1::ListSweepsRequest* request,
-                                       v1::ListSweepsResponse* reply) override;
-  grpc::ServerUnaryReactor* GetSweep(grpc::CallbackServerContext* context,
-                                     const v1::GetSweepRequest* request, v1::Sweep* reply) override;
+  grpc::ServerUnaryReactor* SubmitStudy(grpc::CallbackServerContext* context,
+                                        const v1::SubmitStudyRequest* request,
+                                        v1::SubmitStudyResponse* reply) override;
+  grpc::ServerUnaryReactor* CancelStudy(grpc::CallbackServerContext* context,
+                                        const v1::CancelStudyRequest* request,
+                                        v1::CancelStudyResponse* reply) override;
+  grpc::ServerUnaryReactor* ListStudies(grpc::CallbackServerContext* context,
+                                        const v1::ListStudiesRequest* request,
+                                        v1::ListStudiesResponse* reply) override;
+  grpc::ServerUnaryReactor* GetStudy(grpc::CallbackServerContext* context,
+                                     const v1::GetStudyRequest* request, v1::Study* reply) override;
   grpc::ServerUnaryReactor* Retry(grpc::CallbackServerContext* context,
                                   const v1::RetryRequest* request,
                                   v1::RetryResponse* reply) override;
@@ -80,9 +80,9 @@ class JobsService final : public v1::Jobs::CallbackService {
                                     const v1::HoldRequest* request, v1::Job* reply) override;
 
  private:
-  // The jobs a Table or Delete request names: the sweep's, or each of job_ids (NOT_FOUND for one
+  // The jobs a Table or Delete request names: the study's, or each of job_ids (NOT_FOUND for one
   // that is not the caller's).
-  std::vector<JobRecord> SelectedJobs(const std::string& user, const std::string& sweep_id,
+  std::vector<JobRecord> SelectedJobs(const std::string& user, const std::string& study_id,
                                       const google::protobuf::RepeatedPtrField<std::string>& ids);
   // RESOURCE_EXHAUSTED when the user's jobs hold max_user_disk_mb or more.
   void CheckDiskQuota(const std::string& user);
@@ -97,7 +97,7 @@ class JobsService final : public v1::Jobs::CallbackService {
                    const std::vector<std::string>& tags, int priority,
                    const std::map<std::string, std::string>& labels);
   // The caller's study, or NOT_FOUND.
-  SweepRecord OwnSweep(const std::string& user, const std::string& sweep_id);
+  StudyRecord OwnStudy(const std::string& user, const std::string& study_id);
   // The jobs a Retry names, each finished; throws as jobs.proto says.
   std::vector<JobRecord> RetryTargets(const std::string& user, const v1::RetryRequest& request);
   void CheckQueueRoom(int64_t adding);

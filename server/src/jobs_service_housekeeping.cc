@@ -56,14 +56,14 @@ std::string ReadPart(const fs::path& root, const std::string& name, int64_t offs
 }  // namespace
 
 std::vector<JobRecord> JobsService::SelectedJobs(
-    const std::string& user, const std::string& sweep_id,
+    const std::string& user, const std::string& study_id,
     const google::protobuf::RepeatedPtrField<std::string>& ids) {
-  Require(sweep_id.empty() != ids.empty(), "sweep_id, job_ids: give one of them");
+  Require(study_id.empty() != ids.empty(), "study_id, job_ids: give one of them");
   Require(ids.size() <= kMaxSelectedJobs, "job_ids: more than " + std::to_string(kMaxSelectedJobs));
-  if (!sweep_id.empty()) {
-    RequireNoNul("sweep_id", sweep_id);
-    auto jobs = store_.SweepJobs(user, sweep_id);
-    if (jobs.empty()) throw ServiceError(StatusCode::NOT_FOUND, "sweep " + sweep_id + " not found");
+  if (!study_id.empty()) {
+    RequireNoNul("study_id", study_id);
+    auto jobs = store_.StudyJobs(user, study_id);
+    if (jobs.empty()) throw ServiceError(StatusCode::NOT_FOUND, "study " + study_id + " not found");
     return jobs;
   }
   std::vector<JobRecord> jobs;
@@ -116,7 +116,7 @@ grpc::ServerUnaryReactor* JobsService::Table(grpc::CallbackServerContext* contex
                                              v1::TableResponse* reply) {
   return Reply(context, "Table", [&] {
     const std::string user = auth_.User(*context);
-    for (const JobRecord& job : SelectedJobs(user, request->sweep_id(), request->job_ids())) {
+    for (const JobRecord& job : SelectedJobs(user, request->study_id(), request->job_ids())) {
       *reply->add_rows() = TableRowOf(job);
     }
   });
@@ -160,7 +160,7 @@ grpc::ServerUnaryReactor* JobsService::Delete(grpc::CallbackServerContext* conte
                                               v1::DeleteResponse* reply) {
   return Reply(context, "Delete", [&] {
     const std::string user = auth_.User(*context);
-    const std::vector<JobRecord> jobs = SelectedJobs(user, request->sweep_id(), request->job_ids());
+    const std::vector<JobRecord> jobs = SelectedJobs(user, request->study_id(), request->job_ids());
     if (!request->force()) {
       for (const JobRecord& job : jobs) {
         // A job that waits in Slurm has not run: it is removed from Slurm's queue as a queued one

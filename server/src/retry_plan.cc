@@ -20,7 +20,7 @@ std::string ValueOf(const std::string& override_text) {
   return eq == std::string::npos ? "" : Trimmed(override_text.substr(eq + 1));
 }
 
-// "[key=value,...]": a study point's label as SubmitSweep writes it (sweep_expansion.cc).
+// "[key=value,...]": a study point's label as SubmitStudy writes it (study_expansion.cc).
 std::string PointLabel(const std::vector<ParameterValue>& parameters) {
   std::string label = "[";
   for (size_t i = 0; i < parameters.size(); ++i) {

@@ -3,7 +3,7 @@
 // The overrides of the next attempt are the job's, each replaced by a change of the same key
 // (the text before '='), with new keys appended in the order given. The point's parameters follow
 // a change of an axis key, so a study's table shows what ran, and so does the name of a study's
-// point ("NAME[key=value,...]", as SubmitSweep names it). The next attempt resumes from the
+// point ("NAME[key=value,...]", as SubmitStudy names it). The next attempt resumes from the
 // last checkpoint only when it runs the same scene (same overrides) and the job did not complete;
 // otherwise it starts afresh (a completed job resumed would only replay its end).
 #pragma once

@@ -122,7 +122,7 @@ void Scheduler::Loop() {
       // A retried job whose previous run's thread has not ended yet: wait for it (its end wakes
       // this loop), so one job never has two runners.
       if (running_.count(next->id)) break;
-      if (executor_.SubmitsStudiesTogether() && !next->sweep_id.empty() && !next->slurm_live) {
+      if (executor_.SubmitsStudiesTogether() && !next->study_id.empty() && !next->slurm_live) {
         if (!StartStudyBatch(*next, most - static_cast<int>(running_.size()))) break;
         continue;
       }
@@ -189,13 +189,13 @@ bool Scheduler::StartStudyBatch(const JobRecord& first, int room) {
   std::vector<JobRecord> batch;
   int throttle = 0;
   try {
-    const auto sweep = store_.GetSweep(first.owner, first.sweep_id);
-    if (sweep && sweep->max_running > 0) {
+    const auto study = store_.GetStudy(first.owner, first.study_id);
+    if (study && study->max_running > 0) {
       // The study's jobs already in Slurm count against its limit (NextQueued gave this job, so
       // fewer than max_running are).
-      throttle = std::max(1, sweep->max_running - store_.CountRunningOfSweep(first.sweep_id));
+      throttle = std::max(1, study->max_running - store_.CountRunningOfStudy(first.study_id));
     }
-    for (JobRecord& job : store_.QueuedOfSweep(first.sweep_id, room)) {
+    for (JobRecord& job : store_.QueuedOfStudy(first.study_id, room)) {
       if (running_.count(job.id)) continue;  // its previous run's thread is still ending
       try {
         // Handed to the executor together; each waits there before it runs.
@@ -206,10 +206,10 @@ bool Scheduler::StartStudyBatch(const JobRecord& first, int room) {
       if (auto started = store_.Get(job.id)) batch.push_back(std::move(*started));
     }
   } catch (const std::exception& e) {
-    spdlog::error("study {}: cannot start: {}", first.sweep_id, e.what());
+    spdlog::error("study {}: cannot start: {}", first.study_id, e.what());
   }
   if (batch.empty()) return false;
-  auto runs = executor_.NewStudyRuns(first.sweep_id, static_cast<int>(batch.size()), throttle);
+  auto runs = executor_.NewStudyRuns(first.study_id, static_cast<int>(batch.size()), throttle);
   for (size_t i = 0; i < batch.size(); ++i) Launch(batch[i], runs[i]);
   return true;
 }

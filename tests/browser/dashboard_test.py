@@ -93,7 +93,7 @@ class DashboardTest(unittest.TestCase):
         b = self.browser
         # A 4-job study: two short points (they complete: results, chart, thumbnails) and two
         # long ones (minutes of solver each, cancelled at the end: progress to watch, a job to cancel); two run at once.
-        sweep = self.daemon.submit_study("dashboard-study", ws.study_scene(),
+        study = self.daemon.submit_study("dashboard-study", ws.study_scene(),
                                          "time.end=0.4,1000", "particles.*.density=1.001,1.002")
 
         # Sign in with the token through the form; the browser then holds only a session cookie.
@@ -101,7 +101,7 @@ class DashboardTest(unittest.TestCase):
         ws.wait_for(lambda: "/login" in b.current_url, "the redirect to /login", 30)
         b.find_element(By.ID, "token").send_keys(ws.Daemon.TOKEN)
         b.find_element(By.CSS_SELECTOR, "form button").click()
-        row = f"tr[data-sweep='{sweep}']"
+        row = f"tr[data-study='{study}']"
         ws.wait_for(lambda: b.find_elements(By.CSS_SELECTOR, row), "the study's row", 30)
         cookies = b.get_cookies()
         self.assertTrue(any(c["httpOnly"] and c.get("sameSite") == "Strict" for c in cookies), cookies)
@@ -199,7 +199,7 @@ class DashboardTest(unittest.TestCase):
         self.assertTrue(b.execute_script("return window.__still_this_page === true"))
 
         # The other long job: its page reconnects after the daemon restarts and moves again.
-        others = [line.split()[0] for line in self.daemon.cli("list", "--sweep", sweep, "--state", "running", "--state", "queued").splitlines()[1:]]
+        others = [line.split()[0] for line in self.daemon.cli("list", "--study", study, "--state", "running", "--state", "queued").splitlines()[1:]]
         self.assertTrue(others, "the study's last long job is unfinished")
         b.get(self.web.url + "/jobs/" + others[0])
         ws.wait_for(lambda: self.text("#state") == "running", "the last long job running", 90)
@@ -226,10 +226,10 @@ class DashboardTest(unittest.TestCase):
         ws.wait_for(lambda: self.text("#live") == "live" and not self.text("#notice")
                     and b.find_elements(By.CSS_SELECTOR, row), "the studies page live again", 60)
         self.assertTrue(b.execute_script("return window.__still_this_page === true"))
-        self.daemon.cli("cancel", "--sweep", sweep)
+        self.daemon.cli("cancel", "--study", study)
 
         # Delete a completed point from its page: a confirmation first, then back to the study.
-        done = self.daemon.cli("list", "--sweep", sweep, "--state", "completed", "-q").split()[0]
+        done = self.daemon.cli("list", "--study", study, "--state", "completed", "-q").split()[0]
         b.get(self.web.url + "/jobs/" + done)
         ws.wait_for(lambda: self.text("#state") == "completed", "the completed job's page", 30)
         # Its movie: drawn by the server from every snapshot (viz/ and ffmpeg), played here.
@@ -241,10 +241,10 @@ class DashboardTest(unittest.TestCase):
         ws.wait_for(lambda: b.find_element(By.CSS_SELECTOR, "dialog.confirm").is_displayed(),
                     "the confirmation", 10)
         self.click("dialog.confirm .confirm-button", "the confirmation's Delete")
-        ws.wait_for(lambda: "/studies/" + sweep in b.current_url, "the study page after deleting", 30)
+        ws.wait_for(lambda: "/studies/" + study in b.current_url, "the study page after deleting", 30)
         ws.wait_for(lambda: len(b.find_elements(By.CSS_SELECTOR, "#jobs-table tbody tr")) == 3,
                     "3 rows once a job is deleted", 30)
-        self.assertNotIn(done, self.daemon.cli("list", "--sweep", sweep, "-q"))
+        self.assertNotIn(done, self.daemon.cli("list", "--study", study, "-q"))
 
         # Closing the page ends its event stream and cancels its Watch streams.
         b.get("about:blank")

@@ -29,9 +29,9 @@ class WebSecurityTest(unittest.TestCase):
     def setUpClass(cls):
         cls.daemon = ws.Daemon(tokens=True, max_concurrent=2)
         cls.web = ws.Web(cls.daemon)
-        cls.sweep = cls.daemon.submit_study("alice-study", tiny_scene(), "particles.*.density=1.01,1.02")
-        cls.job = cls.daemon.cli("list", "--sweep", cls.sweep, "-q").split()[0]
-        cls.daemon.cli("watch", "--sweep", cls.sweep)  # both points end (files to serve)
+        cls.study = cls.daemon.submit_study("alice-study", tiny_scene(), "particles.*.density=1.01,1.02")
+        cls.job = cls.daemon.cli("list", "--study", cls.study, "-q").split()[0]
+        cls.daemon.cli("watch", "--study", cls.study)  # both points end (files to serve)
 
     @classmethod
     def tearDownClass(cls):
@@ -90,7 +90,7 @@ class WebSecurityTest(unittest.TestCase):
         cookie, _ = self.login(ws.Daemon.TOKEN)
         code, _, body = self.web.request("GET", "/api/overview", headers={"Cookie": cookie})
         self.assertEqual(code, 200)
-        self.assertEqual([s["id"] for s in json.loads(body)["sweeps"]], [self.sweep])
+        self.assertEqual([s["id"] for s in json.loads(body)["studies"]], [self.study])
 
     def test_state_changes_need_the_csrf_token_and_this_origin(self):
         cookie, csrf = self.login(ws.Daemon.TOKEN)
@@ -121,12 +121,12 @@ class WebSecurityTest(unittest.TestCase):
 
     def test_hold_and_release_a_queued_job(self):
         # A study of two long points, one running at a time: the second waits, QUEUED.
-        sweep = self.daemon.submit_study("hold-study", ws.study_scene().replace("end = 1.0", "end = 1000.0"),
+        study = self.daemon.submit_study("hold-study", ws.study_scene().replace("end = 1.0", "end = 1000.0"),
                                          "particles.*.density=1.001,1.002", extra=("--max-running", "1"))
         try:
             cookie, csrf = self.login(ws.Daemon.TOKEN)
             headers = {"Cookie": cookie, "X-CSRF-Token": csrf}
-            queued = ws.wait_for(lambda: self.daemon.cli("list", "--sweep", sweep, "--state", "queued", "-q").split(),
+            queued = ws.wait_for(lambda: self.daemon.cli("list", "--study", study, "--state", "queued", "-q").split(),
                                  "a queued point", 60)[0]
             code, _, body = self.web.request("POST", f"/api/jobs/{queued}/hold", headers=headers)
             self.assertEqual(code, 200, body)
@@ -135,24 +135,24 @@ class WebSecurityTest(unittest.TestCase):
             code, _, body = self.web.request("POST", f"/api/jobs/{queued}/release", headers=headers)
             self.assertEqual(code, 200, body)
             self.assertFalse(json.loads(body)["held"])
-            code, _, body = self.web.request("POST", f"/api/sweeps/{sweep}/cancel", headers=headers)
+            code, _, body = self.web.request("POST", f"/api/studies/{study}/cancel", headers=headers)
             self.assertEqual(code, 200, body)
             self.assertTrue(all(j["state"] in ("CANCELLED", "RUNNING") for j in json.loads(body)["jobs"]))
         finally:
-            self.daemon.cli("cancel", "--sweep", sweep)
-            self.daemon.cli("watch", "--sweep", sweep, exit_codes=(0, 1))  # 1: some cancelled
+            self.daemon.cli("cancel", "--study", study)
+            self.daemon.cli("watch", "--study", study, exit_codes=(0, 1))  # 1: some cancelled
 
     def test_another_users_job_and_study_are_not_found(self):
         bob = {"Authorization": "Bearer " + ws.Daemon.OTHER_TOKEN}
-        for method, path in [("GET", f"/api/jobs/{self.job}"), ("GET", f"/api/sweeps/{self.sweep}"),
+        for method, path in [("GET", f"/api/jobs/{self.job}"), ("GET", f"/api/studies/{self.study}"),
                              ("GET", f"/api/jobs/{self.job}/files"), ("GET", f"/api/jobs/{self.job}/log"),
                              ("GET", f"/api/jobs/{self.job}/particles"),
                              ("GET", f"/pictures/jobs/{self.job}/field.png"),
-                             ("GET", f"/pictures/sweeps/{self.sweep}/chart.png?x=particles.*.density&y=steps"),
+                             ("GET", f"/pictures/studies/{self.study}/chart.png?x=particles.*.density&y=steps"),
                              ("GET", f"/files/jobs/{self.job}/summary.json"),
-                             ("GET", f"/events/jobs/{self.job}"), ("GET", f"/events/sweeps/{self.sweep}"),
+                             ("GET", f"/events/jobs/{self.job}"), ("GET", f"/events/studies/{self.study}"),
                              ("POST", f"/api/jobs/{self.job}/retry"), ("POST", f"/api/jobs/{self.job}/cancel"),
-                             ("POST", f"/api/sweeps/{self.sweep}/retry")]:
+                             ("POST", f"/api/studies/{self.study}/retry")]:
             code, _, body = self.web.request(method, path, headers=bob)
             self.assertEqual(code, 404, f"{method} {path}: {body!r}")
             self.assertIn("not found", self.error_of(body))
@@ -162,7 +162,7 @@ class WebSecurityTest(unittest.TestCase):
         # Alice still has it, and bob's overview is empty.
         alice = {"Authorization": "Bearer " + ws.Daemon.TOKEN}
         self.assertEqual(self.web.request("GET", f"/api/jobs/{self.job}", headers=alice)[0], 200)
-        self.assertEqual(json.loads(self.web.request("GET", "/api/overview", headers=bob)[2])["sweeps"], [])
+        self.assertEqual(json.loads(self.web.request("GET", "/api/overview", headers=bob)[2])["studies"], [])
 
     def test_only_files_inside_a_job_are_served(self):
         alice = {"Authorization": "Bearer " + ws.Daemon.TOKEN}
@@ -193,8 +193,8 @@ class WebSecurityTest(unittest.TestCase):
             ("GET", f"/api/jobs/{self.job}/log?offset=-5", None, 400, "offset"),
             ("GET", f"/api/jobs/{self.job}/log?offset=abc", None, 400, "offset"),
             ("GET", f"/pictures/jobs/{self.job}/field.png?width=5", None, 400, "width"),
-            ("GET", f"/pictures/sweeps/{self.sweep}/chart.png?x=nope&y=steps", None, 400, "no such column"),
-            ("GET", f"/pictures/sweeps/{self.sweep}/chart.png", None, 400, "x and y"),
+            ("GET", f"/pictures/studies/{self.study}/chart.png?x=nope&y=steps", None, 400, "no such column"),
+            ("GET", f"/pictures/studies/{self.study}/chart.png", None, 400, "x and y"),
             ("GET", "/api/jobs/bad%20id", None, 404, "no such page"),
             ("GET", "/no/such/page", None, 404, "no such page"),
             ("POST", f"/api/jobs/{self.job}/delete", "{not json", 400, "JSON object"),

@@ -157,7 +157,7 @@ class Daemon:
         with open(path, "w") as f:
             f.write(scene)
         grid = [a for axis in axes for a in ("--grid", axis)]
-        return self.cli("sweep", path, *grid, "--name", name, "-q", *extra, token=token).strip()
+        return self.cli("study", path, *grid, "--name", name, "-q", *extra, token=token).strip()
 
     def stop_process(self):
         """SIGTERM, as a user stops it (solvers checkpoint; running jobs resume at the next start)."""

@@ -137,19 +137,19 @@ TEST_F(ChartTest, OverlaysTheVelocityOfSeveralRuns) {
 
 TEST_F(ChartTest, NamesTheSeriesByTheParameterInWhichTheRunsDiffer) {
   const Outcome run = Chart(
-      {"single", "heavy", "--y", "v", "--out", "sweep.svg", "--width", "700", "--height", "500"});
+      {"single", "heavy", "--y", "v", "--out", "study.svg", "--width", "700", "--height", "500"});
   ASSERT_EQ(run.code, 0) << run.err;
   // The scenes as run differ only in the particle's density: it names the series.
   EXPECT_THAT(run.err, HasSubstr("legend (particles.0.density): 1.1; 1.3"));
-  const std::string svg = Slurp(root_ / "sweep.svg");
+  const std::string svg = Slurp(root_ / "study.svg");
   EXPECT_NE(svg.find("<svg"), std::string::npos);
   EXPECT_NE(svg.find("width=\"700pt\" height=\"500pt\""), std::string::npos);
   // --label names them instead; a directory alone keeps its name.
   const Outcome labelled =
-      Chart({"--label", "light", "single", "heavy", "--y", "v", "--out", "sweep.pdf"});
+      Chart({"--label", "light", "single", "heavy", "--y", "v", "--out", "study.pdf"});
   ASSERT_EQ(labelled.code, 0) << labelled.err;
   EXPECT_THAT(labelled.err, HasSubstr(": light; 1.3"));
-  EXPECT_EQ(Slurp(root_ / "sweep.pdf").rfind("%PDF-", 0), 0u);
+  EXPECT_EQ(Slurp(root_ / "study.pdf").rfind("%PDF-", 0), 0u);
   const Outcome alone = Chart({"single", "--y", "v", "--equal", "--x", "x", "--out", "alone.png"});
   ASSERT_EQ(alone.code, 0) << alone.err;
   EXPECT_THAT(alone.err, HasSubstr("legend: single"));

@@ -337,15 +337,15 @@ TEST_F(CliTest, TimeGivesTheJobsTimeLimitAndABadOneExitsTwo) {
   const std::string job = FirstLine(submit.out);
   EXPECT_THAT(Cli({"show", job}).out, HasSubstr("time limit:  1h30m (5400 s, of one run)"));
   EXPECT_THAT(Cli({"show", job, "--json"}).out, HasSubstr("\"time_limit_seconds\":5400"));
-  const CliRun sweep =
-      Cli({"sweep", scene, "--grid", "fluid.viscosity=0.01,0.02", "--time", "90m", "--json"});
-  ASSERT_EQ(sweep.code, 0) << sweep.err;
-  EXPECT_THAT(sweep.out, HasSubstr("\"time_limit_seconds\":5400"));
+  const CliRun study =
+      Cli({"study", scene, "--grid", "fluid.viscosity=0.01,0.02", "--time", "90m", "--json"});
+  ASSERT_EQ(study.code, 0) << study.err;
+  EXPECT_THAT(study.out, HasSubstr("\"time_limit_seconds\":5400"));
   // Refused by the CLI: not a positive duration.
   const CliRun zero = Cli({"submit", scene, "--time", "0"});
   EXPECT_EQ(zero.code, 2);
   EXPECT_THAT(zero.err, HasSubstr("--time 0: not positive"));
-  const CliRun word = Cli({"sweep", scene, "--grid", "fluid.viscosity=0.01", "--time", "soon"});
+  const CliRun word = Cli({"study", scene, "--grid", "fluid.viscosity=0.01", "--time", "soon"});
   EXPECT_EQ(word.code, 2);
   EXPECT_THAT(word.err, HasSubstr("expected a positive duration"));
   // Refused by the daemon: over its limit (a year without max_wall_seconds).
@@ -424,50 +424,50 @@ particles_every = 0
 checkpoint_every = 0
 )toml";
 
-// A study end to end: sweep, table (CSV, JSON, chosen columns), chart against the parameter, the
-// log and inputs of a point, then delete of the whole sweep.
-TEST_F(CliTest, TableChartLogsInputsAndDeleteOfASweep) {
+// A study end to end: study, table (CSV, JSON, chosen columns), chart against the parameter, the
+// log and inputs of a point, then delete of the whole study.
+TEST_F(CliTest, TableChartLogsInputsAndDeleteOfAStudy) {
   std::ofstream(root_ / "pair.toml") << kPair;
-  const CliRun sweep = Cli({"sweep", (root_ / "pair.toml").string(), "--grid",
+  const CliRun study = Cli({"study", (root_ / "pair.toml").string(), "--grid",
                             "fluid.viscosity=0.1,0.2", "--name", "pair"});
-  ASSERT_EQ(sweep.code, 0) << sweep.err;
-  const std::string first = FirstLine(sweep.out);  // "sweep s-...: 2 jobs"
+  ASSERT_EQ(study.code, 0) << study.err;
+  const std::string first = FirstLine(study.out);  // "study s-...: 2 jobs"
   const std::string id = first.substr(6, first.find(':') - 6);
-  ASSERT_EQ(id.rfind("s-", 0), 0u) << sweep.out;
+  ASSERT_EQ(id.rfind("s-", 0), 0u) << study.out;
   CliRun table;
   for (;;) {
-    table = Cli({"table", "--sweep", id, "--columns", "status"});
+    table = Cli({"table", "--study", id, "--columns", "status"});
     ASSERT_EQ(table.code, 0) << table.err;
     if (table.out == "status\ncompleted\ncompleted\n") break;
     ASSERT_THAT(table.out, Not(HasSubstr("failed")));
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
-  const CliRun csv = Cli({"table", "--sweep", id});
+  const CliRun csv = Cli({"table", "--study", id});
   ASSERT_EQ(csv.code, 0) << csv.err;
   EXPECT_THAT(FirstLine(csv.out),
               HasSubstr("job,name,state,fluid.viscosity,status,reason,steps,time,wall_seconds,"
                         "fall_speed,min_gap,min_wall_gap,max_trA,min_eig_A,Re,De,E,M,p0.radius,"));
   EXPECT_THAT(csv.out, HasSubstr(",completed,0.1,completed,,20,0.04,"));
   EXPECT_THAT(csv.out, HasSubstr(",completed,0.2,completed,,20,0.04,"));
-  const CliRun json = Cli({"table", "--sweep", id, "--format", "json", "--columns",
+  const CliRun json = Cli({"table", "--study", id, "--format", "json", "--columns",
                            "fluid.viscosity,steps,max_trA,p1.radius"});
   ASSERT_EQ(json.code, 0) << json.err;
   // Typed values: the parameter a number, steps an integer, a Newtonian max_trA null.
   EXPECT_THAT(json.out, HasSubstr("\"fluid.viscosity\": 0.1,\n    \"steps\": 20,\n"
                                   "    \"max_trA\": null,\n    \"p1.radius\": 0.125"));
-  const CliRun unknown = Cli({"table", "--sweep", id, "--columns", "nope"});
+  const CliRun unknown = Cli({"table", "--study", id, "--columns", "nope"});
   EXPECT_EQ(unknown.code, 2);
   EXPECT_THAT(unknown.err, HasSubstr("--columns nope: no such column"));
 
-  const fs::path png = root_ / "sweep.png";
-  const CliRun chart = Cli({"chart", "--sweep", id, "--x", "fluid.viscosity", "--y", "fall_speed",
+  const fs::path png = root_ / "study.png";
+  const CliRun chart = Cli({"chart", "--study", id, "--x", "fluid.viscosity", "--y", "fall_speed",
                             "--out", png.string(), "--width", "400", "--height", "300"});
   ASSERT_EQ(chart.code, 0) << chart.err;
   EXPECT_EQ(FirstLine(chart.out), png.string());
   EXPECT_EQ(Slurp(png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   // One line per value of --group, named by the value under a legend titled by the key.
   const CliRun grouped =
-      Cli({"chart", "--sweep", id, "--x", "fluid.viscosity", "--y", "steps", "--group",
+      Cli({"chart", "--study", id, "--x", "fluid.viscosity", "--y", "steps", "--group",
            "fluid.viscosity", "--out", png.string(), "--width", "400", "--height", "300"});
   ASSERT_EQ(grouped.code, 0) << grouped.err;
   EXPECT_THAT(grouped.err, HasSubstr("legend (fluid.viscosity): 0.1; 0.2\n"));
@@ -492,10 +492,10 @@ TEST_F(CliTest, TableChartLogsInputsAndDeleteOfASweep) {
 
   const CliRun late = Cli({"priority", job, "3"});
   EXPECT_EQ(late.code, 6) << late.err;  // finished: FAILED_PRECONDITION
-  const CliRun remove = Cli({"delete", "--sweep", id});
+  const CliRun remove = Cli({"delete", "--study", id});
   ASSERT_EQ(remove.code, 0) << remove.err;
   EXPECT_THAT(remove.err, HasSubstr("2 jobs deleted"));
-  const CliRun gone = Cli({"table", "--sweep", id});
+  const CliRun gone = Cli({"table", "--study", id});
   EXPECT_EQ(gone.code, 3) << gone.err;
   EXPECT_EQ(Cli({"show", job}).code, 3);
 }

@@ -54,25 +54,25 @@ fs::path StudiesCliTest::root_;
 CliDaemon* StudiesCliTest::daemon_ = nullptr;
 
 TEST_F(StudiesCliTest, AStudyIsListedShownWatchedFetchedAndSelected) {
-  const CliRun sweep =
-      Cli({"sweep", Scene(), "--zip", "fluid.viscosity=0.01,0.02", "--zip", "time.end=0.1,0.2",
+  const CliRun study =
+      Cli({"study", Scene(), "--zip", "fluid.viscosity=0.01,0.02", "--zip", "time.end=0.1,0.2",
            "--range", "time.dt=0.01:0.02:2", "--tag", "grid-e2e", "--label", "project=cavity",
            "--max-running", "1", "--name", "cavity-study", "-q"});
-  ASSERT_EQ(sweep.code, 0) << sweep.err;
-  const std::string id = FirstLine(sweep.out);
-  ASSERT_EQ(id.rfind("s-", 0), 0u) << sweep.out;
+  ASSERT_EQ(study.code, 0) << study.err;
+  const std::string id = FirstLine(study.out);
+  ASSERT_EQ(id.rfind("s-", 0), 0u) << study.out;
 
-  const CliRun watch = Cli({"watch", "--sweep", id, "--interval", "0.2"});
+  const CliRun watch = Cli({"watch", "--study", id, "--interval", "0.2"});
   EXPECT_EQ(watch.code, 0) << watch.out << watch.err;  // every point completed
   EXPECT_THAT(watch.out, HasSubstr(id + " 4 jobs  0 queued  0 running  4 done  0 failed"));
 
-  const CliRun sweeps = Cli({"sweeps", "--tag", "grid-e2e"});
-  ASSERT_EQ(sweeps.code, 0) << sweeps.err;
-  EXPECT_THAT(sweeps.out, HasSubstr("ID"));
-  EXPECT_THAT(sweeps.out, HasSubstr(id + "  cavity-study  grid-e2e  4     0       0        4"));
-  EXPECT_THAT(sweeps.out, HasSubstr("100%"));
+  const CliRun studies = Cli({"studies", "--tag", "grid-e2e"});
+  ASSERT_EQ(studies.code, 0) << studies.err;
+  EXPECT_THAT(studies.out, HasSubstr("ID"));
+  EXPECT_THAT(studies.out, HasSubstr(id + "  cavity-study  grid-e2e  4     0       0        4"));
+  EXPECT_THAT(studies.out, HasSubstr("100%"));
 
-  const CliRun show = Cli({"show", "--sweep", id});
+  const CliRun show = Cli({"show", "--study", id});
   ASSERT_EQ(show.code, 0) << show.err;
   EXPECT_THAT(show.out, HasSubstr("axis:        fluid.viscosity=0.01,0.02  (zipped: zip)"));
   EXPECT_THAT(show.out, HasSubstr("axis:        time.dt=0.01,0.02  (linear range 0.01:0.02:2)"));
@@ -85,21 +85,21 @@ TEST_F(StudiesCliTest, AStudyIsListedShownWatchedFetchedAndSelected) {
   ASSERT_EQ(by_tag.code, 0) << by_tag.err;
   EXPECT_EQ(std::count(by_tag.out.begin(), by_tag.out.end(), '\n'), 4);
   const CliRun by_value =
-      Cli({"list", "--sweep", id, "--where", "fluid.viscosity=0.02", "--where", "time.dt=0.02"});
+      Cli({"list", "--study", id, "--where", "fluid.viscosity=0.02", "--where", "time.dt=0.02"});
   ASSERT_EQ(by_value.code, 0) << by_value.err;
   EXPECT_THAT(by_value.out, HasSubstr("[time.dt=0.02,fluid.viscosity=0.02,time.end=0.2]"));
   EXPECT_EQ(std::count(by_value.out.begin(), by_value.out.end(), '\n'), 2);  // header + 1
   const CliRun from_file = Cli({"list", "--label", "project=cavity", "--where", "fluid.density=1"});
   EXPECT_EQ(std::count(from_file.out.begin(), from_file.out.end(), '\n'), 5);
-  const CliRun unknown = Cli({"list", "--sweep", "s-unknown"});
+  const CliRun unknown = Cli({"list", "--study", "s-unknown"});
   EXPECT_EQ(unknown.code, 3) << unknown.err;
-  EXPECT_THAT(unknown.err, HasSubstr("sweep s-unknown not found"));
+  EXPECT_THAT(unknown.err, HasSubstr("study s-unknown not found"));
   EXPECT_EQ(Cli({"show", "--tag", "no-such-tag"}).code, 3);
 
   // One folder per point, named by its parameters (axes in the order --grid, --range, --zip).
   const fs::path out = root_ / "fetched";
   const CliRun fetch =
-      Cli({"fetch", "--sweep", id, "--out", out.string(), "--path", "summary.json"});
+      Cli({"fetch", "--study", id, "--out", out.string(), "--path", "summary.json"});
   ASSERT_EQ(fetch.code, 0) << fetch.err;
   EXPECT_TRUE(fs::exists(out / "time.dt=0.01,fluid.viscosity=0.01,time.end=0.1" / "summary.json"));
   EXPECT_TRUE(fs::exists(out / "time.dt=0.02,fluid.viscosity=0.02,time.end=0.2" / "summary.json"));
@@ -116,10 +116,10 @@ TEST_F(StudiesCliTest, AStudyIsListedShownWatchedFetchedAndSelected) {
   EXPECT_THAT(point, HasSubstr("\"time.dt=0.02\""));
   EXPECT_THAT(point, HasSubstr("\"fluid.viscosity=0.02\""));
   EXPECT_THAT(point, HasSubstr("\"time.end=0.2\""));
-  EXPECT_THAT(point, HasSubstr("\"sweep_id\":\"" + id + "\""));
+  EXPECT_THAT(point, HasSubstr("\"study_id\":\"" + id + "\""));
 
   // --json: 64-bit integers are numbers.
-  const CliRun json = Cli({"show", "--sweep", id, "--json"});
+  const CliRun json = Cli({"show", "--study", id, "--json"});
   ASSERT_EQ(json.code, 0) << json.err;
   EXPECT_THAT(json.out, HasSubstr("\"jobs\":4"));
   EXPECT_THAT(json.out, Not(HasSubstr("\"step\":\"")));
@@ -128,38 +128,38 @@ TEST_F(StudiesCliTest, AStudyIsListedShownWatchedFetchedAndSelected) {
 }
 
 TEST_F(StudiesCliTest, RetryRerunsACancelledPointInItsStudy) {
-  const CliRun sweep = Cli({"sweep", Scene(), "--grid", "time.end=0.1,1000", "-q"});
-  ASSERT_EQ(sweep.code, 0) << sweep.err;
-  const std::string id = FirstLine(sweep.out);
+  const CliRun study = Cli({"study", Scene(), "--grid", "time.end=0.1,1000", "-q"});
+  ASSERT_EQ(study.code, 0) << study.err;
+  const std::string id = FirstLine(study.out);
   std::string long_job;
   for (;;) {  // until the long point runs and the short one has completed
     const CliRun running =
-        Cli({"list", "--sweep", id, "--where", "time.end=1000", "--state", "running", "-q"});
-    const CliRun completed = Cli({"list", "--sweep", id, "--state", "completed", "-q"});
+        Cli({"list", "--study", id, "--where", "time.end=1000", "--state", "running", "-q"});
+    const CliRun completed = Cli({"list", "--study", id, "--state", "completed", "-q"});
     ASSERT_EQ(running.code, 0) << running.err;
     long_job = FirstLine(running.out);
     if (!long_job.empty() && !completed.out.empty()) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
-  const CliRun cancel = Cli({"cancel", "--sweep", id});
+  const CliRun cancel = Cli({"cancel", "--study", id});
   ASSERT_EQ(cancel.code, 0) << cancel.err;
-  const CliRun watch = Cli({"watch", "--sweep", id, "--interval", "0.2"});
+  const CliRun watch = Cli({"watch", "--study", id, "--interval", "0.2"});
   EXPECT_EQ(watch.code, 1) << watch.out << watch.err;  // one point was cancelled
   EXPECT_THAT(watch.out, HasSubstr("1 cancelled"));
 
   const CliRun running = Cli({"retry", long_job, "--set", "time.end=0.2"});
   ASSERT_EQ(running.code, 0) << running.err;
   EXPECT_THAT(running.out, HasSubstr(long_job + " queued (attempt 2)"));
-  const CliRun done = Cli({"watch", "--sweep", id, "--interval", "0.2"});
+  const CliRun done = Cli({"watch", "--study", id, "--interval", "0.2"});
   EXPECT_EQ(done.code, 0) << done.out << done.err;
   const CliRun show = Cli({"show", long_job});
   ASSERT_EQ(show.code, 0) << show.err;
-  EXPECT_THAT(show.out, HasSubstr("sweep:       " + id));
+  EXPECT_THAT(show.out, HasSubstr("study:       " + id));
   EXPECT_THAT(show.out, HasSubstr("  attempt 1: cancelled (cancelled)"));
   EXPECT_THAT(show.out, HasSubstr("parameter:   time.end = 0.2 (float)"));
-  const CliRun nothing = Cli({"retry", "--sweep", id});
+  const CliRun nothing = Cli({"retry", "--study", id});
   EXPECT_EQ(nothing.code, 6) << nothing.err;  // nothing failed or cancelled is left
-  EXPECT_EQ(Cli({"retry", "--sweep", id, "--state", "running"}).code, 2);
+  EXPECT_EQ(Cli({"retry", "--study", id, "--state", "running"}).code, 2);
 }
 
 // The live line of `watch` stays within the terminal's width: every redraw ("\r\033[K" + line)

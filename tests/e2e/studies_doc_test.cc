@@ -50,7 +50,7 @@ TEST(StudiesDoc, TheWorkedStudyRunsAsWritten) {
   fs::create_directory_symlink(fs::path(DLMFD_SOURCE_DIR) / "cases", work / "cases");
 
   const std::string blocks = ShellBlocks(Slurp(fs::path(DLMFD_SOURCE_DIR) / "docs/studies.md"));
-  ASSERT_THAT(blocks, HasSubstr("dlmfd sweep"));
+  ASSERT_THAT(blocks, HasSubstr("dlmfd study"));
   std::ofstream(work / "study.sh") << "set -euo pipefail\n" << blocks;
   auto env = daemon.Env();
   env["PATH"] = fs::path(kClient).parent_path().string() + ":/usr/bin:/bin";
@@ -85,6 +85,11 @@ TEST(StudiesDoc, TheWorkedStudyRunsAsWritten) {
   EXPECT_THAT(run.out, HasSubstr("state:       completed\nafter:       j-"));
   EXPECT_THAT(run.out, HasSubstr("state:       cancelled\nreason:      dependency j-"));
   EXPECT_THAT(run.out, HasSubstr(" failed (CANCELLED)\nafter:       j-"));
+  // Issue 38: the accounting columns of a study's jobs and the user's disk use.
+  EXPECT_THAT(run.out, HasSubstr("ELAPSED  EXIT  CPU   MAXRSS"));
+  EXPECT_THAT(run.out, HasSubstr("\ndisk:        "));
+  EXPECT_THAT(run.out, HasSubstr("\njobs:        9 (queued 0, running 0, completed 7, failed 0, "
+                                 "cancelled 2)"));
   fs::remove_all(root);
 }
 

@@ -1,6 +1,6 @@
 """The Python client (python/dlmfd, docs/python.md) against a real dlmfdd on loopback running the
 real dlmfd-solve on a tiny scene: submit, watch to the end, fetch, read particles.h5 and the
-snapshots; a sweep of two points and its table; errors as Python exceptions naming the field.
+snapshots; a study of two points and its table; errors as Python exceptions naming the field.
 
 Run by ctest (label python) as `python3 client_test.py`; exits 77 (skipped) when python3-grpcio,
 python3-protobuf, python3-h5py or python3-numpy is missing.
@@ -99,24 +99,24 @@ class ClientTest(unittest.TestCase):
 
         self.assertEqual(self.client.read(job.id, "scene.toml").decode().count("[[particles]]"), 1)
 
-    def test_sweep_of_two_points_and_its_table(self):
-        sweep_id, jobs = self.client.sweep(support.settling_scene(),
+    def test_study_of_two_points_and_its_table(self):
+        study_id, jobs = self.client.submit_study(support.settling_scene(),
                                            {"fluid.relaxation_time": [0.2, 0.5]},
                                            overrides={"time.end": 0.004}, name="lambda",
                                            labels={"project": "py"}, max_running=1)
-        self.assertTrue(sweep_id)
+        self.assertTrue(study_id)
         self.assertEqual(len(jobs), 2)
-        self.assertEqual({j.sweep_id for j in jobs}, {sweep_id})
-        self.assertEqual(self.client.study(sweep_id).max_running, 1)
-        self.assertIn(sweep_id, [s.id for s in self.client.sweeps()])
+        self.assertEqual({j.study_id for j in jobs}, {study_id})
+        self.assertEqual(self.client.study(study_id).max_running, 1)
+        self.assertIn(study_id, [s.id for s in self.client.studies()])
         finished = [self.client.wait(j.id) for j in jobs]
         self.assertEqual([dlmfd.state_name(j.state) for j in finished], ["COMPLETED"] * 2)
         found = self.client.jobs(labels={"project": "py"}, where={"fluid.relaxation_time": 0.5})
         self.assertEqual([j.id for j in found], [jobs[1].id])
-        found = self.client.jobs(sweep_id=sweep_id, where=["fluid.relaxation_time<0.3"])
+        found = self.client.jobs(study_id=study_id, where=["fluid.relaxation_time<0.3"])
         self.assertEqual([j.id for j in found], [jobs[0].id])
 
-        rows = self.client.table(sweep_id=sweep_id, frame=False)
+        rows = self.client.table(study_id=study_id, frame=False)
         self.assertEqual([r["job"] for r in rows], [j.id for j in jobs])
         self.assertEqual([r["fluid.relaxation_time"] for r in rows], [0.2, 0.5])
         for row in rows:
@@ -130,25 +130,25 @@ class ClientTest(unittest.TestCase):
             self.assertEqual(row["p0.radius"], 0.125)
         self.assertEqual(self.client.table(jobs=[jobs[1].id], frame=False), rows[1:])
         if importlib.util.find_spec("pandas") is not None:
-            frame = self.client.table(sweep_id=sweep_id)
+            frame = self.client.table(study_id=study_id)
             self.assertEqual(len(frame), 2)
             self.assertEqual(list(frame["fluid.relaxation_time"]), [0.2, 0.5])
 
         retried = self.client.retry([jobs[0].id], overrides={"time.end": 0.006})
         self.assertEqual([(j.id, j.attempt) for j in retried], [(jobs[0].id, 2)])
         self.client.wait(jobs[0].id)
-        again = self.client.table(sweep_id=sweep_id, frame=False)
+        again = self.client.table(study_id=study_id, frame=False)
         self.assertEqual((again[0]["time.end"], again[0]["steps"]), (0.006, 6))
 
     def test_zipped_axes_and_a_range(self):
-        sweep_id, jobs = self.client.sweep(
+        study_id, jobs = self.client.submit_study(
             support.settling_scene(), {"time.dt": dlmfd.Range(1e-3, 2e-3, 2)},
             zip={"fluid.relaxation_time": [0.2, 0.5], "particles.*.density": [1.1, 1.2]},
             overrides={"time.end": 0.002, "output.fields_every": 0}, name="zip")
         self.assertEqual(len(jobs), 4)  # 2 time steps x 2 zipped points
         self.assertEqual(jobs[1].name, "zip[time.dt=0.001,fluid.relaxation_time=0.5,"
                                        "particles.*.density=1.2]")
-        self.client.cancel_sweep(sweep_id)
+        self.client.cancel_study(study_id)
 
     def test_every_verb_of_the_cli(self):
         """health, inputs, logs, priority, hold, release, a study's fetch and delete (the CLI's
@@ -157,7 +157,7 @@ class ClientTest(unittest.TestCase):
         with dlmfd.Client(self.daemon.address, token="") as anonymous:
             self.assertEqual(anonymous.health(), "SERVING")  # needs no token
         # Two points that run one at a time: the second waits, queued, while the first runs.
-        sweep_id, jobs = self.client.sweep(support.settling_scene(end=1.0, fields_every=0.5),
+        study_id, jobs = self.client.submit_study(support.settling_scene(end=1.0, fields_every=0.5),
                                            {"fluid.relaxation_time": [0.2, 0.5]},
                                            name="verbs", max_running=1)
         waiting = jobs[1]
@@ -174,13 +174,13 @@ class ClientTest(unittest.TestCase):
         log = self.client.logs(jobs[0].id)
         self.assertIn("step", log)
         with tempfile.TemporaryDirectory() as out:
-            fetched = self.client.fetch_sweep(sweep_id, out, paths=["summary.json"])
+            fetched = self.client.fetch_study(study_id, out, paths=["summary.json"])
             folders = sorted(os.path.basename(str(p)) for p in fetched)
             self.assertEqual(folders, ["fluid.relaxation_time=0.2", "fluid.relaxation_time=0.5"])
             for folder in fetched:
                 self.assertTrue(os.path.exists(os.path.join(folder, "summary.json")))
                 self.assertTrue(os.path.exists(os.path.join(folder, "job.json")))
-        deleted, freed = self.client.delete(sweep_id=sweep_id)
+        deleted, freed = self.client.delete(study_id=study_id)
         self.assertEqual(sorted(deleted), sorted(j.id for j in jobs))
         self.assertGreater(freed, 0)
         with self.assertRaises(dlmfd.NotFound):
@@ -225,7 +225,7 @@ class ClientTest(unittest.TestCase):
         self.assertIn("fluid.viscosty", str(unknown_key.exception))
 
         with self.assertRaises(dlmfd.InvalidArgument) as bad_point:
-            self.client.sweep(support.settling_scene(), {"fluid.solvent_ratio": [0.5, 2.0]})
+            self.client.submit_study(support.settling_scene(), {"fluid.solvent_ratio": [0.5, 2.0]})
         self.assertIn("fluid.solvent_ratio", str(bad_point.exception))
 
         with self.assertRaises(dlmfd.NotFound):

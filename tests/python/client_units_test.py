@@ -1,5 +1,5 @@
 """The Python client's own logic, without a daemon: scene and override input, TOML values, the
-parts of an InvalidArgument message, table rows from the Table rpc's rows, and sweep axes.
+parts of an InvalidArgument message, table rows from the Table rpc's rows, and study axes.
 
 Run by ctest (label python) as `python3 client_units_test.py`; exits 77 (skipped) when
 python3-grpcio or python3-protobuf is missing.
@@ -18,7 +18,7 @@ import grpc  # noqa: E402
 
 from dlmfd import Range, errors, scene_input  # noqa: E402
 from dlmfd import study_table as table  # noqa: E402
-from dlmfd.axes import sweep_axes  # noqa: E402
+from dlmfd.axes import study_axes  # noqa: E402
 from dlmfd.v1 import jobs_pb2  # noqa: E402
 
 
@@ -137,7 +137,7 @@ class TableTest(unittest.TestCase):
         self.assertIsNone(rows[1]["p0.x"])
 
     def test_axes_of_a_grid_a_range_and_a_zip(self):
-        axes = sweep_axes({"fluid.relaxation_time": [0.5, 1.4],
+        axes = study_axes({"fluid.relaxation_time": [0.5, 1.4],
                            "time.dt": Range(1e-3, 1e-2, 3, log=True)},
                           zip={"particles.0.density": [1.01, 1.02],
                                "particles.1.density": [1.02, 1.05]})
@@ -148,7 +148,7 @@ class TableTest(unittest.TestCase):
                          (1e-3, 3, True))
         self.assertEqual([a.zip for a in axes], ["", "", "zip", "zip"])
         with self.assertRaises(TypeError):
-            sweep_axes({"fluid.relaxation_time": "0.5,1.4"})
+            study_axes({"fluid.relaxation_time": "0.5,1.4"})
 
     def test_list_of_dicts_unless_a_frame_is_asked_for(self):
         rows = [{"a": 1}]

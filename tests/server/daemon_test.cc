@@ -146,36 +146,36 @@ TEST(Daemon, MalformedRequestsGetTheRightCodesAndTheDaemonStaysHealthy) {
   list_request.add_states(static_cast<v1::JobState>(42));
   EXPECT_EQ(unary_code([&](auto* c) { return stub->List(c, list_request, &list); }),
             StatusCode::INVALID_ARGUMENT);
-  v1::SubmitSweepRequest sweep;
-  v1::SubmitSweepResponse sweep_reply;
-  sweep.set_scene(good);
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }),
+  v1::SubmitStudyRequest study;
+  v1::SubmitStudyResponse study_reply;
+  study.set_scene(good);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitStudy(c, study, &study_reply); }),
             StatusCode::INVALID_ARGUMENT);
-  auto* axis = sweep.add_axes();
+  auto* axis = study.add_axes();
   axis->set_key("fluid.viscosity");
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }),
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitStudy(c, study, &study_reply); }),
             StatusCode::INVALID_ARGUMENT);
   axis->add_values("0.1");
   axis->add_values("-0.1");
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }),
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitStudy(c, study, &study_reply); }),
             StatusCode::INVALID_ARGUMENT);
-  sweep.add_axes()->CopyFrom(*axis);
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }),
+  study.add_axes()->CopyFrom(*axis);
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitStudy(c, study, &study_reply); }),
             StatusCode::INVALID_ARGUMENT);
-  sweep.clear_axes();
-  auto* big = sweep.add_axes();
+  study.clear_axes();
+  auto* big = study.add_axes();
   big->set_key("fluid.viscosity");
   for (int i = 1; i <= 5; ++i) big->add_values(std::to_string(0.01 * i));
-  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitSweep(c, sweep, &sweep_reply); }),
+  EXPECT_EQ(unary_code([&](auto* c) { return stub->SubmitStudy(c, study, &study_reply); }),
             StatusCode::RESOURCE_EXHAUSTED);
-  v1::CancelSweepRequest cancel_sweep;
-  v1::CancelSweepResponse cancel_sweep_reply;
+  v1::CancelStudyRequest cancel_study;
+  v1::CancelStudyResponse cancel_study_reply;
   EXPECT_EQ(
-      unary_code([&](auto* c) { return stub->CancelSweep(c, cancel_sweep, &cancel_sweep_reply); }),
+      unary_code([&](auto* c) { return stub->CancelStudy(c, cancel_study, &cancel_study_reply); }),
       StatusCode::INVALID_ARGUMENT);
-  cancel_sweep.set_sweep_id("s-missing");
+  cancel_study.set_study_id("s-missing");
   EXPECT_EQ(
-      unary_code([&](auto* c) { return stub->CancelSweep(c, cancel_sweep, &cancel_sweep_reply); }),
+      unary_code([&](auto* c) { return stub->CancelStudy(c, cancel_study, &cancel_study_reply); }),
       StatusCode::NOT_FOUND);
   v1::ListFilesRequest files_request;
   v1::ListFilesResponse files;
@@ -209,14 +209,14 @@ TEST(Daemon, MalformedRequestsGetTheRightCodesAndTheDaemonStaysHealthy) {
   {
     // A study that does not fit names what it adds (issue 38: a 10,000-point study against one
     // unfinished job said "1 unfinished jobs, the limit is 10000").
-    v1::SubmitSweepRequest study;
-    study.set_scene(good);
-    auto* viscosity = study.add_axes();
+    v1::SubmitStudyRequest too_big;
+    too_big.set_scene(good);
+    auto* viscosity = too_big.add_axes();
     viscosity->set_key("fluid.viscosity");
     for (const char* value : {"0.1", "0.2", "0.3"}) viscosity->add_values(value);
-    v1::SubmitSweepResponse swept;
+    v1::SubmitStudyResponse swept;
     auto context = Context();
-    const grpc::Status status = stub->SubmitSweep(context.get(), study, &swept);
+    const grpc::Status status = stub->SubmitStudy(context.get(), too_big, &swept);
     EXPECT_EQ(status.error_code(), StatusCode::RESOURCE_EXHAUSTED);
     EXPECT_NE(status.error_message().find("no room for 3 jobs: 1 unfinished and 3 new make 4, "
                                           "over the limit of max_queued = 3"),

@@ -91,7 +91,8 @@ class HostilePool {
     if ((name == "job_id" || name == "job_ids") && !jobs_.empty() && !OneIn(3)) {
       return jobs_[Below(jobs_.size())];
     }
-    if (name == "sweep_id" && !sweeps_.empty() && !OneIn(3)) return sweeps_[Below(sweeps_.size())];
+    if (name == "study_id" && !studies_.empty() && !OneIn(3))
+      return studies_[Below(studies_.size())];
     if (OneIn(4)) return "v" + std::to_string(Below(1000));
     return texts_[Below(texts_.size())];
   }
@@ -109,17 +110,17 @@ class HostilePool {
   }
 
   void AddJob(const std::string& id) { jobs_.push_back(id); }
-  void AddSweep(const std::string& id) { sweeps_.push_back(id); }
+  void AddStudy(const std::string& id) { studies_.push_back(id); }
 
  private:
   std::mt19937 random_;
-  std::vector<std::string> texts_, scenes_, jobs_, sweeps_;
+  std::vector<std::string> texts_, scenes_, jobs_, studies_;
 };
 
 // The fields that name what a request acts on: set in a sparse request, so that it gets past the
 // first checks to the code behind them.
 bool NamesItsSubject(const FieldDescriptor* field) {
-  static const std::set<std::string> kNames = {"scene", "job_id", "job_ids", "sweep_id"};
+  static const std::set<std::string> kNames = {"scene", "job_id", "job_ids", "study_id"};
   return kNames.count(field->name()) > 0;
 }
 
@@ -306,15 +307,15 @@ TEST(HostileInput, ThousandsOfHostileRequestsNeitherCrashNorHangTheDaemon) {
     v1::Job job;
     ASSERT_TRUE(stub->Submit(Context().get(), submit, &job).ok());
     pool.AddJob(job.id());
-    v1::SubmitSweepRequest sweep;
-    sweep.set_scene(CavityScene(0.01));
-    auto* axis = sweep.add_axes();
+    v1::SubmitStudyRequest study;
+    study.set_scene(CavityScene(0.01));
+    auto* axis = study.add_axes();
     axis->set_key("fluid.viscosity");
     axis->add_values("0.01");
     axis->add_values("0.02");
-    v1::SubmitSweepResponse swept;
-    ASSERT_TRUE(stub->SubmitSweep(Context().get(), sweep, &swept).ok());
-    pool.AddSweep(swept.sweep_id());
+    v1::SubmitStudyResponse swept;
+    ASSERT_TRUE(stub->SubmitStudy(Context().get(), study, &swept).ok());
+    pool.AddStudy(swept.study_id());
     for (const auto& j : swept.jobs()) pool.AddJob(j.id());
     WaitFinished(*stub, job.id());
   }
@@ -365,9 +366,9 @@ TEST(HostileInput, ThousandsOfHostileRequestsNeitherCrashNorHangTheDaemon) {
       v1::Job job;
       if (job.ParseFromString(outcome.reply)) pool.AddJob(job.id());
     }
-    if (outcome.status.ok() && method->name() == "SubmitSweep") {
-      v1::SubmitSweepResponse swept;
-      if (swept.ParseFromString(outcome.reply)) pool.AddSweep(swept.sweep_id());
+    if (outcome.status.ok() && method->name() == "SubmitStudy") {
+      v1::SubmitStudyResponse swept;
+      if (swept.ParseFromString(outcome.reply)) pool.AddStudy(swept.study_id());
     }
     if (HasFailure()) break;
   }

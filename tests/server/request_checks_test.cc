@@ -134,13 +134,13 @@ TEST(RequestChecks, NulBytesAreRefusedNamingTheField) {
     ExpectNamed(SubmitStatus(*stub, request), StatusCode::INVALID_ARGUMENT, "scene");
   }
   {
-    v1::SubmitSweepRequest sweep;
-    sweep.set_scene(CavityScene(0.1));
-    auto* axis = sweep.add_axes();
+    v1::SubmitStudyRequest study;
+    study.set_scene(CavityScene(0.1));
+    auto* axis = study.add_axes();
     axis->set_key("fluid.viscosity");
     axis->add_values("0.1" + nul);
-    v1::SubmitSweepResponse reply;
-    ExpectNamed(stub->SubmitSweep(Context().get(), sweep, &reply), StatusCode::INVALID_ARGUMENT,
+    v1::SubmitStudyResponse reply;
+    ExpectNamed(stub->SubmitStudy(Context().get(), study, &reply), StatusCode::INVALID_ARGUMENT,
                 "axes");
   }
   v1::Job job;
@@ -188,14 +188,14 @@ TEST(RequestChecks, OverridesCountTowardTheSceneSizeLimit) {
   ASSERT_LT(request.scene().size(), 1000u);
   request.add_overrides("title=\"" + std::string(3900, 't') + "\"");
   ExpectNamed(SubmitStatus(*stub, request), StatusCode::RESOURCE_EXHAUSTED, "max_scene_bytes");
-  v1::SubmitSweepRequest sweep;
-  sweep.set_scene(request.scene());
-  sweep.add_overrides(request.overrides(0));
-  auto* axis = sweep.add_axes();
+  v1::SubmitStudyRequest study;
+  study.set_scene(request.scene());
+  study.add_overrides(request.overrides(0));
+  auto* axis = study.add_axes();
   axis->set_key("fluid.viscosity");
   axis->add_values("0.1");
-  v1::SubmitSweepResponse reply;
-  ExpectNamed(stub->SubmitSweep(Context().get(), sweep, &reply), StatusCode::RESOURCE_EXHAUSTED,
+  v1::SubmitStudyResponse reply;
+  ExpectNamed(stub->SubmitStudy(Context().get(), study, &reply), StatusCode::RESOURCE_EXHAUSTED,
               "max_scene_bytes");
   auto small = Cavity();
   small.add_overrides("title=\"" + std::string(2000, 't') + "\"");
@@ -220,20 +220,20 @@ TEST(RequestChecks, ARetriedRequestIdWithAnotherRequestIsAlreadyExists) {
   other_overrides.add_overrides("fluid.viscosity=0.02");
   ExpectNamed(SubmitStatus(*stub, other_overrides), StatusCode::ALREADY_EXISTS,
               "client_request_id");
-  v1::SubmitSweepRequest sweep;
-  sweep.set_scene(CavityScene(100.0));
-  sweep.set_client_request_id("sweep-1");
-  auto* axis = sweep.add_axes();
+  v1::SubmitStudyRequest study;
+  study.set_scene(CavityScene(100.0));
+  study.set_client_request_id("study-1");
+  auto* axis = study.add_axes();
   axis->set_key("fluid.viscosity");
   axis->add_values("0.1");
   axis->add_values("0.2");
-  v1::SubmitSweepResponse sweep_first, sweep_again;
-  ASSERT_TRUE(stub->SubmitSweep(Context().get(), sweep, &sweep_first).ok());
-  ASSERT_TRUE(stub->SubmitSweep(Context().get(), sweep, &sweep_again).ok());
-  EXPECT_EQ(sweep_again.sweep_id(), sweep_first.sweep_id());
+  v1::SubmitStudyResponse study_first, study_again;
+  ASSERT_TRUE(stub->SubmitStudy(Context().get(), study, &study_first).ok());
+  ASSERT_TRUE(stub->SubmitStudy(Context().get(), study, &study_again).ok());
+  EXPECT_EQ(study_again.study_id(), study_first.study_id());
   axis->set_values(1, "0.3");
-  v1::SubmitSweepResponse refused;
-  ExpectNamed(stub->SubmitSweep(Context().get(), sweep, &refused), StatusCode::ALREADY_EXISTS,
+  v1::SubmitStudyResponse refused;
+  ExpectNamed(stub->SubmitStudy(Context().get(), study, &refused), StatusCode::ALREADY_EXISTS,
               "client_request_id");
   v1::ListResponse list;
   ASSERT_TRUE(stub->List(Context().get(), v1::ListRequest(), &list).ok());

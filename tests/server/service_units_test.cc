@@ -1,5 +1,5 @@
 // Unit tests of the daemon's parts without a process: the SQLite store, the configuration, the
-// authenticator, the watcher queue's gap rules and snapshot downsampling, the sweep expansion, the
+// authenticator, the watcher queue's gap rules and snapshot downsampling, the study expansion, the
 // checks of result-file paths and the cutting of error messages.
 #include <gtest/gtest.h>
 #include <sqlite3.h>
@@ -17,8 +17,8 @@
 #include "job_store.h"
 #include "result_files.h"
 #include "service_error.h"
+#include "study_expansion.h"
 #include "support/daemon_process.h"
-#include "sweep_expansion.h"
 #include "watch_log.h"
 #include "watcher_queue.h"
 
@@ -621,8 +621,8 @@ TEST(Downsample, KeepsCornersAndLimits) {
   EXPECT_EQ(same.values_size(), full.values_size());
 }
 
-v1::SubmitSweepRequest SweepOf(std::vector<std::pair<std::string, std::vector<std::string>>> axes) {
-  v1::SubmitSweepRequest request;
+v1::SubmitStudyRequest StudyOf(std::vector<std::pair<std::string, std::vector<std::string>>> axes) {
+  v1::SubmitStudyRequest request;
   request.add_overrides("time.end=1");
   for (const auto& [key, values] : axes) {
     auto* axis = request.add_axes();
@@ -634,8 +634,8 @@ v1::SubmitSweepRequest SweepOf(std::vector<std::pair<std::string, std::vector<st
 
 grpc::StatusCode CodeOf(const std::function<void()>& body) { return Guarded(body).error_code(); }
 
-TEST(SweepExpansion, CartesianProductWithTheLastAxisFastest) {
-  const auto points = ExpandSweep(SweepOf({{"a", {"1", "2"}}, {"b", {"x", "y", "z"}}}), 6).points;
+TEST(StudyExpansion, CartesianProductWithTheLastAxisFastest) {
+  const auto points = ExpandStudy(StudyOf({{"a", {"1", "2"}}, {"b", {"x", "y", "z"}}}), 6).points;
   ASSERT_EQ(points.size(), 6u);
   EXPECT_EQ(points[0].label, "a=1,b=x");
   EXPECT_EQ(points[1].label, "a=1,b=y");
@@ -643,20 +643,20 @@ TEST(SweepExpansion, CartesianProductWithTheLastAxisFastest) {
   EXPECT_EQ(points[5].overrides, (std::vector<std::string>{"time.end=1", "a=2", "b=z"}));
 }
 
-TEST(SweepExpansion, InvalidAxesAndTooManyPointsAreRefusedAsAWhole) {
+TEST(StudyExpansion, InvalidAxesAndTooManyPointsAreRefusedAsAWhole) {
   using grpc::StatusCode;
-  EXPECT_EQ(CodeOf([] { ExpandSweep(SweepOf({}), 10); }), StatusCode::INVALID_ARGUMENT);
-  EXPECT_EQ(CodeOf([] { ExpandSweep(SweepOf({{"", {"1"}}}), 10); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(CodeOf([] { ExpandStudy(StudyOf({}), 10); }), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(CodeOf([] { ExpandStudy(StudyOf({{"", {"1"}}}), 10); }), StatusCode::INVALID_ARGUMENT);
   EXPECT_EQ(CodeOf([] {
-              ExpandSweep(SweepOf({{"a=b", {"1"}}}), 10);
+              ExpandStudy(StudyOf({{"a=b", {"1"}}}), 10);
             }),
             StatusCode::INVALID_ARGUMENT);
   EXPECT_EQ(CodeOf([] {
-              ExpandSweep(SweepOf({{"a", {"1"}}, {"a", {"2"}}}), 10);
+              ExpandStudy(StudyOf({{"a", {"1"}}, {"a", {"2"}}}), 10);
             }),
             StatusCode::INVALID_ARGUMENT);
-  EXPECT_EQ(CodeOf([] { ExpandSweep(SweepOf({{"a", {}}}), 10); }), StatusCode::INVALID_ARGUMENT);
-  const grpc::Status big = Guarded([] { ExpandSweep(SweepOf({{"a", {"1", "2", "3"}}}), 2); });
+  EXPECT_EQ(CodeOf([] { ExpandStudy(StudyOf({{"a", {}}}), 10); }), StatusCode::INVALID_ARGUMENT);
+  const grpc::Status big = Guarded([] { ExpandStudy(StudyOf({{"a", {"1", "2", "3"}}}), 2); });
   EXPECT_EQ(big.error_code(), StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_NE(big.error_message().find("max_queued = 2"), std::string::npos) << big.error_message();
 }

@@ -32,7 +32,7 @@ TEST(SlurmStore, ASchemaFourStoreGainsTheSlurmColumns) {
   }
   dlmfd::testing::RollBackSchema(path, 4);
   JobStore store(path);
-  EXPECT_EQ(JobStore::SchemaVersion(), 10);
+  EXPECT_EQ(JobStore::SchemaVersion(), 11);
   const auto old = store.Get("old");
   ASSERT_TRUE(old);
   EXPECT_EQ(old->slurm_job_id, "");
@@ -49,9 +49,9 @@ TEST(SlurmStore, ASchemaFourStoreGainsTheSlurmColumns) {
 TEST(SlurmStore, ALiveSlurmJobIsAdoptedFirstAndNeitherCancelledNorHeldWhileQueued) {
   dlmfd::testing::TempDir dir;
   JobStore store(dir.path() + "/jobs.db");
-  const SweepRecord sweep = dlmfd::testing::StoreSweep("s-1", 1);
+  const StudyRecord study = dlmfd::testing::StoreStudy("s-1", 1);
   store.InsertJobs({StoreJob("a", "s-1"), StoreJob("b", "s-1"), StoreJob("c", "", 9)}, "local", "",
-                   &sweep);
+                   &study);
   // a and b were both in Slurm (an array with throttle 1 holds b back in Slurm, not here).
   for (const char* id : {"a", "b"}) {
     store.MarkRunning(id, 1.0);
@@ -77,8 +77,8 @@ TEST(SlurmStore, ALiveSlurmJobIsAdoptedFirstAndNeitherCancelledNorHeldWhileQueue
   store.MarkRunning("b", 3.0);
   EXPECT_EQ(store.NextQueued()->id, "c");
   // Only jobs not in Slurm's hands form a study's next array.
-  EXPECT_TRUE(store.QueuedOfSweep("s-1", 10).empty());
-  EXPECT_EQ(store.CountRunningOfSweep("s-1"), 2);
+  EXPECT_TRUE(store.QueuedOfStudy("s-1", 10).empty());
+  EXPECT_EQ(store.CountRunningOfStudy("s-1"), 2);
   // An end clears the mark.
   ASSERT_TRUE(store.MarkFinished("a", JobState::kCompleted, "", 4.0));
   EXPECT_FALSE(store.Get("a")->slurm_live);
@@ -143,10 +143,10 @@ TEST(SlurmStore, AttemptsEndWithoutEndingTheJob) {
 TEST(SlurmStore, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStartsIt) {
   dlmfd::testing::TempDir dir;
   JobStore store(dir.path() + "/jobs.db");
-  const SweepRecord sweep = dlmfd::testing::StoreSweep("s-1", 1);
+  const StudyRecord study = dlmfd::testing::StoreStudy("s-1", 1);
   JobRecord limited = StoreJob("a", "s-1");
   limited.time_limit_seconds = 5400;
-  store.InsertJobs({limited, StoreJob("b", "s-1")}, "local", "", &sweep);
+  store.InsertJobs({limited, StoreJob("b", "s-1")}, "local", "", &study);
   EXPECT_EQ(store.Get("a")->time_limit_seconds, 5400);
   for (const char* id : {"a", "b"}) store.MarkRunning(id, 10.0);
   store.SetSlurmSubmitted("a", "40_0");
@@ -185,11 +185,11 @@ TEST(SlurmStore, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStartsIt) {
   running_filter.states = {JobState::kRunning};
   ASSERT_EQ(store.List(running_filter).size(), 1u);
   EXPECT_EQ(store.List(running_filter)[0].id, "a");
-  const SweepStats stats = store.StatsOfSweep("local", "s-1");
+  const StudyStats stats = store.StatsOfStudy("local", "s-1");
   EXPECT_EQ(stats.count[static_cast<size_t>(JobState::kQueued)], 1);
   EXPECT_EQ(stats.count[static_cast<size_t>(JobState::kRunning)], 1);
   EXPECT_EQ(stats.first_started_time, 12.0);
-  EXPECT_EQ(store.CountRunningOfSweep("s-1"), 2);
+  EXPECT_EQ(store.CountRunningOfStudy("s-1"), 2);
   // Slurm starts b: RUNNING from then.
   EXPECT_TRUE(store.SetSlurmState("b", "RUNNING", "", false, 20.0));
   EXPECT_EQ(ToProto(*store.Get("b"), 20.0).state(), v1::RUNNING);

@@ -1,6 +1,6 @@
 // Studies against the real dlmfdd and dlmfd-solve (issue 14 points 1-3): a study is stored with its
-// axes and counts (GetSweep, ListSweeps), List selects by the effective scene and names an unknown
-// sweep NOT_FOUND, an invalid point rejects the whole study, and Retry reruns finished jobs in
+// axes and counts (GetStudy, ListStudies), List selects by the effective scene and names an unknown
+// study NOT_FOUND, an invalid point rejects the whole study, and Retry reruns finished jobs in
 // their study, resuming a cancelled one from its checkpoint and starting a changed one afresh.
 // Scenes are the 16 x 16 cavity of a few hundred steps at most.
 #include <gtest/gtest.h>
@@ -17,19 +17,19 @@ namespace {
 #define REQUIRE_SOLVER() \
   if (!SolverAvailable()) GTEST_SKIP() << "dlmfd-solve is not built: " << kSolverPath
 
-v1::SweepAxis Axis(const std::string& key, std::vector<std::string> values,
+v1::StudyAxis Axis(const std::string& key, std::vector<std::string> values,
                    const std::string& zip = "") {
-  v1::SweepAxis axis;
+  v1::StudyAxis axis;
   axis.set_key(key);
   for (const auto& v : values) axis.add_values(v);
   axis.set_zip(zip);
   return axis;
 }
 
-std::vector<v1::Job> ListWhere(v1::Jobs::Stub& stub, const std::string& sweep,
+std::vector<v1::Job> ListWhere(v1::Jobs::Stub& stub, const std::string& study,
                                std::vector<std::string> where, grpc::Status* status = nullptr) {
   v1::ListRequest request;
-  request.set_sweep_id(sweep);
+  request.set_study_id(study);
   for (const auto& w : where) request.add_where(w);
   v1::ListResponse response;
   const grpc::Status s = stub.List(Context().get(), request, &response);
@@ -51,7 +51,7 @@ TEST(Studies, AStudyIsStoredWithItsAxesAndFoundByTheEffectiveScene) {
   ASSERT_TRUE(daemon.Start()) << daemon.Log();
   auto stub = daemon.Stub();
 
-  v1::SubmitSweepRequest request;
+  v1::SubmitStudyRequest request;
   request.set_scene(CavityScene(0.05));
   request.set_name("cavity-study");
   request.add_tags("study-e2e");
@@ -59,18 +59,18 @@ TEST(Studies, AStudyIsStoredWithItsAxesAndFoundByTheEffectiveScene) {
   request.set_max_running(1);
   *request.add_axes() = Axis("fluid.viscosity", {"0.01", "0.02"}, "pair");
   *request.add_axes() = Axis("time.end", {"0.05", "0.1"}, "pair");
-  v1::SubmitSweepResponse sweep;
-  ASSERT_TRUE(stub->SubmitSweep(Context().get(), request, &sweep).ok());
-  ASSERT_EQ(sweep.jobs_size(), 2);  // zipped: two points, not four
-  EXPECT_EQ(sweep.jobs(1).parameters(0).key(), "fluid.viscosity");
-  EXPECT_EQ(sweep.jobs(1).parameters(0).number(), 0.02);
-  EXPECT_EQ(sweep.jobs(1).labels().at("project"), "cavity");
-  for (const auto& job : sweep.jobs()) WaitFinished(*stub, job.id());
+  v1::SubmitStudyResponse submitted;
+  ASSERT_TRUE(stub->SubmitStudy(Context().get(), request, &submitted).ok());
+  ASSERT_EQ(submitted.jobs_size(), 2);  // zipped: two points, not four
+  EXPECT_EQ(submitted.jobs(1).parameters(0).key(), "fluid.viscosity");
+  EXPECT_EQ(submitted.jobs(1).parameters(0).number(), 0.02);
+  EXPECT_EQ(submitted.jobs(1).labels().at("project"), "cavity");
+  for (const auto& job : submitted.jobs()) WaitFinished(*stub, job.id());
 
-  v1::GetSweepRequest get;
-  get.set_sweep_id(sweep.sweep_id());
-  v1::Sweep study;
-  ASSERT_TRUE(stub->GetSweep(Context().get(), get, &study).ok());
+  v1::GetStudyRequest get;
+  get.set_study_id(submitted.study_id());
+  v1::Study study;
+  ASSERT_TRUE(stub->GetStudy(Context().get(), get, &study).ok());
   EXPECT_EQ(study.name(), "cavity-study");
   EXPECT_EQ(study.jobs(), 2);
   EXPECT_EQ(study.completed(), 2);
@@ -78,32 +78,32 @@ TEST(Studies, AStudyIsStoredWithItsAxesAndFoundByTheEffectiveScene) {
   EXPECT_EQ(study.max_running(), 1);
   ASSERT_EQ(study.axes_size(), 2);
   EXPECT_EQ(study.axes(0).zip(), "pair");
-  v1::ListSweepsRequest list_sweeps;
-  list_sweeps.set_tag("study-e2e");
-  v1::ListSweepsResponse sweeps;
-  ASSERT_TRUE(stub->ListSweeps(Context().get(), list_sweeps, &sweeps).ok());
-  ASSERT_EQ(sweeps.sweeps_size(), 1);
-  EXPECT_EQ(sweeps.sweeps(0).id(), sweep.sweep_id());
+  v1::ListStudiesRequest list_studies;
+  list_studies.set_tag("study-e2e");
+  v1::ListStudiesResponse studies;
+  ASSERT_TRUE(stub->ListStudies(Context().get(), list_studies, &studies).ok());
+  ASSERT_EQ(studies.studies_size(), 1);
+  EXPECT_EQ(studies.studies(0).id(), submitted.study_id());
 
   // An override's value, and one the scene file never names (the default density 1).
-  EXPECT_EQ(ListWhere(*stub, sweep.sweep_id(), {"fluid.viscosity=0.02"}).size(), 1u);
-  EXPECT_EQ(ListWhere(*stub, sweep.sweep_id(), {"fluid.viscosity=2e-2"}).size(), 1u);
-  EXPECT_EQ(ListWhere(*stub, sweep.sweep_id(), {"fluid.density=1"}).size(), 2u);
-  EXPECT_EQ(ListWhere(*stub, sweep.sweep_id(), {"domain.boundary.top.value.0=1.0"}).size(), 2u);
+  EXPECT_EQ(ListWhere(*stub, submitted.study_id(), {"fluid.viscosity=0.02"}).size(), 1u);
+  EXPECT_EQ(ListWhere(*stub, submitted.study_id(), {"fluid.viscosity=2e-2"}).size(), 1u);
+  EXPECT_EQ(ListWhere(*stub, submitted.study_id(), {"fluid.density=1"}).size(), 2u);
+  EXPECT_EQ(ListWhere(*stub, submitted.study_id(), {"domain.boundary.top.value.0=1.0"}).size(), 2u);
   EXPECT_EQ(ListWhere(*stub, "", {"fluid.viscosity=0.03"}).size(), 0u);
   grpc::Status status;
   ListWhere(*stub, "s-unknown", {}, &status);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::NOT_FOUND);
-  get.set_sweep_id("s-unknown");
-  EXPECT_EQ(stub->GetSweep(Context().get(), get, &study).error_code(), grpc::StatusCode::NOT_FOUND);
+  get.set_study_id("s-unknown");
+  EXPECT_EQ(stub->GetStudy(Context().get(), get, &study).error_code(), grpc::StatusCode::NOT_FOUND);
   ListWhere(*stub, "", {"fluid.viscosity"}, &status);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   // Issue 38: ranges and !=, and a key no job has is named, not an empty list.
-  EXPECT_EQ(ListWhere(*stub, sweep.sweep_id(), {"fluid.viscosity>0.015"}).size(), 1u);
-  EXPECT_EQ(ListWhere(*stub, sweep.sweep_id(), {"fluid.viscosity>=0.01", "time.end<0.1"}).size(),
-            1u);
-  EXPECT_EQ(ListWhere(*stub, sweep.sweep_id(), {"fluid.viscosity!=0.01"}).size(), 1u);
-  EXPECT_EQ(ListWhere(*stub, sweep.sweep_id(), {"title<1"}).size(), 0u);  // not a number
+  EXPECT_EQ(ListWhere(*stub, submitted.study_id(), {"fluid.viscosity>0.015"}).size(), 1u);
+  EXPECT_EQ(
+      ListWhere(*stub, submitted.study_id(), {"fluid.viscosity>=0.01", "time.end<0.1"}).size(), 1u);
+  EXPECT_EQ(ListWhere(*stub, submitted.study_id(), {"fluid.viscosity!=0.01"}).size(), 1u);
+  EXPECT_EQ(ListWhere(*stub, submitted.study_id(), {"title<1"}).size(), 0u);  // not a number
   ListWhere(*stub, "", {"fluid.viscosty=0.02"}, &status);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_NE(status.error_message().find("fluid.viscosty"), std::string::npos)
@@ -115,24 +115,24 @@ TEST(Studies, AnInvalidPointRejectsTheWholeStudy) {
   DaemonProcess daemon(dir.path() + "/data");
   ASSERT_TRUE(daemon.Start()) << daemon.Log();
   auto stub = daemon.Stub();
-  v1::SubmitSweepRequest request;
+  v1::SubmitStudyRequest request;
   request.set_scene(CavityScene(0.05));
   *request.add_axes() = Axis("fluid.viscosity", {"0.01", "-1"});
   *request.add_axes() = Axis("time.end", {"0.05", "0.1"});
-  v1::SubmitSweepResponse reply;
-  const grpc::Status status = stub->SubmitSweep(Context().get(), request, &reply);
+  v1::SubmitStudyResponse reply;
+  const grpc::Status status = stub->SubmitStudy(Context().get(), request, &reply);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_NE(status.error_message().find("fluid.viscosity"), std::string::npos);
-  EXPECT_NE(status.error_message().find("sweep point fluid.viscosity=-1"), std::string::npos)
+  EXPECT_NE(status.error_message().find("study point fluid.viscosity=-1"), std::string::npos)
       << status.error_message();
-  v1::ListSweepsResponse sweeps;
-  ASSERT_TRUE(stub->ListSweeps(Context().get(), v1::ListSweepsRequest(), &sweeps).ok());
-  EXPECT_EQ(sweeps.sweeps_size(), 0);
+  v1::ListStudiesResponse studies;
+  ASSERT_TRUE(stub->ListStudies(Context().get(), v1::ListStudiesRequest(), &studies).ok());
+  EXPECT_EQ(studies.studies_size(), 0);
   EXPECT_TRUE(ListWhere(*stub, "", {}).empty());
   // A wildcard over an array the scene does not have is invalid too, naming the key.
   request.clear_axes();
   *request.add_axes() = Axis("particles.*.density", {"1.5"});
-  const grpc::Status wildcard = stub->SubmitSweep(Context().get(), request, &reply);
+  const grpc::Status wildcard = stub->SubmitStudy(Context().get(), request, &reply);
   EXPECT_EQ(wildcard.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_NE(wildcard.error_message().find("particles.*.density"), std::string::npos)
       << wildcard.error_message();
@@ -144,13 +144,13 @@ TEST(Studies, RetryResumesACancelledJobAndStartsAChangedOneAfresh) {
   DaemonProcess daemon(dir.path() + "/data");
   ASSERT_TRUE(daemon.Start()) << daemon.Log();
   auto stub = daemon.Stub();
-  v1::SubmitSweepRequest request;
+  v1::SubmitStudyRequest request;
   // 5000 steps: still running when the cancel comes, also on an idle machine (500 were not).
   request.set_scene(CavityScene(50.0));
   *request.add_axes() = Axis("fluid.viscosity", {"0.01"});
-  v1::SubmitSweepResponse sweep;
-  ASSERT_TRUE(stub->SubmitSweep(Context().get(), request, &sweep).ok());
-  const std::string id = sweep.jobs(0).id();
+  v1::SubmitStudyResponse submitted;
+  ASSERT_TRUE(stub->SubmitStudy(Context().get(), request, &submitted).ok());
+  const std::string id = submitted.jobs(0).id();
   {
     auto context = Context();
     v1::WatchRequest watch;
@@ -177,13 +177,13 @@ TEST(Studies, RetryResumesACancelledJobAndStartsAChangedOneAfresh) {
             grpc::StatusCode::NOT_FOUND);
 
   v1::RetryRequest retry;
-  retry.set_sweep_id(sweep.sweep_id());  // default states: failed, cancelled
+  retry.set_study_id(submitted.study_id());  // default states: failed, cancelled
   ASSERT_TRUE(stub->Retry(Context().get(), retry, &retried).ok());
   ASSERT_EQ(retried.jobs_size(), 1);
   EXPECT_EQ(retried.jobs(0).id(), id);
   EXPECT_EQ(retried.jobs(0).state(), v1::QUEUED);
   EXPECT_EQ(retried.jobs(0).attempt(), 2);
-  EXPECT_EQ(retried.jobs(0).sweep_id(), sweep.sweep_id());
+  EXPECT_EQ(retried.jobs(0).study_id(), submitted.study_id());
   const auto resumed_events = WatchAll(*stub, id);
   EXPECT_TRUE(HasLog(resumed_events, "solver resumed from results/checkpoint.h5"));
   const v1::Job second = WaitFinished(*stub, id);
@@ -210,8 +210,8 @@ TEST(Studies, RetryResumesACancelledJobAndStartsAChangedOneAfresh) {
   EXPECT_EQ(third.step(), 200);
   EXPECT_EQ(third.attempt(), 3);
   EXPECT_EQ(third.parameters(0).text(), "0.02");  // the point follows the change of its axis
-  EXPECT_EQ(first.name(), sweep.sweep_id() + "[fluid.viscosity=0.01]");
-  EXPECT_EQ(third.name(), sweep.sweep_id() + "[fluid.viscosity=0.02]");  // and so does its name
+  EXPECT_EQ(first.name(), submitted.study_id() + "[fluid.viscosity=0.01]");
+  EXPECT_EQ(third.name(), submitted.study_id() + "[fluid.viscosity=0.02]");  // and so does its name
   EXPECT_EQ(std::set<std::string>(third.overrides().begin(), third.overrides().end()),
             (std::set<std::string>{"fluid.viscosity=0.02", "time.end=2"}));
   // An invalid change is refused before anything is requeued.

@@ -1,5 +1,5 @@
 // Issue 14 points 4-6 against the real daemon on loopback (its SQLite store, the real solver):
-// the Table rpc of a sweep, the solver log and inputs after the end, Delete, SetPriority,
+// the Table rpc of a study, the solver log and inputs after the end, Delete, SetPriority,
 // Hold/Release, the disk quota and the per-job limits; and the store's schema 4 and the typing of
 // parameters as units.
 #include <gtest/gtest.h>
@@ -100,7 +100,7 @@ TEST(JobStoreSchemaFour, AppliesOverSchemaTwoAndHoldsPriorityAndDelete) {
   // Back to schema 2: a store written before schemas 3 and later.
   RollBackSchema(path, 2);
   JobStore store(path);
-  EXPECT_EQ(JobStore::SchemaVersion(), 10);
+  EXPECT_EQ(JobStore::SchemaVersion(), 11);
   auto old = store.Get("old");
   ASSERT_TRUE(old);
   EXPECT_FALSE(old->held);
@@ -130,31 +130,31 @@ TEST(JobStoreSchemaFour, AppliesOverSchemaTwoAndHoldsPriorityAndDelete) {
   EXPECT_EQ(store.OwnerJobs("local").size(), 2u);  // old and c
 }
 
-// A sweep over the viscosity: one row per point, the parameter typed, the summary's quantities
+// A study over the viscosity: one row per point, the parameter typed, the summary's quantities
 // as in the results' summary.json, the true minimum gap that of every step of diagnostics.csv.
-TEST(StudyTable, SweepRowsCarryTypedParametersAndTheSummary) {
+TEST(StudyTable, StudyRowsCarryTypedParametersAndTheSummary) {
   REQUIRE_SOLVER();
   TempDir dir;
   DaemonProcess daemon(dir.path() + "/data");
   ASSERT_TRUE(daemon.Start()) << daemon.Log();
   auto stub = daemon.Stub();
-  v1::SubmitSweepRequest sweep;
-  sweep.set_scene(PairScene());
-  sweep.set_name("pair");
-  auto* axis = sweep.add_axes();
+  v1::SubmitStudyRequest study;
+  study.set_scene(PairScene());
+  study.set_name("pair");
+  auto* axis = study.add_axes();
   axis->set_key("fluid.viscosity");
   axis->add_values("0.1");
   axis->add_values("0.2");
-  v1::SubmitSweepResponse submitted;
+  v1::SubmitStudyResponse submitted;
   {
     auto context = Context();
-    ASSERT_TRUE(stub->SubmitSweep(context.get(), sweep, &submitted).ok());
+    ASSERT_TRUE(stub->SubmitStudy(context.get(), study, &submitted).ok());
   }
   for (const auto& job : submitted.jobs()) {
     ASSERT_EQ(WaitFinished(*stub, job.id()).state(), v1::COMPLETED);
   }
   v1::TableRequest request;
-  request.set_sweep_id(submitted.sweep_id());
+  request.set_study_id(submitted.study_id());
   v1::TableResponse table;
   {
     auto context = Context();
@@ -196,7 +196,7 @@ TEST(StudyTable, SweepRowsCarryTypedParametersAndTheSummary) {
     EXPECT_LE(row.min_gap(), 0.25);
     EXPECT_GT(row.min_gap(), 0.2);
   }
-  // A job named instead of a sweep; a queued job has no summary yet; another user's job is not
+  // A job named instead of a study; a queued job has no summary yet; another user's job is not
   // found; neither or both selectors is an invalid request.
   v1::TableRequest by_job;
   by_job.add_job_ids(submitted.jobs(1).id());
@@ -208,14 +208,14 @@ TEST(StudyTable, SweepRowsCarryTypedParametersAndTheSummary) {
   ASSERT_EQ(one.rows_size(), 1);
   EXPECT_EQ(one.rows(0).job_id(), submitted.jobs(1).id());
   v1::TableRequest both = by_job;
-  both.set_sweep_id(submitted.sweep_id());
+  both.set_study_id(submitted.study_id());
   v1::TableResponse none;
   {
     auto context = Context();
     EXPECT_EQ(stub->Table(context.get(), both, &none).error_code(), StatusCode::INVALID_ARGUMENT);
   }
   v1::TableRequest unknown;
-  unknown.set_sweep_id("s-unknown");
+  unknown.set_study_id("s-unknown");
   {
     auto context = Context();
     EXPECT_EQ(stub->Table(context.get(), unknown, &none).error_code(), StatusCode::NOT_FOUND);

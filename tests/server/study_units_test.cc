@@ -1,8 +1,10 @@
 // Unit tests of the study parts of the daemon without a process (issue 14 points 1-3): the axes of
-// a sweep (zipped, ranges, wildcard keys, typed values), the effective scene's values that `list
-// --where` matches, the store's studies (schema 3: sweeps, labels, scene values, the per-study
+// a study (zipped, ranges, wildcard keys, typed values), the effective scene's values that `list
+// --where` matches, the store's studies (schema 3: studies, labels, scene values, the per-study
 // limit of the scheduler's queue, requeue of a retry) and the retry plan.
 #include <gtest/gtest.h>
+
+#include <sqlite3.h>
 
 #include <cmath>
 #include <functional>
@@ -12,26 +14,26 @@
 #include "retry_plan.h"
 #include "scene_values.h"
 #include "service_error.h"
+#include "study_expansion.h"
 #include "support/daemon_process.h"
 #include "support/store_fixtures.h"
-#include "sweep_expansion.h"
 
 namespace dlmfd::server {
 namespace {
 
 grpc::Status StatusOf(const std::function<void()>& body) { return Guarded(body); }
 
-v1::SweepAxis Values(const std::string& key, std::vector<std::string> values,
+v1::StudyAxis Values(const std::string& key, std::vector<std::string> values,
                      const std::string& zip = "") {
-  v1::SweepAxis axis;
+  v1::StudyAxis axis;
   axis.set_key(key);
   for (const auto& v : values) axis.add_values(v);
   axis.set_zip(zip);
   return axis;
 }
 
-v1::SweepAxis Range(const std::string& key, double start, double stop, int count, bool log) {
-  v1::SweepAxis axis;
+v1::StudyAxis Range(const std::string& key, double start, double stop, int count, bool log) {
+  v1::StudyAxis axis;
   axis.set_key(key);
   axis.mutable_range()->set_start(start);
   axis.mutable_range()->set_stop(stop);
@@ -40,15 +42,15 @@ v1::SweepAxis Range(const std::string& key, double start, double stop, int count
   return axis;
 }
 
-v1::SubmitSweepRequest Request(std::vector<v1::SweepAxis> axes) {
-  v1::SubmitSweepRequest request;
+v1::SubmitStudyRequest Request(std::vector<v1::StudyAxis> axes) {
+  v1::SubmitStudyRequest request;
   for (auto& a : axes) *request.add_axes() = a;
   return request;
 }
 
 TEST(StudyAxes, ZippedAxesStepTogetherAndCrossTheGrid) {
-  const SweepPlan plan =
-      ExpandSweep(Request({Values("a", {"1", "2", "3"}, "z"), Values("g", {"x", "y"}),
+  const StudyPlan plan =
+      ExpandStudy(Request({Values("a", {"1", "2", "3"}, "z"), Values("g", {"x", "y"}),
                            Values("b", {"10", "20", "30"}, "z")}),
                   100);
   ASSERT_EQ(plan.points.size(), 6u);  // 3 zipped x 2
@@ -57,7 +59,7 @@ TEST(StudyAxes, ZippedAxesStepTogetherAndCrossTheGrid) {
   EXPECT_EQ(plan.points[2].label, "a=2,g=x,b=20");
   EXPECT_EQ(plan.points[5].label, "a=3,g=y,b=30");
   const grpc::Status unequal = StatusOf([] {
-    ExpandSweep(Request({Values("a", {"1", "2"}, "z"), Values("b", {"1"}, "z")}), 9);
+    ExpandStudy(Request({Values("a", {"1", "2"}, "z"), Values("b", {"1"}, "z")}), 9);
   });
   EXPECT_EQ(unequal.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_NE(unequal.error_message().find("equal lengths"), std::string::npos)
@@ -65,14 +67,14 @@ TEST(StudyAxes, ZippedAxesStepTogetherAndCrossTheGrid) {
 }
 
 TEST(StudyAxes, LinearAndLogarithmicRangesIncludeBothEndsAsFloats) {
-  const SweepPlan lin = ExpandSweep(Request({Range("fluid.viscosity", 0.1, 0.5, 5, false)}), 10);
+  const StudyPlan lin = ExpandStudy(Request({Range("fluid.viscosity", 0.1, 0.5, 5, false)}), 10);
   ASSERT_EQ(lin.points.size(), 5u);
   EXPECT_EQ(lin.points[0].label, "fluid.viscosity=0.1");
   EXPECT_EQ(lin.points[4].label, "fluid.viscosity=0.5");
   EXPECT_EQ(lin.points[2].parameters[0].type, "float");
   EXPECT_EQ(lin.points[2].parameters[0].text, "0.3");  // 12 digits, not 0.30000000000000004
   EXPECT_EQ(lin.points[2].parameters[0].number, 0.3);
-  const SweepPlan log = ExpandSweep(Request({Range("k", 1e-3, 1e1, 5, true)}), 10);
+  const StudyPlan log = ExpandStudy(Request({Range("k", 1e-3, 1e1, 5, true)}), 10);
   ASSERT_EQ(log.points.size(), 5u);
   EXPECT_EQ(log.points[0].overrides.back(), "k=0.001");
   EXPECT_EQ(log.points[4].overrides.back(), "k=10.0");  // a TOML float, not the integer 10
@@ -83,22 +85,22 @@ TEST(StudyAxes, LinearAndLogarithmicRangesIncludeBothEndsAsFloats) {
   ASSERT_TRUE(lin.axes[0].is_range);
   EXPECT_EQ(lin.axes[0].values.size(), 5u);
   using grpc::StatusCode;
-  EXPECT_EQ(StatusOf([] { ExpandSweep(Request({Range("k", 0, 1, 5, true)}), 10); }).error_code(),
+  EXPECT_EQ(StatusOf([] { ExpandStudy(Request({Range("k", 0, 1, 5, true)}), 10); }).error_code(),
             StatusCode::INVALID_ARGUMENT);
-  EXPECT_EQ(StatusOf([] { ExpandSweep(Request({Range("k", -1, 1, 5, true)}), 10); }).error_code(),
+  EXPECT_EQ(StatusOf([] { ExpandStudy(Request({Range("k", -1, 1, 5, true)}), 10); }).error_code(),
             StatusCode::INVALID_ARGUMENT);
-  EXPECT_EQ(StatusOf([] { ExpandSweep(Request({Range("k", 0, 1, 1, false)}), 10); }).error_code(),
+  EXPECT_EQ(StatusOf([] { ExpandStudy(Request({Range("k", 0, 1, 1, false)}), 10); }).error_code(),
             StatusCode::INVALID_ARGUMENT);
-  EXPECT_EQ(StatusOf([] { ExpandSweep(Request({Range("k", 0, 1, 3, false)}), 2); }).error_code(),
+  EXPECT_EQ(StatusOf([] { ExpandStudy(Request({Range("k", 0, 1, 3, false)}), 2); }).error_code(),
             StatusCode::RESOURCE_EXHAUSTED);
-  v1::SweepAxis both = Range("k", 0, 1, 3, false);
+  v1::StudyAxis both = Range("k", 0, 1, 3, false);
   both.add_values("1");
-  EXPECT_EQ(StatusOf([&] { ExpandSweep(Request({both}), 10); }).error_code(),
+  EXPECT_EQ(StatusOf([&] { ExpandStudy(Request({both}), 10); }).error_code(),
             StatusCode::INVALID_ARGUMENT);
 }
 
 TEST(StudyAxes, ValuesAreTypedWithTheJob) {
-  const SweepPlan plan = ExpandSweep(
+  const StudyPlan plan = ExpandStudy(
       Request({Values("particles.*.density", {"1.02"}), Values("collisions.substeps", {"4"}),
                Values("splitting.advection", {"wave"}), Values("gravity", {"[0.0, -981.0]"}),
                Values("accuracy.strict", {"true"})}),
@@ -138,37 +140,37 @@ TEST(SceneValues, TheEffectiveSceneIsFlattenedWithNormalisedNumbers) {
   EXPECT_NE(NormalizedValue("0.1"), NormalizedValue("0.10000000000000002"));
 }
 
-JobRecord Job(const std::string& id, const std::string& sweep, int priority = 0) {
-  JobRecord job = dlmfd::testing::StoreJob(id, sweep, priority);
+JobRecord Job(const std::string& id, const std::string& study, int priority = 0) {
+  JobRecord job = dlmfd::testing::StoreJob(id, study, priority);
   job.overrides = {"time.end=1"};
   return job;
 }
 
-SweepRecord Sweep(const std::string& id, int max_running) {
-  SweepRecord sweep;
-  sweep.id = id;
-  sweep.owner = "local";
-  sweep.name = "study";
-  sweep.tags = {"t"};
-  sweep.labels = {{"project", "pair"}};
+StudyRecord Study(const std::string& id, int max_running) {
+  StudyRecord study;
+  study.id = id;
+  study.owner = "local";
+  study.name = "study";
+  study.tags = {"t"};
+  study.labels = {{"project", "pair"}};
   StoredAxis axis;
   axis.key = "a";
   axis.values = {"1", "2\tstill one value", ""};
   axis.is_range = true;
   axis.start = 0.1;
   axis.count = 3;
-  sweep.axes = {axis};
-  sweep.max_running = max_running;
-  sweep.created_time = 5;
-  return sweep;
+  study.axes = {axis};
+  study.max_running = max_running;
+  study.created_time = 5;
+  return study;
 }
 
 // The scheduler's queue skips a study at its max_running and takes other jobs meanwhile.
 TEST(StudyStore, AStudyAtItsLimitHoldsBackItsQueuedJobs) {
   dlmfd::testing::TempDir dir;
   JobStore store(dir.path() + "/jobs.db");
-  const SweepRecord sweep = Sweep("s-1", 1);
-  store.InsertJobs({Job("a", "s-1", 5), Job("b", "s-1", 5)}, "local", "", &sweep);
+  const StudyRecord study = Study("s-1", 1);
+  store.InsertJobs({Job("a", "s-1", 5), Job("b", "s-1", 5)}, "local", "", &study);
   store.InsertJobs({Job("c", "", 0)}, "local", "");
   auto next = store.NextQueued();
   ASSERT_TRUE(next);
@@ -186,29 +188,29 @@ TEST(StudyStore, AStudyAtItsLimitHoldsBackItsQueuedJobs) {
 TEST(StudyStore, StudiesRoundTripWithTheirAxesAndCounts) {
   dlmfd::testing::TempDir dir;
   JobStore store(dir.path() + "/jobs.db");
-  const SweepRecord sweep = Sweep("s-1", 2);
+  const StudyRecord study = Study("s-1", 2);
   JobRecord a = Job("a", "s-1");
   a.parameters = {{"a", "1", "integer", 1.0}};
   a.labels = {{"project", "pair"}};
   JobRecord b = Job("b", "s-1");
   b.end_time = 4;
-  store.InsertJobs({a, b}, "local", "", &sweep);
+  store.InsertJobs({a, b}, "local", "", &study);
   store.MarkRunning("a", 10);
   store.MarkFinished("a", JobState::kFailed, "blow-up", 11);
   store.MarkRunning("b", 12);
   store.UpdateProgress("b", 5, 1.0, 4.0);
-  auto back = store.GetSweep("local", "s-1");
+  auto back = store.GetStudy("local", "s-1");
   ASSERT_TRUE(back);
   EXPECT_EQ(back->name, "study");
-  EXPECT_EQ(back->tags, sweep.tags);
-  EXPECT_EQ(back->labels, sweep.labels);
+  EXPECT_EQ(back->tags, study.tags);
+  EXPECT_EQ(back->labels, study.labels);
   ASSERT_EQ(back->axes.size(), 1u);
-  EXPECT_EQ(back->axes[0].values, sweep.axes[0].values);  // a tab and an empty value survive
+  EXPECT_EQ(back->axes[0].values, study.axes[0].values);  // a tab and an empty value survive
   EXPECT_TRUE(back->axes[0].is_range);
   EXPECT_EQ(back->axes[0].start, 0.1);
   EXPECT_EQ(back->max_running, 2);
-  EXPECT_FALSE(store.GetSweep("bob", "s-1"));
-  const SweepStats stats = store.StatsOfSweep("local", "s-1");
+  EXPECT_FALSE(store.GetStudy("bob", "s-1"));
+  const StudyStats stats = store.StatsOfStudy("local", "s-1");
   EXPECT_EQ(stats.jobs, 2);
   EXPECT_EQ(stats.count[static_cast<size_t>(JobState::kFailed)], 1);
   EXPECT_EQ(stats.count[static_cast<size_t>(JobState::kRunning)], 1);
@@ -220,24 +222,24 @@ TEST(StudyStore, StudiesRoundTripWithTheirAxesAndCounts) {
   ASSERT_EQ(job->parameters.size(), 1u);
   EXPECT_EQ(job->parameters[0].type, "integer");
   EXPECT_EQ(job->labels, a.labels);
-  EXPECT_EQ(store.ListSweeps("local", "t", 0, 10).size(), 1u);
-  EXPECT_EQ(store.ListSweeps("local", "other", 0, 10).size(), 0u);
+  EXPECT_EQ(store.ListStudies("local", "t", 0, 10).size(), 1u);
+  EXPECT_EQ(store.ListStudies("local", "other", 0, 10).size(), 0u);
 }
 
-// `dlmfd delete --sweep S` removes the study with its jobs: `dlmfd sweeps` no longer lists it and
-// `list --sweep S` no longer finds it. A study that keeps a job stays.
+// `dlmfd delete --study S` removes the study with its jobs: `dlmfd studies` no longer lists it and
+// `list --study S` no longer finds it. A study that keeps a job stays.
 TEST(StudyStore, AStudyGoesWithItsLastJob) {
   dlmfd::testing::TempDir dir;
   JobStore store(dir.path() + "/jobs.db");
-  const SweepRecord sweep = Sweep("s-1", 0);
-  store.InsertJobs({Job("a", "s-1"), Job("b", "s-1")}, "local", "", &sweep);
+  const StudyRecord study = Study("s-1", 0);
+  store.InsertJobs({Job("a", "s-1"), Job("b", "s-1")}, "local", "", &study);
   store.InsertJobs({Job("c", "")}, "local", "");
   store.Delete({"a", "c"});
-  EXPECT_TRUE(store.GetSweep("local", "s-1"));
-  EXPECT_EQ(store.StatsOfSweep("local", "s-1").jobs, 1);
+  EXPECT_TRUE(store.GetStudy("local", "s-1"));
+  EXPECT_EQ(store.StatsOfStudy("local", "s-1").jobs, 1);
   store.Delete({"b"});
-  EXPECT_FALSE(store.GetSweep("local", "s-1"));
-  EXPECT_TRUE(store.ListSweeps("local", "", 0, 10).empty());
+  EXPECT_FALSE(store.GetStudy("local", "s-1"));
+  EXPECT_TRUE(store.ListStudies("local", "", 0, 10).empty());
 }
 
 TEST(StudyStore, ListSelectsOnTagsLabelsAndSceneValues) {
@@ -351,8 +353,8 @@ TEST(StudyStore, RequeueRecordsTheAttemptAndRefusesAnUnfinishedJob) {
   EXPECT_FALSE(store.Get("a")->fresh_start);
 }
 
-// A store of schema 2 with a sweep gains the sweeps table with a row for that sweep.
-TEST(StudyStore, ASchemaTwoStoreGainsItsSweepsAsStudies) {
+// A store of schema 2 with a study gains the studies table with a row for that study.
+TEST(StudyStore, ASchemaTwoStoreGainsItsStudiesAsRows) {
   dlmfd::testing::TempDir dir;
   const std::string path = dir.path() + "/jobs.db";
   {
@@ -362,11 +364,65 @@ TEST(StudyStore, ASchemaTwoStoreGainsItsSweepsAsStudies) {
   // Back to schema 2, as an older daemon left it.
   dlmfd::testing::RollBackSchema(path, 2);
   JobStore store(path);
-  auto sweep = store.GetSweep("local", "s-old");
-  ASSERT_TRUE(sweep);
-  EXPECT_TRUE(sweep->axes.empty());
-  EXPECT_EQ(store.StatsOfSweep("local", "s-old").jobs, 1);
+  auto study = store.GetStudy("local", "s-old");
+  ASSERT_TRUE(study);
+  EXPECT_TRUE(study->axes.empty());
+  EXPECT_EQ(store.StatsOfStudy("local", "s-old").jobs, 1);
   EXPECT_EQ(store.Get("a")->attempt, 1);
+}
+
+// The names of a store's tables, columns and indexes (sqlite_master's SQL) that contain `word`.
+std::vector<std::string> SchemaNamesWith(const std::string& path, const std::string& word) {
+  sqlite3* db = nullptr;
+  std::vector<std::string> names;
+  if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK) {
+    sqlite3_stmt* select = nullptr;
+    sqlite3_prepare_v2(db, "SELECT name, sql FROM sqlite_master WHERE sql IS NOT NULL", -1, &select,
+                       nullptr);
+    while (select != nullptr && sqlite3_step(select) == SQLITE_ROW) {
+      const std::string name = reinterpret_cast<const char*>(sqlite3_column_text(select, 0));
+      const std::string sql = reinterpret_cast<const char*>(sqlite3_column_text(select, 1));
+      if (sql.find(word) != std::string::npos) names.push_back(name);
+    }
+    sqlite3_finalize(select);
+  }
+  sqlite3_close(db);
+  return names;
+}
+
+// Schema 11 (issue 39 point 5): the table of studies and a job's study column take the word users
+// see. A store written under schema 10, with a study and its jobs, keeps them under the new names.
+TEST(StudyStore, ASchemaTenStoreKeepsItsStudiesUnderTheNewNames) {
+  dlmfd::testing::TempDir dir;
+  const std::string path = dir.path() + "/jobs.db";
+  {
+    JobStore store(path);
+    const StudyRecord study = Study("s-ten", 1);
+    store.InsertJobs({Job("a", "s-ten"), Job("b", "s-ten"), Job("c", "")}, "local", "", &study);
+  }
+  // As the daemon of schema 10 left it, written through its own names.
+  dlmfd::testing::RollBackSchema(path, 10);
+  ASSERT_FALSE(SchemaNamesWith(path, "sweep").empty());
+  dlmfd::testing::ExecuteOnStore(
+      path,
+      "UPDATE sweeps SET name = 'ten', overrides = 'time.end=1' WHERE id = 's-ten';"
+      "UPDATE jobs SET sweep_id = '' WHERE id = 'b';",
+      "writing schema 10's names");
+  JobStore store(path);
+  EXPECT_EQ(SchemaNamesWith(path, "sweep"), std::vector<std::string>{});
+  const auto study = store.GetStudy("local", "s-ten");
+  ASSERT_TRUE(study);
+  EXPECT_EQ(study->name, "ten");
+  EXPECT_EQ(study->max_running, 1);
+  EXPECT_EQ(study->overrides, std::vector<std::string>{"time.end=1"});
+  EXPECT_EQ(store.Get("a")->study_id, "s-ten");
+  EXPECT_EQ(store.Get("b")->study_id, "");
+  EXPECT_EQ(store.StatsOfStudy("local", "s-ten").jobs, 1);
+  EXPECT_EQ(store.QueuedOfStudy("s-ten", 10).size(), 1u);  // found through the renamed column
+  // New studies go into the renamed table.
+  const StudyRecord second = Study("s-new", 0);
+  store.InsertJobs({Job("d", "s-new")}, "local", "", &second);
+  EXPECT_EQ(store.StudyJobs("local", "s-new").size(), 1u);
 }
 
 TEST(RetryPlan, SetReplacesTheSameKeyAndResumesOnlyTheSameUnfinishedScene) {

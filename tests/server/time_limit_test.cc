@@ -1,5 +1,5 @@
 // A job's own wall-time limit against the real daemon on loopback (its SQLite store, the real
-// solver): SubmitRequest and SubmitSweepRequest.time_limit_seconds is checked (not negative, not
+// solver): SubmitRequest and SubmitStudyRequest.time_limit_seconds is checked (not negative, not
 // over the daemon's limit, the message naming the field and the limit), stored with each job and
 // reported by Get; the local executor stops a run past it (the solver checkpoints) and the job
 // ends FAILED naming the job's limit, with no daemon-wide limit set.
@@ -21,15 +21,15 @@ grpc::Status SubmitWithLimit(v1::Jobs::Stub& stub, int64_t seconds, v1::Job* job
   return stub.Submit(Context().get(), request, job);
 }
 
-grpc::Status SweepWithLimit(v1::Jobs::Stub& stub, int64_t seconds, v1::SubmitSweepResponse* sweep) {
-  v1::SubmitSweepRequest request;
+grpc::Status StudyWithLimit(v1::Jobs::Stub& stub, int64_t seconds, v1::SubmitStudyResponse* study) {
+  v1::SubmitStudyRequest request;
   request.set_scene(CavityScene(0.1));
   request.set_time_limit_seconds(seconds);
   auto* axis = request.add_axes();
   axis->set_key("fluid.viscosity");
   axis->add_values("0.01");
   axis->add_values("0.02");
-  return stub.SubmitSweep(Context().get(), request, sweep);
+  return stub.SubmitStudy(Context().get(), request, study);
 }
 
 void ExpectRefused(const grpc::Status& status, const std::string& limit) {
@@ -46,8 +46,8 @@ TEST(JobTimeLimit, IsCheckedAgainstTheDaemonsLimitAndStoredWithEachJob) {
   v1::Job job;
   ExpectRefused(SubmitWithLimit(*stub, -1, &job), "max_wall_seconds");
   ExpectRefused(SubmitWithLimit(*stub, 3601, &job), "1 to 3600 (max_wall_seconds)");
-  v1::SubmitSweepResponse sweep;
-  ExpectRefused(SweepWithLimit(*stub, 7200, &sweep), "max_wall_seconds");
+  v1::SubmitStudyResponse study;
+  ExpectRefused(StudyWithLimit(*stub, 7200, &study), "max_wall_seconds");
   // Within it: stored, reported, and the same for every point of a study.
   ASSERT_TRUE(SubmitWithLimit(*stub, 1800, &job).ok());
   EXPECT_EQ(job.time_limit_seconds(), 1800);
@@ -56,9 +56,9 @@ TEST(JobTimeLimit, IsCheckedAgainstTheDaemonsLimitAndStoredWithEachJob) {
   v1::Job got;
   ASSERT_TRUE(stub->Get(Context().get(), get, &got).ok());
   EXPECT_EQ(got.time_limit_seconds(), 1800);
-  ASSERT_TRUE(SweepWithLimit(*stub, 600, &sweep).ok());
-  ASSERT_EQ(sweep.jobs_size(), 2);
-  for (const v1::Job& point : sweep.jobs()) EXPECT_EQ(point.time_limit_seconds(), 600);
+  ASSERT_TRUE(StudyWithLimit(*stub, 600, &study).ok());
+  ASSERT_EQ(study.jobs_size(), 2);
+  for (const v1::Job& point : study.jobs()) EXPECT_EQ(point.time_limit_seconds(), 600);
   // None asked: the daemon's limit applies, the job carries 0.
   ASSERT_TRUE(SubmitWithLimit(*stub, 0, &job).ok());
   EXPECT_EQ(job.time_limit_seconds(), 0);

@@ -43,16 +43,16 @@ TEST(WatchExactlyOnce, EveryWatcherGetsEveryEventOnceThroughDaemonKills) {
   std::vector<std::string> jobs;
   {
     auto stub = daemon->Stub();
-    v1::SubmitSweepRequest request;
+    v1::SubmitStudyRequest request;
     request.set_scene(SettlingDisk());
     request.set_name("settling");
     auto* axis = request.add_axes();
     axis->set_key("particles.0.density");
     axis->add_values("1.5");
     axis->add_values("1.8");
-    v1::SubmitSweepResponse response;
+    v1::SubmitStudyResponse response;
     auto context = Context();
-    ASSERT_TRUE(stub->SubmitSweep(context.get(), request, &response).ok());
+    ASSERT_TRUE(stub->SubmitStudy(context.get(), request, &response).ok());
     for (const auto& job : response.jobs()) jobs.push_back(job.id());
   }
   std::vector<std::unique_ptr<ReconnectingWatcher>> watchers;

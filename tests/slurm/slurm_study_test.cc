@@ -30,11 +30,11 @@ std::string ArrayOf(const std::string& slurm_id) {
 
 // A study of the scene over fluid.viscosity with at most max_running jobs at once, each with the
 // time limit (0: the daemon's).
-v1::SubmitSweepResponse SubmitStudy(v1::Jobs::Stub& stub, const std::string& scene,
+v1::SubmitStudyResponse SubmitStudy(v1::Jobs::Stub& stub, const std::string& scene,
                                     const std::string& name, int max_running,
                                     const std::vector<std::string>& viscosities,
                                     int64_t time_limit_seconds = 0) {
-  v1::SubmitSweepRequest request;
+  v1::SubmitStudyRequest request;
   request.set_scene(scene);
   request.set_name(name);
   request.set_max_running(max_running);
@@ -42,30 +42,30 @@ v1::SubmitSweepResponse SubmitStudy(v1::Jobs::Stub& stub, const std::string& sce
   auto* axis = request.add_axes();
   axis->set_key("fluid.viscosity");
   for (const auto& value : viscosities) axis->add_values(value);
-  v1::SubmitSweepResponse sweep;
+  v1::SubmitStudyResponse study;
   auto context = Context();
-  const grpc::Status status = stub.SubmitSweep(context.get(), request, &sweep);
+  const grpc::Status status = stub.SubmitStudy(context.get(), request, &study);
   EXPECT_TRUE(status.ok()) << status.error_message();
-  return sweep;
+  return study;
 }
 
 TEST_F(SlurmStudy, SixPointsAreOneJobArrayWithThrottleTwoAndEachPointIsAJob) {
   ASSERT_TRUE(StartDaemon()) << daemon().Log();
   auto* stub = this->stub();
   // 800 steps of a 16 x 16 cavity: about a second each; a time limit of 5 minutes each.
-  const v1::SubmitSweepResponse sweep = SubmitStudy(
+  const v1::SubmitStudyResponse study = SubmitStudy(
       *stub, CavityScene(8.0), "array", 2, {"0.01", "0.02", "0.03", "0.04", "0.05", "0.06"}, 300);
-  ASSERT_EQ(sweep.jobs_size(), 6);
+  ASSERT_EQ(study.jobs_size(), 6);
   // Every point has its task of one array, in the study's order.
   std::string array;
   ASSERT_TRUE(WaitUntil([&] {
-    for (const auto& job : sweep.jobs()) {
+    for (const auto& job : study.jobs()) {
       if (Get(*stub, job.id()).slurm_job_id().empty()) return false;
     }
     return true;
   })) << daemon().Log();
   for (int k = 0; k < 6; ++k) {
-    const std::string id = Get(*stub, sweep.jobs(k).id()).slurm_job_id();
+    const std::string id = Get(*stub, study.jobs(k).id()).slurm_job_id();
     if (k == 0) array = ArrayOf(id);
     EXPECT_EQ(id, array + "_" + std::to_string(k));
   }
@@ -85,7 +85,7 @@ TEST_F(SlurmStudy, SixPointsAreOneJobArrayWithThrottleTwoAndEachPointIsAJob) {
   // RUNNING while Slurm holds them.
   std::set<std::string> shown_waiting;
   WaitUntil([&] {
-    for (const auto& point : sweep.jobs()) {
+    for (const auto& point : study.jobs()) {
       const v1::Job job = Get(*stub, point.id());
       if (job.slurm_state() == "PENDING") {
         EXPECT_EQ(job.state(), v1::QUEUED) << job.ShortDebugString();
@@ -117,24 +117,24 @@ TEST_F(SlurmStudy, SixPointsAreOneJobArrayWithThrottleTwoAndEachPointIsAJob) {
   EXPECT_GE(shown_waiting.size(), 1u) << daemon().Log();
   // Each point is a job of its own that ran its own scene.
   for (int k = 0; k < 6; ++k) {
-    const v1::Job done = WaitFinished(*stub, sweep.jobs(k).id());
+    const v1::Job done = WaitFinished(*stub, study.jobs(k).id());
     EXPECT_EQ(done.state(), v1::COMPLETED) << done.reason() << "\n" << daemon().Log();
     EXPECT_EQ(done.step(), 800);
     EXPECT_TRUE(fs::exists(done.results_dir() + "/summary.json"));
   }
   // Slurm ran six tasks of the one array, each once.
-  EXPECT_TRUE(WaitUntil([&] { return SlurmEndsOfName("dlmfd-" + sweep.sweep_id()) >= 6; }));
-  EXPECT_EQ(SlurmEndsOfName("dlmfd-" + sweep.sweep_id()), 6);
+  EXPECT_TRUE(WaitUntil([&] { return SlurmEndsOfName("dlmfd-" + study.study_id()) >= 6; }));
+  EXPECT_EQ(SlurmEndsOfName("dlmfd-" + study.study_id()), 6);
 }
 
 TEST_F(SlurmStudy, APointIsCancelledAsItsTaskAndRetriedAsAnArrayOfOne) {
   ASSERT_TRUE(StartDaemon()) << daemon().Log();
   auto* stub = this->stub();
   // Each runs until cancelled.
-  const v1::SubmitSweepResponse sweep =
+  const v1::SubmitStudyResponse study =
       SubmitStudy(*stub, CavityScene(1.0e4), "cancel", 1, {"0.01", "0.02"});
-  ASSERT_EQ(sweep.jobs_size(), 2);
-  const std::string first = sweep.jobs(0).id(), second = sweep.jobs(1).id();
+  ASSERT_EQ(study.jobs_size(), 2);
+  const std::string first = study.jobs(0).id(), second = study.jobs(1).id();
   // The first point runs (its stream comes as a local job's); the second waits in Slurm behind
   // the throttle of 1. Both are cancelled: each its own task.
   WaitForProgress(*stub, first);
@@ -153,10 +153,10 @@ TEST_F(SlurmStudy, APointIsCancelledAsItsTaskAndRetriedAsAnArrayOfOne) {
   EXPECT_EQ(waiting.started_time(), 0.0);
   ASSERT_TRUE(WaitUntil([&] { return Get(*stub, first).state() == v1::RUNNING; }));
   EXPECT_EQ(Get(*stub, first).slurm_state(), "RUNNING");
-  v1::GetSweepRequest get_sweep;
-  get_sweep.set_sweep_id(sweep.sweep_id());
-  v1::Sweep counts;
-  ASSERT_TRUE(stub->GetSweep(Context().get(), get_sweep, &counts).ok());
+  v1::GetStudyRequest get_study;
+  get_study.set_study_id(study.study_id());
+  v1::Study counts;
+  ASSERT_TRUE(stub->GetStudy(Context().get(), get_study, &counts).ok());
   EXPECT_EQ(counts.queued(), 1);
   EXPECT_EQ(counts.running(), 1);
   for (const std::string& id : {second, first}) {

@@ -33,15 +33,15 @@ TEST_F(SlurmWatch, EveryWatcherGetsEveryEventOnceThroughDaemonKills) {
   const std::string address = daemon().address();
   std::vector<std::string> jobs;
   {
-    v1::SubmitSweepRequest request;
+    v1::SubmitStudyRequest request;
     request.set_scene(SettlingDisk());
     request.set_name("settling");
     request.set_max_running(2);  // the array's throttle holds the third point back
     auto* axis = request.add_axes();
     axis->set_key("particles.0.density");
     for (const char* value : {"1.5", "1.8", "2.1"}) axis->add_values(value);
-    v1::SubmitSweepResponse response;
-    ASSERT_TRUE(stub()->SubmitSweep(Context().get(), request, &response).ok());
+    v1::SubmitStudyResponse response;
+    ASSERT_TRUE(stub()->SubmitStudy(Context().get(), request, &response).ok());
     for (const auto& job : response.jobs()) jobs.push_back(job.id());
   }
   std::vector<std::unique_ptr<ReconnectingWatcher>> watchers;

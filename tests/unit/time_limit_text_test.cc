@@ -1,4 +1,4 @@
-// `dlmfd submit/sweep --time`: the durations a Slurm user writes (units and sbatch's forms) and the
+// `dlmfd submit/study --time`: the durations a Slurm user writes (units and sbatch's forms) and the
 // texts refused with a message saying what is expected (client/src/time_limit_text.h).
 #include <gtest/gtest.h>
 

@@ -194,23 +194,23 @@ void ServeParticles(WebContext& context, const Caller& caller, const std::string
   ReplyJson(res, JsonText(body));
 }
 
-void ServeSweep(WebContext& context, const Caller& caller, const std::string& sweep_id,
+void ServeStudy(WebContext& context, const Caller& caller, const std::string& study_id,
                 httplib::Response& res) {
-  v1::GetSweepRequest get;
-  get.set_sweep_id(sweep_id);
-  v1::Sweep sweep;
+  v1::GetStudyRequest get;
+  get.set_study_id(study_id);
+  v1::Study study;
   grpc::Status status =
-      context.link.jobs().GetSweep(context.link.Unary(caller.token).get(), get, &sweep);
+      context.link.jobs().GetStudy(context.link.Unary(caller.token).get(), get, &study);
   if (!status.ok()) return ReplyRpcError(res, status);
   v1::TableRequest table_request;
-  table_request.set_sweep_id(sweep_id);
+  table_request.set_study_id(study_id);
   v1::TableResponse rows;
   status = context.link.jobs().Table(context.link.Unary(caller.token).get(), table_request, &rows);
   if (!status.ok()) return ReplyRpcError(res, status);
   const cli::StudyTable table = cli::FlattenTable(rows);
   json jobs = json::array();
   v1::ListRequest list;
-  list.set_sweep_id(sweep_id);
+  list.set_study_id(study_id);
   list.set_page_size(1000);
   while (true) {
     v1::ListResponse page;
@@ -221,8 +221,8 @@ void ServeSweep(WebContext& context, const Caller& caller, const std::string& sw
     list.set_page_token(page.next_page_token());
   }
   json parameters = json::array();
-  for (const v1::SweepAxis& axis : sweep.axes()) parameters.push_back(axis.key());
-  json body = {{"sweep", Parsed(sweep)},
+  for (const v1::StudyAxis& axis : study.axes()) parameters.push_back(axis.key());
+  json body = {{"study", Parsed(study)},
                {"columns", table.columns},
                {"parameters", parameters},
                {"rows", json::parse(cli::TableJson(table), nullptr, false)},
@@ -256,7 +256,7 @@ void ServeLog(WebContext& context, const Caller& caller, const std::string& job_
 // NOLINTNEXTLINE(readability-function-size): predates the limit; split it when you change it
 void InstallApiRoutes(httplib::Server& server, WebContext& context) {
   const std::string job = std::string("/api/jobs/") + kIdPattern;
-  const std::string sweep = std::string("/api/sweeps/") + kIdPattern;
+  const std::string study = std::string("/api/studies/") + kIdPattern;
   DaemonLink& link = context.link;
 
   server.Get(
@@ -268,10 +268,10 @@ void InstallApiRoutes(httplib::Server& server, WebContext& context) {
                 if (!status.ok()) return ReplyRpcError(res, status);
                 ReplyJson(res, overview);
               }));
-  server.Get(sweep, ForUser(context, Access::kRead,
+  server.Get(study, ForUser(context, Access::kRead,
                             [&context](const httplib::Request& req, httplib::Response& res,
                                        const Caller& caller) {
-                              ServeSweep(context, caller, Id(req), res);
+                              ServeStudy(context, caller, Id(req), res);
                             }));
   server.Get(
       job,
@@ -363,34 +363,34 @@ void InstallApiRoutes(httplib::Server& server, WebContext& context) {
                             reply);
               }));
   server.Post(
-      sweep + "/cancel",
+      study + "/cancel",
       ForUser(context, Access::kChange,
               [&link](const httplib::Request& req, httplib::Response& res, const Caller& caller) {
-                v1::CancelSweepRequest request;
-                request.set_sweep_id(Id(req));
-                v1::CancelSweepResponse reply;
+                v1::CancelStudyRequest request;
+                request.set_study_id(Id(req));
+                v1::CancelStudyResponse reply;
                 JsonOrError(
-                    res, link.jobs().CancelSweep(link.Unary(caller.token).get(), request, &reply),
+                    res, link.jobs().CancelStudy(link.Unary(caller.token).get(), request, &reply),
                     reply);
               }));
   server.Post(
-      sweep + "/retry",
+      study + "/retry",
       ForUser(context, Access::kChange,
               [&link](const httplib::Request& req, httplib::Response& res, const Caller& caller) {
                 v1::RetryRequest request;
-                request.set_sweep_id(Id(req));
+                request.set_study_id(Id(req));
                 v1::RetryResponse reply;
                 JsonOrError(res, link.jobs().Retry(link.Unary(caller.token).get(), request, &reply),
                             reply);
               }));
   server.Post(
-      sweep + "/delete",
+      study + "/delete",
       ForUser(context, Access::kChange,
               [&link](const httplib::Request& req, httplib::Response& res, const Caller& caller) {
                 json body;
                 if (!BodyObject(req, res, &body) || !Confirmed(body, Id(req), res)) return;
                 v1::DeleteRequest request;
-                request.set_sweep_id(Id(req));
+                request.set_study_id(Id(req));
                 request.set_force(body.value("force", false));
                 v1::DeleteResponse reply;
                 JsonOrError(res,
@@ -414,7 +414,7 @@ void InstallApiRoutes(httplib::Server& server, WebContext& context) {
                                                 context.pictures));
           }));
   server.Get(
-      std::string("/pictures/sweeps/") + kIdPattern + "/chart.png",
+      std::string("/pictures/studies/") + kIdPattern + "/chart.png",
       ForUser(
           context, Access::kRead,
           [&context](const httplib::Request& req, httplib::Response& res, const Caller& caller) {
@@ -434,7 +434,7 @@ void InstallApiRoutes(httplib::Server& server, WebContext& context) {
             }
             chart.width = int(width);
             chart.height = int(height);
-            SendPicture(res, SweepChartPicture(context.link, caller.token, Id(req), chart));
+            SendPicture(res, StudyChartPicture(context.link, caller.token, Id(req), chart));
           }));
 
   server.Get(
@@ -462,11 +462,11 @@ void InstallApiRoutes(httplib::Server& server, WebContext& context) {
                                                     const Caller& caller) {
                                            ServeOverviewEvents(context, caller, res);
                                          }));
-  server.Get(std::string("/events/sweeps/") + kIdPattern,
+  server.Get(std::string("/events/studies/") + kIdPattern,
              ForUser(context, Access::kRead,
                      [&context](const httplib::Request& req, httplib::Response& res,
                                 const Caller& caller) {
-                       ServeSweepEvents(context, caller, Id(req), res);
+                       ServeStudyEvents(context, caller, Id(req), res);
                      }));
   server.Get(
       std::string("/events/jobs/") + kIdPattern,

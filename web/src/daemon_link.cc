@@ -30,10 +30,10 @@ std::unique_ptr<grpc::ClientContext> DaemonLink::Unary(const std::string& token)
 
 grpc::Status DaemonLink::ProbeWithoutToken() {
   auto context = Unary("");
-  v1::ListSweepsRequest request;
+  v1::ListStudiesRequest request;
   request.set_page_size(1);
-  v1::ListSweepsResponse response;
-  return jobs_->ListSweeps(context.get(), request, &response);
+  v1::ListStudiesResponse response;
+  return jobs_->ListStudies(context.get(), request, &response);
 }
 
 }  // namespace dlmfd::web

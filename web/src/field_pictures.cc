@@ -11,8 +11,8 @@
 #include "http_reply.h"
 #include "plot_options.h"
 #include "result_files.h"
+#include "study_chart.h"
 #include "study_table.h"
-#include "sweep_chart.h"
 
 namespace dlmfd::web {
 
@@ -120,15 +120,15 @@ Picture LatestFieldPicture(DaemonLink& link, const std::string& token, const std
   return picture;
 }
 
-Picture SweepChartPicture(DaemonLink& link, const std::string& token, const std::string& sweep_id,
+Picture StudyChartPicture(DaemonLink& link, const std::string& token, const std::string& study_id,
                           const ChartRequest& request) {
   v1::TableRequest table_request;
-  table_request.set_sweep_id(sweep_id);
+  table_request.set_study_id(study_id);
   v1::TableResponse rows;
   const grpc::Status status = link.jobs().Table(link.Unary(token).get(), table_request, &rows);
   if (!status.ok()) return RpcFailure(status);
-  cli::SweepChartSpec spec;
-  spec.sweep_id = sweep_id;
+  cli::StudyChartSpec spec;
+  spec.study_id = study_id;
   spec.x = request.x;
   spec.y = request.y;
   spec.group = request.group;
@@ -138,7 +138,7 @@ Picture SweepChartPicture(DaemonLink& link, const std::string& token, const std:
   spec.options.height = request.height;
   try {
     std::lock_guard<std::mutex> lock(DrawingMutex());
-    cli::SweepChart chart = cli::DrawSweepChart(cli::FlattenTable(rows), spec);
+    cli::StudyChart chart = cli::DrawStudyChart(cli::FlattenTable(rows), spec);
     ScratchDirectory scratch;
     const std::filesystem::path png = scratch.path() / "chart.png";
     chart.picture.image.Write(png.string());

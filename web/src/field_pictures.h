@@ -1,7 +1,7 @@
 // The dashboard's pictures, drawn by viz/ as the CLI draws them (same colour maps, captions and
 // charts): a job's latest field snapshot (`dlmfd plot` of the fetched results: trA for an
 // Oldroyd-B run, else the speed, with the particles), full size or as a thumbnail, and a study's
-// chart of a result against a parameter (`dlmfd chart --sweep`). The snapshot and particles.h5 come
+// chart of a result against a parameter (`dlmfd chart --study`). The snapshot and particles.h5 come
 // through the daemon's Fetch into a scratch directory. Field pictures are kept in a small cache
 // keyed by the job, the snapshot file, its time of modification and the size asked; the caller's
 // own ListFiles comes first, so a cached picture is never shown to a user who may not see the job.
@@ -52,7 +52,7 @@ struct ChartRequest {
   bool log_x = false, log_y = false;
   int width = 900, height = 600;
 };
-Picture SweepChartPicture(DaemonLink& link, const std::string& token, const std::string& sweep_id,
+Picture StudyChartPicture(DaemonLink& link, const std::string& token, const std::string& study_id,
                           const ChartRequest& request);
 
 }  // namespace dlmfd::web

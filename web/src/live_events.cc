@@ -41,7 +41,7 @@ struct LivePage {
   bool started = false;
   bool daemon_down = false;  // the daemon was last seen unreachable
   bool call_failed = false;  // a daemon call of this poll failed
-  std::string last_summary;  // the last `overview` or `sweep` JSON sent
+  std::string last_summary;  // the last `overview` or `study` JSON sent
   // Called at start and every poll_every; returns events to send.
   std::function<std::string(LivePage&)> poll;
   std::function<std::string(LivePage&)> summary;  // the study's or studies' counts, when dirty
@@ -230,15 +230,15 @@ std::string DaemonDown(LivePage& page, const grpc::Status& status) {
 
 grpc::Status OverviewJson(WebContext& context, const std::string& token, std::string* out,
                           std::vector<v1::Job>* unfinished) {
-  json sweeps = json::array();
-  v1::ListSweepsRequest sweeps_request;
-  sweeps_request.set_page_size(1000);
-  v1::ListSweepsResponse sweeps_response;
-  grpc::Status status = context.link.jobs().ListSweeps(context.link.Unary(token).get(),
-                                                       sweeps_request, &sweeps_response);
+  json studies = json::array();
+  v1::ListStudiesRequest studies_request;
+  studies_request.set_page_size(1000);
+  v1::ListStudiesResponse studies_response;
+  grpc::Status status = context.link.jobs().ListStudies(context.link.Unary(token).get(),
+                                                        studies_request, &studies_response);
   if (!status.ok()) return status;
-  for (const v1::Sweep& sweep : sweeps_response.sweeps()) {
-    sweeps.push_back(json::parse(MessageJson(sweep), nullptr, false));
+  for (const v1::Study& study : studies_response.studies()) {
+    studies.push_back(json::parse(MessageJson(study), nullptr, false));
   }
   // Recent jobs outside studies (the newest 30) and every unfinished job, to follow.
   v1::ListRequest request;
@@ -248,7 +248,7 @@ grpc::Status OverviewJson(WebContext& context, const std::string& token, std::st
   if (!status.ok()) return status;
   json jobs = json::array();
   for (const v1::Job& job : recent.jobs()) {
-    if (job.sweep_id().empty() && jobs.size() < 30) {
+    if (job.study_id().empty() && jobs.size() < 30) {
       jobs.push_back(json::parse(MessageJson(job), nullptr, false));
     }
   }
@@ -262,7 +262,7 @@ grpc::Status OverviewJson(WebContext& context, const std::string& token, std::st
     if (!status.ok()) return status;
     for (const v1::Job& job : open_jobs) unfinished->push_back(job);
   }
-  *out = JsonText({{"sweeps", sweeps}, {"jobs", jobs}});
+  *out = JsonText({{"studies", studies}, {"jobs", jobs}});
   return grpc::Status::OK;
 }
 
@@ -291,38 +291,38 @@ void ServeOverviewEvents(WebContext& context, const Caller& caller, httplib::Res
   StartStream(res, page);
 }
 
-void ServeSweepEvents(WebContext& context, const Caller& caller, const std::string& sweep_id,
+void ServeStudyEvents(WebContext& context, const Caller& caller, const std::string& study_id,
                       httplib::Response& res) {
-  v1::GetSweepRequest request;
-  request.set_sweep_id(sweep_id);
-  v1::Sweep sweep;
+  v1::GetStudyRequest request;
+  request.set_study_id(study_id);
+  v1::Study study;
   const grpc::Status status =
-      context.link.jobs().GetSweep(context.link.Unary(caller.token).get(), request, &sweep);
+      context.link.jobs().GetStudy(context.link.Unary(caller.token).get(), request, &study);
   if (!status.ok()) return ReplyRpcError(res, status);
   if (!RoomForPage(context, res)) return;
   auto page = std::make_shared<LivePage>(context, caller, true);
-  page->summary = [sweep_id](LivePage& p) -> std::string {
-    v1::GetSweepRequest get;
-    get.set_sweep_id(sweep_id);
-    v1::Sweep now;
+  page->summary = [study_id](LivePage& p) -> std::string {
+    v1::GetStudyRequest get;
+    get.set_study_id(study_id);
+    v1::Study now;
     const grpc::Status s =
-        p.context.link.jobs().GetSweep(p.context.link.Unary(p.token).get(), get, &now);
+        p.context.link.jobs().GetStudy(p.context.link.Unary(p.token).get(), get, &now);
     if (s.error_code() == grpc::StatusCode::NOT_FOUND) {
-      return Sse("gone", JsonText({{"sweep_id", sweep_id}, {"message", s.error_message()}}));
+      return Sse("gone", JsonText({{"study_id", study_id}, {"message", s.error_message()}}));
     }
     if (!s.ok()) return DaemonDown(p, s);
     const std::string text = MessageJson(now);
     if (text == p.last_summary) return {};
     p.last_summary = text;
-    return Sse("sweep", text);
+    return Sse("study", text);
   };
-  page->poll = [sweep_id](LivePage& p) -> std::string {
+  page->poll = [study_id](LivePage& p) -> std::string {
     v1::ListRequest list;
-    list.set_sweep_id(sweep_id);
+    list.set_study_id(study_id);
     std::vector<v1::Job> jobs;
     const grpc::Status s = ListAll(p.context, p.token, list, &jobs, 100000);
     if (s.error_code() == grpc::StatusCode::NOT_FOUND) {
-      return Sse("gone", JsonText({{"sweep_id", sweep_id}, {"message", s.error_message()}}));
+      return Sse("gone", JsonText({{"study_id", study_id}, {"message", s.error_message()}}));
     }
     if (!s.ok()) return DaemonDown(p, s);
     std::string out;

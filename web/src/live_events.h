@@ -3,8 +3,8 @@
 //   /events/overview      the studies page: its studies' counts (event `overview`, the same JSON
 //                         as /api/overview), sent again within 0.3 s of any event of an unfinished
 //                         job, and every 3 s (new studies, new jobs);
-//   /events/sweeps/ID     a study page: `job` (a state change: the whole job), `progress`,
-//                         `snapshot` (a new field picture exists), `sweep` (the study's counts);
+//   /events/studies/ID     a study page: `job` (a state change: the whole job), `progress`,
+//                         `snapshot` (a new field picture exists), `study` (the study's counts);
 //   /events/jobs/ID       a job page: `job`, `progress`, `particles`, `snapshot`, `log`.
 // Every stream may also say `daemon` ({connected: false, message} when the daemon is lost,
 // {connected: true} when found again), `gone` (the job or study no longer exists for this user)
@@ -23,12 +23,12 @@
 namespace dlmfd::web {
 
 void ServeOverviewEvents(WebContext& context, const Caller& caller, httplib::Response& res);
-void ServeSweepEvents(WebContext& context, const Caller& caller, const std::string& sweep_id,
+void ServeStudyEvents(WebContext& context, const Caller& caller, const std::string& study_id,
                       httplib::Response& res);
 void ServeJobEvents(WebContext& context, const Caller& caller, const std::string& job_id,
                     httplib::Response& res);
 
-// The studies page's JSON: {"sweeps": [Sweep...], "jobs": [recent jobs outside studies]}, and the
+// The studies page's JSON: {"studies": [Study...], "jobs": [recent jobs outside studies]}, and the
 // unfinished jobs of both (to follow) through *unfinished when not null.
 grpc::Status OverviewJson(WebContext& context, const std::string& token, std::string* json,
                           std::vector<v1::Job>* unfinished);

@@ -21,7 +21,7 @@ void ServeAsset(httplib::Response& res, const std::string& name) {
   const Asset* asset = FindAsset(name);
   if (asset == nullptr) return ReplyError(res, 404, "no such file: /static/" + name);
   res.set_header("Cache-Control", "no-cache");
-  res.set_content(std::string(asset->body), std::string(asset->content_type).c_str());
+  res.set_content(std::string(asset->body), std::string(asset->content_type));
 }
 
 void Page(httplib::Server& server, WebContext& context, const std::string& pattern,
@@ -55,10 +55,10 @@ void InstallPageRoutes(httplib::Server& server, WebContext& context) {
     };
     if (token.empty() || token.size() > 4096) return fail("empty");
     auto call = context.link.Unary(token);
-    v1::ListSweepsRequest request;
+    v1::ListStudiesRequest request;
     request.set_page_size(1);
-    v1::ListSweepsResponse response;
-    const grpc::Status status = context.link.jobs().ListSweeps(call.get(), request, &response);
+    v1::ListStudiesResponse response;
+    const grpc::Status status = context.link.jobs().ListStudies(call.get(), request, &response);
     if (status.error_code() == grpc::StatusCode::UNAUTHENTICATED) return fail("rejected");
     if (!status.ok()) return fail("unreachable");
     const auto session = context.sessions.Create(token);

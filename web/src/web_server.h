@@ -2,15 +2,15 @@
 //
 //   pages       GET /  (studies)  /studies/ID  /jobs/ID  /login;  /static/NAME
 //   session     POST /login (form field token)  POST /logout;  GET /api/session, /api/status
-//   data        GET /api/overview  /api/sweeps/ID  /api/jobs/ID  /api/jobs/ID/files
+//   data        GET /api/overview  /api/studies/ID  /api/jobs/ID  /api/jobs/ID/files
 //               /api/jobs/ID/log?offset=N  /api/jobs/ID/particles
 //   actions     POST /api/jobs/ID/{cancel,retry,hold,release,delete}
-//               POST /api/sweeps/ID/{cancel,retry,delete}
+//               POST /api/studies/ID/{cancel,retry,delete}
 //   pictures    GET /pictures/jobs/ID/field.png?width=&height=&caption=0
-//               GET /pictures/sweeps/ID/chart.png?x=&y=&group=&logx=1&logy=1&width=&height=
+//               GET /pictures/studies/ID/chart.png?x=&y=&group=&logx=1&logy=1&width=&height=
 //   movie       GET /movies/jobs/ID/movie.mp4 (job_movie.h)
 //   files       GET /files/jobs/ID/PATH (a download through the daemon's Fetch)
-//   live        GET /events/overview  /events/sweeps/ID  /events/jobs/ID (live_events.h)
+//   live        GET /events/overview  /events/studies/ID  /events/jobs/ID (live_events.h)
 //
 // Rules: on a loopback address the Host header must name this server (a page of another site
 // that rebinds its name to 127.0.0.1 gets 421). Every route but the login page and the static

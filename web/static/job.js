@@ -76,7 +76,7 @@
     }
     try {
       const reply = await dl.post("/api/jobs/" + enc + "/" + action, action === "delete" ? { confirm: jobId, force: true } : {});
-      if (action === "delete") { window.location.href = job && job.sweep_id ? "/studies/" + encodeURIComponent(job.sweep_id) : "/"; return; }
+      if (action === "delete") { window.location.href = job && job.study_id ? "/studies/" + encodeURIComponent(job.study_id) : "/"; return; }
       if (reply && reply.id) showJob(reply);
       if (reply && reply.jobs && reply.jobs[0]) showJob(reply.jobs[0]);
       dl.notice("");
@@ -88,7 +88,7 @@
     job = Object.assign(job || {}, j);
     title.textContent = job.name || job.id;
     dl.fill(meta, dl.el("span", { text: job.id }),
-      job.sweep_id ? dl.el("span", {}, "study ", dl.el("a", { href: "/studies/" + encodeURIComponent(job.sweep_id), text: job.sweep_id })) : null,
+      job.study_id ? dl.el("span", {}, "study ", dl.el("a", { href: "/studies/" + encodeURIComponent(job.study_id), text: job.study_id })) : null,
       dl.el("span", { text: "attempt " + (job.attempt || 1) }),
       dl.el("span", { text: "created " + dl.when(job.created_time) }),
       (job.overrides || []).length ? dl.el("span", { text: job.overrides.join(" ") }) : null);

@@ -23,7 +23,7 @@
   const empty = (span, t) => [cell(t, () => dl.el("td", { colspan: span, class: "empty", text: t }))];
 
   function studyCells(s) {
-    if (!s) return empty(10, "No studies yet: dlmfd sweep SCENE --grid KEY=V1,V2 ... starts one.");
+    if (!s) return empty(10, "No studies yet: dlmfd study SCENE --grid KEY=V1,V2 ... starts one.");
     return [cell(s.name || s.id, () => dl.el("td", {}, dl.el("a", { href: "/studies/" + encodeURIComponent(s.id), text: s.name || s.id }))),
       text(s.id, "muted"), count(s.jobs), count(s.queued), count(s.running), count(s.completed), count(s.failed), count(s.cancelled),
       cell(String(s.progress), () => dl.el("td", {}, dl.bar(s.progress))), text(dl.when(s.created_time))];
@@ -41,7 +41,7 @@
   // link rebuilt under the pointer would swallow the user's click.
   function render(overview) {
     const orNone = (list) => (list.length ? list : [null]);
-    dl.syncRows(studies, orNone(overview.sweeps), (s) => (s ? s.id : ""), studyCells, (id) => (id ? { "data-sweep": id } : {}));
+    dl.syncRows(studies, orNone(overview.studies), (s) => (s ? s.id : ""), studyCells, (id) => (id ? { "data-study": id } : {}));
     dl.syncRows(jobs, orNone(overview.jobs), (j) => (j ? j.id : ""), jobCells, (id) => (id ? { "data-job": id } : {}));
   }
 

@@ -1,18 +1,18 @@
 // A study's page: its counts and progress, actions on the whole study, a chart of a result
-// against a parameter (drawn by the server with viz/, as `dlmfd chart --sweep`), and a table with
+// against a parameter (drawn by the server with viz/, as `dlmfd chart --study`), and a table with
 // one row per job: a thumbnail of its latest field, its state and progress (live), one column per
 // swept parameter and per result (the columns of `dlmfd table`); sortable by any column (click the
 // header) and filtered by text and state.
 "use strict";
 
 (function () {
-  const sweepId = decodeURIComponent(window.location.pathname.split("/")[2]);
-  dl.header([{ text: "studies", href: "/" }, { text: sweepId }]);
+  const studyId = decodeURIComponent(window.location.pathname.split("/")[2]);
+  dl.header([{ text: "studies", href: "/" }, { text: studyId }]);
   const main = document.getElementById("main");
-  const state = { sweep: null, columns: [], parameters: [], rows: new Map(), sort: { column: null, desc: false }, filter: "", stateFilter: "", particles: false };
+  const state = { study: null, columns: [], parameters: [], rows: new Map(), sort: { column: null, desc: false }, filter: "", stateFilter: "", particles: false };
   const thumbs = new Map();  // job id -> img element, kept across renders
 
-  const title = dl.el("h1", { text: sweepId });
+  const title = dl.el("h1", { text: studyId });
   const meta = dl.el("div", { class: "meta" });
   const stats = dl.el("div", { class: "stats" });
   const progress = dl.el("div", { class: "wide" });
@@ -42,7 +42,7 @@
   async function act(action, question) {
     if (question && !(await dl.confirm(question, action === "delete" ? "Delete" : "Yes"))) return;
     try {
-      await dl.post("/api/sweeps/" + encodeURIComponent(sweepId) + "/" + action, action === "delete" ? { confirm: sweepId, force: true } : {});
+      await dl.post("/api/studies/" + encodeURIComponent(studyId) + "/" + action, action === "delete" ? { confirm: studyId, force: true } : {});
       if (action === "delete") { window.location.href = "/"; return; }
       dl.notice(action === "retry" ? "Requeued." : "Cancel requested.", "info");
       reload();
@@ -68,7 +68,7 @@
     if (logx.checked) q.set("logx", "1");
     if (logy.checked) q.set("logy", "1");
     q.set("v", String(Date.now()));
-    chart.src = "/pictures/sweeps/" + encodeURIComponent(sweepId) + "/chart.png?" + q;
+    chart.src = "/pictures/studies/" + encodeURIComponent(studyId) + "/chart.png?" + q;
   }
   chart.addEventListener("error", () => { chart.style.display = "none"; chartNote.textContent = "No job has both " + ySelect.value + " and " + xSelect.value + " yet."; });
   chart.addEventListener("load", () => { chart.style.display = "block"; chartNote.textContent = ""; });
@@ -159,8 +159,8 @@
     requestAnimationFrame(() => { renderQueued = false; render(); });
   }
 
-  function showSweep(s) {
-    state.sweep = s;
+  function showStudy(s) {
+    state.study = s;
     title.textContent = s.name || s.id;
     dl.fill(meta, dl.el("span", { text: s.id }), dl.el("span", { text: "created " + dl.when(s.created_time) }),
       dl.el("span", { text: (s.axes || []).map((a) => a.key + " = " + (a.values || []).join(", ")).join("; ") }),
@@ -172,8 +172,8 @@
 
   async function reload() {
     let data;
-    try { data = await dl.api("/api/sweeps/" + encodeURIComponent(sweepId)); } catch (e) { dl.notice(e.message, "error"); return; }
-    showSweep(data.sweep);
+    try { data = await dl.api("/api/studies/" + encodeURIComponent(studyId)); } catch (e) { dl.notice(e.message, "error"); return; }
+    showStudy(data.study);
     state.columns = data.columns;
     state.parameters = data.parameters.filter((p) => data.columns.includes(p));
     const live = new Map(data.jobs.map((j) => [j.id, j]));
@@ -214,7 +214,7 @@
     row.live.snapshot_step = s.step;
     scheduleRender();
   }
-  dl.live("/events/sweeps/" + encodeURIComponent(sweepId),
-    { job: onJob, progress: onProgress, snapshot: onSnapshot, sweep: showSweep,
+  dl.live("/events/studies/" + encodeURIComponent(studyId),
+    { job: onJob, progress: onProgress, snapshot: onSnapshot, study: showStudy,
       gone: () => dl.notice("This study no longer exists.", "error") }, reload);
 })();

@@ -8,31 +8,35 @@
 
 namespace dlmfd::testing {
 
-server::JobRecord StoreJob(const std::string& id, const std::string& sweep, int priority,
+server::JobRecord StoreJob(const std::string& id, const std::string& study, int priority,
                            const std::string& owner) {
   server::JobRecord job;
   job.id = id;
   job.name = id;
   job.owner = owner;
-  job.sweep_id = sweep;
+  job.study_id = study;
   job.priority = priority;
   job.results_dir = "/tmp/" + id;
   job.scene = "scene";
   return job;
 }
 
-server::SweepRecord StoreSweep(const std::string& id, int max_running) {
-  server::SweepRecord sweep;
-  sweep.id = id;
-  sweep.owner = "local";
-  sweep.max_running = max_running;
-  return sweep;
+server::StudyRecord StoreStudy(const std::string& id, int max_running) {
+  server::StudyRecord study;
+  study.id = id;
+  study.owner = "local";
+  study.max_running = max_running;
+  return study;
 }
 
 namespace {
 
 // What each schema added (job_store.cc kMigrations), undone.
 const std::map<int, const char*, std::greater<>> kUndo = {
+    {11,
+     "ALTER TABLE studies RENAME TO sweeps; ALTER TABLE jobs RENAME COLUMN study_id TO sweep_id; "
+     "DROP INDEX studies_owner; CREATE INDEX sweeps_owner ON sweeps (owner, ordinal DESC); "
+     "DROP INDEX jobs_study; CREATE INDEX jobs_sweep ON jobs (owner, sweep_id);"},
     {10,
      "ALTER TABLE jobs ADD COLUMN slurm_job_id TEXT NOT NULL DEFAULT ''; "
      "ALTER TABLE jobs ADD COLUMN slurm_live INTEGER NOT NULL DEFAULT 0; "

@@ -10,11 +10,11 @@
 namespace dlmfd::testing {
 
 // A queued job of `owner` with a placeholder scene, its results under /tmp/ID.
-server::JobRecord StoreJob(const std::string& id, const std::string& sweep = "", int priority = 0,
+server::JobRecord StoreJob(const std::string& id, const std::string& study = "", int priority = 0,
                            const std::string& owner = "local");
 
 // A study of "local" with at most max_running jobs at once (0: no limit), nothing else set.
-server::SweepRecord StoreSweep(const std::string& id, int max_running);
+server::StudyRecord StoreStudy(const std::string& id, int max_running);
 
 // Undoes, newest first, every migration of job_store.cc above `version` (its columns and tables
 // dropped) in the store file at `path`, and sets its schema_version; the rows stay. Throws

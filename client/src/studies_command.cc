@@ -1,4 +1,4 @@
-// dlmfd sweeps [--tag T] [--page-size N] [--all] [--json]
+// dlmfd studies [--tag T] [--page-size N] [--all] [--json]
 // The caller's studies, newest first: counts per state, progress, age.
 #include <iostream>
 
@@ -11,7 +11,7 @@
 
 namespace dlmfd::cli {
 
-int RunSweeps(int argc, char** argv) {
+int RunStudies(int argc, char** argv) {
   CLI::App app{"List your studies, newest first."};
   ConnectionFlags connection_flags;
   AddConnectionFlags(app, connection_flags);
@@ -25,31 +25,31 @@ int RunSweeps(int argc, char** argv) {
   app.add_flag("--json", json, "one JSON line per study");
   if (auto code = ParseArgs(app, argc, argv)) return *code;
 
-  return Guarded("sweeps", [&] {
-    v1::ListSweepsRequest request;
+  return Guarded("studies", [&] {
+    v1::ListStudiesRequest request;
     request.set_tag(tag);
     request.set_page_size(page_size);
     request.set_page_token(page_token);
     Connection connection(connection_flags);
-    std::vector<v1::Sweep> sweeps;
+    std::vector<v1::Study> studies;
     std::string next;
     for (;;) {
       auto context = connection.UnaryContext();
-      v1::ListSweepsResponse response;
-      const grpc::Status status = connection.jobs().ListSweeps(context.get(), request, &response);
-      if (!status.ok()) return ReportRpcError("sweeps", status);
-      sweeps.insert(sweeps.end(), response.sweeps().begin(), response.sweeps().end());
+      v1::ListStudiesResponse response;
+      const grpc::Status status = connection.jobs().ListStudies(context.get(), request, &response);
+      if (!status.ok()) return ReportRpcError("studies", status);
+      studies.insert(studies.end(), response.studies().begin(), response.studies().end());
       next = response.next_page_token();
       if (!all || next.empty()) break;
       request.set_page_token(next);
     }
     if (json) {
-      for (const v1::Sweep& sweep : sweeps) std::cout << ToJsonLine(sweep) << "\n";
+      for (const v1::Study& study : studies) std::cout << ToJsonLine(study) << "\n";
     } else {
-      std::cout << SweepTable(sweeps, NowEpochSeconds());
+      std::cout << StudyListText(studies, NowEpochSeconds());
     }
     if (!next.empty())
-      std::cerr << "more studies: dlmfd sweeps --page-token " << next << " (or --all)\n";
+      std::cerr << "more studies: dlmfd studies --page-token " << next << " (or --all)\n";
     return kExitOk;
   });
 }

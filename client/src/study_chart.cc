@@ -1,4 +1,4 @@
-#include "sweep_chart.h"
+#include "study_chart.h"
 
 #include <algorithm>
 #include <cmath>
@@ -34,7 +34,7 @@ bool GroupBefore(const Group& a, const Group& b) {
 
 }  // namespace
 
-SweepChart DrawSweepChart(const StudyTable& table, const SweepChartSpec& spec) {
+StudyChart DrawStudyChart(const StudyTable& table, const StudyChartSpec& spec) {
   const size_t xc = table.Column(spec.x, "--x");
   const size_t yc = table.Column(spec.y, "--y");
   const bool grouped = !spec.group.empty();
@@ -50,8 +50,8 @@ SweepChart DrawSweepChart(const StudyTable& table, const SweepChartSpec& spec) {
     groups[at->second].xy.emplace_back(x, y);
   }
   if (groups.empty()) {
-    throw UsageError("no job of sweep " + spec.sweep_id + " has both " + spec.x + " and " + spec.y +
-                     " (dlmfd table --sweep " + spec.sweep_id + " shows them)");
+    throw UsageError("no job of study " + spec.study_id + " has both " + spec.x + " and " + spec.y +
+                     " (dlmfd table --study " + spec.study_id + " shows them)");
   }
   LineChartOptions options = spec.options;
   options.x_axis.title = spec.x;
@@ -59,9 +59,9 @@ SweepChart DrawSweepChart(const StudyTable& table, const SweepChartSpec& spec) {
   options.x_axis.scale = spec.log_x ? AxisScale::kLog10 : AxisScale::kLinear;
   options.y_axis.scale = spec.log_y ? AxisScale::kLog10 : AxisScale::kLinear;
   if (options.title.empty())
-    options.title = spec.y + " against " + spec.x + " (" + spec.sweep_id + ")";
+    options.title = spec.y + " against " + spec.x + " (" + spec.study_id + ")";
   std::sort(groups.begin(), groups.end(), GroupBefore);
-  SweepChart out;
+  StudyChart out;
   if (grouped) {
     options.legend_title = spec.group;
     for (const Group& group : groups) out.legend.push_back(group.name);

@@ -1,4 +1,4 @@
-// The picture of `dlmfd chart --sweep`: a column of a study's table (study_table.h) against one
+// The picture of `dlmfd chart --study`: a column of a study's table (study_table.h) against one
 // of its parameters, one point per job that has both, joined in increasing x; with a group key,
 // one line per value of that parameter, named by the value under a legend titled by the key, in
 // increasing value (numbers first, then texts and "not set"). Drawn by viz's LineChart, so the
@@ -13,8 +13,8 @@
 
 namespace dlmfd::cli {
 
-struct SweepChartSpec {
-  std::string sweep_id;  // for the default title
+struct StudyChartSpec {
+  std::string study_id;  // for the default title
   std::string x;         // a column (a parameter)
   std::string y;         // a column (a result)
   std::string group;     // a column, or empty: one line
@@ -23,13 +23,13 @@ struct SweepChartSpec {
   LineChartOptions options;  // size and title; the axes' titles and scales are set here
 };
 
-struct SweepChart {
+struct StudyChart {
   ChartPicture picture;
   std::vector<std::string> legend;  // the lines' names, in order (empty without a group)
 };
 
 // Throws UsageError naming the flag (--x, --y, --group) for an unknown column, or when no job has
 // both columns; InvalidParameter from the chart (a log axis without a positive value).
-SweepChart DrawSweepChart(const StudyTable& table, const SweepChartSpec& spec);
+StudyChart DrawStudyChart(const StudyTable& table, const StudyChartSpec& spec);
 
 }  // namespace dlmfd::cli

@@ -1,4 +1,4 @@
-#include "sweep_expansion.h"
+#include "study_expansion.h"
 
 #include <cmath>
 #include <cstdio>
@@ -27,7 +27,7 @@ std::string NumberText(double value) {
   return text;
 }
 
-std::vector<std::string> RangeValues(const std::string& key, const v1::SweepRange& range) {
+std::vector<std::string> RangeValues(const std::string& key, const v1::AxisRange& range) {
   const double a = range.start(), b = range.stop();
   const int n = range.count();
   Require(n >= 2 && n <= kMaxRangeCount, "axes: " + key + " range count = " + std::to_string(n) +
@@ -53,7 +53,7 @@ std::vector<std::string> RangeValues(const std::string& key, const v1::SweepRang
   return values;
 }
 
-StoredAxis CheckedAxis(const v1::SweepAxis& axis, std::set<std::string>& keys) {
+StoredAxis CheckedAxis(const v1::StudyAxis& axis, std::set<std::string>& keys) {
   Require(!axis.key().empty(), "axes: an axis has no key");
   Require(axis.key().find_first_of("=\n\t") == std::string::npos,
           "axes: key \"" + CutForMessage(axis.key()) + "\" contains '=', a tab or a line break");
@@ -85,9 +85,9 @@ StoredAxis CheckedAxis(const v1::SweepAxis& axis, std::set<std::string>& keys) {
 
 }  // namespace
 
-SweepPlan ExpandSweep(const v1::SubmitSweepRequest& request, int64_t max_points) {
+StudyPlan ExpandStudy(const v1::SubmitStudyRequest& request, int64_t max_points) {
   Require(request.axes_size() > 0, "axes: at least one axis is needed");
-  SweepPlan plan;
+  StudyPlan plan;
   std::set<std::string> keys;
   // Dimensions of the grid: the axes (by index) that step together.
   std::vector<std::vector<size_t>> dimensions;
@@ -117,7 +117,7 @@ SweepPlan ExpandSweep(const v1::SubmitSweepRequest& request, int64_t max_points)
     if (points > max_points) {
       throw ServiceError(
           grpc::StatusCode::RESOURCE_EXHAUSTED,
-          "the sweep has more points than max_queued = " + std::to_string(max_points));
+          "the study has more points than max_queued = " + std::to_string(max_points));
     }
   }
   const std::vector<std::string> base(request.overrides().begin(), request.overrides().end());
@@ -128,7 +128,7 @@ SweepPlan ExpandSweep(const v1::SubmitSweepRequest& request, int64_t max_points)
     for (size_t d = 0; d < dimensions.size(); ++d) {
       for (size_t a : dimensions[d]) at[a] = index[d];
     }
-    SweepPoint point{base, "", {}};
+    StudyPoint point{base, "", {}};
     for (size_t a = 0; a < plan.axes.size(); ++a) {
       const StoredAxis& axis = plan.axes[a];
       const std::string& value = axis.values[at[a]];

@@ -1,4 +1,4 @@
-// dlmfd sweep SCENE [--grid key=v1,v2,...]... [--zip key=v1,v2,...]... [--range key=A:B:N]...
+// dlmfd study SCENE [--grid key=v1,v2,...]... [--zip key=v1,v2,...]... [--range key=A:B:N]...
 //                   [--log-range key=A:B:N]... [--set k=v]... [--tag T]... [--label k=v]...
 //                   [--max-running N] [--priority P] [--name NAME] [--time DURATION]
 //                   [--after ID[,ID]...]
@@ -18,12 +18,12 @@
 namespace dlmfd::cli {
 namespace {
 
-v1::SweepAxis ParseAxis(const std::string& text) {
+v1::StudyAxis ParseAxis(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {
     throw UsageError("--grid/--zip " + text + ": expected key=value1,value2,...");
   }
-  v1::SweepAxis axis;
+  v1::StudyAxis axis;
   axis.set_key(text.substr(0, eq));
   std::string current;
   int depth = 0;
@@ -45,11 +45,11 @@ v1::SweepAxis ParseAxis(const std::string& text) {
 }
 
 // key=START:STOP:COUNT as a range axis.
-v1::SweepAxis ParseRange(const std::string& flag, const std::string& text, bool logarithmic) {
+v1::StudyAxis ParseRange(const std::string& flag, const std::string& text, bool logarithmic) {
   const auto eq = text.find('=');
   const std::string usage = flag + " " + text + ": expected key=START:STOP:COUNT";
   if (eq == std::string::npos || eq == 0) throw UsageError(usage);
-  v1::SweepAxis axis;
+  v1::StudyAxis axis;
   axis.set_key(text.substr(0, eq));
   const std::string spec = text.substr(eq + 1);
   const auto c1 = spec.find(':');
@@ -74,7 +74,7 @@ v1::SweepAxis ParseRange(const std::string& flag, const std::string& text, bool 
 
 }  // namespace
 
-int RunSweep(int argc, char** argv) {
+int RunStudy(int argc, char** argv) {
   CLI::App app{"Queue one job per point of a parameter grid."};
   ConnectionFlags connection_flags;
   AddConnectionFlags(app, connection_flags);
@@ -96,7 +96,7 @@ int RunSweep(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--priority", priority, "higher runs first, -1000..1000")
       ->check(CLI::Range(-1000, 1000));
-  app.add_option("--name", name, "sweep name (default: the scene file's stem)");
+  app.add_option("--name", name, "study name (default: the scene file's stem)");
   app.add_option("--time", time_limit,
                  "each job's wall-time limit of one run: 90m, 2h, 1:30:00 (default: the daemon's)");
   app.add_option("--after", after,
@@ -104,11 +104,11 @@ int RunSweep(int argc, char** argv) {
       ->delimiter(',');
   app.add_option("--request-id", request_id, "idempotency key (default: a fresh random id)");
   app.add_flag("--json", json, "print the response as one JSON line");
-  app.add_flag("-q,--quiet", quiet, "print only the sweep id");
+  app.add_flag("-q,--quiet", quiet, "print only the study id");
   if (auto code = ParseArgs(app, argc, argv)) return *code;
 
-  return Guarded("sweep", [&] {
-    v1::SubmitSweepRequest request;
+  return Guarded("study", [&] {
+    v1::SubmitStudyRequest request;
     request.set_scene(ReadInputFile(scene_path));
     for (const std::string& g : grids) *request.add_axes() = ParseAxis(g);
     for (const std::string& r : ranges) *request.add_axes() = ParseRange("--range", r, false);
@@ -116,7 +116,7 @@ int RunSweep(int argc, char** argv) {
       *request.add_axes() = ParseRange("--log-range", r, true);
     }
     for (const std::string& z : zips) {
-      v1::SweepAxis axis = ParseAxis(z);
+      v1::StudyAxis axis = ParseAxis(z);
       axis.set_zip("zip");
       *request.add_axes() = axis;
     }
@@ -135,14 +135,14 @@ int RunSweep(int argc, char** argv) {
     request.set_client_request_id(request_id.empty() ? NewRequestId() : request_id);
     Connection connection(connection_flags);
     auto context = connection.UnaryContext();
-    v1::SubmitSweepResponse response;
-    const grpc::Status status = connection.jobs().SubmitSweep(context.get(), request, &response);
-    if (!status.ok()) return ReportRpcError("sweep", status);
+    v1::SubmitStudyResponse response;
+    const grpc::Status status = connection.jobs().SubmitStudy(context.get(), request, &response);
+    if (!status.ok()) return ReportRpcError("study", status);
     if (json || quiet) {
-      std::cout << (json ? ToJsonLine(response) : response.sweep_id()) << "\n";
+      std::cout << (json ? ToJsonLine(response) : response.study_id()) << "\n";
       return kExitOk;
     }
-    std::cout << "sweep " << response.sweep_id() << ": " << response.jobs_size() << " jobs\n"
+    std::cout << "study " << response.study_id() << ": " << response.jobs_size() << " jobs\n"
               << JobTable({response.jobs().begin(), response.jobs().end()});
     return kExitOk;
   });

@@ -1,4 +1,4 @@
-// Sweep expansion: the points of a SubmitSweep request (jobs.proto), one job each.
+// Study expansion: the points of a SubmitStudy request (jobs.proto), one job each.
 //
 // Axes: each gives TOML value texts, or a range of `count` values from start to stop (both
 // included; linear: start + (stop - start) k / (count - 1); logarithmic: start (stop / start)^(k /
@@ -22,15 +22,15 @@
 
 namespace dlmfd::server {
 
-struct SweepPoint {
+struct StudyPoint {
   std::vector<std::string> overrides;
   std::string label;
   std::vector<ParameterValue> parameters;
 };
 
-struct SweepPlan {
+struct StudyPlan {
   std::vector<StoredAxis> axes;  // ranges expanded
-  std::vector<SweepPoint> points;
+  std::vector<StudyPoint> points;
 };
 
 inline constexpr int kMaxRangeCount = 10000;
@@ -38,6 +38,6 @@ inline constexpr int kMaxRangeCount = 10000;
 // Throws ServiceError INVALID_ARGUMENT (no axes, an axis without key or values, a key with '=' or a
 // line break, a repeated key, values and a range both, a bad range, zipped axes of unequal
 // lengths, a value with a tab or line break) or RESOURCE_EXHAUSTED (more than max_points points).
-SweepPlan ExpandSweep(const v1::SubmitSweepRequest& request, int64_t max_points);
+StudyPlan ExpandStudy(const v1::SubmitStudyRequest& request, int64_t max_points);
 
 }  // namespace dlmfd::server
