@@ -1,38 +1,31 @@
-// The sum of term(k) over k in [0, n) on the OpenMP team, in an order fixed by the team's size.
+// The sum of term(k) over k in [0, n) on the OpenMP team, in an order that does not depend on the
+// team's size.
 //
-// Each thread sums its static block of k (as `#pragma omp for schedule(static)` gives it) and the
-// blocks' sums are added in the order of the threads. An OpenMP reduction(+) adds the threads' sums
-// in the order they finish: with 3 or more threads two runs of one scene could differ in the last
-// bits (issue 38, reproducible runs). With 1 or 2 threads the result equals that reduction's
-// ((0 + a) + b = (0 + b) + a in IEEE arithmetic). Allocates nothing: the time loop must not.
+// [0, n) is cut into kOrderedSumBlocks fixed blocks (block b holds [b n / B, (b + 1) n / B));
+// each block is summed in order of k by one thread (the blocks shared out by
+// `#pragma omp for schedule(static)`), and the blocks' sums are added in the order of the blocks.
+// An OpenMP reduction(+) adds the threads' sums in the order they finish, so two runs of one scene
+// on 3 or more threads could differ in the last bits (issue 38, reproducible runs); summing per
+// thread would give other bits on every team size. Fixed blocks give the same bits on 1, 2 or any
+// number of threads (issue 34, point 5). Allocates nothing: the time loop must not.
 #pragma once
-
-#include <omp.h>
-
-#include <algorithm>
 
 namespace dlmfd {
 
-inline constexpr int kMaxOrderedSumThreads = 256;
+inline constexpr long kOrderedSumBlocks = 256;
 
 template <class Term>
 double OrderedSum(long n, const Term& term) {
-  struct alignas(64) Partial {
-    double value;
-  };
-  Partial partials[kMaxOrderedSumThreads];
-  int team = 1;
-#pragma omp parallel num_threads(std::min(omp_get_max_threads(), kMaxOrderedSumThreads))
-  {
+  double partials[kOrderedSumBlocks];
+#pragma omp parallel for schedule(static)
+  for (long b = 0; b < kOrderedSumBlocks; ++b) {
+    const long begin = b * n / kOrderedSumBlocks, end = (b + 1) * n / kOrderedSumBlocks;
     double s = 0.0;
-#pragma omp for schedule(static) nowait
-    for (long k = 0; k < n; ++k) s += term(k);
-    partials[omp_get_thread_num()].value = s;
-#pragma omp single nowait
-    team = omp_get_num_threads();
+    for (long k = begin; k < end; ++k) s += term(k);
+    partials[b] = s;
   }
   double sum = 0.0;
-  for (int t = 0; t < team; ++t) sum += partials[t].value;
+  for (long b = 0; b < kOrderedSumBlocks; ++b) sum += partials[b];
   return sum;
 }
 
