@@ -39,6 +39,8 @@ CouplingOperator::CouplingOperator(const Params& params, const Grid& grid, std::
   spread_cursor_.assign(max_slots + 2, 0);
   spread_source_.assign(max_slots, 0);
   spread_weight_.assign(max_slots, 0.0);
+  particle_entries_.assign(params.particles.size() + 1, 0);
+  crossing_side_.assign(params.particles.size(), -1);
 }
 
 double CouplingOperator::InverseNodeMass(int i, int j) const {
@@ -58,29 +60,70 @@ double CouplingOperator::InverseNodeMass(int i, int j) const {
   return 1.0 / (fluid_density_ * grid_.h * grid_.h * factor);
 }
 
-void CouplingOperator::AddEntry(std::size_t point, int i, int j, double weight) {
-  const std::size_t entry = entries_++;
-  stencil_point_[entry] = static_cast<std::uint32_t>(point);
+void CouplingOperator::SetEntry(std::size_t entry, std::size_t point, int i, int j, double weight) {
   const std::size_t node = grid_.Index(i, j);
-  const double scatter = weight * InverseNodeMass(i, j);
+  stencil_point_[entry] = static_cast<std::uint32_t>(point);
   stencil_node_[entry] = static_cast<std::uint32_t>(node);
   stencil_weight_[entry] = weight;
-  stencil_scatter_[entry] = scatter;
-  stencil_slot_[entry] = 0;
-  if (scatter != 0.0) {
-    if (stamp_[node] != stamp_counter_) {
-      stamp_[node] = stamp_counter_;
-      slot_of_[node] = static_cast<std::uint32_t>(++slot_count_);
-      touched_[slot_count_] = static_cast<std::uint32_t>(node);
-    }
-    stencil_slot_[entry] = slot_of_[node];
-  }
+  stencil_scatter_[entry] = weight * InverseNodeMass(i, j);
 }
 
 template <class Stencil>
-void CouplingOperator::AddStencil(std::size_t point, const Stencil& stencil) {
+std::size_t CouplingOperator::SetStencil(std::size_t entry, std::size_t point,
+                                         const Stencil& stencil) {
   constexpr int kNodes = static_cast<int>(sizeof(stencil.weight) / sizeof(stencil.weight[0]));
-  for (int q = 0; q < kNodes; ++q) AddEntry(point, stencil.i[q], stencil.j[q], stencil.weight[q]);
+  for (int q = 0; q < kNodes; ++q)
+    SetEntry(entry + q, point, stencil.i[q], stencil.j[q], stencil.weight[q]);
+  return entry + kNodes;
+}
+
+std::size_t CouplingOperator::EntriesOf(const MultiplierPoints& points, std::size_t p) const {
+  std::size_t entries = 0;
+  for (int k = 0; k < points.Count(p); ++k) {
+    if (points.Quadratic(p, k)) {
+      entries += biquadratic_ || both_diagonals_ ? 9 : 6;  // Q2 or the mean P2; P2
+    } else {
+      entries += both_diagonals_ ? 4 : 3;  // the mean P1; P1
+    }
+  }
+  return entries;
+}
+
+int CouplingOperator::LocateParticle(const MultiplierPoints& points, const Vec2& centre,
+                                     std::size_t p) {
+  const std::vector<Vec2>& relative = points.Points(p);
+  std::size_t entry = particle_entries_[p];
+  for (int k = 0; k < points.Count(p); ++k) {
+    const Vec2 y = centre + relative[k];
+    int side = 0;
+    const std::size_t point = points.Begin(p) + k;
+    stencil_start_[point] = entry;
+    bool inside = true;
+    if (points.Quadratic(p, k) && (biquadratic_ || both_diagonals_)) {
+      kernels::Q2Stencil stencil;
+      inside = biquadratic_ ? kernels::LocatePointBiquadratic(grid_, periodic_x_, periodic_y_,
+                                                              y.x(), y.y(), &stencil, &side)
+                            : kernels::LocatePointMeanQuadratic(grid_, periodic_x_, periodic_y_,
+                                                                y.x(), y.y(), &stencil, &side);
+      if (inside) entry = SetStencil(entry, point, stencil);
+    } else if (points.Quadratic(p, k)) {
+      kernels::P2Stencil stencil;
+      inside = kernels::LocatePointQuadratic(grid_, periodic_x_, periodic_y_, y.x(), y.y(),
+                                             &stencil, &side);
+      if (inside) entry = SetStencil(entry, point, stencil);
+    } else if (both_diagonals_) {
+      kernels::MeanP1Stencil stencil;
+      inside =
+          kernels::LocatePointMean(grid_, periodic_x_, periodic_y_, y.x(), y.y(), &stencil, &side);
+      if (inside) entry = SetStencil(entry, point, stencil);
+    } else {
+      kernels::P1Stencil stencil;
+      inside = kernels::LocatePoint(grid_, periodic_x_, periodic_y_, y.x(), y.y(), &stencil, &side);
+      if (inside) entry = SetStencil(entry, point, stencil);
+    }
+    if (!inside) return side;
+  }
+  return -1;
 }
 
 void CouplingOperator::ThrowCrossing(double time, const MultiplierPoints& points,
@@ -99,46 +142,45 @@ void CouplingOperator::ThrowCrossing(double time, const MultiplierPoints& points
 
 void CouplingOperator::Build(double time, double dt, const MultiplierPoints& points,
                              const std::vector<ParticleState>& particles) {
+  const long n = static_cast<long>(particles.size());
+  if (crossing_side_.size() < particles.size()) {  // more particles than the scene's (tests)
+    crossing_side_.resize(particles.size());
+    particle_entries_.resize(particles.size() + 1);
+  }
+  int* crossing = crossing_side_.data();
+#pragma omp parallel if (static_cast <std::size_t>(n) >= kParallelParticles)
+  {
+#pragma omp for schedule(static)
+    for (long p = 0; p < n; ++p) particle_entries_[p + 1] = EntriesOf(points, p);
+#pragma omp single
+    for (long p = 0; p < n; ++p) particle_entries_[p + 1] += particle_entries_[p];
+#pragma omp for schedule(static)
+    for (long p = 0; p < n; ++p) crossing[p] = LocateParticle(points, particles[p].position, p);
+  }
+  for (long p = 0; p < n; ++p) {
+    if (crossing[p] >= 0) ThrowCrossing(time, points, particles[p], p, crossing[p]);
+  }
+  entries_ = particle_entries_[n];
+  stencil_start_[points.Total()] = entries_;
+  AssignSlots();
+  BuildSpreading(dt);
+}
+
+void CouplingOperator::AssignSlots() {
+  // In entry order (the stacked point order): the same slots on any team.
   ++stamp_counter_;
   slot_count_ = 0;
-  entries_ = 0;
-  for (std::size_t p = 0; p < particles.size(); ++p) {
-    const std::vector<Vec2>& relative = points.Points(p);
-    const Vec2& centre = particles[p].position;
-    for (int k = 0; k < points.Count(p); ++k) {
-      const Vec2 y = centre + relative[k];
-      int side = 0;
-      const std::size_t point = points.Begin(p) + k;
-      stencil_start_[point] = entries_;
-      bool inside = true;
-      if (points.Quadratic(p, k) && (biquadratic_ || both_diagonals_)) {
-        kernels::Q2Stencil stencil;
-        inside = biquadratic_ ? kernels::LocatePointBiquadratic(grid_, periodic_x_, periodic_y_,
-                                                                y.x(), y.y(), &stencil, &side)
-                              : kernels::LocatePointMeanQuadratic(grid_, periodic_x_, periodic_y_,
-                                                                  y.x(), y.y(), &stencil, &side);
-        if (inside) AddStencil(point, stencil);
-      } else if (points.Quadratic(p, k)) {
-        kernels::P2Stencil stencil;
-        inside = kernels::LocatePointQuadratic(grid_, periodic_x_, periodic_y_, y.x(), y.y(),
-                                               &stencil, &side);
-        if (inside) AddStencil(point, stencil);
-      } else if (both_diagonals_) {
-        kernels::MeanP1Stencil stencil;
-        inside = kernels::LocatePointMean(grid_, periodic_x_, periodic_y_, y.x(), y.y(), &stencil,
-                                          &side);
-        if (inside) AddStencil(point, stencil);
-      } else {
-        kernels::P1Stencil stencil;
-        inside =
-            kernels::LocatePoint(grid_, periodic_x_, periodic_y_, y.x(), y.y(), &stencil, &side);
-        if (inside) AddStencil(point, stencil);
-      }
-      if (!inside) ThrowCrossing(time, points, particles[p], p, side);
+  for (std::size_t entry = 0; entry < entries_; ++entry) {
+    stencil_slot_[entry] = 0;
+    if (stencil_scatter_[entry] == 0.0) continue;
+    const std::size_t node = stencil_node_[entry];
+    if (stamp_[node] != stamp_counter_) {
+      stamp_[node] = stamp_counter_;
+      slot_of_[node] = static_cast<std::uint32_t>(++slot_count_);
+      touched_[slot_count_] = static_cast<std::uint32_t>(node);
     }
+    stencil_slot_[entry] = slot_of_[node];
   }
-  stencil_start_[points.Total()] = entries_;
-  BuildSpreading(dt);
 }
 
 void CouplingOperator::BuildSpreading(double dt) {

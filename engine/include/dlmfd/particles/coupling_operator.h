@@ -19,7 +19,9 @@
 // every point its stencil (3 to 9 entries from stencil_start_[q]: fluid nodes, slots and weights),
 // and E^T is stored by slot (the transposed list, built by a counting sort once per step, each
 // slot's contributions in increasing stacked point order), so a slot gathers its sum without
-// atomics and a fluid-sized array is touched only when the response is added to u. Errors: Build
+// atomics and a fluid-sized array is touched only when the response is added to u. Build locates
+// the points particle by particle on the OpenMP threads (each particle's entries at a place fixed
+// by the particles before it), then numbers the slots and sorts E^T on one thread. Errors: Build
 // throws ParticlesOverlap when a point leaves a non-periodic domain (the particle crosses a side).
 // Not supported: grids of more than 2^32 - 1 nodes (32-bit node indices; RigidBodyConstraint
 // rejects them).
@@ -41,6 +43,10 @@ class CouplingOperator {
   CouplingOperator() = default;
   // The most entries of one point's stencil (Q2).
   static constexpr std::size_t kMaxStencil = 9;
+
+  // Build locates the points on the OpenMP threads from this many particles on, and so does the
+  // multiplier CG run (MultiplierCg::kParallelParticles says why 32).
+  static constexpr std::size_t kParallelParticles = 32;
 
   // For at most max_points stacked points on this grid and domain.
   CouplingOperator(const Params& params, const Grid& grid, std::size_t max_points);
@@ -89,11 +95,19 @@ class CouplingOperator {
   void CopyPeriodicDuplicates(double* u, double* v) const;
 
  private:
+  // The number of stencil entries of particle p's points (their stencils' sizes).
+  std::size_t EntriesOf(const MultiplierPoints& points, std::size_t p) const;
+  // The stencils of particle p's points (at centre) from entry particle_entries_[p] on, their
+  // slots left to AssignSlots; the side that a point crosses (the first one), or -1.
+  int LocateParticle(const MultiplierPoints& points, const Vec2& centre, std::size_t p);
+  // The slots of the entries (stencil_slot_, touched_, slot_count_).
+  void AssignSlots();
   void BuildSpreading(double dt);
-  // Appends the stencil entry of fluid node (i, j) with this weight to stacked point `point`.
-  void AddEntry(std::size_t point, int i, int j, double weight);
+  // Sets stencil entry `entry`: fluid node (i, j) with this weight for stacked point `point`.
+  void SetEntry(std::size_t entry, std::size_t point, int i, int j, double weight);
+  // SetEntry for each node of the stencil from `entry` on; returns the next entry.
   template <class Stencil>
-  void AddStencil(std::size_t point, const Stencil& stencil);  // AddEntry for each of its nodes
+  std::size_t SetStencil(std::size_t entry, std::size_t point, const Stencil& stencil);
   [[noreturn]] void ThrowCrossing(double time, const MultiplierPoints& points,
                                   const ParticleState& particle, std::size_t p, int side) const;
   // 1 / the lumped mass of fluid node (i, j), 0 at Dirichlet nodes.
@@ -116,6 +130,8 @@ class CouplingOperator {
   std::size_t entries_ = 0;
   std::vector<std::uint32_t> stencil_node_, stencil_slot_, stencil_point_;
   std::vector<double> stencil_weight_, stencil_scatter_;
+  std::vector<std::size_t> particle_entries_;  // per particle: its first entry (and the total)
+  std::vector<int> crossing_side_;             // per particle: the side a point crosses, or -1
   std::size_t slot_count_ = 0;
   std::vector<std::uint32_t> touched_;  // per slot: its fluid node (touched_[0] unused)
   std::vector<long> stamp_;             // per fluid node: last step that gave it a slot

@@ -48,7 +48,7 @@ class MultiplierCg {
   // 3.5 us per particle (D = 0.2, h_p = 1/70) and has 4 barriers; with OMP_WAIT_POLICY=passive
   // (the setting for shared machines) a barrier is a futex wake-up of 5-50 us, so fewer particles
   // than this lose more at the barriers than they gain.
-  static constexpr std::size_t kParallelParticles = 32;
+  static constexpr std::size_t kParallelParticles = CouplingOperator::kParallelParticles;
 
   MultiplierCg() = default;
   // For the stacked points of points and at most max_slots slots of E^T.
