@@ -8,9 +8,12 @@
 #   speed-up on T threads <= 1 / (s + (1 - s) / T),
 # which the script prints for T = 2 and 16. Instruction counts do not depend on the machine's load
 # (a shared machine's timings do), but they weigh a memory-bound copy as little as its
-# instructions: the wall-clock speed-up from 1 to 2 threads needs a quiet machine.
+# instructions: the wall-clock speed-up from 1 to 2 threads needs a quiet machine. A region whose
+# if clause is false (the multiplier CG and the coupling build below 32 particles,
+# MultiplierCg::kParallelParticles) runs on one thread but counts here as parallel.
 #
 #   bench/serial_fraction.sh SCENE [--set key=value]...   # BUILD=build END=0.002 (time.end) WORK=...
+#                                                         # SUBSTEPS="MoveParticles" (default: all)
 #   bench/serial_fraction.sh cases/paper/5.2_pair_oldroyd_b.toml --set 'splitting.advection="wave"'
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,7 +27,8 @@ SOLVER="$BUILD/solver/dlmfd-solve"
 mkdir -p "$WORK"
 
 echo "substep,instructions,in_parallel_regions,serial_fraction,amdahl_speedup_2,amdahl_efficiency_16"
-for sub in SolveStokes AdvectVelocity UpdateConformation MoveParticles; do
+SUBSTEPS=${SUBSTEPS:-SolveStokes AdvectVelocity UpdateConformation MoveParticles}
+for sub in $SUBSTEPS; do
   out="$WORK/$sub.callgrind"
   rm -rf "$WORK/run_$sub"
   OMP_NUM_THREADS=1 valgrind --tool=callgrind --callgrind-out-file="$out" \
