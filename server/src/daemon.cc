@@ -66,7 +66,8 @@ void Daemon::Start() {
   builder.AddListeningPort(config_.listen, grpc::InsecureServerCredentials(), &port_);
   builder.RegisterService(service_.get());
   std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> interceptors;
-  interceptors.push_back(std::make_unique<UnreadableRequestFactory>());
+  interceptors.push_back(std::make_unique<UnreadableRequestFactory>(
+      std::vector<std::string>{v1::Jobs::service_full_name()}));
   builder.experimental().SetInterceptorCreators(std::move(interceptors));
   builder.SetMaxReceiveMessageSize(
       static_cast<int>(std::min<int64_t>(config_.max_scene_bytes * 2 + (1 << 20), INT32_MAX)));
