@@ -1,6 +1,8 @@
 // The coupling operators E and E^T of the DLM step (37); see particles/coupling_operator.h.
 #include "dlmfd/particles/coupling_operator.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <sstream>
 #include <string>
@@ -11,6 +13,17 @@
 #include "dlmfd/core/side_names.h"
 
 namespace dlmfd {
+
+namespace {
+
+// *target = min(*target, value), atomically.
+void AtomicMin(std::uint64_t* target, std::uint64_t value) {
+  std::uint64_t seen = __atomic_load_n(target, __ATOMIC_RELAXED);
+  while (value < seen && !__atomic_compare_exchange_n(target, &seen, value, true, __ATOMIC_RELAXED,
+                                                      __ATOMIC_RELAXED)) {}
+}
+
+}  // namespace
 
 CouplingOperator::CouplingOperator(const Params& params, const Grid& grid, std::size_t max_points)
     : grid_(grid),
@@ -33,7 +46,8 @@ CouplingOperator::CouplingOperator(const Params& params, const Grid& grid, std::
   stencil_weight_.assign(max_slots, 0.0);
   stencil_scatter_.assign(max_slots, 0.0);
   touched_.assign(max_slots + 1, 0);
-  stamp_.assign(grid.NodeCount(), -1);
+  claim_.assign(grid.NodeCount(), ~std::uint64_t(0));
+  stamp_.assign(grid.NodeCount(), 0);
   slot_of_.assign(grid.NodeCount(), 0);
   spread_start_.assign(max_slots + 2, 0);
   spread_cursor_.assign(max_slots + 2, 0);
@@ -147,8 +161,9 @@ void CouplingOperator::Build(double time, double dt, const MultiplierPoints& poi
     crossing_side_.resize(particles.size());
     particle_entries_.resize(particles.size() + 1);
   }
+  const bool parallel = particles.size() >= kParallelParticles;
   int* crossing = crossing_side_.data();
-#pragma omp parallel if (static_cast <std::size_t>(n) >= kParallelParticles)
+#pragma omp parallel if (parallel)
   {
 #pragma omp for schedule(static)
     for (long p = 0; p < n; ++p) particle_entries_[p + 1] = EntriesOf(points, p);
@@ -162,44 +177,143 @@ void CouplingOperator::Build(double time, double dt, const MultiplierPoints& poi
   }
   entries_ = particle_entries_[n];
   stencil_start_[points.Total()] = entries_;
-  AssignSlots();
-  BuildSpreading(dt);
-}
-
-void CouplingOperator::AssignSlots() {
-  // In entry order (the stacked point order): the same slots on any team.
-  ++stamp_counter_;
-  slot_count_ = 0;
-  for (std::size_t entry = 0; entry < entries_; ++entry) {
-    stencil_slot_[entry] = 0;
-    if (stencil_scatter_[entry] == 0.0) continue;
-    const std::size_t node = stencil_node_[entry];
-    if (stamp_[node] != stamp_counter_) {
-      stamp_[node] = stamp_counter_;
-      slot_of_[node] = static_cast<std::uint32_t>(++slot_count_);
-      touched_[slot_count_] = static_cast<std::uint32_t>(node);
-    }
-    stencil_slot_[entry] = slot_of_[node];
+  if (!parallel || omp_get_max_threads() < kParallelSlotsTeam) {
+    NumberSlotsInOrder(dt);
+    return;
+  }
+#pragma omp parallel num_threads(std::min(omp_get_max_threads(), kMaxTeam))
+  {
+    AssignSlots();
+    BuildSpreading(dt);
   }
 }
 
-void CouplingOperator::BuildSpreading(double dt) {
-  // Counting sort of the stencil entries by slot; entries stay in stacked point order per slot.
-  const std::size_t entries = entries_;
+void CouplingOperator::NumberSlotsInOrder(double dt) {
+  // The slots by first entry (a stamped node map), then E^T by a counting sort.
+  ++builds_;
+  slot_count_ = 0;
+  for (std::size_t e = 0; e < entries_; ++e) {
+    stencil_slot_[e] = 0;
+    if (stencil_scatter_[e] == 0.0) continue;
+    const std::uint32_t node = stencil_node_[e];
+    if (stamp_[node] != builds_) {
+      stamp_[node] = builds_;
+      slot_of_[node] = static_cast<std::uint32_t>(++slot_count_);
+      touched_[slot_count_] = node;
+    }
+    stencil_slot_[e] = slot_of_[node];
+  }
   std::fill(spread_start_.begin(), spread_start_.begin() + slot_count_ + 2, 0);
-  for (std::size_t q = 0; q < entries; ++q) {
-    if (stencil_slot_[q] != 0) ++spread_start_[stencil_slot_[q] + 1];
+  for (std::size_t e = 0; e < entries_; ++e) {
+    if (stencil_slot_[e] != 0) ++spread_start_[stencil_slot_[e] + 1];
   }
   spread_start_[1] = 0;
   for (std::size_t slot = 1; slot <= slot_count_; ++slot)
     spread_start_[slot + 1] += spread_start_[slot];
   std::copy(spread_start_.begin(), spread_start_.begin() + slot_count_ + 2, spread_cursor_.begin());
-  for (std::size_t q = 0; q < entries; ++q) {
-    if (stencil_slot_[q] == 0) continue;
-    const std::size_t at = spread_cursor_[stencil_slot_[q]]++;
-    spread_source_[at] = stencil_point_[q];
-    spread_weight_[at] = dt * stencil_scatter_[q];
+  for (std::size_t e = 0; e < entries_; ++e) {
+    if (stencil_slot_[e] == 0) continue;
+    const std::size_t at = spread_cursor_[stencil_slot_[e]]++;
+    spread_source_[at] = stencil_point_[e];
+    spread_weight_[at] = dt * stencil_scatter_[e];
   }
+}
+
+void CouplingOperator::AssignSlots() {
+  // A node's slot is numbered by its first entry, in entry order (the stacked point order), as a
+  // serial pass would number them: the same slots on any team. The first entry is the lowest that
+  // claims the node this Build; a claim is (this Build's epoch, entry), epochs falling.
+  const std::uint64_t epoch = std::uint64_t(0xffffffffu - (++builds_ & 0xffffffffu)) << 32;
+  const long entries = static_cast<long>(entries_);
+  const std::uint32_t* node = stencil_node_.data();
+  const double* scatter = stencil_scatter_.data();
+  std::uint64_t* claim = claim_.data();
+#pragma omp for schedule(static)
+  for (long e = 0; e < entries; ++e) {
+    if (scatter[e] != 0.0) AtomicMin(claim + node[e], epoch | std::uint64_t(e));
+  }
+  auto first = [&](long e) {
+    return scatter[e] != 0.0 && claim[node[e]] == (epoch | std::uint64_t(e));
+  };
+  const int team = omp_get_num_threads(), thread = omp_get_thread_num();
+  const long begin = entries * thread / team, end = entries * (thread + 1) / team;
+  std::size_t firsts = 0;
+  for (long e = begin; e < end; ++e) firsts += first(e) ? 1 : 0;
+  team_firsts_[thread + 1] = firsts;
+#pragma omp barrier
+#pragma omp single
+  {
+    team_firsts_[0] = 0;
+    for (int t = 0; t < team; ++t) team_firsts_[t + 1] += team_firsts_[t];
+    slot_count_ = team_firsts_[team];
+  }
+  std::size_t slot = team_firsts_[thread];
+  for (long e = begin; e < end; ++e) {
+    if (!first(e)) continue;
+    slot_of_[node[e]] = static_cast<std::uint32_t>(++slot);
+    touched_[slot] = node[e];
+  }
+#pragma omp barrier
+#pragma omp for schedule(static)
+  for (long e = 0; e < entries; ++e) stencil_slot_[e] = scatter[e] != 0.0 ? slot_of_[node[e]] : 0;
+}
+
+void CouplingOperator::BuildSpreading(double dt) {
+  // A counting sort of the entries by slot, each slot's entries then put in entry order (the
+  // stacked point order), whatever order the threads placed them in.
+  const long entries = static_cast<long>(entries_);
+  const long slots = static_cast<long>(slot_count_);
+  std::size_t* start = spread_start_.data();
+  std::size_t* cursor = spread_cursor_.data();
+  std::uint32_t* source = spread_source_.data();
+  const std::uint32_t* slot_of_entry = stencil_slot_.data();
+#pragma omp for schedule(static)
+  for (long s = 0; s <= slots + 1; ++s) start[s] = 0;
+#pragma omp for schedule(static)
+  for (long e = 0; e < entries; ++e) {
+    if (slot_of_entry[e] != 0) __atomic_fetch_add(start + slot_of_entry[e], 1, __ATOMIC_RELAXED);
+  }
+  PrefixSumInRegion(start + 1, slots + 1);  // start[s] = entries of slots 1 .. s - 1
+#pragma omp for schedule(static)
+  for (long s = 0; s <= slots + 1; ++s) cursor[s] = start[s];
+#pragma omp for schedule(static)
+  for (long e = 0; e < entries; ++e) {
+    if (slot_of_entry[e] == 0) continue;
+    source[__atomic_fetch_add(cursor + slot_of_entry[e], 1, __ATOMIC_RELAXED)] =
+        static_cast<std::uint32_t>(e);
+  }
+#pragma omp for schedule(static)
+  for (long s = 1; s <= slots; ++s) {
+    std::sort(source + start[s], source + start[s + 1]);
+    for (std::size_t c = start[s]; c < start[s + 1]; ++c) {
+      const std::uint32_t e = source[c];
+      source[c] = stencil_point_[e];
+      spread_weight_[c] = dt * stencil_scatter_[e];
+    }
+  }
+}
+
+void CouplingOperator::PrefixSumInRegion(std::size_t* a, long n) {
+  // Each thread sums its static block, the blocks' sums are offset in thread order, then each
+  // thread runs its block's prefix from its offset.
+  const int team = omp_get_num_threads(), thread = omp_get_thread_num();
+  const long begin = n * thread / team, end = n * (thread + 1) / team;
+  std::size_t block = 0;
+  for (long k = begin; k < end; ++k) block += a[k];
+  team_firsts_[thread + 1] = block;
+#pragma omp barrier
+#pragma omp single
+  {
+    team_firsts_[0] = 0;
+    for (int t = 0; t < team; ++t) team_firsts_[t + 1] += team_firsts_[t];
+  }
+  std::size_t running = team_firsts_[thread];
+  for (long k = begin; k < end; ++k) {
+    const std::size_t here = a[k];
+    a[k] = running;
+    running += here;
+  }
+#pragma omp barrier
 }
 
 void CouplingOperator::Spread(const double* dir, double* ub, double* vb) const {

@@ -21,8 +21,10 @@
 // slot's contributions in increasing stacked point order), so a slot gathers its sum without
 // atomics and a fluid-sized array is touched only when the response is added to u. Build locates
 // the points particle by particle on the OpenMP threads (each particle's entries at a place fixed
-// by the particles before it), then numbers the slots and sorts E^T on one thread. Errors: Build
-// throws ParticlesOverlap when a point leaves a non-periodic domain (the particle crosses a side).
+// by the particles before it), numbers the slots by their first entries and sorts E^T by slot on
+// the threads too from kParallelSlotsTeam threads on (the same slots and order on any team).
+// Errors: Build throws ParticlesOverlap when a point leaves a non-periodic domain (the particle
+// crosses a side).
 // Not supported: grids of more than 2^32 - 1 nodes (32-bit node indices; RigidBodyConstraint
 // rejects them).
 #pragma once
@@ -44,9 +46,14 @@ class CouplingOperator {
   // The most entries of one point's stencil (Q2).
   static constexpr std::size_t kMaxStencil = 9;
 
-  // Build locates the points on the OpenMP threads from this many particles on, and so does the
-  // multiplier CG run (MultiplierCg::kParallelParticles says why 32).
+  // Build runs on the OpenMP threads from this many particles on, and so does the multiplier CG
+  // (MultiplierCg::kParallelParticles says why 32).
   static constexpr std::size_t kParallelParticles = 32;
+  // Build numbers the slots and sorts E^T on the threads from this many threads on (on fewer, in
+  // entry order on one thread): the threads' version takes 1.9 times the instructions (claims,
+  // atomics, a sort per slot; 64 M against 33 M over 5 steps of the 102-disk bed of paper 5.4),
+  // so it gains nothing on two threads (docs/performance.md, "Threads").
+  static constexpr int kParallelSlotsTeam = 3;
 
   // For at most max_points stacked points on this grid and domain.
   CouplingOperator(const Params& params, const Grid& grid, std::size_t max_points);
@@ -100,9 +107,15 @@ class CouplingOperator {
   // The stencils of particle p's points (at centre) from entry particle_entries_[p] on, their
   // slots left to AssignSlots; the side that a point crosses (the first one), or -1.
   int LocateParticle(const MultiplierPoints& points, const Vec2& centre, std::size_t p);
-  // The slots of the entries (stencil_slot_, touched_, slot_count_).
+  // The slots of the entries (stencil_slot_, touched_, slot_count_). Inside a parallel region;
+  // every thread of the region must call it, and BuildSpreading after it (E^T by slot).
   void AssignSlots();
   void BuildSpreading(double dt);
+  // What AssignSlots and BuildSpreading give, on one thread in entry order (fewer instructions:
+  // no claims, no atomics, no sort).
+  void NumberSlotsInOrder(double dt);
+  // a[k] = a[0] + ... + a[k - 1] for k in [0, n), on the team of the enclosing region.
+  void PrefixSumInRegion(std::size_t* a, long n);
   // Sets stencil entry `entry`: fluid node (i, j) with this weight for stacked point `point`.
   void SetEntry(std::size_t entry, std::size_t point, int i, int j, double weight);
   // SetEntry for each node of the stencil from `entry` on; returns the next entry.
@@ -134,9 +147,14 @@ class CouplingOperator {
   std::vector<int> crossing_side_;             // per particle: the side a point crosses, or -1
   std::size_t slot_count_ = 0;
   std::vector<std::uint32_t> touched_;  // per slot: its fluid node (touched_[0] unused)
-  std::vector<long> stamp_;             // per fluid node: last step that gave it a slot
-  std::vector<std::uint32_t> slot_of_;  // per fluid node: its slot in that step
-  long stamp_counter_ = 0;
+  // Per fluid node: the lowest (epoch, entry) that claimed it (AssignSlots) or the last Build that
+  // gave it a slot (NumberSlotsInOrder), and its slot then.
+  std::vector<std::uint64_t> claim_, stamp_;
+  std::vector<std::uint32_t> slot_of_;
+  std::uint64_t builds_ = 0;
+  // Per thread of the team: the running counts of AssignSlots and PrefixSumInRegion.
+  static constexpr int kMaxTeam = 256;
+  std::size_t team_firsts_[kMaxTeam + 1] = {};
   // E^T by slot: contributions spread_start_[s] .. spread_start_[s + 1] - 1, each a stacked point
   // and dt times its scatter weight, in increasing stacked point order.
   std::vector<std::size_t> spread_start_, spread_cursor_;
