@@ -127,6 +127,9 @@ struct Simulation::Impl {
       report.Set("divergence", r.divergence);
       if (stokes.flux_control()) report.Set("mean_pressure_gradient", r.mean_pressure_gradient);
     }
+    if (particle_step && particle_step->LagsMultiplier()) {
+      particle_step->SampleStokesVelocity(state.u.data(), state.v.data());
+    }
     report.Set("ms_stokes", Milliseconds(t0, Clock::now()));
   }
 

@@ -62,7 +62,13 @@ ParticleStep::ParticleStep(const Params& params, const Grid& grid)
     omega_start_.assign(n, 0.0);
   }
   if (params.splitting.constraint == ConstraintCoupling::kIncremental && n > 0) {
-    lagged_ = std::make_unique<LaggedMultiplier>(constraint_);
+    // With the tendency correction the Stokes step's velocity is the field a steady state solves
+    // for, so the fixed particles hold their constraint on it (particles/lagged_multiplier.h).
+    const bool on_stokes = params.splitting.steady_correction == SteadyCorrection::kTendency;
+    std::vector<char> held(n, 0);
+    for (std::size_t p = 0; p < n; ++p)
+      held[p] = on_stokes && params.particles[p].motion == Motion::kFixed;
+    lagged_ = std::make_unique<LaggedMultiplier>(constraint_, held);
   }
 }
 
@@ -71,6 +77,10 @@ void ParticleStep::LagMultiplier(double time, double dt,
                                  double* v) {
   lagged_->Apply(time, dt, constraint_, particles, u, v);
   lag_applied_ = true;
+}
+
+void ParticleStep::SampleStokesVelocity(const double* u, const double* v) {
+  lagged_->SampleStokesVelocity(constraint_, u, v);
 }
 
 ViscousConstraint::Outcome ParticleStep::CoupleStokes(double time, double dt, StokesSolver& stokes,
@@ -223,9 +233,10 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
   // Gravity acts in the coupled Stokes step when there is one, so that the excess weight meets
   // the viscous drag in the same solve; the predictor then carries the collision forces only.
   Predict(dt, coupled_ ? Vec2(Vec2::Zero()) : gravity_, particles);
+  const double* shift = lag_applied_ ? lagged_->AdvectionShift(constraint_, u, v) : nullptr;
   const RigidBodyConstraint::Outcome outcome =
       constraint_.Enforce(time + dt, dt, particles, u, v, collision_average_.data(), lag_applied_,
-                          shaped_ ? torque_average_.data() : nullptr);
+                          shaped_ ? torque_average_.data() : nullptr, shift);
   Correct(dt, particles);
 
   for (std::size_t p = 0; p < n; ++p) {

@@ -54,11 +54,9 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
   return Enforce(time, dt, particles, u, v, nullptr);
 }
 
-RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt,
-                                                          std::vector<ParticleState>& particles,
-                                                          double* u, double* v,
-                                                          const Vec2* net_force, bool increment,
-                                                          const double* net_torque) {
+RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(
+    double time, double dt, std::vector<ParticleState>& particles, double* u, double* v,
+    const Vec2* net_force, bool increment, const double* net_torque, const double* mismatch_shift) {
   Outcome outcome;
   const std::size_t n = particles.size();
   if (n == 0) return outcome;
@@ -70,6 +68,7 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
   // Cold-start mismatch (unprojected for the report); its projection, after the particular forces
   // of the neutral particles, is the absolute reference of the stopping rule.
   cg_.Mismatch(op, u, v);
+  if (mismatch_shift) cg_.ShiftMismatch(mismatch_shift);
   outcome.cold_residual = cg_.MaxMismatch();
   double scale = 0.0, floor_weight = 0.0;
   for (std::size_t p = 0; p < n; ++p) {
@@ -96,6 +95,7 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(double time, double dt
 
   // The true residual, the new particle velocities, and the nodal force sums.
   cg_.Mismatch(op, u, v);
+  if (mismatch_shift) cg_.ShiftMismatch(mismatch_shift);
   outcome.residual = cg_.MaxMismatch();
   for (std::size_t p = 0; p < n; ++p) {
     ParticleState& particle = particles[p];

@@ -36,7 +36,21 @@
 // wave-advected file at dt = 1e-3 that completes here, and its transient fall speed carried
 // 1.3-1.6 times the dt error (5.1a at t = 0.1: 9.008 / 9.134 / 9.198 at dt = 4e-4 / 2e-4 /
 // 1e-4, against 9.104 / 9.163 / 9.209 at X^n).
-// Cost: one E at X^n and one spreading a step (no extra fast solve).
+// Where the constraint holds, for a fixed particle under the tendency correction
+// (splitting.steady_correction = "tendency", the Newtonian default): on the Stokes step's velocity
+// u^{n+1/4}, not on the advected u^{n+2/4}. (37) finds d nu from E u^{n+1/4} - U (E u^{n+2/4}
+// shifted by E (u^{n+1/4}
+// - u^{n+2/4}), sampled after (33)) and adds dt M^-1 E^T d nu to u^{n+2/4} as before. At a steady
+// state d nu = 0, so E u^{n+1/4} = U exactly, and u^{n+1/4} is the field whose equations the
+// splitting's fixed point solves (fluid/advection_wave.h, the tendency correction); held on
+// u^{n+2/4} = u^{n+1/4} + dt L u^{n+1/4} instead, the constraint was off by dt E L u at the points,
+// so the steady drag moved with dt (docs/work_precision.md, "The splitting's fixed point").
+// A moving particle keeps it on u^{n+2/4} at X^{n+1}, where (34) has carried its liquid; so does
+// every particle under the other corrections, whose fixed point no single field solves (held on
+// u^{n+1/4} there, a fixed disk's steady drag in a channel moved away from the viscous coupling's
+// by 0.0216 where it was within 0.0127: IncrementalCoupling.SteadyChannelDragDoesNotDepend...).
+// Cost: one E at X^n and one spreading a step (no extra fast solve); two interpolations of u at a
+// fixed particle's points.
 // Neutrally buoyant free particles are not lagged: their stored multiplier stays the paper's nu of
 // (37) (RigidBodyConstraint::Enforce assigns it), so they keep the paper's coupling.
 // Lagged, their rotation drifted without end (a disk in Couette flow, h = 1/32: omega / g from
@@ -60,7 +74,9 @@ namespace dlmfd {
 
 class LaggedMultiplier {
  public:
-  explicit LaggedMultiplier(const RigidBodyConstraint& constraint);
+  // held[p]: particle p holds its constraint on the Stokes step's velocity (a fixed particle under
+  // the tendency correction; see "Where the constraint holds").
+  LaggedMultiplier(const RigidBodyConstraint& constraint, const std::vector<char>& held);
 
   // Before (33): locates E at the particles' positions X^n (constraint.Locate) and adds dt M^-1
   // E^T nu^n to u, v (nu^n: each particle's stored multiplier); records C^T nu^n per particle.
@@ -68,12 +84,29 @@ class LaggedMultiplier {
   void Apply(double time, double dt, RigidBodyConstraint& constraint,
              const std::vector<ParticleState>& particles, double* u, double* v);
 
+  // After (33), before (34): E(X^n) u^{n+1/4} at the points of the fixed particles (u, v: the
+  // Stokes step's velocity; E as Apply located it).
+  void SampleStokesVelocity(const RigidBodyConstraint& constraint, const double* u,
+                            const double* v);
+  // Before (37), with u, v = u^{n+2/4}: the shift E u^{n+1/4} - E u^{n+2/4} at the fixed
+  // particles' points (zero elsewhere; E still the one Apply located), for Enforce's
+  // mismatch_shift; nullptr when no particle is fixed.
+  const double* AdvectionShift(const RigidBodyConstraint& constraint, const double* u,
+                               const double* v);
+
   // C^T nu^n of the last Apply for particle p: the force and torque it put on the fluid in (33).
   Vec2 ForceSum(std::size_t p) const { return force_sum_[p]; }
   double TorqueSum(std::size_t p) const { return torque_sum_[p]; }
 
  private:
-  std::vector<double> stacked_;          // nu^n of every particle, stacked
+  template <class Visit>
+  void ForHeldPoints(const RigidBodyConstraint& constraint, const double* u, const double* v,
+                     Visit visit) const;
+
+  std::vector<double> stacked_;  // nu^n of every particle, stacked
+  std::vector<char> held_;       // per particle: its constraint held on u^{n+1/4}
+  bool any_held_ = false;
+  std::vector<double> shift_;  // E u^{n+1/4} at the held particles' points, then the shift
   std::vector<double> slot_u_, slot_v_;  // the spreading, by slot
   std::vector<Vec2> force_sum_;
   std::vector<double> torque_sum_;

@@ -60,6 +60,10 @@ class MultiplierCg {
   void Mismatch(const ConstraintOperators& op, const double* u, const double* v);
   // g = a given mismatch (stacked, two per point): the right side of a response solve.
   void SetMismatch(const double* g) { std::copy(g, g + g_.size(), g_.begin()); }
+  // g += shift (2 per point, stacked): the constraint held on E u + shift.
+  void ShiftMismatch(const double* shift) {
+    for (std::size_t k = 0; k < g_.size(); ++k) g_[k] += shift[k];
+  }
   // max over the points of |g_k|.
   double MaxMismatch() const;
   // g = P g.

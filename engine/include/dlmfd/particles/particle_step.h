@@ -108,6 +108,10 @@ class ParticleStep {
   void LagMultiplier(double time, double dt, const std::vector<ParticleState>& particles, double* u,
                      double* v);
 
+  // After (33) with the lagged multiplier: u, v hold u^{n+1/4}; the fixed particles' constraint
+  // in the following Advance holds on it (particles/lagged_multiplier.h).
+  void SampleStokesVelocity(const double* u, const double* v);
+
   // The sub-step average F'_avg of the collision force in the last predictor (36).
   const std::vector<Vec2>& CollisionForceAverage() const { return collision_average_; }
   const RigidBodyConstraint& constraint() const { return constraint_; }

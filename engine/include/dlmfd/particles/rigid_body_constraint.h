@@ -96,9 +96,12 @@ class RigidBodyConstraint {
   // With increment (splitting.constraint = "incremental", particles/lagged_multiplier.h) the
   // stored multiplier has acted already: the CG finds its increment nu from a zero start and the
   // particles hold multiplier += nu on return (a neutral particle, not lagged: multiplier = nu).
+  // With mismatch_shift (2 per point, stacked; nullptr means zero) the constraint holds on
+  // E u + shift instead of E u: the lagged multiplier's fixed particles hold it on the Stokes
+  // step's velocity (particles/lagged_multiplier.h, "Where the constraint holds").
   Outcome Enforce(double time, double dt, std::vector<ParticleState>& particles, double* u,
                   double* v, const Vec2* net_force, bool increment = false,
-                  const double* net_torque = nullptr);
+                  const double* net_torque = nullptr, const double* mismatch_shift = nullptr);
 
   // The inviscid Schur complement of (37) as an operator, for the viscous coupling of the Stokes
   // step (particles/viscous_constraint.h), in two calls: Locate builds E at the particles'
