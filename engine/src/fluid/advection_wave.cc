@@ -111,15 +111,13 @@ AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const
     utt_u_.assign(n, 0.0);
     utt_v_.assign(n, 0.0);
   }
-  const bool both = diagonals_ == MeshDiagonals::kBoth;
-  for (TriangleWeights* w : {&weights_, &nwse_weights_}) {
-    if (w == &nwse_weights_ && !both) break;
-    for (auto* a : {&w->w11a, &w->w12a, &w->w22a, &w->w11b, &w->w12b, &w->w22b})
-      a->assign(cells, 0.0);
-  }
-  if (both) {
+  if (diagonals_ == MeshDiagonals::kBoth) {
+    CellMatrix& m = mean_;
+    for (auto* a : {&m.bb, &m.bc, &m.bd, &m.cc, &m.cd, &m.dd}) a->assign(cells, 0.0);
     for (auto& a : corners_) a.assign(padded, 0.0);
   } else {
+    TriangleWeights& w = weights_;
+    for (auto* a : {&w.w11a, &w.w12a, &w.w22a, &w.w11b, &w.w12b, &w.w22b}) a->assign(cells, 0.0);
     for (auto* a : {&f1xu_, &f1yu_, &f2xu_, &f2yu_, &f1xv_, &f1yv_, &f2xv_, &f2yv_})
       a->assign(padded, 0.0);
   }
@@ -133,16 +131,17 @@ AdvectionWave::~AdvectionWave() = default;
 void AdvectionWave::ComputeWeights(const double* vx, const double* vy) {
   constexpr double kOneOver24 = 1.0 / 24.0;
   const bool both = diagonals_ == MeshDiagonals::kBoth;
-  TriangleWeights &w = weights_, &z = nwse_weights_;
+  TriangleWeights& w = weights_;
+  CellMatrix& m = mean_;
   ForEachCell(grid_, [&](const CellAt& k) {
     const std::size_t corner[4] = {k.a, k.b, k.c, k.d};
     double x[4], y[4], xx[4], xy[4], yy[4];
-    for (int m = 0; m < 4; ++m) {
-      x[m] = vx[corner[m]];
-      y[m] = vy[corner[m]];
-      xx[m] = x[m] * x[m];
-      xy[m] = x[m] * y[m];
-      yy[m] = y[m] * y[m];
+    for (int q = 0; q < 4; ++q) {
+      x[q] = vx[corner[q]];
+      y[q] = vy[corner[q]];
+      xx[q] = x[q] * x[q];
+      xy[q] = x[q] * y[q];
+      yy[q] = y[q] * y[q];
     }
     auto triangle = [&](int p, int q, int r, double& w11, double& w12, double& w22) {
       const double sx = x[p] + x[q] + x[r], sy = y[p] + y[q] + y[r];
@@ -151,11 +150,24 @@ void AdvectionWave::ComputeWeights(const double* vx, const double* vy) {
       w22 = kOneOver24 * (yy[p] + yy[q] + yy[r] + sy * sy);
     };
     const std::size_t cell = k.cell;
-    triangle(0, 1, 2, w.w11a[cell], w.w12a[cell], w.w22a[cell]);  // T1 = (a, b, c)
-    triangle(0, 2, 3, w.w11b[cell], w.w12b[cell], w.w22b[cell]);  // T2 = (a, c, d)
-    if (!both) return;
-    triangle(0, 1, 3, z.w11a[cell], z.w12a[cell], z.w22a[cell]);  // T3 = (a, b, d)
-    triangle(1, 2, 3, z.w11b[cell], z.w12b[cell], z.w22b[cell]);  // T4 = (b, c, d)
+    if (!both) {
+      triangle(0, 1, 2, w.w11a[cell], w.w12a[cell], w.w22a[cell]);  // T1 = (a, b, c)
+      triangle(0, 2, 3, w.w11b[cell], w.w12b[cell], w.w22b[cell]);  // T2 = (a, c, d)
+      return;
+    }
+    // (a_t, b_t, c_t) = (w11, w12, w22) of T1 = (a, b, c), T2 = (a, c, d), T3 = (a, b, d),
+    // T4 = (b, c, d); M from the shares of ApplyMeanWaveStiffness's header, halved (the mean).
+    double a1, b1, c1, a2, b2, c2, a3, b3, c3, a4, b4, c4;
+    triangle(0, 1, 2, a1, b1, c1);
+    triangle(0, 2, 3, a2, b2, c2);
+    triangle(0, 1, 3, a3, b3, c3);
+    triangle(1, 2, 3, a4, b4, c4);
+    m.bb[cell] = 0.5 * (a1 + a3 - 2.0 * b1 + c1 + c4);
+    m.bc[cell] = 0.5 * (b1 - b4 - c1 - c4);
+    m.bd[cell] = 0.5 * (b3 + b4);
+    m.cc[cell] = 0.5 * (a2 + a4 + 2.0 * b4 + c1 + c4);
+    m.cd[cell] = -0.5 * (a2 + a4 - b2 + b4);
+    m.dd[cell] = 0.5 * (a2 + a4 - 2.0 * b2 + c2 + c3);
   });
 }
 
@@ -249,34 +261,31 @@ void AdvectionWave::ApplyMeshWaveStiffness(const double* u, const double* v, dou
 // The mean of K_V on the four triangles of each cell, in one sweep: each cell's share of the rows
 // of its corners a, b, c, d (half the SW-NE pair's plus half the NW-SE pair's), then one gather of
 // four shares a node. With F_T = W_T grad u_T and h grad phi of each corner on each triangle
-// (grid_kernels.h):
+// (grid_kernels.h), the shares are
 //   a: -F1x - F2y  and  -F3x - F3y;      b: F1x - F1y  and  F3x - F4y;
-//   c:  F1y + F2x  and   F4x + F4y;      d: F2y - F2x  and  F3y - F4x.
+//   c:  F1y + F2x  and   F4x + F4y;      d: F2y - F2x  and  F3y - F4x,
+// linear in the differences e = (u_b - u_a, u_c - u_a, u_d - u_a): (b, c, d) = M e and a = -(b + c
+// + d), with M the cell's symmetric matrix of ComputeWeights (6 numbers a cell, not 12 weights).
 void AdvectionWave::ApplyMeanWaveStiffness(const double* u, const double* v, double* ku,
                                            double* kv) {
-  const TriangleWeights &w1 = weights_, &w2 = nwse_weights_;
+  const CellMatrix& m = mean_;
   std::vector<double>* shares[8];
   for (int k = 0; k < 8; ++k) shares[k] = &corners_[k];
   ForEachCell(grid_, [&](const CellAt& k) {
     const std::size_t a = k.a, b = k.b, c = k.c, d = k.d, cell = k.cell, pc = k.padded;
+    const double bb = m.bb[cell], bc = m.bc[cell], bd = m.bd[cell], cc = m.cc[cell],
+                 cd = m.cd[cell], dd = m.dd[cell];
     for (int comp = 0; comp < 2; ++comp) {
       const double* f = comp == 0 ? u : v;
-      auto flux = [&](const std::vector<double>& w11, const std::vector<double>& w12,
-                      const std::vector<double>& w22, double gx, double gy, double& fx,
-                      double& fy) {
-        fx = w11[cell] * gx + w12[cell] * gy;
-        fy = w12[cell] * gx + w22[cell] * gy;
-      };
-      double f1x, f1y, f2x, f2y, f3x, f3y, f4x, f4y;
-      flux(w1.w11a, w1.w12a, w1.w22a, f[b] - f[a], f[c] - f[b], f1x, f1y);  // T1 (a, b, c)
-      flux(w1.w11b, w1.w12b, w1.w22b, f[c] - f[d], f[d] - f[a], f2x, f2y);  // T2 (a, c, d)
-      flux(w2.w11a, w2.w12a, w2.w22a, f[b] - f[a], f[d] - f[a], f3x, f3y);  // T3 (a, b, d)
-      flux(w2.w11b, w2.w12b, w2.w22b, f[c] - f[d], f[c] - f[b], f4x, f4y);  // T4 (b, c, d)
+      const double eb = f[b] - f[a], ec = f[c] - f[a], ed = f[d] - f[a];
+      const double sb = bb * eb + bc * ec + bd * ed;
+      const double sc = bc * eb + cc * ec + cd * ed;
+      const double sd = bd * eb + cd * ec + dd * ed;
       std::vector<double>* const* out = shares + 4 * comp;
-      (*out[0])[pc] = 0.5 * ((-f1x - f2y) + (-f3x - f3y));
-      (*out[1])[pc] = 0.5 * ((f1x - f1y) + (f3x - f4y));
-      (*out[2])[pc] = 0.5 * ((f1y + f2x) + (f4x + f4y));
-      (*out[3])[pc] = 0.5 * ((f2y - f2x) + (f3y - f4x));
+      (*out[0])[pc] = -(sb + sc + sd);
+      (*out[1])[pc] = sb;
+      (*out[2])[pc] = sc;
+      (*out[3])[pc] = sd;
     }
   });
   FillPeriodicGhosts(shares, 8);

@@ -156,6 +156,12 @@ bool InteriorRow(const AxisWrap& ay, int j) {
   return 2.0 * (a[1] - a[-1]) + a[row] - a[row - 1] + a[1 - row] - a[-row] +
          2.0 * (b[row] - b[-row]) + b[row - 1] - b[-1] + b[1] - b[1 - row];
 }
+// Their sum: 4 (uE - uW) + uNE - uNW + uSE - uSW + 4 (vN - vS) + vNE + vNW - vSE - vSW.
+[[gnu::always_inline]] inline double InteriorDivergenceBoth(const double* a, const double* b,
+                                                            long row) {
+  return 4.0 * (a[1] - a[-1]) + a[row + 1] - a[row - 1] + a[1 - row] - a[-1 - row] +
+         4.0 * (b[row] - b[-row]) + b[row + 1] + b[row - 1] - b[1 - row] - b[-1 - row];
+}
 
 // (6/h) G^T q at an interior node (the node's own weight is zero), q = I_p p of the triangulation:
 // SW-NE x -2 E - NE + N + 2 W + SW - S, y E - NE - 2 N - W + SW + 2 S; NW-SE x -2 E - SE + S + 2 W
@@ -169,6 +175,37 @@ bool InteriorRow(const AxisWrap& ay, int j) {
                                                                  double& sx, double& sy) {
   sx = 2.0 * (b[-1] - b[1]) - b[1 - row] + b[-row] + b[row - 1] - b[row];
   sy = b[-1] - b[1] - b[row - 1] - 2.0 * b[row] + b[1 - row] + 2.0 * b[-row];
+}
+
+// The sum of the two at an interior node where both read the same values a (SW-NE's I_p p): x
+// 4 (W - E) - NE + SW - SE + NW, y 4 (S - N) - NE + SW + SE - NW. NW-SE's own I_p p, b, differs
+// from a only at the odd-odd nodes (the 2h-squares' centres); TransposeBothAt adds NW-SE's
+// weights of b - a there, at the node's odd-odd neighbours, which its parity names (none for an
+// odd-odd node): (even, even) NW and SE; (odd, even) N and S; (even, odd) E and W.
+[[gnu::always_inline]] inline void InteriorGradientTransposeBoth(const double* a, long row,
+                                                                 double& sx, double& sy) {
+  const double ne = a[row + 1], nw = a[row - 1], se = a[1 - row], sw = a[-1 - row];
+  sx = 4.0 * (a[-1] - a[1]) - ne + sw - se + nw;
+  sy = 4.0 * (a[-row] - a[row]) - ne + sw + se - nw;
+}
+enum class Parity { kEvenEven, kOddEven, kEvenOdd, kOddOdd };  // (i, j)
+template <Parity kP>
+[[gnu::always_inline]] inline void TransposeBothAt(const double* a, const double* b, long row,
+                                                   double& sx, double& sy) {
+  InteriorGradientTransposeBoth(a, row, sx, sy);
+  if constexpr (kP == Parity::kEvenEven) {
+    const double d = (b[row - 1] - a[row - 1]) - (b[1 - row] - a[1 - row]);  // NW - SE
+    sx += d;
+    sy -= d;
+  } else if constexpr (kP == Parity::kOddEven) {
+    const double d = (b[-row] - a[-row]) - (b[row] - a[row]);  // S - N
+    sx += d;
+    sy += 2.0 * d;
+  } else if constexpr (kP == Parity::kEvenOdd) {
+    const double d = (b[-1] - a[-1]) - (b[1] - a[1]);  // W - E
+    sx += 2.0 * d;
+    sy += d;
+  }
 }
 
 // (gx, gy) = G f on every row-owning node.
@@ -211,8 +248,10 @@ void IntegratedGradient(const Grid& grid, const AxisWrap& ax, const AxisWrap& ay
   }
 }
 
-// w = G_x u + G_y v on every row-owning velocity node, and with both triangulations w2 the NW-SE
-// one's, in the same sweep.
+// w = G_x u + G_y v on every row-owning velocity node (kBoth false). With both triangulations the
+// two restrictions differ only at the odd-odd nodes (the 2h-squares' centres), so w holds the sum
+// of the SW-NE and NW-SE rows elsewhere and the SW-NE row there, and w2 the NW-SE row there only
+// (grid_kernels.h, RestrictBothAt).
 template <bool kBoth>
 void DivergenceOnVelocityNodes(const Grid& grid, const AxisWrap& ax, const AxisWrap& ay,
                                const double* u, const double* v, double* w, double* w2) {
@@ -226,21 +265,45 @@ void DivergenceOnVelocityNodes(const Grid& grid, const AxisWrap& ax, const AxisW
     double* out2 = kBoth ? w2 + grid.Index(0, j) : nullptr;
     const double* ru = u + grid.Index(0, j);
     const double* rv = v + grid.Index(0, j);
-    SweepRowSplit(
-        ax, InteriorRow(ay, j),
-        [&](int im, int i, int ip) __attribute__((always_inline)) {
-          const CellsBeside x = FoldedCells(im, i, ip);
-          out[i] = scale * kernels::DivergenceSumsAt<Diagonal::kSwNe>(u, v, x, y);
-          if constexpr (kBoth) {
-            out2[i] = scale * kernels::DivergenceSumsAt<Diagonal::kNwSe>(u, v, x, y);
-          }
-        },
-        [&](int i) __attribute__((always_inline)) {
-          out[i] = scale * InteriorDivergenceSwNe(ru + i, rv + i, row);
-          if constexpr (kBoth) {
-            out2[i] = scale * InteriorDivergenceNwSe(ru + i, rv + i, row);
-          }
-        });
+    const bool odd_row = j % 2 != 0;
+    auto generic = [&](int im, int i, int ip) __attribute__((always_inline)) {
+      const CellsBeside x = FoldedCells(im, i, ip);
+      const double sw_ne = scale * kernels::DivergenceSumsAt<Diagonal::kSwNe>(u, v, x, y);
+      if constexpr (kBoth) {
+        const double nw_se = scale * kernels::DivergenceSumsAt<Diagonal::kNwSe>(u, v, x, y);
+        if (odd_row && i % 2 != 0) {
+          out[i] = sw_ne;
+          out2[i] = nw_se;
+        } else {
+          out[i] = sw_ne + nw_se;
+        }
+      } else {
+        out[i] = sw_ne;
+      }
+    };
+    if (!kBoth || !InteriorRow(ay, j)) {
+      SweepRowSplit(
+          ax, InteriorRow(ay, j), generic, [&](int i) __attribute__((always_inline)) {
+            out[i] = scale * InteriorDivergenceSwNe(ru + i, rv + i, row);
+          });
+      continue;
+    }
+    // Both triangulations on an interior row: the ends by the generic gather, and between them
+    // straight loops (no test per node): an even row has no odd-odd node, an odd row alternates.
+    const int last = ax.Lines() - 1;
+    generic(ax.Prev(0), 0, ax.Next(0));
+    if (!odd_row) {
+      for (int i = 1; i < last; ++i) out[i] = scale * InteriorDivergenceBoth(ru + i, rv + i, row);
+    } else {
+      for (int i = 1; i < last; i += 2) {
+        out[i] = scale * InteriorDivergenceSwNe(ru + i, rv + i, row);
+        out2[i] = scale * InteriorDivergenceNwSe(ru + i, rv + i, row);
+        if (i + 1 < last) {
+          out[i + 1] = scale * InteriorDivergenceBoth(ru + i + 1, rv + i + 1, row);
+        }
+      }
+    }
+    if (last > 0) generic(ax.Prev(last), last, ax.Next(last));
   }
 }
 
@@ -259,15 +322,17 @@ void Divergence(const Grid& grid, const BoundaryTopology& pressure_topo, const d
 #pragma omp parallel for schedule(static) if (coarse.NodeCount() > kParallelNodes)
   for (int jc = 0; jc < lines_y; ++jc) {
     const Rows r = RowsAt(grid, ay, w, 2 * jc);
-    const Rows r2 = kBoth ? RowsAt(grid, ay, w2, 2 * jc) : r;
     double* o = out + coarse.Index(0, jc);
-    for (int ic = 0; ic < lines_x; ++ic) {
-      const int i = 2 * ic, im = ax.Prev(i), ip = ax.Next(i);
-      const double sw_ne = kernels::RestrictAt<Diagonal::kSwNe>(r, im, i, ip);
-      if constexpr (kBoth) {
-        o[ic] = 0.5 * (sw_ne + kernels::RestrictAt<Diagonal::kNwSe>(r2, im, i, ip));
-      } else {
-        o[ic] = sw_ne;
+    if constexpr (kBoth) {
+      const Rows r2 = RowsAt(grid, ay, w2, 2 * jc);
+      for (int ic = 0; ic < lines_x; ++ic) {
+        const int i = 2 * ic;
+        o[ic] = kernels::RestrictBothAt(r, r2, ax.Prev(i), i, ax.Next(i));
+      }
+    } else {
+      for (int ic = 0; ic < lines_x; ++ic) {
+        const int i = 2 * ic;
+        o[ic] = kernels::RestrictAt<Diagonal::kSwNe>(r, ax.Prev(i), i, ax.Next(i));
       }
     }
   }
@@ -306,33 +371,55 @@ void DivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo
       double* ov = out_v + grid.Index(0, j);
       const double* r1 = fine + grid.Index(0, j);
       const double* r2 = kBoth ? fine2 + grid.Index(0, j) : nullptr;
-      SweepRowSplit(
-          ax, InteriorRow(ay, j),
-          [&](int im, int i, int ip) __attribute__((always_inline)) {
-            const CellsBeside x = FoldedCells(im, i, ip);
-            double sx, sy;
-            kernels::GradientTransposeSumsAt<Diagonal::kSwNe>(fine, x, y, sx, sy);
-            if constexpr (kBoth) {
-              double mx, my;
-              kernels::GradientTransposeSumsAt<Diagonal::kNwSe>(fine2, x, y, mx, my);
-              sx += mx;
-              sy += my;
-            }
-            ou[i] = scale * sx;
-            ov[i] = scale * sy;
-          },
-          [&](int i) __attribute__((always_inline)) {
-            double sx, sy;
-            InteriorGradientTransposeSwNe(r1 + i, row, sx, sy);
-            if constexpr (kBoth) {
-              double mx, my;
-              InteriorGradientTransposeNwSe(r2 + i, row, mx, my);
-              sx += mx;
-              sy += my;
-            }
-            ou[i] = scale * sx;
-            ov[i] = scale * sy;
-          });
+      auto generic = [&](int im, int i, int ip) __attribute__((always_inline)) {
+        const CellsBeside x = FoldedCells(im, i, ip);
+        double sx, sy;
+        kernels::GradientTransposeSumsAt<Diagonal::kSwNe>(fine, x, y, sx, sy);
+        if constexpr (kBoth) {
+          double mx, my;
+          kernels::GradientTransposeSumsAt<Diagonal::kNwSe>(fine2, x, y, mx, my);
+          sx += mx;
+          sy += my;
+        }
+        ou[i] = scale * sx;
+        ov[i] = scale * sy;
+      };
+      if (!kBoth || !InteriorRow(ay, j)) {
+        SweepRowSplit(
+            ax, InteriorRow(ay, j), generic, [&](int i) __attribute__((always_inline)) {
+              double sx, sy;
+              InteriorGradientTransposeSwNe(r1 + i, row, sx, sy);
+              ou[i] = scale * sx;
+              ov[i] = scale * sy;
+            });
+        continue;
+      }
+      // Both triangulations on an interior row: the ends by the generic gather, and between them
+      // straight loops over the pairs (odd i, even i + 1), each with its parity's correction.
+      const int last = ax.Lines() - 1;
+      const bool odd_row = j % 2 != 0;
+      auto store = [&](int i, double sx, double sy) __attribute__((always_inline)) {
+        ou[i] = scale * sx;
+        ov[i] = scale * sy;
+      };
+      generic(ax.Prev(0), 0, ax.Next(0));
+      for (int i = 1; i < last; i += 2) {
+        double sx, sy;
+        if (odd_row) {
+          TransposeBothAt<Parity::kOddOdd>(r1 + i, r2 + i, row, sx, sy);
+        } else {
+          TransposeBothAt<Parity::kOddEven>(r1 + i, r2 + i, row, sx, sy);
+        }
+        store(i, sx, sy);
+        if (i + 1 >= last) break;
+        if (odd_row) {
+          TransposeBothAt<Parity::kEvenOdd>(r1 + i + 1, r2 + i + 1, row, sx, sy);
+        } else {
+          TransposeBothAt<Parity::kEvenEven>(r1 + i + 1, r2 + i + 1, row, sx, sy);
+        }
+        store(i + 1, sx, sy);
+      }
+      if (last > 0) generic(ax.Prev(last), last, ax.Next(last));
     }
   }
   ZeroDuplicates(grid, ax, ay, out_u);

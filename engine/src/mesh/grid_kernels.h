@@ -381,6 +381,27 @@ template <Diagonal kD = Diagonal::kSwNe>
   return w.row[i] + 0.5 * sum;
 }
 
+// The mean of both restrictions, 0.5 (I_p^T(SW-NE) w + I_p^T(NW-SE) w2), at the fine node under a
+// pressure node, where the two differ only at the odd-odd neighbours: `s` holds w + w2 at the node
+// and at E, W, N, S and w at the odd-odd nodes (their SW-NE values), `w2` the NW-SE values there.
+[[gnu::always_inline]] inline double RestrictBothAt(const Rows& s, const Rows& w2, int im, int i,
+                                                    int ip) {
+  double sum = 0.0;
+  if (im >= 0) sum += s.row[im];
+  if (ip >= 0) sum += s.row[ip];
+  if (s.below) {
+    sum += s.below[i];
+    if (im >= 0) sum += s.below[im];   // SW, SW-NE
+    if (ip >= 0) sum += w2.below[ip];  // SE, NW-SE
+  }
+  if (s.above) {
+    sum += s.above[i];
+    if (ip >= 0) sum += s.above[ip];   // NE, SW-NE
+    if (im >= 0) sum += w2.above[im];  // NW, NW-SE
+  }
+  return 0.5 * (s.row[i] + 0.5 * sum);
+}
+
 // P1 interpolation I_p from the 2h-grid along one fine row: `low` is coarse row j/2, `high` the
 // next coarse row for odd j (null for even j). Odd-odd fine nodes are midpoints of the diagonal of
 // a 2h-square, so they average its SW and NE coarse values (SW-NE) or its NW and SE ones (NW-SE).

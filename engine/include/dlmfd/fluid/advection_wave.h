@@ -101,6 +101,12 @@ class AdvectionWave final : public VelocityAdvection {
   struct TriangleWeights {
     std::vector<double> w11a, w12a, w22a, w11b, w12b, w22b;
   };
+  // With "both": the mean of the four triangles' K_V in each cell as the symmetric 3 x 3 matrix M
+  // on the differences (u_b - u_a, u_c - u_a, u_d - u_a) that gives the shares of b, c, d (a's is
+  // minus their sum: K_V's rows and columns sum to zero).
+  struct CellMatrix {
+    std::vector<double> bb, bc, bd, cc, cd, dd;
+  };
   void FreezeVelocity(const double* u, const double* v);  // W_T per triangle from V
   void ComputeWeights(const double* vx, const double* vy);
   void ApplyWaveStiffness(const double* u, const double* v, double* ku, double* kv);  // K_V
@@ -122,8 +128,8 @@ class AdvectionWave final : public VelocityAdvection {
   std::unique_ptr<SeparableHelmholtz> helmholtz_;  // null when nu_b == 0
   std::vector<double> mass_, out_mass_;  // lumped mass; outflow boundary mass (V.n)^+ M_out
   std::vector<double> vx_, vy_;          // frozen V
-  TriangleWeights weights_;
-  TriangleWeights nwse_weights_;  // domain.diagonals = "both" only
+  TriangleWeights weights_;              // the SW-NE triangles (domain.diagonals = "sw_ne")
+  CellMatrix mean_;                      // domain.diagonals = "both"
   // Fluxes F_T per SW-NE triangle (padded cells; the mesh's diagonals only).
   std::vector<double> f1xu_, f1yu_, f2xu_, f2yu_, f1xv_, f1yv_, f2xv_, f2yv_;
   // With "both": each padded cell's share of the rows of its corners a, b, c, d, for u then v.
