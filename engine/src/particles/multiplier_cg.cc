@@ -163,23 +163,35 @@ void MultiplierCg::AddParticularForces(const ConstraintOperators& op, double dt,
   TakeResponse(op, u, v);
 }
 
-bool MultiplierCg::WarmStart(const ConstraintOperators& op, double dt,
-                             const std::vector<ParticleState>& particles, double* u, double* v,
-                             double& gg) {
-  bool have_warm = false;
+bool MultiplierCg::RespondToStored(const ConstraintOperators& op, double dt,
+                                   const std::vector<ParticleState>& particles) {
+  bool have_stored = false;
   for (std::size_t p = 0; p < particles.size(); ++p) {
     const auto& stored = particles[p].multiplier;
     const std::size_t begin = 2 * op.points.Begin(p);
     if (stored.size() == 2 * op.points.End(p) - begin) {
       std::copy(stored.begin(), stored.end(), nub_.begin() + begin);
-      have_warm = true;
+      have_stored = true;
     } else {
       std::fill(nub_.begin() + begin, nub_.begin() + 2 * op.points.End(p), 0.0);
     }
   }
-  if (!have_warm) return false;
+  if (!have_stored) return false;
   op.modes.ProjectForces(op.points, nub_.data());
   Respond(op, dt, nub_.data());
+  return true;
+}
+
+double MultiplierCg::StoredResponseNorm2(const ConstraintOperators& op, double dt,
+                                         const std::vector<ParticleState>& particles) {
+  if (!RespondToStored(op, dt, particles)) return 0.0;
+  return GramDot(op, gb_.data(), gb_.data());
+}
+
+bool MultiplierCg::WarmStart(const ConstraintOperators& op, double dt,
+                             const std::vector<ParticleState>& particles, double* u, double* v,
+                             double& gg) {
+  if (!RespondToStored(op, dt, particles)) return false;
   for (std::size_t q = 0; q < g_.size(); ++q) w_[q] = g_[q] + gb_[q];
   const double warm = GramDot(op, w_.data(), w_.data());
   if (!(warm < gg)) return false;

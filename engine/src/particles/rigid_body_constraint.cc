@@ -81,7 +81,11 @@ RigidBodyConstraint::Outcome RigidBodyConstraint::Enforce(
   cg_.ProjectMismatch(op);
   cg_.AddParticularForces(op, dt, net_force, net_torque, u, v);
   const double cold = cg_.MismatchNorm2(op);
-  const double threshold = std::max(tolerance_ * tolerance_ * cold,
+  // An increment is solved to the tolerance of the mismatch the stored multiplier holds, as the
+  // whole multiplier would be, not of its own cold mismatch, which shrinks as the lag settles.
+  const double reference =
+      increment ? std::max(cold, cg_.StoredResponseNorm2(op, dt, particles)) : cold;
+  const double threshold = std::max(tolerance_ * tolerance_ * reference,
                                     kRoundOffFloor * kRoundOffFloor * scale * scale * floor_weight);
 
   double gg = cold;

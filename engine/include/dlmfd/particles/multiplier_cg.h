@@ -86,6 +86,10 @@ class MultiplierCg {
   int Solve(const ConstraintOperators& op, double time, double dt, double threshold, double& gg,
             double* u, double* v);
   // For the neutral particles: (U, omega) = the G-weighted rigid part of E u.
+  // <g_s, g_s>_G of the response g_s of the particles' stored multipliers: the mismatch they hold,
+  // the scale of an increment's stopping rule (0 when none is stored).
+  double StoredResponseNorm2(const ConstraintOperators& op, double dt,
+                             const std::vector<ParticleState>& particles);
   void RecoverNeutralMotion(const ConstraintOperators& op, const double* u, const double* v);
 
   Vec2 Velocity(std::size_t p) const { return velocity_[p]; }
@@ -100,6 +104,9 @@ class MultiplierCg {
   void RigidResponseOf(const ConstraintOperators& op, std::size_t p, double dt, const double* dir);
   void ResponseMismatchOf(const ConstraintOperators& op, std::size_t p);
   void Respond(const ConstraintOperators& op, double dt, const double* dir);  // all three
+  // nub_ = the particles' stored multipliers (projected), gb_ = their response; false if none.
+  bool RespondToStored(const ConstraintOperators& op, double dt,
+                       const std::vector<ParticleState>& particles);
   // g = E u - U - omega r_perp at the points of particle p.
   void MismatchOf(const ConstraintOperators& op, std::size_t p, const double* u, const double* v);
   // The iterate takes the last response: u += ub, v += vb, U += Ub, omega += omegab.
