@@ -38,10 +38,9 @@
 // 1e-4, against 9.104 / 9.163 / 9.209 at X^n).
 // Where the constraint holds, for a fixed particle under the tendency correction
 // (splitting.steady_correction = "tendency", the Newtonian default): on the Stokes step's velocity
-// u^{n+1/4}, not on the advected u^{n+2/4}. (37) finds d nu from E u^{n+1/4} - U (E u^{n+2/4}
-// shifted by E (u^{n+1/4}
-// - u^{n+2/4}), sampled after (33)) and adds dt M^-1 E^T d nu to u^{n+2/4} as before. At a steady
-// state d nu = 0, so E u^{n+1/4} = U exactly, and u^{n+1/4} is the field whose equations the
+// u^{n+1/4}, not on the advected u^{n+2/4}. (37) finds d nu from the mismatch E u^{n+1/4} - U,
+// with E u^{n+1/4} sampled after (33), and adds dt M^-1 E^T d nu to u^{n+2/4} as before. At a
+// steady state d nu = 0, so E u^{n+1/4} = U exactly, and u^{n+1/4} is the field whose equations the
 // splitting's fixed point solves (fluid/advection_wave.h, the tendency correction); held on
 // u^{n+2/4} = u^{n+1/4} + dt L u^{n+1/4} instead, the constraint was off by dt E L u at the points,
 // so the steady drag moved with dt (docs/work_precision.md, "The splitting's fixed point").
@@ -84,13 +83,13 @@ class LaggedMultiplier {
   void Apply(double time, double dt, RigidBodyConstraint& constraint,
              const std::vector<ParticleState>& particles, double* u, double* v);
 
-  // After (33), before (34): E(X^n) u^{n+1/4} at the points of the fixed particles (u, v: the
+  // After (33), before (34): E(X^n) u^{n+1/4} at the points of the held particles (u, v: the
   // Stokes step's velocity; E as Apply located it).
   void SampleStokesVelocity(const RigidBodyConstraint& constraint, const double* u,
                             const double* v);
-  // Before (37), with u, v = u^{n+2/4}: the shift E u^{n+1/4} - E u^{n+2/4} at the fixed
+  // Before (37), with u, v = u^{n+2/4}: the shift E u^{n+1/4} - E u^{n+2/4} at the held
   // particles' points (zero elsewhere; E still the one Apply located), for Enforce's
-  // mismatch_shift; nullptr when no particle is fixed.
+  // mismatch_shift; nullptr when no particle is held.
   const double* AdvectionShift(const RigidBodyConstraint& constraint, const double* u,
                                const double* v);
 
