@@ -20,22 +20,13 @@
 #include <string>
 #include <vector>
 
-#include "dlmfd/core/observer.h"
+#include "../support/last_snapshot.h"
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/particles/rigid_body_constraint.h"
 #include "dlmfd/scene/scene_file.h"
 
 namespace dlmfd {
 namespace {
-
-class LastSnapshot : public Observer {
- public:
-  void OnSnapshot(const FlowState& state) override {
-    u = state.u;
-    v = state.v;
-  }
-  std::vector<double> u, v;
-};
 
 // max over the multiplier points of |E u| (the disk is fixed: its rigid velocity is zero).
 double LargestPointVelocity(const RigidBodyConstraint& constraint, const std::vector<double>& u,

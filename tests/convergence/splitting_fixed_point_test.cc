@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "dlmfd/core/observer.h"
+#include "../support/last_snapshot.h"
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/scene/scene_file.h"
 
@@ -52,16 +52,6 @@ Extrema CentreLineExtrema(const Grid& g, const std::vector<double>& u,
   for (int i = 0; i <= g.nx; ++i) vl[i] = v[g.Index(i, c)];
   return {Vertex(ul, -1), Vertex(vl, 1), Vertex(vl, -1)};
 }
-
-// The velocity of the last snapshot, as a results writer gets it.
-class LastSnapshot : public Observer {
- public:
-  void OnSnapshot(const FlowState& state) override {
-    u = state.u;
-    v = state.v;
-  }
-  std::vector<double> u, v;
-};
 
 struct CavityRun {
   Extrema written;  // the snapshot's velocity
