@@ -28,8 +28,8 @@ shift: method, D/h, shift (units of h), F_x, F_y, unknowns, CPU seconds.
        boundary_prototypes.py table CSV... [--reference F]: per method and D/h, F_x moved back to the
 shift 0 position with the slope of the 2h shift (the same discrete geometry, so the difference is
 physical), then the mean, the spread (max - min) and the largest error over the shifts in [0, 2h),
-and the observed orders between successive D/h. Results: docs/work_precision.md, "A second-order
-boundary: the prototypes (issue 33)".
+and the observed orders between successive D/h. Results: docs/evidence/cut_cell_boundary.md, "A second-order
+boundary: the prototypes" (issue 33).
 """
 import argparse
 import math

@@ -10,7 +10,7 @@ at the upstream corner x = 0 is
 T(x) = int dx / u = (-1/x + 1/(1 - x) + 2 ln(x / (1 - x))) / 16 the travel time. The integrand peaks
 where the material has come from, s ~ 1 / (96 lambda): near the corner, where it lingers (u ~ 16 s^2)
 and is stretched on its way out by (u(x) / u(s))^2. Prints max over x of A11 and where, and s*.
-Usage: bench/cavity_lid_stress.py   (docs/stability.md, "The lid-driven cavity")
+Usage: bench/cavity_lid_stress.py   (docs/evidence/stability.md, "Representations: the lid-driven cavity")
 """
 import math
 

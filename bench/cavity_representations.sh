@@ -4,7 +4,7 @@
 # u = 8 [1 + tanh(8 (t - 1/2))] x^2 (1 - x)^2) at Wi = lambda = 0.5, 1, 2, 3 in each representation of
 # fluid.conformation (standard, log, sqrt), on h = 1/32 and 1/64 with dt = 0.01 and 0.005 and on
 # h = 1/128 with dt = 0.005, to t = 8, wave advection, one thread, JOBS at a time (60 runs, about 6
-# minutes of CPU; docs/stability.md, "Representations: the lid-driven cavity").
+# minutes of CPU; docs/evidence/stability.md, "Representations: the lid-driven cavity").
 #   bench/cavity_representations.sh     # SOLVE=build/solver/dlmfd-solve WORK=runs/cavity_representations
 # Output: docs/stability/cavity.csv (one row a run: status, end time, max trA, min eig A, the kinetic
 # energy at t = 1 ... 8 from the field snapshots) and Markdown tables on stdout. Needs h5dump.

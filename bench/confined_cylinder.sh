@@ -5,7 +5,7 @@
 # end = 15 lambda (Wi > 0), dt = 1 / 120 and end = 1 (Wi = 0, Newtonian: steady in the Stokes limit
 # from the first steps); the scene's other keys as shipped (no numerics keys). Prints one line a
 # run: K at the end, its change over the last 3 lambda (how steady), and the error; appends them to
-# $WORK/confined_cylinder.csv. docs/validation.md, "The confined cylinder in an Oldroyd-B liquid, at
+# $WORK/confined_cylinder.csv. docs/evidence/validation_particles.md, "The confined cylinder in an Oldroyd-B liquid, at
 # the defaults".
 #   bench/confined_cylinder.sh                # RH="8 16 24" WI="0 0.3 0.6 0.9" REPR="standard log"
 #                                             # SOLVE=build/solver/dlmfd-solve WORK=runs/confined_cylinder

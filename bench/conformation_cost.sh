@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Cost of step (35) by representation (issue 17, point 6; docs/performance.md, "Conformation step
+# Cost of step (35) by representation (issue 17, point 6; docs/evidence/performance.md, "Conformation step
 # (35)"): bench/conformation_step_bench's variants 0 (Oldroyd-B standard), 1 (log) and 2 (sqrt) on
 # THREADS threads, ROUNDS invocations of 5 repetitions each in random interleaving (so that a change
 # of the machine's load falls on all three alike), then per variant the median over all repetitions

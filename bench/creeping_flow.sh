@@ -3,13 +3,13 @@
 #  - Faxen's settling disk (cases/verification/faxen_disk_w1.toml: D = 0.2 midway between walls 1
 #    apart, eta = 0.1, rho_p - rho_f = 0.01 so that Faxen's speed is the same at every rho_f,
 #    h = 1/96): dt = 0.01 (U dt / h = 0.18), the fall speed's mean over the last half of the run
-#    against Faxen's law (docs/validation.md, "Fall speeds in the Stokes regime");
+#    against Faxen's law (docs/evidence/validation_paper.md, "Fall speeds in the Stokes regime");
 #  - a fixed disk in a channel (cases/verification/confined_cylinder_oldroyd_b.toml at Wi = 0:
 #    blockage 0.5, eta = 1, U = 1, R/h = 24): dt = 1/120 (R / (120 U)), K = F / (eta U) at the end
 #    against 132.358 (the creeping-flow limit, confined_cylinder_reference.csv).
 # Re = rho_f U D / eta is 0.37 / 0.037 / 0.0037 for the settling disk and 2 / 0.2 / 0.02 for the
 # fixed one at rho_f = 1 / 0.1 / 0.01. Prints one line a run; appends them to $WORK/creeping_flow.csv.
-# docs/validation.md, "Creeping flow at a time step set by the motion".
+# docs/evidence/validation_particles.md, "Creeping flow at a time step set by the motion".
 #   bench/creeping_flow.sh       # RHO="1 0.1 0.01" CASES="faxen fixed" SOLVE=build/solver/dlmfd-solve
 #                                # WORK=runs/creeping_flow THREADS=1 PYTHON=python3 (with h5py, numpy)
 #                                # FAXEN_END=1.5 FIXED_END=1; SETS="--set k=v ..." (every run)

@@ -1,8 +1,8 @@
 // The drag of a fixed disk with the cut-cell boundary (particles/cut_cell_stokes.h) over sub-grid
-// positions: the engine's side of docs/work_precision.md, "A second-order boundary: the engine's
-// cut cells". Prints one CSV line per shift in the format of bench/boundary_prototypes.py (method,
-// D/h, shift in h, F_x, F_y, unknowns, seconds; then GMRES iterations), so that script's `table`
-// command reads both:
+// positions: the engine's side of docs/evidence/cut_cell_boundary.md, "A second-order boundary: the
+// engine's cut cells". Prints one CSV line per shift in the format of bench/boundary_prototypes.py
+// (method, D/h, shift in h, F_x, F_y, unknowns, seconds; then GMRES iterations), so that script's
+// `table` command reads both:
 //   cut_cell_drag creeping D_OVER_H SHIFT...        steady Stokes, the creeping disk (eta = 1, D =
 //                                                    0.1 at (0.2 + s h, 0.2) in 0.8 x 0.4,
 //                                                    Poiseuille inflow of maximum 0.3)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Schaefer-Turek 2D-1 through the time loop with the cut-cell boundary (particle_mesh.kind =
-# "cut_cell"; docs/work_precision.md, "A second-order boundary: the time loop"): the disk's centre
+# "cut_cell"; docs/evidence/cut_cell_boundary.md, "A second-order boundary: the time loop"): the disk's centre
 # moved along x by SHIFTS (in units of h) from (0.2, 0.2), at each D/h of D_OVER_H, the scene
 # otherwise as shipped (cases/verification/schaefer_turek_2d1.toml: dt = 0.005, both diagonals,
 # wave advection), to t = END. Prints one CSV line a run: D/h, shift, C_D and C_L at t = END

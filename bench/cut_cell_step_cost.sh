@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The cost of a step with the cut-cell boundary against the default step (issue 33 point 4;
-# docs/work_precision.md, "A second-order boundary: the time loop"), on the fixed-body case the cut
+# docs/evidence/cut_cell_boundary.md, "A second-order boundary: the time loop"), on the fixed-body case the cut
 # cells run: Schaefer-Turek 2D-1 (cases/verification/schaefer_turek_2d1.toml as shipped, D/h = 20,
 # dt = 0.005; D_OVER_H=40 for domain.h = 0.0025). Two configurations, run in turn ROUNDS times so
 # that a shared machine's load falls on both alike:

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The cost of a step at the defaults against the defaults before issue 32 (docs/performance.md,
+# The cost of a step at the defaults against the defaults before issue 32 (docs/evidence/performance.md,
 # "The default step"), on the paper's case 5.2 (cases/paper/5.2_pair_oldroyd_b.toml: two disks in an
 # Oldroyd-B liquid on the paper's grid, h = 1/96, dt = 4e-4). Three configurations, run in turn
 # ROUNDS times so that a shared machine's load falls on each alike:

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The numbers docs/validation.md quotes for a falling-disk run of the paper's section 5, read from
+"""The numbers docs/evidence/validation_paper.md quotes for a falling-disk run of the paper's section 5, read from
 its results directory (particles.h5 through the Python client's dlmfd.results, diagnostics.csv,
 summary.json), so that a rerun under other settings is compared by the same definitions:
 

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The mean fall speed of particle 0 over windows of time, from results directories (issue 37,
-point 3: the periodic channel at zero net flux against the closed one; docs/validation.md,
+point 3: the periodic channel at zero net flux against the closed one; docs/evidence/validation_particles.md,
 "Sedimentation without end walls").
 
     bench/fall_speed_windows.py RESULTS_DIR... [--windows 0.5:1.5 1:2 1.5:2.5]

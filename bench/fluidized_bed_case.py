@@ -17,7 +17,7 @@ BED = ROWS * DY  # the lattice's cells: COLUMNS x ROWS of DX x DY
 fraction = COLUMNS * ROWS * math.pi * DIAMETER**2 / 4 / (WIDTH * BED)
 
 print(f'''title = "A fluidized bed of {COLUMNS * ROWS} disks (D = {DIAMETER}, solid fraction {fraction:.3f} over the lowest {BED:.2f}), the liquid and inflow of paper 5.4 in an {WIDTH:g} x {HEIGHT:g} bed (issue 34)"
-# Written by bench/fluidized_bed_case.py; docs/performance.md, "A thousand particles".
+# Written by bench/fluidized_bed_case.py; docs/evidence/performance.md, "A thousand particles".
 
 [domain]
 size = [{WIDTH}, {HEIGHT}]

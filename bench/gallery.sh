@@ -3,7 +3,7 @@
 # movie from runs at the PAPER'S RESOLUTION: each case file's own h = 1/96, h_p = 1/70 and time
 # step, to the times of the paper's figures. Two settings differ from the case files, and the
 # captions say so: wave advection instead of least squares (3 times cheaper a step on the paper's
-# grid, and the scheme of docs/validation.md's long viscoelastic runs), and snapshots as often as
+# grid, and the scheme of docs/evidence/validation_paper.md's long viscoelastic runs), and snapshots as often as
 # the figures and the movie need. About an hour and a half on two cores (docs/gallery.md has each
 # run's wall time); a run whose summary says completed is not run again, so a second call only
 # redraws.

@@ -3,7 +3,7 @@
 # cases/shapes/jeffery_orbit.toml: a = 0.2, Re = 0.01): runs the case on each grid and
 # confinement and prints, per run, the period against 2 pi (r + 1/r) / G and the angular velocity
 # against Jeffery's law (bench/jeffery_orbit.py); appends them to $WORK/jeffery.csv.
-# docs/validation.md, "Jeffery's orbit".
+# docs/evidence/validation_particles.md, "Jeffery's orbit".
 #   bench/jeffery_orbit.sh   # CELLS="32 48" (cells per unit length) HEIGHTS="2" (channel height H,
 #                            # walls at +-H/2 moving at +-G H/2, G = 1) RATIOS="2" (b = a / r)
 #                            # DIFFUSION=2.048 (nu dt / h^2; 32 cells: the case) END=12.5 WORK=runs/jeffery

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """When the lagged multiplier (splitting.constraint = "incremental") blows up on a particle that
-turns (issue 37; docs/validation.md, "The lagged multiplier on a turning shape").
+turns (issue 37; docs/evidence/validation_particles.md, "The lagged multiplier on a turning shape").
 
     bench/lagged_turning_shape.py [--solver build/solver/dlmfd-solve] [--out runs/lagged_turning]
                                   [--coupling incremental] [--end 0.1] [--jobs 2]

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The examples of issue 17, point 5 (docs/validation.md, "Examples: the paper's 5.2 pair with each
+# The examples of issue 17, point 5 (docs/evidence/validation.md, "Examples: the paper's 5.2 pair with each
 # model"), at the PAPER'S RESOLUTION (each case file's h = 1/96, h_p = 1/70, dt = 4e-4):
 #   - the 5.2 pair (dropped at y = 7.7 and 7.3) with Oldroyd-B in the standard and the log
 #     representation, with Giesekus (alpha 0.1) and with FENE-P (L^2 100), to t = 9.5 (figure 9c's
@@ -50,7 +50,7 @@ export -f run_one
 # shellcheck disable=SC2016  # $1 expands in the child bash
 tr '\n' '\0' < "$RUNS/runs.txt" | xargs -0 -P "${JOBS:-2}" -I{} bash -c 'run_one "$1"' _ {}
 
-# The numbers of docs/validation.md's tables (bench/fall_numbers.py: fall speeds, gaps, the kiss,
+# The numbers of docs/evidence/validation.md's tables (bench/fall_numbers.py: fall speeds, gaps, the kiss,
 # trA).
 for name in 5.2_oldroyd_b 5.2_oldroyd_b_log 5.2_giesekus 5.2_fene_p; do
   "$python" bench/fall_numbers.py "$RUNS/$name" --window 0,1 --window 5,9.5 --gap-at 1 --gap-at 3 \

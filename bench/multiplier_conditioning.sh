@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The multiplier CG of step (37) against the ratio of the particle mesh to the fluid mesh (issue 13
-# point 8; docs/work_precision.md, "The particle mesh against the fluid mesh"): the scene
+# point 8; docs/evidence/work_precision.md, "The particle mesh against the fluid mesh"): the scene
 # cases/verification/periodic_box_large_disk.toml (a fixed disk D = 0.62 in a unit periodic box,
 # h = 1/64) with particle_mesh.h = RATIO * domain.h, under each coupling of the constraint; prints
 # the CG's iterations in each of the first five steps, or the solver's error when it fails.

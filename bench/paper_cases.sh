@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Runs paper cases (cases/paper/*.toml) one after another into runs/paper/<case>/,
 # THREADS solver threads (default 1). On the 2-core machine one lane with THREADS=2 beats two
-# lanes: two solvers side by side each run 2.4 times slower (memory bandwidth, docs/performance.md).
+# lanes: two solvers side by side each run 2.4 times slower (memory bandwidth, docs/evidence/performance.md).
 # Usage: bench/paper_cases.sh CASE[@advection] ...
 #   CASE is a file name in cases/paper without .toml; @wave or @least_squares overrides
-#   splitting.advection (the long viscoelastic runs use @wave, see docs/validation.md).
+#   splitting.advection (the long viscoelastic runs use @wave, see docs/evidence/validation_paper.md).
 # A case whose directory holds checkpoint.h5 and no summary.json resumes from it.
 set -uo pipefail
 cd "$(dirname "$0")/.."

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Draws the figures of docs/validation.md (paper, section 5) from the runs of bench/paper_cases.sh
+# Draws the figures of docs/evidence/validation_paper.md (paper, section 5) from the runs of bench/paper_cases.sh
 # (runs/paper/<case>[@advection]) into docs/figures/. A case that has not been run is skipped with
 # a message. Usage: bench/paper_figures.sh [DLMFD_BINARY]   (default build/client/dlmfd)
 set -uo pipefail

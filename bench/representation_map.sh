@@ -2,7 +2,7 @@
 # The start-up channel (cases/verification/waters_king.toml, the family "wk" of
 # bench/stability_map.sh, all the viscosity in step (33)) at E = lambda = 10, where the standard
 # scheme fails, run in each representation of fluid.conformation (standard, log, sqrt) and, for
-# comparison, with the Giesekus (alpha 0.1) and FENE-P (L^2 100) models (docs/stability.md,
+# comparison, with the Giesekus (alpha 0.1) and FENE-P (L^2 100) models (docs/evidence/stability.md,
 # "Representations and models"). To t = 10, wave advection, one thread, JOBS at a time.
 #   bench/representation_map.sh     # SOLVE=build/solver/dlmfd-solve WORK=runs/representation_map
 # Output: docs/stability/representations.csv and a Markdown table on stdout.

@@ -6,7 +6,7 @@
 # on the last snapshot's u, periodic) over its height. The disk's centre moves along x by SHIFTS
 # (in units of h) from the box's centre. Prints one line a run and, per area fraction and mesh, the
 # node-centred error, the mean over the shifts, their spread and the largest error; appends the
-# runs to $WORK/sangani_acrivos.csv. docs/validation.md, "Sangani and Acrivos's square array".
+# runs to $WORK/sangani_acrivos.csv. docs/evidence/validation_particles.md, "Sangani and Acrivos's square array".
 #   bench/sangani_acrivos.sh     # PHI="0.1 0.2 0.3 0.4" CELLS=64 SHIFTS="0 0.25 0.5 0.75 1 1.25 1.5 1.75"
 #                                # SOLVE=build/solver/dlmfd-solve WORK=runs/sangani_acrivos
 #                                # PYTHON=python3 (with h5py, numpy); SETS="--set k=v ..."

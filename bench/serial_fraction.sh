@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The serial share of each sub-step, counted in instructions (docs/performance.md, "Threads"):
+# The serial share of each sub-step, counted in instructions (docs/evidence/performance.md, "Threads"):
 # for each sub-step of Simulation::Step (SolveStokes (33), AdvectVelocity (34), UpdateConformation
 # (35), MoveParticles (36)-(38)) callgrind counts the instructions executed inside it, on one
 # thread, and those executed inside OpenMP parallel regions (the inclusive cost of libgomp's

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Stability map of the Oldroyd-B scheme (issue 6, point 2; docs/stability.md, "Stability map"):
+# Stability map of the Oldroyd-B scheme (issue 6, point 2; docs/evidence/stability.md, "Stability map"):
 # which combinations of Deborah number, time step and mesh survive on four demanding cases (one of
 # them with two viscosity splittings), and
 # how the others fail; each in every representation of the conformation tensor that
@@ -8,7 +8,7 @@
 #   cross  cases/verification/stability_cross_slot.toml: planar extension at a stagnation point,
 #          eps = 1, so Wi = lambda (Oldroyd-B's stress there is unbounded for Wi > 1/2); to t = 6.
 #   disk   paper 5.1b: one disk (rho_p = 1.02) settling in the 1.5 x 6 channel, to t = 0.5;
-#          De = lambda U / D with U = 1.39 (our terminal speed at lambda = 0.3, docs/validation.md).
+#          De = lambda U / D with U = 1.39 (our terminal speed at lambda = 0.3, docs/evidence/validation_paper.md).
 #   pair   paper 5.2: two disks in the 2 x 8 box (eta = 0.12), to t = 2;
 #          De = lambda U / D with U = 0.39 (our mean fall speed at lambda = 1.4).
 #   wk     start-up Poiseuille (cases/verification/waters_king.toml: beta = 1/9, all the viscosity in
@@ -16,7 +16,7 @@
 #   wkhalf the same flow with the viscosity split alpha = beta = 1/2.
 #   diskpaper, pairpaper  disk and pair under the paper's coupling of the constraint
 #          (splitting.constraint = paper, alpha = beta = 1/2; the default is incremental, alpha = 1,
-#          beta = 0: docs/stability.md, "The coupling of the constraint"), standard representation.
+#          beta = 0: docs/evidence/stability.md, "The coupling of the constraint"), standard representation.
 # For each family: 2 meshes x 4-5 time steps x 3-6 relaxation times, reaching time steps far beyond
 # the paper's; the particle mesh follows the velocity mesh (h_p = h 96/70, the paper's ratio).
 # Output: docs/stability/map.csv (one row per run: outcome, steps, extremes of trA and eig A, the

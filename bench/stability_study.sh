@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Stability study of the viscoelastic scheme (docs/stability.md): how far in Deborah / Weissenberg
+# Stability study of the viscoelastic scheme (docs/evidence/stability.md): how far in Deborah / Weissenberg
 # number (and in time step) each case gets, what fails first and how the run reports it.
 #   usage: bench/stability_study.sh [DLMFD_SOLVE] [WORK_DIR]
 #   DLMFD_SOLVE defaults to build/solver/dlmfd-solve; WORK_DIR to a fresh temporary directory.

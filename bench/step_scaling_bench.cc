@@ -1,5 +1,5 @@
 // How the cost of a full Oldroyd-B step with particles grows with the grid and with the number of
-// particles (issue 6, point 3; docs/performance.md "Scaling"). Base:
+// particles (issue 6, point 3; docs/evidence/performance.md "Scaling"). Base:
 // cases/paper/5.2_pair_oldroyd_b.toml (2 x 8 box, eta = 0.12, lambda = 1.4, dt = 4e-4) with the
 // wave-like advection, 2 threads, 20 set-up steps from rest, then timed steps.
 //   BM_StepMesh/cells:C     the scene's two disks on h = 1/C (C = 24 ... 192; the paper's grid is

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The serial fraction of each sub-step measured in wall time from 1 and 2 threads (issue 34,
-# points 1-2; docs/performance.md, "Threads"). bench/oldroyd_b_step_bench's full Oldroyd-B step
+# points 1-2; docs/evidence/performance.md, "Threads"). bench/oldroyd_b_step_bench's full Oldroyd-B step
 # (the 5.2 pair, wave advection, the engine's default coupling, devss and both diagonals) on 1 and
 # 2 threads, the repetitions of the two interleaved in random order (a shared machine's load then
 # falls on both alike), the minimum over the repetitions of each sub-step's ms. With the speed-up

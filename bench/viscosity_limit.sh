@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The drag on the viscosity rule's channel (cases/verification/viscosity_rule_channel.toml) as
 # lambda -> 0, under each fluid.stress_splitting: the relative gap |F(lambda) - F(0)| / F(0) against
-# lambda, as a CSV and a log-log chart (docs/validation.md, "The viscosity rule"). About 15 s.
+# lambda, as a CSV and a log-log chart (docs/evidence/validation.md, "The viscosity rule"). About 15 s.
 #   bench/viscosity_limit.sh            # SOLVE=build/solver/dlmfd-solve DLMFD=build/client/dlmfd
 #                                       # WORK=runs/viscosity_limit OUT=docs/figures/viscosity_limit.png
 #                                       # PYTHON=python3, with h5py (Debian's python3-h5py)

@@ -5,7 +5,7 @@
 # its terminal speed but sways across the channel; at D/h = 16 the window holds less than one period
 # of the sway), with the spread (max - min) of Re over that window and the disk's mean x. Prints
 # one line a run; appends them to
-# $WORK/wachs_settling.csv. docs/validation.md, "A disk settling at Re 260 in a long channel".
+# $WORK/wachs_settling.csv. docs/evidence/validation_particles.md, "A disk settling at Re 260 in a long channel".
 #   bench/wachs_settling.sh      # DH="8 16 32" SOLVE=build/solver/dlmfd-solve WORK=runs/wachs_settling
 #                                # THREADS=1 PYTHON=python3 (with h5py, numpy); SETS="--set k=v ..."
 # Cost: D/h = 16 433 s on one thread of this machine, shared (2800 steps); 32 eight times that.

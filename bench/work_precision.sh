@@ -1,5 +1,5 @@
 #!/bin/bash
-# Work-precision charts (issue 6, point 1; docs/work_precision.md): error against cost over mesh and
+# Work-precision charts (issue 6, point 1; docs/evidence/work_precision.md): error against cost over mesh and
 # time-step refinement, for each advection scheme and a ladder of stopping tolerances, on four problems:
 #   a  start-up Poiseuille of Oldroyd-B (cases/verification/waters_king.toml) against the Waters-King
 #      series: max over the snapshots t = 0.1 k of |u(centre) - U(0, t)|
@@ -51,7 +51,7 @@ done
 mkdir -p "$work" "$data" "$figures"
 export OMP_NUM_THREADS=1
 # Single-thread runs. The engine keeps --threads 1 since b30e06e; before, its paired solves of steps
-# (33), (34) took a second thread regardless, which OMP_THREAD_LIMIT capped (docs/work_precision.md).
+# (33), (34) took a second thread regardless, which OMP_THREAD_LIMIT capped (docs/evidence/work_precision.md).
 export OMP_THREAD_LIMIT=1
 set -f  # scene values like [1.0,3.0] are not file patterns
 TIMEFORMAT='%U %S'
@@ -272,7 +272,7 @@ if [[ $only == *e* ]]; then
   lift=$data/e_lift.txt
   echo "problem,series,particle_mesh,ladder,h,dt,tolerance,status,cpu_seconds,wall_seconds,steps,ms_per_step,cpu_ms_per_step,value,error" > "$raw"
   # t = 5 settles Cd, not Cl (a decaying wake oscillation, about 5 % of Cl at t = 5; the steady
-  # lift needs t = 12: docs/work_precision.md (e), "The lift's steady state").
+  # lift needs t = 12: docs/evidence/particle_boundary.md (e), "The lift's steady state").
   echo "# Cl = 2 Fy / (rho 0.2^2 0.1) at t = 5, not yet settled (reference 0.010618948146)" > "$lift"
   for coupling in default paper; do
     coupling_sets=()

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Work precision at the defaults against the peer (issue 32 point 5; docs/work_precision.md, "At the
+# Work precision at the defaults against the peer (issue 32 point 5; docs/evidence/work_precision.md, "At the
 # defaults, against the peer"). Each scene names no numerics key and keeps the default tolerances:
 # what a user who writes only the physics gets. Two problems, each a mesh ladder with dt set by the
 # flow (dt proportional to h):

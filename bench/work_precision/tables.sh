@@ -1,6 +1,6 @@
 #!/bin/bash
 # Markdown tables of the work-precision data (docs/work_precision/<problem>.csv, written by
-# bench/work_precision.sh) for docs/work_precision.md, with the observed order between successive
+# bench/work_precision.sh) for docs/evidence/work_precision.md, with the observed order between successive
 # points of each ladder: log(e_i / e_i+1) / log(x_i / x_i+1), x = h on the h+dt ladder, dt on the dt ladder.
 # Usage: bench/work_precision/tables.sh [PROBLEM...]   (default a b c d)
 set -euo pipefail

@@ -3,7 +3,7 @@
 # directories (unit square), from their last field snapshots, at the nodes of the coarser run RUN;
 # REFERENCE is a finer run of the same scene whose cell count is a multiple of RUN's (the engine's
 # own fine-grid solution: the mesh error of RUN when both use the same dt, since the splitting's
-# first-order error in dt is then the same in both). docs/validation.md, lid-driven cavity.
+# first-order error in dt is then the same in both). docs/evidence/validation.md, lid-driven cavity.
 # Usage: cavity_self_errors.sh RUN REFERENCE
 set -euo pipefail
 a=$1; b=$2

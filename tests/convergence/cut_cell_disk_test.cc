@@ -1,10 +1,10 @@
 // The cut-cell boundary (particles/cut_cell_stokes.h) on the creeping fixed disk of
-// docs/work_precision.md ("The circle's sub-grid position"; "A second-order boundary: the engine's
-// cut cells"): D = 0.1 at (0.2 + s h, 0.2) in a 0.8 x 0.4 channel, Poiseuille inflow of maximum
-// 0.3, eta = 1, steady Stokes, at D/h = 10, 20, 40 and shifts s = 0, h/4, ..., 7h/4 (D/h = 40: 0,
-// h/2, h, 3h/2), each drag moved back to s = 0 with the slope of the 2h shift (the same discrete
-// geometry, so the slope is the physical effect of the inflow's distance).
-// The reference 6.487 is the Richardson limit of the position means (prototype, D/h = 20-40-80).
+// docs/evidence/particle_boundary.md ("The circle's sub-grid position"; "A second-order boundary:
+// the engine's cut cells"): D = 0.1 at (0.2 + s h, 0.2) in a 0.8 x 0.4 channel, Poiseuille inflow
+// of maximum 0.3, eta = 1, steady Stokes, at D/h = 10, 20, 40 and shifts s = 0, h/4, ..., 7h/4 (D/h
+// = 40: 0, h/2, h, 3h/2), each drag moved back to s = 0 with the slope of the 2h shift (the same
+// discrete geometry, so the slope is the physical effect of the inflow's distance). The
+// reference 6.487 is the Richardson limit of the position means (prototype, D/h = 20-40-80).
 // Measured (this test's output, 2026-12-04; bench/cut_cell_drag gives all eight shifts at 40):
 //   D/h   mean error   spread    worst error   (moved back, against 6.487)
 //   10    +0.882 %     0.155 %   0.926 %

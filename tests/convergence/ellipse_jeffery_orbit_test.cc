@@ -1,11 +1,12 @@
-// Jeffery's orbit, the small version (issue 37, point 2; the study: docs/validation.md,
-// "Jeffery's orbit", bench/jeffery_orbit.sh): a neutrally buoyant ellipse r = a / b = 2 at the
-// centre of a plane Couette flow (cases/shapes/jeffery_orbit.toml: a = 0.2, channel H = 2 with
-// walls at -1 and +1 moving at -1 and +1, G = 1, periodic length 2, rho = 1, eta = 4, Re = 0.01)
-// turns from broadside (theta = -pi/2) to aligned with the flow (theta = -pi) in a quarter of
-// Jeffery's period, T / 4 = pi (r + 1/r) / (2 G) (Jeffery 1922; Bretherton 1962 for the elliptic
-// cylinder), on the case's own grid, h = 1/32 (b / h = 3.2), dt = 5e-4 (nu dt / h^2 = 2.048).
-// Asserted within the study's bound (see kQuarterTolerance).
+// Jeffery's orbit, the small version (issue 37, point 2; the study:
+// docs/evidence/validation_particles.md, "Jeffery's orbit", bench/jeffery_orbit.sh): a neutrally
+// buoyant ellipse r = a / b = 2 at the centre of a plane Couette flow
+// (cases/shapes/jeffery_orbit.toml: a = 0.2, channel H = 2 with walls at -1 and +1 moving at -1 and
+// +1, G = 1, periodic length 2, rho = 1, eta = 4, Re = 0.01) turns from broadside (theta = -pi/2)
+// to aligned with the flow (theta = -pi) in a quarter of Jeffery's period, T / 4 = pi (r + 1/r) /
+// (2 G) (Jeffery 1922; Bretherton 1962 for the elliptic cylinder), on the case's own grid, h = 1/32
+// (b / h = 3.2), dt = 5e-4 (nu dt / h^2 = 2.048). Asserted within the study's bound (see
+// kQuarterTolerance).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,12 +19,12 @@
 namespace dlmfd {
 namespace {
 
-// The study (docs/validation.md, "Jeffery's orbit"): the quarter period's error at h = 1/24,
-// 1/32, 1/48 is -4.41, -0.23, -0.45 % and the period's -4.35, -0.45, -0.50 %: from h = 1/32 on the
-// grid moves them by 0.2 % at most, well inside the issue's 1 %, which is the bound. The later
-// study over sub-grid positions ("Over grids and sub-grid positions") found the quarter period at
-// h = 1/32 between -1.96 and +0.60 % as the centre moves within a cell, and +1.6 % at h = 1/64
-// half a cell off: this check holds at the case's position, not at every position.
+// The study (docs/evidence/validation_particles.md, "Jeffery's orbit"): the quarter period's error
+// at h = 1/24, 1/32, 1/48 is -4.41, -0.23, -0.45 % and the period's -4.35, -0.45, -0.50 %: from h =
+// 1/32 on the grid moves them by 0.2 % at most, well inside the issue's 1 %, which is the bound.
+// The later study over sub-grid positions ("Over grids and sub-grid positions") found the quarter
+// period at h = 1/32 between -1.96 and +0.60 % as the centre moves within a cell, and +1.6 % at h =
+// 1/64 half a cell off: this check holds at the case's position, not at every position.
 constexpr double kQuarterTolerance = 0.01;
 
 TEST(EllipseJefferyOrbit, AQuarterTurnTakesAQuarterOfJefferysPeriod) {

@@ -5,9 +5,9 @@
 // peer's coarsest grid (D/h = 9.76, the channel 2.255 long), dt = 0.02 (U dt / h = 0.59), the
 // Stokes and multiplier tolerances 1e-8.
 //
-// Study (docs/work_precision.md, "The splitting's fixed point"): the largest velocity at the disk's
-// multiplier points in the written field, against the advective increment dt E L u there (the
-// same in u^{n+1}, which the constraint leaves alone now), after 100 / 400 / 1600 steps:
+// Study (docs/evidence/splitting.md, "The splitting's fixed point"): the largest velocity at the
+// disk's multiplier points in the written field, against the advective increment dt E L u there
+// (the same in u^{n+1}, which the constraint leaves alone now), after 100 / 400 / 1600 steps:
 // 2.3e-4 / 1.07e-4 / 7.2e-6 against 2.29e-3 / 2.35e-3 / 2.37e-3 (ratios 0.10 / 0.045 / 0.003; the
 // rest decays with the lagged multiplier's slow interior mode). Held on u^{n+2/4}, as before, the
 // written field is off by the whole increment (ratio 1). Asserted after 400 steps: a ratio of at

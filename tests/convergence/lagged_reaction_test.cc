@@ -1,15 +1,15 @@
 // Free disks barely heavier than the liquid under the incremental coupling at large time steps
 // (named: "auto" picks the paper's coupling for some of these steps) (issue 13 point 2;
-// particles/particle_step.h, "Why over the sub-steps"; docs/stability.md, "The coupling of the
-// constraint"). The reaction -C^T nu^n / m_e of the lagged multiplier is a force of the step beside
-// g; given as a kick at the start of the predictor (36) it sent the predicted positions ahead of
-// the motion by up to g dt^2 / 2, into collision ranges the disks never came near, and (37) held
-// them where they were not. These scenes failed or gave nonsense then (the old numbers below, same
-// scenes); the force over the sub-steps gives answers that do not depend on dt within the issue's
-// 0.5 % where the answer is steady, and converge at first order where it is not.
+// particles/particle_step.h, "Why over the sub-steps"; docs/evidence/stability.md, "The coupling of
+// the constraint"). The reaction -C^T nu^n / m_e of the lagged multiplier is a force of the step
+// beside g; given as a kick at the start of the predictor (36) it sent the predicted positions
+// ahead of the motion by up to g dt^2 / 2, into collision ranges the disks never came near, and
+// (37) held them where they were not. These scenes failed or gave nonsense then (the old numbers
+// below, same scenes); the force over the sub-steps gives answers that do not depend on dt within
+// the issue's 0.5 % where the answer is steady, and converge at first order where it is not.
 //
 // Studies (2026-12-03, Release, `dlmfd-solve` on the scenes of the tests; commands in
-// docs/stability.md):
+// docs/evidence/stability.md):
 // - The 5.2 pair in a Newtonian liquid (rho_d / rho_L = 1.01, h = 1/24, wave advection), velocity
 //   of the upper / lower disk at t = 0.384: dt = 0.0256 / 0.0192 / 0.0128 / 0.0096 / 0.0048 /
 //   0.0024 / 0.0012 / 0.0006: v = -0.20492 / -0.20420 / -0.20375 / -0.20355 / -0.20330 / -0.20344

@@ -4,7 +4,7 @@
 // (copied below from the project's shared reference data, ../shared/reference/README.md), the
 // computed centre-line interpolated linearly to Ghia's points.
 //
-// Grid study (docs/validation.md, wave advection, dt = 0.01, t = 20, dlmfd-solve and
+// Grid study (docs/evidence/validation.md, wave advection, dt = 0.01, t = 20, dlmfd-solve and
 // cases/verification/cavity_ghia_errors.sh), since the corners of the lid take the walls' normal
 // component (fluid/boundary_data.h; before, the lid leaked through the side walls and the
 // deviation fell at first order: 0.0318 / 0.0157 / 0.0073):
@@ -24,12 +24,12 @@
 // closer to the dt -> 0 solution (64 cells, dt = 0.01 against 0.001: max|u - u_ref| 0.0021 against
 // 0.0044, max|v - v_ref| 0.0028 against 0.0035) and further from Ghia's v, because the uncorrected
 // scheme's streamline diffusion had cancelled part of Ghia's own offset at x = 0.8594 (the dt -> 0
-// solution on 64 cells is 0.0096 from it; docs/validation.md, "The steady-state correction on the
-// cavity"). The code is deterministic to round-off, so these values are what the test reproduces;
-// asserted is the value plus 0.0005, a third of the 32-cell grid error against the 256-cell
-// solution (1.7e-3 in u, 1.3e-3 in v): a regression worth a third of the grid error fails, and so
-// would the leaky lid (0.0327 in this run). Time to steady state is not in the margin: from t = 15
-// to 20 the errors move by 1e-4.
+// solution on 64 cells is 0.0096 from it; docs/evidence/validation.md, "The steady-state correction
+// on the cavity"). The code is deterministic to round-off, so these values are what the test
+// reproduces; asserted is the value plus 0.0005, a third of the 32-cell grid error against the
+// 256-cell solution (1.7e-3 in u, 1.3e-3 in v): a regression worth a third of the grid error fails,
+// and so would the leaky lid (0.0327 in this run). Time to steady state is not in the margin: from
+// t = 15 to 20 the errors move by 1e-4.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -79,8 +79,8 @@ CentreLineErrors RunCavity(const std::string& advection) {
       {"domain.diagonals", "\"sw_ne\""},  // the mesh of the study
       // the correction of the study (the default until 2026-12-05; the tendency correction, the
       // default since, leaves the end-of-step velocity read here O(dt) from the steady solution,
-      // which its snapshots replace by the Stokes step's: docs/validation.md, "Against accurate
-      // references, with the tendency correction")
+      // which its snapshots replace by the Stokes step's: docs/evidence/validation.md, "Against
+      // accurate references, with the tendency correction")
       {"splitting.steady_correction", "\"taylor\""},
       {"output.fields_every", "0"},
       {"output.checkpoint_every", "0"}};

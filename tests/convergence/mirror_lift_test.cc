@@ -1,6 +1,6 @@
-// The lift's mirror bias (issue 13 point 3; docs/work_precision.md (e), "The lift's mirror bias"):
-// the Schaefer-Turek disk at y = 0.2 and at its mirror image y = 0.21 in the channel of height
-// 0.41 should feel opposite lifts. On the SW-NE mesh they do not: the mesh, and the P2
+// The lift's mirror bias (issue 13 point 3; docs/evidence/particle_boundary.md (e), "The lift's
+// mirror bias"): the Schaefer-Turek disk at y = 0.2 and at its mirror image y = 0.21 in the channel
+// of height 0.41 should feel opposite lifts. On the SW-NE mesh they do not: the mesh, and the P2
 // macro-triangles of the default quadratic interpolation at the collocation points, are not
 // mirror-symmetric, and the half-sum of the two lifts (the bias) is of the size of the lift itself
 // at D/h = 20 (Cl -0.01701 and +0.03809 at t = 12 against the reference 0.0106). With

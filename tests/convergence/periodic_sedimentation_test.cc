@@ -5,11 +5,11 @@
 // Scenes: cases/periodic/disk_walled_channel.toml (closed, 1 x 8, released at y = 7.5) and
 // cases/periodic/disk_periodic_zero_flux.toml with period 4 (released at y = 2), D = 0.2,
 // rho_p / rho = 1.1, eta = 0.05, g = 981 (Re about 10), on h = 1/32 at dt = 1e-3 (CI's version of
-// the study at h = 1/64, dt = 5e-4). Study (docs/validation.md, "Sedimentation without end
-// walls"): the mean fall speed over t in [0.5, 1.5], [1, 2] and [1.5, 2.5] differs between the
-// periodic channel of period 4 and the closed one by 0.004-0.04 % on h = 1/32 and 1/64 (period 8:
-// 0.00 %, period 2: +1.8 %, the images 10 D apart; the static balance of a constant body force,
-// without the flux held, 69 %). Asserted: within 0.2 %, five times the largest difference
+// the study at h = 1/64, dt = 5e-4). Study (docs/evidence/validation_particles.md, "Sedimentation
+// without end walls"): the mean fall speed over t in [0.5, 1.5], [1, 2] and [1.5, 2.5] differs
+// between the periodic channel of period 4 and the closed one by 0.004-0.04 % on h = 1/32 and 1/64
+// (period 8: 0.00 %, period 2: +1.8 %, the images 10 D apart; the static balance of a constant body
+// force, without the flux held, 69 %). Asserted: within 0.2 %, five times the largest difference
 // measured at period 4 and a ninth of the period-2 effect.
 #include <gtest/gtest.h>
 

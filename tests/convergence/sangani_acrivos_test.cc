@@ -5,11 +5,12 @@
 // (cases/verification/sangani_acrivos_reference.csv).
 //
 // Study (2026-12-04, bench/sangani_acrivos.sh, collocation points on both diagonals, wave
-// advection; docs/validation.md, "Sangani and Acrivos's square array"): at h = 1/64 the error over
-// four sub-grid positions of the disk (shifts 0, 1/4, 1/2, 3/4 h along x) is +0.83 / +0.67 / -0.40
-// / +0.77 % at Phi = 0.1 and +0.37 / +0.96 / +2.16 / +2.27 % at Phi = 0.3. The node-centred disk
-// must stay within the largest error of its area fraction over those positions (0.83 % and
-// 2.27 %): a change that moves it outside has moved the boundary's error, not its position's.
+// advection; docs/evidence/validation_particles.md, "Sangani and Acrivos's square array"): at h =
+// 1/64 the error over four sub-grid positions of the disk (shifts 0, 1/4, 1/2, 3/4 h along x) is
+// +0.83 / +0.67 / -0.40 / +0.77 % at Phi = 0.1 and +0.37 / +0.96 / +2.16 / +2.27 % at Phi = 0.3.
+// The node-centred disk must stay within the largest error of its area fraction over those
+// positions (0.83 % and 2.27 %): a change that moves it outside has moved the boundary's error, not
+// its position's.
 #include <gtest/gtest.h>
 
 #include <cmath>

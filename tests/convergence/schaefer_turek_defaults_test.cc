@@ -4,8 +4,9 @@
 // coupling "auto" chose (incremental: a fixed disk), the Taylor steady correction. Reference (the
 // scene's title): Cd = 5.57953523384, Cl = 0.010618948146 (John & Matthies 2001). The targets of
 // issue 32: Cd within 1 % at D/h = 20, the lift's sign right. Cd is steady to 1e-4 by t = 5; the
-// lift's wake mode decays by t = 8 (docs/work_precision.md (e), "The lift's steady state"), so the
-// run goes to t = 8. Measured in docs/accuracy.md (D/h = 20 and 40, with the command).
+// lift's wake mode decays by t = 8 (docs/evidence/particle_boundary.md (e), "The lift's steady
+// state"), so the run goes to t = 8. Measured in docs/accuracy.md (D/h = 20 and 40, with the
+// command).
 #include <gtest/gtest.h>
 
 #include <cstdio>

@@ -5,7 +5,7 @@
 // of the written velocity, each the vertex of the parabola through the extreme node and its
 // neighbours.
 //
-// Study (docs/work_precision.md, "The splitting's fixed point"; t = 30, wave): the written
+// Study (docs/evidence/splitting.md, "The splitting's fixed point"; t = 30, wave): the written
 // velocity's extrema at the lid Courant number 0.64 and at a quarter of it (dt = 0.02 / 0.005 on 32
 // cells, 0.01 / 0.0025 on 64) differ by 4.5e-5 / 2e-6 / 2.8e-6 relative on 32 cells and 8.9e-6 /
 // 2.2e-6 / 4e-7 on 64 (the default Stokes tolerance's noise at a steady state). This test (t = 20,

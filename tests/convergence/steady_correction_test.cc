@@ -4,7 +4,7 @@
 // diffusion (dt/2)(u.grad)^2 u, so a steady drag moves at first order with dt; with the Taylor
 // term removed it does not.
 //
-// Study (docs/work_precision.md, "The splitting's steady-state error"; the Schaefer-Turek scene
+// Study (docs/evidence/splitting.md, "The splitting's steady-state error"; the Schaefer-Turek scene
 // cases/verification/schaefer_turek_2d1.toml as shipped, D/h = 20, Re 20, t = 5):
 //   dt       1e-2     5e-3     2e-3     1e-3     1e-4
 //   none     5.8087   5.7573   5.7253   5.7150   5.7088      (Cd; 1.75 % from 1e-2 to 1e-4)

@@ -10,8 +10,8 @@
 // What it separates (issue 13 point 4): the walls, the wall rows of B and B^T and the Neumann
 // pressure at walls, from the lid corners of the driven cavity. The cavity's first-order error was
 // at its corners (the lid leaked through the side walls: boundary_data.h); with smooth data the
-// walls converge at second order. Measured (this test's output; docs/validation.md, "Fluid steps:
-// convergence"), 16 / 32 / 64 / 128 cells:
+// walls converge at second order. Measured (this test's output; docs/evidence/validation.md, "Fluid
+// steps: convergence"), 16 / 32 / 64 / 128 cells:
 //   velocity, max over the nodes    1.23e-2  3.08e-3  7.72e-4  1.93e-4   orders 2.00 2.00 2.00
 //   pressure, L2 (M_p)              1.15e-1  3.28e-2  1.07e-2  3.68e-3   orders 1.81 1.61 1.54
 //   pressure, max over the nodes    3.55e-1  1.29e-1  5.77e-2  2.72e-2   orders 1.45 1.17 1.08

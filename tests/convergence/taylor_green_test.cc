@@ -10,11 +10,11 @@
 // nodes); the Marchuk-Yanenko splitting is first order in time. With dt = 0.25 h^2 both parts of
 // the velocity error scale as h^2, so the observed order of u is 2. The pressure is P1 on the 2h
 // mesh (second order at its nodes on a uniform mesh) and lags the convection it balances by one
-// step (O(dt) = O(h^2)), so its expected order is also 2. Measured (docs/validation.md): pressure
-// 2.01-2.04 on both pairs; velocity 2.4-2.6 between 16 and 32 cells and 2.25-2.43 between 32 and
-// 64, falling towards 2 (on 16 cells the error is 7 % of the field: pre-asymptotic). Asserted:
-// 2 +/- 0.5 on the finest pair, which separates second order from first or third, and >= 1.5 on
-// the coarse pair (a lost order would show there too).
+// step (O(dt) = O(h^2)), so its expected order is also 2. Measured (docs/evidence/validation.md):
+// pressure 2.01-2.04 on both pairs; velocity 2.4-2.6 between 16 and 32 cells and 2.25-2.43 between
+// 32 and 64, falling towards 2 (on 16 cells the error is 7 % of the field: pre-asymptotic).
+// Asserted: 2 +/- 0.5 on the finest pair, which separates second order from first or third, and
+// >= 1.5 on the coarse pair (a lost order would show there too).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,10 +1,11 @@
 // The time-step dependence of the drag on the test channel (tests/support/viscous_channel.h: a
 // fixed disk D = 0.4 in a Poiseuille channel, rho = eta = 1, h = 1/16, drag at t = 0.5) under the
-// three couplings of the rigid-body constraint (issue 13 point 2; docs/work_precision.md,
-// "Coupling the constraint with viscosity").
+// three couplings of the rigid-body constraint (issue 13 point 2;
+// docs/evidence/constraint_coupling.md, "Coupling the constraint with viscosity").
 //
 // dt-convergence study (2026-12-01, `dlmfd-solve` on the same scene, tolerances 1e-9; the commands
-// are in docs/work_precision.md): F_x at dt = 8, 4, 2, 1, 0.5 (e-3), nu dt / h^2 = 2.05 ... 0.13:
+// are in docs/evidence/constraint_coupling.md): F_x at dt = 8, 4, 2, 1, 0.5 (e-3), nu dt / h^2
+// = 2.05 ... 0.13:
 //   viscous: 57.8554 / 57.8356 / 57.8256 / 57.8206 / 57.8181: steps 0.0199, 0.0100, 0.0050,
 //            0.0025, first order with c = dF/d(dt) = 4.99, limit 57.8156;
 //   paper:   14.417 / 22.807 / 32.236 / 40.926 / 47.566 (51.950 at 2.5e-4), still 10 % low at
@@ -259,9 +260,9 @@ TEST(ViscousCoupling, FixedDiskStartsFromItsRecycledDirections) {
 // (ViscousConstraint::RemedyText). With collocation points the coupled Stokes solves' tolerance
 // comes first, with its value at the failure: a fixed disk 3h/4 off the nodes at D/h = 40 stalled
 // above the target through 1000 iterations with it at 1e-6 (the default's effective value) and
-// converged in 287 at 1e-8 (docs/work_precision.md, "The circle's sub-grid position"); a stall now
-// tightens it (ViscousCoupling.StallTightensTheCoupledStokesSolves), so the value named is the one
-// reached. The ring mesh's advice is the multiplier keys only.
+// converged in 287 at 1e-8 (docs/evidence/particle_boundary.md, "The circle's sub-grid position");
+// a stall now tightens it (ViscousCoupling.StallTightensTheCoupledStokesSolves), so the value named
+// is the one reached. The ring mesh's advice is the multiplier keys only.
 TEST(ViscousCoupling, NonConvergenceNamesTheKeysThatHelp) {
   for (const char* kind : {"collocation", "ring"}) {
     const Params params =

@@ -129,7 +129,7 @@ TEST(WatersKingSeries, MatchesReferenceTable) {
 // ny = 128), the h part at dt = 0.0025 is 2.44e-2, 5.8e-3, 1.36e-3, 0.35e-3 for ny = 16..128:
 // ratios 4.2, 4.3, 3.9, second order in h. ny = 128 with dt = 0.02 (flow CFL 3.3) has a transient
 // 2-D disturbance, and dt = 0.04 blows up: step (34) without viscosity (beta = 0) at a large CFL
-// number (docs/stability.md).
+// number (docs/evidence/stability.md).
 TEST(WatersKingStartup, DISABLED_StressSplittingStudy) {
   for (const char* splitting : {"explicit", "devss"}) {
     for (int ny : {16, 32, 64, 128}) {

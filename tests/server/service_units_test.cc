@@ -89,10 +89,10 @@ TEST(JobStore, AccuracyWarningsRoundTripAndASchemaOneStoreGainsTheColumn) {
 
   JobRecord job = MakeJob("warned", 0);
   job.warnings = {{"nu dt / h^2", 0.44236800000000003, "<= 0.195", "time.dt", "0.0004",
-                   "0.00013333333333333334", "docs/work_precision.md (d) dt ladder"},
+                   "0.00013333333333333334", "docs/evidence/work_precision.md (d) dt ladder"},
                   {"D / h (particles.0, the smallest of 2 below the bound)", 19.2, ">= 120",
                    "domain.h", "0.010416666666666666", "0.001488095238095238",
-                   "docs/work_precision.md (d), Which settings 3"}};
+                   "docs/evidence/work_precision.md (d), Which settings 3"}};
   store.InsertJobs({job}, "local", "");
   auto back = store.Get("warned");
   ASSERT_TRUE(back);

@@ -102,7 +102,7 @@ void ExpectSuggestionSatisfies(const char* text, std::vector<std::string> sets,
 }
 
 TEST(AccuracyEnvelope, MeasuredScenesInsideEveryBoundGiveNoWarning) {
-  // The Waters-King run of docs/work_precision.md (a) (error 3.3e-3): nu dt / h^2 = 5.12,
+  // The Waters-King run of docs/evidence/work_precision.md (a) (error 3.3e-3): nu dt / h^2 = 5.12,
   // c dt / h = 0.151, dt / lambda = 0.005, U dt / h = 1.5 * 0.005 * 32 = 0.24.
   EXPECT_TRUE(AccuracyWarnings(Scene(kWatersKing)).empty());
   // The cavity at its Courant number 0.64, the largest of the study: on the bound, not outside.

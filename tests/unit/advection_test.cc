@@ -95,9 +95,9 @@ TEST(Advection, UniformFlowIsUnchangedByBothSchemes) {
 
 // domain.diagonals = "both": step (34) on the mean of the two diagonals of each square, with either
 // scheme, commutes with the mirror images x -> 1 - x and y -> 1 - y of a closed box (to round-off),
-// where the mesh's own diagonal does not (the lift bias of docs/work_precision.md (e)). The field:
-// no-slip walls, u = sin(pi x) sin(2 pi y) (1 + x), v = sin(2 pi x) sin(pi y) (1 + y^2), the
-// Taylor term removed (steady_correction = "taylor"), no diffusion (beta = 0).
+// where the mesh's own diagonal does not (the lift bias of docs/evidence/particle_boundary.md (e)).
+// The field: no-slip walls, u = sin(pi x) sin(2 pi y) (1 + x), v = sin(2 pi x) sin(pi y) (1 + y^2),
+// the Taylor term removed (steady_correction = "taylor"), no diffusion (beta = 0).
 double StepMirrorMismatch(AdvectionScheme scheme, MeshDiagonals diagonals, bool mirror_x) {
   const BoundarySide wall = AdvectionSide(SideType::kWall);
   Params p = MakeParams(1.0 / 16, wall, wall, wall, wall);

@@ -8,7 +8,7 @@
 //   preconditioned by the velocity block's own factorization (the steady Oseen solves);
 // - the engine's operator is the prototype's (bench/boundary_prototypes.py, `cut`, an independent
 //   SciPy implementation): the creeping disk's drag at D/h = 10 and 20 to the digits recorded in
-//   docs/work_precision.md;
+//   docs/evidence/cut_cell_boundary.md;
 // - the mean of the forms on both triangulations is mirror-symmetric (F_y = 0 on the mid-line);
 // - periodic sides and domains with no outflow side are refused, naming domain.sides.
 #include <gtest/gtest.h>
@@ -132,9 +132,9 @@ TEST(CutCellStokes, IterativeSolveIsTheDirectSolve) {
 
 TEST(CutCellStokes, DragIsThePrototypes) {
   // bench/boundary_prototypes.py cut D S --ghost 0.01 --ghost-p 0.001: F_x = 6.5336 (D/h = 10,
-  // S = 0.5) and 6.50193 (D/h = 20, S = 0), the raw values (docs/work_precision.md, "cut: the
-  // ghost penalty is most of its error"). Neither position has two nodes on the circle joined by
-  // a mesh edge, which the prototype misses (BoundaryPiecesOnMeshEdgesAreKept).
+  // S = 0.5) and 6.50193 (D/h = 20, S = 0), the raw values (docs/evidence/cut_cell_boundary.md,
+  // "cut: the ghost penalty is most of its error"). Neither position has two nodes on the circle
+  // joined by a mesh edge, which the prototype misses (BoundaryPiecesOnMeshEdgesAreKept).
   const double cases[][3] = {{10.0, 0.5, 6.5336}, {20.0, 0.0, 6.50193}};
   for (const auto& [d_over_h, shift, prototype] : cases) {
     const DomainParams d = CutCreepingChannel(d_over_h);

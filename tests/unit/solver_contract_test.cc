@@ -189,7 +189,7 @@ TEST(RunSummary, TextKeepsTheLayoutOfTheResultsDirectory) {
 TEST(RunSummary, WarningsReadBackAndAnOlderSummaryHasNone) {
   RunSummary in = FailedRun();
   in.warnings = {{"nu dt / h^2", 0.44236800000000003, "<= 0.195", "time.dt", "0.0004",
-                  "0.00013333333333333334", "docs/work_precision.md (d) dt ladder"}};
+                  "0.00013333333333333334", "docs/evidence/work_precision.md (d) dt ladder"}};
   const RunSummary out = ParseRunSummary(RunSummaryJson(in));
   ASSERT_EQ(out.warnings.size(), 1u);
   EXPECT_EQ(out.warnings[0].setting, "nu dt / h^2");
@@ -198,7 +198,7 @@ TEST(RunSummary, WarningsReadBackAndAnOlderSummaryHasNone) {
   EXPECT_EQ(out.warnings[0].key, "time.dt");
   EXPECT_EQ(out.warnings[0].current, "0.0004");
   EXPECT_EQ(out.warnings[0].suggested, "0.00013333333333333334");
-  EXPECT_EQ(out.warnings[0].source, "docs/work_precision.md (d) dt ladder");
+  EXPECT_EQ(out.warnings[0].source, "docs/evidence/work_precision.md (d) dt ladder");
   std::string older = RunSummaryJson(FailedRun());
   const auto at = older.find(",\n  \"warnings\": []");
   ASSERT_NE(at, std::string::npos);

@@ -20,7 +20,8 @@ namespace dlmfd {
 // implementation matches this analysis to the power iteration's accuracy, so no bug was found. The
 // bound holds for Q = 1 (the Taylor start alone, a Lax-Wendroff step) as for Q >= 2 (the stability
 // test checks Q = 1 and 2), and both are second order in tau; Q = 1 costs one K_V product per call
-// instead of two. The splitting's first-order error dominates the difference (docs/performance.md).
+// instead of two. The splitting's first-order error dominates the difference
+// (docs/evidence/performance.md).
 constexpr int kMinSubsteps = 1;
 // The tendency correction's cap (header): with the wide form L(L u) in place of the compact K_V,
 // the step with the implicit viscosity of (33) is stable while |V|^4 dt^3 / (nu h^2) <= 13.8 (von

@@ -102,7 +102,7 @@ using kernels::Diagonal;
 // neighbours lie at fixed offsets, and each form has a short closed form (below), which the
 // compiler does not find from the generic gather's sum over 6 (or 2 x 6) triangles (floating-point
 // sums are not reassociated); on the paper's grid the closed forms take about half the time
-// (docs/performance.md, "The forms' interior closed forms").
+// (docs/evidence/performance.md, "Full Oldroyd-B step": the interior rows as closed forms).
 template <typename Generic, typename Interior>
 inline void SweepRowSplit(const AxisWrap& ax, bool interior_row, Generic&& generic,
                           Interior&& interior) {

@@ -39,11 +39,11 @@ std::string ViscousConstraint::RemedyText(ParticleMeshKind kind, double stokes_t
   std::ostringstream text;
   text << " (";
   if (kind == ParticleMeshKind::kCollocation) {
-    // docs/work_precision.md, "The circle's sub-grid position": a fixed disk 3h/4 off the nodes at
-    // D/h = 40 stalled at a mismatch of 2.4e-4 > 3e-5 through 1000 iterations with the coupled
-    // solves at 1e-6 (the default's effective value) and converged in 287 at 1e-8. The stall rule
-    // (kStallWindow) now tightens them itself, down to kStokesToleranceFloor; what it reached is
-    // named here.
+    // docs/evidence/particle_boundary.md, "The circle's sub-grid position": a fixed disk 3h/4 off
+    // the nodes at D/h = 40 stalled at a mismatch of 2.4e-4 > 3e-5 through 1000 iterations with the
+    // coupled solves at 1e-6 (the default's effective value) and converged in 287 at 1e-8. The
+    // stall rule (kStallWindow) now tightens them itself, down to kStokesToleranceFloor; what it
+    // reached is named here.
     text << "with collocation points the coupled Stokes solves' tolerance, now " << stokes_tolerance
          << ", bounds the mismatch: lower solvers.stokes_tolerance below it, or ";
   }

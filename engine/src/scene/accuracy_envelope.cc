@@ -11,17 +11,19 @@
 namespace dlmfd {
 namespace {
 
-constexpr const char* kSourceD = "docs/work_precision.md (d), Which settings 3";
-constexpr const char* kSourceDCollocation = "docs/work_precision.md (e), the work-precision chart";
-constexpr const char* kSourceViscous = "docs/work_precision.md (d) dt ladder";
-constexpr const char* kSourceViscousFluid = "docs/work_precision.md (a), (b)";
+constexpr const char* kSourceD = "docs/evidence/work_precision.md (d), Which settings 3";
+constexpr const char* kSourceDCollocation =
+    "docs/evidence/particle_boundary.md (e), the work-precision chart";
+constexpr const char* kSourceViscous = "docs/evidence/work_precision.md (d) dt ladder";
+constexpr const char* kSourceViscousFluid = "docs/evidence/work_precision.md (a), (b)";
 constexpr const char* kSourceViscousCoupling =
-    "docs/work_precision.md, Coupling the constraint with viscosity";
-constexpr const char* kSourceCourant = "docs/work_precision.md (b), Which settings 1";
-constexpr const char* kSourceLaggedCourant = "docs/work_precision.md, The automatic coupling";
-constexpr const char* kSourceElastic = "docs/work_precision.md (a)";
+    "docs/evidence/constraint_coupling.md, Coupling the constraint with viscosity";
+constexpr const char* kSourceCourant = "docs/evidence/work_precision.md (b), Which settings 1";
+constexpr const char* kSourceLaggedCourant =
+    "docs/evidence/constraint_coupling.md, The automatic coupling";
+constexpr const char* kSourceElastic = "docs/evidence/work_precision.md (a)";
 constexpr const char* kSourceParticleMesh =
-    "docs/work_precision.md, The particle mesh against the fluid mesh";
+    "docs/evidence/work_precision.md, The particle mesh against the fluid mesh";
 
 // A setting on its bound is inside it: the settings are products and quotients of the scene's
 // numbers (0.01 / 0.015625), so a bound is compared with this margin of round-off.

@@ -34,10 +34,10 @@ enum class Side { kLeft = 0, kRight = 1, kBottom = 2, kTop = 3 };
 // image (every square cut along its NW-SE diagonal): the divergence B of step (33) and the
 // wave-like step's K_V and N(V, .) of step (34). The mesh is not mirror-symmetric (x -> -x or y ->
 // -y maps it onto the other diagonal's), so a flow symmetric in the domain's mid-line is not quite
-// symmetric on it; the mean is (mesh/grid_kernels.h, Diagonal; docs/work_precision.md (e), "The
-// lift's mirror bias"). A scene file's default is kBoth (numerics.preset, scene/numerics_preset.h:
-// the lift's sign right, Schaefer-Turek Cd +0.79 % at D/h = 20); the struct's stays the paper's
-// kSwNe, which the tests that build Params studied.
+// symmetric on it; the mean is (mesh/grid_kernels.h, Diagonal; docs/evidence/particle_boundary.md
+// (e), "The lift's mirror bias"). A scene file's default is kBoth (numerics.preset,
+// scene/numerics_preset.h: the lift's sign right, Schaefer-Turek Cd +0.79 % at D/h = 20); the
+// struct's stays the paper's kSwNe, which the tests that build Params studied.
 enum class MeshDiagonals { kSwNe, kBoth };
 
 struct DomainParams {
@@ -78,7 +78,8 @@ enum class ConformationRepresentation { kStandard, kLog, kSqrt };
 //              (w -> 0, the paper's scheme). As lambda -> 0 the explicit rest vanishes and the step
 //              is the Newtonian step of viscosity eta, so the drag is continuous in lambda on every
 //              grid; w does not depend on dt, so neither does a steady state
-//              (conformation/oldroyd_b_polymer.h; docs/validation.md, "The viscosity rule").
+//              (conformation/oldroyd_b_polymer.h; docs/evidence/validation.md, "The viscosity
+//              rule").
 enum class StressSplitting { kExplicit, kDevss };
 
 struct FluidParams {
@@ -131,8 +132,8 @@ struct TimeParams {
 
 // Step (34): kLeastSquares, the paper's least-squares CG; kWave, the explicit wave-like scheme. A
 // scene file's default is kWave (numerics.preset, scene/numerics_preset.h: 3.5-4.5 times cheaper
-// and as accurate or more on every problem of docs/work_precision.md, "Which settings" 1); the
-// struct's stays the paper's kLeastSquares, which the tests that build Params studied.
+// and as accurate or more on every problem of docs/evidence/work_precision.md, "Which settings" 1);
+// the struct's stays the paper's kLeastSquares, which the tests that build Params studied.
 enum class AdvectionScheme { kLeastSquares, kWave };
 
 // What the advection step (34) does about the splitting's steady-state error: kNone, nothing (the
@@ -161,10 +162,10 @@ enum class ConstraintCoupling { kPaper, kViscous, kIncremental };
 // beta in (37). The engine supports gamma = 0 only (the paper's choice), which validation enforces;
 // with constraint = kViscous or kIncremental also beta = 0 (all the viscosity in the step that sees
 // the particles). The struct's defaults are kIncremental with alpha = 1, beta = 0
-// (docs/work_precision.md, "Coupling the constraint with viscosity"); a scene file's constraint
-// defaults to "auto", which ParseScene resolves from the scene's numbers (scene/auto_coupling.h),
-// and its alpha and beta follow the constraint: 1 and 0, or the paper's 1/2 and 1/2 with
-// constraint = "paper" (DefaultWeights).
+// (docs/evidence/constraint_coupling.md, "Coupling the constraint with viscosity"); a scene file's
+// constraint defaults to "auto", which ParseScene resolves from the scene's numbers
+// (scene/auto_coupling.h), and its alpha and beta follow the constraint: 1 and 0, or the paper's
+// 1/2 and 1/2 with constraint = "paper" (DefaultWeights).
 struct SplittingParams {
   double alpha = 1.0;
   double beta = 0.0;
@@ -182,10 +183,10 @@ struct SplittingParams {
 };
 
 // Stopping rules and limits of the iterative solvers. The defaults are the loosest level of the
-// work-precision study (docs/work_precision.md, "tol" ladders: 1e-2 ... 1e-8) whose answers differ
-// from the tightest by at most 0.6 % of the discretisation error on all four reference problems;
-// on the paper's 5.2 pair they move particle velocities by 2e-5 relative to t = 1 against 1e-6
-// (docs/performance.md, "Stopping rules").
+// work-precision study (docs/evidence/work_precision.md, "Ladders": the tol ladders: 1e-2 ... 1e-8)
+// whose answers differ from the tightest by at most 0.6 % of the discretisation error on all four
+// reference problems; on the paper's 5.2 pair they move particle velocities by 2e-5 relative to t =
+// 1 against 1e-6 (docs/evidence/performance.md, "Stopping rules").
 struct SolverParams {
   double stokes_tolerance = 1e-4;  // Uzawa/PCG, relative to a fixed reference residual
   int stokes_max_iterations = 200;
@@ -196,7 +197,8 @@ struct SolverParams {
   // DLM CG (37) and the viscous coupling's PCG (particles/viscous_constraint.h). 2000: the cold
   // first step of a fixed disk with collocation points in creeping flow took 430 / 884 iterations
   // at R/h = 24 with its centre on a node / h/4 off it (the confined cylinder at rho = 0.01; 500
-  // failed at step 1; docs/validation.md, "Creeping flow at a time step set by the motion").
+  // failed at step 1; docs/evidence/validation_particles.md, "Creeping flow at a time step set by
+  // the motion").
   int multiplier_max_iterations = 2000;
 };
 
@@ -243,16 +245,16 @@ enum class BoundaryInterpolation { kQuadratic, kLinear, kBiquadratic };
 
 // The paper's particle mesh against its fluid mesh, h_p / h = (1/70) / (1/96) (section 5). A scene
 // file without particle_mesh.h gets h_p = kPaperParticleMeshRatio domain.h (scene/scene_file.cc):
-// the ratio of every accuracy study (docs/work_precision.md (c), (d)) and inside the multiplier
-// CG's well-conditioned range h_p / h >= 1.1 ("The particle mesh against the fluid mesh"), on any
-// mesh. ParticleMeshParams{} keeps 1/70, the paper's h_p at its h = 1/96, for code that builds
-// Params.
+// the ratio of every accuracy study (docs/evidence/work_precision.md (c), (d)) and inside the
+// multiplier CG's well-conditioned range h_p / h >= 1.1 ("The particle mesh against the fluid
+// mesh"), on any mesh. ParticleMeshParams{} keeps 1/70, the paper's h_p at its h = 1/96, for code
+// that builds Params.
 inline constexpr double kPaperParticleMeshRatio = 96.0 / 70.0;
 
 struct ParticleMeshParams {
-  // The default since issue 32: collocation points (docs/work_precision.md (e): Schaefer-Turek Cd
-  // +0.78 % at D/h = 20 against the ring's +2.23 %, the lift's sign right from D/h = 40 on, and a
-  // multiplier CG of about one iteration a step against 12).
+  // The default since issue 32: collocation points (docs/evidence/particle_boundary.md (e):
+  // Schaefer-Turek Cd +0.78 % at D/h = 20 against the ring's +2.23 %, the lift's sign right from
+  // D/h = 40 on, and a multiplier CG of about one iteration a step against 12).
   ParticleMeshKind kind = ParticleMeshKind::kCollocation;
   double h = 1.0 / 70;   // ring: multiplier mesh size > 0 (scene files: kPaperParticleMeshRatio h)
   double spacing = 2.0;  // collocation: boundary point spacing in units of domain.h, in [0.5, 4]

@@ -30,7 +30,7 @@
 // u^0 to u^0 + dt u_t + (dt^2/2) u_tt + O(dt^3), so at a fixed point of the Lie splitting the
 // implicit step (33) sees (u - u_adv)/dt = M^-1 N(V, u) + (dt/2) M^-1 (K_V u + M_out u_t): the
 // steady solution is that of the equations with an extra streamline diffusion (dt/2) (V.grad)^2 u,
-// of size dt |V|^2 / 2 (docs/validation.md, cavity section). The correction adds
+// of size dt |V|^2 / 2 (docs/evidence/validation.md, cavity section). The correction adds
 // theta (dt^2/2) M^-1 (K_V u^0 + M_out u_t) back to u_adv, node by node with
 //   theta = min(1, kappa nu_N / (dt |V|^2 / 2)),  kappa = 1/2,  nu_N = eta_N / rho,
 // so the fixed point solves the steady equations to O(dt^2) wherever dt |V|^2 / 2 <= nu_N / 2.
@@ -39,9 +39,9 @@
 // grows it by at most 1 + theta dt^2 |V|^2 k^2 / 2 <= 1 + kappa nu dt k^2, so with kappa < 1 the
 // pair stays stable. That is a constant-coefficient argument, assuming the central advection
 // symbol is bounded by the Laplacian's; no test checks it. Measured: the stability limits of the
-// Newtonian runs did not move, while a polymer's did (docs/work_precision.md).
+// Newtonian runs did not move, while a polymer's did (docs/evidence/work_precision.md).
 //
-// Tendency correction (splitting.steady_correction = "tendency"; docs/work_precision.md, "The
+// Tendency correction (splitting.steady_correction = "tendency"; docs/evidence/splitting.md, "The
 // splitting's fixed point"): the Taylor correction's cap leaves part of the term where the
 // streamline diffusion exceeds nu_N / 2 (near a lid, a disk, at Re 1000), and with Q > 1 the
 // sub-steps add O(dt^3) terms that do not vanish at a steady state. Here the step integrates the

@@ -9,13 +9,13 @@
 // flux through a wall is zero. (Where the data are discontinuous at a corner, as at the lid of a
 // driven cavity, the other rule, one side owning both components, makes the wall next to the lid
 // leak: u = 1 at the corner node, linear to 0 one node below, a source of strength h/2 at one
-// upper corner and a sink at the other, an O(h) error in the whole flow; docs/validation.md,
-// lid-driven cavity.) With continuous data (walls, a poiseuille profile vanishing at its ends) the
-// rules agree. Outflow and periodic sides carry no data: their nodes are left untouched.
-// Time: the data are those of the time last given to SetTime (t = 0 until then); a side without a
-// ramp gives the same values at every time, bit for bit (its factor is exactly 1). The Simulation
-// sets t_{n+1} before step (33), so steps (33) and (34) of a step see the data of its new time
-// level.
+// upper corner and a sink at the other, an O(h) error in the whole flow;
+// docs/evidence/validation.md, lid-driven cavity.) With continuous data (walls, a poiseuille
+// profile vanishing at its ends) the rules agree. Outflow and periodic sides carry no data: their
+// nodes are left untouched. Time: the data are those of the time last given to SetTime (t = 0 until
+// then); a side without a ramp gives the same values at every time, bit for bit (its factor is
+// exactly 1). The Simulation sets t_{n+1} before step (33), so steps (33) and (34) of a step see
+// the data of its new time level.
 #pragma once
 
 #include <vector>

@@ -17,8 +17,8 @@
 // of the whole liquid is p - G x.e); in sedimentation G L balances the suspension's excess weight
 // and the walls' shear on the liquid that climbs beside the particles. The later sub-steps
 // (34)-(38) leave the rate O(dt) off Q_0 (the DLM step hands the particles' weight of one step to
-// the liquid); the next (33) restores it. Measurements: docs/validation.md, "Sedimentation without
-// end walls".
+// the liquid); the next (33) restores it. Measurements: docs/evidence/validation_particles.md,
+// "Sedimentation without end walls".
 #pragma once
 
 #include <vector>

@@ -52,7 +52,7 @@ class CouplingOperator {
   // Build numbers the slots and sorts E^T on the threads from this many threads on (on fewer, in
   // entry order on one thread): the threads' version takes 1.9 times the instructions (claims,
   // atomics, a sort per slot; 64 M against 33 M over 5 steps of the 102-disk bed of paper 5.4),
-  // so it gains nothing on two threads (docs/performance.md, "Threads").
+  // so it gains nothing on two threads (docs/evidence/performance.md, "Threads").
   static constexpr int kParallelSlotsTeam = 3;
 
   // For at most max_points stacked points on this grid and domain.

@@ -1,5 +1,6 @@
 // Step (33) of the Marchuk-Yanenko scheme with fixed bodies cut out of the uniform mesh
-// (particle_mesh.kind = "cut_cell"; issue 33, docs/work_precision.md, "A second-order boundary"):
+// (particle_mesh.kind = "cut_cell"; issue 33, docs/evidence/cut_cell_boundary.md, "A second-order
+// boundary"):
 //   (rho/dt) (u^{n+1/4} - u^n, v)_l + eta (grad u^{n+1/4}, grad v) - (p, div v) = (f, v),
 //   (q, div u^{n+1/4}) = 0   on the fluid part only, u = 0 on the bodies by Nitsche's method
 // (particles/cut_cell_stokes.h has the forms, the ghost penalties and the solver: GMRES

@@ -1,7 +1,7 @@
-// The cut-cell boundary of fixed bodies (issue 33; docs/work_precision.md, "A second-order
-// boundary"): the generalized Stokes problem of step (33), optionally with an Oseen term, on the
-// fluid part of the uniform mesh only, the no-slip condition on the bodies imposed weakly by
-// Nitsche's method on the chords of the cut elements (particles/cut_cell_geometry.h):
+// The cut-cell boundary of fixed bodies (issue 33; docs/evidence/cut_cell_boundary.md, "A
+// second-order boundary"): the generalized Stokes problem of step (33), optionally with an Oseen
+// term, on the fluid part of the uniform mesh only, the no-slip condition on the bodies imposed
+// weakly by Nitsche's method on the chords of the cut elements (particles/cut_cell_geometry.h):
 //   find u (P1-iso-P2, active nodes), p (P1 on the 2h macro-triangles, active nodes) with
 //   (rho/dt) (u, v)_l + rho ((w . grad) u, v) + eta (grad u, grad v) - (p, div v) + (q, div u)
 //   - eta <d_n u, v> - eta <d_n v, u> + gamma eta / h <u, v> + <p, v . n> - <q, u . n>
@@ -17,8 +17,8 @@
 // Solver: restarted GMRES on the saddle point [[A, B^T], [B, -G_p / eta]], right-preconditioned by
 // the block upper triangle [[A~, B^T], [0, -S~]]: z_p = -S~^-1 r_p, then z_u = A~^-1 (r_u - B^T
 // z_p) (half the iterations of the block diagonal in the time loop: 15 against 33 a step for
-// Schaefer-Turek at D/h = 20; docs/work_precision.md, "A second-order boundary: the time loop"),
-// with
+// Schaefer-Turek at D/h = 20; docs/evidence/cut_cell_boundary.md, "A second-order boundary: the
+// time loop"), with
 //   A~^-1:    the fast solver of (rho/dt) M_l + eta K on the whole uniform grid, then a direct
 //             solve of the cut operator on the band of unknowns within 2h of a boundary (a
 //             multiplicative correction: it carries the Nitsche and ghost terms the fast solver
@@ -48,8 +48,8 @@
 namespace dlmfd {
 
 // The method's constants, declared once. The ghost penalties are the smaller pair of the study
-// (docs/work_precision.md, "A second-order boundary"): the penalty is most of the drag's error and
-// 0.1 / 0.01 miss 0.3 % at D/h = 20.
+// (docs/evidence/cut_cell_boundary.md, "A second-order boundary"): the penalty is most of the
+// drag's error and 0.1 / 0.01 miss 0.3 % at D/h = 20.
 struct CutCellConstants {
   double nitsche = 20.0;          // gamma
   double ghost_velocity = 0.01;   // g_u

@@ -19,18 +19,18 @@
 // step: the lag e^n = nu^n - nu_coupled obeys e^{n+1} = (I - P^-1 S) e^n with P the inviscid Schur
 // complement of (37) and S the viscous one of particles/viscous_constraint.h, whose spectrum lies
 // in (0, 1]: for fixed particles no oscillation, and the force modes of wavelength l converge in
-// about 1 + nu dt / l^2 steps. The failures once measured beyond that argument (docs/stability.md,
-// "The coupling of the constraint": free disks barely heavier than the liquid blowing up from
-// nu dt / h^2 = 5.5, or at moderate steps on coarse meshes, or in their own polymer layer) came
-// from the reaction given as a kick at the start of (36), not from the lag: with the force over
-// the sub-steps, Faxen's disk (rho_d / rho_L = 1.01, h = 1/96) settles at the same speed within
-// 0.02 % from nu dt / h^2 = 1.4 to 9.2, 0.21 % at 18.4 (tests/convergence/
+// about 1 + nu dt / l^2 steps. The failures once measured beyond that argument
+// (docs/evidence/stability.md, "The coupling of the constraint": free disks barely heavier than the
+// liquid blowing up from nu dt / h^2 = 5.5, or at moderate steps on coarse meshes, or in their own
+// polymer layer) came from the reaction given as a kick at the start of (36), not from the lag:
+// with the force over the sub-steps, Faxen's disk (rho_d / rho_L = 1.01, h = 1/96) settles at the
+// same speed within 0.02 % from nu dt / h^2 = 1.4 to 9.2, 0.21 % at 18.4 (tests/convergence/
 // lagged_reaction_test.cc). The accuracy envelope bounds nu dt / h^2 by 2.05 for the transient's
 // accuracy.
 // Where: at X^n, because the advection step (34) that follows (33) carries the liquid inside a
 // particle, and the push nu^n gave it, by U dt to X^{n+1}, where (37) holds the particle (the
 // viscous coupling puts the particles at X^n in (33) for the same reason). Spreading nu^n at
-// X^n + dt U^n instead was measured (2026-12-03; docs/stability.md, "The coupling of the
+// X^n + dt U^n instead was measured (2026-12-03; docs/evidence/stability.md, "The coupling of the
 // constraint", failure 2). It completed the four least-squares files of paper 5.1a that fail here
 // (U dt / h about 1, or h_p finer than 1.1 h: outside the accuracy envelope), but it failed the
 // wave-advected file at dt = 1e-3 that completes here, and its transient fall speed carried
@@ -43,7 +43,7 @@
 // steady state d nu = 0, so E u^{n+1/4} = U exactly, and u^{n+1/4} is the field whose equations the
 // splitting's fixed point solves (fluid/advection_wave.h, the tendency correction); held on
 // u^{n+2/4} = u^{n+1/4} + dt L u^{n+1/4} instead, the constraint was off by dt E L u at the points,
-// so the steady drag moved with dt (docs/work_precision.md, "The splitting's fixed point").
+// so the steady drag moved with dt (docs/evidence/splitting.md, "The splitting's fixed point").
 // A moving particle keeps it on u^{n+2/4} at X^{n+1}, where (34) has carried its liquid; so does
 // every particle under the other corrections, whose fixed point no single field solves (held on
 // u^{n+1/4} there, a fixed disk's steady drag in a channel moved away from the viscous coupling's

@@ -53,12 +53,11 @@
 // came near, and the collision force over m_e blew the run up; and X^{n+2/4}, where (37) holds the
 // particle, lay g dt^2 / 2 from X^{n+1} (1.7 h for Faxen's disk at h = 1/96, dt = 0.006), so the
 // lag was spread at one place and its increment found at another. Those were failures 1, 3 and 4
-// of docs/stability.md ("The coupling of the constraint"): with the force over the sub-steps
-// X^{n+2/4} lies within dt^2 |dU/dt| / 2 of X^{n+1} and all three runs complete.
-// Not supported: free particles with rho_d < rho_L; gamma != 0.
-// References: Glowinski et al., J. Comput. Phys. 169 (2001) 363-426; Singh, Joseph, Hesla,
-// Glowinski, Pan, J. Non-Newtonian Fluid Mech. 91 (2000) 165-188 (the paper); method notes 2,
-// part 1.
+// of docs/evidence/stability.md ("The coupling of the constraint"): with the force over the
+// sub-steps X^{n+2/4} lies within dt^2 |dU/dt| / 2 of X^{n+1} and all three runs complete. Not
+// supported: free particles with rho_d < rho_L; gamma != 0. References: Glowinski et al., J.
+// Comput. Phys. 169 (2001) 363-426; Singh, Joseph, Hesla, Glowinski, Pan, J. Non-Newtonian Fluid
+// Mech. 91 (2000) 165-188 (the paper); method notes 2, part 1.
 #pragma once
 
 #include <memory>

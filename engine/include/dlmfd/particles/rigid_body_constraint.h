@@ -32,12 +32,12 @@
 // velocity scale, in the G norm). An increment (the lagged multiplier) is solved to tol^2 times
 // the larger of <g0, g0>_G and <g_s, g_s>_G, g_s the response of the stored multiplier (the
 // mismatch it holds): relative to its own shrinking g0 alone, the 1,000-disk bed's CG needed 16 to
-// 370 iterations a step and rising (docs/work_precision.md, "The increment's stopping rule").
-// Throws SolverNotConverged after solvers.multiplier_max_iterations.
-// Neutrally buoyant free particles (rho_d = rho_L, m_e = j_e = 0): the momentum equations of (37)
-// become the constraints C^T nu = f, with C = [e_x, e_y, r_perp] the rigid modes at the points and
-// f = (F'_avg, 0) the collision force of the predictor (the particle, having no excess mass, passes
-// it straight to the fluid); (U, omega) becomes their multiplier:
+// 370 iterations a step and rising (docs/evidence/constraint_coupling.md, "The increment's stopping
+// rule"). Throws SolverNotConverged after solvers.multiplier_max_iterations. Neutrally buoyant free
+// particles (rho_d = rho_L, m_e = j_e = 0): the momentum equations of (37) become the constraints
+// C^T nu = f, with C = [e_x, e_y, r_perp] the rigid modes at the points and f = (F'_avg, 0) the
+// collision force of the predictor (the particle, having no excess mass, passes it straight to the
+// fluid); (U, omega) becomes their multiplier:
 //   rho_L h^2 (u - u*)/dt = E^T nu,   C^T nu = f,   E u = C (U, omega).
 // Exact elimination, with nu = G lambda and the G-orthogonal projector P = I - C S^-1 C^T G
 // (S = C^T G C, 3x3 per mesh, constant while the mesh translates; rebuilt when it turns):

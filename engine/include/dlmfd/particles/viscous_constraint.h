@@ -95,7 +95,7 @@ class ViscousConstraint {
   // kTightening for the rest of that step and restarts from the current nu (the next step starts
   // again from StokesSettings: the cold start is where the stalls were seen, and a tolerance kept
   // tight for the run cost 1.46 times the Stokes iterations a step of the confined cylinder;
-  // docs/work_precision.md, "The viscous coupling's cost"), while the tolerance stays
+  // docs/evidence/constraint_coupling.md, "The viscous coupling's cost"), while the tolerance stays
   // >= kStokesToleranceFloor (one tightening from the collocation points' 1e-6, two from the
   // ring mesh's 1e-4). Measured (2026-12-04) on a fixed disk of D = 0.1 in creeping channel flow
   // (eta = 1, dt = 0.05, D/h = 40, the centre 3h/4 off the nodes): at 1e-6 the mismatch stalled at

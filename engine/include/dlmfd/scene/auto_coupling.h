@@ -1,7 +1,8 @@
 // splitting.constraint = "auto", the default since issue 32: the coupling of the rigid-body
 // constraint with viscosity (core/params.h, ConstraintCoupling) chosen at the start of a run from
 // the scene's dimensionless numbers, where no single coupling is the best everywhere
-// (docs/work_precision.md, "Coupling the constraint with viscosity"; docs/accuracy.md).
+// (docs/evidence/constraint_coupling.md, "Coupling the constraint with viscosity";
+// docs/accuracy.md).
 //
 // The rules are tried in order and the first that applies decides; each is one function in
 // scene/auto_coupling.cc with its evidence beside it, and one test pins it

@@ -5,7 +5,7 @@
 // (issue 38). kMeasured: FFTW_MEASURE above 4096 points (the choice before issue 38): FFTW times
 // candidate algorithms and keeps the fastest, which a loaded machine can change from one run to
 // the next, so two runs agreed only to round-off. What the deterministic choice costs per time step
-// on the paper's grid is in docs/performance.md, "FFTW plans and reproducibility"
+// on the paper's grid is in docs/evidence/performance.md, "FFTW plans and reproducibility"
 // (bench/oldroyd_b_step_bench, its planning argument). Set before any solver is built; plans made
 // before keep theirs.
 #pragma once

@@ -8,8 +8,8 @@
 // with E = DFT(e). Why: FFTW 3.3 computes RODFT00/REDFT00 by padding to the same length-L real DFT
 // in its halfcomplex form plus copies, which on the paper's grid (n = 191 velocity, n = 97 pressure
 // columns) takes about twice as long as the SIMD r2c codelets on the same extension
-// (docs/performance.md, "Fast solves"). The extension is exact algebra, so accuracy is that of
-// the FFT; tests/unit/type_one_transform_test.cc compares with FFTW's r2r on random rows.
+// (docs/evidence/performance.md, "Fast solves"). The extension is exact algebra, so accuracy is
+// that of the FFT; tests/unit/type_one_transform_test.cc compares with FFTW's r2r on random rows.
 //
 // Apply transforms `rows` contiguous rows of `length` values in place, in blocks of kBlockRows rows
 // whose extension and spectrum (about 100 KB) stay in the core's L2 cache: extending whole arrays
