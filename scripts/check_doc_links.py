@@ -1,0 +1,219 @@
+#!/usr/bin/python3
+"""The code cites docs that exist (CONTRIBUTING.md, docs/README.md).
+
+Checks, over the tracked files of the checkout:
+  1. every relative Markdown link or image in a .md file ([text](path), [text](path#anchor),
+     [text](#anchor)) names a file or folder that exists, and its anchor a heading of that page
+     (GitHub's heading ids);
+  2. every `docs/...` path cited anywhere (code comments, scripts, tests, tables) exists, and its
+     `#anchor` too; a path followed by a placeholder (`docs/figures/wp_<problem>.png`,
+     `docs/stability/${name}.csv`) must be the start of at least one tracked path;
+  3. a cited page followed by a quoted section title (`docs/evidence/splitting.md, "The splitting's
+     fixed point"`) has a heading, or a paragraph's bold lead, that begins with that title;
+  4. every `design.md N` citation names a section N of docs/design.md.
+Prints each broken citation as FILE:LINE: message; exit status 1 when any, 77 outside a git
+checkout (the tracked files are unknown). No network. Run: scripts/check_doc_links.py
+"""
+
+import os
+import re
+import subprocess
+import sys
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+# Text files that may cite docs (binary figures and data tables are not read).
+TEXT_SUFFIXES = (".md", ".cc", ".h", ".py", ".sh", ".txt", ".toml", ".js", ".html", ".cmake",
+                 ".proto", ".css", ".yml", ".yaml", ".json", ".in", ".supp")
+MD_LINK = re.compile(r"!?\[(?:[^\]\[]|\[[^\]]*\])*\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
+DOCS_PATH = re.compile(r"(?<![\w./-])docs/[\w./-]*(?:#[\w-]+)?")
+DESIGN_CITE = re.compile(r"design\.md(?: section)? (\d+(?:\.\d+)*)")
+PLACEHOLDER_START = ("<", "$", "*", "{", "%")
+
+
+def tracked_files():
+    try:
+        out = subprocess.run(["git", "-C", ROOT, "ls-files", "-z"], check=True,
+                             capture_output=True).stdout
+    except (OSError, subprocess.CalledProcessError):
+        return None
+    return [p for p in out.decode().split("\0") if p]
+
+
+def slug(heading):
+    """GitHub's id of a heading: markup and punctuation dropped, lower case, spaces to '-'."""
+    text = re.sub(r"\[([^\]]*)\]\([^)]*\)", r"\1", heading)  # links keep their text
+    text = text.strip().lower()
+    text = re.sub(r"[^\w\- ]", "", text)
+    return text.replace(" ", "-")
+
+
+def norm(text):
+    text = text.replace("`", "").replace("*", "")
+    return re.sub(r"\s+", " ", text).strip().rstrip(".,:;").lower()
+
+
+def titles_of(path, cache={}):
+    """The headings and the bold leads of a page's paragraphs, normalised."""
+    if path not in cache:
+        titles, fenced = [], False
+        with open(path, encoding="utf-8") as f:
+            for line in f:
+                if line.lstrip().startswith("```"):
+                    fenced = not fenced
+                    continue
+                if fenced:
+                    continue
+                m = re.match(r"^#{1,6}\s+(.*?)\s*$", line)
+                if m:
+                    titles.append(norm(m.group(1)))
+                m = re.match(r"^\s*(?:[-*] |\d+\. |\|\s*)?\*\*(.+?)(?:\*\*|$)", line)
+                if m:
+                    titles.append(norm(m.group(1)))
+        cache[path] = titles
+    return cache[path]
+
+
+def cites_title(page, quoted):
+    want = norm(quoted)
+    for title in titles_of(os.path.join(ROOT, page)):
+        if title.startswith(want) or (len(title) >= 12 and want.startswith(title)):
+            return True
+    return False
+
+
+def anchors_of(path, cache={}):
+    if path not in cache:
+        ids, seen, fenced = set(), {}, False
+        with open(path, encoding="utf-8") as f:
+            for line in f:
+                if line.lstrip().startswith("```"):
+                    fenced = not fenced
+                    continue
+                m = None if fenced else re.match(r"^(#{1,6})\s+(.*?)\s*#*\s*$", line)
+                if m:
+                    base = slug(m.group(2))
+                    n = seen.get(base, 0)
+                    seen[base] = n + 1
+                    ids.add(base if n == 0 else f"{base}-{n}")
+                for name in re.findall(r"<a\s+(?:name|id)=\"([^\"]+)\"", line):
+                    ids.add(name)
+        cache[path] = ids
+    return cache[path]
+
+
+def check_target(target_path, anchor, tracked_set, tracked_dirs):
+    """None when the target (repository-relative) exists with its anchor, else the reason."""
+    rel = os.path.normpath(target_path)
+    if rel not in tracked_set and rel not in tracked_dirs:
+        return f"{rel} does not exist"
+    if anchor:
+        if not rel.endswith(".md"):
+            return None
+        if anchor not in anchors_of(os.path.join(ROOT, rel)):
+            return f"{rel} has no heading #{anchor}"
+    return None
+
+
+def design_sections():
+    sections = set()
+    with open(os.path.join(ROOT, "docs/design.md"), encoding="utf-8") as f:
+        for line in f:
+            m = re.match(r"^#{2,4}\s+(\d+(?:\.\d+)*)\.?\s", line)
+            if m:
+                sections.add(m.group(1))
+    return sections
+
+
+def check_markdown_links(path, lines, tracked_set, tracked_dirs, errors):
+    fenced = False
+    for number, line in enumerate(lines, 1):
+        if line.lstrip().startswith("```"):
+            fenced = not fenced
+            continue
+        if fenced:
+            continue
+        for target in MD_LINK.findall(re.sub(r"`[^`]*`", "", line)):
+            if re.match(r"^[a-z][a-z0-9+.-]*:", target):  # http:, https:, mailto:
+                continue
+            file_part, _, anchor = target.partition("#")
+            if file_part:
+                full = os.path.join(os.path.dirname(path), file_part)
+                if os.path.isabs(file_part):
+                    errors.append(f"{path}:{number}: absolute link {target}")
+                    continue
+            else:
+                full = path
+            reason = check_target(full, anchor, tracked_set, tracked_dirs)
+            if reason:
+                errors.append(f"{path}:{number}: link {target}: {reason}")
+
+
+QUOTED_TITLE = re.compile(r"^(?:'s)?(?: \([a-e]\))?,? (?:section )?\(?\"([^\")+\s][^\"]*)\"")
+COMMENT_LEAD = re.compile(r"\n\s*(?://+|#+|\*|--|%)?\s*")
+
+
+def check_cited_paths(path, lines, tracked, tracked_set, tracked_dirs, sections, errors):
+    for number, line in enumerate(lines, 1):
+        for m in DOCS_PATH.finditer(line):
+            cited = m.group(0)
+            file_part, _, anchor = cited.partition("#")
+            following = line[m.end():m.end() + 1]
+            if following and following in PLACEHOLDER_START or file_part.endswith("_"):
+                if not any(p.startswith(file_part) for p in tracked):
+                    errors.append(f"{path}:{number}: no tracked path starts with {file_part}")
+                continue
+            file_part = file_part.rstrip(".")
+            reason = check_target(file_part, anchor, tracked_set, tracked_dirs)
+            if reason:
+                errors.append(f"{path}:{number}: cites {cited}: {reason}")
+            elif file_part.endswith(".md"):
+                after = COMMENT_LEAD.sub(" ", "\n".join([line[m.end():]] + lines[number:number + 2]))
+                quoted = QUOTED_TITLE.match(after)
+                if quoted and not cites_title(file_part, quoted.group(1)):
+                    errors.append(f'{path}:{number}: cites {file_part}, "{quoted.group(1)}": '
+                                  f"no heading or bold lead of that page begins so")
+        for section in DESIGN_CITE.findall(line):
+            if section not in sections:
+                errors.append(f"{path}:{number}: cites design.md {section}, not a section of "
+                              f"docs/design.md ({', '.join(sorted(sections))})")
+
+
+def main():
+    tracked = tracked_files()
+    if tracked is None:
+        print("check_doc_links: not a git checkout (the tracked files are unknown)",
+              file=sys.stderr)
+        return 77
+    tracked = [p for p in tracked if os.path.exists(os.path.join(ROOT, p))]
+    tracked_set = set(tracked)
+    tracked_dirs = {os.path.dirname(p) for p in tracked}
+    for d in list(tracked_dirs):
+        while d:
+            d = os.path.dirname(d)
+            tracked_dirs.add(d)
+    sections = design_sections()
+    errors = []
+    checked = 0
+    for path in tracked:
+        if not path.endswith(TEXT_SUFFIXES) or path.startswith("docs/figures/"):
+            continue
+        try:
+            with open(os.path.join(ROOT, path), encoding="utf-8") as f:
+                lines = f.read().split("\n")
+        except UnicodeDecodeError:
+            continue
+        checked += 1
+        if path.endswith(".md"):
+            check_markdown_links(path, lines, tracked_set, tracked_dirs, errors)
+        check_cited_paths(path, lines, tracked, tracked_set, tracked_dirs, sections, errors)
+    if errors:
+        print(f"check_doc_links: {len(errors)} broken citations:", file=sys.stderr)
+        for e in errors:
+            print("  " + e, file=sys.stderr)
+        return 1
+    print(f"check_doc_links: every link and docs/ path in {checked} files resolves")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
