@@ -14,7 +14,7 @@
 #      (kind = collocation, quadratic) as series, wave advection, dt = h, D/h = 9.76 ... 78, each under the
 #      default coupling (incremental, with the steady correction) and the paper's (constraint = paper,
 #      alpha = beta = 1/2, steady_correction = none; series "..., paper"), and the peer's
-#      three points (Basilisk, ../shared/reference/peers.md: C_D and 1-thread ms per step on this machine
+#      three points (Basilisk, docs/sources/peers.md: C_D and 1-thread ms per step on this machine
 #      type) as a third series; cost axis ms per step (the peer's table gives no step counts): ours as CPU
 #      ms per step (user + system over steps: a loaded machine stretches wall time far more than CPU time),
 #      the CSV also has our wall seconds and wall ms per step. Lift coefficients in docs/work_precision/e_lift.txt.
@@ -213,7 +213,7 @@ cavity_value() {
 }
 # The peer's points, a series of their own (issue 13 point 6): Basilisk, centred solver, uniform grid,
 # CFL 0.8, one thread, the same error measure (max over Ghia's points of each centre line), from
-# ../shared/reference/peers.md (measured on this machine type): h, wall seconds, max |u - Ghia|,
+# docs/sources/peers.md (measured on this machine type): h, wall seconds, max |u - Ghia|,
 # max |v - Ghia|. Its steps and time step are not recorded there (nan); its CPU seconds are taken
 # equal to its one-thread wall seconds (Basilisk's own end-of-run lines, on an idle machine).
 cavity_peer_rows() {
@@ -303,7 +303,7 @@ if [[ $only == *e* ]]; then
       done
     done
   done
-  # The peer (../shared/reference/peers.md, DFG 2D-1 table): grid, C_D, 1-thread ms per step.
+  # The peer (docs/sources/peers.md, DFG 2D-1 table): grid, C_D, 1-thread ms per step.
   while read -r h cd ms; do
     error=$(awk -v v="$cd" 'BEGIN { e = (v - 5.57953523384) / 5.57953523384; if (e < 0) e = -e; printf "%.6e", e }')
     echo "e,Basilisk (peers.md),embed,h,$h,nan,nan,completed,nan,nan,nan,$ms,$ms,$cd,$error" >> "$raw"

@@ -55,7 +55,7 @@ if [[ $only == *dfg* ]]; then
     read -r cd cl < <("$wp_error" particle "$dir" | awk '{ printf "%.10g %.6g\n", 2 * $7 / (0.2 * 0.2 * 0.1), 2 * $8 / (0.2 * 0.2 * 0.1) }')
     echo "dlmfd at the defaults,$h,$(awk -v h="$h" 'BEGIN { printf "%.4g", 0.1 / h }'),$h,$(json_number "$dir" steps),$(cpu_ms "$dir"),$cd,$cl,$(relative "$cd" 5.57953523384)" >> "$csv"
   done
-  # The peer (../shared/reference/peers.md, DFG 2D-1): h, C_D, one-thread ms a step.
+  # The peer (docs/sources/peers.md, DFG 2D-1): h, C_D, one-thread ms a step.
   while read -r h cd ms; do
     echo "Basilisk (peers.md),$h,$(awk -v h="$h" 'BEGIN { printf "%.4g", 0.1 / h }'),nan,nan,$ms,$cd,nan,$(relative "$cd" 5.57953523384)" >> "$csv"
   done <<'PEER'
@@ -86,7 +86,7 @@ if [[ $only == *cavity* ]]; then
       sed 's/.*minus reference \([-+0-9.e]*\) \([-+0-9.e]*\) \([-+0-9.e]*\).*/\1 \2 \3/')
     echo "dlmfd at the defaults,$n,$h,$dt,$(json_number "$dir" steps),$(cpu_ms "$dir"),$ghia,$du,$dv,$dw,$ghia" >> "$csv"
   done
-  # The peer (../shared/reference/peers.md): cells, one-thread ms a step (64: 1.71; 128: wall 18.2 s
+  # The peer (docs/sources/peers.md): cells, one-thread ms a step (64: 1.71; 128: wall 18.2 s
   # over steps not recorded, so nan), max |u - Ghia|, max |v - Ghia|.
   echo "Basilisk (peers.md),64,0.015625,nan,nan,1.71,0.0091,nan,nan,nan,0.0091" >> "$csv"
   "$dlmfd" chart --csv "$csv" --xcol cpu_ms_per_step --ycol error --group series --logx --logy --markers \

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A real single-node Slurm for development and the tests labelled `slurm`
-# (../shared/ops/slurm-single-node.md: Debian 12, slurm 22.05, as root, no systemd, no cgroups).
+# (docs/sources/slurm_single_node.md: Debian 12, slurm 22.05, as root, no systemd, no cgroups).
 #
 #   scripts/slurm-dev.sh start    installs slurmctld, slurmd, slurm-client, munge (scripts/setup.sh),
 #                                 writes the configuration, starts munged, slurmctld, slurmd and

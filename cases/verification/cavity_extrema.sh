@@ -2,7 +2,7 @@
 # Centre-line extrema of a lid-driven cavity results directory (unit square, even cell count, lid
 # moving in +x at y = 1) from its last field snapshot: u_min on x = 0.5, v_max and v_min on y = 0.5,
 # each the vertex of the parabola through the extreme node and its two neighbours, with the
-# deviation from an accurate reference (../shared/reference/peers.md, copied into docs/evidence/validation.md):
+# deviation from an accurate reference (docs/sources/peers.md, copied into docs/evidence/validation.md):
 #   Re 100:  Marchi, Suero & Araki, J. Braz. Soc. Mech. Sci. Eng. 31 (2009) 186-198 (1024^2 finite
 #            volumes with Richardson extrapolation): -0.2140424, 0.1795728, -0.2538030;
 #   Re 1000: Botella & Peyret, Comput. Fluids 27 (1998) 421-433 (Chebyshev spectral):

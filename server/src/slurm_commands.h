@@ -1,5 +1,6 @@
 // The Slurm commands the daemon runs and the parsing of their output (slurm 22.05's CLI; the
-// commands are the stable interface there, slurmrestd needs slurmdbd: ../shared/ops).
+// commands are the stable interface there, slurmrestd needs slurmdbd:
+// docs/sources/slurm_single_node.md).
 //
 //   sbatch --parsable --job-name --cpus-per-task --mem --output [--array --time --signal
 //          --partition --account --qos] [extra options] SCRIPT   prints "ID" or "ID;CLUSTER"

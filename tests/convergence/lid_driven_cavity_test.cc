@@ -1,7 +1,7 @@
 // Lid-driven cavity, Newtonian, Re = 100 (unit square, lid u = 1, eta = 0.01, rho = 1), the scene
 // cases/lid_driven_cavity.toml on 32 x 32 cells, run to steady state and compared on both
 // centre-lines with Ghia, Ghia & Shin, J. Comput. Phys. 48 (1982) 387-411, tables I and II
-// (copied below from the project's shared reference data, ../shared/reference/README.md), the
+// (copied below from the project's shared reference data, docs/sources/reference_data.md), the
 // computed centre-line interpolated linearly to Ghia's points.
 //
 // Grid study (docs/evidence/validation.md, wave advection, dt = 0.01, t = 20, dlmfd-solve and

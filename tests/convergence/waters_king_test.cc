@@ -1,5 +1,5 @@
 // Start-up of plane Poiseuille flow of an Oldroyd-B liquid through the whole Simulation, against
-// the series of Waters & King (Rheol. Acta 9 (1970) 345-355), shared/reference/README.md.
+// the series of Waters & King (Rheol. Acta 9 (1970) 345-355), docs/sources/reference_data.md.
 //
 // Scene: cases/verification/waters_king.toml. Channel periodic in x, walls at y = 0 and y = 2H
 // (H = 1), at rest with A = I, driven from t = 0 by the body force G = 3 (= -dp/dx). With rho = 1,

@@ -143,12 +143,12 @@ enum class AdvectionScheme { kLeastSquares, kWave };
 // (fluid/advection_wave.h, fluid/advection_least_squares.h). A scene file's default is "taylor"
 // in a Newtonian liquid, with either scheme (least squares since 2026-12-03), and "none" with a
 // polymer: with the polymer's stress explicit the removed diffusion is damping the elastic
-// coupling needs (the Waters-King start-up at dt = 0.04 failed earlier with it; docs/
-// work_precision.md, "The splitting's steady-state error"). kTendency: the step integrates the
-// whole frozen tendency (its own advection and the Stokes step's (u^{n+1/4} - u^n) / dt) and
+// coupling needs (the Waters-King start-up at dt = 0.04 failed earlier with it;
+// docs/evidence/splitting.md, "The splitting's steady-state error"). kTendency: the step integrates
+// the whole frozen tendency (its own advection and the Stokes step's (u^{n+1/4} - u^n) / dt) and
 // subtracts the Stokes part, so every higher-order term vanishes at a steady state, and snapshots
-// write u^{n+1/4}: a steady answer is the discrete steady solution whatever dt (docs/
-// work_precision.md, "The splitting's fixed point"; opt-in).
+// write u^{n+1/4}: a steady answer is the discrete steady solution whatever dt
+// (docs/evidence/splitting.md, "The splitting's fixed point"; opt-in).
 enum class SteadyCorrection { kNone, kTaylor, kTendency };
 
 // Where the rigid-body constraint meets the fluid: kPaper, only in the DLM step (37), without

@@ -16,8 +16,9 @@
 // 1651-1674). W^T S W is symmetrised (the coupled Stokes solves are inexact) and solved by a
 // complete orthogonal decomposition (the stored directions can be nearly dependent); a start that
 // does not lower the largest mismatch is undone.
-// It halves the outer iterations of a polymer flow past a fixed disk in the Stokes limit (docs/
-// work_precision.md, "Recycled directions around fixed particles", with what else was tried).
+// It halves the outer iterations of a polymer flow past a fixed disk in the Stokes limit
+// (docs/evidence/constraint_coupling.md, "Recycled directions around fixed particles", with what
+// else was tried).
 // Memory: kCapacity directions, each two fluid-sized arrays, the coarse pressure and two arrays of
 // multiplier size: 16 x 2.25 doubles a velocity node (scene/scene_footprint.h counts them).
 // Not used with a moving particle (S changes with its position); not checkpointed (a resumed run

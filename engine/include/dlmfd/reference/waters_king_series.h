@@ -3,7 +3,7 @@
 // Equations: the 1-D momentum and Oldroyd-B constitutive equations for u(y, t) between walls at
 // y = 0 and y = 2H, liquid at rest with A = I, driven from t = 0 by a constant pressure gradient G.
 // Scaled by Ubar = G H^2 / (3 eta), Y = y / H - 1 in [-1, 1], T = t / lambda_r, the elasticity
-// number E = lambda_r eta / (rho H^2) and beta = eta_s / eta (shared/reference/README.md):
+// number E = lambda_r eta / (rho H^2) and beta = eta_s / eta (docs/sources/reference_data.md):
 //   U(Y, T) = 3/2 (1 - Y^2) - 48 sum_k sin(N (1 + Y) / 2) / N^3 exp(-a T / 2)
 //             [cosh(b T / 2) + (g / b) sinh(b T / 2)],   N = (2k - 1) pi,
 //   a = 1 + beta E N^2 / 4,  b^2 = a^2 - E N^2,  g = 1 - (2 - beta) E N^2 / 4.
