@@ -8,9 +8,13 @@ Checks, over the tracked files of the checkout:
   2. every `docs/...` path cited anywhere (code comments, scripts, tests, tables) exists, and its
      `#anchor` too; a path followed by a placeholder (`docs/figures/wp_<problem>.png`,
      `docs/stability/${name}.csv`) must be the start of at least one tracked path;
-  3. a cited page followed by a quoted section title (`docs/evidence/splitting.md, "The splitting's
+  3. a page named without its folder (`work_precision.md`) is a tracked file, and one under docs/
+     when a section title follows;
+  4. a cited page followed by a quoted section title (`docs/evidence/splitting.md, "The splitting's
      fixed point"`) has a heading, or a paragraph's bold lead, that begins with that title;
-  4. every `design.md N` citation names a section N of docs/design.md.
+  5. every `design.md N` citation names a section N of docs/design.md;
+  6. nothing cites the team's notes outside the repository (the shared reference folder): what the
+     code cites lives in the repository (docs/method/, docs/sources/).
 Prints each broken citation as FILE:LINE: message; exit status 1 when any, 77 outside a git
 checkout (the tracked files are unknown). No network. Run: scripts/check_doc_links.py
 """
@@ -26,6 +30,8 @@ TEXT_SUFFIXES = (".md", ".cc", ".h", ".py", ".sh", ".txt", ".toml", ".js", ".htm
                  ".proto", ".css", ".yml", ".yaml", ".json", ".in", ".supp")
 MD_LINK = re.compile(r"!?\[(?:[^\]\[]|\[[^\]]*\])*\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
 DOCS_PATH = re.compile(r"(?<![\w./-])docs/[\w./-]*(?:#[\w-]+)?")
+OUTSIDE = re.compile(r"(?<![\w/])(?:\.\./)?shared/(?:reference|method|ops|paper|design)\S*")
+BARE_PAGE = re.compile(r"(?<![\w./-])([\w-]+\.md)\b")
 DESIGN_CITE = re.compile(r"design\.md(?: section)? (\d+(?:\.\d+)*)")
 PLACEHOLDER_START = ("<", "$", "*", "{", "%")
 
@@ -152,6 +158,27 @@ QUOTED_TITLE = re.compile(r"^(?:'s)?(?: \([a-e]\))?,? (?:section )?\(?\"([^\")+\
 COMMENT_LEAD = re.compile(r"\n\s*(?://+|#+|\*|--|%)?\s*")
 
 
+def check_quoted_title(path, number, lines, end, page, errors):
+    after = COMMENT_LEAD.sub(" ", "\n".join([lines[number - 1][end:]] + lines[number:number + 2]))
+    quoted = QUOTED_TITLE.match(after)
+    if quoted and not cites_title(page, quoted.group(1)):
+        errors.append(f'{path}:{number}: cites {page}, "{quoted.group(1)}": '
+                      f"no heading or bold lead of that page begins so")
+
+
+def check_bare_pages(path, lines, basenames, errors):
+    """Pages named without their folder: they exist; under docs/, a quoted title follows them."""
+    for number, line in enumerate(lines, 1):
+        for m in BARE_PAGE.finditer(line):
+            candidates = basenames.get(m.group(1), [])
+            if not candidates:
+                errors.append(f"{path}:{number}: names {m.group(1)}, which is no tracked file")
+                continue
+            in_docs = [c for c in candidates if c.startswith("docs/")]
+            if len(in_docs) == 1:
+                check_quoted_title(path, number, lines, m.end(), in_docs[0], errors)
+
+
 def check_cited_paths(path, lines, tracked, tracked_set, tracked_dirs, sections, errors):
     for number, line in enumerate(lines, 1):
         for m in DOCS_PATH.finditer(line):
@@ -167,11 +194,10 @@ def check_cited_paths(path, lines, tracked, tracked_set, tracked_dirs, sections,
             if reason:
                 errors.append(f"{path}:{number}: cites {cited}: {reason}")
             elif file_part.endswith(".md"):
-                after = COMMENT_LEAD.sub(" ", "\n".join([line[m.end():]] + lines[number:number + 2]))
-                quoted = QUOTED_TITLE.match(after)
-                if quoted and not cites_title(file_part, quoted.group(1)):
-                    errors.append(f'{path}:{number}: cites {file_part}, "{quoted.group(1)}": '
-                                  f"no heading or bold lead of that page begins so")
+                check_quoted_title(path, number, lines, m.end(), file_part, errors)
+        for outside in OUTSIDE.findall(line):
+            errors.append(f"{path}:{number}: cites {outside}, outside the repository (bring it "
+                          f"into docs/)")
         for section in DESIGN_CITE.findall(line):
             if section not in sections:
                 errors.append(f"{path}:{number}: cites design.md {section}, not a section of "
@@ -192,6 +218,9 @@ def main():
             d = os.path.dirname(d)
             tracked_dirs.add(d)
     sections = design_sections()
+    basenames = {}
+    for p in tracked:
+        basenames.setdefault(os.path.basename(p), []).append(p)
     errors = []
     checked = 0
     for path in tracked:
@@ -206,6 +235,7 @@ def main():
         if path.endswith(".md"):
             check_markdown_links(path, lines, tracked_set, tracked_dirs, errors)
         check_cited_paths(path, lines, tracked, tracked_set, tracked_dirs, sections, errors)
+        check_bare_pages(path, lines, basenames, errors)
     if errors:
         print(f"check_doc_links: {len(errors)} broken citations:", file=sys.stderr)
         for e in errors:
