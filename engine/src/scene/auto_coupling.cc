@@ -29,20 +29,12 @@ std::optional<Pick> NoParticles(const CouplingNumbers& n) {
 }
 
 // 2. Particles that cross a good part of a cell a step where the paper's leak is small. The lagged
-// multiplier acts where the particle was a step ago; measured on the paper's case 5.1 written
-// without numerics keys (one disk, rho_p / rho = 1.5, eta = 0.01, h = 1/96, Re about 200; wave
-// advection, collocation points, both diagonals; docs/evidence/constraint_coupling.md, "The
-// automatic coupling"): the incremental coupling diverges at U_p dt / h = 1.19 (dt = 1e-3, step 73,
-// and again with eta = 0.05) and 0.60 (dt = 5e-4, step 235), and completes at 0.30 (dt = 2.5e-4);
-// the paper's coupling completes at 1.19. With the ring mesh the same scene completes at 1.19 under
-// wave advection and fails under least squares (docs/evidence/stability.md, "The coupling of the
-// constraint", failure 2). Such particles move by inertia: nu dt / h^2 is small there (0.092 in
-// 5.1), and so is the paper's leak; the rule asks for nu dt / h^2 inside the paper coupling's
-// envelope (<= 0.195, accuracy_envelope.h). U_p is an upper estimate: a light disk in a viscous
-// liquid falls far slower (Faxen's disk on h = 1/48 at dt = 0.024: U_p dt / h = 2.0 from U_p =
-// 1.76, against 0.21 at its speed 0.185), and there, at nu dt / h^2 = 5.5, the paper's coupling
-// falls 2.6 times too fast (-0.472 against -0.185) while the incremental one holds the speed to
-// 0.13 % (tests/convergence/lagged_reaction_test.cc).
+// multiplier acts where the particle was a step ago, and diverged on the paper's case 5.1 written
+// without numerics keys from U_p dt / h = 0.60 on (docs/evidence/constraint_coupling.md, "The
+// automatic coupling"). Such particles move by inertia: nu dt / h^2 is small there, and so is the
+// paper's leak; the rule asks for nu dt / h^2 inside the paper coupling's envelope
+// (accuracy_envelope.h), since U_p is an upper estimate and a light disk in a viscous liquid, which
+// it overstates, needs the lag (tests/convergence/lagged_reaction_test.cc).
 std::optional<Pick> FastParticles(const CouplingNumbers& n) {
   if (!(n.particle_courant > kMaxLaggedParticleCourant)) return std::nullopt;
   if (n.viscous_number > kMaxViscousNumberWithParticles) return std::nullopt;
@@ -53,15 +45,11 @@ std::optional<Pick> FastParticles(const CouplingNumbers& n) {
 
 // 3. Creeping flow: the lagged multiplier settles over about nu dt / h^2 steps (its error decays
 // as (I - P^-1 S)^n; docs/evidence/constraint_coupling.md, "The lagged multiplier"), which in a
-// liquid of small density at a time step set by the motion is longer than the flow itself. Measured
-// with the collocation points on both diagonals (docs/evidence/validation_particles.md, "Creeping
-// flow at a time step set by the motion"): Faxen's settling disk at dt = 0.01 (U dt / h = 0.18) is
-// within 1 % of its speed from the liquid's own start-up on at nu dt / h^2 = 18.4 (rho_f = 0.5),
-// but only from 70 steps on at 36.9, +1.4 % at t = 1.5 at 92 and +16 % at 922; a fixed disk in a
-// channel (R/h = 24) is 1.9 % low at t = 0.5 at 48 and 16 % low at t = 1 at 480. The viscous
-// coupling gives the steady answer from the first steps at every rho_f (Faxen -0.71 %, the fixed
-// disk +1.00 %, the same to 0.006 % from rho_f = 0.1 to 0.01). A neutrally buoyant free particle
-// cannot take it (ValidateScene), so such a scene keeps the lagged multiplier.
+// liquid of small density at a time step set by the motion is longer than the flow itself, while
+// the viscous coupling gives the steady answer from the first steps; the threshold is where the
+// lag still settled as fast as the liquid (docs/evidence/validation_particles.md, "Creeping flow at
+// a time step set by the motion"). A neutrally buoyant free particle cannot take it
+// (ValidateScene), so such a scene keeps the lagged multiplier.
 std::optional<Pick> CreepingFlow(const CouplingNumbers& n) {
   if (!(n.viscous_number > kMaxViscousNumberLaggedSettles)) return std::nullopt;
   if (n.neutral_free_particle) return std::nullopt;
@@ -73,14 +61,10 @@ std::optional<Pick> CreepingFlow(const CouplingNumbers& n) {
 // 4. A particle whose shape turns with it (an ellipse), free and heavier than the liquid or
 // turned by a prescribed rotation: its collocation points' interior lattice (spacing h, body frame)
 // turns against the grid, puts two points in some cells and none in others, and (37) finds large
-// multipliers of opposite sign at such pairs (|nu| 10 times the aligned lattice's, 84 CG
-// iterations against 7). Lagged, the pairs act at the next step's positions, where they no longer
-// cancel, and the run blows up as the particle crosses about a cell. Measured on
-// cases/shapes/settling_ellipse.toml (docs/evidence/validation_particles.md, "The lagged multiplier
-// on a turning shape"): 13 of 19 ellipse runs failed, at a / b = 1.0001, 1.25, 2 and 4, rho_p / rho
-// = 1.1 to 3, dt = 5e-4 and 2.5e-4, h = 1/64 and 1/128, on either mesh, by t = 0.006-0.05 (to t =
-// 0.1), where the disk of the same area completed its three runs and the paper's coupling every
-// ellipse run tried. So no bound on a / b or rho_p / rho: every such particle. A neutrally buoyant
+// multipliers of opposite sign at such pairs. Lagged, the pairs act at the next step's positions,
+// where they no longer cancel, and the run blows up as the particle crosses about a cell, at every
+// aspect and density ratio tried (docs/evidence/validation_particles.md, "The lagged multiplier on
+// a turning shape"): so no bound on a / b or rho_p / rho, every such particle. A neutrally buoyant
 // one is not lagged (particles/lagged_multiplier.h), a fixed one does not turn.
 std::optional<Pick> TurningShapes(const CouplingNumbers& n) {
   if (!n.lagged_turning_particle) return std::nullopt;

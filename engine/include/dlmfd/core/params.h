@@ -141,7 +141,7 @@ enum class AdvectionScheme { kLeastSquares, kWave };
 // (dt/2) (u.grad)^2 u with the wave-like step, twice that with the backward-Euler least-squares
 // step); kTaylor, the step subtracts that term wherever it is at most half the Newtonian viscosity
 // (fluid/advection_wave.h, fluid/advection_least_squares.h). A scene file's default is "taylor"
-// in a Newtonian liquid, with either scheme (least squares since 2026-12-03), and "none" with a
+// in a Newtonian liquid, with either scheme, and "none" with a
 // polymer: with the polymer's stress explicit the removed diffusion is damping the elastic
 // coupling needs (the Waters-King start-up at dt = 0.04 failed earlier with it;
 // docs/evidence/splitting.md, "The splitting's steady-state error"). kTendency: the step integrates

@@ -39,7 +39,8 @@
 // grows it by at most 1 + theta dt^2 |V|^2 k^2 / 2 <= 1 + kappa nu dt k^2, so with kappa < 1 the
 // pair stays stable. That is a constant-coefficient argument, assuming the central advection
 // symbol is bounded by the Laplacian's; no test checks it. Measured: the stability limits of the
-// Newtonian runs did not move, while a polymer's did (docs/evidence/work_precision.md).
+// Newtonian runs did not move, while a polymer's did (docs/evidence/splitting.md, "The splitting's
+// steady-state error").
 //
 // Tendency correction (splitting.steady_correction = "tendency"; docs/evidence/splitting.md, "The
 // splitting's fixed point"): the Taylor correction's cap leaves part of the term where the

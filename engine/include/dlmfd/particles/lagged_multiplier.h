@@ -19,23 +19,15 @@
 // step: the lag e^n = nu^n - nu_coupled obeys e^{n+1} = (I - P^-1 S) e^n with P the inviscid Schur
 // complement of (37) and S the viscous one of particles/viscous_constraint.h, whose spectrum lies
 // in (0, 1]: for fixed particles no oscillation, and the force modes of wavelength l converge in
-// about 1 + nu dt / l^2 steps. The failures once measured beyond that argument
-// (docs/evidence/stability.md, "The coupling of the constraint": free disks barely heavier than the
-// liquid blowing up from nu dt / h^2 = 5.5, or at moderate steps on coarse meshes, or in their own
-// polymer layer) came from the reaction given as a kick at the start of (36), not from the lag:
-// with the force over the sub-steps, Faxen's disk (rho_d / rho_L = 1.01, h = 1/96) settles at the
-// same speed within 0.02 % from nu dt / h^2 = 1.4 to 9.2, 0.21 % at 18.4 (tests/convergence/
-// lagged_reaction_test.cc). The accuracy envelope bounds nu dt / h^2 by 2.05 for the transient's
-// accuracy.
+// about 1 + nu dt / l^2 steps. The failures once measured beyond that argument came from the
+// reaction given as a kick at the start of (36), not from the lag (docs/evidence/stability.md,
+// "The coupling of the constraint"; tests/convergence/lagged_reaction_test.cc). The accuracy
+// envelope bounds nu dt / h^2 for the transient's accuracy (scene/accuracy_envelope.h).
 // Where: at X^n, because the advection step (34) that follows (33) carries the liquid inside a
 // particle, and the push nu^n gave it, by U dt to X^{n+1}, where (37) holds the particle (the
 // viscous coupling puts the particles at X^n in (33) for the same reason). Spreading nu^n at
-// X^n + dt U^n instead was measured (2026-12-03; docs/evidence/stability.md, "The coupling of the
-// constraint", failure 2). It completed the four least-squares files of paper 5.1a that fail here
-// (U dt / h about 1, or h_p finer than 1.1 h: outside the accuracy envelope), but it failed the
-// wave-advected file at dt = 1e-3 that completes here, and its transient fall speed carried
-// 1.3-1.6 times the dt error (5.1a at t = 0.1: 9.008 / 9.134 / 9.198 at dt = 4e-4 / 2e-4 /
-// 1e-4, against 9.104 / 9.163 / 9.209 at X^n).
+// X^n + dt U^n instead was tried and not taken: it failed a case that completes here and carried
+// more of the dt error (docs/evidence/stability.md, "The coupling of the constraint", failure 2).
 // Where the constraint holds, for a fixed particle under the tendency correction
 // (splitting.steady_correction = "tendency", the Newtonian default): on the Stokes step's velocity
 // u^{n+1/4}, not on the advected u^{n+2/4}. (37) finds d nu from the mismatch E u^{n+1/4} - U,
@@ -46,16 +38,15 @@
 // so the steady drag moved with dt (docs/evidence/splitting.md, "The splitting's fixed point").
 // A moving particle keeps it on u^{n+2/4} at X^{n+1}, where (34) has carried its liquid; so does
 // every particle under the other corrections, whose fixed point no single field solves (held on
-// u^{n+1/4} there, a fixed disk's steady drag in a channel moved away from the viscous coupling's
-// by 0.0216 where it was within 0.0127: IncrementalCoupling.SteadyChannelDragDoesNotDepend...).
+// u^{n+1/4} there, a fixed disk's steady drag moved away from the viscous coupling's:
+// docs/evidence/splitting.md, "The fixed particle's constraint on the Stokes velocity").
 // Cost: one E at X^n and one spreading a step (no extra fast solve); two interpolations of u at a
 // fixed particle's points.
 // Neutrally buoyant free particles are not lagged: their stored multiplier stays the paper's nu of
-// (37) (RigidBodyConstraint::Enforce assigns it), so they keep the paper's coupling.
-// Lagged, their rotation drifted without end (a disk in Couette flow, h = 1/32: omega / g from
-// -0.480 at t = 0.2 to -0.473 at t = 1.5 and still moving, where the paper's is steady at -0.482):
-// (37) leaves the rigid part of their mismatch to their motion, so nothing corrects what the lag
-// does to it.
+// (37) (RigidBodyConstraint::Enforce assigns it), so they keep the paper's coupling. Lagged,
+// their rotation drifted without end (docs/evidence/constraint_coupling.md, "The lagged
+// multiplier"): (37) leaves the rigid part of their mismatch to their motion, so nothing corrects
+// what the lag does to it.
 // Not supported: the viscous coupling's fully coupled solve (this is its first iterate, warm
 // started by the total multiplier, without the PCG that follows).
 // References: J. van Kan, SIAM J. Sci. Stat. Comput. 7 (1986) 870-891 (incremental pressure

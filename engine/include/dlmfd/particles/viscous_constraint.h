@@ -29,24 +29,18 @@
 // response), one inner CG of (37)'s size, two fluid-sized updates.
 // Warm start: the previous step's nu, for every particle with the ring mesh, and for the fixed
 // particles only with the collocation points (WarmStarts). A moving disk's collocation points move
-// against the grid, and carried over they made the PCG diverge after a few steps (Faxen's disk on
-// h = 1/48: 11, 16, 12, then 46-55 iterations and no convergence at step 10; on h = 1/96, with the
-// coupled Stokes solves at 1e-6 (kCollocationStokesShare): 11, 112, 175, 255, 457 and no
-// convergence at step 15). The suspected mechanism, not established, is that the interior points
-// give S many more null directions (spreadings that are discrete gradients) and the carried nu
-// seeds them. Started cold a falling disk takes 8-21 iterations a step
+// against the grid, and carried over they made the PCG diverge after a few steps (suspected, not
+// established: the interior points give S many more null directions, spreadings that are discrete
+// gradients, and the carried nu seeds them); started cold a falling disk converges every step
 // (ViscousCoupling.CollocationPointsConvergeEveryStep). A fixed disk's points keep their place, and
 // its flow is where the cold start costs most: the interior lattice points' constraints, nearly
-// redundant with the boundary's where viscosity dominates, make S ill-conditioned against P (a
-// fixed disk of D = 0.1 in creeping channel flow, eta = 1, dt = 0.05, D/h = 40: 201 iterations a
-// step node-centred, 476 with the centre h/4 off the nodes; the boundary points alone take 16).
-// Warm-started the same runs take 15 then 0-1, and Schaefer-Turek 2D-1 from rest (D/h = 20,
-// dt = h) 43, 42, 27, ... then 1-3 a step instead of 22-29, 11 times less time to t = 1, with F_x
-// within 2.3e-4 of the cold start's (the multiplier tolerance;
-// ViscousCoupling.FixedDiskWarmStartsWithCollocationPoints). With every particle fixed the PCG
+// redundant with the boundary's where viscosity dominates, make S ill-conditioned against P.
+// Warm-started, a fixed disk's later steps take 0-1 iterations
+// (ViscousCoupling.FixedDiskWarmStartsWithCollocationPoints). With every particle fixed the PCG
 // also keeps its last directions and starts each step from their Galerkin correction
-// (particles/recycled_directions.h): half the outer iterations of a quasi-steady polymer flow
-// past a fixed disk (8.1 -> 4.2 a step). Stopping rule: max over the points
+// (particles/recycled_directions.h). The iteration counts behind these choices:
+// docs/evidence/constraint_coupling.md, "The viscous coupling with collocation points, measured".
+// Stopping rule: max over the points
 // of |E u - C xi| <= tol V, tol = solvers.multiplier_tolerance, V the velocity scale of the step
 // (max |u| after the first Stokes solve, and |U| + |omega| R of every particle); throws
 // SolverNotConverged after solvers.multiplier_max_iterations. A stall (kStallWindow) tightens the
@@ -84,11 +78,10 @@ class ViscousConstraint {
   // S singular: a multiplier whose spreading is a discrete gradient B^T q (q at the pressure nodes
   // inside the disk) moves nothing, and the right side's component along it is q . B u_0, the
   // divergence the first Stokes solve leaves. PCG on that inconsistent system grows along the null
-  // space once it asks for less mismatch than the divergence allows. Schaefer-Turek at D/h = 20,
-  // dt = h, fixed disk: with the Stokes tolerance at 1e-4 the mismatch grew to 9e17 at step 1, at
-  // 1e-5 to 7e21 at step 2 (multiplier tolerance 1e-4); at 1e-6 every step converged (43, then 29
-  // iterations), and so did 1e-4 against a multiplier tolerance of 1e-2. The ring mesh's sparser
-  // points complete at 1e-4.
+  // space once it asks for less mismatch than the divergence allows (Schaefer-Turek's fixed disk
+  // diverged at a share of 1 and 0.1, converged at 1e-2; the ring mesh's sparser points complete at
+  // 1: docs/evidence/constraint_coupling.md, "The viscous coupling with collocation points,
+  // measured").
   static constexpr double kCollocationStokesShare = 1e-2;
   // A stall of the outer PCG: kStallWindow iterations in which the mismatch never fell below
   // kStallGain times its best value so far. It multiplies the coupled Stokes solves' tolerance by
@@ -97,11 +90,9 @@ class ViscousConstraint {
   // tight for the run cost 1.46 times the Stokes iterations a step of the confined cylinder;
   // docs/evidence/constraint_coupling.md, "The viscous coupling's cost"), while the tolerance stays
   // >= kStokesToleranceFloor (one tightening from the collocation points' 1e-6, two from the
-  // ring mesh's 1e-4). Measured (2026-12-04) on a fixed disk of D = 0.1 in creeping channel flow
-  // (eta = 1, dt = 0.05, D/h = 40, the centre 3h/4 off the nodes): at 1e-6 the mismatch stalled at
-  // 2.4e-4 against a target of 3e-5 through 1000 iterations; at 1e-8 it converged in 287. With the
-  // rule the eight shifts 0, h/4, ..., 7h/4 converge at step 0 in 141-423 iterations (six of them
-  // tightened), where three failed before; a second tightening (to 1e-10) made them no faster.
+  // ring mesh's 1e-4). Without the rule three of eight sub-grid positions of a creeping fixed disk
+  // failed at step 0; the measurements are in docs/evidence/constraint_coupling.md, "The viscous
+  // coupling with collocation points, measured".
   static constexpr int kStallWindow = 50;
   static constexpr double kStallGain = 0.9;
   static constexpr double kTightening = 1e-2;
