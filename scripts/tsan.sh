@@ -13,7 +13,7 @@
 # Before the tests, scripts/tsan_canary.cc (a Watch reactor with a deliberate race in OnWriteDone,
 # same compiler, flags, preload and options) must give exactly that one report, or the script fails.
 # A report from the test process fails it (exit 66); a report the daemon writes to its log fails the
-# test that ran it (daemon_process.cc). Results and the reasoning: docs/api.md, "ThreadSanitizer".
+# test that ran it (daemon_process.cc). Results and the reasoning: docs/evidence/service.md, "ThreadSanitizer".
 # Usage: scripts/tsan.sh [extra ctest arguments], e.g. scripts/tsan.sh -R Daemon
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
