@@ -12,3 +12,5 @@ add_test(NAME habits_commit_message_rule
 set_tests_properties(habits_commit_message_rule PROPERTIES LABELS unit)
 add_test(NAME habits_doc_links COMMAND ${PROJECT_SOURCE_DIR}/scripts/check_doc_links.py)
 set_tests_properties(habits_doc_links PROPERTIES LABELS unit SKIP_RETURN_CODE 77)
+add_test(NAME habits_doc_links_checker COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/unit/doc_links_test.sh)
+set_tests_properties(habits_doc_links_checker PROPERTIES LABELS unit)
