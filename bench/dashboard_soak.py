@@ -5,7 +5,7 @@ restarted every 15 minutes. Every 30 s it records the web process's resident mem
 descriptors, /api/status (live pages, Watch streams), the tab's JavaScript heap, and checks the
 pages against the daemon: one row per study and per job (no duplicate, none missing), the counts
 and states the daemon gives once they settle, the page never reloaded. Prints a table and writes
-it as CSV; docs/dashboard.md records a run.
+it as CSV; docs/evidence/service.md records a run.
 
     DLMFD_BINARY_DIR=build nice -n 10 python3 bench/dashboard_soak.py [--minutes 60] [--csv F]
         [--restart-minutes 15] [--max-studies N]

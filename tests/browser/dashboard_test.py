@@ -65,7 +65,7 @@ class DashboardTest(unittest.TestCase):
 
     def report_latency(self, page):
         """Prints the seconds from the daemon's progress events to the page's handler (a
-        measurement for docs/dashboard.md, not a pass/fail bound: the machine is shared)."""
+        measurement for docs/evidence/service.md, not a pass/fail bound: the machine is shared)."""
         values = sorted(self.browser.execute_script("return dl.latencies"))
         catch_up = self.browser.execute_script("return dl.catchUp")
         self.assertTrue(values or catch_up, "progress events reached the " + page)
