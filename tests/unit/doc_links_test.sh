@@ -32,6 +32,7 @@ out=$("$check" --root "$dir" 2>&1)
 cat > "$dir/src/b.h" << 'MD'
 // docs/evidence/lift.md; docs/evidence/drag.md#nowhere; docs/evidence/drag.md, "The lift";
 // design.md 7; drag.md, "The lift"; nowhere.md; ../shared/reference/peers.md
+// docs/work_precision.md
 MD
 cat > "$dir/docs/broken.md" << 'MD'
 [a](evidence/none.md) [b](#none) [c](evidence/drag.md#none)
@@ -44,6 +45,7 @@ for fault in "src/b.h:1: cites docs/evidence/lift.md: docs/evidence/lift.md does
   'src/b.h:1: cites docs/evidence/drag.md, "The lift": no heading' \
   "src/b.h:2: cites design.md 7, not a section" 'src/b.h:2: cites docs/evidence/drag.md, "The lift"' \
   "src/b.h:2: names nowhere.md, which is no tracked file" "src/b.h:2: cites ../shared/reference/peers.md" \
+  "src/b.h:3: cites docs/work_precision.md: docs/work_precision.md does not exist (moved: docs/evidence/" \
   "docs/broken.md:1: link evidence/none.md: docs/evidence/none.md does not exist" \
   "docs/broken.md:1: link #none: docs/broken.md has no heading #none" \
   "docs/broken.md:1: link evidence/drag.md#none: docs/evidence/drag.md has no heading #none"; do
