@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# 200 queued jobs through a real Slurm (issue 15, point 7; docs/evidence/performance.md "Slurm"): the
+# 200 queued jobs through a real Slurm (issue 15, point 7; docs/evidence/service.md, "Slurm"): the
 # daemon's submission rate, the delay from a job's end to COMPLETED in the daemon, and the
 # daemon's CPU while it follows its jobs and polls Slurm.
 #

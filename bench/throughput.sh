@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Throughput of parameter studies through the daemon (issue 6, point 4; docs/evidence/performance.md
+# Throughput of parameter studies through the daemon (issue 6, point 4; docs/evidence/service.md,
 # "Throughput"): velocity node updates per second of
 #   (1) one job alone, on 2 threads   (dlmfdd --max-concurrent 1 --solver-threads 2), and
 #   (2) two jobs at once, 1 thread each (dlmfdd --max-concurrent 2 --solver-threads 1, the thread
