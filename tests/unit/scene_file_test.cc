@@ -796,7 +796,7 @@ TEST(SceneFile, SplittingWeightsFollowTheConstraint) {
 
 // The steady correction's default follows the liquid (docs/scenes.md): the splitting's Taylor term
 // is removed in a Newtonian liquid, with either advection scheme, and kept with a polymer (the
-// explicit polymer stress needs its damping; docs/evidence/work_precision.md). Params built in code
+// explicit polymer stress needs its damping; docs/evidence/splitting.md). Params built in code
 // keep "none".
 TEST(SceneFile, SteadyCorrectionFollowsTheLiquid) {
   auto correction = [](const std::string& scene) {
