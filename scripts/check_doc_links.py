@@ -12,7 +12,8 @@ Checks, over the tracked files of the checkout:
      when a section title follows;
   4. a cited page followed by a quoted section title (`docs/evidence/splitting.md, "The splitting's
      fixed point"`) has a heading, or a paragraph's bold lead, that begins with that title;
-  5. every `design.md N` citation names a section N of docs/design.md;
+  5. every `design.md N` citation names a section N of docs/design.md, and every `method notes 1`
+     or `2, section N` a section of docs/method/fluid.md or particles-and-conformation.md;
   6. nothing cites the team's notes outside the repository (the shared reference folder): what the
      code cites lives in the repository (docs/method/, docs/sources/).
 Prints each broken citation as FILE:LINE: message; exit status 1 when any, 77 outside a git
@@ -20,6 +21,7 @@ checkout (the tracked files are unknown). No network. Run: scripts/check_doc_lin
 (DIR: another checkout, as tests/unit/doc_links_test.sh does; default: this one).
 """
 
+import functools
 import os
 import re
 import subprocess
@@ -32,6 +34,8 @@ TEXT_SUFFIXES = (".md", ".cc", ".h", ".py", ".sh", ".txt", ".toml", ".js", ".htm
 MD_LINK = re.compile(r"!?\[(?:[^\]\[]|\[[^\]]*\])*\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
 DOCS_PATH = re.compile(r"(?<![\w./-])docs/[\w./-]*(?:#[\w-]+)?")
 OUTSIDE = re.compile(r"(?<![\w/])(?:\.\./)?shared/(?:reference|method|ops|paper|design)\S*")
+METHOD_CITE = re.compile(r"method notes ([12]),? (?:sections? |part |)(\d+(?:\.\d+)*)")
+METHOD_NOTES = {"1": "docs/method/fluid.md", "2": "docs/method/particles-and-conformation.md"}
 BARE_PAGE = re.compile(r"(?<![\w./-])([\w-]+\.md)\b")
 DESIGN_CITE = re.compile(r"design\.md(?: section)? (\d+(?:\.\d+)*)")
 PLACEHOLDER_START = ("<", "$", "*", "{", "%")
@@ -134,14 +138,23 @@ def check_target(target_path, anchor, tracked_set, tracked_dirs):
     return None
 
 
-def design_sections():
+@functools.lru_cache(maxsize=None)
+def numbered_sections(page):
+    """The numbers of a page's numbered headings ("## 3.", "### 3.1", "## Part 2.")."""
     sections = set()
-    with open(os.path.join(ROOT, "docs/design.md"), encoding="utf-8") as f:
+    path = os.path.join(ROOT, page)
+    if not os.path.exists(path):
+        return sections
+    with open(path, encoding="utf-8") as f:
         for line in f:
-            m = re.match(r"^#{2,4}\s+(\d+(?:\.\d+)*)\.?\s", line)
+            m = re.match(r"^#{2,4}\s+(?:Part\s+)?(\d+(?:\.\d+)*)\.?\s", line)
             if m:
                 sections.add(m.group(1))
     return sections
+
+
+def design_sections():
+    return numbered_sections("docs/design.md")
 
 
 def check_markdown_links(path, lines, tracked_set, tracked_dirs, errors):
@@ -212,6 +225,10 @@ def check_cited_paths(path, lines, tracked, tracked_set, tracked_dirs, sections,
         for outside in OUTSIDE.findall(line):
             errors.append(f"{path}:{number}: cites {outside}, outside the repository (bring it "
                           f"into docs/)")
+        for note, section in METHOD_CITE.findall(line):
+            if section not in numbered_sections(METHOD_NOTES[note]):
+                errors.append(f"{path}:{number}: cites method notes {note}, section {section}, "
+                              f"not a section of {METHOD_NOTES[note]}")
         for section in DESIGN_CITE.findall(line):
             if section not in sections:
                 errors.append(f"{path}:{number}: cites design.md {section}, not a section of "

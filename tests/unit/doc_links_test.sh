@@ -18,12 +18,18 @@ cat > "$dir/docs/evidence/drag.md" << 'MD'
 ## The drag at the defaults: within 1 %
 **The dt ladder** runs four steps.
 MD
+mkdir -p "$dir/docs/method"
+cat > "$dir/docs/method/fluid.md" << 'MD'
+# Method notes 1
+## 1. Operators
+MD
 cat > "$dir/docs/README.md" << 'MD'
 # Map
 [drag](evidence/drag.md#the-drag-at-the-defaults-within-1-) and [design](design.md).
 MD
 cat > "$dir/src/a.h" << 'MD'
-// design.md 1.1; docs/evidence/drag.md, "The drag at the defaults"; docs/evidence/drag.md, "The dt
+// design.md 1.1; method notes 1, section 1; docs/evidence/drag.md, "The drag at the defaults";
+// docs/evidence/drag.md, "The dt
 // ladder"; docs/evidence/ holds the evidence.
 MD
 git -C "$dir" init -q && git -C "$dir" add -A
@@ -32,7 +38,7 @@ out=$("$check" --root "$dir" 2>&1)
 cat > "$dir/src/b.h" << 'MD'
 // docs/evidence/lift.md; docs/evidence/drag.md#nowhere; docs/evidence/drag.md, "The lift";
 // design.md 7; drag.md, "The lift"; nowhere.md; ../shared/reference/peers.md
-// docs/work_precision.md
+// docs/work_precision.md; method notes 1, section 7
 MD
 cat > "$dir/docs/broken.md" << 'MD'
 [a](evidence/none.md) [b](#none) [c](evidence/drag.md#none)
@@ -46,6 +52,7 @@ for fault in "src/b.h:1: cites docs/evidence/lift.md: docs/evidence/lift.md does
   "src/b.h:2: cites design.md 7, not a section" 'src/b.h:2: cites docs/evidence/drag.md, "The lift"' \
   "src/b.h:2: names nowhere.md, which is no tracked file" "src/b.h:2: cites ../shared/reference/peers.md" \
   "src/b.h:3: cites docs/work_precision.md: docs/work_precision.md does not exist (moved: docs/evidence/" \
+  "src/b.h:3: cites method notes 1, section 7, not a section of docs/method/fluid.md" \
   "docs/broken.md:1: link evidence/none.md: docs/evidence/none.md does not exist" \
   "docs/broken.md:1: link #none: docs/broken.md has no heading #none" \
   "docs/broken.md:1: link evidence/drag.md#none: docs/evidence/drag.md has no heading #none"; do

@@ -57,8 +57,8 @@ struct CutCellConstants {
   double band = 2.0;              // the preconditioner's direct band, in h from the boundary
   int restart = 120;              // GMRES restart length (80: 2.1 times the iterations at D/h 40)
   // Step (33) in the time loop (particles/cut_cell_step.h): GMRES's relative residual and its
-  // iteration limit. Schaefer-Turek at D/h = 20, C_D at t = 2 with 1e-6 / 1e-7 / 1e-8 / 1e-10:
-  // 5.59059 / 5.59056 / 5.59056 / 5.59056, 9.1 / 12.1 / 15.9 / 22.1 iterations a step.
+  // iteration limit: the loosest tolerance at which Schaefer-Turek's C_D no longer moves
+  // (docs/evidence/cut_cell_boundary.md, "A second-order boundary: the time loop").
   double step_tolerance = 1e-7;
   int step_max_iterations = 2000;
 };
