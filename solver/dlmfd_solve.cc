@@ -152,6 +152,7 @@ dlmfd::solver::RunSummary Summary(const dlmfd::Params& params, const dlmfd::Flow
     p.id = q.id;
     p.radius = q.radius;
     p.position = {q.position.x(), q.position.y()};
+    p.angle = q.angle;
     p.velocity = {q.velocity.x(), q.velocity.y()};
     p.angular_velocity = q.angular_velocity;
     p.force = {q.force.x(), q.force.y()};

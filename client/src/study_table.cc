@@ -32,13 +32,20 @@ TableCell ParameterCell(const v1::Parameter& p) {
   }
 }
 
-const char* const kParticleColumns[] = {"radius", "x",  "y",  "u",      "v",
+const char* const kParticleColumns[] = {"radius", "x",  "y",  "angle",  "u",         "v",
                                         "omega",  "fx", "fy", "torque", "fall_speed"};
 
 std::vector<TableCell> ParticleCells(const v1::ParticleRow& q) {
-  return {Number(q.radius()),    Number(q.x()),       Number(q.y()),
-          Number(q.u()),         Number(q.v()),       Number(q.angular_velocity()),
-          Number(q.force_x()),   Number(q.force_y()), Number(q.torque()),
+  return {Number(q.radius()),
+          Number(q.x()),
+          Number(q.y()),
+          Number(q.angle()),
+          Number(q.u()),
+          Number(q.v()),
+          Number(q.angular_velocity()),
+          Number(q.force_x()),
+          Number(q.force_y()),
+          Number(q.torque()),
           Number(q.fall_speed())};
 }
 

@@ -142,6 +142,7 @@ v1::TableRow TableRowOf(const JobRecord& job) {
     p->set_force_y(q.force[1]);
     p->set_torque(q.torque);
     p->set_fall_speed(q.fall_speed);
+    p->set_angle(q.angle);
   }
   return row;
 }

@@ -104,6 +104,7 @@ std::string RunSummaryJson(const RunSummary& s) {
     p["id"] = q.id;
     p["radius"] = Number(q.radius);
     p["position"] = Pair(q.position);
+    p["angle"] = Number(q.angle);
     p["velocity"] = Pair(q.velocity);
     p["angular_velocity"] = Number(q.angular_velocity);
     p["force"] = Pair(q.force);
@@ -192,6 +193,7 @@ RunSummary ParseRunSummary(const std::string& text) {
       q.radius = OptionalNumber(p, "radius");
       q.fall_speed = OptionalNumber(p, "fall_speed");
       q.position = NumberPair(p, "position");
+      q.angle = OptionalNumber(p, "angle");
       q.velocity = NumberPair(p, "velocity");
       q.angular_velocity = ReadNumber(p, "angular_velocity");
       q.force = NumberPair(p, "force");

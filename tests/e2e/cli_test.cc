@@ -444,9 +444,11 @@ TEST_F(CliTest, TableChartLogsInputsAndDeleteOfAStudy) {
   }
   const CliRun csv = Cli({"table", "--study", id});
   ASSERT_EQ(csv.code, 0) << csv.err;
-  EXPECT_THAT(FirstLine(csv.out),
-              HasSubstr("job,name,state,fluid.viscosity,status,reason,steps,time,wall_seconds,"
-                        "fall_speed,min_gap,min_wall_gap,max_trA,min_eig_A,Re,De,E,M,p0.radius,"));
+  EXPECT_THAT(
+      FirstLine(csv.out),
+      HasSubstr("job,name,state,fluid.viscosity,status,reason,steps,time,wall_seconds,"
+                "fall_speed,min_gap,min_wall_gap,max_trA,min_eig_A,Re,De,E,M,p0.radius,p0.x,"
+                "p0.y,p0.angle,p0.u,"));
   EXPECT_THAT(csv.out, HasSubstr(",completed,0.1,completed,,20,0.04,"));
   EXPECT_THAT(csv.out, HasSubstr(",completed,0.2,completed,,20,0.04,"));
   const CliRun json = Cli({"table", "--study", id, "--format", "json", "--columns",

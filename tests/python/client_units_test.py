@@ -112,7 +112,7 @@ class TableTest(unittest.TestCase):
             fall_speed=-0.5, min_gap=nan, max_tra=2.5, reynolds=0.125,
             particles=[jobs_pb2.ParticleRow(id=0, radius=0.1, x=0.5, y=1.25, u=0.0, v=-0.5,
                                             angular_velocity=0.25, force_x=0.125, force_y=2.0,
-                                            torque=-0.5, fall_speed=-0.5)])
+                                            torque=-0.5, fall_speed=-0.5, angle=0.75)])
         queued = jobs_pb2.TableRow(
             job_id="j2", name="s[other=true]", state=jobs_pb2.QUEUED,
             parameters=[jobs_pb2.Parameter(key="other", bool_value=True)])
@@ -131,6 +131,7 @@ class TableTest(unittest.TestCase):
         self.assertIsNone(rows[0]["min_gap"])  # NaN: the summary has none
         self.assertEqual(rows[0]["max_trA"], 2.5)
         self.assertEqual((rows[0]["p0.x"], rows[0]["p0.y"], rows[0]["p0.omega"]), (0.5, 1.25, 0.25))
+        self.assertEqual(rows[0]["p0.angle"], 0.75)
         self.assertEqual((rows[0]["p0.fx"], rows[0]["p0.fy"], rows[0]["p0.radius"]),
                          (0.125, 2.0, 0.1))
         self.assertIsNone(rows[1]["status"])  # no summary yet

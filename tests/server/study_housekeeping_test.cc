@@ -185,6 +185,9 @@ TEST(StudyTable, StudyRowsCarryTypedParametersAndTheSummary) {
     ASSERT_EQ(row.particles_size(), 2);
     EXPECT_EQ(row.particles(0).radius(), 0.125);
     EXPECT_EQ(row.particles(1).y(), summary.particles[1].position[1]);
+    EXPECT_EQ(row.particles(1).angle(),
+              summary.particles[1].angle);  // theta, as the solver wrote it
+    EXPECT_FALSE(std::isnan(row.particles(1).angle()));
     // The true minimum gap over the run: the smallest pair gap of every step (uncapped: 0.25 at
     // the start, beyond the cell size 2 R + 1.5 h = 0.34375 minus 2 R).
     const DiagnosticsTable diagnostics = ReadDiagnostics(results + "/diagnostics.csv");

@@ -44,6 +44,7 @@ RunSummary FailedRun() {
   RunSummary::Particle q;
   q.id = 3;
   q.position = {0.5, 0.25};
+  q.angle = -2.5;
   q.velocity = {-0.125, 1e-300};
   q.angular_velocity = 0.1;
   q.force = {std::numeric_limits<double>::infinity(), 2.0};
@@ -132,9 +133,11 @@ TEST(RunSummary, TextKeepsTheLayoutOfTheResultsDirectory) {
   q.radius = 0.1;
   q.position = {0.5, 7.25};
   q.velocity = {-0.0014494669113040463, 1e-05};
+  q.angle = 0.75;
   q.fall_speed = 0.125;
   s.particles = {q, q};
   s.particles[1].id = 1;
+  s.particles[1].angle = RunSummary::kNone;
   s.particles[1].fall_speed = RunSummary::kNone;
   s.diagnostics = {{"stokes_iterations", 11.0}, {"divergence", 0.0011162864979271413}};
   EXPECT_EQ(
@@ -163,10 +166,10 @@ TEST(RunSummary, TextKeepsTheLayoutOfTheResultsDirectory) {
       "  \"mach\": 0.5,\n"
       "  \"elasticity\": 4.2,\n"
       "  \"particles\": [\n"
-      "    {\"id\": 0, \"radius\": 0.1, \"position\": [0.5, 7.25], \"velocity\": "
+      "    {\"id\": 0, \"radius\": 0.1, \"position\": [0.5, 7.25], \"angle\": 0.75, \"velocity\": "
       "[-0.0014494669113040463, 1e-05], \"angular_velocity\": 0, \"force\": [0, 0], \"torque\": 0, "
       "\"fall_speed\": 0.125},\n"
-      "    {\"id\": 1, \"radius\": 0.1, \"position\": [0.5, 7.25], \"velocity\": "
+      "    {\"id\": 1, \"radius\": 0.1, \"position\": [0.5, 7.25], \"angle\": null, \"velocity\": "
       "[-0.0014494669113040463, 1e-05], \"angular_velocity\": 0, \"force\": [0, 0], \"torque\": 0, "
       "\"fall_speed\": null}\n"
       "  ],\n"
@@ -224,6 +227,7 @@ TEST(RunSummary, ReadsBackWhatWasWritten) {
   const RunSummary::Particle& p = out.particles[0];
   EXPECT_EQ(p.id, 3);
   EXPECT_EQ(p.position, in.particles[0].position);
+  EXPECT_EQ(p.angle, in.particles[0].angle);
   EXPECT_EQ(p.velocity, in.particles[0].velocity);  // shortest round-trip text: bit for bit
   EXPECT_EQ(p.angular_velocity, in.particles[0].angular_velocity);
   EXPECT_TRUE(std::isnan(p.force[0]));  // written as null: the number is gone, not its place
@@ -274,6 +278,7 @@ TEST(RunSummary, StatisticsReadBackAndAnOlderSummaryHasNaN) {
   EXPECT_TRUE(std::isnan(older.fall_window[0]));
   EXPECT_TRUE(std::isnan(older.particles[0].radius));
   EXPECT_TRUE(std::isnan(older.particles[0].fall_speed));
+  EXPECT_TRUE(std::isnan(older.particles[0].angle));
 }
 
 TEST(RunSummary, FileRoundTripAndErrors) {

@@ -6,18 +6,17 @@
 // end_time, wall_seconds, ms_per_step, resumed_from_step, title, version, then the statistics of
 // the whole run (dlmfd/io/run_statistics.h): fall_window [t_a, t_b], fall_speed, diameter, min_gap,
 // min_wall_gap, max_trA, min_eig_A, reynolds, deborah, mach, elasticity; particles [{id, radius,
-// position, velocity, angular_velocity, force, torque, fall_speed}], diagnostics {the last
+// position, angle, velocity, angular_velocity, force, torque, fall_speed}], diagnostics {the last
 // StepReport's columns},
 // warnings [{setting, value, allowed, key, current, suggested, source}] (the scene's settings
 // outside the accuracy envelope, dlmfd/scene/accuracy_envelope.h; a summary without the key, from
 // an older solver, reads as none; the statistics and the particles' radius and fall_speed of an
-// older solver read as NaN), numerics [{key, value, rule, numbers {name: value}}] (what each
-// "auto" of the scene became, dlmfd/scene/auto_coupling.h; written only when there is one, and
-// absent reads as none).
-// One key per line, one line per particle. Integers stay JSON integers; a double is written as the
-// shortest text that reads back as the same double (an integral one without ".0"); non-finite
-// numbers are written as null (JSON has no NaN) and read back as NaN. Written through a temporary
-// file (dlmfd/io/atomic_file.h).
+// older solver read as NaN, so does a particle's angle), numerics [{key, value, rule, numbers
+// {name: value}}] (what each "auto" of the scene became, dlmfd/scene/auto_coupling.h; written only
+// when there is one, and absent reads as none). One key per line, one line per particle. Integers
+// stay JSON integers; a double is written as the shortest text that reads back as the same double
+// (an integral one without ".0"); non-finite numbers are written as null (JSON has no NaN) and read
+// back as NaN. Written through a temporary file (dlmfd/io/atomic_file.h).
 #pragma once
 
 #include <array>
@@ -37,7 +36,9 @@ struct RunSummary {
   struct Particle {
     long id = 0;
     double radius = kNone;
-    std::array<double, 2> position{}, velocity{};
+    std::array<double, 2> position{};
+    double angle = kNone;  // theta, the body's x axis from the domain's (radians, unwrapped)
+    std::array<double, 2> velocity{};
     double angular_velocity = 0.0;
     std::array<double, 2> force{};  // what the fluid exerts over the last step
     double torque = 0.0;
