@@ -50,6 +50,7 @@ const Quantity kQuantities[] = {
     {"u", "u (velocity x)", "L T-1"},
     {"v", "v (velocity y)", "L T-1"},
     {"omega", "omega (angular velocity)", "T-1"},
+    {"angle", "angle theta (radians, from t = 0)", ""},
     {"fx", "fx (force x per unit length)", "M T-2"},
     {"fy", "fy (force y per unit length)", "M T-2"},
     {"torque", "torque per unit length", "M L T-2"},
@@ -86,6 +87,7 @@ double Value(const ParticleHistory& h, const std::string& quantity, std::size_t 
   if (quantity == "u") return h.velocity[2 * k];
   if (quantity == "v") return h.velocity[2 * k + 1];
   if (quantity == "omega") return h.angular_velocity[k];
+  if (quantity == "angle") return h.angle[k];
   if (quantity == "fx") return h.force[2 * k];
   if (quantity == "fy") return h.force[2 * k + 1];
   if (quantity == "torque") return h.torque[k];
@@ -199,6 +201,9 @@ void AddRunSeries(const RunRequest& request, const std::vector<std::string>& nam
                        std::to_string(h.particles));
     }
     if (!particle_free && h.particles == 0) throw UsageError(dir + " has no particles");
+    if ((request.x == "angle" || request.y == "angle") && h.angle.empty()) {
+      throw UsageError(dir + "/particles.h5 has no /angle (format version 1, an older solver)");
+    }
     std::vector<std::size_t> selected = per_run || particle_free
                                             ? std::vector<std::size_t>{0}
                                             : SelectParticles(h, request.particle, dir);

@@ -1,8 +1,8 @@
 // `dlmfd chart` end to end: the real dlmfd-solve runs two tiny particle scenes (a pair and a single
 // disk settling in a 16 x 32 box for 10 steps), then the real dlmfd binary charts them: velocities
-// of several runs overlaid, a trajectory, the gap, a CSV work-precision chart; the PNGs read back
-// with cairo at the asked size and carry the series colours; series of runs that differ in a
-// parameter are named by it, the key in the legend's title; SVG and PDF by the extension; bad
+// of several runs overlaid, a trajectory, the angle, the gap, a CSV work-precision chart; the PNGs
+// read back with cairo at the asked size and carry the series colours; series of runs that differ
+// in a parameter are named by it, the key in the legend's title; SVG and PDF by the extension; bad
 // quantities, `gap` of one
 // particle, unknown particles and CSV columns are usage errors (exit 2) that say what is allowed.
 // No daemon is involved.
@@ -169,6 +169,11 @@ TEST_F(ChartTest, DrawsATrajectoryAndTheGapWithDefaultNames) {
   EXPECT_EQ(t.Colours().count(Packed(SeriesColour(0))), 1u);
   EXPECT_EQ(t.Colours().count(Packed(SeriesColour(1))), 0u);
 
+  // The orientation theta of /angle (an ellipse's tilt; a disk's rotation since t = 0).
+  const Outcome angle = Chart({"pair", "--y", "angle", "--out", "angle.png"});
+  ASSERT_EQ(angle.code, 0) << angle.err;
+  EXPECT_EQ(ReadPicture(root_ / "angle.png").Colours().count(Packed(SeriesColour(1))), 1u);
+
   const Outcome gap = Chart({"pair/", "--y", "gap", "--logy", "--out", "gap.png"});
   ASSERT_EQ(gap.code, 0) << gap.err;
   const Picture g = ReadPicture(root_ / "gap.png");
@@ -205,7 +210,7 @@ TEST_F(ChartTest, ChartsCsvColumnsGroupedIntoSeries) {
 TEST_F(ChartTest, UsageErrorsSayWhatIsAllowed) {
   const Outcome quantity = Chart({"pair", "--y", "velocity"});
   EXPECT_EQ(quantity.code, 2);
-  EXPECT_THAT(quantity.err, HasSubstr("t, x, y, u, v, omega, fx, fy, torque, speed, gap"));
+  EXPECT_THAT(quantity.err, HasSubstr("t, x, y, u, v, omega, angle, fx, fy, torque, speed, gap"));
 
   const Outcome gap = Chart({"single", "--y", "gap"});
   EXPECT_EQ(gap.code, 2);
