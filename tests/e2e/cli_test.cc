@@ -24,6 +24,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "../support/walled_box_scene.h"
 #include "dlmfd/io/field_snapshot.h"
 #include "support/cli_harness.h"
 
@@ -392,17 +393,8 @@ TEST_F(CliTest, ConfigPrecedenceIsFlagThenEnvironmentThenFile) {
 }
 
 // Two disks settling in a closed box, 20 steps: the table's particle columns and fall speed.
-const char* kPair = R"toml(title = "two disks settling (cli e2e)"
-gravity = [0.0, -981.0]
-[domain]
-size = [1.0, 2.0]
-h = 0.0625
-[domain.boundary]
-left = { type = "wall" }
-right = { type = "wall" }
-bottom = { type = "wall" }
-top = { type = "wall" }
-[fluid]
+const std::string kPair = "title = \"two disks settling (cli e2e)\"\ngravity = [0.0, -981.0]\n" +
+                          dlmfd::testing::WalledBoxDomain("1.0, 2.0", "0.0625") + R"toml([fluid]
 density = 1.0
 viscosity = 0.1
 [time]

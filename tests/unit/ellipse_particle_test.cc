@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/walled_box_scene.h"
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/simulation.h"
@@ -29,16 +30,7 @@ using ::testing::HasSubstr;
 // A 1 x 1 box of walls, h = 1/32, a Newtonian liquid, collocation points, one particle whose
 // table is `particle` (its keys after center).
 std::string EllipseScene(const std::string& particle, const std::string& mesh = "collocation") {
-  return R"TOML(
-[domain]
-size = [1.0, 1.0]
-h = 0.03125
-[domain.boundary]
-left   = { type = "wall" }
-right  = { type = "wall" }
-bottom = { type = "wall" }
-top    = { type = "wall" }
-[fluid]
+  return "\n" + testing::WalledBoxDomain("1.0, 1.0", "0.03125") + R"TOML([fluid]
 density = 1.0
 viscosity = 1.0
 relaxation_time = 0.0

@@ -15,6 +15,7 @@
 #include <tuple>
 #include <vector>
 
+#include "../support/walled_box_scene.h"
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/scene/scene_file.h"
 
@@ -29,16 +30,8 @@ bool SameBits(const Vec2& a, const Vec2& b) { return a.x() == b.x() && a.y() == 
 
 // A 1 x 1.25 walled box, h = 1/48; 6 x 6 disks of D = 0.1, 0.14 apart, heavier than the liquid.
 std::string Scene() {
-  std::string scene = R"(
-[domain]
-size = [1.0, 1.25]
-h = 0.020833333333333332
-[domain.boundary]
-left = { type = "wall" }
-right = { type = "wall" }
-bottom = { type = "wall" }
-top = { type = "wall" }
-[fluid]
+  std::string scene =
+      "\n" + testing::WalledBoxDomain("1.0, 1.25", "0.020833333333333332") + R"([fluid]
 density = 1.0
 viscosity = 0.1
 relaxation_time = 0.5
