@@ -22,9 +22,6 @@ using grpc::StatusCode;
 constexpr char kAlice[] = "alice-token-0123456789";
 constexpr char kBob[] = "bob-token-0123456789ab";
 
-#define REQUIRE_SOLVER() \
-  if (!SolverAvailable()) GTEST_SKIP() << "dlmfd-solve is not built: " << kSolverPath
-
 v1::SubmitRequest CavityRequest(double end_time, const std::string& name = "cavity") {
   v1::SubmitRequest request;
   request.set_scene(CavityScene(end_time));
@@ -433,16 +430,7 @@ TEST(Daemon, CancelStopsARunningJobAndKeepsPartialResults) {
   ASSERT_TRUE(daemon.Start()) << daemon.Log();
   auto stub = daemon.Stub();
   const v1::Job job = Submit(*stub, CavityRequest(1.0e4));
-  {
-    auto context = Context();
-    v1::WatchRequest watch;
-    watch.set_job_id(job.id());
-    auto reader = stub->Watch(context.get(), watch);
-    v1::WatchEvent event;
-    while (reader->Read(&event) && !(event.has_progress() && event.progress().step() > 0)) {}
-    context->TryCancel();
-    reader->Finish();
-  }
+  WaitForProgress(*stub, job.id());
   v1::CancelRequest cancel;
   cancel.set_job_id(job.id());
   v1::Job reply;
@@ -656,16 +644,6 @@ TEST(Daemon, KillNineAndRestartResumesRunningAndKeepsQueued) {
     ++compared;
   }
   EXPECT_GE(compared, 3);
-}
-
-v1::Job GetJob(v1::Jobs::Stub& stub, const std::string& id) {
-  v1::GetRequest request;
-  request.set_job_id(id);
-  v1::Job job;
-  auto context = Context();
-  const grpc::Status status = stub.Get(context.get(), request, &job);
-  EXPECT_TRUE(status.ok()) << status.error_message();
-  return job;
 }
 
 // The daemon reserves watch numbers in blocks; after a kill -9 the next one must still know the

@@ -27,15 +27,6 @@ grpc::Status SubmitAfter(v1::Jobs::Stub& stub, const std::string& scene,
   return stub.Submit(context.get(), request, job);
 }
 
-v1::Job DependantJob(v1::Jobs::Stub& stub, const std::string& id) {
-  v1::GetRequest request;
-  request.set_job_id(id);
-  v1::Job job;
-  auto context = Context();
-  EXPECT_TRUE(stub.Get(context.get(), request, &job).ok());
-  return job;
-}
-
 TEST(JobStoreSchemaEight, DependenciesOverAnExistingStore) {
   TempDir dir;
   const std::string path = dir.path() + "/jobs.db";
@@ -106,9 +97,9 @@ TEST(JobDependencies, RunsAfterCompletionAndCancelledWhenADependencyFails) {
   ASSERT_TRUE(SubmitAfter(*stub, CavityScene(10000.0), {}, &blocker).ok());
   ASSERT_TRUE(SubmitAfter(*stub, CavityScene(0.05), {blocker.id()}, &middle).ok());
   ASSERT_TRUE(SubmitAfter(*stub, CavityScene(0.05), {middle.id(), second.id()}, &last).ok());
-  EXPECT_EQ(DependantJob(*stub, middle.id()).reason(),
+  EXPECT_EQ(GetJob(*stub, middle.id()).reason(),
             "dependency: waiting for job " + blocker.id() + " to complete");
-  EXPECT_EQ(DependantJob(*stub, last.id()).state(), v1::QUEUED);
+  EXPECT_EQ(GetJob(*stub, last.id()).state(), v1::QUEUED);
   v1::CancelRequest cancel;
   cancel.set_job_id(blocker.id());
   v1::Job cancelled;

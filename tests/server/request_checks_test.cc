@@ -18,9 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 using grpc::StatusCode;
 
-#define REQUIRE_SOLVER() \
-  if (!SolverAvailable()) GTEST_SKIP() << "dlmfd-solve is not built: " << kSolverPath
-
 v1::SubmitRequest Cavity(double end_time = 0.1) {
   v1::SubmitRequest request;
   request.set_scene(CavityScene(end_time));

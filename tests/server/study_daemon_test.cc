@@ -14,9 +14,6 @@
 namespace dlmfd::testing {
 namespace {
 
-#define REQUIRE_SOLVER() \
-  if (!SolverAvailable()) GTEST_SKIP() << "dlmfd-solve is not built: " << kSolverPath
-
 v1::StudyAxis Axis(const std::string& key, std::vector<std::string> values,
                    const std::string& zip = "") {
   v1::StudyAxis axis;
@@ -151,16 +148,7 @@ TEST(Studies, RetryResumesACancelledJobAndStartsAChangedOneAfresh) {
   v1::SubmitStudyResponse submitted;
   ASSERT_TRUE(stub->SubmitStudy(Context().get(), request, &submitted).ok());
   const std::string id = submitted.jobs(0).id();
-  {
-    auto context = Context();
-    v1::WatchRequest watch;
-    watch.set_job_id(id);
-    auto reader = stub->Watch(context.get(), watch);
-    v1::WatchEvent event;
-    while (reader->Read(&event) && !(event.has_progress() && event.progress().step() > 0)) {}
-    context->TryCancel();
-    reader->Finish();
-  }
+  WaitForProgress(*stub, id);
   v1::CancelRequest cancel;
   cancel.set_job_id(id);
   v1::Job cancelled;

@@ -25,9 +25,6 @@ using server::JobRecord;
 using server::JobState;
 using server::JobStore;
 
-#define REQUIRE_SOLVER() \
-  if (!SolverAvailable()) GTEST_SKIP() << "dlmfd-solve is not built: " << kSolverPath
-
 // Two disks settling in a closed box, 16 x 32 cells, 20 steps: a fraction of a second.
 std::string PairScene() {
   return "title = \"two disks settling\"\n"
@@ -43,27 +40,9 @@ std::string PairScene() {
          "[output]\nfields_every = 0\nparticles_every = 0\ncheckpoint_every = 0\n";
 }
 
-v1::Job Submit(v1::Jobs::Stub& stub, const std::string& scene, const std::string& token = "") {
-  v1::SubmitRequest request;
-  request.set_scene(scene);
-  auto context = Context(token);
-  v1::Job job;
-  const grpc::Status status = stub.Submit(context.get(), request, &job);
-  EXPECT_TRUE(status.ok()) << status.error_message();
-  return job;
-}
-
-v1::Job Get(v1::Jobs::Stub& stub, const std::string& id, const std::string& token = "") {
-  v1::GetRequest request;
-  request.set_job_id(id);
-  v1::Job job;
-  auto context = Context(token);
-  EXPECT_TRUE(stub.Get(context.get(), request, &job).ok());
-  return job;
-}
-
 void AwaitState(v1::Jobs::Stub& stub, const std::string& id, v1::JobState state) {
-  while (Get(stub, id).state() != state) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  while (GetJob(stub, id).state() != state)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
 }
 
 TEST(StudyTable, ParametersAreTypedAsTomlReadsThem) {
@@ -302,10 +281,10 @@ TEST(JobHousekeeping, DeleteRemovesRecordsAndDirectories) {
   ASSERT_TRUE(daemon.Start()) << daemon.Log();
   auto stub = daemon.Stub();
   const std::string alice = "alice-token-0123456789", bob = "bob-token-0123456789ab";
-  const v1::Job done = Submit(*stub, CavityScene(0.05), alice);
+  const v1::Job done = SubmitScene(*stub, CavityScene(0.05), alice);
   ASSERT_EQ(WaitFinished(*stub, done.id(), alice).state(), v1::COMPLETED);
-  const v1::Job running = Submit(*stub, CavityScene(10000.0), alice);
-  const v1::Job queued = Submit(*stub, CavityScene(0.05), alice);
+  const v1::Job running = SubmitScene(*stub, CavityScene(10000.0), alice);
+  const v1::Job queued = SubmitScene(*stub, CavityScene(0.05), alice);
   for (;;) {  // running has started
     auto context = Context(alice);
     v1::GetRequest get;
@@ -361,10 +340,10 @@ TEST(JobHousekeeping, HoldReleaseAndPriority) {
   DaemonProcess daemon(dir.path() + "/data", {"--max-concurrent", "1"});
   ASSERT_TRUE(daemon.Start()) << daemon.Log();
   auto stub = daemon.Stub();
-  const v1::Job blocker = Submit(*stub, CavityScene(10000.0));
+  const v1::Job blocker = SubmitScene(*stub, CavityScene(10000.0));
   AwaitState(*stub, blocker.id(), v1::RUNNING);
-  const v1::Job first = Submit(*stub, CavityScene(0.05));
-  const v1::Job second = Submit(*stub, CavityScene(0.05));
+  const v1::Job first = SubmitScene(*stub, CavityScene(0.05));
+  const v1::Job second = SubmitScene(*stub, CavityScene(0.05));
   auto call = [&](auto method, const std::string& id, v1::Job* out) {
     v1::HoldRequest request;
     request.set_job_id(id);
@@ -400,7 +379,7 @@ TEST(JobHousekeeping, HoldReleaseAndPriority) {
     ASSERT_TRUE(stub->Cancel(context.get(), cancel, &changed).ok());
   }
   ASSERT_EQ(WaitFinished(*stub, second.id()).state(), v1::COMPLETED);
-  const v1::Job still = Get(*stub, first.id());
+  const v1::Job still = GetJob(*stub, first.id());
   EXPECT_EQ(still.state(), v1::QUEUED);
   EXPECT_TRUE(still.held());
   v1::Job released;
@@ -488,7 +467,7 @@ TEST(JobHousekeeping, QuotaAndLimitsAreNamedErrors) {
     EXPECT_EQ(refused.error_code(), StatusCode::RESOURCE_EXHAUSTED);
     EXPECT_NE(refused.error_message().find("max_user_disk_mb = 1"), std::string::npos)
         << refused.error_message();
-    EXPECT_EQ(Get(*stub, filler.second.id(), alice).state(), v1::COMPLETED);
+    EXPECT_EQ(GetJob(*stub, filler.second.id(), alice).state(), v1::COMPLETED);
   }
   // Deleting frees the quota.
   v1::DeleteRequest request;

@@ -17,16 +17,6 @@ namespace {
 using server::JobState;
 using server::JobStore;
 
-v1::Job SubmitAs(v1::Jobs::Stub& stub, const std::string& scene, const std::string& token) {
-  v1::SubmitRequest request;
-  request.set_scene(scene);
-  auto context = Context(token);
-  v1::Job job;
-  const grpc::Status status = stub.Submit(context.get(), request, &job);
-  EXPECT_TRUE(status.ok()) << status.error_message();
-  return job;
-}
-
 v1::Usage UsageOf(v1::Jobs::Stub& stub, const std::string& token) {
   auto context = Context(token);
   v1::Usage usage;
@@ -81,7 +71,7 @@ TEST(JobAccounting, ExitCpuMemoryElapsedAndEachUsersUsage) {
   auto stub = daemon.Stub();
   const std::string alice = "alice-token-0123456789", bob = "bob-token-0123456789ab";
 
-  const v1::Job done = WaitFinished(*stub, SubmitAs(*stub, CavityScene(0.2), alice).id(), alice);
+  const v1::Job done = WaitFinished(*stub, SubmitScene(*stub, CavityScene(0.2), alice).id(), alice);
   ASSERT_EQ(done.state(), v1::COMPLETED) << done.reason();
   ASSERT_TRUE(done.has_exit_code());
   EXPECT_EQ(done.exit_code(), solver::kExitCompleted);
@@ -92,7 +82,7 @@ TEST(JobAccounting, ExitCpuMemoryElapsedAndEachUsersUsage) {
   EXPECT_LT(done.peak_memory_bytes(), int64_t{1} << 30);
   EXPECT_DOUBLE_EQ(done.elapsed_seconds(), done.finished_time() - done.started_time());
 
-  const v1::Job long_job = SubmitAs(*stub, CavityScene(10000.0), alice);
+  const v1::Job long_job = SubmitScene(*stub, CavityScene(10000.0), alice);
   while (true) {
     v1::GetRequest get;
     get.set_job_id(long_job.id());
@@ -117,7 +107,7 @@ TEST(JobAccounting, ExitCpuMemoryElapsedAndEachUsersUsage) {
   ASSERT_TRUE(cancelled.has_exit_code());
   EXPECT_EQ(cancelled.exit_code(), solver::kExitCancelled);
 
-  const v1::Job bobs = WaitFinished(*stub, SubmitAs(*stub, CavityScene(0.05), bob).id(), bob);
+  const v1::Job bobs = WaitFinished(*stub, SubmitScene(*stub, CavityScene(0.05), bob).id(), bob);
   ASSERT_EQ(bobs.state(), v1::COMPLETED);
   const v1::Usage usage = UsageOf(*stub, alice);
   EXPECT_EQ(usage.user(), "alice");

@@ -28,9 +28,6 @@ std::string SettlingDisk() {
          "[output]\nfields_every = 0.25\nparticles_every = 0.02\ncheckpoint_every = 0.1\n";
 }
 
-#define REQUIRE_SOLVER() \
-  if (!SolverAvailable()) GTEST_SKIP() << "dlmfd-solve is not built: " << kSolverPath
-
 TEST(WatchExactlyOnce, EveryWatcherGetsEveryEventOnceThroughDaemonKills) {
   REQUIRE_SOLVER();
   TempDir dir;

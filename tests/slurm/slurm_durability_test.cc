@@ -45,12 +45,12 @@ TEST_F(SlurmDurability, ADaemonKilledWithTwentyJobsInSlurmAdoptsThemAllOnRestart
     // All in Slurm's hands (2 run on the node's 2 CPUs, the others wait), one has run.
     ASSERT_TRUE(WaitUntil([&] {
       for (const auto& id : ids) {
-        if (Get(*stub, id).slurm_job_id().empty()) return false;
+        if (GetJob(*stub, id).slurm_job_id().empty()) return false;
       }
       return true;
     })) << daemon().Log();
     WaitForProgress(*stub, ids.front());
-    for (const auto& id : ids) slurm_ids[id] = Get(*stub, id).slurm_job_id();
+    for (const auto& id : ids) slurm_ids[id] = GetJob(*stub, id).slurm_job_id();
     daemon().Kill(SIGKILL);
     daemon().Wait();
     ended_before = EndedInSlurm(ids);
@@ -114,7 +114,7 @@ TEST_F(SlurmDurability, TheDaemonCarriesOnThroughASlurmctldRestart) {
       return log.find("squeue --json failed") != std::string::npos &&
              log.find("trying again in") != std::string::npos;
     })) << daemon().Log();
-    EXPECT_EQ(Get(*stub, long_job).state(), v1::RUNNING);
+    EXPECT_EQ(GetJob(*stub, long_job).state(), v1::RUNNING);
     ASSERT_EQ(std::system((kSlurmDev + " start-slurmctld > /dev/null").c_str()), 0);
   }
   // The long job ran through it all and is cancelled as ever (first: on a node of one CPU the

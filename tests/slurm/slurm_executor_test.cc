@@ -59,7 +59,7 @@ TEST_F(SlurmExecutor, OneJobEndToEndStreamsLikeALocalJob) {
   EXPECT_GE(snapshots, 1);
   EXPECT_EQ(last_snapshot.quantity(), "trA") << last_snapshot.DebugString().substr(0, 300);
   EXPECT_NEAR(last_snapshot.time(), 0.2, 1e-9);
-  const v1::Job done = Get(*stub, job.id());
+  const v1::Job done = GetJob(*stub, job.id());
   EXPECT_FALSE(done.slurm_job_id().empty());
   EXPECT_EQ(done.step(), 20);
   EXPECT_TRUE(fs::exists(done.results_dir() + "/summary.json"));
@@ -94,8 +94,8 @@ TEST_F(SlurmExecutor, ADependantReachesSlurmAfterItsDependencyAndRunsAreAccounte
     ASSERT_TRUE(stub->Submit(context.get(), request, &second).ok());
   }
   // Held by the daemon, not by Slurm: no Slurm job while the first has not completed.
-  const v1::Job waiting = Get(*stub, second.id());
-  if (Get(*stub, first.id()).state() != v1::COMPLETED) {
+  const v1::Job waiting = GetJob(*stub, second.id());
+  if (GetJob(*stub, first.id()).state() != v1::COMPLETED) {
     EXPECT_EQ(waiting.state(), v1::QUEUED);
     EXPECT_TRUE(waiting.slurm_job_id().empty()) << waiting.slurm_job_id();
     EXPECT_EQ(waiting.reason(), "dependency: waiting for job " + first.id() + " to complete");
@@ -126,10 +126,10 @@ TEST_F(SlurmExecutor, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStarts
   v1::Job job;
   ASSERT_TRUE(stub->Submit(Context().get(), request, &job).ok());
   EXPECT_EQ(job.time_limit_seconds(), 420);
-  ASSERT_TRUE(WaitUntil([&] { return Get(*stub, job.id()).slurm_reason() == "JobHeldUser"; }))
-      << Get(*stub, job.id()).ShortDebugString() << "\n"
+  ASSERT_TRUE(WaitUntil([&] { return GetJob(*stub, job.id()).slurm_reason() == "JobHeldUser"; }))
+      << GetJob(*stub, job.id()).ShortDebugString() << "\n"
       << daemon().Log();
-  const v1::Job held = Get(*stub, job.id());
+  const v1::Job held = GetJob(*stub, job.id());
   EXPECT_EQ(held.state(), v1::QUEUED);
   EXPECT_EQ(held.slurm_state(), "PENDING");
   EXPECT_NE(held.reason().find("Slurm: PENDING"), std::string::npos) << held.reason();
@@ -152,8 +152,8 @@ TEST_F(SlurmExecutor, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStarts
   // Another held job is deleted without force, as a queued one: it leaves Slurm's queue.
   v1::Job other;
   ASSERT_TRUE(stub->Submit(Context().get(), request, &other).ok());
-  ASSERT_TRUE(WaitUntil([&] { return !Get(*stub, other.id()).slurm_job_id().empty(); }));
-  const std::string other_slurm_id = Get(*stub, other.id()).slurm_job_id();
+  ASSERT_TRUE(WaitUntil([&] { return !GetJob(*stub, other.id()).slurm_job_id().empty(); }));
+  const std::string other_slurm_id = GetJob(*stub, other.id()).slurm_job_id();
   v1::DeleteRequest remove;
   remove.add_job_ids(other.id());
   v1::DeleteResponse removed;
@@ -162,9 +162,9 @@ TEST_F(SlurmExecutor, AJobWaitingInSlurmIsQueuedWithSlurmsReasonUntilSlurmStarts
   EXPECT_EQ(Shell("squeue -h -j " + other_slurm_id + " -t PD,R -o %T 2>/dev/null"), "");
   // Released, Slurm starts it: RUNNING, from its start in Slurm.
   ASSERT_EQ(std::system(("scontrol release " + slurm_id).c_str()), 0);
-  ASSERT_TRUE(WaitUntil([&] { return Get(*stub, job.id()).state() == v1::RUNNING; }))
+  ASSERT_TRUE(WaitUntil([&] { return GetJob(*stub, job.id()).state() == v1::RUNNING; }))
       << daemon().Log();
-  const v1::Job running = Get(*stub, job.id());
+  const v1::Job running = GetJob(*stub, job.id());
   EXPECT_EQ(running.slurm_state(), "RUNNING");
   EXPECT_EQ(running.reason(), "");
   EXPECT_GT(running.started_time(), held.created_time());
@@ -199,7 +199,7 @@ TEST_F(SlurmExecutor, ADaemonKilledWithSigkillAdoptsItsSlurmJobOnRestart) {
   // ended by then, and an ended job is not adopted).
   const std::string id = Submit(*stub(), CavityScene(200.0)).id();
   WaitForProgress(*stub(), id);
-  const std::string slurm_id = Get(*stub(), id).slurm_job_id();
+  const std::string slurm_id = GetJob(*stub(), id).slurm_job_id();
   daemon().Kill(SIGKILL);
   daemon().Wait();
   ASSERT_FALSE(slurm_id.empty());
@@ -224,7 +224,7 @@ TEST_F(SlurmExecutor, ADaemonKilledBeforeItStoredTheSlurmIdFollowsTheJobInsteadO
   const v1::Job job = Submit(*stub(), CavityScene(200.0));
   const std::string id = job.id();
   WaitForProgress(*stub(), id);
-  const v1::Job running = Get(*stub(), id);
+  const v1::Job running = GetJob(*stub(), id);
   const std::string slurm_id = running.slurm_job_id();
   ASSERT_FALSE(slurm_id.empty());
   daemon().Kill(SIGKILL);

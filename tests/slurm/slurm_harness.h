@@ -84,14 +84,6 @@ inline v1::Job Submit(v1::Jobs::Stub& stub, const std::string& scene) {
   return job;
 }
 
-inline v1::Job Get(v1::Jobs::Stub& stub, const std::string& id) {
-  v1::GetRequest request;
-  request.set_job_id(id);
-  v1::Job job;
-  EXPECT_TRUE(stub.Get(Context().get(), request, &job).ok());
-  return job;
-}
-
 // Runs a shell command; returns its standard output.
 inline std::string Shell(const std::string& command) {
   std::string out;
@@ -112,27 +104,6 @@ inline bool WaitUntil(const std::function<bool()>& done,
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
   return true;
-}
-
-// Reads the job's Watch stream until a progress event past step 0 (the solver runs on a node);
-// a job with no progress within five minutes is a test failure. A short job can end before the
-// stream is opened: then the stream has no progress event to show, and the job's record has the
-// step it reached.
-inline void WaitForProgress(v1::Jobs::Stub& stub, const std::string& id) {
-  auto context = Context();
-  context->set_deadline(std::chrono::system_clock::now() + std::chrono::minutes(5));
-  v1::WatchRequest watch;
-  watch.set_job_id(id);
-  auto reader = stub.Watch(context.get(), watch);
-  v1::WatchEvent event;
-  bool progressed = false;
-  while (!progressed && reader->Read(&event)) {
-    progressed = event.has_progress() && event.progress().step() > 0;
-  }
-  context->TryCancel();
-  reader->Finish();
-  if (!progressed) progressed = Get(stub, id).step() > 0;
-  EXPECT_TRUE(progressed) << "job " << id << " made no progress within five minutes";
 }
 
 // Cancels the job (Cancel, as `dlmfd cancel`) and waits for its end; returns the job then.

@@ -71,7 +71,7 @@ TEST_F(SlurmRequeue, ScontrolRequeueIsANewAttemptThatResumesAndCompletes) {
   // 30000 steps, about 10 s: still running when the test acts on it (3000 steps took 1 s).
   const v1::Job job = Submit(*stub, CavityScene(300.0));
   WaitForProgress(*stub, job.id());
-  const std::string slurm_id = Get(*stub, job.id()).slurm_job_id();
+  const std::string slurm_id = GetJob(*stub, job.id()).slurm_job_id();
   ASSERT_FALSE(slurm_id.empty());
   ASSERT_EQ(std::system(("scontrol requeue " + slurm_id).c_str()), 0);
   const std::time_t requeued_at = std::time(nullptr);
@@ -118,7 +118,7 @@ TEST_F(SlurmRequeue, ATimeoutResumesFromTheCheckpointAndEndsAsAnUninterruptedRun
   const std::string scene = SettlingDisk(20.0);
   const v1::Job job = Submit(*stub, scene);
   WaitForProgress(*stub, job.id());
-  const std::string slurm_id = Get(*stub, job.id()).slurm_job_id();
+  const std::string slurm_id = GetJob(*stub, job.id()).slurm_job_id();
   ASSERT_FALSE(slurm_id.empty());
   // "--ou[t]": the shell that runs pgrep does not match its own pattern.
   const std::string pid = Shell("pgrep -f -- '--ou[t] " + job.results_dir() + "'");
@@ -177,7 +177,7 @@ TEST_F(SlurmRequeue, ANodeFailureIsQueuedAgainAndCompletes) {
   // 30000 steps, about 10 s: still running when the test acts on it (3000 steps took 1 s).
   const v1::Job job = Submit(*stub, CavityScene(300.0));
   WaitForProgress(*stub, job.id());
-  const std::string slurm_id = Get(*stub, job.id()).slurm_job_id();
+  const std::string slurm_id = GetJob(*stub, job.id()).slurm_job_id();
   ASSERT_FALSE(slurm_id.empty());
   NodeBack back{Shell("squeue -h -j " + slurm_id + " -o %N | tr -d '\\n'")};
   ASSERT_FALSE(back.node.empty());
@@ -185,7 +185,7 @@ TEST_F(SlurmRequeue, ANodeFailureIsQueuedAgainAndCompletes) {
                          " State=DOWN Reason=dlmfd-node-failure-test")
                             .c_str()),
             0);
-  ASSERT_TRUE(WaitUntil([&] { return Get(*stub, job.id()).attempt() == 2; })) << daemon().Log();
+  ASSERT_TRUE(WaitUntil([&] { return GetJob(*stub, job.id()).attempt() == 2; })) << daemon().Log();
   // Back in service (slurmd may have registered it already: ReturnToService=2).
   std::system(("scontrol update NodeName=" + back.node + " State=RESUME 2>/dev/null").c_str());
   const v1::Job done = WaitFinished(*stub, job.id());

@@ -60,12 +60,12 @@ TEST_F(SlurmStudy, SixPointsAreOneJobArrayWithThrottleTwoAndEachPointIsAJob) {
   std::string array;
   ASSERT_TRUE(WaitUntil([&] {
     for (const auto& job : study.jobs()) {
-      if (Get(*stub, job.id()).slurm_job_id().empty()) return false;
+      if (GetJob(*stub, job.id()).slurm_job_id().empty()) return false;
     }
     return true;
   })) << daemon().Log();
   for (int k = 0; k < 6; ++k) {
-    const std::string id = Get(*stub, study.jobs(k).id()).slurm_job_id();
+    const std::string id = GetJob(*stub, study.jobs(k).id()).slurm_job_id();
     if (k == 0) array = ArrayOf(id);
     EXPECT_EQ(id, array + "_" + std::to_string(k));
   }
@@ -86,7 +86,7 @@ TEST_F(SlurmStudy, SixPointsAreOneJobArrayWithThrottleTwoAndEachPointIsAJob) {
   std::set<std::string> shown_waiting;
   WaitUntil([&] {
     for (const auto& point : study.jobs()) {
-      const v1::Job job = Get(*stub, point.id());
+      const v1::Job job = GetJob(*stub, point.id());
       if (job.slurm_state() == "PENDING") {
         EXPECT_EQ(job.state(), v1::QUEUED) << job.ShortDebugString();
         EXPECT_EQ(job.started_time(), 0.0) << job.ShortDebugString();
@@ -138,21 +138,21 @@ TEST_F(SlurmStudy, APointIsCancelledAsItsTaskAndRetriedAsAnArrayOfOne) {
   // The first point runs (its stream comes as a local job's); the second waits in Slurm behind
   // the throttle of 1. Both are cancelled: each its own task.
   WaitForProgress(*stub, first);
-  const std::string second_task = Get(*stub, second).slurm_job_id();
+  const std::string second_task = GetJob(*stub, second).slurm_job_id();
   ASSERT_FALSE(second_task.empty());
   EXPECT_EQ(Shell("squeue -h -j " + second_task + " -o %T"), "PENDING\n");
   // The daemon shows the waiting point QUEUED with Slurm's reason, the running one RUNNING, and
   // the study counts them so.
   ASSERT_TRUE(WaitUntil([&] {
-    const v1::Job job = Get(*stub, second);
+    const v1::Job job = GetJob(*stub, second);
     return job.state() == v1::QUEUED && job.slurm_reason() == "JobArrayTaskLimit";
-  })) << Get(*stub, second).ShortDebugString();
-  const v1::Job waiting = Get(*stub, second);
+  })) << GetJob(*stub, second).ShortDebugString();
+  const v1::Job waiting = GetJob(*stub, second);
   EXPECT_EQ(waiting.slurm_state(), "PENDING");
   EXPECT_NE(waiting.reason().find("JobArrayTaskLimit"), std::string::npos) << waiting.reason();
   EXPECT_EQ(waiting.started_time(), 0.0);
-  ASSERT_TRUE(WaitUntil([&] { return Get(*stub, first).state() == v1::RUNNING; }));
-  EXPECT_EQ(Get(*stub, first).slurm_state(), "RUNNING");
+  ASSERT_TRUE(WaitUntil([&] { return GetJob(*stub, first).state() == v1::RUNNING; }));
+  EXPECT_EQ(GetJob(*stub, first).slurm_state(), "RUNNING");
   v1::GetStudyRequest get_study;
   get_study.set_study_id(study.study_id());
   v1::Study counts;

@@ -182,6 +182,26 @@ std::string CavityScene(double end_time) {
   return scene.str();
 }
 
+v1::Job SubmitScene(v1::Jobs::Stub& stub, const std::string& scene, const std::string& token) {
+  v1::SubmitRequest request;
+  request.set_scene(scene);
+  auto context = Context(token);
+  v1::Job job;
+  const grpc::Status status = stub.Submit(context.get(), request, &job);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return job;
+}
+
+v1::Job GetJob(v1::Jobs::Stub& stub, const std::string& job_id, const std::string& token) {
+  v1::GetRequest request;
+  request.set_job_id(job_id);
+  v1::Job job;
+  auto context = Context(token);
+  const grpc::Status status = stub.Get(context.get(), request, &job);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return job;
+}
+
 std::vector<v1::WatchEvent> WatchAll(v1::Jobs::Stub& stub, const std::string& job_id,
                                      const std::string& token, int64_t from_seq) {
   auto context = Context(token);
@@ -213,6 +233,23 @@ v1::Job WaitFinished(v1::Jobs::Stub& stub, const std::string& job_id, const std:
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
+}
+
+void WaitForProgress(v1::Jobs::Stub& stub, const std::string& job_id) {
+  auto context = Context();
+  context->set_deadline(std::chrono::system_clock::now() + std::chrono::minutes(5));
+  v1::WatchRequest watch;
+  watch.set_job_id(job_id);
+  auto reader = stub.Watch(context.get(), watch);
+  v1::WatchEvent event;
+  bool progressed = false;
+  while (!progressed && reader->Read(&event)) {
+    progressed = event.has_progress() && event.progress().step() > 0;
+  }
+  context->TryCancel();
+  reader->Finish();
+  if (!progressed) progressed = GetJob(stub, job_id).step() > 0;
+  EXPECT_TRUE(progressed) << "job " << job_id << " made no progress within five minutes";
 }
 
 }  // namespace dlmfd::testing

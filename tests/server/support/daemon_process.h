@@ -23,6 +23,10 @@ inline const std::string kSolverPath = SolverPathFromEnvironment();
 
 bool SolverAvailable();
 
+// Skips the current test when dlmfd-solve is not built.
+#define REQUIRE_SOLVER() \
+  if (!SolverAvailable()) GTEST_SKIP() << "dlmfd-solve is not built: " << kSolverPath
+
 // A fresh temporary directory, removed by the destructor.
 class TempDir {
  public:
@@ -79,6 +83,12 @@ std::unique_ptr<grpc::ClientContext> Context(const std::string& token = "");
 // A tiny lid-driven cavity: 16 x 16 cells, Newtonian.
 std::string CavityScene(double end_time = 0.5);
 
+// Submit of `scene` as the user of `token`; a refused submit is a test failure (the job is then
+// empty).
+v1::Job SubmitScene(v1::Jobs::Stub& stub, const std::string& scene, const std::string& token = "");
+// Get of one job; a failed Get is a test failure (the job is then empty).
+v1::Job GetJob(v1::Jobs::Stub& stub, const std::string& job_id, const std::string& token = "");
+
 // Reads a Watch stream to its end; returns the events.
 std::vector<v1::WatchEvent> WatchAll(v1::Jobs::Stub& stub, const std::string& job_id,
                                      const std::string& token = "", int64_t from_seq = 0);
@@ -86,5 +96,10 @@ std::vector<v1::WatchEvent> WatchAll(v1::Jobs::Stub& stub, const std::string& jo
 // test failure (a hung job or a deadlocked scheduler fails the test instead of hanging it).
 v1::Job WaitFinished(v1::Jobs::Stub& stub, const std::string& job_id,
                      const std::string& token = "");
+// Reads the job's Watch stream until a progress event past step 0 (the solver has started); a job
+// with no progress within five minutes is a test failure. A short job can end before the stream
+// is opened: then the stream has no progress event to show, and the job's record has the step it
+// reached.
+void WaitForProgress(v1::Jobs::Stub& stub, const std::string& job_id);
 
 }  // namespace dlmfd::testing
