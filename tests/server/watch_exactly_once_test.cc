@@ -52,16 +52,8 @@ TEST(WatchExactlyOnce, EveryWatcherGetsEveryEventOnceThroughDaemonKills) {
     ASSERT_TRUE(stub->SubmitStudy(context.get(), request, &response).ok());
     for (const auto& job : response.jobs()) jobs.push_back(job.id());
   }
-  std::vector<std::unique_ptr<ReconnectingWatcher>> watchers;
-  for (const std::string& id : jobs) {
-    watchers.push_back(std::make_unique<ReconnectingWatcher>(address, id, false));
-    watchers.push_back(std::make_unique<ReconnectingWatcher>(address, id, true));
-  }
-  auto seen = [&] {
-    size_t count = 0;
-    for (const auto& w : watchers) count += w->Count();
-    return count;
-  };
+  Watchers watchers = WatchersOf(address, jobs);
+  auto seen = [&] { return EventsSeen(watchers); };
   // Three kills, each once the watchers have seen some more events (or after 20 s).
   int kills = 0;
   for (int k = 0; k < 3; ++k) {
@@ -92,9 +84,7 @@ TEST(WatchExactlyOnce, EveryWatcherGetsEveryEventOnceThroughDaemonKills) {
     for (const auto& e : reference) {
       resumed += e.has_log() && e.log().text() == "solver resumed from results/checkpoint.h5";
     }
-    for (const auto& w : watchers) {
-      if (w->job_id() == id) ExpectExactlyOnce(reference, *w);
-    }
+    ExpectExactlyOnce(reference, watchers, id);
     // A watch of the finished job from a number in the middle: the rest of the events, once.
     const int64_t middle = job.last_seq() / 2;
     ReconnectingWatcher late(address, id, false, middle);
@@ -104,9 +94,7 @@ TEST(WatchExactlyOnce, EveryWatcherGetsEveryEventOnceThroughDaemonKills) {
   }
   EXPECT_EQ(kills, 3);
   EXPECT_GT(resumed, 0) << "no solver resumed from a checkpoint";
-  size_t reconnected = 0;
-  for (const auto& w : watchers) reconnected += w->Connections() > 1;
-  EXPECT_GT(reconnected, 0u) << "no watcher saw a kill";
+  EXPECT_GT(Reconnected(watchers), 0u) << "no watcher saw a kill";
 }
 
 }  // namespace

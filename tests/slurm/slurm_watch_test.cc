@@ -44,16 +44,8 @@ TEST_F(SlurmWatch, EveryWatcherGetsEveryEventOnceThroughDaemonKills) {
     ASSERT_TRUE(stub()->SubmitStudy(Context().get(), request, &response).ok());
     for (const auto& job : response.jobs()) jobs.push_back(job.id());
   }
-  std::vector<std::unique_ptr<ReconnectingWatcher>> watchers;
-  for (const std::string& id : jobs) {
-    watchers.push_back(std::make_unique<ReconnectingWatcher>(address, id, false));
-    watchers.push_back(std::make_unique<ReconnectingWatcher>(address, id, true));
-  }
-  auto seen = [&] {
-    size_t count = 0;
-    for (const auto& w : watchers) count += w->Count();
-    return count;
-  };
+  Watchers watchers = WatchersOf(address, jobs);
+  auto seen = [&] { return EventsSeen(watchers); };
   for (int k = 0; k < 2; ++k) {
     const size_t before = seen();
     WaitUntil([&] { return seen() >= before + 20; }, std::chrono::seconds(60));
@@ -91,15 +83,11 @@ TEST_F(SlurmWatch, EveryWatcherGetsEveryEventOnceThroughDaemonKills) {
     EXPECT_TRUE(running) << id;
     EXPECT_GT(progress, 0) << id;
     EXPECT_GT(particles, 100) << id;  // 200 samples, and the initial state
-    for (const auto& w : watchers) {
-      if (w->job_id() == id) ExpectExactlyOnce(reference, *w);
-    }
+    ExpectExactlyOnce(reference, watchers, id);
   }
   EXPECT_GT(adopted, 0) << "no kill came while a Slurm job ran";
   EXPECT_GT(throttled, 0) << "no point was shown waiting for the array's throttle or the node";
-  size_t reconnected = 0;
-  for (const auto& w : watchers) reconnected += w->Connections() > 1;
-  EXPECT_GT(reconnected, 0u);
+  EXPECT_GT(Reconnected(watchers), 0u);
 }
 
 }  // namespace

@@ -156,4 +156,32 @@ void ExpectExactlyOnce(const std::vector<v1::WatchEvent>& reference,
   }
 }
 
+Watchers WatchersOf(const std::string& address, const std::vector<std::string>& job_ids) {
+  Watchers watchers;
+  for (const std::string& id : job_ids) {
+    watchers.push_back(std::make_unique<ReconnectingWatcher>(address, id, false));
+    watchers.push_back(std::make_unique<ReconnectingWatcher>(address, id, true));
+  }
+  return watchers;
+}
+
+size_t EventsSeen(const Watchers& watchers) {
+  size_t count = 0;
+  for (const auto& w : watchers) count += w->Count();
+  return count;
+}
+
+void ExpectExactlyOnce(const std::vector<v1::WatchEvent>& reference, const Watchers& watchers,
+                       const std::string& job_id) {
+  for (const auto& w : watchers) {
+    if (w->job_id() == job_id) ExpectExactlyOnce(reference, *w);
+  }
+}
+
+size_t Reconnected(const Watchers& watchers) {
+  size_t reconnected = 0;
+  for (const auto& w : watchers) reconnected += w->Connections() > 1;
+  return reconnected;
+}
+
 }  // namespace dlmfd::testing

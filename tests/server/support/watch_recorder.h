@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -59,5 +60,17 @@ std::vector<v1::WatchEvent> ReferenceEvents(v1::Jobs::Stub& stub, const std::str
 // watcher with snapshots); a watcher without snapshots gets none of them.
 void ExpectExactlyOnce(const std::vector<v1::WatchEvent>& reference,
                        const ReconnectingWatcher& watcher);
+
+using Watchers = std::vector<std::unique_ptr<ReconnectingWatcher>>;
+
+// Two watchers of each job at address from number 0: one without snapshots, one with.
+Watchers WatchersOf(const std::string& address, const std::vector<std::string>& job_ids);
+// The numbered events all the watchers have seen so far.
+size_t EventsSeen(const Watchers& watchers);
+// ExpectExactlyOnce for each of the watchers of job_id.
+void ExpectExactlyOnce(const std::vector<v1::WatchEvent>& reference, const Watchers& watchers,
+                       const std::string& job_id);
+// How many of the watchers reconnected at least once.
+size_t Reconnected(const Watchers& watchers);
 
 }  // namespace dlmfd::testing
