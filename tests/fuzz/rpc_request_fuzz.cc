@@ -15,16 +15,15 @@
 #include <stdlib.h>
 
 #include <chrono>
-#include <condition_variable>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <set>
 #include <string>
 
+#include "../support/raw_grpc_call.h"
 #include "config.h"
 #include "daemon.h"
 #include "dlmfd/v1/jobs.grpc.pb.h"
@@ -93,22 +92,7 @@ void RemoveDataDir() {
 grpc::Status Unary(const std::string& method, const std::string& body) {
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
-  grpc::Slice slice(body);
-  grpc::ByteBuffer request(&slice, 1), reply;
-  std::mutex mutex;
-  std::condition_variable done;
-  bool finished = false;
-  grpc::Status status;
-  harness->generic->UnaryCall(&context, method, grpc::StubOptions(), &request, &reply,
-                              [&](grpc::Status s) {
-                                std::lock_guard lock(mutex);
-                                status = std::move(s);
-                                finished = true;
-                                done.notify_all();
-                              });
-  std::unique_lock lock(mutex);
-  done.wait(lock, [&] { return finished; });
-  return status;
+  return dlmfd::testing::RawUnaryCall(*harness->generic, context, method, body);
 }
 
 template <class Reply, class Request, class Open>
@@ -116,20 +100,7 @@ grpc::Status Stream(const Request& request, bool first_only, Open open) {
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
   auto reader = open(&context, request);
-  Reply reply;
-  bool first = false;
-  while (reader->Read(&reply)) {
-    first = true;
-    if (first_only) {
-      context.TryCancel();
-      break;
-    }
-  }
-  grpc::Status status = reader->Finish();
-  if (first_only && first && status.error_code() == grpc::StatusCode::CANCELLED) {
-    return grpc::Status::OK;  // cancelled by this client after the first message
-  }
-  return status;
+  return dlmfd::testing::ReadStream<Reply>(context, *reader, first_only);
 }
 
 }  // namespace

@@ -14,15 +14,14 @@
 #include <signal.h>
 
 #include <chrono>
-#include <condition_variable>
 #include <iostream>
 #include <map>
-#include <mutex>
 #include <random>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "../support/raw_grpc_call.h"
 #include "support/daemon_process.h"
 
 namespace dlmfd::testing {
@@ -234,33 +233,15 @@ struct Outcome {
   double seconds = 0;
 };
 
-// On a completion queue this thread drains, not the callback API: there gRPC's completing thread
-// writes the status text that its callback thread reads, a hand-off inside the uninstrumented
-// library that ThreadSanitizer reported as a race in this test's process (scripts/tsan.sh).
+// The call and its time (support/raw_grpc_call.h: on a completion queue, for ThreadSanitizer).
 Outcome UnaryCall(grpc::GenericStub& stub, const std::string& method, const std::string& body,
                   std::chrono::seconds deadline) {
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + deadline);
-  grpc::Slice slice(body);
-  grpc::ByteBuffer request(&slice, 1), reply;
   Outcome outcome;
   const auto start = std::chrono::steady_clock::now();
-  grpc::CompletionQueue queue;
-  auto call = stub.PrepareUnaryCall(&context, method, request, &queue);
-  call->StartCall();
-  int finished_tag = 0;
-  call->Finish(&reply, &outcome.status, &finished_tag);
-  void* tag = nullptr;
-  bool ok = false;
-  while (queue.Next(&tag, &ok) && tag != &finished_tag) {}
-  queue.Shutdown();
-  while (queue.Next(&tag, &ok)) {}
+  outcome.status = RawUnaryCall(stub, context, method, body, &outcome.reply);
   outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::vector<grpc::Slice> slices;
-  if (outcome.status.ok() && reply.Dump(&slices).ok()) {
-    for (const auto& s : slices)
-      outcome.reply.append(reinterpret_cast<const char*>(s.begin()), s.size());
-  }
   return outcome;
 }
 
@@ -272,20 +253,8 @@ Outcome StreamCall(const Request& request, bool first_only, Open open) {
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
   const auto start = std::chrono::steady_clock::now();
   auto reader = open(&context, request);
-  Reply reply;
-  bool first = false;
-  while (reader->Read(&reply)) {
-    first = true;
-    if (first_only) {
-      context.TryCancel();
-      break;
-    }
-  }
   Outcome outcome;
-  outcome.status = reader->Finish();
-  if (first_only && first && outcome.status.error_code() == grpc::StatusCode::CANCELLED) {
-    outcome.status = grpc::Status::OK;  // cancelled by this client after the first message
-  }
+  outcome.status = ReadStream<Reply>(context, *reader, first_only);
   outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return outcome;
 }

@@ -4,13 +4,12 @@
 #include <grpcpp/generic/generic_stub.h>
 #include <gtest/gtest.h>
 
-#include <condition_variable>
 #include <filesystem>
 #include <fstream>
-#include <mutex>
 #include <set>
 #include <string>
 
+#include "../support/raw_grpc_call.h"
 #include "support/daemon_process.h"
 
 namespace dlmfd::testing {
@@ -56,21 +55,7 @@ grpc::Status RawCall(const DaemonProcess& daemon, const std::string& method,
                      const std::string& body) {
   grpc::GenericStub generic(daemon.Channel());
   grpc::ClientContext context;
-  grpc::Slice slice(body);
-  grpc::ByteBuffer request(&slice, 1), reply;
-  std::mutex mutex;
-  std::condition_variable done;
-  bool finished = false;
-  grpc::Status status;
-  generic.UnaryCall(&context, method, grpc::StubOptions(), &request, &reply, [&](grpc::Status s) {
-    std::lock_guard lock(mutex);
-    status = std::move(s);
-    finished = true;
-    done.notify_all();
-  });
-  std::unique_lock lock(mutex);
-  done.wait(lock, [&] { return finished; });
-  return status;
+  return RawUnaryCall(generic, context, method, body);
 }
 
 TEST(RequestChecks, AnUnreadableRequestBodyIsInvalidArgumentNamingTheRequest) {

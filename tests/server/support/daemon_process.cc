@@ -10,13 +10,13 @@
 
 #include <algorithm>
 #include <chrono>
-#include <condition_variable>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <mutex>
 #include <sstream>
 #include <thread>
+
+#include "../../support/raw_grpc_call.h"
 
 namespace dlmfd::testing {
 namespace fs = std::filesystem;
@@ -137,28 +137,11 @@ bool DaemonProcess::Healthy(const std::string& service) const {
   if (!service.empty()) {
     request_bytes = std::string("\x0a", 1) + static_cast<char>(service.size()) + service;
   }
-  grpc::Slice request_slice(request_bytes);
-  grpc::ByteBuffer request_buffer(&request_slice, 1), reply_buffer;
   grpc::GenericStub generic(channel);
-  grpc::Status status;
-  std::mutex mutex;
-  std::condition_variable done;
-  bool finished = false;
-  generic.UnaryCall(&context, "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request_buffer,
-                    &reply_buffer, [&](grpc::Status s) {
-                      std::lock_guard lock(mutex);
-                      status = s;
-                      finished = true;
-                      done.notify_all();
-                    });
-  std::unique_lock lock(mutex);
-  done.wait(lock, [&] { return finished; });
-  if (!status.ok()) return false;
-  std::vector<grpc::Slice> slices;
-  if (!reply_buffer.Dump(&slices).ok()) return false;
   std::string bytes;
-  for (const auto& slice : slices)
-    bytes.append(reinterpret_cast<const char*>(slice.begin()), slice.size());
+  if (!RawUnaryCall(generic, context, "/grpc.health.v1.Health/Check", request_bytes, &bytes).ok()) {
+    return false;
+  }
   // HealthCheckResponse { status = 1 (SERVING) }: field 1, varint 1 -> bytes 0x08 0x01.
   return bytes == std::string("\x08\x01", 2);
 }
