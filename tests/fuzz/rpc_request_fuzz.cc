@@ -20,9 +20,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
-#include <set>
 #include <string>
 
+#include "../support/promised_codes.h"
 #include "../support/raw_grpc_call.h"
 #include "config.h"
 #include "daemon.h"
@@ -132,14 +132,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // Unary, or a body that does not parse (the daemon names the request it cannot read).
     status = Unary("/dlmfd.v1.Jobs/" + method->name(), body);
   }
-  static const std::set<grpc::StatusCode> kPromised = {grpc::StatusCode::OK,
-                                                       grpc::StatusCode::INVALID_ARGUMENT,
-                                                       grpc::StatusCode::NOT_FOUND,
-                                                       grpc::StatusCode::RESOURCE_EXHAUSTED,
-                                                       grpc::StatusCode::ALREADY_EXISTS,
-                                                       grpc::StatusCode::FAILED_PRECONDITION,
-                                                       grpc::StatusCode::OUT_OF_RANGE};
-  if (kPromised.count(status.error_code()) == 0) {
+  if (dlmfd::testing::kPromisedCodes.count(status.error_code()) == 0) {
     Finding(method->name() + " answered code " + std::to_string(status.error_code()) + ": " +
             status.error_message().substr(0, 500));
   }
