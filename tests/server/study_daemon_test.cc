@@ -10,18 +10,10 @@
 #include <vector>
 
 #include "support/daemon_process.h"
+#include "support/study_axis.h"
 
 namespace dlmfd::testing {
 namespace {
-
-v1::StudyAxis Axis(const std::string& key, std::vector<std::string> values,
-                   const std::string& zip = "") {
-  v1::StudyAxis axis;
-  axis.set_key(key);
-  for (const auto& v : values) axis.add_values(v);
-  axis.set_zip(zip);
-  return axis;
-}
 
 std::vector<v1::Job> ListWhere(v1::Jobs::Stub& stub, const std::string& study,
                                std::vector<std::string> where, grpc::Status* status = nullptr) {
@@ -54,8 +46,8 @@ TEST(Studies, AStudyIsStoredWithItsAxesAndFoundByTheEffectiveScene) {
   request.add_tags("study-e2e");
   (*request.mutable_labels())["project"] = "cavity";
   request.set_max_running(1);
-  *request.add_axes() = Axis("fluid.viscosity", {"0.01", "0.02"}, "pair");
-  *request.add_axes() = Axis("time.end", {"0.05", "0.1"}, "pair");
+  *request.add_axes() = ListAxis("fluid.viscosity", {"0.01", "0.02"}, "pair");
+  *request.add_axes() = ListAxis("time.end", {"0.05", "0.1"}, "pair");
   v1::SubmitStudyResponse submitted;
   ASSERT_TRUE(stub->SubmitStudy(Context().get(), request, &submitted).ok());
   ASSERT_EQ(submitted.jobs_size(), 2);  // zipped: two points, not four
@@ -114,8 +106,8 @@ TEST(Studies, AnInvalidPointRejectsTheWholeStudy) {
   auto stub = daemon.Stub();
   v1::SubmitStudyRequest request;
   request.set_scene(CavityScene(0.05));
-  *request.add_axes() = Axis("fluid.viscosity", {"0.01", "-1"});
-  *request.add_axes() = Axis("time.end", {"0.05", "0.1"});
+  *request.add_axes() = ListAxis("fluid.viscosity", {"0.01", "-1"});
+  *request.add_axes() = ListAxis("time.end", {"0.05", "0.1"});
   v1::SubmitStudyResponse reply;
   const grpc::Status status = stub->SubmitStudy(Context().get(), request, &reply);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
@@ -128,7 +120,7 @@ TEST(Studies, AnInvalidPointRejectsTheWholeStudy) {
   EXPECT_TRUE(ListWhere(*stub, "", {}).empty());
   // A wildcard over an array the scene does not have is invalid too, naming the key.
   request.clear_axes();
-  *request.add_axes() = Axis("particles.*.density", {"1.5"});
+  *request.add_axes() = ListAxis("particles.*.density", {"1.5"});
   const grpc::Status wildcard = stub->SubmitStudy(Context().get(), request, &reply);
   EXPECT_EQ(wildcard.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_NE(wildcard.error_message().find("particles.*.density"), std::string::npos)
@@ -144,7 +136,7 @@ TEST(Studies, RetryResumesACancelledJobAndStartsAChangedOneAfresh) {
   v1::SubmitStudyRequest request;
   // 5000 steps: still running when the cancel comes, also on an idle machine (500 were not).
   request.set_scene(CavityScene(50.0));
-  *request.add_axes() = Axis("fluid.viscosity", {"0.01"});
+  *request.add_axes() = ListAxis("fluid.viscosity", {"0.01"});
   v1::SubmitStudyResponse submitted;
   ASSERT_TRUE(stub->SubmitStudy(Context().get(), request, &submitted).ok());
   const std::string id = submitted.jobs(0).id();

@@ -17,20 +17,14 @@
 #include "study_expansion.h"
 #include "support/daemon_process.h"
 #include "support/store_fixtures.h"
+#include "support/study_axis.h"
 
 namespace dlmfd::server {
 namespace {
 
 grpc::Status StatusOf(const std::function<void()>& body) { return Guarded(body); }
 
-v1::StudyAxis Values(const std::string& key, std::vector<std::string> values,
-                     const std::string& zip = "") {
-  v1::StudyAxis axis;
-  axis.set_key(key);
-  for (const auto& v : values) axis.add_values(v);
-  axis.set_zip(zip);
-  return axis;
-}
+using testing::ListAxis;
 
 v1::StudyAxis Range(const std::string& key, double start, double stop, int count, bool log) {
   v1::StudyAxis axis;
@@ -50,8 +44,8 @@ v1::SubmitStudyRequest Request(std::vector<v1::StudyAxis> axes) {
 
 TEST(StudyAxes, ZippedAxesStepTogetherAndCrossTheGrid) {
   const StudyPlan plan =
-      ExpandStudy(Request({Values("a", {"1", "2", "3"}, "z"), Values("g", {"x", "y"}),
-                           Values("b", {"10", "20", "30"}, "z")}),
+      ExpandStudy(Request({ListAxis("a", {"1", "2", "3"}, "z"), ListAxis("g", {"x", "y"}),
+                           ListAxis("b", {"10", "20", "30"}, "z")}),
                   100);
   ASSERT_EQ(plan.points.size(), 6u);  // 3 zipped x 2
   EXPECT_EQ(plan.points[0].label, "a=1,g=x,b=10");
@@ -59,7 +53,7 @@ TEST(StudyAxes, ZippedAxesStepTogetherAndCrossTheGrid) {
   EXPECT_EQ(plan.points[2].label, "a=2,g=x,b=20");
   EXPECT_EQ(plan.points[5].label, "a=3,g=y,b=30");
   const grpc::Status unequal = StatusOf([] {
-    ExpandStudy(Request({Values("a", {"1", "2"}, "z"), Values("b", {"1"}, "z")}), 9);
+    ExpandStudy(Request({ListAxis("a", {"1", "2"}, "z"), ListAxis("b", {"1"}, "z")}), 9);
   });
   EXPECT_EQ(unequal.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_NE(unequal.error_message().find("equal lengths"), std::string::npos)
@@ -101,9 +95,9 @@ TEST(StudyAxes, LinearAndLogarithmicRangesIncludeBothEndsAsFloats) {
 
 TEST(StudyAxes, ValuesAreTypedWithTheJob) {
   const StudyPlan plan = ExpandStudy(
-      Request({Values("particles.*.density", {"1.02"}), Values("collisions.substeps", {"4"}),
-               Values("splitting.advection", {"wave"}), Values("gravity", {"[0.0, -981.0]"}),
-               Values("accuracy.strict", {"true"})}),
+      Request({ListAxis("particles.*.density", {"1.02"}), ListAxis("collisions.substeps", {"4"}),
+               ListAxis("splitting.advection", {"wave"}), ListAxis("gravity", {"[0.0, -981.0]"}),
+               ListAxis("accuracy.strict", {"true"})}),
       10);
   ASSERT_EQ(plan.points.size(), 1u);
   const auto& p = plan.points[0].parameters;
