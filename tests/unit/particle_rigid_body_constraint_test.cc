@@ -49,6 +49,16 @@ struct DiskScene {
     u.assign(grid.NodeCount(), 0.0);
     v.assign(grid.NodeCount(), 0.0);
   }
+  // The rigid motion (velocity, omega) about the disk's centre on the interior nodes.
+  void Rigid(Vec2 velocity, double omega) {
+    for (int j = 1; j < grid.ny; ++j) {
+      for (int i = 1; i < grid.nx; ++i) {
+        const Vec2 r = Vec2(grid.X(i), grid.Y(j)) - particles[0].position;
+        u[grid.Index(i, j)] = velocity.x() - omega * r.y();
+        v[grid.Index(i, j)] = velocity.y() + omega * r.x();
+      }
+    }
+  }
   // A non-rigid field, zero on the walls.
   void Vortical() {
     for (int j = 1; j < grid.ny; ++j) {
@@ -165,14 +175,7 @@ TEST(RigidBodyConstraint, RigidFluidMotionIsLeftUnchanged) {
   DiskScene s(1.5);
   const Vec2 velocity(0.3, -0.1);
   const double omega = 2.0;
-  const ParticleState& p = s.particles[0];
-  for (int j = 1; j < s.grid.ny; ++j) {
-    for (int i = 1; i < s.grid.nx; ++i) {
-      const Vec2 r = Vec2(s.grid.X(i), s.grid.Y(j)) - p.position;
-      s.u[s.grid.Index(i, j)] = velocity.x() - omega * r.y();
-      s.v[s.grid.Index(i, j)] = velocity.y() + omega * r.x();
-    }
-  }
+  s.Rigid(velocity, omega);
   s.particles[0].velocity = velocity;
   s.particles[0].angular_velocity = omega;
   const std::vector<double> u0 = s.u, v0 = s.v;
@@ -249,14 +252,7 @@ TEST(RigidBodyConstraint, NeutrallyBuoyantDiskInRigidFluidMotionTakesThatMotion)
   DiskScene s(1.0);  // starts with U = (0.1, -0.2), omega = 0.5: not the fluid's motion
   const Vec2 velocity(0.3, -0.1);
   const double omega = 2.0;
-  const ParticleState& p = s.particles[0];
-  for (int j = 1; j < s.grid.ny; ++j) {
-    for (int i = 1; i < s.grid.nx; ++i) {
-      const Vec2 r = Vec2(s.grid.X(i), s.grid.Y(j)) - p.position;
-      s.u[s.grid.Index(i, j)] = velocity.x() - omega * r.y();
-      s.v[s.grid.Index(i, j)] = velocity.y() + omega * r.x();
-    }
-  }
+  s.Rigid(velocity, omega);
   const std::vector<double> u0 = s.u, v0 = s.v;
   RigidBodyConstraint dlm(s.params, s.grid);
   EXPECT_TRUE(dlm.IsNeutral(0));

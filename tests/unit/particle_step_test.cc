@@ -65,7 +65,27 @@ struct SceneRun {
     step.Advance(n * params.time.dt, params.time.dt, particles, u.data(), v.data(), report);
     ++n;
   }
+  // A non-rigid liquid: a smooth field on the interior nodes, zero on the walls.
+  void NonRigidField() {
+    for (int j = 1; j < grid.ny; ++j) {
+      for (int i = 1; i < grid.nx; ++i) {
+        const double x = grid.X(i), y = grid.Y(j);
+        u[grid.Index(i, j)] = std::sin(2 * kPi * x) * std::sin(2 * kPi * y);
+        v[grid.Index(i, j)] = std::cos(3 * x) * std::sin(2 * kPi * y);
+      }
+    }
+  }
 };
+
+// Two disks 0.02 apart, inside each other's collision range, under gravity in a unit box of walls
+// (h = 1/48): the first of density first_density moving right, the second of 1.5 up and left.
+Params DisksInContact(double first_density, ParticleMeshKind kind) {
+  Params params = Scene(1.0, 1.0 / 48, false, kind);
+  params.gravity = Vec2(0.0, -981.0);
+  params.particles.push_back(Disk(Vec2(0.4, 0.45), first_density, Vec2(0.2, 0.0)));
+  params.particles.push_back(Disk(Vec2(0.4 + 0.2 + 0.02, 0.47), 1.5, Vec2(-0.1, 0.1)));
+  return params;
+}
 
 // The properties that hold for both multiplier point sets: the ring mesh and the collocation points
 // (quadratic at the boundary points).
@@ -115,18 +135,9 @@ TEST_P(ParticleStepOnEachMesh, UniformTranslationOfFluidAndDiskIsLeftUnchanged) 
 
 TEST_P(ParticleStepOnEachMesh, HydrodynamicForceSatisfiesTheMomentumIdentity) {
   // Two disks inside each other's collision range, under gravity, in a non-rigid liquid.
-  Params params = Scene(1.0, 1.0 / 48, false, GetParam());
-  params.gravity = Vec2(0.0, -981.0);
-  params.particles.push_back(Disk(Vec2(0.4, 0.45), 1.01, Vec2(0.2, 0.0)));
-  params.particles.push_back(Disk(Vec2(0.4 + 0.2 + 0.02, 0.47), 1.5, Vec2(-0.1, 0.1)));
+  const Params params = DisksInContact(1.01, GetParam());
   SceneRun run(params);
-  for (int j = 1; j < run.grid.ny; ++j) {
-    for (int i = 1; i < run.grid.nx; ++i) {
-      const double x = run.grid.X(i), y = run.grid.Y(j);
-      run.u[run.grid.Index(i, j)] = std::sin(2 * kPi * x) * std::sin(2 * kPi * y);
-      run.v[run.grid.Index(i, j)] = std::cos(3 * x) * std::sin(2 * kPi * y);
-    }
-  }
+  run.NonRigidField();
   for (int k = 0; k < 3; ++k) {
     std::vector<ParticleState> before = run.particles;
     run.Advance();
@@ -179,18 +190,9 @@ TEST_P(ParticleStepOnEachMesh, NeutrallyBuoyantDiskFloatsWithAUniformFlowUnderGr
 
 TEST_P(ParticleStepOnEachMesh, NeutrallyBuoyantDiskSatisfiesTheMomentumIdentityInContact) {
   // A neutral disk (its collision force goes to the fluid through (37)) next to a heavy one.
-  Params params = Scene(1.0, 1.0 / 48, false, GetParam());
-  params.gravity = Vec2(0.0, -981.0);
-  params.particles.push_back(Disk(Vec2(0.4, 0.45), 1.0, Vec2(0.2, 0.0)));
-  params.particles.push_back(Disk(Vec2(0.4 + 0.2 + 0.02, 0.47), 1.5, Vec2(-0.1, 0.1)));
+  const Params params = DisksInContact(1.0, GetParam());
   SceneRun run(params);
-  for (int j = 1; j < run.grid.ny; ++j) {
-    for (int i = 1; i < run.grid.nx; ++i) {
-      const double x = run.grid.X(i), y = run.grid.Y(j);
-      run.u[run.grid.Index(i, j)] = std::sin(2 * kPi * x) * std::sin(2 * kPi * y);
-      run.v[run.grid.Index(i, j)] = std::cos(3 * x) * std::sin(2 * kPi * y);
-    }
-  }
+  run.NonRigidField();
   for (int k = 0; k < 3; ++k) {
     std::vector<ParticleState> before = run.particles;
     run.Advance();
