@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/shear_start_up.h"
 #include "dlmfd/conformation/conformation_step.h"
 #include "dlmfd/conformation/giesekus_relaxation.h"
 #include "dlmfd/conformation/inflow_state.h"
@@ -109,25 +110,15 @@ TEST(ConformationModelScene, StepReachesTheModelsSteadyShearAtEveryNode) {
   // transient is below e^{-20} ~ 2e-9 of the steady state.
   const int n = 8;
   const double wi = 3.0, dt = 0.05;
-  const Params p = GiesekusChannel(n, 0.3);
-  const Grid grid = p.domain.VelocityGrid();
-  ConformationStep step(p, grid);
-  const std::size_t count = grid.NodeCount();
-  std::vector<double> u(count), v(count, 0.0), a11(count, 1.0), a12(count, 0.0), a22(count, 1.0);
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) u[grid.Index(i, j)] = wi * (grid.Y(j) - 0.5);
-  StepReport report;
-  for (int s = 0; s < 400; ++s)
-    step.Advance(s * dt, dt, u.data(), v.data(), nullptr, a11.data(), a12.data(), a22.data(),
-                 report);
+  const testing::ShearRun run = testing::ShearStartUp(GiesekusChannel(n, 0.3), wi, dt, 400);
   const GiesekusRelaxation model(0.3);
   const SymTensor want = SteadyModelConformation(model, Mat2{0.0, wi, 0.0, 0.0}, 1.0);
-  for (std::size_t k = 0; k < count; ++k) {
-    EXPECT_NEAR(a11[k], want.a11, 1e-7 * want.a11);
-    EXPECT_NEAR(a12[k], want.a12, 1e-7 * want.a12);
-    EXPECT_NEAR(a22[k], want.a22, 1e-7);
+  for (std::size_t k = 0; k < run.a11.size(); ++k) {
+    EXPECT_NEAR(run.a11[k], want.a11, 1e-7 * want.a11);
+    EXPECT_NEAR(run.a12[k], want.a12, 1e-7 * want.a12);
+    EXPECT_NEAR(run.a22[k], want.a22, 1e-7);
   }
-  EXPECT_NEAR(report.Get("max_trA"), want.a11 + want.a22, 1e-6 * want.a11);
+  EXPECT_NEAR(run.report.Get("max_trA"), want.a11 + want.a22, 1e-6 * want.a11);
 }
 
 TEST(ConformationModelScene, InflowStateIsTheModelsSteadyShear) {

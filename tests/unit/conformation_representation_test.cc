@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "../support/shear_start_up.h"
 #include "dlmfd/conformation/conformation_advection.h"
 #include "dlmfd/conformation/conformation_step.h"
 #include "dlmfd/conformation/inflow_state.h"
@@ -76,21 +77,12 @@ TEST(ConformationRepresentation, EachRepresentationReachesTheSteadyShear) {
     Params p = Channel(n, r);
     p.domain.sides[int(Side::kBottom)].type = SideType::kWall;
     p.domain.sides[int(Side::kTop)].type = SideType::kWall;
-    const Grid grid = p.domain.VelocityGrid();
-    ConformationStep step(p, grid);
-    const std::size_t count = grid.NodeCount();
-    std::vector<double> u(count), v(count, 0.0), a11(count, 1.0), a12(count, 0.0), a22(count, 1.0);
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) u[grid.Index(i, j)] = wi * (grid.Y(j) - 0.5);
-    StepReport report;
-    for (int s = 0; s < 400; ++s)
-      step.Advance(s * dt, dt, u.data(), v.data(), nullptr, a11.data(), a12.data(), a22.data(),
-                   report);
+    const testing::ShearRun run = testing::ShearStartUp(p, wi, dt, 400);
     const SymTensor want = SimpleShearConformation(1.0, wi);
-    for (std::size_t k = 0; k < count; ++k) {
-      EXPECT_NEAR(a11[k], want.a11, 1e-7 * want.a11) << RepresentationName(r);
-      EXPECT_NEAR(a12[k], want.a12, 1e-7 * want.a12) << RepresentationName(r);
-      EXPECT_NEAR(a22[k], want.a22, 1e-7) << RepresentationName(r);
+    for (std::size_t k = 0; k < run.a11.size(); ++k) {
+      EXPECT_NEAR(run.a11[k], want.a11, 1e-7 * want.a11) << RepresentationName(r);
+      EXPECT_NEAR(run.a12[k], want.a12, 1e-7 * want.a12) << RepresentationName(r);
+      EXPECT_NEAR(run.a22[k], want.a22, 1e-7) << RepresentationName(r);
     }
   }
 }
