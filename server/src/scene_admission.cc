@@ -80,7 +80,7 @@ SceneEstimate AdmitScene(const std::string& scene, const std::vector<std::string
   estimate.memory_mb = static_cast<int64_t>(std::ceil(mib));
   estimate.warnings = AccuracyWarnings(params);
   estimate.numerics = params.numerics.resolved;
-  estimate.scene_values = FlattenScene(WriteScene(params));
+  estimate.scene_values = FlattenParams(params);
   return estimate;
 }
 

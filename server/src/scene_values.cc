@@ -6,7 +6,9 @@
 #include <cmath>
 #include <sstream>
 #include <system_error>
+#include <variant>
 
+#include "dlmfd/scene/scene_keys.h"
 #include "dlmfd/scene/toml_bounds.h"
 #include "service_error.h"
 
@@ -77,6 +79,26 @@ std::vector<std::pair<std::string, std::string>> FlattenScene(const std::string&
   } catch (const toml::parse_error& e) {
     throw StoreError(std::string("the scene as run cannot be read: ") +
                      std::string(e.description()));
+  }
+  return out;
+}
+
+std::vector<std::pair<std::string, std::string>> FlattenParams(const Params& params) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [key, value] : scene::SceneValues(params)) {
+    if (const auto* x = std::get_if<double>(&value)) {
+      out.emplace_back(key, ShortestText(*x));
+    } else if (const auto* n = std::get_if<int>(&value)) {
+      out.emplace_back(key, ShortestText(static_cast<double>(*n)));
+    } else if (const auto* b = std::get_if<bool>(&value)) {
+      out.emplace_back(key, *b ? "true" : "false");
+    } else if (const auto* v = std::get_if<Vec2>(&value)) {
+      out.emplace_back(key, "[" + ShortestText(v->x()) + ", " + ShortestText(v->y()) + "]");
+      out.emplace_back(key + ".0", ShortestText(v->x()));
+      out.emplace_back(key + ".1", ShortestText(v->y()));
+    } else {
+      out.emplace_back(key, std::get<std::string>(value));
+    }
   }
   return out;
 }

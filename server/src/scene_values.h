@@ -2,7 +2,8 @@
 // a study axis.
 //
 // A job's effective scene is what the solver runs: the scene file with the overrides applied and
-// every default filled in (dlmfd::WriteScene of the Params that ParseScene returned at admission).
+// every default filled in (the Params that ParseScene returned at admission, flattened from the
+// table of scene keys, dlmfd/scene/scene_keys.h: the keys and values WriteScene writes).
 // Flattened, every scalar and every array has its dotted key (`fluid.viscosity`,
 // `particles.0.center`, `particles.0.center.1`, `domain.boundary.left.type`), so `list --where
 // KEY=VALUE` finds a value whether the scene file or an override set it. Values are normalised so
@@ -20,10 +21,13 @@
 #include <utility>
 #include <vector>
 
+#include "dlmfd/core/params.h"
 #include "job_store.h"
 
 namespace dlmfd::server {
 
+// The flattened effective scene of validated Params (the keys WriteScene writes).
+std::vector<std::pair<std::string, std::string>> FlattenParams(const Params& params);
 // The flattened effective scene of a scene-as-run text; throws StoreError on unreadable TOML.
 std::vector<std::pair<std::string, std::string>> FlattenScene(const std::string& scene_as_run);
 // The normalised form of a TOML value text (an override's or a `where` filter's value).

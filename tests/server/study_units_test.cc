@@ -6,7 +6,9 @@
 
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 
 #include "dlmfd/scene/scene_file.h"
@@ -117,7 +119,7 @@ TEST(SceneValues, TheEffectiveSceneIsFlattenedWithNormalisedNumbers) {
   const Params params =
       ParseScene("[fluid]\nviscosity = 0.25\n[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n",
                  {ParseOverride("time.end=2")});
-  const auto values = FlattenScene(WriteScene(params));
+  const auto values = FlattenParams(params);
   auto find = [&](const std::string& key) {
     for (const auto& [k, v] : values) {
       if (k == key) return v;
@@ -132,6 +134,24 @@ TEST(SceneValues, TheEffectiveSceneIsFlattenedWithNormalisedNumbers) {
   EXPECT_EQ(find("particles.0.center.1"), NormalizedValue("0.5"));
   EXPECT_EQ(find("domain.boundary.left.type"), "wall");
   EXPECT_NE(NormalizedValue("0.1"), NormalizedValue("0.10000000000000002"));
+}
+
+// Admission flattens from the table of scene keys (FlattenParams); the same pairs as flattening the
+// scene as run, written and read back as TOML, for every case file.
+TEST(SceneValues, TheTableFlattensAsTheSceneAsRunReadsBack) {
+  int cases = 0;
+  for (const auto& entry :
+       std::filesystem::recursive_directory_iterator(std::string(DLMFD_SOURCE_DIR) + "/cases")) {
+    if (entry.path().extension() != ".toml") continue;
+    const Params params = LoadSceneFile(entry.path().string());
+    auto from_table = FlattenParams(params);
+    auto from_text = FlattenScene(WriteScene(params));
+    std::sort(from_table.begin(), from_table.end());
+    std::sort(from_text.begin(), from_text.end());
+    EXPECT_EQ(from_table, from_text) << entry.path();
+    ++cases;
+  }
+  EXPECT_GT(cases, 20);
 }
 
 JobRecord Job(const std::string& id, const std::string& study, int priority = 0) {

@@ -8,6 +8,7 @@
 #include "dlmfd/conformation/ptt_relaxation.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/number_text.h"
+#include "dlmfd/core/param_words.h"
 
 namespace dlmfd {
 namespace {
@@ -35,33 +36,9 @@ void CheckParameter(const FluidParams& f, const std::optional<double>& value, co
 
 }  // namespace
 
-const char* ModelName(ConstitutiveModel m) {
-  switch (m) {
-    case ConstitutiveModel::kOldroydB:
-      return "oldroyd_b";
-    case ConstitutiveModel::kGiesekus:
-      return "giesekus";
-    case ConstitutiveModel::kFeneP:
-      return "fene_p";
-    case ConstitutiveModel::kPttLinear:
-      return "ptt_linear";
-    case ConstitutiveModel::kPttExponential:
-      return "ptt_exponential";
-  }
-  return "oldroyd_b";
-}
+const char* ModelName(ConstitutiveModel m) { return WordOf(m); }
 
-const char* RepresentationName(ConformationRepresentation r) {
-  switch (r) {
-    case ConformationRepresentation::kStandard:
-      return "standard";
-    case ConformationRepresentation::kLog:
-      return "log";
-    case ConformationRepresentation::kSqrt:
-      return "sqrt";
-  }
-  return "standard";
-}
+const char* RepresentationName(ConformationRepresentation r) { return WordOf(r); }
 
 std::unique_ptr<RelaxationModel> MakeRelaxationModel(const FluidParams& fluid) {
   switch (fluid.model) {

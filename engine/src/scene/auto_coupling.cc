@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "dlmfd/core/number_text.h"
+#include "dlmfd/core/param_words.h"
 #include "dlmfd/scene/accuracy_envelope.h"
 
 namespace dlmfd {
@@ -85,17 +86,7 @@ constexpr Rule kRules[] = {NoParticles, FastParticles, CreepingFlow, TurningShap
 
 }  // namespace
 
-const char* ConstraintCouplingName(ConstraintCoupling coupling) {
-  switch (coupling) {
-    case ConstraintCoupling::kViscous:
-      return "viscous";
-    case ConstraintCoupling::kIncremental:
-      return "incremental";
-    case ConstraintCoupling::kPaper:
-      break;
-  }
-  return "paper";
-}
+const char* ConstraintCouplingName(ConstraintCoupling coupling) { return WordOf(coupling); }
 
 std::string ResolvedChoiceText(const ResolvedChoice& c) {
   std::string numbers;

@@ -1,17 +1,10 @@
-// The presets' defaults (scene/numerics_preset.h).
+// The presets' names (scene/numerics_preset.h); their key = word table is in scene_keys.cc.
 #include "dlmfd/scene/numerics_preset.h"
+
+#include "dlmfd/core/param_words.h"
 
 namespace dlmfd {
 
-NumericsDefaults DefaultsOf(NumericsPreset preset) {
-  if (preset == NumericsPreset::kPaper) {
-    return {"ring", "sw_ne", "least_squares", "paper", "explicit", "none", "none"};
-  }
-  return {"collocation", "both", "wave", "auto", "devss", "tendency", "none"};
-}
-
-const char* NumericsPresetName(NumericsPreset preset) {
-  return preset == NumericsPreset::kPaper ? "paper" : "default";
-}
+const char* NumericsPresetName(NumericsPreset preset) { return WordOf(preset); }
 
 }  // namespace dlmfd

@@ -1,20 +1,23 @@
-// Scene parsing (design.md 3.1): TOML -> Params, every key with the default of core/params.h except
-// a particle's center (required), particle_mesh.h (kPaperParticleMeshRatio domain.h) and the
-// numerics keys, whose defaults follow numerics.preset (scene/numerics_preset.h); "auto" is
-// resolved here (scene/auto_coupling.h). Types, choices and unknown keys are checked here, values
+// Scene parsing (design.md 3.1): TOML -> Params, driven by the tables of scene/scene_keys.h. Pass 1
+// reads every key the scene gives (types and words checked, unknown keys refused, section by
+// section); pass 2 gives the others their defaults: numerics.preset's words, then "auto" resolved
+// from the rest of the scene (scene/auto_coupling.h), then the keys derived from others
+// (particle_mesh.h from domain.h, splitting.alpha and beta from the coupling). Values are checked
 // by ValidateScene (scene/scene_validation.h). Every error names the key, the value and what is
 // allowed.
 #include "dlmfd/scene/scene_file.h"
 
 #include <fstream>
+#include <optional>
+#include <set>
 #include <sstream>
+#include <type_traits>
 
 #include <toml++/toml.h>
 
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/number_text.h"
-#include "dlmfd/scene/auto_coupling.h"
-#include "dlmfd/scene/numerics_preset.h"
+#include "dlmfd/scene/scene_keys.h"
 #include "dlmfd/scene/scene_validation.h"
 #include "dlmfd/scene/toml_bounds.h"
 #include "scene_overrides.h"
@@ -56,248 +59,140 @@ bool IsUtf8(const std::string& text) {
   return true;
 }
 
+using scene::DefaultKind;
+using scene::KeyType;
+using scene::SceneKey;
 using scene::TableReader;
 
-template <typename Enum>
-Enum Choose(const std::string& key, const std::string& word,
-            std::initializer_list<std::pair<const char*, Enum>> choices) {
-  std::string allowed = "one of";
-  for (const auto& c : choices) {
-    if (word == c.first) return c.second;
-    allowed += std::string(allowed.size() > 6 ? ", " : " ") + "\"" + c.first + "\"";
+// The choice keys whose word is "auto", resolved once the rest of the scene is read.
+using AutoKeys = std::vector<const SceneKey<Params>*>;
+
+// Reads a key that is present (or required: then its absence is the error).
+template <typename Record>
+void ReadKey(TableReader& r, const SceneKey<Record>& k, const std::string& leaf, Record& record,
+             AutoKeys* autos) {
+  if (k.type != KeyType::kChoice) {
+    k.read(r, leaf, record);
+    return;
   }
-  throw InvalidParameter(key, "\"" + word + "\"", allowed);
+  const std::string word = r.String(leaf, std::nullopt);
+  if constexpr (std::is_same_v<Record, Params>) {
+    if (word == "auto" && k.resolve != nullptr) {
+      autos->push_back(&k);
+      return;
+    }
+  }
+  k.set_word(record, r.Key(leaf), word);
 }
 
-void ReadDomain(TableReader& top, const NumericsDefaults& defaults, Params& p) {
-  TableReader domain(top.Table("domain"), "domain");
-  DomainParams& d = p.domain;
-  d.size = domain.Vector("size", d.size);
-  d.h = domain.Real("h", d.h);
+// A record of SideKeys or ParticleKeys: each key where it applies, in the table's order.
+template <typename Record>
+void ReadRecord(TableReader& r, const std::vector<SceneKey<Record>>& keys, Record& record) {
+  std::string allowed;
+  for (const SceneKey<Record>& k : keys) {
+    const bool applies = !k.applies || k.applies(record);
+    if (applies || !k.refused.empty()) allowed += (allowed.empty() ? "" : ", ") + k.name;
+    if (!applies) {
+      if (r.Has(k.name) && !k.refused.empty()) {
+        Record refused = record;
+        k.read(r, k.name, refused);
+        throw InvalidParameter(r.Key(k.name), scene::ValueText(k.get(refused)), k.refused);
+      }
+      continue;
+    }
+    if (r.Has(k.name) || k.default_kind == DefaultKind::kRequired) {
+      ReadKey<Record>(r, k, k.name, record, nullptr);
+    }
+  }
+  r.RejectUnknown(allowed);
+}
 
+void ReadSides(TableReader& domain, Params& p) {
   TableReader boundary(domain.Table("boundary"), "domain.boundary");
   const char* names[4] = {"left", "right", "bottom", "top"};
   for (int s = 0; s < 4; ++s) {
-    BoundarySide& side = d.sides[s];
+    BoundarySide& side = p.domain.sides[s];
     side = BoundarySide{};
     const toml::table* table = boundary.Table(names[s]);
     if (table == nullptr) continue;
     TableReader r(table, boundary.Key(names[s]));
-    side.type = Choose<SideType>(r.Key("type"), r.String("type", std::nullopt),
-                                 {{"wall", SideType::kWall},
-                                  {"velocity", SideType::kVelocity},
-                                  {"outflow", SideType::kOutflow},
-                                  {"periodic", SideType::kPeriodic}});
-    if (side.type == SideType::kVelocity) {
-      side.profile = Choose<Profile>(r.Key("profile"), r.String("profile", "uniform"),
-                                     {{"uniform", Profile::kUniform},
-                                      {"poiseuille", Profile::kPoiseuille},
-                                      {"quartic", Profile::kQuartic}});
-      side.ramp_time = r.Real("ramp_time", 0.0);
-      if (side.profile == Profile::kUniform) {
-        side.value = r.Vector("value", std::nullopt);
-        r.RejectUnknown("type, profile, value, ramp_time for a uniform velocity side");
-      } else {
-        side.max = r.Vector("max", std::nullopt);
-        r.RejectUnknown("type, profile, max, ramp_time for a poiseuille or quartic velocity side");
-      }
-    } else {
-      r.RejectUnknown(std::string("type only, for a ") + names[s] + " side of this type");
-    }
+    ReadRecord(r, scene::SideKeys(), side);
   }
   boundary.RejectUnknown("left, right, bottom, top");
-  d.diagonals =
-      Choose<MeshDiagonals>("domain.diagonals", domain.String("diagonals", defaults.diagonals),
-                            {{"sw_ne", MeshDiagonals::kSwNe}, {"both", MeshDiagonals::kBoth}});
-  if (domain.Has("flow_rate")) d.flow_rate = domain.Real("flow_rate", std::nullopt);
-  domain.RejectUnknown("size, h, boundary, diagonals, flow_rate");
-}
-
-void ReadFluid(TableReader& top, const NumericsDefaults& defaults, Params& p) {
-  TableReader fluid(top.Table("fluid"), "fluid");
-  FluidParams& f = p.fluid;
-  f.density = fluid.Real("density", f.density);
-  f.viscosity = fluid.Real("viscosity", f.viscosity);
-  f.relaxation_time = fluid.Real("relaxation_time", f.relaxation_time);
-  f.solvent_ratio = fluid.Real("solvent_ratio", f.solvent_ratio);
-  f.body_force = fluid.Vector("body_force", f.body_force);
-  f.model = Choose<ConstitutiveModel>("fluid.model", fluid.String("model", "oldroyd_b"),
-                                      {{"oldroyd_b", ConstitutiveModel::kOldroydB},
-                                       {"giesekus", ConstitutiveModel::kGiesekus},
-                                       {"fene_p", ConstitutiveModel::kFeneP},
-                                       {"ptt_linear", ConstitutiveModel::kPttLinear},
-                                       {"ptt_exponential", ConstitutiveModel::kPttExponential}});
-  f.conformation = Choose<ConformationRepresentation>(
-      "fluid.conformation", fluid.String("conformation", "standard"),
-      {{"standard", ConformationRepresentation::kStandard},
-       {"log", ConformationRepresentation::kLog},
-       {"sqrt", ConformationRepresentation::kSqrt}});
-  f.stress_splitting = Choose<StressSplitting>(
-      "fluid.stress_splitting", fluid.String("stress_splitting", defaults.stress_splitting),
-      {{"explicit", StressSplitting::kExplicit}, {"devss", StressSplitting::kDevss}});
-  // Model parameters: present only when given (ValidateScene checks them against fluid.model).
-  auto optional_real = [&fluid](const char* name) -> std::optional<double> {
-    if (!fluid.Has(name)) return std::nullopt;
-    return fluid.Real(name, std::nullopt);
-  };
-  f.mobility = optional_real("mobility");
-  f.extensibility = optional_real("extensibility");
-  f.ptt_epsilon = optional_real("ptt_epsilon");
-  fluid.Vector("gravity", Vec2::Zero());  // read by ReadGravity
-  fluid.RejectUnknown(
-      "density, viscosity, relaxation_time, solvent_ratio, body_force, model, conformation, "
-      "stress_splitting, mobility, extensibility, ptt_epsilon, gravity");
 }
 
 // gravity is a top-level key; `fluid.gravity` is accepted too, because a `gravity = ...` line
 // written after the [fluid] header (as in design.md 3.1) belongs to that table in TOML.
-void ReadGravity(TableReader& top, Params& p) {
-  const toml::table* fluid = top.Has("fluid") ? top.Table("fluid") : nullptr;
-  TableReader in_fluid(fluid, "fluid");
+void ReadGravity(TableReader& top, TableReader& in_fluid, Params& p) {
   const bool at_top = top.Has("gravity");
   const bool under_fluid = in_fluid.Has("gravity");
+  const Vec2 fluid_gravity = in_fluid.Vector("gravity", p.gravity);  // marks it known
   if (at_top && under_fluid) {
-    throw InvalidParameter("fluid.gravity", scene::NodeText(*fluid->get("gravity")),
+    throw InvalidParameter("fluid.gravity", VecText(fluid_gravity),
                            "no second gravity (gravity is also given at the top level)");
   }
-  p.gravity = at_top ? top.Vector("gravity", p.gravity) : in_fluid.Vector("gravity", p.gravity);
+  p.gravity = at_top ? top.Vector("gravity", p.gravity) : fluid_gravity;
 }
 
-void ReadTime(TableReader& top, Params& p) {
-  TableReader time(top.Table("time"), "time");
-  p.time.dt = time.Real("dt", p.time.dt);
-  p.time.end = time.Real("end", p.time.end);
-  time.RejectUnknown("dt, end");
-}
-
-// Read last: "auto" is resolved from the rest of the scene (scene/auto_coupling.h).
-void ReadSplitting(TableReader& top, const NumericsDefaults& defaults, Params& p) {
-  TableReader splitting(top.Table("splitting"), "splitting");
-  const std::string word = splitting.String("constraint", defaults.constraint);
-  std::string chosen = word;
-  if (word == "auto") {
-    p.numerics.resolved.push_back(ResolveConstraintCoupling(p));
-    chosen = p.numerics.resolved.back().value;
+// The end of a section of SceneKeys: its records, then its unknown keys.
+void FinishSection(TableReader& top, TableReader& r, const std::string& section, Params& p) {
+  std::string allowed;
+  for (const SceneKey<Params>& k : scene::SceneKeys()) {
+    if (scene::SectionOf(k.name) != section) continue;
+    allowed += (allowed.empty() ? "" : ", ") + scene::LeafOf(k.name);
   }
-  // The constraint first: the defaults of alpha and beta follow it.
-  SplittingParams& s = p.splitting;
-  s = SplittingParams::DefaultWeights(Choose<ConstraintCoupling>(
-      "splitting.constraint", chosen,
-      {{"auto", ConstraintCoupling::kIncremental},  // never taken (resolved above); listed for
-                                                    // the error's allowed values
-       {"incremental", ConstraintCoupling::kIncremental},
-       {"paper", ConstraintCoupling::kPaper},
-       {"viscous", ConstraintCoupling::kViscous}}));
-  s.alpha = splitting.Real("alpha", s.alpha);
-  s.beta = splitting.Real("beta", s.beta);
-  s.advection = Choose<AdvectionScheme>(
-      "splitting.advection", splitting.String("advection", defaults.advection),
-      {{"least_squares", AdvectionScheme::kLeastSquares}, {"wave", AdvectionScheme::kWave}});
-  // (ReadFluid first.) The correction's default depends on the liquid.
-  s.steady_correction = Choose<SteadyCorrection>(
-      "splitting.steady_correction",
-      splitting.String("steady_correction", p.fluid.IsNewtonian()
-                                                ? defaults.steady_correction
-                                                : defaults.steady_correction_polymer),
-      {{"none", SteadyCorrection::kNone},
-       {"taylor", SteadyCorrection::kTaylor},
-       {"tendency", SteadyCorrection::kTendency}});
-  splitting.RejectUnknown("alpha, beta, advection, constraint, steady_correction");
-}
-
-// numerics.preset, read first: the numerics keys' defaults follow it.
-NumericsDefaults ReadNumerics(TableReader& top, Params& p) {
-  TableReader numerics(top.Table("numerics"), "numerics");
-  p.numerics.preset = Choose<NumericsPreset>(
-      "numerics.preset", numerics.String("preset", "default"),
-      {{"default", NumericsPreset::kDefault}, {"paper", NumericsPreset::kPaper}});
-  numerics.RejectUnknown("preset");
-  return DefaultsOf(p.numerics.preset);
-}
-
-void ReadSolvers(TableReader& top, Params& p) {
-  TableReader r(top.Table("solvers"), "solvers");
-  SolverParams& s = p.solvers;
-  s.stokes_tolerance = r.Real("stokes_tolerance", s.stokes_tolerance);
-  s.stokes_max_iterations = r.Integer("stokes_max_iterations", s.stokes_max_iterations);
-  s.advection_tolerance = r.Real("advection_tolerance", s.advection_tolerance);
-  s.advection_max_iterations = r.Integer("advection_max_iterations", s.advection_max_iterations);
-  s.wave_max_courant = r.Real("wave_max_courant", s.wave_max_courant);
-  s.multiplier_tolerance = r.Real("multiplier_tolerance", s.multiplier_tolerance);
-  s.multiplier_max_iterations = r.Integer("multiplier_max_iterations", s.multiplier_max_iterations);
-  r.RejectUnknown(
-      "stokes_tolerance, stokes_max_iterations, advection_tolerance, advection_max_iterations, "
-      "wave_max_courant, "
-      "multiplier_tolerance, multiplier_max_iterations");
-}
-
-void ReadMeshCollisionsConformationOutput(TableReader& top, const NumericsDefaults& defaults,
-                                          Params& p) {
-  TableReader mesh(top.Table("particle_mesh"), "particle_mesh");
-  ParticleMeshParams& pm = p.particle_mesh;
-  pm.kind = Choose<ParticleMeshKind>("particle_mesh.kind",
-                                     mesh.String("kind", defaults.particle_mesh_kind),
-                                     {{"ring", ParticleMeshKind::kRing},
-                                      {"collocation", ParticleMeshKind::kCollocation},
-                                      {"cut_cell", ParticleMeshKind::kCutCell}});
-  pm.h = mesh.Real("h", kPaperParticleMeshRatio * p.domain.h);  // follows the fluid mesh
-  pm.spacing = mesh.Real("spacing", pm.spacing);
-  pm.interpolation = Choose<BoundaryInterpolation>(
-      "particle_mesh.interpolation", mesh.String("interpolation", "quadratic"),
-      {{"quadratic", BoundaryInterpolation::kQuadratic},
-       {"linear", BoundaryInterpolation::kLinear},
-       {"biquadratic", BoundaryInterpolation::kBiquadratic}});
-  mesh.RejectUnknown("kind, h, spacing, interpolation");
-
-  TableReader col(top.Table("collisions"), "collisions");
-  CollisionParams& c = p.collisions;
-  c.range = col.Real("range", c.range);
-  c.wall_stiffness = col.Real("wall_stiffness", c.wall_stiffness);
-  c.particle_stiffness = col.Real("particle_stiffness", c.particle_stiffness);
-  c.substeps = col.Integer("substeps", c.substeps);
-  col.RejectUnknown("range, wall_stiffness, particle_stiffness, substeps");
-
-  TableReader conf(top.Table("conformation"), "conformation");
-  p.conformation.form = Choose<ConformationForm>("conformation.form", conf.String("form", "A"),
-                                                 {{"A", ConformationForm::kA}});
-  p.conformation.max_courant = conf.Real("max_courant", p.conformation.max_courant);
-  p.conformation.blend_kappa = conf.Real("blend_kappa", p.conformation.blend_kappa);
-  conf.RejectUnknown("form, max_courant, blend_kappa");
-
-  TableReader out(top.Table("output"), "output");
-  OutputParams& o = p.output;
-  o.fields_every = out.Real("fields_every", o.fields_every);
-  o.particles_every = out.Real("particles_every", o.particles_every);
-  o.checkpoint_every = out.Real("checkpoint_every", o.checkpoint_every);
-  out.RejectUnknown("fields_every, particles_every, checkpoint_every");
-
-  TableReader accuracy(top.Table("accuracy"), "accuracy");
-  p.accuracy.strict = accuracy.Boolean("strict", p.accuracy.strict);
-  accuracy.RejectUnknown("strict");
-}
-
-// A particle's shape: shape = "disk" (the default) with its diameter, or "ellipse" with
-// semi_axes = [a, b] (along the body's x and y axes); angle (radians) turns the body's x axis from
-// the domain's at t = 0. Each shape refuses the other's size key.
-void ReadShape(TableReader& r, ParticleParams& q) {
-  q.shape = Choose<ShapeKind>(r.Key("shape"), r.String("shape", "disk"),
-                              {{"disk", ShapeKind::kDisk}, {"ellipse", ShapeKind::kEllipse}});
-  if (q.shape == ShapeKind::kDisk) {
-    if (r.Has("semi_axes")) {
-      throw InvalidParameter(r.Key("semi_axes"), VecText(r.Vector("semi_axes", std::nullopt)),
-                             "absent for a disk (give diameter), or shape = \"ellipse\"");
-    }
-    q.diameter = r.Real("diameter", q.diameter);
-  } else {
-    if (r.Has("diameter")) {
-      throw InvalidParameter(r.Key("diameter"), ExactText(r.Real("diameter", std::nullopt)),
-                             "absent for an ellipse (give semi_axes = [a, b]), or shape = "
-                             "\"disk\"");
-    }
-    const Vec2 axes = r.Vector("semi_axes", std::nullopt);
-    q.SetEllipse(axes.x(), axes.y());
+  if (section == "domain") {
+    ReadSides(r, p);
+    allowed += ", boundary";
   }
-  q.angle = r.Real("angle", q.angle);
+  if (section == "fluid") {
+    ReadGravity(top, r, p);
+    allowed += ", gravity";
+  }
+  r.RejectUnknown(allowed);
+}
+
+// Pass 1: every key of SceneKeys the scene gives, section by section.
+std::set<std::string> ReadGivenKeys(TableReader& top, Params& p, AutoKeys& autos) {
+  std::set<std::string> given;
+  std::optional<TableReader> current;
+  std::string section;
+  for (const SceneKey<Params>& k : scene::SceneKeys()) {
+    const std::string key_section = scene::SectionOf(k.name);
+    if (key_section != section) {
+      if (current) FinishSection(top, *current, section, p);
+      section = key_section;
+      current.emplace(top.Table(section), section);
+    }
+    TableReader& r = section.empty() ? top : *current;
+    const std::string leaf = scene::LeafOf(k.name);
+    if (k.name == "gravity" || !r.Has(leaf)) continue;  // gravity: ReadGravity
+    ReadKey<Params>(r, k, leaf, p, &autos);
+    given.insert(k.name);
+  }
+  if (current) FinishSection(top, *current, section, p);
+  return given;
+}
+
+// Pass 2: the defaults of the keys not given: the preset's words, then "auto" resolved from the
+// rest of the scene (scene/auto_coupling.h), then the keys derived from others.
+void ApplyDefaults(const std::set<std::string>& given, AutoKeys& autos, Params& p) {
+  for (const SceneKey<Params>& k : scene::SceneKeys()) {
+    if (given.count(k.name) != 0 || k.default_kind != DefaultKind::kPreset) continue;
+    const std::string word = scene::PresetWord(p.numerics.preset, k.name, p);
+    if (word == "auto" && k.resolve != nullptr) {
+      autos.push_back(&k);
+    } else {
+      k.set_word(p, k.name, word);
+    }
+  }
+  for (const SceneKey<Params>* k : autos) {
+    p.numerics.resolved.push_back(k->resolve(p));
+    k->set_word(p, k->name, p.numerics.resolved.back().value);
+  }
+  for (const SceneKey<Params>& k : scene::SceneKeys()) {
+    if (given.count(k.name) == 0 && k.default_kind == DefaultKind::kDerived) k.derive(p);
+  }
 }
 
 void ReadParticles(TableReader& top, Params& p) {
@@ -311,16 +206,7 @@ void ReadParticles(TableReader& top, Params& p) {
       throw InvalidParameter(prefix, scene::NodeText(*array->get(i)), "a table ([[particles]])");
     TableReader r(table, prefix);
     ParticleParams q;
-    q.center = r.Vector("center", std::nullopt);
-    ReadShape(r, q);
-    q.density = r.Real("density", q.density);
-    q.velocity = r.Vector("velocity", q.velocity);
-    q.angular_velocity = r.Real("angular_velocity", q.angular_velocity);
-    q.motion = Choose<Motion>(
-        r.Key("motion"), r.String("motion", "free"),
-        {{"free", Motion::kFree}, {"fixed", Motion::kFixed}, {"prescribed", Motion::kPrescribed}});
-    r.RejectUnknown(
-        "center, shape, diameter, semi_axes, angle, density, velocity, angular_velocity, motion");
+    ReadRecord(r, scene::ParticleKeys(), q);
     p.particles.push_back(q);
   }
 }
@@ -366,19 +252,13 @@ Params ParseScene(const std::string& toml_text, const std::vector<SceneOverride>
 
   Params p;
   TableReader top(&root, "");
-  p.title = top.String("title", "");
-  const NumericsDefaults defaults = ReadNumerics(top, p);
-  ReadDomain(top, defaults, p);
-  ReadFluid(top, defaults, p);
-  ReadGravity(top, p);
-  ReadTime(top, p);
-  ReadSolvers(top, p);
-  ReadMeshCollisionsConformationOutput(top, defaults, p);
+  AutoKeys autos;
+  const std::set<std::string> given = ReadGivenKeys(top, p, autos);
   ReadParticles(top, p);
-  ReadSplitting(top, defaults, p);
   top.RejectUnknown(
-      "title, numerics, domain, fluid, gravity, time, splitting, solvers, particles, "
-      "particle_mesh, collisions, conformation, output, accuracy");
+      "title, gravity, numerics, domain, fluid, time, splitting, solvers, particle_mesh, "
+      "collisions, conformation, output, accuracy, particles");
+  ApplyDefaults(given, autos, p);
   ValidateScene(p);
   return p;
 }

@@ -20,31 +20,13 @@
 #include "dlmfd/particles/particle_rules.h"
 #include "dlmfd/scene/accuracy_envelope.h"
 #include "dlmfd/scene/scene_footprint.h"
+#include "dlmfd/scene/scene_keys.h"
 
 namespace dlmfd {
 namespace {
 
 constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
 
-void RequirePositive(const std::string& key, double x) {
-  if (!(x > 0.0)) throw InvalidParameter(key, ExactText(x), "a number > 0");
-}
-void RequireNonNegative(const std::string& key, double x) {
-  if (!(x >= 0.0)) throw InvalidParameter(key, ExactText(x), "a number >= 0");
-}
-void RequireOpenUnit(const std::string& key, double x) {
-  if (!(x > 0.0 && x < 1.0)) throw InvalidParameter(key, ExactText(x), "a number in (0, 1)");
-}
-void RequireHalfOpenUnit(const std::string& key, double x) {
-  if (!(x > 0.0 && x <= 1.0)) throw InvalidParameter(key, ExactText(x), "a number in (0, 1]");
-}
-void RequireAtLeastOne(const std::string& key, int n) {
-  if (n < 1) throw InvalidParameter(key, std::to_string(n), "an integer >= 1");
-}
-
-void RequireFinite(const std::string& key, double x) {
-  if (!std::isfinite(x)) throw InvalidParameter(key, ExactText(x), "a finite number");
-}
 // Both semi-axes > 0 and finite, the longer at most kMaxEllipseAspect times the shorter.
 void RequireEllipseAxes(const std::string& key, const Vec2& axes) {
   const double a = axes.x(), b = axes.y();
@@ -104,7 +86,7 @@ void ValidateDomain(const Params& p) {
   if (!(d.size.x() > 0.0 && d.size.y() > 0.0)) {
     throw InvalidParameter("domain.size", VecText(d.size), "two numbers > 0 (width, height)");
   }
-  RequirePositive("domain.h", d.h);
+  scene::RequireSectionRanges(p, "domain");
   const SceneFootprint footprint = EstimateFootprint(p);
   if (!(footprint.velocity_nodes <= kMaxVelocityNodes)) {
     throw InvalidParameter(
@@ -131,53 +113,24 @@ void ValidateDomain(const Params& p) {
   ValidateFlowRate(d);
 }
 
-void ValidateFluid(const FluidParams& f) {
-  RequirePositive("fluid.density", f.density);
-  RequirePositive("fluid.viscosity", f.viscosity);
-  RequireNonNegative("fluid.relaxation_time", f.relaxation_time);
-  RequireHalfOpenUnit("fluid.solvent_ratio", f.solvent_ratio);
-  ValidateConstitutiveModel(f);
-}
-
-void ValidateSolvers(const SolverParams& s) {
-  RequireOpenUnit("solvers.stokes_tolerance", s.stokes_tolerance);
-  RequireAtLeastOne("solvers.stokes_max_iterations", s.stokes_max_iterations);
-  RequireOpenUnit("solvers.advection_tolerance", s.advection_tolerance);
-  RequireAtLeastOne("solvers.advection_max_iterations", s.advection_max_iterations);
-  RequireHalfOpenUnit("solvers.wave_max_courant", s.wave_max_courant);
-  RequireOpenUnit("solvers.multiplier_tolerance", s.multiplier_tolerance);
-  RequireAtLeastOne("solvers.multiplier_max_iterations", s.multiplier_max_iterations);
+// The ranges of the tables' keys (scene/scene_keys.h), section by section.
+void ValidateFluid(const Params& p) {
+  scene::RequireSectionRanges(p, "fluid");
+  ValidateConstitutiveModel(p.fluid);
 }
 
 void ValidateMeshCollisionsConformation(const Params& p) {
-  RequirePositive("particle_mesh.h", p.particle_mesh.h);
-  const double spacing = p.particle_mesh.spacing;
-  if (!(spacing >= kMinCollocationSpacing && spacing <= kMaxCollocationSpacing)) {
-    throw InvalidParameter("particle_mesh.spacing", ExactText(spacing),
-                           "a number in [" + ShortText(kMinCollocationSpacing) + ", " +
-                               ShortText(kMaxCollocationSpacing) +
-                               "] (boundary point spacing in units of domain.h)");
-  }
-  const CollisionParams& c = p.collisions;
-  RequirePositive("collisions.range", c.range);
-  RequirePositive("collisions.wall_stiffness", c.wall_stiffness);
-  RequirePositive("collisions.particle_stiffness", c.particle_stiffness);
-  RequireAtLeastOne("collisions.substeps", c.substeps);
-  RequireHalfOpenUnit("conformation.max_courant", p.conformation.max_courant);
-  RequireHalfOpenUnit("conformation.blend_kappa", p.conformation.blend_kappa);
+  scene::RequireSectionRanges(p, "particle_mesh");
+  scene::RequireSectionRanges(p, "collisions");
+  scene::RequireSectionRanges(p, "conformation");
 }
 
 void ValidateParticleRangesAndMeshes(const Params& p) {
   for (std::size_t i = 0; i < p.particles.size(); ++i) {
     const std::string prefix = "particles." + std::to_string(i);
     const ParticleParams& q = p.particles[i];
-    if (q.shape == ShapeKind::kEllipse) {
-      RequireEllipseAxes(prefix + ".semi_axes", q.semi_axes);
-    } else {
-      RequirePositive(prefix + ".diameter", q.diameter);
-    }
-    RequireFinite(prefix + ".angle", q.angle);
-    RequirePositive(prefix + ".density", q.density);
+    if (q.shape == ShapeKind::kEllipse) RequireEllipseAxes(prefix + ".semi_axes", q.semi_axes);
+    scene::RequireParticleRanges(q, prefix);
   }
   const SceneFootprint footprint = EstimateFootprint(p);
   if (!(footprint.multiplier_nodes <= kMaxMultiplierNodes)) {
@@ -226,10 +179,10 @@ void ValidateAccuracy(const Params& p) {
 
 void ValidateScene(const Params& params) {
   ValidateDomain(params);
-  ValidateFluid(params.fluid);
+  ValidateFluid(params);
   ValidateTimeSteps(params.time);
   ValidateSplitting(params.splitting, !params.particles.empty());
-  ValidateSolvers(params.solvers);
+  scene::RequireSectionRanges(params, "solvers");
   ValidateMeshCollisionsConformation(params);
   ValidateOutputPeriods(params.time, params.output);
   ValidateParticleRangesAndMeshes(params);

@@ -1,5 +1,8 @@
 // The validated parameter tree of a scene (design.md 3.1). Built only by scene/scene_file.h, which
-// checks every value; the engine may assume what the comments state. Units are the user's.
+// checks every value; the engine may assume what the comments state. Units are the user's. Each
+// member a scene sets is declared once as a scene key, with its default, range and description, in
+// engine/src/scene/scene_keys.cc (scene/scene_keys.h); the enums' scene words are
+// core/param_words.h.
 #pragma once
 
 #include <Eigen/Core>

@@ -15,25 +15,13 @@
 // The struct defaults of core/params.h are the "default" preset's for the particle mesh, the
 // coupling and the polymer stress; for the advection scheme and the diagonals they stay the
 // paper's (least squares, SW-NE): the engine's tests and benches that build Params themselves
-// studied those (a test holds this table to it).
+// studied those (a test holds this table to it). The presets' key = word pairs are declared with
+// the keys they set (PresetWord, scene/scene_keys.h).
 #pragma once
 
 #include "dlmfd/core/params.h"
 
 namespace dlmfd {
-
-// The scene words each numerics key defaults to under a preset.
-struct NumericsDefaults {
-  const char* particle_mesh_kind;         // particle_mesh.kind
-  const char* diagonals;                  // domain.diagonals
-  const char* advection;                  // splitting.advection
-  const char* constraint;                 // splitting.constraint ("auto": scene/auto_coupling.h)
-  const char* stress_splitting;           // fluid.stress_splitting
-  const char* steady_correction;          // splitting.steady_correction, Newtonian liquid
-  const char* steady_correction_polymer;  // ..., with a polymer
-};
-
-NumericsDefaults DefaultsOf(NumericsPreset preset);
 
 const char* NumericsPresetName(NumericsPreset preset);
 
