@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "../../engine/src/mesh/macro_triangle_stencil.h"
+#include "../support/constraint_disk_scene.h"
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/particles/collocation_points.h"
@@ -187,53 +188,14 @@ TEST(MacroTriangleStencil, MeansOverBothDiagonalsReproducePolynomialsAndAreMirro
   }
 }
 
-// Unit box of walls, h = 1/48, one disk D = 0.2 off the grid lines, collocation points.
-struct CollocationScene {
-  Params params;
-  Grid grid{48, 48, 1.0 / 48, 0.0, 0.0};
-  std::vector<ParticleState> particles;
-  std::vector<double> u, v;
-
+// The constraint tests' disk (support/constraint_disk_scene.h) on collocation points.
+struct CollocationScene : testing::ConstraintDiskScene {
   CollocationScene(double density, BoundaryInterpolation interpolation,
-                   MeshDiagonals diagonals = MeshDiagonals::kSwNe) {
-    params.domain.size = Vec2(1.0, 1.0);
-    params.domain.h = 1.0 / 48;
+                   MeshDiagonals diagonals = MeshDiagonals::kSwNe)
+      : ConstraintDiskScene(density) {
     params.domain.diagonals = diagonals;
     params.particle_mesh.kind = ParticleMeshKind::kCollocation;
     params.particle_mesh.interpolation = interpolation;
-    params.fluid.density = 1.0;
-    ParticleParams pp;
-    pp.center = Vec2(0.5137, 0.4871);
-    pp.diameter = 0.2;
-    pp.density = density;
-    params.particles.push_back(pp);
-    ParticleState s;
-    s.position = pp.center;
-    s.radius = 0.1;
-    s.density = density;
-    s.velocity = Vec2(0.1, -0.2);
-    s.angular_velocity = 0.5;
-    particles.push_back(s);
-    u.assign(grid.NodeCount(), 0.0);
-    v.assign(grid.NodeCount(), 0.0);
-  }
-  void Rigid(Vec2 velocity, double omega) {
-    for (int j = 1; j < grid.ny; ++j) {
-      for (int i = 1; i < grid.nx; ++i) {
-        const Vec2 r = Vec2(grid.X(i), grid.Y(j)) - particles[0].position;
-        u[grid.Index(i, j)] = velocity.x() - omega * r.y();
-        v[grid.Index(i, j)] = velocity.y() + omega * r.x();
-      }
-    }
-  }
-  void Vortical() {
-    for (int j = 1; j < grid.ny; ++j) {
-      for (int i = 1; i < grid.nx; ++i) {
-        const double x = grid.X(i), y = grid.Y(j);
-        u[grid.Index(i, j)] = std::sin(2 * kPi * x) * std::cos(2 * kPi * y) + 0.3;
-        v[grid.Index(i, j)] = -std::cos(2 * kPi * x) * std::sin(2 * kPi * y) + 0.2 * x;
-      }
-    }
   }
   // The fluid velocity at point k by the point's own stencil (quadratic or linear), written from
   // the stencil kernels.

@@ -11,63 +11,20 @@
 #include <cstdio>
 #include <vector>
 
+#include "../support/constraint_disk_scene.h"
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 
 namespace dlmfd {
 namespace {
 
-// Unit box of walls, h = 1/48, h_p = 1/35 (the paper's ratio 96/70), one disk D = 0.2.
-struct DiskScene {
-  Params params;
-  Grid grid;
-  std::vector<ParticleState> particles;
-  std::vector<double> u, v;
-
-  explicit DiskScene(double density, Motion motion = Motion::kFree) {
-    params.domain.size = Vec2(1.0, 1.0);
-    params.domain.h = 1.0 / 48;
+// The constraint tests' disk (support/constraint_disk_scene.h) on the ring mesh, h_p = 1/35 (the
+// paper's ratio 96/70).
+struct DiskScene : testing::ConstraintDiskScene {
+  explicit DiskScene(double density, Motion motion = Motion::kFree)
+      : ConstraintDiskScene(density, motion) {
     params.particle_mesh.kind = ParticleMeshKind::kRing;  // these tests read the ring mesh (MeshOf)
     params.particle_mesh.h = 1.0 / 35;
-    params.fluid.density = 1.0;
-    ParticleParams pp;
-    pp.center = Vec2(0.5137, 0.4871);  // off the grid lines
-    pp.diameter = 0.2;
-    pp.density = density;
-    pp.motion = motion;
-    params.particles.push_back(pp);
-    grid = Grid{48, 48, 1.0 / 48, 0.0, 0.0};
-    ParticleState s;
-    s.id = 0;
-    s.position = pp.center;
-    s.radius = 0.1;
-    s.density = density;
-    s.motion = motion;
-    s.velocity = Vec2(0.1, -0.2);
-    s.angular_velocity = 0.5;
-    particles.push_back(s);
-    u.assign(grid.NodeCount(), 0.0);
-    v.assign(grid.NodeCount(), 0.0);
-  }
-  // The rigid motion (velocity, omega) about the disk's centre on the interior nodes.
-  void Rigid(Vec2 velocity, double omega) {
-    for (int j = 1; j < grid.ny; ++j) {
-      for (int i = 1; i < grid.nx; ++i) {
-        const Vec2 r = Vec2(grid.X(i), grid.Y(j)) - particles[0].position;
-        u[grid.Index(i, j)] = velocity.x() - omega * r.y();
-        v[grid.Index(i, j)] = velocity.y() + omega * r.x();
-      }
-    }
-  }
-  // A non-rigid field, zero on the walls.
-  void Vortical() {
-    for (int j = 1; j < grid.ny; ++j) {
-      for (int i = 1; i < grid.nx; ++i) {
-        const double x = grid.X(i), y = grid.Y(j);
-        u[grid.Index(i, j)] = std::sin(2 * kPi * x) * std::cos(2 * kPi * y) + 0.3;
-        v[grid.Index(i, j)] = -std::cos(2 * kPi * x) * std::sin(2 * kPi * y) + 0.2 * x;
-      }
-    }
   }
 };
 
