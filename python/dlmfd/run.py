@@ -319,9 +319,9 @@ _SUMMARY_KEYS = (("status", "status"), ("reason", "reason"), ("steps", "steps"),
                  ("max_trA", "max_trA"), ("min_eig_A", "min_eig_A"), ("Re", "reynolds"),
                  ("De", "deborah"), ("E", "elasticity"), ("M", "mach"))
 _PARTICLE_KEYS = (("radius", "radius"), ("x", "position", 0), ("y", "position", 1),
-                  ("angle", "angle"), ("u", "velocity", 0), ("v", "velocity", 1), ("omega", "angular_velocity"),
-                  ("fx", "force", 0), ("fy", "force", 1), ("torque", "torque"),
-                  ("fall_speed", "fall_speed"))
+                  ("angle", "angle"), ("u", "velocity", 0), ("v", "velocity", 1),
+                  ("omega", "angular_velocity"), ("fx", "force", 0), ("fy", "force", 1),
+                  ("torque", "torque"), ("fall_speed", "fall_speed"))
 
 
 def _flatten(value, prefix, out):

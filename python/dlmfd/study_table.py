@@ -6,9 +6,10 @@ parameters and the base overrides, typed as TOML reads them: 1.4, not "1.4"); fr
 summary.json (docs/results.md) ``status``, ``reason``, ``steps``, ``time``, ``wall_seconds``,
 ``fall_speed``, ``min_gap`` (the true smallest surface gap over the run), ``min_wall_gap``,
 ``max_trA``, ``min_eig_A``, ``Re``, ``De``, ``E``, ``M``; and per particle N ``pN.radius``, ``pN.x``,
-``pN.y`` (final position), ``pN.angle`` (final orientation, radians), ``pN.u``, ``pN.v``, ``pN.omega``, ``pN.fx``, ``pN.fy``, ``pN.torque``,
-``pN.fall_speed``. None where there is no value: a job without a summary yet (queued, running), a
-Newtonian run's trA, a parameter or a particle another job has not.
+``pN.y`` (final position), ``pN.angle`` (final orientation, radians), ``pN.u``, ``pN.v``,
+``pN.omega``, ``pN.fx``, ``pN.fy``, ``pN.torque``, ``pN.fall_speed``. None where there is no
+value: a job without a summary yet (queued, running), a Newtonian run's trA, a parameter or a
+particle another job has not.
 """
 
 import math
@@ -22,8 +23,7 @@ SUMMARY_COLUMNS = (("status", "status"), ("reason", "reason"), ("steps", "steps"
                    ("min_eig_A", "min_eig_a"), ("Re", "reynolds"), ("De", "deborah"),
                    ("E", "elasticity"), ("M", "mach"))
 PARTICLE_COLUMNS = (("radius", "radius"), ("x", "x"), ("y", "y"), ("angle", "angle"), ("u", "u"),
-                    ("v", "v"),
-                    ("omega", "angular_velocity"), ("fx", "force_x"), ("fy", "force_y"),
+                    ("v", "v"), ("omega", "angular_velocity"), ("fx", "force_x"), ("fy", "force_y"),
                     ("torque", "torque"), ("fall_speed", "fall_speed"))
 
 
