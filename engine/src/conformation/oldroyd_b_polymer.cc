@@ -18,7 +18,7 @@ OldroydBPolymer::OldroydBPolymer(const Params& params, const Grid& grid)
       fx_(grid.NodeCount(), 0.0),
       fy_(grid.NodeCount(), 0.0) {
   // After step_: its constructor rejects a Newtonian liquid (lambda = 0) first.
-  modulus_ = params.fluid.PolymerViscosity() / params.fluid.relaxation_time;
+  modulus_ = params.fluid.PolymerModulus();
   if (!params.particles.empty()) inside_particle_.assign(grid.NodeCount(), 0);
   if (!step_.model().StressIsAMinusI() || devss_) {
     s11_.assign(grid.NodeCount(), 1.0);

@@ -239,11 +239,9 @@ void Simulation::Step() {
   const OutputParams& out = s.params.output;
   const long n = s.state.step + 1;
   const double dt = s.params.time.dt;
-  const bool particles_due =
-      out.particles_every <= 0.0 ||
-      OutputPeriod(n, dt, out.particles_every) > OutputPeriod(n - 1, dt, out.particles_every);
-  const bool fields_due = out.fields_every > 0.0 && OutputPeriod(n, dt, out.fields_every) >
-                                                        OutputPeriod(n - 1, dt, out.fields_every);
+  // particles_every = 0: every step.
+  const bool particles_due = out.particles_every <= 0.0 || OutputDue(n, dt, out.particles_every);
+  const bool fields_due = OutputDue(n, dt, out.fields_every);
   const bool show_stokes =
       fields_due && s.params.splitting.steady_correction == SteadyCorrection::kTendency;
   s.boundary_data.SetTime(s.state.time + s.params.time.dt);  // the data of t_{n+1}

@@ -25,8 +25,7 @@ double DataSpeed(const Grid& grid, const FluidParams& fluid, double dt,
                  const BoundaryData& boundary_data) {
   double speed = std::max(boundary_data.MaxSpeed(), fluid.body_force.norm() * dt / fluid.density);
   if (!fluid.IsNewtonian()) {
-    const double modulus = fluid.PolymerViscosity() / fluid.relaxation_time;
-    speed = std::max(speed, modulus * dt / (fluid.density * grid.h));
+    speed = std::max(speed, fluid.PolymerModulus() * dt / (fluid.density * grid.h));
   }
   return speed;
 }

@@ -122,9 +122,7 @@ void ResultsWriter::OnStep(const FlowState& state, const StepReport& report) {
   TakeAngles(state);
   diagnostics_->Append(report);
   last_report_ = report;
-  const double every = params_.output.checkpoint_every;
-  if (every > 0.0 && OutputPeriod(state.step, params_.time.dt, every) >
-                         OutputPeriod(state.step - 1, params_.time.dt, every)) {
+  if (OutputDue(state.step, params_.time.dt, params_.output.checkpoint_every)) {
     checkpoint_due_ = true;
   }
 }

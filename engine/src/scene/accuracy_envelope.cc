@@ -42,10 +42,7 @@ double MinDiskResolution(const Params& p) {
 bool HasPolymer(const Params& p) { return !p.fluid.IsNewtonian(); }
 
 // El_h = lambda eta_p / (rho h^2), the elasticity number of one cell.
-double GridElasticity(const Params& p) {
-  const double h = p.domain.h;
-  return p.fluid.relaxation_time * p.fluid.PolymerViscosity() / (p.fluid.density * h * h);
-}
+double GridElasticity(const Params& p) { return p.fluid.CellElasticity(p.domain.h); }
 
 // The plane Poiseuille peak of a body force component across the sides it is bounded by.
 double BodyForceSpeed(const Params& p, double force, double height, bool periodic_across) {

@@ -195,6 +195,20 @@ void ApplyDefaults(const std::set<std::string>& given, AutoKeys& autos, Params& 
   }
 }
 
+// "title, gravity, numerics, domain, ...": the top-level keys and sections, then the particles.
+std::string TopLevelKeys() {
+  std::string names;
+  std::string last;
+  for (const SceneKey<Params>& k : scene::SceneKeys()) {
+    const std::string section = scene::SectionOf(k.name);
+    const std::string name = section.empty() ? k.name : section;
+    if (name == last) continue;
+    names += (names.empty() ? "" : ", ") + name;
+    last = name;
+  }
+  return names + ", particles";
+}
+
 void ReadParticles(TableReader& top, Params& p) {
   const toml::array* array = top.Array("particles");
   p.particles.clear();
@@ -255,9 +269,7 @@ Params ParseScene(const std::string& toml_text, const std::vector<SceneOverride>
   AutoKeys autos;
   const std::set<std::string> given = ReadGivenKeys(top, p, autos);
   ReadParticles(top, p);
-  top.RejectUnknown(
-      "title, gravity, numerics, domain, fluid, time, splitting, solvers, particle_mesh, "
-      "collisions, conformation, output, accuracy, particles");
+  top.RejectUnknown(TopLevelKeys());
   ApplyDefaults(given, autos, p);
   ValidateScene(p);
   return p;

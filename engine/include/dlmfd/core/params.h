@@ -114,9 +114,7 @@ struct FluidParams {
   }
   // w = 1 / (1 + lambda eta_p / (rho h^2)), the share of eta_p that kDevss treats implicitly on
   // the velocity mesh of size h; 0 without kDevss.
-  double DevssWeight(double h) const {
-    return Devss() ? 1.0 / (1.0 + relaxation_time * PolymerViscosity() / (density * h * h)) : 0.0;
-  }
+  double DevssWeight(double h) const { return Devss() ? 1.0 / (1.0 + CellElasticity(h)) : 0.0; }
   // The viscosity of the term 2 eta D(u) that steps (33)-(34) treat implicitly on the velocity mesh
   // of size h: eta_N, plus w eta_p with kDevss (the polymer stress then subtracts w eta_p 2 D_h).
   double ImplicitViscosity(double h) const {
@@ -125,6 +123,14 @@ struct FluidParams {
   // The viscosity the polymer stress carries: 0 when no polymer is modelled.
   double PolymerViscosity() const {
     return IsNewtonian() ? 0.0 : (1.0 - solvent_ratio) * viscosity;
+  }
+  // The polymer's modulus G = eta_p / lambda, tau_p = G T(A) (conformation/relaxation_model.h);
+  // only where a polymer is modelled (lambda > 0).
+  double PolymerModulus() const { return PolymerViscosity() / relaxation_time; }
+  // El_h = lambda eta_p / (rho h^2), the elasticity number of one cell of size h (0 without a
+  // polymer): the polymer is viscous on the grid's scale when El_h << 1, elastic when El_h >> 1.
+  double CellElasticity(double h) const {
+    return relaxation_time * PolymerViscosity() / (density * h * h);
   }
 };
 

@@ -37,6 +37,11 @@ inline long OutputPeriod(long n, double dt, double every) {
   return static_cast<long>(std::floor(static_cast<double>(n) * dt / every + 1e-9));
 }
 
+// Whether an output of period `every` is due at step n (none when every <= 0).
+inline bool OutputDue(long n, double dt, double every) {
+  return every > 0.0 && OutputPeriod(n, dt, every) > OutputPeriod(n - 1, dt, every);
+}
+
 // alpha and beta in [0, 1], gamma = 0, alpha > 0; with particles, beta = 0 unless the constraint
 // coupling is the paper's.
 void ValidateSplitting(const SplittingParams& splitting, bool with_particles);
