@@ -14,17 +14,28 @@
 namespace dlmfd {
 namespace scene {
 
-template <typename Record, typename At>
-SceneKey<Record> RealKey(std::string name, At at, KeyRange range, std::string description) {
+// A key read by one of TableReader's typed readers (Real, Integer, Boolean, Vector, String) into
+// the member `at` names.
+template <typename Record, typename T, typename At>
+SceneKey<Record> TypedKey(std::string name, KeyType type,
+                          T (TableReader::*reader)(const std::string&, std::optional<T>), At at,
+                          std::string description) {
   SceneKey<Record> k;
   k.name = std::move(name);
-  k.type = KeyType::kReal;
-  k.range = range;
+  k.type = type;
   k.description = std::move(description);
-  k.read = [at](TableReader& t, const std::string& leaf, Record& r) {
-    at(r) = t.Real(leaf, std::nullopt);
+  k.read = [at, reader](TableReader& t, const std::string& leaf, Record& r) {
+    at(r) = (t.*reader)(leaf, std::nullopt);
   };
   k.get = [at](const Record& r) -> KeyValue { return at(r); };
+  return k;
+}
+
+template <typename Record, typename At>
+SceneKey<Record> RealKey(std::string name, At at, KeyRange range, std::string description) {
+  SceneKey<Record> k = TypedKey<Record>(std::move(name), KeyType::kReal, &TableReader::Real, at,
+                                        std::move(description));
+  k.range = range;
   return k;
 }
 
@@ -46,57 +57,31 @@ SceneKey<Record> OptionalRealKey(std::string name, At at, std::string descriptio
 
 template <typename Record, typename At>
 SceneKey<Record> IntegerKey(std::string name, At at, KeyRange range, std::string description) {
-  SceneKey<Record> k;
-  k.name = std::move(name);
-  k.type = KeyType::kInteger;
+  SceneKey<Record> k = TypedKey<Record>(std::move(name), KeyType::kInteger, &TableReader::Integer,
+                                        at, std::move(description));
   k.range = range;
-  k.description = std::move(description);
-  k.read = [at](TableReader& t, const std::string& leaf, Record& r) {
-    at(r) = t.Integer(leaf, std::nullopt);
-  };
-  k.get = [at](const Record& r) -> KeyValue { return at(r); };
   return k;
 }
 
 template <typename Record, typename At>
 SceneKey<Record> BooleanKey(std::string name, At at, std::string description) {
-  SceneKey<Record> k;
-  k.name = std::move(name);
-  k.type = KeyType::kBoolean;
-  k.description = std::move(description);
-  k.read = [at](TableReader& t, const std::string& leaf, Record& r) {
-    at(r) = t.Boolean(leaf, std::nullopt);
-  };
-  k.get = [at](const Record& r) -> KeyValue { return at(r); };
-  return k;
+  return TypedKey<Record>(std::move(name), KeyType::kBoolean, &TableReader::Boolean, at,
+                          std::move(description));
 }
 
 // Two finite numbers (the reader refuses others).
 template <typename Record, typename At>
 SceneKey<Record> VectorKey(std::string name, At at, std::string description) {
-  SceneKey<Record> k;
-  k.name = std::move(name);
-  k.type = KeyType::kVector;
+  SceneKey<Record> k = TypedKey<Record>(std::move(name), KeyType::kVector, &TableReader::Vector, at,
+                                        std::move(description));
   k.range.kind = KeyRange::kFinite;
-  k.description = std::move(description);
-  k.read = [at](TableReader& t, const std::string& leaf, Record& r) {
-    at(r) = t.Vector(leaf, std::nullopt);
-  };
-  k.get = [at](const Record& r) -> KeyValue { return at(r); };
   return k;
 }
 
 template <typename Record, typename At>
 SceneKey<Record> StringKey(std::string name, At at, std::string description) {
-  SceneKey<Record> k;
-  k.name = std::move(name);
-  k.type = KeyType::kString;
-  k.description = std::move(description);
-  k.read = [at](TableReader& t, const std::string& leaf, Record& r) {
-    at(r) = t.String(leaf, std::nullopt);
-  };
-  k.get = [at](const Record& r) -> KeyValue { return at(r); };
-  return k;
+  return TypedKey<Record>(std::move(name), KeyType::kString, &TableReader::String, at,
+                          std::move(description));
 }
 
 // "one of \"a\", \"b\"": the allowed words of a choice, as messages show them.
