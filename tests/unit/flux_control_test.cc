@@ -6,7 +6,10 @@
 // so the steady gradient is G = 12 eta Q / (W^3 - h^2 W); the rate is Q at every step to round-off
 // (one scalar a step, exact by linearity). A body force along the channel with a zero rate is all
 // taken by the gradient: G = -f and the liquid stays at rest. A settling disk's Stokes step holds a
-// zero rate to round-off (the snapshots of the tendency correction show u^{n+1/4}).
+// zero rate to round-off (the snapshots of the tendency correction show u^{n+1/4}). In a box
+// periodic in both directions the rates along x and y are held at zero: the unit responses are the
+// uniform fields (dt / rho) e_a, so the hold is a shift of the mean; a body force is taken whole
+// along both axes, and under a settling disk the Stokes step's mean velocity is zero to round-off.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -153,6 +156,109 @@ TEST(FluxControl, SettlingDiskAtZeroRate) {
     EXPECT_GT(log.gradient.back(), weight) << "coupling " << c;
     std::printf("coupling %d: G = %.6g, end-of-step rate %.3g, Stokes rate %.3g (scale %.3g)\n", c,
                 log.gradient.back(), log.rate.back(), stokes.rate.back(), stokes.round_off.back());
+  }
+}
+
+// The mean velocity of u^{n+1/4} along x and y over the distinct nodes of a box periodic in both
+// directions (equal lumped masses h^2), with the round-off scale mean |u| + |v| beside it.
+class StokesMean : public Observer {
+ public:
+  explicit StokesMean(const Grid& grid)
+      : grid_(grid) {}
+  void OnSnapshot(const FlowState& state) override {
+    double mu = 0.0, mv = 0.0, scale = 0.0;
+    for (int j = 0; j < grid_.ny; ++j) {  // the row ny and column nx repeat row and column 0
+      for (int i = 0; i < grid_.nx; ++i) {
+        const std::size_t k = grid_.Index(i, j);
+        mu += state.u[k];
+        mv += state.v[k];
+        scale += std::abs(state.u[k]) + std::abs(state.v[k]);
+      }
+    }
+    const double count = static_cast<double>(grid_.nx) * grid_.ny;
+    mean_u.push_back(mu / count);
+    mean_v.push_back(mv / count);
+    round_off.push_back(scale / count);
+  }
+  Grid grid_;
+  std::vector<double> mean_u, mean_v, round_off;
+};
+
+class BoxRateLog : public Observer {
+ public:
+  void OnStep(const FlowState&, const StepReport& report) override {
+    gradient.emplace_back(report.Get("mean_pressure_gradient_x", NAN),
+                          report.Get("mean_pressure_gradient_y", NAN));
+    rate.emplace_back(report.Get("flow_rate_x", NAN), report.Get("flow_rate_y", NAN));
+  }
+  std::vector<Vec2> gradient, rate;
+};
+
+Params PeriodicBox() {
+  Params p = PeriodicChannel(0.0);
+  p.domain.size = Vec2(1.0, 1.0);
+  p.domain.h = 1.0 / 32;
+  p.domain.sides[static_cast<int>(Side::kLeft)].type = SideType::kPeriodic;
+  p.domain.sides[static_cast<int>(Side::kRight)].type = SideType::kPeriodic;
+  return p;
+}
+
+TEST(FluxControl, BoxTakesTheBodyForceAlongBothAxes) {
+  Params p = PeriodicBox();
+  p.fluid.body_force = Vec2(2.0, -3.0);
+  p.time.end = 5 * p.time.dt;
+  Simulation sim(p);
+  BoxRateLog log;
+  sim.AddObserver(&log);
+  sim.Run();
+  ASSERT_EQ(log.rate.size(), 5u);
+  for (std::size_t n = 0; n < log.rate.size(); ++n) {
+    EXPECT_NEAR(log.gradient[n].x(), -2.0, 1e-13) << "step " << n + 1;
+    EXPECT_NEAR(log.gradient[n].y(), 3.0, 1e-13) << "step " << n + 1;
+    EXPECT_NEAR(log.rate[n].norm(), 0.0, 1e-15) << "step " << n + 1;
+  }
+  EXPECT_LT(testing::MaxAbs(sim.state().u), 1e-14);
+  EXPECT_LT(testing::MaxAbs(sim.state().v), 1e-14);
+}
+
+// A disk D = 0.2, rho_p / rho = 1.1 (eta = 0.05, as above) settles in a unit box periodic in both
+// directions under each coupling: the Stokes step's mean velocity is zero to round-off along x and
+// y at every step, and the gradient along y carries the disk's excess weight.
+TEST(FluxControl, BoxHoldsAZeroMeanUnderASettlingDisk) {
+  for (ConstraintCoupling coupling : {ConstraintCoupling::kIncremental, ConstraintCoupling::kPaper,
+                                      ConstraintCoupling::kViscous}) {
+    Params p = PeriodicBox();
+    p.fluid.viscosity = 0.05;
+    p.gravity = Vec2(0.0, -981.0);
+    p.splitting = SplittingParams::DefaultWeights(coupling);
+    p.splitting.steady_correction = SteadyCorrection::kTendency;
+    p.time.dt = 5e-4;
+    p.time.end = 40 * 5e-4;
+    p.output.fields_every = 5e-4;
+    ParticleParams disk;
+    disk.center = Vec2(0.5, 0.5);
+    disk.diameter = 0.2;
+    disk.density = 1.1;
+    p.particles.push_back(disk);
+    Simulation sim(p);
+    BoxRateLog log;
+    StokesMean stokes(sim.grid());
+    sim.AddObserver(&log);
+    sim.AddObserver(&stokes);
+    sim.Run();
+    const int c = static_cast<int>(coupling);
+    ASSERT_EQ(stokes.mean_u.size(), 40u) << "coupling " << c;  // every step
+    for (std::size_t n = 0; n < stokes.mean_u.size(); ++n) {
+      EXPECT_LE(std::abs(stokes.mean_u[n]), 1e-13 * stokes.round_off[n])
+          << "coupling " << c << ", step " << n + 1;
+      EXPECT_LE(std::abs(stokes.mean_v[n]), 1e-13 * stokes.round_off[n])
+          << "coupling " << c << ", step " << n + 1;
+    }
+    EXPECT_GT(log.gradient.back().y(), 0.0) << "coupling " << c;
+    std::printf(
+        "coupling %d: G = (%.3g, %.6g) (weight / area %.6g), end-of-step rates (%.3g, %.3g)\n", c,
+        log.gradient.back().x(), log.gradient.back().y(), 0.25 * M_PI * 0.04 * 0.1 * 981.0,
+        log.rate.back().x(), log.rate.back().y());
   }
 }
 

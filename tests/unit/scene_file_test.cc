@@ -107,7 +107,8 @@ TEST_P(BadSceneTest, RejectedNamingKeyValueAndAllowed) {
 }
 
 const BadScene kBadScenes[] = {
-    // domain.flow_rate: only in a channel periodic in one direction, Dirichlet across it.
+    // domain.flow_rate: in a channel periodic in one direction, Dirichlet across it; in a box
+    // periodic in both directions only 0.
     {"FlowRateInAClosedBox", "[domain]\nflow_rate = 0.0\n", "domain.flow_rate", "0.0"},
     {"FlowRateFullyPeriodic",
      "[domain]\nflow_rate = 0.5\n[domain.boundary]\nleft = { type = \"periodic\" }\n"
@@ -835,6 +836,13 @@ TEST(SceneFile, FlowRateIsReadAndRoundTrips) {
   ASSERT_TRUE(q.domain.flow_rate.has_value());
   EXPECT_EQ(*q.domain.flow_rate, -0.25);
   EXPECT_FALSE(ParseScene("").domain.flow_rate.has_value());
+  // A box periodic in both directions takes 0 (zero mean velocity along x and y).
+  const Params box = ParseScene(
+      "[domain]\nflow_rate = 0.0\n[domain.boundary]\nleft = { type = \"periodic\" }\n"
+      "right = { type = \"periodic\" }\nbottom = { type = \"periodic\" }\n"
+      "top = { type = \"periodic\" }\n");
+  ASSERT_TRUE(box.domain.flow_rate.has_value());
+  EXPECT_EQ(*box.domain.flow_rate, 0.0);
 }
 
 TEST(SceneFile, WriteSceneRoundTripsThePaperScene) {

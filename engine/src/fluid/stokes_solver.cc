@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/ordered_sum.h"
@@ -72,20 +73,23 @@ StokesSolver::StokesSolver(const Grid& grid, const DomainParams& domain, const F
   if (domain.flow_rate) flux_ = MakeFluxControl(domain);
 }
 
-// The unit response u_e of fluid/flux_control.h: A u_e = M_l e with zero Dirichlet data.
+// The unit responses u_a of fluid/flux_control.h: A u_a = M_l e_a with zero Dirichlet data, one
+// per periodic axis.
 std::unique_ptr<FluxControl> StokesSolver::MakeFluxControl(const DomainParams& domain) {
   const std::size_t n = grid_.NodeCount();
-  std::vector<double> fu(n, 0.0), fv(n, 0.0), ue(n, 0.0), ve(n, 0.0), weights(n, 0.0);
-  std::vector<double>& force = domain.PeriodicX() ? fu : fv;
-  for (std::size_t k = 0; k < n; ++k) {
-    force[k] = mass_[k];
-    weights[k] = vnodes_.distinct()[k] * mass_[k];
+  std::vector<double> weights(n, 0.0);
+  for (std::size_t k = 0; k < n; ++k) weights[k] = vnodes_.distinct()[k] * mass_[k];
+  std::vector<FluxControl::UnitResponse> responses;
+  for (int axis : FluxControl::HeldAxes(domain)) {
+    std::vector<double> fu(n, 0.0), fv(n, 0.0);
+    FluxControl::UnitResponse r{axis, std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
+    std::copy(mass_.begin(), mass_.end(), axis == 0 ? fu.begin() : fv.begin());
+    SolveVelocityPair(fu.data(), fv.data(), r.u.data(), r.v.data());
+    vnodes_.SyncPeriodic(r.u.data());
+    vnodes_.SyncPeriodic(r.v.data());
+    responses.push_back(std::move(r));
   }
-  SolveVelocityPair(fu.data(), fv.data(), ue.data(), ve.data());
-  vnodes_.SyncPeriodic(ue.data());
-  vnodes_.SyncPeriodic(ve.data());
-  return std::make_unique<FluxControl>(grid_, domain, std::move(weights), std::move(ue),
-                                       std::move(ve));
+  return std::make_unique<FluxControl>(grid_, domain, std::move(weights), std::move(responses));
 }
 
 StokesSolver::~StokesSolver() = default;

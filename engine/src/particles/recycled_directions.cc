@@ -40,7 +40,7 @@ RecycledDirections::Coefficient RecycledDirections::Coefficients(
 void RecycledDirections::Add(const std::vector<double>& d, const std::vector<double>& sd,
                              const std::vector<double>& du, const std::vector<double>& dv,
                              const std::vector<double>& dp, const std::vector<Vec2>& dvelocity,
-                             const std::vector<double>& domega, double dgradient) {
+                             const std::vector<double>& domega, const Vec2& dgradient) {
   if (Count() < kCapacity) {
     stored_.emplace_back();
     next_ = Count() - 1;

@@ -148,7 +148,7 @@ double ViscousConstraint::Dot(const double* a, const double* b) const {
   return s;
 }
 
-double ViscousConstraint::StartFromRecycled(double* u, double* v, double* p, double& gradient) {
+double ViscousConstraint::StartFromRecycled(double* u, double* v, double* p, Vec2& gradient) {
   const double before = MismatchOf(u, v, velocity_, omega_, r_.data());
   if (recycled_.Count() == 0) return before;
   const RecycledDirections::Coefficient a = recycled_.Coefficients(r_);
@@ -235,7 +235,7 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
   const StokesReport first = Start(dt, warm, stokes, fx, fy, u, v, p);
   outcome.stokes_iterations = first.iterations;
   outcome.stokes_residual = first.residual;
-  double gradient = first.mean_pressure_gradient;
+  Vec2 gradient = first.mean_pressure_gradient;
 
   double scale = MaxSpeed(u, v, nodes);
   for (std::size_t k = 0; k < n; ++k) {

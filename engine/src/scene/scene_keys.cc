@@ -63,10 +63,11 @@ void AddTopAndDomain(std::vector<SceneKey<P>>& keys) {
   keys.push_back(
       Allowed(OptionalRealKey<P>(
                   "domain.flow_rate", [](auto& p) -> auto& { return p.domain.flow_rate; },
-                  "volume flux per unit depth along the periodic direction, held by a "
-                  "uniform mean pressure gradient (fluid/flux_control.h); absent: none"),
-              "finite; only in a channel periodic in one direction whose other sides are `wall` or "
-              "`velocity`"));
+                  "volume flux per unit depth along the periodic direction (in a box periodic in "
+                  "both: along x and y), held by a uniform mean pressure gradient "
+                  "(fluid/flux_control.h); absent: none"),
+              "finite in a channel periodic in one direction whose other sides are `wall` or "
+              "`velocity`; 0 in a box periodic in both directions"));
 }
 
 void AddFluid(std::vector<SceneKey<P>>& keys) {

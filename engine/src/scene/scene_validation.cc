@@ -53,24 +53,33 @@ void RequireEvenCells(const DomainParams& d, double length) {
   }
 }
 
-// domain.flow_rate (fluid/flux_control.h): a finite number, in a channel periodic in exactly one
+// domain.flow_rate (fluid/flux_control.h): a finite number in a channel periodic in exactly one
 // direction whose other two sides are Dirichlet (wall or velocity), so that the unit response to
-// the mean pressure gradient is a solenoidal profile across the channel.
+// the mean pressure gradient is a solenoidal profile across the channel; or 0 in a box periodic in
+// both directions (zero mean velocity along x and y, the frame of a periodic suspension).
 void ValidateFlowRate(const DomainParams& d) {
   if (!d.flow_rate) return;
-  if (!std::isfinite(*d.flow_rate)) {
-    throw InvalidParameter("domain.flow_rate", ExactText(*d.flow_rate),
-                           "a finite number (the volume flux per unit depth along the periodic "
-                           "direction; 0 for sedimentation without end walls)");
-  }
   const std::string allowed =
       "a channel periodic in one direction: either bottom and top \"periodic\" with left and "
       "right \"wall\" or \"velocity\", or left and right \"periodic\" with bottom and top "
-      "\"wall\" or \"velocity\" (or leave domain.flow_rate out)";
-  if (d.PeriodicX() == d.PeriodicY()) {
+      "\"wall\" or \"velocity\"; or 0 in a box periodic in both directions (or leave "
+      "domain.flow_rate out)";
+  if (!std::isfinite(*d.flow_rate)) {
     throw InvalidParameter("domain.flow_rate", ExactText(*d.flow_rate),
-                           allowed + std::string("; this domain is periodic in ") +
-                               (d.PeriodicX() ? "both directions" : "neither direction"));
+                           "a finite number (the volume flux per unit depth along the periodic "
+                           "direction; 0 for sedimentation without end walls) in " +
+                               allowed);
+  }
+  if (d.PeriodicX() && d.PeriodicY()) {
+    if (*d.flow_rate == 0.0) return;
+    throw InvalidParameter("domain.flow_rate", ExactText(*d.flow_rate),
+                           "0 in a box periodic in both directions (zero mean velocity along x "
+                           "and y: a non-zero rate would need a direction; " +
+                               allowed + ")");
+  }
+  if (!d.PeriodicX() && !d.PeriodicY()) {
+    throw InvalidParameter("domain.flow_rate", ExactText(*d.flow_rate),
+                           allowed + "; this domain is periodic in neither direction");
   }
   const int first = d.PeriodicX() ? 2 : 0;  // the cross-stream sides
   for (int s = first; s < first + 2; ++s) {

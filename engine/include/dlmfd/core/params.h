@@ -50,8 +50,9 @@ struct DomainParams {
   MeshDiagonals diagonals = MeshDiagonals::kSwNe;
   // domain.flow_rate: in a channel periodic in one direction (the other two sides Dirichlet), the
   // volume flux per unit depth through a cross-section that a uniform mean pressure gradient
-  // holds each step (fluid/flux_control.h); 0 for sedimentation without end walls. Absent: no
-  // control (the body force drives the flow).
+  // holds each step (fluid/flux_control.h); 0 for sedimentation without end walls. In a box
+  // periodic in both directions only 0: the rates along x and y held at zero (a periodic
+  // suspension's frame). Absent: no control (the body force drives the flow).
   std::optional<double> flow_rate;
   const BoundarySide& side(Side s) const { return sides[static_cast<int>(s)]; }
   bool PeriodicX() const { return side(Side::kLeft).type == SideType::kPeriodic; }

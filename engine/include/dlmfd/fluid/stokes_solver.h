@@ -54,7 +54,7 @@ struct StokesReport {
   double reference = 0.0;  // ref of the stopping rule
   double divergence =
       0.0;  // sqrt(sum_Q (B u)_Q^2 / M_p,Q) over unknown Q: the L2 norm of the discrete divergence
-  double mean_pressure_gradient = 0.0;  // G of domain.flow_rate (fluid/flux_control.h), else 0
+  Vec2 mean_pressure_gradient = Vec2::Zero();  // G of domain.flow_rate (fluid/flux_control.h)
 };
 
 class StokesSolver {

@@ -44,7 +44,7 @@ class RecycledDirections {
     std::vector<double> d, sd, du, dv, dp;
     std::vector<Vec2> dvelocity;
     std::vector<double> domega;
-    double dgradient = 0.0;  // the response's mean pressure gradient (domain.flow_rate)
+    Vec2 dgradient = Vec2::Zero();  // the response's mean pressure gradient (domain.flow_rate)
   };
 
   // Whether a scene's viscous coupling keeps directions: splitting.constraint = "viscous" and
@@ -66,7 +66,7 @@ class RecycledDirections {
   void Add(const std::vector<double>& d, const std::vector<double>& sd,
            const std::vector<double>& du, const std::vector<double>& dv,
            const std::vector<double>& dp, const std::vector<Vec2>& dvelocity,
-           const std::vector<double>& domega, double dgradient = 0.0);
+           const std::vector<double>& domega, const Vec2& dgradient = Vec2::Zero());
 
  private:
   std::vector<Direction> stored_;

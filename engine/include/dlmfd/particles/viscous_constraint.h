@@ -114,7 +114,7 @@ class ViscousConstraint {
     double residual = 0.0;          // max |E u - C xi| over the points, relative to V
     double divergence = 0.0;        // the discrete divergence norm of the final u
     double stokes_tolerance = 0.0;  // the coupled Stokes solves' tolerance at the end of the step
-    double mean_pressure_gradient = 0.0;  // G of domain.flow_rate (fluid/flux_control.h), or 0
+    Vec2 mean_pressure_gradient = Vec2::Zero();  // G of domain.flow_rate (fluid/flux_control.h)
   };
 
   ViscousConstraint(const Params& params, const Grid& grid);
@@ -150,7 +150,7 @@ class ViscousConstraint {
   // After the warm start: adds the recycled directions' Galerkin correction to nu, u, v, p and the
   // particles' velocities, unless it does not lower the mismatch; returns the mismatch (r_ holds
   // its vector).
-  double StartFromRecycled(double* u, double* v, double* p, double& gradient);
+  double StartFromRecycled(double* u, double* v, double* p, Vec2& gradient);
 
   RigidBodyConstraint inviscid_;  // E, C, D and P^-1
   DomainParams zero_domain_;      // the sides of the scene with zero data
@@ -171,7 +171,7 @@ class ViscousConstraint {
   std::vector<double> nu_, r_, r_old_, z_, d_, sd_;
   std::vector<double> slot_u_, slot_v_;         // dt M^-1 E^T dir at the slots
   std::vector<double> du_, dv_, dp_, su_, sv_;  // fluid-sized: response, its pressure, scratch
-  double dgradient_ = 0.0;  // the response's mean pressure gradient (domain.flow_rate)
+  Vec2 dgradient_ = Vec2::Zero();  // the response's mean pressure gradient (domain.flow_rate)
   std::vector<Vec2> force_sum_;
   std::vector<double> torque_sum_;
   bool have_warm_ = false;
