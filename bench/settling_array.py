@@ -12,7 +12,9 @@ flux), so V = W / (mu K(Phi)), K from Sangani & Acrivos (1982)
 (cases/verification/sangani_acrivos_reference.csv). For each area fraction and mesh: the disk's
 mean fall speed over the window (particles.h5, every record), K_settling = W / (mu |V|) and its
 error against the reference, the cells the disk crossed in the window, and the mean pressure
-gradient's G_y |Omega| / W (diagnostics.csv: the liquid carries the whole excess weight).
+gradient's G_y |Omega| / W (diagnostics.csv: the liquid carries the whole excess weight). With
+--csv, the hindered settling speed V mu / W against Phi beside the reference's 1 / K, for
+`dlmfd chart` (docs/figures/settling_array_speed.png).
 Run the meshes one after another on one thread (about 1 / 3 / 20 s a run at 32 / 64 / 128 cells).
 """
 import argparse
@@ -69,6 +71,8 @@ def main():
     parser.add_argument("--solve", default="build/solver/dlmfd-solve")
     parser.add_argument("--work", default="runs/settling_array")
     parser.add_argument("--no-run", action="store_true", help="measure existing runs only")
+    parser.add_argument("--csv", help="write series,phi,speed (V mu / W, ours per mesh and the "
+                        "reference 1 / K) for `dlmfd chart --csv FILE --group series`")
     args = parser.parse_args()
     window = tuple(float(x) for x in args.window.split(":"))
     ref = reference()
@@ -76,6 +80,7 @@ def main():
     print("| Phi (K ref) | h | dt | mean V | std V | K = W / (mu V) | error % | cells crossed "
           "| G_y A / W | max end-of-step rate |")
     print("|---|---|---|---|---|---|---|---|---|---|")
+    points = [("Sangani & Acrivos (1 / K)", phi, 1.0 / ref[phi]) for phi in args.phi]
     for phi, cells, dt in itertools.product(args.phi, args.cells, args.dt):
         out = os.path.join(args.work, f"phi{phi}_n{cells}_dt{dt}")
         if not args.no_run:
@@ -85,6 +90,12 @@ def main():
         print(f"| {phi} ({ref[phi]}) | 1/{cells} | {dt:g} | {v:.6f} | {sd:.1e} | {k:.4f} "
               f"| {100 * (k / ref[phi] - 1):+.3f} | {drop * cells:.2f} | {g:.6f} | {rate:.1e} |",
               flush=True)
+        points.append((f"settling array h = 1/{cells} dt = {dt:g}", phi, abs(v)))
+    if args.csv:
+        with open(args.csv, "w") as f:
+            f.write("series,phi,speed\n")
+            for series, phi, speed in sorted(points):
+                f.write(f"{series},{phi},{speed:.8g}\n")
 
 if __name__ == "__main__":
     main()
