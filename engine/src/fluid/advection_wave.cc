@@ -7,6 +7,7 @@
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/parallel_copy.h"
 #include "dlmfd/mesh/fem_operators.h"
+#include "mean_wave_rows.h"
 
 namespace dlmfd {
 
@@ -128,12 +129,24 @@ AdvectionWave::~AdvectionWave() = default;
 
 // W_T / h^2 = (1/24)(sum_k V_k V_k^T + S S^T) over the vertices of T, for |T| = h^2 / 2 and
 // unscaled gradients. The products V_k V_k^T of the cell's four corners are formed once and shared
-// by its two (or, on both diagonals, four) triangles.
+// by its two (or, on both diagonals, four) triangles; on both diagonals the cell's matrix M of
+// mean_wave_rows.h, a row of cells a call.
 void AdvectionWave::ComputeWeights(const double* vx, const double* vy) {
+  if (diagonals_ == MeshDiagonals::kBoth) {
+    CellMatrix& m = mean_;
+    const int nx = grid_.nx;
+#pragma omp parallel for schedule(static)
+    for (int cj = 0; cj < grid_.ny; ++cj) {
+      const std::size_t low = grid_.Index(0, cj), high = grid_.Index(0, cj + 1);
+      const std::size_t cell = std::size_t(cj) * nx;
+      double* const out[6] = {m.bb.data() + cell, m.bc.data() + cell, m.bd.data() + cell,
+                              m.cc.data() + cell, m.cd.data() + cell, m.dd.data() + cell};
+      wave_rows::CellMatrixRow(nx, vx + low, vx + high, vy + low, vy + high, out);
+    }
+    return;
+  }
   constexpr double kOneOver24 = 1.0 / 24.0;
-  const bool both = diagonals_ == MeshDiagonals::kBoth;
   TriangleWeights& w = weights_;
-  CellMatrix& m = mean_;
   ForEachCell(grid_, [&](const CellAt& k) {
     const std::size_t corner[4] = {k.a, k.b, k.c, k.d};
     double x[4], y[4], xx[4], xy[4], yy[4];
@@ -151,24 +164,8 @@ void AdvectionWave::ComputeWeights(const double* vx, const double* vy) {
       w22 = kOneOver24 * (yy[p] + yy[q] + yy[r] + sy * sy);
     };
     const std::size_t cell = k.cell;
-    if (!both) {
-      triangle(0, 1, 2, w.w11a[cell], w.w12a[cell], w.w22a[cell]);  // T1 = (a, b, c)
-      triangle(0, 2, 3, w.w11b[cell], w.w12b[cell], w.w22b[cell]);  // T2 = (a, c, d)
-      return;
-    }
-    // (a_t, b_t, c_t) = (w11, w12, w22) of T1 = (a, b, c), T2 = (a, c, d), T3 = (a, b, d),
-    // T4 = (b, c, d); M from the shares of ApplyMeanWaveStiffness's header, halved (the mean).
-    double a1, b1, c1, a2, b2, c2, a3, b3, c3, a4, b4, c4;
-    triangle(0, 1, 2, a1, b1, c1);
-    triangle(0, 2, 3, a2, b2, c2);
-    triangle(0, 1, 3, a3, b3, c3);
-    triangle(1, 2, 3, a4, b4, c4);
-    m.bb[cell] = 0.5 * (a1 + a3 - 2.0 * b1 + c1 + c4);
-    m.bc[cell] = 0.5 * (b1 - b4 - c1 - c4);
-    m.bd[cell] = 0.5 * (b3 + b4);
-    m.cc[cell] = 0.5 * (a2 + a4 + 2.0 * b4 + c1 + c4);
-    m.cd[cell] = -0.5 * (a2 + a4 - b2 + b4);
-    m.dd[cell] = 0.5 * (a2 + a4 - 2.0 * b2 + c2 + c3);
+    triangle(0, 1, 2, w.w11a[cell], w.w12a[cell], w.w22a[cell]);  // T1 = (a, b, c)
+    triangle(0, 2, 3, w.w11b[cell], w.w12b[cell], w.w22b[cell]);  // T2 = (a, c, d)
   });
 }
 
@@ -259,44 +256,48 @@ void AdvectionWave::ApplyMeshWaveStiffness(const double* u, const double* v, dou
   });
 }
 
-// The mean of K_V on the four triangles of each cell, in one sweep: each cell's share of the rows
-// of its corners a, b, c, d (half the SW-NE pair's plus half the NW-SE pair's), then one gather of
-// four shares a node. With F_T = W_T grad u_T and h grad phi of each corner on each triangle
+// The mean of K_V on the four triangles of each cell: each cell's shares of the rows of its
+// corners a, b, c, d (half the SW-NE pair's plus half the NW-SE pair's), then one gather of four
+// shares a node. With F_T = W_T grad u_T and h grad phi of each corner on each triangle
 // (grid_kernels.h), the shares are
 //   a: -F1x - F2y  and  -F3x - F3y;      b: F1x - F1y  and  F3x - F4y;
 //   c:  F1y + F2x  and   F4x + F4y;      d: F2y - F2x  and  F3y - F4x,
 // linear in the differences e = (u_b - u_a, u_c - u_a, u_d - u_a): (b, c, d) = M e and a = -(b + c
-// + d), with M the cell's symmetric matrix of ComputeWeights (6 numbers a cell, not 12 weights).
+// + d), with M the cell's symmetric matrix of ComputeWeights (mean_wave_rows.h).
 void AdvectionWave::ApplyMeanWaveStiffness(const double* u, const double* v, double* ku,
                                            double* kv) {
-  const CellMatrix& m = mean_;
+  const CellMatrix& mc = mean_;
+  const int nx = grid_.nx, ny = grid_.ny;
   std::vector<double>* shares[8];
   for (int k = 0; k < 8; ++k) shares[k] = &corners_[k];
-  ForEachCell(grid_, [&](const CellAt& k) {
-    const std::size_t a = k.a, b = k.b, c = k.c, d = k.d, cell = k.cell, pc = k.padded;
-    const double bb = m.bb[cell], bc = m.bc[cell], bd = m.bd[cell], cc = m.cc[cell],
-                 cd = m.cd[cell], dd = m.dd[cell];
+#pragma omp parallel for schedule(static)
+  for (int cj = 0; cj < ny; ++cj) {
+    const std::size_t low = grid_.Index(0, cj), high = grid_.Index(0, cj + 1);
+    const std::size_t cell = std::size_t(cj) * nx, pc = PaddedCell(grid_, 0, cj);
+    const double* const m[6] = {mc.bb.data() + cell, mc.bc.data() + cell, mc.bd.data() + cell,
+                                mc.cc.data() + cell, mc.cd.data() + cell, mc.dd.data() + cell};
     for (int comp = 0; comp < 2; ++comp) {
       const double* f = comp == 0 ? u : v;
-      const double eb = f[b] - f[a], ec = f[c] - f[a], ed = f[d] - f[a];
-      const double sb = bb * eb + bc * ec + bd * ed;
-      const double sc = bc * eb + cc * ec + cd * ed;
-      const double sd = bd * eb + cd * ec + dd * ed;
-      std::vector<double>* const* out = shares + 4 * comp;
-      (*out[0])[pc] = -(sb + sc + sd);
-      (*out[1])[pc] = sb;
-      (*out[2])[pc] = sc;
-      (*out[3])[pc] = sd;
+      std::vector<double>* const* s = shares + 4 * comp;
+      double* const out[4] = {s[0]->data() + pc, s[1]->data() + pc, s[2]->data() + pc,
+                              s[3]->data() + pc};
+      wave_rows::CellSharesRow(nx, m, f + low, f + high, out);
     }
-  });
+  }
   FillPeriodicGhosts(shares, 8);
-  const double *au = corners_[0].data(), *bu = corners_[1].data(), *cu = corners_[2].data(),
-               *du = corners_[3].data(), *av = corners_[4].data(), *bv = corners_[5].data(),
-               *cv = corners_[6].data(), *dv = corners_[7].data();
-  ForEachNodeCorners(grid_, [&](const NodeCorners& n) {
-    ku[n.id] = au[n.as_a] + bu[n.as_b] + cu[n.as_c] + du[n.as_d];
-    kv[n.id] = av[n.as_a] + bv[n.as_b] + cv[n.as_c] + dv[n.as_d];
-  });
+  // Node (i, j) is corner a of padded cell (i, j), b of (i - 1, j), c of (i - 1, j - 1), d of
+  // (i, j - 1).
+#pragma omp parallel for schedule(static)
+  for (int j = 0; j <= ny; ++j) {
+    const std::size_t id = grid_.Index(0, j);
+    const std::size_t as_a = PaddedCell(grid_, 0, j), as_b = PaddedCell(grid_, -1, j),
+                      as_c = PaddedCell(grid_, -1, j - 1), as_d = PaddedCell(grid_, 0, j - 1);
+    for (int comp = 0; comp < 2; ++comp) {
+      const std::vector<double>* s = corners_ + 4 * comp;
+      wave_rows::GatherRow(nx + 1, s[0].data() + as_a, s[1].data() + as_b, s[2].data() + as_c,
+                           s[3].data() + as_d, (comp == 0 ? ku : kv) + id);
+    }
+  }
 }
 
 void AdvectionWave::RemoveTaylorTerm() {
