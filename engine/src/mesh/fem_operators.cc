@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "dlmfd/core/target_clones.h"
 #include "dlmfd/mesh/fem_operators.h"
 #include "grid_kernels.h"
 
@@ -177,34 +178,31 @@ bool InteriorRow(const AxisWrap& ay, int j) {
   sy = b[-1] - b[1] - b[row - 1] - 2.0 * b[row] + b[1 - row] + 2.0 * b[-row];
 }
 
-// The sum of the two at an interior node where both read the same values a (SW-NE's I_p p): x
-// 4 (W - E) - NE + SW - SE + NW, y 4 (S - N) - NE + SW + SE - NW. NW-SE's own I_p p, b, differs
-// from a only at the odd-odd nodes (the 2h-squares' centres); TransposeBothAt adds NW-SE's
-// weights of b - a there, at the node's odd-odd neighbours, which its parity names (none for an
-// odd-odd node): (even, even) NW and SE; (odd, even) N and S; (even, odd) E and W.
-[[gnu::always_inline]] inline void InteriorGradientTransposeBoth(const double* a, long row,
-                                                                 double& sx, double& sy) {
-  const double ne = a[row + 1], nw = a[row - 1], se = a[1 - row], sw = a[-1 - row];
-  sx = 4.0 * (a[-1] - a[1]) - ne + sw - se + nw;
-  sy = 4.0 * (a[-row] - a[row]) - ne + sw + se - nw;
+// Nodes 0 .. count - 1 of an interior row's interior with both triangulations (a, b: SW-NE's and
+// NW-SE's I_p p at the first node; ou, ov: B^T p there): the sum of the two closed forms above, one
+// straight loop with unaliased arguments, compiled for AVX2 and the baseline.
+DLMFD_AVX2_CLONES void TransposeBothInterior(int count, long row, double scale,
+                                             const double* __restrict a, const double* __restrict b,
+                                             double* __restrict ou, double* __restrict ov) {
+  for (int i = 0; i < count; ++i) {
+    double sx, sy, mx, my;
+    InteriorGradientTransposeSwNe(a + i, row, sx, sy);
+    InteriorGradientTransposeNwSe(b + i, row, mx, my);
+    ou[i] = scale * (sx + mx);
+    ov[i] = scale * (sy + my);
+  }
 }
-enum class Parity { kEvenEven, kOddEven, kEvenOdd, kOddOdd };  // (i, j)
-template <Parity kP>
-[[gnu::always_inline]] inline void TransposeBothAt(const double* a, const double* b, long row,
-                                                   double& sx, double& sy) {
-  InteriorGradientTransposeBoth(a, row, sx, sy);
-  if constexpr (kP == Parity::kEvenEven) {
-    const double d = (b[row - 1] - a[row - 1]) - (b[1 - row] - a[1 - row]);  // NW - SE
-    sx += d;
-    sy -= d;
-  } else if constexpr (kP == Parity::kOddEven) {
-    const double d = (b[-row] - a[-row]) - (b[row] - a[row]);  // S - N
-    sx += d;
-    sy += 2.0 * d;
-  } else if constexpr (kP == Parity::kEvenOdd) {
-    const double d = (b[-1] - a[-1]) - (b[1] - a[1]);  // W - E
-    sx += 2.0 * d;
-    sy += d;
+
+// One fine row of both triangulations' I_p p (grid_kernels.h, ProlongRow), compiled for AVX2 and
+// the baseline. On an even row (no high) the two are the same numbers (each odd node the mean of
+// the same two coarse values), so NW-SE's row is a copy.
+DLMFD_AVX2_CLONES void ProlongBothRow(const AxisWrap& cx, const double* low, const double* high,
+                                      int fine_lines, double* out, double* out2) {
+  kernels::ProlongRow<Diagonal::kSwNe>(cx, low, high, fine_lines, out);
+  if (high) {
+    kernels::ProlongRow<Diagonal::kNwSe>(cx, low, high, fine_lines, out2);
+  } else {
+    std::copy_n(out, fine_lines, out2);
   }
 }
 
@@ -359,9 +357,10 @@ void DivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo
       const int cj = j / 2;
       const double* low = p + coarse.Index(0, cj);
       const double* high = (j % 2 != 0) ? p + coarse.Index(0, cy.Next(cj)) : nullptr;
-      kernels::ProlongRow<Diagonal::kSwNe>(cx, low, high, lines_x, fine + grid.Index(0, j));
       if constexpr (kBoth) {
-        kernels::ProlongRow<Diagonal::kNwSe>(cx, low, high, lines_x, fine2 + grid.Index(0, j));
+        ProlongBothRow(cx, low, high, lines_x, fine + grid.Index(0, j), fine2 + grid.Index(0, j));
+      } else {
+        kernels::ProlongRow<Diagonal::kSwNe>(cx, low, high, lines_x, fine + grid.Index(0, j));
       }
     }
 #pragma omp for schedule(static)
@@ -395,30 +394,10 @@ void DivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo
         continue;
       }
       // Both triangulations on an interior row: the ends by the generic gather, and between them
-      // straight loops over the pairs (odd i, even i + 1), each with its parity's correction.
+      // the closed forms in one straight loop.
       const int last = ax.Lines() - 1;
-      const bool odd_row = j % 2 != 0;
-      auto store = [&](int i, double sx, double sy) __attribute__((always_inline)) {
-        ou[i] = scale * sx;
-        ov[i] = scale * sy;
-      };
       generic(ax.Prev(0), 0, ax.Next(0));
-      for (int i = 1; i < last; i += 2) {
-        double sx, sy;
-        if (odd_row) {
-          TransposeBothAt<Parity::kOddOdd>(r1 + i, r2 + i, row, sx, sy);
-        } else {
-          TransposeBothAt<Parity::kOddEven>(r1 + i, r2 + i, row, sx, sy);
-        }
-        store(i, sx, sy);
-        if (i + 1 >= last) break;
-        if (odd_row) {
-          TransposeBothAt<Parity::kEvenOdd>(r1 + i + 1, r2 + i + 1, row, sx, sy);
-        } else {
-          TransposeBothAt<Parity::kEvenEven>(r1 + i + 1, r2 + i + 1, row, sx, sy);
-        }
-        store(i + 1, sx, sy);
-      }
+      if (last > 1) TransposeBothInterior(last - 1, row, scale, r1 + 1, r2 + 1, ou + 1, ov + 1);
       if (last > 0) generic(ax.Prev(last), last, ax.Next(last));
     }
   }
