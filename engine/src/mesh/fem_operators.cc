@@ -99,11 +99,13 @@ namespace {
 using kernels::Diagonal;
 
 // Calls generic(im, i, ip) as SweepRow does, except that on an interior row (its neighbour rows
-// j - 1 and j + 1, no wrap) the nodes between the row's ends call interior(i): there all eight
-// neighbours lie at fixed offsets, and each form has a short closed form (below), which the
-// compiler does not find from the generic gather's sum over 6 (or 2 x 6) triangles (floating-point
-// sums are not reassociated); on the paper's grid the closed forms take about half the time
-// (docs/evidence/performance.md, "Full Oldroyd-B step": the interior rows as closed forms).
+// j - 1 and j + 1, no wrap) the nodes between the row's ends go to interior(first, end), the nodes
+// first <= i < end: there all eight neighbours lie at fixed offsets, and each form has a short
+// closed form (below), which the compiler does not find from the generic gather's sum over 6 (or
+// 2 x 6) triangles (floating-point sums are not reassociated); on the paper's grid the closed forms
+// take about half the time (docs/evidence/performance.md, "Full Oldroyd-B step": the interior rows
+// as closed forms). With both triangulations the interior is a straight loop of its own with
+// unaliased arguments, compiled for AVX2 and the baseline (the *Interior functions).
 template <typename Generic, typename Interior>
 inline void SweepRowSplit(const AxisWrap& ax, bool interior_row, Generic&& generic,
                           Interior&& interior) {
@@ -113,7 +115,7 @@ inline void SweepRowSplit(const AxisWrap& ax, bool interior_row, Generic&& gener
   }
   const int last = ax.Lines() - 1;
   generic(ax.Prev(0), 0, ax.Next(0));
-  for (int i = 1; i < last; ++i) interior(i);
+  if (last > 1) interior(1, last);
   if (last > 0) generic(ax.Prev(last), last, ax.Next(last));
 }
 
@@ -206,6 +208,34 @@ DLMFD_AVX2_CLONES void ProlongBothRow(const AxisWrap& cx, const double* low, con
   }
 }
 
+// The interior kernels with both triangulations: nodes of one interior row, straight loops with
+// unaliased arguments, compiled for AVX2 and the baseline.
+// G: count nodes from f's, gx's and gy's first (scale h/12: the mean of the two).
+DLMFD_AVX2_CLONES void GradientBothInterior(int count, long row, double scale,
+                                            const double* __restrict f, double* __restrict gx,
+                                            double* __restrict gy) {
+  for (int i = 0; i < count; ++i) {
+    double sx, sy;
+    InteriorGradientBoth(f + i, row, sx, sy);
+    gx[i] = scale * sx;
+    gy[i] = scale * sy;
+  }
+}
+// G_x u + G_y v at the nodes first <= i < end of a row (pointers at its node 0): the sum of the
+// two rows at every node, then on an odd row the odd-odd nodes' SW-NE row in w and NW-SE row in w2
+// (DivergenceOnVelocityNodes).
+DLMFD_AVX2_CLONES void DivergenceBothInterior(bool odd_row, int first, int end, long row,
+                                              double scale, const double* __restrict u,
+                                              const double* __restrict v, double* __restrict w,
+                                              double* __restrict w2) {
+  for (int i = first; i < end; ++i) w[i] = scale * InteriorDivergenceBoth(u + i, v + i, row);
+  if (!odd_row) return;
+  for (int i = first | 1; i < end; i += 2) {
+    w[i] = scale * InteriorDivergenceSwNe(u + i, v + i, row);
+    w2[i] = scale * InteriorDivergenceNwSe(u + i, v + i, row);
+  }
+}
+
 // (gx, gy) = G f on every row-owning node.
 template <bool kBoth>
 void IntegratedGradient(const Grid& grid, const AxisWrap& ax, const AxisWrap& ay, const double* f,
@@ -233,15 +263,17 @@ void IntegratedGradient(const Grid& grid, const AxisWrap& ax, const AxisWrap& ay
           ox[i] = scale * sx;
           oy[i] = scale * sy;
         },
-        [&](int i) __attribute__((always_inline)) {
-          double sx, sy;
+        [&](int first, int end) __attribute__((always_inline)) {
           if constexpr (kBoth) {
-            InteriorGradientBoth(r + i, row, sx, sy);
+            GradientBothInterior(end - first, row, scale, r + first, ox + first, oy + first);
           } else {
-            InteriorGradientSwNe(r + i, row, sx, sy);
+            for (int i = first; i < end; ++i) {
+              double sx, sy;
+              InteriorGradientSwNe(r + i, row, sx, sy);
+              ox[i] = scale * sx;
+              oy[i] = scale * sy;
+            }
           }
-          ox[i] = scale * sx;
-          oy[i] = scale * sy;
         });
   }
 }
@@ -279,29 +311,14 @@ void DivergenceOnVelocityNodes(const Grid& grid, const AxisWrap& ax, const AxisW
         out[i] = sw_ne;
       }
     };
-    if (!kBoth || !InteriorRow(ay, j)) {
-      SweepRowSplit(
-          ax, InteriorRow(ay, j), generic, [&](int i) __attribute__((always_inline)) {
-            out[i] = scale * InteriorDivergenceSwNe(ru + i, rv + i, row);
-          });
-      continue;
-    }
-    // Both triangulations on an interior row: the ends by the generic gather, and between them
-    // straight loops (no test per node): an even row has no odd-odd node, an odd row alternates.
-    const int last = ax.Lines() - 1;
-    generic(ax.Prev(0), 0, ax.Next(0));
-    if (!odd_row) {
-      for (int i = 1; i < last; ++i) out[i] = scale * InteriorDivergenceBoth(ru + i, rv + i, row);
-    } else {
-      for (int i = 1; i < last; i += 2) {
-        out[i] = scale * InteriorDivergenceSwNe(ru + i, rv + i, row);
-        out2[i] = scale * InteriorDivergenceNwSe(ru + i, rv + i, row);
-        if (i + 1 < last) {
-          out[i + 1] = scale * InteriorDivergenceBoth(ru + i + 1, rv + i + 1, row);
-        }
+    SweepRowSplit(ax, InteriorRow(ay, j), generic, [&](int first, int end) {
+      if constexpr (kBoth) {
+        DivergenceBothInterior(odd_row, first, end, row, scale, ru, rv, out, out2);
+      } else {
+        for (int i = first; i < end; ++i)
+          out[i] = scale * InteriorDivergenceSwNe(ru + i, rv + i, row);
       }
-    }
-    if (last > 0) generic(ax.Prev(last), last, ax.Next(last));
+    });
   }
 }
 
@@ -384,13 +401,14 @@ void DivergenceTranspose(const Grid& grid, const BoundaryTopology& pressure_topo
         ov[i] = scale * sy;
       };
       if (!kBoth || !InteriorRow(ay, j)) {
-        SweepRowSplit(
-            ax, InteriorRow(ay, j), generic, [&](int i) __attribute__((always_inline)) {
-              double sx, sy;
-              InteriorGradientTransposeSwNe(r1 + i, row, sx, sy);
-              ou[i] = scale * sx;
-              ov[i] = scale * sy;
-            });
+        SweepRowSplit(ax, InteriorRow(ay, j), generic, [&](int first, int end) {
+          for (int i = first; i < end; ++i) {
+            double sx, sy;
+            InteriorGradientTransposeSwNe(r1 + i, row, sx, sy);
+            ou[i] = scale * sx;
+            ov[i] = scale * sy;
+          }
+        });
         continue;
       }
       // Both triangulations on an interior row: the ends by the generic gather, and between them
