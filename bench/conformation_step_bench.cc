@@ -26,6 +26,7 @@ struct PaperCase {
   explicit PaperCase(int variant) {
     params.domain.size = Vec2(2.0, 8.0);
     params.domain.h = 1.0 / 96.0;
+    params.domain.diagonals = MeshDiagonals::kSwNe;                  // as measured in docs/
     params.domain.sides[int(Side::kTop)].type = SideType::kOutflow;  // walls elsewhere
     params.fluid.viscosity = 0.12;
     params.fluid.relaxation_time = 1.4;

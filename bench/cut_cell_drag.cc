@@ -73,6 +73,7 @@ int main(int argc, char** argv) {
     }
   }
   dlmfd::DomainParams d;
+  d.diagonals = dlmfd::MeshDiagonals::kSwNe;  // the mesh of the numbers in docs/
   d.size = c.size;
   d.h = 0.1 / d_over_h;
   dlmfd::BoundarySide& inflow = d.sides[static_cast<int>(dlmfd::Side::kLeft)];

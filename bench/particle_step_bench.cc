@@ -21,6 +21,9 @@ Params PaperScene(int count) {
   params.domain.size = Vec2(2.0, 8.0);
   params.domain.h = 1.0 / 96;
   params.particle_mesh.h = 1.0 / 70;
+  // The settings of the numbers in docs/ (Params{}'s defaults before issue 39).
+  params.domain.diagonals = MeshDiagonals::kSwNe;
+  params.splitting.steady_correction = SteadyCorrection::kNone;
   params.gravity = Vec2(0.0, -981.0);
   params.time.dt = 4e-4;
   // Regular arrangements: 2 on the axis, 11 in a column, 102 on a 6 x 17 lattice.

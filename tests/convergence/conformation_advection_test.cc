@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/conformation/conformation_step.h"
 #include "dlmfd/core/constants.h"
 
@@ -29,6 +30,7 @@ struct AdvectionRun {
 
 AdvectionRun AdvectOnGrid(int n, double courant, double end_time) {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(1.0, 1.0);
   p.domain.h = 1.0 / n;
   for (BoundarySide& s : p.domain.sides) s.type = SideType::kPeriodic;

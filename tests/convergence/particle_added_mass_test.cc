@@ -31,6 +31,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/params.h"
 #include "dlmfd/core/simulation.h"
@@ -50,6 +51,7 @@ struct AddedMass {
 
 AddedMass SettledForce(int cells) {
   Params params;
+  testing::UseStudiedNumerics(params);
   params.domain.size = Vec2(1.0, 1.0);
   params.domain.h = 1.0 / cells;
   for (auto& side : params.domain.sides) side.type = SideType::kPeriodic;

@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/params.h"
 #include "dlmfd/core/simulation.h"
 
@@ -40,6 +41,7 @@ struct Rotation {
 
 Rotation FreeRotation(int cells) {
   Params params;
+  testing::UseStudiedNumerics(params);
   params.domain.size = Vec2(1.0, kHeight);
   params.domain.h = kHeight / cells;
   params.domain.sides[0].type = params.domain.sides[1].type = SideType::kPeriodic;

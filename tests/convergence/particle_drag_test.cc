@@ -40,6 +40,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/params.h"
 #include "dlmfd/core/simulation.h"
 
@@ -57,7 +58,9 @@ struct Drag {
 Drag SteadyDrag(int cells, ParticleMeshKind kind, ConstraintCoupling coupling,
                 double diffusion_number = kDiffusionNumber) {
   Params params;
+  testing::UseStudiedNumerics(params);
   params.splitting = SplittingParams::DefaultWeights(coupling);
+  testing::UseStudiedNumerics(params.splitting);
   params.particle_mesh.kind = kind;
   params.domain.size = Vec2(1.0, 1.0);
   params.domain.h = 1.0 / cells;

@@ -27,6 +27,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/params.h"
 #include "dlmfd/fluid/boundary_data.h"
@@ -68,6 +69,7 @@ struct Errors {
 
 Errors Solve(int cells) {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(1.0, 1.0);
   p.domain.h = 1.0 / cells;
   p.fluid.density = 1.0;

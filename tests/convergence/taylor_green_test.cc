@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/params.h"
 #include "dlmfd/core/simulation.h"
@@ -38,6 +39,7 @@ struct TaylorGreenErrors {
 
 Params TaylorGreenParams(int cells, AdvectionScheme scheme) {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(2.0 * kPi, 2.0 * kPi);
   p.domain.h = 2.0 * kPi / cells;
   for (BoundarySide& s : p.domain.sides) s.type = SideType::kPeriodic;

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "../support/viscous_channel.h"
 #include "dlmfd/core/observer.h"
 #include "dlmfd/core/simulation.h"
@@ -69,6 +70,7 @@ double ChannelDrag(double dt, ConstraintCoupling coupling, double end = 0.5) {
   Params p = testing::ChannelWithFixedDisk(16, dt, 0.0, 1.0);
   p.time.end = end;
   p.splitting = SplittingParams::DefaultWeights(coupling);  // paper: alpha = beta = 1/2
+  testing::UseStudiedNumerics(p.splitting);
   if (coupling == ConstraintCoupling::kViscous) {
     p.solvers.stokes_tolerance = 1e-6;
     p.solvers.multiplier_tolerance = 1e-6;

@@ -11,6 +11,7 @@
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/params.h"
 #include "dlmfd/core/state.h"
+#include "studied_numerics.h"
 
 namespace dlmfd::testing {
 
@@ -21,6 +22,7 @@ struct ConstraintDiskScene {
   std::vector<double> u, v;
 
   explicit ConstraintDiskScene(double density, Motion motion = Motion::kFree) {
+    UseStudiedNumerics(params);
     params.domain.size = Vec2(1.0, 1.0);
     params.domain.h = 1.0 / 48;
     params.fluid.density = 1.0;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "dlmfd/core/params.h"
+#include "studied_numerics.h"
 
 namespace dlmfd {
 
@@ -14,6 +15,7 @@ inline constexpr double kCutCreepingReference = 6.487;
 // left, outflow on the right, walls below and above.
 inline DomainParams CutCreepingChannel(double d_over_h) {
   DomainParams d;
+  testing::UseStudiedNumerics(d);
   d.size = Vec2(0.8, 0.4);
   d.h = 0.1 / d_over_h;
   BoundarySide& inflow = d.sides[static_cast<int>(Side::kLeft)];

@@ -9,11 +9,13 @@
 #pragma once
 
 #include "dlmfd/core/params.h"
+#include "studied_numerics.h"
 
 namespace dlmfd::testing {
 
 inline Params ViscousBase(double width, double height, int cells_per_unit, double dt) {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(width, height);
   p.domain.h = 1.0 / cells_per_unit;
   for (auto& side : p.domain.sides)

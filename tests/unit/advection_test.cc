@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../support/mirror_images.h"
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/fluid/advection_least_squares.h"
@@ -32,6 +33,7 @@ BoundarySide AdvectionSide(SideType type, double ux = 0.0, double uy = 0.0) {
 Params MakeParams(double h, BoundarySide left, BoundarySide right, BoundarySide bottom,
                   BoundarySide top) {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(1.0, 1.0);
   p.domain.h = h;
   p.domain.sides[0] = left;

@@ -38,6 +38,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/params.h"
 #include "dlmfd/fluid/advection_wave.h"
@@ -96,6 +97,7 @@ double TheoreticalLimit(Vec2 direction, int substeps) {
 // Power iteration on the engine's linearised per-call map; returns the last ratio |G x| / |x|.
 double MeasuredRadius(Vec2 flow, double courant, int iterations, int substeps) {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(1.0, 1.0);
   p.domain.h = 1.0 / kWaveCells;
   for (BoundarySide& s : p.domain.sides) s.type = SideType::kPeriodic;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/params.h"
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/fluid/boundary_data.h"
@@ -176,6 +177,7 @@ TEST(BoundaryData, SteadyDataAreTheSameBitForBitAtEveryTime) {
 // step (33) and the advection (34) write them into u).
 TEST(BoundaryData, SimulationStepsCarryTheDataOfTheirNewTimeLevel) {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain = Box(8, Wall(), Wall(), Wall(), QuarticLid(1.0, 0.5));
   p.fluid.density = 0.01;
   p.fluid.viscosity = 1.0;

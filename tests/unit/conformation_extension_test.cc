@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/conformation/conformation_step.h"
 #include "dlmfd/conformation/sym_tensor.h"
 #include "dlmfd/core/constants.h"
@@ -148,6 +149,7 @@ NaiveResult RunNaive(const Flow& flow) {
 
 Params ExtensionParams() {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(2.0, 2.0);
   p.domain.h = 2.0 / kExtensionCells;
   for (BoundarySide& s : p.domain.sides) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/conformation/conformation_step.h"
 #include "dlmfd/core/errors.h"
 
@@ -21,6 +22,7 @@ constexpr int kFailureCells = 8;
 
 Params WalledBox() {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(1.0, 1.0);
   p.domain.h = 1.0 / kFailureCells;
   p.fluid.relaxation_time = 0.5;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/conformation/inflow_state.h"
 #include "dlmfd/conformation/polymer_force.h"
 #include "dlmfd/core/errors.h"
@@ -27,6 +28,7 @@ BoundarySide PolymerSide(SideType type, Profile profile = Profile::kUniform,
 
 Params Box(int n, SideType type, double lambda) {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(1.0, 1.0);
   p.domain.h = 1.0 / n;
   for (auto& side : p.domain.sides) side = PolymerSide(type);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "../support/shear_start_up.h"
+#include "../support/studied_numerics.h"
 #include "dlmfd/conformation/conformation_advection.h"
 #include "dlmfd/conformation/conformation_step.h"
 #include "dlmfd/conformation/inflow_state.h"
@@ -55,6 +56,7 @@ TEST(ConformationRepresentation, MatrixFunctionsOfTheSpectrum) {
 
 Params Channel(int n, ConformationRepresentation r) {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(1.0, 1.0);
   p.domain.h = 1.0 / n;
   for (Side s : {Side::kLeft, Side::kRight, Side::kBottom, Side::kTop})

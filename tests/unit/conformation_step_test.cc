@@ -9,6 +9,7 @@
 #include <cmath>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/conformation/inflow_state.h"
 #include "dlmfd/conformation/velocity_gradient.h"
 #include "dlmfd/core/errors.h"
@@ -26,6 +27,7 @@ BoundarySide ConformationSide(SideType type, Vec2 value = Vec2::Zero()) {
 // A width x height box of cells h with the given side types, Oldroyd-B with relaxation time lambda.
 Params MakeParams(int nx, int ny, double h, SideType x_sides, SideType y_sides, double lambda) {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(nx * h, ny * h);
   p.domain.h = h;
   p.domain.sides[int(Side::kLeft)] = ConformationSide(x_sides);

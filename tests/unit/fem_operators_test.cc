@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/mesh/boundary_topology.h"
 #include "dlmfd/mesh/fem_operators.h"
 
@@ -40,6 +41,7 @@ const std::vector<Case>& Cases() {
 
 DomainParams DomainOf(const Case& c, const Grid& grid) {
   DomainParams d;
+  testing::UseStudiedNumerics(d);
   d.size = Vec2(grid.Width(), grid.Height());
   d.h = grid.h;
   d.sides[int(Side::kLeft)].type = c.left;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "../support/max_norms.h"
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/simulation.h"
 
 namespace dlmfd {
@@ -34,6 +35,7 @@ class RateLog : public Observer {
 // A channel W = 1 wide (walls left and right), periodic along y with period 0.5, at rest.
 Params PeriodicChannel(double flow_rate) {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(1.0, 0.5);
   p.domain.h = 1.0 / 16;
   p.domain.sides[static_cast<int>(Side::kBottom)].type = SideType::kPeriodic;
@@ -119,6 +121,7 @@ TEST(FluxControl, SettlingDiskAtZeroRate) {
   for (ConstraintCoupling coupling : {ConstraintCoupling::kIncremental, ConstraintCoupling::kPaper,
                                       ConstraintCoupling::kViscous}) {
     Params p;
+    testing::UseStudiedNumerics(p);
     p.domain.size = Vec2(1.0, 2.0);
     p.domain.h = 1.0 / 32;
     p.domain.sides[static_cast<int>(Side::kBottom)].type = SideType::kPeriodic;
@@ -128,6 +131,7 @@ TEST(FluxControl, SettlingDiskAtZeroRate) {
     p.fluid.viscosity = 0.05;
     p.gravity = Vec2(0.0, -981.0);
     p.splitting = SplittingParams::DefaultWeights(coupling);
+    testing::UseStudiedNumerics(p.splitting);
     p.splitting.steady_correction = SteadyCorrection::kTendency;
     p.time.dt = 5e-4;
     p.time.end = 40 * 5e-4;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../support/constraint_disk_scene.h"
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 
@@ -309,6 +310,7 @@ TEST(RigidBodyConstraint, NeutrallyBuoyantDiskPassesItsNetForceToTheFluid) {
 // 1/48), heavy, neutral (with a net force) and fixed, 1 and 2 threads give bit-identical results.
 TEST(RigidBodyConstraint, ResultDoesNotDependOnTheThreadCount) {
   Params params;
+  testing::UseStudiedNumerics(params);
   params.domain.size = Vec2(1.0, 1.0);
   params.domain.h = 1.0 / 48;
   params.particle_mesh.h = 1.0 / 35;

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 
@@ -21,6 +22,7 @@ namespace {
 Params Scene(double size, double h, bool periodic,
              ParticleMeshKind kind = ParticleMeshKind::kRing) {
   Params params;
+  testing::UseStudiedNumerics(params);
   params.particle_mesh.kind = kind;
   params.domain.size = Vec2(size, size);
   params.domain.h = h;

@@ -528,8 +528,8 @@ TEST(SceneFile, ParticleMeshFollowsTheFluidMeshUnlessSet) {
   // a coarse or fine scene stays inside the multiplier CG's well-conditioned range h_p / h >= 1.1
   // (bench/multiplier_conditioning.sh); the paper's own h = 1/96 gives its h_p = 1/70.
   const char* disk = "[[particles]]\ncenter = [0.5, 0.5]\nmotion = \"fixed\"\n";
-  EXPECT_DOUBLE_EQ(ParseScene(disk).particle_mesh.h, 96.0 / 70.0 / 32.0);
-  EXPECT_DOUBLE_EQ(ParseScene(disk, {{"domain.h", "0.015625"}}).particle_mesh.h,
+  EXPECT_DOUBLE_EQ(ParseScene(disk).particle_mesh.h.value(), 96.0 / 70.0 / 32.0);
+  EXPECT_DOUBLE_EQ(ParseScene(disk, {{"domain.h", "0.015625"}}).particle_mesh.h.value(),
                    96.0 / 70.0 / 64.0);
   EXPECT_EQ(ParseScene(disk, {{"domain.h", "0.010416666666666666"}}).particle_mesh.h, 1.0 / 70.0);
   // A scene that sets it keeps it, whatever domain.h.
@@ -798,7 +798,7 @@ TEST(SceneFile, SplittingWeightsFollowTheConstraint) {
 // The steady correction's default follows the liquid (docs/scenes.md): the splitting's Taylor term
 // is removed in a Newtonian liquid, with either advection scheme, and kept with a polymer (the
 // explicit polymer stress needs its damping; docs/evidence/splitting.md). Params built in code
-// keep "none".
+// leave it absent, and ResolveDefaults (the Simulation's) applies the same rule.
 TEST(SceneFile, SteadyCorrectionFollowsTheLiquid) {
   auto correction = [](const std::string& scene) {
     return ParseScene(scene).splitting.steady_correction;
@@ -818,7 +818,15 @@ TEST(SceneFile, SteadyCorrectionFollowsTheLiquid) {
         << advection;
   }
   EXPECT_EQ(correction(""), SteadyCorrection::kTendency);
-  EXPECT_EQ(Params{}.splitting.steady_correction, SteadyCorrection::kNone);
+  EXPECT_FALSE(Params{}.splitting.steady_correction.has_value());
+  for (const double beta : {0.5, 1.0}) {
+    Params code;
+    code.fluid.relaxation_time = 1.0;
+    code.fluid.solvent_ratio = beta;
+    ResolveDefaults(code);
+    EXPECT_EQ(code.splitting.steady_correction,
+              beta < 1.0 ? SteadyCorrection::kNone : SteadyCorrection::kTendency);
+  }
   // The tendency correction is named, with or without a polymer, and the scene as run keeps it.
   const std::string tendency = "[splitting]\nsteady_correction = \"tendency\"\n";
   EXPECT_EQ(correction(tendency), SteadyCorrection::kTendency);
@@ -888,6 +896,7 @@ TEST(SceneFile, WriteSceneRoundTripsAwkwardValues) {
   q.angular_velocity = -1.0 / 11.0;
   q.motion = Motion::kPrescribed;
   p.particles.push_back(q);
+  ResolveDefaults(p);  // the members Params{} leaves absent, as the Simulation resolves them
   const std::string text = WriteScene(p);
   const Params r = ParseScene(text, {}, "written");
   ExpectSameParams(p, r);

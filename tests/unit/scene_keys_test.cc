@@ -1,6 +1,5 @@
 // The table of scene keys (scene/scene_keys.h): docs/scenes.md's key table is the one the table
-// generates; Params{} and an empty scene agree on every key whose default is the struct's, and
-// differ only on keys the table declares as the preset's or derived; every key is declared once;
+// generates; Params{} and an empty scene agree on every key; every key is declared once;
 // every scene of cases/ reads back from what the writer writes.
 #include "dlmfd/scene/scene_keys.h"
 
@@ -51,30 +50,41 @@ TEST(SceneKeys, EachKeyIsDeclaredOnce) {
   }
 }
 
-// An empty scene gets the struct defaults of core/params.h, except where the table says the
-// default is the preset's or follows other keys; there a test states each difference.
-TEST(SceneKeys, ParamsAndAnEmptySceneAgreeWhereTheTableSaysSo) {
+// Params{} runs as an empty scene does: on every key of the table, with no exception, before
+// and after scene::ResolveDefaults (which the Simulation applies), and so do a polymer and a finer
+// mesh given in code and in a scene (the preset's word follows the liquid, h_p follows h).
+TEST(SceneKeys, ParamsAndAnEmptySceneAgreeOnEveryKey) {
   const Params empty = ParseScene("");
   const Params built;
-  std::set<std::string> differ;
+  Params resolved = built;
+  ResolveDefaults(resolved);
   for (const SceneKey<Params>& k : scene::SceneKeys()) {
-    if (k.get(empty) == k.get(built)) continue;
-    differ.insert(k.name);
-    EXPECT_TRUE(k.default_kind == DefaultKind::kPreset || k.default_kind == DefaultKind::kDerived)
+    EXPECT_EQ(k.get(empty), k.get(built))
         << k.name << ": an empty scene gives " << scene::ValueText(k.get(empty)) << ", Params{} "
         << scene::ValueText(k.get(built));
-    if (k.default_kind == DefaultKind::kPreset) {
-      EXPECT_EQ(scene::ValueText(k.get(empty)),
-                scene::ValueText(scene::PresetWord(NumericsPreset::kDefault, k.name, empty)))
-          << k.name;
-    }
+    EXPECT_EQ(k.get(empty), k.get(resolved)) << k.name;
   }
-  // The struct keeps the paper's choices where the engine's tests studied them
-  // (scene/numerics_preset.h), and the paper's h_p = 1/70 (core/params.h).
-  const std::set<std::string> expected = {"domain.diagonals", "splitting.advection",
-                                          "splitting.steady_correction", "particle_mesh.h"};
-  EXPECT_EQ(differ, expected);
+  EXPECT_EQ(WriteScene(resolved), WriteScene(empty));
+  EXPECT_EQ(scene::SceneValues(built), scene::SceneValues(empty));
+  EXPECT_EQ(resolved.splitting.steady_correction, empty.splitting.steady_correction);
+  EXPECT_EQ(resolved.particle_mesh.h, empty.particle_mesh.h);
   EXPECT_EQ(empty.particle_mesh.h, kPaperParticleMeshRatio * empty.domain.h);
+  // ResolveDefaults keeps what is set: the scene as read resolves to itself.
+  Params again = empty;
+  ResolveDefaults(again);
+  EXPECT_EQ(WriteScene(again), WriteScene(empty));
+
+  const Params polymer_scene =
+      ParseScene("[domain]\nh = 0.015625\n[fluid]\nrelaxation_time = 0.1\nsolvent_ratio = 0.5\n");
+  Params polymer;
+  polymer.domain.h = 0.015625;
+  polymer.fluid.relaxation_time = 0.1;
+  polymer.fluid.solvent_ratio = 0.5;
+  EXPECT_EQ(scene::SceneValues(polymer), scene::SceneValues(polymer_scene));
+  ResolveDefaults(polymer);
+  EXPECT_EQ(WriteScene(polymer), WriteScene(polymer_scene));
+  EXPECT_EQ(polymer.splitting.steady_correction, SteadyCorrection::kNone);
+  EXPECT_EQ(polymer.particle_mesh.h, kPaperParticleMeshRatio * 0.015625);
   EXPECT_EQ(empty.particles.size(), built.particles.size());
   // A particle and a side given with their required keys only get the structs' defaults.
   const Params one = ParseScene(

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/conformation/inflow_state.h"
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
@@ -41,6 +42,7 @@ class LastReport : public Observer {
 
 Params Box(double width, double height, double h, SideType type) {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(width, height);
   p.domain.h = h;
   for (auto& side : p.domain.sides) side.type = type;
@@ -212,7 +214,7 @@ TEST(SimulationCoupling, LargeDiskInAPeriodicBoxConvergesFromStepZeroWithTheScen
   Params p = LoadSceneFile(std::string(DLMFD_SOURCE_DIR) +
                            "/cases/verification/periodic_box_large_disk.toml");
   p.threads = 1;
-  EXPECT_DOUBLE_EQ(p.particle_mesh.h / p.domain.h, kPaperParticleMeshRatio);
+  EXPECT_DOUBLE_EQ(p.particle_mesh.h.value() / p.domain.h, kPaperParticleMeshRatio);
   Simulation sim(p);
   LastReport last;
   sim.AddObserver(&last);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/simulation.h"
 
 namespace dlmfd {
@@ -44,6 +45,7 @@ class Recorder : public Observer {
 // A lid-driven box of 8 x 8 cells, 3 steps, particles recorded every step, no snapshots.
 Params SmallCavity() {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(1.0, 1.0);
   p.domain.h = 1.0 / 8;
   for (auto& side : p.domain.sides) side.type = SideType::kWall;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "../support/max_norms.h"
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/simulation.h"
 
 namespace dlmfd {
@@ -31,6 +32,7 @@ class StokesCounts : public Observer {
 
 Params RestingOldroydBLiquid() {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(2.0, 8.0);
   p.domain.h = 1.0 / 24;
   for (auto& side : p.domain.sides) side.type = SideType::kWall;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "../support/max_norms.h"
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/fluid/boundary_data.h"
@@ -44,6 +45,7 @@ BoundarySide Poiseuille(double mx, double my) {
 Params MakeParams(double width, double height, double h, BoundarySide left, BoundarySide right,
                   BoundarySide bottom, BoundarySide top) {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(width, height);
   p.domain.h = h;
   p.domain.sides[0] = left;

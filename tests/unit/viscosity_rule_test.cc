@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "../support/studied_numerics.h"
 #include "../support/viscous_channel.h"
 #include "dlmfd/core/simulation.h"
 
@@ -27,6 +28,7 @@ double Drag(double lambda, double beta, ConstraintCoupling coupling = SplittingP
             StressSplitting splitting = FluidParams{}.stress_splitting) {
   Params p = testing::ChannelWithFixedDisk(16, 2e-3, lambda, beta);
   p.splitting = SplittingParams::DefaultWeights(coupling);
+  testing::UseStudiedNumerics(p.splitting);
   p.fluid.stress_splitting = splitting;
   Simulation sim(p);
   sim.Run();

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <vector>
 
+#include "../support/studied_numerics.h"
 #include "dlmfd/core/constants.h"
 #include "dlmfd/fluid/boundary_data.h"
 #include "dlmfd/fluid/stokes_solver.h"
@@ -23,6 +24,7 @@ namespace {
 
 Params Box(double dt) {
   Params p;
+  testing::UseStudiedNumerics(p);
   p.domain.size = Vec2(1.0, 1.0);
   p.domain.h = 1.0 / 32;
   for (auto& side : p.domain.sides) side.type = SideType::kWall;

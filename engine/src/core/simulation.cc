@@ -38,6 +38,7 @@
 #include "dlmfd/fluid/velocity_advection.h"
 #include "dlmfd/particles/cut_cell_step.h"
 #include "dlmfd/particles/particle_step.h"
+#include "dlmfd/scene/scene_file.h"
 
 namespace dlmfd {
 namespace {
@@ -239,9 +240,11 @@ struct Simulation::Impl {
 };
 
 Simulation::Simulation(const Params& params) {
-  ValidateSupported(params);
-  if (params.threads > 0) omp_set_num_threads(params.threads);
-  impl_ = std::make_unique<Impl>(params);
+  Params resolved = params;  // Params built in code runs as the same scene read from a file
+  ResolveDefaults(resolved);
+  ValidateSupported(resolved);
+  if (resolved.threads > 0) omp_set_num_threads(resolved.threads);
+  impl_ = std::make_unique<Impl>(resolved);
 }
 
 Simulation::~Simulation() = default;

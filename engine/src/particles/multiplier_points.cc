@@ -25,7 +25,7 @@ void MultiplierPoints::Add(const Shape& shape) {
   if (found < 0) {
     if (mesh_.kind == ParticleMeshKind::kRing) {
       RequireRingMeshShape(shape, set_of_.size());
-      meshes_.emplace_back(shape.BoundingRadius(), mesh_.h);
+      meshes_.emplace_back(shape.BoundingRadius(), mesh_.RingMeshSize(fluid_h_));
     } else {
       collocation_.emplace_back(shape, fluid_h_, mesh_.spacing, mesh_.interpolation);
     }

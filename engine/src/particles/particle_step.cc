@@ -64,7 +64,8 @@ ParticleStep::ParticleStep(const Params& params, const Grid& grid)
   if (params.splitting.constraint == ConstraintCoupling::kIncremental && n > 0) {
     // With the tendency correction the Stokes step's velocity is the field a steady state solves
     // for, so the fixed particles hold their constraint on it (particles/lagged_multiplier.h).
-    const bool on_stokes = params.splitting.steady_correction == SteadyCorrection::kTendency;
+    const bool on_stokes =
+        params.splitting.steady_correction.value() == SteadyCorrection::kTendency;
     std::vector<char> held(n, 0);
     for (std::size_t p = 0; p < n; ++p)
       held[p] = on_stokes && params.particles[p].motion == Motion::kFixed;

@@ -125,7 +125,7 @@ std::vector<AccuracySetting> AccuracySettings(const Params& p) {
     if (p.particle_mesh.kind == ParticleMeshKind::kCutCell) continue;  // no multiplier points
     // The multiplier point spacing: h_p of the ring mesh, c h on the collocation circle.
     const double point_spacing = p.particle_mesh.kind == ParticleMeshKind::kRing
-                                     ? p.particle_mesh.h
+                                     ? p.particle_mesh.RingMeshSize(h)
                                      : p.particle_mesh.spacing * h;
     s.push_back({"D / h_p" + which, p.particles[i].diameter / point_spacing});
   }
@@ -207,14 +207,14 @@ std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
   }
 
   if (particles && p.particle_mesh.kind == ParticleMeshKind::kRing) {
-    const double ratio = p.particle_mesh.h / h;
+    const double ratio = p.particle_mesh.RingMeshSize(h) / h;
     if (Above(kMinParticleMeshRatio, ratio)) {
       AccuracyWarning w;
       w.setting = "h_p / h";
       w.value = ratio;
       w.allowed = ">= " + ShortText(kMinParticleMeshRatio);
       w.key = "particle_mesh.h";
-      w.current = ExactText(p.particle_mesh.h);
+      w.current = ExactText(p.particle_mesh.RingMeshSize(h));
       w.suggested = ExactText(kPaperParticleMeshRatio * h);
       w.source = kSourceParticleMesh;
       out.push_back(std::move(w));

@@ -175,10 +175,11 @@ std::set<std::string> ReadGivenKeys(TableReader& top, Params& p, AutoKeys& autos
 }
 
 // Pass 2: the defaults of the keys not given: the preset's words, then "auto" resolved from the
-// rest of the scene (scene/auto_coupling.h), then the keys derived from others.
+// rest of the scene (scene/auto_coupling.h), then the keys derived from others, then the members
+// the struct leaves absent (ResolveDefaults).
 void ApplyDefaults(const std::set<std::string>& given, AutoKeys& autos, Params& p) {
   for (const SceneKey<Params>& k : scene::SceneKeys()) {
-    if (given.count(k.name) != 0 || k.default_kind != DefaultKind::kPreset) continue;
+    if (given.count(k.name) != 0 || k.default_kind != DefaultKind::kPreset || k.unset) continue;
     const std::string word = scene::PresetWord(p.numerics.preset, k.name, p);
     if (word == "auto" && k.resolve != nullptr) {
       autos.push_back(&k);
@@ -191,8 +192,11 @@ void ApplyDefaults(const std::set<std::string>& given, AutoKeys& autos, Params& 
     k->set_word(p, k->name, p.numerics.resolved.back().value);
   }
   for (const SceneKey<Params>& k : scene::SceneKeys()) {
-    if (given.count(k.name) == 0 && k.default_kind == DefaultKind::kDerived) k.derive(p);
+    if (given.count(k.name) == 0 && k.default_kind == DefaultKind::kDerived && !k.unset) {
+      k.derive(p);
+    }
   }
+  ResolveDefaults(p);
 }
 
 // "title, gravity, numerics, domain, ...": the top-level keys and sections, then the particles.
@@ -226,6 +230,17 @@ void ReadParticles(TableReader& top, Params& p) {
 }
 
 }  // namespace
+
+void ResolveDefaults(Params& params) {
+  for (const SceneKey<Params>& k : scene::SceneKeys()) {
+    if (!k.unset || !k.unset(params)) continue;
+    if (k.default_kind == DefaultKind::kDerived) {
+      k.derive(params);
+    } else {
+      k.set_word(params, k.name, scene::PresetWord(params.numerics.preset, k.name, params));
+    }
+  }
+}
 
 SceneOverride ParseOverride(const std::string& key_equals_value) {
   const auto eq = key_equals_value.find('=');

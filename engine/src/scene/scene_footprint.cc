@@ -30,7 +30,7 @@ SceneFootprint EstimateFootprint(const Params& params) {
                                      2.0 * kPi * r / params.particle_mesh.spacing + 4.0);
       continue;
     }
-    const double r = q.Radius() / params.particle_mesh.h;
+    const double r = q.Radius() / params.particle_mesh.RingMeshSize(d.h);
     f.multiplier_nodes = Saturated(f.multiplier_nodes + kPi * r * (r + 2.0) + 3.0 * r + 4.0);
   }
   const double recycled =

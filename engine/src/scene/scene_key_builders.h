@@ -14,6 +14,17 @@
 namespace dlmfd {
 namespace scene {
 
+// A member's value as its key's `get` gives it; an absent std::optional as T{} (its key's `get` is
+// then replaced by one that gives its default, SceneKey::unset).
+template <typename T>
+KeyValue ValueOfMember(const T& value) {
+  return value;
+}
+template <typename T>
+KeyValue ValueOfMember(const std::optional<T>& value) {
+  return value.value_or(T{});
+}
+
 // A key read by one of TableReader's typed readers (Real, Integer, Boolean, Vector, String) into
 // the member `at` names.
 template <typename Record, typename T, typename At>
@@ -27,7 +38,7 @@ SceneKey<Record> TypedKey(std::string name, KeyType type,
   k.read = [at, reader](TableReader& t, const std::string& leaf, Record& r) {
     at(r) = (t.*reader)(leaf, std::nullopt);
   };
-  k.get = [at](const Record& r) -> KeyValue { return at(r); };
+  k.get = [at](const Record& r) -> KeyValue { return ValueOfMember(at(r)); };
   return k;
 }
 
@@ -87,6 +98,17 @@ SceneKey<Record> StringKey(std::string name, At at, std::string description) {
 // "one of \"a\", \"b\"": the allowed words of a choice, as messages show them.
 std::string AllowedWords(const std::vector<std::string>& words);
 
+// The word of a choice member; "" for an absent std::optional one (its key's `get` then gives its
+// default, SceneKey::unset).
+template <typename Enum>
+std::string WordOfMember(const Enum& value) {
+  return WordOf(value);
+}
+template <typename Enum>
+std::string WordOfMember(const std::optional<Enum>& value) {
+  return value ? WordOf(*value) : "";
+}
+
 // One of the words of Enum (core/param_words.h), and "auto" first when `resolve` is set.
 template <typename Enum, typename Record, typename At>
 SceneKey<Record> ChoiceKey(std::string name, At at, std::string description,
@@ -107,7 +129,7 @@ SceneKey<Record> ChoiceKey(std::string name, At at, std::string description,
   k.read = [k_set = k.set_word](TableReader& t, const std::string& leaf, Record& r) {
     k_set(r, t.Key(leaf), t.String(leaf, std::nullopt));
   };
-  k.get = [at](const Record& r) -> KeyValue { return std::string(WordOf(at(r))); };
+  k.get = [at](const Record& r) -> KeyValue { return WordOfMember(at(r)); };
   return k;
 }
 

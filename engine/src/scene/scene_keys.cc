@@ -151,9 +151,17 @@ void AddTimeAndSplitting(std::vector<SceneKey<P>>& keys) {
       "where the rigid-body constraint meets the fluid; `auto` picks one from the scene's numbers "
       "(scene/auto_coupling.h)",
       ResolveConstraintCoupling)));
-  keys.push_back(FromPreset(ChoiceKey<SteadyCorrection, P>(
+  SceneKey<P> correction = FromPreset(ChoiceKey<SteadyCorrection, P>(
       "splitting.steady_correction", [](auto& p) -> auto& { return p.splitting.steady_correction; },
-      "what step (34) does about the splitting's steady-state error")));
+      "what step (34) does about the splitting's steady-state error"));
+  // Absent in the struct: the preset's word depends on the liquid.
+  correction.unset = [](const P& p) { return !p.splitting.steady_correction; };
+  correction.get = [](const P& p) -> KeyValue {
+    const auto& c = p.splitting.steady_correction;
+    return c ? std::string(WordOf(*c))
+             : PresetWord(p.numerics.preset, "splitting.steady_correction", p);
+  };
+  keys.push_back(correction);
 }
 
 void AddSolvers(std::vector<SceneKey<P>>& keys) {
@@ -189,13 +197,17 @@ void AddParticleMeshAndCollisions(std::vector<SceneKey<P>>& keys) {
       "particle_mesh.kind", [](auto& p) -> auto& { return p.particle_mesh.kind; },
       "the multiplier points of (37): the paper's ring mesh, collocation points on the true "
       "circle, or no multipliers (cut cells, fixed bodies)")));
-  keys.push_back(
-      Allowed(Derived(RealKey<P>(
-                          "particle_mesh.h", [](auto& p) -> auto& { return p.particle_mesh.h; },
-                          kRangePositive, "multiplier mesh size h_p of the ring mesh"),
-                      "`96/70 domain.h` (the paper's ratio), following `domain.h`",
-                      [](Params& p) { p.particle_mesh.h = kPaperParticleMeshRatio * p.domain.h; }),
-              "`ring`: at most the smallest particle's radius; at most 2e7 multiplier nodes"));
+  SceneKey<P> ring_h = Allowed(
+      Derived(RealKey<P>(
+                  "particle_mesh.h", [](auto& p) -> auto& { return p.particle_mesh.h; },
+                  kRangePositive, "multiplier mesh size h_p of the ring mesh"),
+              "`96/70 domain.h` (the paper's ratio), following `domain.h`",
+              [](Params& p) { p.particle_mesh.h = p.particle_mesh.RingMeshSize(p.domain.h); }),
+      "`ring`: at most the smallest particle's radius; at most 2e7 multiplier nodes");
+  // Absent in the struct: it follows domain.h (ParticleMeshParams::RingMeshSize).
+  ring_h.unset = [](const P& p) { return !p.particle_mesh.h; };
+  ring_h.get = [](const P& p) -> KeyValue { return p.particle_mesh.RingMeshSize(p.domain.h); };
+  keys.push_back(ring_h);
   keys.push_back(RealKey<P>(
       "particle_mesh.spacing", [](auto& p) -> auto& { return p.particle_mesh.spacing; },
       {KeyRange::kClosed, kMinCollocationSpacing, kMaxCollocationSpacing},

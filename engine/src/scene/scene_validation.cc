@@ -144,12 +144,13 @@ void ValidateParticleRangesAndMeshes(const Params& p) {
   const SceneFootprint footprint = EstimateFootprint(p);
   if (!(footprint.multiplier_nodes <= kMaxMultiplierNodes)) {
     const bool ring = p.particle_mesh.kind == ParticleMeshKind::kRing;
-    throw InvalidParameter(
-        ring ? "particle_mesh.h" : "domain.h", ExactText(ring ? p.particle_mesh.h : p.domain.h),
-        "multiplier meshes of at most " + ShortText(kMaxMultiplierNodes) +
-            " nodes over all particles (these have about " + ShortText(footprint.multiplier_nodes) +
-            ", about " + ShortText(kBytesPerNode * footprint.multiplier_nodes / kGiB) +
-            " GiB of memory)");
+    throw InvalidParameter(ring ? "particle_mesh.h" : "domain.h",
+                           ExactText(ring ? p.particle_mesh.RingMeshSize(p.domain.h) : p.domain.h),
+                           "multiplier meshes of at most " + ShortText(kMaxMultiplierNodes) +
+                               " nodes over all particles (these have about " +
+                               ShortText(footprint.multiplier_nodes) + ", about " +
+                               ShortText(kBytesPerNode * footprint.multiplier_nodes / kGiB) +
+                               " GiB of memory)");
   }
 }
 
@@ -163,8 +164,9 @@ void ValidateRingMesh(const Params& p) {
     if (p.particles[i].diameter < p.particles[smallest].diameter) smallest = i;
   }
   const double radius = p.particles[smallest].Radius();
-  if (p.particle_mesh.h > radius) {
-    throw InvalidParameter("particle_mesh.h", ExactText(p.particle_mesh.h),
+  const double h_p = p.particle_mesh.RingMeshSize(p.domain.h);
+  if (h_p > radius) {
+    throw InvalidParameter("particle_mesh.h", ExactText(h_p),
                            "at most the radius of the smallest particle, " + ExactText(radius) +
                                " (particles." + std::to_string(smallest) +
                                "): a coarser ring mesh does not resolve the disk");

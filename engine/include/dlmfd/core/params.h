@@ -38,16 +38,15 @@ enum class Side { kLeft = 0, kRight = 1, kBottom = 2, kTop = 3 };
 // wave-like step's K_V and N(V, .) of step (34). The mesh is not mirror-symmetric (x -> -x or y ->
 // -y maps it onto the other diagonal's), so a flow symmetric in the domain's mid-line is not quite
 // symmetric on it; the mean is (mesh/grid_kernels.h, Diagonal; docs/evidence/particle_boundary.md
-// (e), "The lift's mirror bias"). A scene file's default is kBoth (numerics.preset,
-// scene/numerics_preset.h: the lift's sign right, Schaefer-Turek Cd +0.79 % at D/h = 20); the
-// struct's stays the paper's kSwNe, which the tests that build Params studied.
+// (e), "The lift's mirror bias"). The default is kBoth, numerics.preset's word
+// (scene/numerics_preset.h: the lift's sign right, Schaefer-Turek Cd +0.79 % at D/h = 20).
 enum class MeshDiagonals { kSwNe, kBoth };
 
 struct DomainParams {
   Vec2 size = Vec2(1.0, 1.0);  // width, height; size / h even integers
   double h = 1.0 / 32;         // velocity mesh size
   BoundarySide sides[4];       // indexed by Side
-  MeshDiagonals diagonals = MeshDiagonals::kSwNe;
+  MeshDiagonals diagonals = MeshDiagonals::kBoth;
   // domain.flow_rate: in a channel periodic in one direction (the other two sides Dirichlet), the
   // volume flux per unit depth through a cross-section that a uniform mean pressure gradient
   // holds each step (fluid/flux_control.h); 0 for sedimentation without end walls. In a box
@@ -140,19 +139,18 @@ struct TimeParams {
   double end = 1.0;  // >= 0
 };
 
-// Step (34): kLeastSquares, the paper's least-squares CG; kWave, the explicit wave-like scheme. A
-// scene file's default is kWave (numerics.preset, scene/numerics_preset.h: 3.5-4.5 times cheaper
-// and as accurate or more on every problem of docs/evidence/work_precision.md, "Which settings" 1);
-// the struct's stays the paper's kLeastSquares, which the tests that build Params studied.
+// Step (34): kLeastSquares, the paper's least-squares CG; kWave, the explicit wave-like scheme. The
+// default is kWave, numerics.preset's word (scene/numerics_preset.h: 3.5-4.5 times cheaper and as
+// accurate or more on every problem of docs/evidence/work_precision.md, "Which settings" 1).
 enum class AdvectionScheme { kLeastSquares, kWave };
 
 // What the advection step (34) does about the splitting's steady-state error: kNone, nothing (the
 // paper's scheme: the fixed point of the Lie splitting carries an extra streamline diffusion,
 // (dt/2) (u.grad)^2 u with the wave-like step, twice that with the backward-Euler least-squares
 // step); kTaylor, the step subtracts that term wherever it is at most half the Newtonian viscosity
-// (fluid/advection_wave.h, fluid/advection_least_squares.h). A scene file's default is "taylor"
-// in a Newtonian liquid, with either scheme, and "none" with a
-// polymer: with the polymer's stress explicit the removed diffusion is damping the elastic
+// (fluid/advection_wave.h, fluid/advection_least_squares.h). The default (numerics.preset's word)
+// is "tendency" in a Newtonian liquid and "none" with a polymer (SplittingParams): with the
+// polymer's stress explicit the removed diffusion is damping the elastic
 // coupling needs (the Waters-King start-up at dt = 0.04 failed earlier with it;
 // docs/evidence/splitting.md, "The splitting's steady-state error"). kTendency: the step integrates
 // the whole frozen tendency (its own advection and the Stokes step's (u^{n+1/4} - u^n) / dt) and
@@ -179,9 +177,11 @@ enum class ConstraintCoupling { kPaper, kViscous, kIncremental };
 struct SplittingParams {
   double alpha = 1.0;
   double beta = 0.0;
-  AdvectionScheme advection = AdvectionScheme::kLeastSquares;
+  AdvectionScheme advection = AdvectionScheme::kWave;
   ConstraintCoupling constraint = ConstraintCoupling::kIncremental;
-  SteadyCorrection steady_correction = SteadyCorrection::kNone;
+  // Absent: numerics.preset's word for the liquid, which depends on the other keys; ParseScene and
+  // the Simulation set it (scene::ResolveDefaults), so the engine's steps read a value.
+  std::optional<SteadyCorrection> steady_correction;
 
   // alpha and beta of a scene that names only its constraint.
   static SplittingParams DefaultWeights(ConstraintCoupling constraint) {
@@ -253,12 +253,11 @@ enum class ParticleMeshKind { kRing, kCollocation, kCutCell };
 // the 2h macro-square that holds it, which is mirror-symmetric where the triangles are not.
 enum class BoundaryInterpolation { kQuadratic, kLinear, kBiquadratic };
 
-// The paper's particle mesh against its fluid mesh, h_p / h = (1/70) / (1/96) (section 5). A scene
-// file without particle_mesh.h gets h_p = kPaperParticleMeshRatio domain.h (scene/scene_file.cc):
+// The paper's particle mesh against its fluid mesh, h_p / h = (1/70) / (1/96) (section 5). Without
+// particle_mesh.h, h_p = kPaperParticleMeshRatio domain.h (ParticleMeshParams::RingMeshSize):
 // the ratio of every accuracy study (docs/evidence/work_precision.md (c), (d)) and inside the
 // multiplier CG's well-conditioned range h_p / h >= 1.1 ("The particle mesh against the fluid
-// mesh"), on any mesh. ParticleMeshParams{} keeps 1/70, the paper's h_p at its h = 1/96, for code
-// that builds Params.
+// mesh"), on any mesh; the paper's h_p = 1/70 at its h = 1/96.
 inline constexpr double kPaperParticleMeshRatio = 96.0 / 70.0;
 
 struct ParticleMeshParams {
@@ -266,9 +265,16 @@ struct ParticleMeshParams {
   // Schaefer-Turek Cd +0.78 % at D/h = 20 against the ring's +2.23 %, the lift's sign right from
   // D/h = 40 on, and a multiplier CG of about one iteration a step against 12).
   ParticleMeshKind kind = ParticleMeshKind::kCollocation;
-  double h = 1.0 / 70;   // ring: multiplier mesh size > 0 (scene files: kPaperParticleMeshRatio h)
+  // ring: multiplier mesh size > 0; absent: it follows domain.h (RingMeshSize), and
+  // scene::ResolveDefaults names the value.
+  std::optional<double> h;
   double spacing = 2.0;  // collocation: boundary point spacing in units of domain.h, in [0.5, 4]
   BoundaryInterpolation interpolation = BoundaryInterpolation::kQuadratic;  // collocation
+  // h_p of the ring mesh on the velocity mesh of size domain_h: h, or kPaperParticleMeshRatio
+  // domain_h when absent.
+  double RingMeshSize(double domain_h) const {
+    return h.value_or(kPaperParticleMeshRatio * domain_h);
+  }
 };
 
 struct CollisionParams {

@@ -14,8 +14,13 @@
 //   kDerived  a function of the other keys, applied after them (particle_mesh.h follows domain.h);
 //   kRequired none: the key must be given (where it applies);
 //   kAbsent   an optional member left empty.
-// A choice key may accept "auto": a named rule (`resolve`) picks its word at the start of a run
-// from the rest of the scene, and the choice is recorded in Params::numerics.resolved.
+// The struct holds numerics.preset's default words itself; a preset word or a derived value that
+// follows other keys (splitting.steady_correction, particle_mesh.h) is an absent std::optional
+// in the struct, which ResolveDefaults (scene/scene_file.h) fills for a scene file and for code
+// that builds Params alike, so Params{} runs as an empty scene does
+// (tests/unit/scene_keys_test.cc). A choice key may accept "auto": a named rule (`resolve`) picks
+// its word at the start of a run from the rest of the scene, and the choice is recorded in
+// Params::numerics.resolved.
 #pragma once
 
 #include <functional>
@@ -77,6 +82,9 @@ struct SceneKey {
   std::string refused;
   // Whether the writer writes it (null: where it applies).
   std::function<bool(const Record&)> written;
+  // A member the struct may leave absent (std::optional): true while it is. Its default (kPreset or
+  // kDerived) is then given by ResolveDefaults (scene/scene_file.h), and `get` gives that default.
+  std::function<bool(const Record&)> unset;
   std::function<void(Params&)> derive;                 // kDerived
   ResolvedChoice (*resolve)(const Params&) = nullptr;  // a choice that may be "auto"
 };
