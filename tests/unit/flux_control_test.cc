@@ -235,6 +235,7 @@ TEST(FluxControl, BoxHoldsAZeroMeanUnderASettlingDisk) {
     p.fluid.viscosity = 0.05;
     p.gravity = Vec2(0.0, -981.0);
     p.splitting = SplittingParams::DefaultWeights(coupling);
+    testing::UseStudiedNumerics(p.splitting);
     p.splitting.steady_correction = SteadyCorrection::kTendency;
     p.time.dt = 5e-4;
     p.time.end = 40 * 5e-4;
