@@ -1,7 +1,5 @@
 #include "scene_admission.h"
 
-#include <cmath>
-
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/time_stepping.h"
 #include "dlmfd/scene/scene_file.h"
@@ -23,8 +21,8 @@ void CheckRunLimits(const Params& params, const Config& config) {
                            " steps (time.end / time.dt), over the limit of max_steps = " +
                            std::to_string(config.max_steps));
   }
-  const double every = params.output.fields_every;
-  const double snapshots = every > 0.0 ? std::floor(params.time.end / every + 1e-9) + 1.0 : 0.0;
+  const auto snapshots =
+      static_cast<double>(SnapshotCount(params.time, params.output.fields_every));
   if (config.max_snapshots > 0 && snapshots > static_cast<double>(config.max_snapshots)) {
     throw ServiceError(StatusCode::RESOURCE_EXHAUSTED,
                        "output.fields_every: the run writes " +

@@ -85,7 +85,7 @@ RunStatistics ComputeRunStatistics(const Params& params, const DiagnosticsTable&
   // The paper's U is a speed: a particle rising (U < 0) has the same numbers as one falling.
   const double U = std::abs(s.mean_fall_speed), D = s.diameter;
   s.reynolds = params.fluid.density * U * D / params.fluid.viscosity;
-  s.deborah = params.fluid.IsNewtonian() ? 0.0 : U * params.fluid.relaxation_time / D;
+  s.deborah = params.fluid.Deborah(U, D);
   s.mach = std::sqrt(s.reynolds * s.deborah);
   s.elasticity = s.reynolds > 0.0 ? s.deborah / s.reynolds : kNaN;
   return s;

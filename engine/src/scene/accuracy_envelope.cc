@@ -71,9 +71,7 @@ AccuracyWarning TimeStepWarning(const Params& p, std::string setting, double val
 }
 
 double ElasticCourant(const Params& p) {
-  const double c =
-      std::sqrt(p.fluid.PolymerViscosity() / (p.fluid.density * p.fluid.relaxation_time));
-  return c * p.time.dt / p.domain.h;
+  return p.fluid.ElasticWaveSpeed() * p.time.dt / p.domain.h;
 }
 
 }  // namespace
@@ -165,9 +163,8 @@ std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
   }
 
   // A polymer viscous on the grid's scale under devss has no elastic bounds (accuracy_envelope.h).
-  const bool viscous_polymer =
-      p.fluid.Devss() && !Above(GridElasticity(p), kMaxGridElasticity) &&
-      !Above(p.fluid.relaxation_time * VelocityScale(p) / h, kMaxGridDeborah);
+  const bool viscous_polymer = p.fluid.Devss() && !Above(GridElasticity(p), kMaxGridElasticity) &&
+                               !Above(p.fluid.Deborah(VelocityScale(p), h), kMaxGridDeborah);
   if (HasPolymer(p) && !viscous_polymer) {
     const double elastic = ElasticCourant(p);
     if (Above(elastic, kMaxElasticCourant)) {

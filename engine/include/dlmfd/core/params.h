@@ -132,6 +132,17 @@ struct FluidParams {
   double CellElasticity(double h) const {
     return relaxation_time * PolymerViscosity() / (density * h * h);
   }
+  // c = sqrt(eta_p / (rho lambda)) = sqrt(G / rho), the speed of the polymer's shear waves, the
+  // bound of the elastic Courant number c dt / h (scene/accuracy_envelope.h); only where a polymer
+  // is modelled (lambda > 0).
+  double ElasticWaveSpeed() const {
+    return std::sqrt(PolymerViscosity() / (density * relaxation_time));
+  }
+  // De = lambda U / L, the Deborah number of a flow of speed U on the length L (0 without a
+  // polymer): a particle's diameter (io/run_statistics.h), a cell (scene/accuracy_envelope.h).
+  double Deborah(double speed, double length) const {
+    return IsNewtonian() ? 0.0 : relaxation_time * speed / length;
+  }
 };
 
 struct TimeParams {

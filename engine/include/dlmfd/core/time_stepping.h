@@ -42,6 +42,12 @@ inline bool OutputDue(long n, double dt, double every) {
   return every > 0.0 && OutputPeriod(n, dt, every) > OutputPeriod(n - 1, dt, every);
 }
 
+// The field snapshots a run writes with fields_every = `every`: the initial one and one per
+// output period that ends by its last step, OutputPeriod(StepCount) + 1; 0 when every <= 0.
+inline long SnapshotCount(const TimeParams& time, double every) {
+  return every > 0.0 ? OutputPeriod(StepCount(time), time.dt, every) + 1 : 0;
+}
+
 // alpha and beta in [0, 1], gamma = 0, alpha > 0; with particles, beta = 0 unless the constraint
 // coupling is the paper's.
 void ValidateSplitting(const SplittingParams& splitting, bool with_particles);
