@@ -115,6 +115,26 @@ TEST(SceneKeys, EveryCaseReadsBackFromTheSceneAsWritten) {
   EXPECT_GT(cases, 20);
 }
 
+// Every cross-key rule of the table's list (kCrossKeyRules) attaches to a key of the tables: a
+// misspelt key would leave its rule out of docs/scenes.md.
+TEST(SceneKeys, EachCrossKeyRuleNamesAKey) {
+  std::set<std::string> ruled;
+  for (const SceneKey<Params>& k : scene::SceneKeys()) {
+    if (!k.rule.empty()) ruled.insert(k.name);
+  }
+  for (const SceneKey<BoundarySide>& k : scene::SideKeys()) {
+    if (!k.rule.empty()) ruled.insert("domain.boundary.SIDE." + k.name);
+  }
+  for (const SceneKey<ParticleParams>& k : scene::ParticleKeys()) {
+    if (!k.rule.empty()) ruled.insert("particles.N." + k.name);
+  }
+  EXPECT_EQ(ruled.size(), 23u);  // the entries of kCrossKeyRules
+  for (const char* key : {"domain.size", "time.dt", "output.fields_every", "fluid.mobility",
+                          "domain.boundary.SIDE.ramp_time", "particles.N.center"}) {
+    EXPECT_EQ(ruled.count(key), 1u) << key;
+  }
+}
+
 // A choice key refuses a word it does not know, naming the key and every allowed word.
 TEST(SceneKeys, AChoiceNamesItsAllowedWords) {
   for (const SceneKey<Params>& k : scene::SceneKeys()) {

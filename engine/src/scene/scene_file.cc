@@ -16,7 +16,6 @@
 #include <toml++/toml.h>
 
 #include "dlmfd/core/errors.h"
-#include "dlmfd/core/number_text.h"
 #include "dlmfd/scene/scene_keys.h"
 #include "dlmfd/scene/scene_validation.h"
 #include "dlmfd/scene/toml_bounds.h"
@@ -121,17 +120,23 @@ void ReadSides(TableReader& domain, Params& p) {
   boundary.RejectUnknown("left, right, bottom, top");
 }
 
-// gravity is a top-level key; `fluid.gravity` is accepted too, because a `gravity = ...` line
-// written after the [fluid] header (as in design.md 3.1) belongs to that table in TOML.
-void ReadGravity(TableReader& top, TableReader& in_fluid, Params& p) {
-  const bool at_top = top.Has("gravity");
-  const bool under_fluid = in_fluid.Has("gravity");
-  const Vec2 fluid_gravity = in_fluid.Vector("gravity", p.gravity);  // marks it known
-  if (at_top && under_fluid) {
-    throw InvalidParameter("fluid.gravity", VecText(fluid_gravity),
-                           "no second gravity (gravity is also given at the top level)");
+// A top-level key with an alias in a section (SceneKey::alias: gravity is accepted as
+// `fluid.gravity` too, because a `gravity = ...` line written after the [fluid] header, as in
+// design.md 3.1, belongs to that table in TOML): read from where it is given, not both.
+void ReadAliased(TableReader& top, TableReader& in_section, const SceneKey<Params>& k, Params& p) {
+  const std::string leaf = scene::LeafOf(k.alias);
+  if (in_section.Has(leaf)) {
+    Params aliased = p;
+    k.read(in_section, leaf, aliased);  // its type checked first
+    if (top.Has(k.name)) {
+      throw InvalidParameter(
+          k.alias, scene::ValueText(k.get(aliased)),
+          "no second " + k.name + " (" + k.name + " is also given at the top level)");
+    }
+    k.read(in_section, leaf, p);
+  } else if (top.Has(k.name)) {
+    k.read(top, k.name, p);
   }
-  p.gravity = at_top ? top.Vector("gravity", p.gravity) : fluid_gravity;
 }
 
 // The end of a section of SceneKeys: its records, then its unknown keys.
@@ -145,9 +150,10 @@ void FinishSection(TableReader& top, TableReader& r, const std::string& section,
     ReadSides(r, p);
     allowed += ", boundary";
   }
-  if (section == "fluid") {
-    ReadGravity(top, r, p);
-    allowed += ", gravity";
+  for (const SceneKey<Params>& k : scene::SceneKeys()) {
+    if (k.alias.empty() || scene::SectionOf(k.alias) != section) continue;
+    ReadAliased(top, r, k, p);
+    allowed += ", " + scene::LeafOf(k.alias);
   }
   r.RejectUnknown(allowed);
 }
@@ -166,7 +172,7 @@ std::set<std::string> ReadGivenKeys(TableReader& top, Params& p, AutoKeys& autos
     }
     TableReader& r = section.empty() ? top : *current;
     const std::string leaf = scene::LeafOf(k.name);
-    if (k.name == "gravity" || !r.Has(leaf)) continue;  // gravity: ReadGravity
+    if (!k.alias.empty() || !r.Has(leaf)) continue;  // an aliased key: ReadAliased
     ReadKey<Params>(r, k, leaf, p, &autos);
     given.insert(k.name);
   }

@@ -38,10 +38,10 @@ SceneKey<Record> WrittenWhen(SceneKey<Record> k, Written written) {
 void AddTopAndDomain(std::vector<SceneKey<P>>& keys) {
   keys.push_back(StringKey<P>(
       "title", [](auto& p) -> auto& { return p.title; }, "name of the case"));
-  keys.push_back(Allowed(
-      VectorKey<P>(
-          "gravity", [](auto& p) -> auto& { return p.gravity; }, "gravitational acceleration"),
-      "also accepted as `fluid.gravity`, not both"));
+  SceneKey<P> gravity = VectorKey<P>(
+      "gravity", [](auto& p) -> auto& { return p.gravity; }, "gravitational acceleration");
+  gravity.alias = "fluid.gravity";
+  keys.push_back(gravity);
   keys.push_back(
       WrittenWhen(ChoiceKey<NumericsPreset, P>(
                       "numerics.preset", [](auto& p) -> auto& { return p.numerics.preset; },
@@ -263,6 +263,51 @@ void AddConformationOutputAccuracy(std::vector<SceneKey<P>>& keys) {
                   [](const P& p) { return p.accuracy.strict; }));
 }
 
+// The rules that check a key together with other keys (a range or a choice of one key is its
+// table entry's; these need several): the key by its docs name, and the function, by its file.
+// ValidateScene (scene_validation.cc) calls each; docs/scenes.md's allowed column names them.
+struct CrossKeyRule {
+  const char* key;
+  const char* rule;
+};
+constexpr CrossKeyRule kCrossKeyRules[] = {
+    {"domain.size", "RequireEvenCells (scene/scene_validation.cc)"},
+    {"domain.h", "ValidateDomain (scene/scene_validation.cc)"},
+    {"domain.flow_rate", "ValidateFlowRate (scene/scene_validation.cc)"},
+    {"domain.boundary.SIDE.profile", "ValidateBoundaryProfiles (fluid/boundary_profile.h)"},
+    {"domain.boundary.SIDE.ramp_time", "ValidateBoundaryProfiles (fluid/boundary_profile.h)"},
+    {"fluid.relaxation_time", "ValidateInflowStates (conformation/inflow_state.h)"},
+    {"fluid.model", "ValidateConstitutiveModel (conformation/relaxation_model.h)"},
+    {"fluid.conformation", "ValidateConstitutiveModel (conformation/relaxation_model.h)"},
+    {"fluid.mobility", "ValidateConstitutiveModel (conformation/relaxation_model.h)"},
+    {"fluid.extensibility", "ValidateConstitutiveModel (conformation/relaxation_model.h)"},
+    {"fluid.ptt_epsilon", "ValidateConstitutiveModel (conformation/relaxation_model.h)"},
+    {"time.dt", "ValidateTimeSteps (core/time_stepping.h)"},
+    {"time.end", "ValidateTimeSteps (core/time_stepping.h)"},
+    {"splitting.alpha", "ValidateSplitting (core/time_stepping.h)"},
+    {"splitting.beta", "ValidateSplitting (core/time_stepping.h)"},
+    {"particle_mesh.h", "ValidateRingMesh (scene/scene_validation.cc)"},
+    {"output.fields_every", "ValidateOutputPeriods (core/time_stepping.h)"},
+    {"output.particles_every", "ValidateOutputPeriods (core/time_stepping.h)"},
+    {"output.checkpoint_every", "ValidateOutputPeriods (core/time_stepping.h)"},
+    {"particles.N.center", "ValidateParticles (particles/particle_rules.h)"},
+    {"particles.N.shape", "ValidateParticles (particles/particle_rules.h)"},
+    {"particles.N.semi_axes", "RequireEllipseAxes (scene/scene_validation.cc)"},
+    {"particles.N.density", "ValidateParticles (particles/particle_rules.h)"},
+};
+
+// Names each key's cross-key rule (kCrossKeyRules); `prefix` makes the docs name of a record's key.
+template <typename Record>
+std::vector<SceneKey<Record>> WithRules(std::vector<SceneKey<Record>> keys,
+                                        const std::string& prefix) {
+  for (SceneKey<Record>& k : keys) {
+    for (const CrossKeyRule& r : kCrossKeyRules) {
+      if (prefix + k.name == r.key) k.rule = r.rule;
+    }
+  }
+  return keys;
+}
+
 std::vector<SceneKey<P>> MakeSceneKeys() {
   std::vector<SceneKey<P>> keys;
   AddTopAndDomain(keys);
@@ -271,7 +316,7 @@ std::vector<SceneKey<P>> MakeSceneKeys() {
   AddSolvers(keys);
   AddParticleMeshAndCollisions(keys);
   AddConformationOutputAccuracy(keys);
-  return keys;
+  return WithRules(std::move(keys), "");
 }
 
 using S = BoundarySide;
@@ -394,12 +439,14 @@ const std::vector<SceneKey<Params>>& SceneKeys() {
 }
 
 const std::vector<SceneKey<BoundarySide>>& SideKeys() {
-  static const std::vector<SceneKey<BoundarySide>> keys = MakeSideKeys();
+  static const std::vector<SceneKey<BoundarySide>> keys =
+      WithRules(MakeSideKeys(), "domain.boundary.SIDE.");
   return keys;
 }
 
 const std::vector<SceneKey<ParticleParams>>& ParticleKeys() {
-  static const std::vector<SceneKey<ParticleParams>> keys = MakeParticleKeys();
+  static const std::vector<SceneKey<ParticleParams>> keys =
+      WithRules(MakeParticleKeys(), "particles.N.");
   return keys;
 }
 

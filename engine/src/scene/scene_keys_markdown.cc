@@ -99,7 +99,10 @@ std::string AllowedText(const SceneKey<Record>& k) {
   for (const std::string& w : k.words) text += (text.empty() ? "" : ", ") + Code(w);
   if (k.type == KeyType::kBoolean) text = "`true`, `false`";
   const std::string range = RangeDocs(k.range);
-  for (const std::string& part : {range, k.allowed_note}) {
+  const std::string rule = k.rule.empty() ? "" : "rule: " + k.rule;
+  const std::string alias =
+      k.alias.empty() ? "" : "also accepted as " + Code(k.alias) + ", not both";
+  for (const std::string& part : {range, alias, k.allowed_note, rule}) {
     if (!part.empty()) text += (text.empty() ? "" : "; ") + part;
   }
   return text.empty() ? "any" : text;

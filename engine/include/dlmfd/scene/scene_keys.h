@@ -80,6 +80,13 @@ struct SceneKey {
   // does not apply is unknown there, or refused with `refused` when that is set.
   std::function<bool(const Record&)> applies;
   std::string refused;
+  // Another dotted name of the same top-level key, in a section: "fluid.gravity" (TOML puts a
+  // `gravity = ...` line written after [fluid] into that table). A scene gives at most one.
+  std::string alias;
+  // The named rule that checks the key together with other keys, beyond its range and words
+  // ("ValidateTimeSteps (core/time_stepping.h)"); "" when none. All of them are listed in one
+  // table, kCrossKeyRules of scene_keys.cc; ValidateScene calls them.
+  std::string rule;
   // Whether the writer writes it (null: where it applies).
   std::function<bool(const Record&)> written;
   // A member the struct may leave absent (std::optional): true while it is. Its default (kPreset or
