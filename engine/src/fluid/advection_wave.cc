@@ -145,27 +145,13 @@ void AdvectionWave::ComputeWeights(const double* vx, const double* vy) {
     }
     return;
   }
-  constexpr double kOneOver24 = 1.0 / 24.0;
   TriangleWeights& w = weights_;
   ForEachCell(grid_, [&](const CellAt& k) {
-    const std::size_t corner[4] = {k.a, k.b, k.c, k.d};
-    double x[4], y[4], xx[4], xy[4], yy[4];
-    for (int q = 0; q < 4; ++q) {
-      x[q] = vx[corner[q]];
-      y[q] = vy[corner[q]];
-      xx[q] = x[q] * x[q];
-      xy[q] = x[q] * y[q];
-      yy[q] = y[q] * y[q];
-    }
-    auto triangle = [&](int p, int q, int r, double& w11, double& w12, double& w22) {
-      const double sx = x[p] + x[q] + x[r], sy = y[p] + y[q] + y[r];
-      w11 = kOneOver24 * (xx[p] + xx[q] + xx[r] + sx * sx);
-      w12 = kOneOver24 * (xy[p] + xy[q] + xy[r] + sx * sy);
-      w22 = kOneOver24 * (yy[p] + yy[q] + yy[r] + sy * sy);
-    };
+    const wave_rows::CellCorners c(vx[k.a], vx[k.b], vx[k.c], vx[k.d], vy[k.a], vy[k.b], vy[k.c],
+                                   vy[k.d]);
     const std::size_t cell = k.cell;
-    triangle(0, 1, 2, w.w11a[cell], w.w12a[cell], w.w22a[cell]);  // T1 = (a, b, c)
-    triangle(0, 2, 3, w.w11b[cell], w.w12b[cell], w.w22b[cell]);  // T2 = (a, c, d)
+    c.Triangle(0, 1, 2, w.w11a[cell], w.w12a[cell], w.w22a[cell]);  // T1 = (a, b, c)
+    c.Triangle(0, 2, 3, w.w11b[cell], w.w12b[cell], w.w22b[cell]);  // T2 = (a, c, d)
   });
 }
 

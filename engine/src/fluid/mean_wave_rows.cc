@@ -13,28 +13,14 @@ DLMFD_AVX2_CLONES void MatrixLoop(int cells, const double* __restrict x0,
                                   double* __restrict bc, double* __restrict bd,
                                   double* __restrict cc, double* __restrict cd,
                                   double* __restrict dd) {
-  constexpr double kOneOver24 = 1.0 / 24.0;
   for (int ci = 0; ci < cells; ++ci) {
-    const double x[4] = {x0[ci], x0[ci + 1], x1[ci + 1], x1[ci]};
-    const double y[4] = {y0[ci], y0[ci + 1], y1[ci + 1], y1[ci]};
-    double xx[4], xy[4], yy[4];
-    for (int q = 0; q < 4; ++q) {
-      xx[q] = x[q] * x[q];
-      xy[q] = x[q] * y[q];
-      yy[q] = y[q] * y[q];
-    }
-    // (a_t, b_t, c_t) of the triangle (p, q, r).
-    auto triangle = [&](int p, int q, int r, double& w11, double& w12, double& w22) {
-      const double sx = x[p] + x[q] + x[r], sy = y[p] + y[q] + y[r];
-      w11 = kOneOver24 * (xx[p] + xx[q] + xx[r] + sx * sx);
-      w12 = kOneOver24 * (xy[p] + xy[q] + xy[r] + sx * sy);
-      w22 = kOneOver24 * (yy[p] + yy[q] + yy[r] + sy * sy);
-    };
+    const CellCorners k(x0[ci], x0[ci + 1], x1[ci + 1], x1[ci], y0[ci], y0[ci + 1], y1[ci + 1],
+                        y1[ci]);
     double a1, b1, c1, a2, b2, c2, a3, b3, c3, a4, b4, c4;
-    triangle(0, 1, 2, a1, b1, c1);
-    triangle(0, 2, 3, a2, b2, c2);
-    triangle(0, 1, 3, a3, b3, c3);
-    triangle(1, 2, 3, a4, b4, c4);
+    k.Triangle(0, 1, 2, a1, b1, c1);  // T1
+    k.Triangle(0, 2, 3, a2, b2, c2);  // T2
+    k.Triangle(0, 1, 3, a3, b3, c3);  // T3
+    k.Triangle(1, 2, 3, a4, b4, c4);  // T4
     bb[ci] = 0.5 * (a1 + a3 - 2.0 * b1 + c1 + c4);
     bc[ci] = 0.5 * (b1 - b4 - c1 - c4);
     bd[ci] = 0.5 * (b3 + b4);

@@ -17,6 +17,31 @@
 
 namespace dlmfd::wave_rows {
 
+// The four corners of a cell (a, b, c, d as above) with the products of their velocities, and
+// the weights (a_t, b_t, c_t) = (1/24) (sum_k V_k V_k^T + S S^T) of its triangle (p, q, r): the
+// one formula of both meshes (the SW-NE path of advection_wave.cc and MatrixLoop here).
+struct CellCorners {
+  double x[4], y[4], xx[4], xy[4], yy[4];
+
+  CellCorners(double xa, double xb, double xc, double xd, double ya, double yb, double yc,
+              double yd)
+      : x{xa, xb, xc, xd},
+        y{ya, yb, yc, yd} {
+    for (int q = 0; q < 4; ++q) {
+      xx[q] = x[q] * x[q];
+      xy[q] = x[q] * y[q];
+      yy[q] = y[q] * y[q];
+    }
+  }
+  void Triangle(int p, int q, int r, double& w11, double& w12, double& w22) const {
+    constexpr double kOneOver24 = 1.0 / 24.0;
+    const double sx = x[p] + x[q] + x[r], sy = y[p] + y[q] + y[r];
+    w11 = kOneOver24 * (xx[p] + xx[q] + xx[r] + sx * sx);
+    w12 = kOneOver24 * (xy[p] + xy[q] + xy[r] + sx * sy);
+    w22 = kOneOver24 * (yy[p] + yy[q] + yy[r] + sy * sy);
+  }
+};
+
 // M of `cells` cells of one row from the velocity V = (x, y) on the node rows below (x0, y0) and
 // above (x1, y1); out[0..5] = bb, bc, bd, cc, cd, dd of the row's cells.
 void CellMatrixRow(int cells, const double* x0, const double* x1, const double* y0,
