@@ -1,8 +1,8 @@
 // The drag of a fixed disk with the cut-cell boundary (particles/cut_cell_stokes.h) over sub-grid
 // positions: the engine's side of docs/evidence/cut_cell_boundary.md, "A second-order boundary: the
 // engine's cut cells". Prints one CSV line per shift in the format of bench/boundary_prototypes.py
-// (method, D/h, shift in h, F_x, F_y, unknowns, seconds; then GMRES iterations), so that script's
-// `table` command reads both:
+// (method, D/h, shift in h, F_x, F_y, unknowns, seconds; then the solver's iterations), so that
+// script's `table` command reads both:
 //   cut_cell_drag creeping D_OVER_H SHIFT...        steady Stokes, the creeping disk (eta = 1, D =
 //                                                    0.1 at (0.2 + s h, 0.2) in 0.8 x 0.4,
 //                                                    Poiseuille inflow of maximum 0.3)
@@ -12,7 +12,8 @@
 //                                                    as C_D = 500 F_x, C_L = 500 F_y)
 // Options after the shifts: --ghost G_U --ghost-p G_P (the ghost penalties); --both (every form
 // the mean over the SW-NE and NW-SE triangulations); --direct (sparse direct solves instead of
-// GMRES); --exact-velocity (GMRES preconditioned by the velocity block's factorization).
+// the iterative solves); --exact-velocity (GMRES preconditioned by the velocity block's
+// factorization). On stderr: the rank of the capacitance matrix (particles/cut_cell_capacitance.h).
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -109,6 +110,8 @@ int main(int argc, char** argv) {
     std::printf("engine,%g,%g,%.7f,%.7f,%d,%.2f,%d\n", d_over_h, shift, f.x(), f.y(),
                 2 * flow.VelocityUnknowns() + flow.PressureUnknowns(), seconds, iterations);
     std::fflush(stdout);
+    std::fprintf(stderr, "D/h %g, shift %g: capacitance rank %d\n", d_over_h, shift,
+                 flow.CapacitanceRank());
   }
   return 0;
 }

@@ -5,12 +5,15 @@
 # dt = 0.005; D_OVER_H=40 for domain.h = 0.0025). Two configurations, run in turn ROUNDS times so
 # that a shared machine's load falls on both alike:
 #   defaults   no numerics key: collocation points, both diagonals, wave, auto (incremental here);
-#   cut_cell   particle_mesh.kind = "cut_cell", the rest as shipped.
+#   cut_cell   particle_mesh.kind = "cut_cell", the rest as shipped;
+#   cut_cell_before   the same with the solver BEFORE, when set (a copy of an earlier build: the
+#              cost of a change measured in the same run).
 # Each configuration runs FIRST steps and FIRST + STEPS steps from rest on one thread with no
 # output; the script prints the CPU ms a step over the STEPS later steps (the difference of the
 # two runs' user + system time, so the set-up and the start-up's first steps are left out) and the
 # set-up plus FIRST steps in CPU seconds.
 #   bench/cut_cell_step_cost.sh      # BUILD=build FIRST=20 STEPS=60 ROUNDS=3 D_OVER_H=20 WORK=...
+#                                    # BEFORE=/tmp/dlmfd-solve-main
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -27,15 +30,20 @@ H=$(awk -v d="$D_OVER_H" 'BEGIN { printf "%.17g", 0.1 / d }')
 declare -A KEYS=(
   [defaults]=''
   [cut_cell]='--set particle_mesh.kind="cut_cell"'
+  [cut_cell_before]='--set particle_mesh.kind="cut_cell"'
 )
+CONFIGURATIONS=(defaults cut_cell)
+[[ -n "${BEFORE:-}" ]] && CONFIGURATIONS+=(cut_cell_before)
 
 # CPU seconds (user + system) of a run of n steps of configuration $1.
 cpu_seconds() {  # name, steps
   local end
   end=$(awk -v n="$2" 'BEGIN { printf "%.6g", n * 0.005 }')
   rm -rf "$WORK/run"
+  local solver=$SOLVER
+  [[ $1 == cut_cell_before ]] && solver=$BEFORE
   # shellcheck disable=SC2086  # KEYS holds several --set words
-  /usr/bin/time -f "%U %S" -o "$WORK/time" "$SOLVER" "$SCENE" --out "$WORK/run" --threads 1 \
+  /usr/bin/time -f "%U %S" -o "$WORK/time" "$solver" "$SCENE" --out "$WORK/run" --threads 1 \
     --set "domain.h=$H" --set "time.end=$end" --set output.fields_every=0 \
     --set output.particles_every=0 --set output.checkpoint_every=0 ${KEYS[$1]} > /dev/null 2>&1
   awk '{ printf "%.3f", $1 + $2 }' "$WORK/time"
@@ -43,7 +51,7 @@ cpu_seconds() {  # name, steps
 
 echo "configuration,round,d_over_h,steps,cpu_ms_per_step,setup_and_first_steps_cpu_s"
 for round in $(seq 1 "$ROUNDS"); do
-  for name in defaults cut_cell; do
+  for name in "${CONFIGURATIONS[@]}"; do
     short=$(cpu_seconds "$name" "$FIRST")
     long=$(cpu_seconds "$name" $((FIRST + STEPS)))
     awk -v n="$name" -v r="$round" -v d="$D_OVER_H" -v s="$STEPS" -v a="$short" -v b="$long" \

@@ -3,9 +3,10 @@
 //   disk's and an ellipse's, worst over eight sub-grid positions at D/h = 20, 40, 80 (measured
 //   orders 2.02-2.05 for the area, 2.00-2.02 for the length: the P1 interpolant of the distance);
 //   a disk of radius 5h centred on a node has two boundary pieces on mesh edges and keeps them;
-// - the iterative solve (GMRES with the fast solvers as preconditioner) is the direct solve of the
-//   same saddle point, steady, with a mass term and with an Oseen term, and so is GMRES
-//   preconditioned by the velocity block's own factorization (the steady Oseen solves);
+// - the iterative solve is the direct solve of the same saddle point, steady, with a mass term and
+//   with an Oseen term: Uzawa / CG with the capacitance matrix's exact velocity solves (no Oseen
+//   term), GMRES preconditioned by them (Oseen term) or by the velocity block's own factorization
+//   (the steady Oseen solves);
 // - the engine's operator is the prototype's (bench/boundary_prototypes.py, `cut`, an independent
 //   SciPy implementation): the creeping disk's drag at D/h = 10 and 20 to the digits recorded in
 //   docs/evidence/cut_cell_boundary.md;
@@ -119,7 +120,7 @@ TEST(CutCellStokes, IterativeSolveIsTheDirectSolve) {
         dp = std::max(dp, std::abs(a.p[k] - b.p[k]));
         pmax = std::max(pmax, std::abs(a.p[k]));
       }
-      std::printf("rho/dt %g, oseen %d: %d GMRES iterations, |du| / |u| %.2e, |dp| / |p| %.2e\n",
+      std::printf("rho/dt %g, oseen %d: %d iterations, |du| / |u| %.2e, |dp| / |p| %.2e\n",
                   rho_over_dt, oseen, report.iterations, du / umax, dp / pmax);
       EXPECT_LT(du, 1e-8 * umax);
       // GMRES stops at a relative residual of 1e-11; the pressure at nodes with small cut supports

@@ -7,6 +7,7 @@
 
 #include "dlmfd/core/errors.h"
 #include "dlmfd/mesh/boundary_topology.h"
+#include "dlmfd/particles/cut_cell_capacitance.h"
 #include "dlmfd/solvers/gmres.h"
 #include "dlmfd/solvers/separable_helmholtz.h"
 
@@ -14,6 +15,7 @@ namespace dlmfd {
 namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
+using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 using Triplets = std::vector<Eigen::Triplet<double>>;
 
 // The P1 basis of a triangle with first vertex x0 and gradients g, at x.
@@ -70,16 +72,19 @@ struct CutCellStokes::Impl {
   // Unknowns.
   std::vector<int> vindex, pindex;  // full -> reduced, -1 if not an unknown
   std::vector<int> vnodes, pnodes;  // reduced -> full
-  std::vector<int> band;            // reduced velocity unknowns of the direct band
-  // The reduced operators.
-  Sparse momentum_full, velocity, saddle, band_matrix;
-  // Row-major copies for the products of the iteration; bt = [Bx^T; By^T] over the unknowns.
-  Eigen::SparseMatrix<double, Eigen::RowMajor> saddle_rows, velocity_rows, bt;
-  Eigen::SparseLU<Sparse> band_lu;
+  // The reduced operators; the divergence with the chords' terms over every node.
+  Sparse momentum_full, velocity, saddle, bx_full, by_full;
+  // Row-major rows of the fluid forms for the force: eta K + rho C, and -B_x^T, -B_y^T of the
+  // volume divergence (n x np).
+  RowSparse momentum_rows, gradient_x_rows, gradient_y_rows;
+  // Row-major copies for the products of the iterations: bt = [Bx^T; By^T] and b = [Bx, By] over
+  // the unknowns, pp = -G_p / eta.
+  RowSparse saddle_rows, bt, b, pp;
   bool exact_velocity = false;  // precondition the velocity by its own factorization
   Eigen::SparseLU<Sparse> velocity_lu;
   std::unique_ptr<SeparableHelmholtz> fast_velocity, fast_pressure;
-  Eigen::VectorXd pressure_mass;  // at pressure unknowns
+  std::unique_ptr<CutCellCapacitance> capacitance;  // the exact solve of the Stokes velocity block
+  Eigen::VectorXd pressure_mass;                    // at pressure unknowns
   std::vector<double> work_fu, work_fv, work_u, work_v, work_fp, work_p;
 
   Impl(std::vector<const CutCellGeometry*> g, const DomainParams& domain, double viscosity,
@@ -99,8 +104,13 @@ struct CutCellStokes::Impl {
     return false;
   }
   void BuildReduced();
+  Sparse UniformVelocityOperator() const;
+  void BuildCapacitance();
   void Precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z);
-  void PreconditionVelocity(const Eigen::VectorXd& r, Eigen::VectorXd& z);
+  void SchurInverse(const Eigen::VectorXd& r, Eigen::VectorXd& z);
+  void SolveVelocity(const Eigen::VectorXd& r, Eigen::VectorXd& z);
+  GmresResult SolveSchur(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, double tolerance,
+                         int max_iterations);
   Eigen::VectorXd RightHandSide(const BoundaryData& data, const double* fu, const double* fv,
                                 std::vector<double>& gu, std::vector<double>& gv) const;
   void Scatter(const Eigen::VectorXd& x, const std::vector<double>& gu,
@@ -130,6 +140,7 @@ CutCellStokes::Impl::Impl(std::vector<const CutCellGeometry*> g, const DomainPar
   AssembleChordForms();
   NumberUnknowns();
   fast_velocity = std::make_unique<SeparableHelmholtz>(grid, vtopo, rho_over_dt, eta);
+  BuildCapacitance();
   if (rho_over_dt > 0.0)
     fast_pressure = std::make_unique<SeparableHelmholtz>(pgrid, ptopo, 0.0, 1.0, 1);
   // The Schur complement's diagonal model: (M_p + G_p) / eta over the fluid part.
@@ -261,7 +272,6 @@ void CutCellStokes::Impl::NumberUnknowns() {
       if (!vtopo.IsUnknown(grid, i, j) || !ActiveNode(k)) continue;
       vindex[k] = static_cast<int>(vnodes.size());
       vnodes.push_back(static_cast<int>(k));
-      if (geos[0]->distance()[k] < constants.band * grid.h) band.push_back(vindex[k]);
     }
   pindex.assign(pgrid.NodeCount(), -1);
   for (int j = 0; j <= pgrid.ny; ++j)
@@ -274,12 +284,16 @@ void CutCellStokes::Impl::NumberUnknowns() {
 }
 
 // The reduced saddle point [[A, 0, Bx^T], [0, A, By^T], [Bx, By, -G_p / eta]] over the unknowns,
-// and the band's factorization.
+// and the row-major blocks of the iterations.
 void CutCellStokes::Impl::BuildReduced() {
   const Sparse diag_mass = Sparse(lumped_mass.asDiagonal());
   momentum_full =
       rho_over_dt * diag_mass + eta * (stiffness + nitsche + ghost_u) + rho * convection;
-  const Sparse bx = div_x + chord_x, by = div_y + chord_y;
+  bx_full = div_x + chord_x;
+  by_full = div_y + chord_y;
+  momentum_rows = eta * stiffness + rho * convection;
+  gradient_x_rows = div_x.transpose();
+  gradient_y_rows = div_y.transpose();
   const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
   Triplets a, s;
   for (int col = 0; col < momentum_full.outerSize(); ++col)
@@ -291,9 +305,9 @@ void CutCellStokes::Impl::BuildReduced() {
       s.emplace_back(nu + r, nu + c, it.value());
     }
   for (int comp = 0; comp < 2; ++comp) {
-    const Sparse& b = comp == 0 ? bx : by;
-    for (int col = 0; col < b.outerSize(); ++col)
-      for (Sparse::InnerIterator it(b, col); it; ++it) {
+    const Sparse& div = comp == 0 ? bx_full : by_full;
+    for (int col = 0; col < div.outerSize(); ++col)
+      for (Sparse::InnerIterator it(div, col); it; ++it) {
         const int r = pindex[it.row()], c = vindex[col];
         if (r < 0 || c < 0) continue;
         s.emplace_back(2 * nu + r, comp * nu + c, it.value());
@@ -307,72 +321,151 @@ void CutCellStokes::Impl::BuildReduced() {
     }
   velocity.resize(nu, nu);
   velocity.setFromTriplets(a.begin(), a.end());
-  velocity_rows = velocity;
   saddle.resize(2 * nu + npu, 2 * nu + npu);
   saddle.setFromTriplets(s.begin(), s.end());
   saddle_rows = saddle;
   bt = saddle_rows.block(0, 2 * nu, 2 * nu, npu);
-  std::vector<int> position(nu, -1);
-  for (std::size_t k = 0; k < band.size(); ++k) position[band[k]] = static_cast<int>(k);
-  Triplets bt;
-  for (int col = 0; col < velocity.outerSize(); ++col)
-    for (Sparse::InnerIterator it(velocity, col); it; ++it)
-      if (position[it.row()] >= 0 && position[col] >= 0)
-        bt.emplace_back(position[it.row()], position[col], it.value());
-  const auto nb = static_cast<Eigen::Index>(band.size());
-  band_matrix.resize(nb, nb);
-  band_matrix.setFromTriplets(bt.begin(), bt.end());
-  if (nb > 0) band_lu.compute(band_matrix);
+  b = saddle_rows.block(2 * nu, 0, npu, 2 * nu);
+  pp = saddle_rows.block(2 * nu, 2 * nu, npu, npu);
   if (exact_velocity) velocity_lu.compute(velocity);
+}
+
+// (rho/dt) M_l + eta K over every whole triangle: the fast solver's operator, assembled as the
+// fluid forms are (the mean over the triangulations).
+Sparse CutCellStokes::Impl::UniformVelocityOperator() const {
+  const auto n = static_cast<Eigen::Index>(grid.NodeCount());
+  const double whole = 0.5 * grid.h * grid.h;
+  Triplets a;
+  for (const CutCellGeometry* geo : geos)
+    for (int t = 0; t < geo->TriangleCount(); ++t) {
+      const std::array<int, 3> nodes = geo->TriangleNodes(t);
+      const std::array<Vec2, 3> grads = geo->TriangleGradients(t);
+      for (int i = 0; i < 3; ++i) {
+        a.emplace_back(nodes[i], nodes[i], weight * rho_over_dt * whole / 3.0);
+        for (int j = 0; j < 3; ++j)
+          a.emplace_back(nodes[i], nodes[j], weight * eta * whole * grads[i].dot(grads[j]));
+      }
+    }
+  Sparse uniform(n, n);
+  uniform.setFromTriplets(a.begin(), a.end());
+  return uniform;
+}
+
+// The capacitance matrix of the Stokes velocity block (Oseen term left out) against the fast
+// solver: the difference of the extended cut operator and the uniform one, over the fast solver's
+// unknowns (particles/cut_cell_capacitance.h). Entries below 1e-12 of the largest are the two
+// assemblies' round-off (the sums run in different orders).
+void CutCellStokes::Impl::BuildCapacitance() {
+  const auto n = static_cast<Eigen::Index>(grid.NodeCount());
+  std::vector<char> unknown(grid.NodeCount(), 0);
+  for (int j = 0; j <= grid.ny; ++j)
+    for (int i = 0; i <= grid.nx; ++i) unknown[grid.Index(i, j)] = vtopo.IsUnknown(grid, i, j);
+  const Sparse cut =
+      rho_over_dt * Sparse(lumped_mass.asDiagonal()) + eta * (stiffness + nitsche + ghost_u);
+  const Sparse uniform = UniformVelocityOperator();
+  Triplets d;
+  for (int col = 0; col < n; ++col) {
+    if (!unknown[col]) continue;
+    for (Sparse::InnerIterator it(cut, col); it; ++it)
+      if (vindex[it.row()] >= 0 && vindex[col] >= 0)
+        d.emplace_back(static_cast<int>(it.row()), col, it.value());
+    for (Sparse::InnerIterator it(uniform, col); it; ++it)
+      if (vindex[it.row()] >= 0) d.emplace_back(static_cast<int>(it.row()), col, -it.value());
+  }
+  Sparse difference(n, n);
+  difference.setFromTriplets(d.begin(), d.end());
+  capacitance = std::make_unique<CutCellCapacitance>(*fast_velocity, difference, 1e-12);
 }
 
 void CutCellStokes::Impl::Precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
   const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
   z.resize(r.size());
-  // The pressure first: z_p = -S^-1 r_p with Cahouet-Chabard's S^-1.
-  for (int k = 0; k < npu; ++k) z[2 * nu + k] = -eta * r[2 * nu + k] / pressure_mass[k];
-  if (fast_pressure) {
-    std::fill(work_fp.begin(), work_fp.end(), 0.0);
-    std::fill(work_p.begin(), work_p.end(), 0.0);
-    for (int k = 0; k < npu; ++k) work_fp[pnodes[k]] = r[2 * nu + k];
-    fast_pressure->Solve(work_fp.data(), work_p.data());
-    for (int k = 0; k < npu; ++k) z[2 * nu + k] -= rho_over_dt * work_p[pnodes[k]];
-  }
+  // The pressure first: z_p = -S~^-1 r_p.
+  Eigen::VectorXd zp;
+  SchurInverse(r.tail(npu), zp);
+  z.tail(npu) = -zp;
   // Then the velocity of r_u - B^T z_p (block upper-triangular).
-  Eigen::VectorXd ru = r.head(2 * nu) - bt * z.tail(npu);
+  const Eigen::VectorXd ru = r.head(2 * nu) - bt * z.tail(npu);
+  Eigen::VectorXd zu;
   if (exact_velocity) {
-    z.segment(0, nu) = velocity_lu.solve(ru.segment(0, nu));
-    z.segment(nu, nu) = velocity_lu.solve(ru.segment(nu, nu));
+    zu.resize(2 * nu);
+    zu.head(nu) = velocity_lu.solve(ru.head(nu));
+    zu.tail(nu) = velocity_lu.solve(ru.tail(nu));
   } else {
-    PreconditionVelocity(ru, z);
+    SolveVelocity(ru, zu);
   }
+  z.head(2 * nu) = zu;
 }
 
-// The fast solver of the uniform operator, then the direct band correction.
-void CutCellStokes::Impl::PreconditionVelocity(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+// Cahouet-Chabard's S~^-1 r = eta M_p^-1 r + (rho/dt) K_p^-1 r at the pressure unknowns.
+void CutCellStokes::Impl::SchurInverse(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  const int npu = static_cast<int>(pnodes.size());
+  z = eta * r.cwiseQuotient(pressure_mass);
+  if (!fast_pressure) return;
+  std::fill(work_fp.begin(), work_fp.end(), 0.0);
+  std::fill(work_p.begin(), work_p.end(), 0.0);
+  for (int k = 0; k < npu; ++k) work_fp[pnodes[k]] = r[k];
+  fast_pressure->Solve(work_fp.data(), work_p.data());
+  for (int k = 0; k < npu; ++k) z[k] += rho_over_dt * work_p[pnodes[k]];
+}
+
+// z = A^-1 r for both components of the Stokes velocity block (no Oseen term), exactly: the
+// capacitance solve.
+void CutCellStokes::Impl::SolveVelocity(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
   const int nu = static_cast<int>(vnodes.size());
-  std::fill(work_fu.begin(), work_fu.end(), 0.0);
-  std::fill(work_fv.begin(), work_fv.end(), 0.0);
-  std::fill(work_u.begin(), work_u.end(), 0.0);
-  std::fill(work_v.begin(), work_v.end(), 0.0);
   for (int k = 0; k < nu; ++k) {
     work_fu[vnodes[k]] = r[k];
     work_fv[vnodes[k]] = r[nu + k];
   }
-  fast_velocity->SolvePair(work_fu.data(), work_u.data(), work_fv.data(), work_v.data());
-  for (int comp = 0; comp < 2; ++comp) {
-    const std::vector<double>& w = comp == 0 ? work_u : work_v;
-    Eigen::VectorXd zc(nu);
-    for (int k = 0; k < nu; ++k) zc[k] = w[vnodes[k]];
-    if (!band.empty()) {
-      const Eigen::VectorXd rest = r.segment(comp * nu, nu) - velocity_rows * zc;
-      Eigen::VectorXd rb(static_cast<Eigen::Index>(band.size()));
-      for (std::size_t k = 0; k < band.size(); ++k) rb[k] = rest[band[k]];
-      const Eigen::VectorXd cb = band_lu.solve(rb);
-      for (std::size_t k = 0; k < band.size(); ++k) zc[band[k]] += cb[k];
-    }
-    z.segment(comp * nu, nu) = zc;
+  capacitance->SolvePair(work_fu.data(), work_u.data(), work_fv.data(), work_v.data());
+  z.resize(2 * nu);
+  for (int k = 0; k < nu; ++k) {
+    z[k] = work_u[vnodes[k]];
+    z[nu + k] = work_v[vnodes[k]];
   }
+}
+
+// Uzawa / preconditioned CG on the pressure (header): u = A^-1 (f - B^T p) exactly, CG on
+// S p = B A^-1 f - g with S = B A^-1 B^T + G_p / eta (symmetric positive definite) and Cahouet-
+// Chabard's S~^-1, until the saddle point's residual, which is then its continuity part, is below
+// tolerance |rhs|; then the true residual decides (a restart from u(p) if round-off left it above).
+GmresResult CutCellStokes::Impl::SolveSchur(const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
+                                            double tolerance, int max_iterations) {
+  const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
+  GmresResult result;
+  const double b_norm = rhs.norm();
+  if (b_norm == 0.0) {
+    x.setZero();
+    result.converged = true;
+    return result;
+  }
+  Eigen::VectorXd u(2 * nu), p = x.tail(npu), w, z, d, sd;
+  for (int restart = 0; restart < 3; ++restart) {
+    SolveVelocity(rhs.head(2 * nu) - bt * p, u);
+    Eigen::VectorXd r = b * u + pp * p - rhs.tail(npu);  // -(the continuity residual)
+    SchurInverse(r, z);
+    d = z;
+    double rz = r.dot(z);
+    while (r.norm() > tolerance * b_norm && result.iterations < max_iterations) {
+      SolveVelocity(bt * d, w);
+      sd = b * w - pp * d;
+      const double alpha = rz / d.dot(sd);
+      p += alpha * d;
+      u -= alpha * w;
+      r -= alpha * sd;
+      ++result.iterations;
+      SchurInverse(r, z);
+      const double rz_next = r.dot(z);
+      d = z + (rz_next / rz) * d;
+      rz = rz_next;
+    }
+    x.head(2 * nu) = u;
+    x.tail(npu) = p;
+    result.relative_residual = (rhs - saddle_rows * x).norm() / b_norm;
+    result.converged = result.relative_residual <= tolerance;
+    if (result.converged || result.iterations >= max_iterations) break;
+  }
+  return result;
 }
 
 // The load at the unknowns less the coupling to the Dirichlet data (gu, gv: the data, 0 elsewhere).
@@ -388,7 +481,7 @@ Eigen::VectorXd CutCellStokes::Impl::RightHandSide(const BoundaryData& data, con
   const Eigen::Map<const Eigen::VectorXd> du(gu.data(), static_cast<Eigen::Index>(n));
   const Eigen::Map<const Eigen::VectorXd> dv(gv.data(), static_cast<Eigen::Index>(n));
   const Eigen::VectorXd au = momentum_full * du, av = momentum_full * dv;
-  const Eigen::VectorXd bu = (div_x + chord_x) * du + (div_y + chord_y) * dv;
+  const Eigen::VectorXd bu = bx_full * du + by_full * dv;
   const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
   Eigen::VectorXd rhs(2 * nu + npu);
   for (int k = 0; k < nu; ++k) {
@@ -434,6 +527,7 @@ CutCellStokes::~CutCellStokes() = default;
 std::size_t CutCellStokes::NodeCount() const { return impl_->grid.NodeCount(); }
 int CutCellStokes::VelocityUnknowns() const { return static_cast<int>(impl_->vnodes.size()); }
 int CutCellStokes::PressureUnknowns() const { return static_cast<int>(impl_->pnodes.size()); }
+int CutCellStokes::CapacitanceRank() const { return impl_->capacitance->Rank(); }
 
 void CutCellStokes::SetExactVelocityPreconditioner(bool exact) {
   impl_->exact_velocity = exact;
@@ -484,14 +578,19 @@ CutCellReport CutCellStokes::Solve(const BoundaryData& data, const double* fu, c
   }
   for (std::size_t k = 0; k < m.pnodes.size(); ++k)
     x[2 * nu + static_cast<int>(k)] = p[m.pnodes[k]];
+  const bool uzawa = m.convection.nonZeros() == 0 && !m.exact_velocity;
   const GmresResult result =
-      SolveGmres([&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = m.saddle_rows * in; },
-                 [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { m.Precondition(in, out); },
-                 rhs, x, tolerance, max_iterations, m.constants.restart);
+      uzawa
+          ? m.SolveSchur(rhs, x, tolerance, max_iterations)
+          : SolveGmres(
+                [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = m.saddle_rows * in; },
+                [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { m.Precondition(in, out); },
+                rhs, x, tolerance, max_iterations, m.constants.restart);
   if (!result.converged) {
     std::ostringstream what;
-    what << "cut-cell Stokes: GMRES did not reach " << tolerance << " in " << result.iterations
-         << " iterations (relative residual " << result.relative_residual << ")";
+    what << "cut-cell Stokes: " << (uzawa ? "Uzawa" : "GMRES") << " did not reach " << tolerance
+         << " in " << result.iterations << " iterations (relative residual "
+         << result.relative_residual << ")";
     throw SolverNotConverged(what.str());
   }
   m.Scatter(x, gu, gv, u, v, p);
@@ -521,22 +620,19 @@ CutCellStokes::BodyLoad CutCellStokes::Load(int body, const Vec2& centre, const 
   const auto n = static_cast<Eigen::Index>(m.grid.NodeCount());
   const auto np = static_cast<Eigen::Index>(m.pgrid.NodeCount());
   const Eigen::Map<const Eigen::VectorXd> uu(u, n), vv(v, n), pp(p, np);
-  const Sparse a = m.eta * m.stiffness + m.rho * m.convection;
-  Eigen::VectorXd ru = a * uu + m.div_x.transpose() * pp;
-  Eigen::VectorXd rv = a * vv + m.div_y.transpose() * pp;
-  if (m.rho_over_dt > 0.0) {
-    ru += m.rho_over_dt * m.lumped_mass.cwiseProduct(uu);
-    rv += m.rho_over_dt * m.lumped_mass.cwiseProduct(vv);
-  }
   BodyLoad load;
   const CutCellGeometry& geo = *m.geos[0];
   for (Eigen::Index k = 0; k < n; ++k) {
     const auto node = static_cast<std::size_t>(k);
     if (geo.NearestBody(node) != body || geo.distance()[node] >= 1.5 * m.grid.h) continue;
-    const Vec2 r(ru[k] - (fu ? fu[k] : 0.0), rv[k] - (fv ? fv[k] : 0.0));
+    const double mass = m.rho_over_dt * m.lumped_mass[k];
+    const double ru = m.momentum_rows.row(k).dot(uu) + m.gradient_x_rows.row(k).dot(pp) +
+                      mass * uu[k] - (fu ? fu[k] : 0.0);
+    const double rv = m.momentum_rows.row(k).dot(vv) + m.gradient_y_rows.row(k).dot(pp) +
+                      mass * vv[k] - (fv ? fv[k] : 0.0);
     const Vec2 arm = NodePosition(m.grid, static_cast<int>(k)) - centre;
-    load.force -= r;
-    load.torque -= arm.x() * r.y() - arm.y() * r.x();
+    load.force -= Vec2(ru, rv);
+    load.torque -= arm.x() * rv - arm.y() * ru;
   }
   return load;
 }

@@ -3,8 +3,9 @@
 // boundary"):
 //   (rho/dt) (u^{n+1/4} - u^n, v)_l + eta (grad u^{n+1/4}, grad v) - (p, div v) = (f, v),
 //   (q, div u^{n+1/4}) = 0   on the fluid part only, u = 0 on the bodies by Nitsche's method
-// (particles/cut_cell_stokes.h has the forms, the ghost penalties and the solver: GMRES
-// preconditioned by the fast solvers, warm-started from u^n, p^n). f is the liquid's body force
+// (particles/cut_cell_stokes.h has the forms, the ghost penalties and the solver: Uzawa /
+// CG on the pressure with exact velocity solves by a capacitance matrix against the fast solvers,
+// warm-started from p^n). f is the liquid's body force
 // (fluid.body_force); eta the whole viscosity (a Newtonian liquid, splitting.alpha = 1: the rules
 // of particles/particle_rules.h). The advection step (34) then runs on the whole grid as without
 // particles, and there is no step (36)-(38): the bodies do not move.
@@ -16,7 +17,8 @@
 // gravity, so -rho_L V g is the hydrostatic buoyancy, as in the DLM force (particles/
 // particle_step.h). With domain.diagonals = "both" every form is the mean over the two
 // triangulations.
-// Report columns: stokes_iterations (GMRES), stokes_residual (its relative residual).
+// Report columns: stokes_iterations (Uzawa / CG), stokes_residual (the saddle point's
+// relative residual).
 #pragma once
 
 #include <memory>

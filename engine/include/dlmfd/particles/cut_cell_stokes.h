@@ -14,26 +14,29 @@
 // refused. The viscous form is eta grad u : grad v, as in the engine's step (33). On one
 // triangulation (the paper's SW-NE) or on both, every form then the mean of the two.
 //
-// Solver: restarted GMRES on the saddle point [[A, B^T], [B, -G_p / eta]], right-preconditioned by
-// the block upper triangle [[A~, B^T], [0, -S~]]: z_p = -S~^-1 r_p, then z_u = A~^-1 (r_u - B^T
-// z_p) (half the iterations of the block diagonal in the time loop: 15 against 33 a step for
-// Schaefer-Turek at D/h = 20; docs/evidence/cut_cell_boundary.md, "A second-order boundary: the
-// time loop"), with
-//   A~^-1:    the fast solver of (rho/dt) M_l + eta K on the whole uniform grid, then a direct
-//             solve of the cut operator on the band of unknowns within 2h of a boundary (a
-//             multiplicative correction: it carries the Nitsche and ghost terms the fast solver
-//             lacks);
-//   S~^-1:    Cahouet-Chabard, eta M_p^-1 + (rho/dt) K_p^-1 (fast solver), M_p the lumped
-//             pressure mass of the fluid part plus the ghost penalty's diagonal (a pressure node
-//             with a small cut support gets a small M_p: with the whole cell's mass the iterations
-//             at D/h = 10 / 20 were 211 / 389, with this 104 / 130, block diagonal).
+// Solver. The velocity block A without the Oseen term is solved exactly by its capacitance matrix
+// against the fast solver of (rho/dt) M_l + eta K on the whole uniform grid (particles/
+// cut_cell_capacitance.h: built once, two fast solves and a dense solve of rank about 3 x 3 pi D/h
+// an application). Without an Oseen term the saddle point [[A, B^T], [B, -G_p / eta]] is then
+// solved by Uzawa / preconditioned CG on the pressure (Glowinski, as the default step (33),
+// fluid/stokes_solver.h): u = A^-1 (f - B^T p) exactly, CG on the Schur complement B A^-1 B^T +
+// G_p / eta (symmetric positive definite) with Cahouet-Chabard's S~^-1 = eta M_p^-1 + (rho/dt)
+// K_p^-1 (fast solver), M_p the lumped pressure mass of the fluid part plus the pressure ghost
+// penalty's diagonal (a pressure node with a small cut support gets a small M_p: with the whole
+// cell's mass the iterations at D/h = 10 / 20 were 211 / 389 against 104 / 130). Stopping rule:
+// the saddle point's relative residual |rhs - K x|_2 <= tolerance |rhs|_2, as GMRES's. Cost and
+// iterations: docs/evidence/cut_cell_boundary.md, "The time loop's cost". With an Oseen term (or
+// SetExactVelocityPreconditioner): restarted GMRES on the saddle point, right-preconditioned by
+// the block upper triangle [[A~, B^T], [0, -S~]] (z_p = -S~^-1 r_p, then z_u = A~^-1 (r_u - B^T
+// z_p)), A~^-1 the exact Stokes solve above or the Oseen velocity block's own factorization.
 // The force on a body is read from the momentum residual of the fluid forms (Nitsche and ghost
 // terms left out) with a test function equal to 1 at the nodes within 1.5 h of the body's boundary
 // and inside it: F = -sum_i Phi_i (rho (w . grad) u + eta K u - B^T p)_i (the discrete stress
 // integrated over a closed line in the fluid around the body; steady flows).
 // References: Burman & Hansbo, Appl. Numer. Math. 62 (2012) 328-341 (fictitious domain Stokes,
 // ghost penalty); Massing, Larson, Logg & Rognes, J. Sci. Comput. 61 (2014) 604-628 (Nitsche for
-// Stokes on cut meshes); Cahouet & Chabard, Int. J. Numer. Methods Fluids 8 (1988) 869-895.
+// Stokes on cut meshes); Cahouet & Chabard, Int. J. Numer. Methods Fluids 8 (1988) 869-895;
+// Glowinski, Finite element methods for incompressible viscous flow (2003), sections 21-22.
 #pragma once
 
 #include <Eigen/SparseCore>
@@ -54,10 +57,9 @@ struct CutCellConstants {
   double nitsche = 20.0;          // gamma
   double ghost_velocity = 0.01;   // g_u
   double ghost_pressure = 0.001;  // g_p
-  double band = 2.0;              // the preconditioner's direct band, in h from the boundary
   int restart = 120;              // GMRES restart length (80: 2.1 times the iterations at D/h 40)
-  // Step (33) in the time loop (particles/cut_cell_step.h): GMRES's relative residual and its
-  // iteration limit: the loosest tolerance at which Schaefer-Turek's C_D no longer moves
+  // Step (33) in the time loop (particles/cut_cell_step.h): the saddle point's relative residual
+  // and the iteration limit; the loosest tolerance at which Schaefer-Turek's C_D no longer moves
   // (docs/evidence/cut_cell_boundary.md, "A second-order boundary: the time loop").
   double step_tolerance = 1e-7;
   int step_max_iterations = 2000;
@@ -115,6 +117,8 @@ class CutCellStokes {
   std::size_t NodeCount() const;  // velocity nodes of the grid
   int VelocityUnknowns() const;
   int PressureUnknowns() const;
+  // k, the rank of the capacitance matrix (particles/cut_cell_capacitance.h).
+  int CapacitanceRank() const;
 
  private:
   struct Impl;

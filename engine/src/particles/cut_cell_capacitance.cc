@@ -1,0 +1,78 @@
+// The capacitance matrix of the cut-cell velocity operator; see particles/cut_cell_capacitance.h.
+#include "dlmfd/particles/cut_cell_capacitance.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dlmfd {
+
+CutCellCapacitance::CutCellCapacitance(const SeparableHelmholtz& fast,
+                                       const Eigen::SparseMatrix<double>& difference, double drop)
+    : fast_(fast) {
+  const Eigen::Index n = difference.rows();
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> rows = difference;
+  double largest = 0.0;
+  for (Eigen::Index k = 0; k < rows.nonZeros(); ++k)
+    largest = std::max(largest, std::abs(rows.valuePtr()[k]));
+  std::vector<Eigen::Triplet<double>> c;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    bool kept = false;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows, i); it; ++it) {
+      if (std::abs(it.value()) <= drop * largest) continue;
+      c.emplace_back(static_cast<int>(rows_.size()), static_cast<int>(it.col()), it.value());
+      kept = true;
+    }
+    if (kept) rows_.push_back(static_cast<int>(i));
+  }
+  const auto k = static_cast<Eigen::Index>(rows_.size());
+  coupling_.resize(k, n);
+  coupling_.setFromTriplets(c.begin(), c.end());
+  const auto size = static_cast<std::size_t>(n);
+  zero_.assign(size, 0.0);
+  tu_.assign(size, 0.0);
+  tv_.assign(size, 0.0);
+  cu_.assign(size, 0.0);
+  cv_.assign(size, 0.0);
+  // The columns I + C A_0^-1 e_s, two at a time.
+  Eigen::MatrixXd capacitance = Eigen::MatrixXd::Identity(k, k);
+  for (Eigen::Index j = 0; j < k; j += 2) {
+    const bool pair = j + 1 < k;
+    tu_[rows_[j]] = 1.0;
+    if (pair) tv_[rows_[j + 1]] = 1.0;
+    std::fill(cu_.begin(), cu_.end(), 0.0);
+    std::fill(cv_.begin(), cv_.end(), 0.0);
+    fast_.SolvePair(tu_.data(), cu_.data(), pair ? tv_.data() : zero_.data(), cv_.data());
+    capacitance.col(j) += coupling_ * Eigen::Map<const Eigen::VectorXd>(cu_.data(), n);
+    if (pair)
+      capacitance.col(j + 1) += coupling_ * Eigen::Map<const Eigen::VectorXd>(cv_.data(), n);
+    tu_[rows_[j]] = 0.0;
+    if (pair) tv_[rows_[j + 1]] = 0.0;
+  }
+  if (k > 0) capacitance_.compute(capacitance);
+}
+
+void CutCellCapacitance::SolvePair(const double* fu, double* u, const double* fv, double* v) {
+  const auto n = static_cast<Eigen::Index>(zero_.size());
+  std::fill(u, u + n, 0.0);
+  std::fill(v, v + n, 0.0);
+  fast_.SolvePair(fu, u, fv, v);
+  if (rows_.empty()) return;
+  Eigen::MatrixXd y(coupling_.rows(), 2);
+  y.col(0) = coupling_ * Eigen::Map<const Eigen::VectorXd>(u, n);
+  y.col(1) = coupling_ * Eigen::Map<const Eigen::VectorXd>(v, n);
+  y = capacitance_.solve(y);
+  for (std::size_t s = 0; s < rows_.size(); ++s) {
+    tu_[rows_[s]] = y(static_cast<Eigen::Index>(s), 0);
+    tv_[rows_[s]] = y(static_cast<Eigen::Index>(s), 1);
+  }
+  std::fill(cu_.begin(), cu_.end(), 0.0);
+  std::fill(cv_.begin(), cv_.end(), 0.0);
+  fast_.SolvePair(tu_.data(), cu_.data(), tv_.data(), cv_.data());
+  for (Eigen::Index i = 0; i < n; ++i) {
+    u[i] -= cu_[i];
+    v[i] -= cv_[i];
+  }
+  for (const int s : rows_) tu_[s] = tv_[s] = 0.0;
+}
+
+}  // namespace dlmfd
