@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/quiet_case.h"
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/core/state.h"
 #include "dlmfd/scene/scene_file.h"
@@ -50,16 +51,10 @@ class FallSpeed : public Observer {
 };
 
 double MeanFallSpeed(const std::string& scene, std::vector<SceneOverride> overrides) {
-  for (const SceneOverride& o : std::vector<SceneOverride>{{"domain.h", "0.03125"},
-                                                           {"time.dt", "0.001"},
-                                                           {"time.end", "1.5"},
-                                                           {"output.fields_every", "0"},
-                                                           {"output.particles_every", "0"},
-                                                           {"output.checkpoint_every", "0"}}) {
-    overrides.push_back(o);
-  }
-  Params params = LoadSceneFile(std::string(DLMFD_SOURCE_DIR) + "/" + scene, overrides);
-  params.threads = 1;
+  overrides.push_back({"domain.h", "0.03125"});
+  overrides.push_back({"time.dt", "0.001"});
+  overrides.push_back({"time.end", "1.5"});
+  const Params params = testing::QuietCase(scene, overrides);
   Simulation sim(params);
   FallSpeed speed;
   sim.AddObserver(&speed);
@@ -92,12 +87,7 @@ class ArrayFall : public Observer {
 };
 
 TEST(PeriodicSedimentation, SettlingSquareArrayHasTheFixedArraysDrag) {
-  Params params =
-      LoadSceneFile(std::string(DLMFD_SOURCE_DIR) + "/cases/periodic/settling_square_array.toml",
-                    {{"output.fields_every", "0"},
-                     {"output.particles_every", "0"},
-                     {"output.checkpoint_every", "0"}});
-  params.threads = 1;
+  const Params params = testing::QuietCase("cases/periodic/settling_square_array.toml", {});
   Simulation sim(params);
   ArrayFall fall;
   sim.AddObserver(&fall);

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/quiet_case.h"
 #include "../support/studied_numerics.h"
 #include "../support/viscous_channel.h"
 #include "dlmfd/core/observer.h"
@@ -55,15 +56,9 @@ Params CreepingDisk(std::vector<SceneOverride> overrides) {
       {"particle_mesh.kind", "\"collocation\""},
       {"domain.diagonals", "\"sw_ne\""},  // the mesh of these studies
       {"splitting.constraint", "\"viscous\""},
-      {"time.dt", "0.05"},
-      {"output.fields_every", "0"},
-      {"output.particles_every", "0"},
-      {"output.checkpoint_every", "0"}};
+      {"time.dt", "0.05"}};
   keys.insert(keys.end(), overrides.begin(), overrides.end());
-  Params params = LoadSceneFile(
-      std::string(DLMFD_SOURCE_DIR) + "/cases/verification/schaefer_turek_2d1.toml", keys);
-  params.threads = 1;
-  return params;
+  return testing::QuietCase("cases/verification/schaefer_turek_2d1.toml", keys);
 }
 
 double ChannelDrag(double dt, ConstraintCoupling coupling, double end = 0.5) {
@@ -234,17 +229,14 @@ TEST(ViscousCoupling, StallTightensTheCoupledStokesSolvesForItsStep) {
 // half the iterations of before, and the drag within the 2e-4 F that two runs stopping at a
 // mismatch of tol V allow (FixedDiskWarmStartsWithCollocationPoints).
 TEST(ViscousCoupling, FixedDiskStartsFromItsRecycledDirections) {
-  Params params = LoadSceneFile(
-      std::string(DLMFD_SOURCE_DIR) + "/cases/verification/confined_cylinder_oldroyd_b.toml",
+  const Params params = testing::QuietCase(
+      "cases/verification/confined_cylinder_oldroyd_b.toml",
       {{"domain.h", "0.125"},
        {"time.end", "0.3"},
        {"particle_mesh.kind", "\"collocation\""},
        {"splitting.constraint", "\"viscous\""},
-       {"domain.diagonals", "\"sw_ne\""},             // the scheme of the measurement
-       {"splitting.advection", "\"least_squares\""},  // (the defaults before issue 32)
-       {"output.fields_every", "0"},
-       {"output.particles_every", "0"}});
-  params.threads = 1;
+       {"domain.diagonals", "\"sw_ne\""},               // the scheme of the measurement
+       {"splitting.advection", "\"least_squares\""}});  // (the defaults before issue 32)
   Simulation sim(params);
   IterationLog log;
   sim.AddObserver(&log);

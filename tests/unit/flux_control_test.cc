@@ -89,6 +89,25 @@ TEST(FluxControl, ZeroRateTakesTheBodyForce) {
   EXPECT_LT(testing::MaxAbs(sim.state().v), 1e-14);
 }
 
+// The settling disk of the two tests below: D = 0.2, rho_p / rho = 1.1 at `center`, in a liquid of
+// eta = 0.05 under g = 981, with the constraint coupled by `coupling` and the tendency correction,
+// 40 steps of 5e-4 with the fields written at every step.
+void SettleADisk(ConstraintCoupling coupling, const Vec2& center, Params& p) {
+  p.fluid.viscosity = 0.05;
+  p.gravity = Vec2(0.0, -981.0);
+  p.splitting = SplittingParams::DefaultWeights(coupling);
+  testing::UseStudiedNumerics(p.splitting);
+  p.splitting.steady_correction = SteadyCorrection::kTendency;
+  p.time.dt = 5e-4;
+  p.time.end = 40 * 5e-4;
+  p.output.fields_every = 5e-4;
+  ParticleParams disk;
+  disk.center = center;
+  disk.diameter = 0.2;
+  disk.density = 1.1;
+  p.particles.push_back(disk);
+}
+
 // The rate of u^{n+1/4}, the Stokes step's velocity that the tendency correction's snapshots show:
 // the lumped mass is h^2 at the interior nodes, and the walls' nodes have v = 0. With the round-off
 // scale sum |v| h^2 / L beside it.
@@ -120,30 +139,10 @@ class StokesRate : public Observer {
 TEST(FluxControl, SettlingDiskAtZeroRate) {
   for (ConstraintCoupling coupling : {ConstraintCoupling::kIncremental, ConstraintCoupling::kPaper,
                                       ConstraintCoupling::kViscous}) {
-    Params p;
-    testing::UseStudiedNumerics(p);
+    Params p = PeriodicChannel(0.0);
     p.domain.size = Vec2(1.0, 2.0);
     p.domain.h = 1.0 / 32;
-    p.domain.sides[static_cast<int>(Side::kBottom)].type = SideType::kPeriodic;
-    p.domain.sides[static_cast<int>(Side::kTop)].type = SideType::kPeriodic;
-    p.domain.flow_rate = 0.0;
-    p.fluid.density = 1.0;
-    p.fluid.viscosity = 0.05;
-    p.gravity = Vec2(0.0, -981.0);
-    p.splitting = SplittingParams::DefaultWeights(coupling);
-    testing::UseStudiedNumerics(p.splitting);
-    p.splitting.steady_correction = SteadyCorrection::kTendency;
-    p.time.dt = 5e-4;
-    p.time.end = 40 * 5e-4;
-    p.output.fields_every = 5e-4;
-    p.output.particles_every = 0.0;
-    p.output.checkpoint_every = 0.0;
-    p.threads = 1;
-    ParticleParams disk;
-    disk.center = Vec2(0.5, 1.0);
-    disk.diameter = 0.2;
-    disk.density = 1.1;
-    p.particles.push_back(disk);
+    SettleADisk(coupling, Vec2(0.5, 1.0), p);
     Simulation sim(p);
     RateLog log;
     StokesRate stokes(sim.grid());
@@ -232,19 +231,7 @@ TEST(FluxControl, BoxHoldsAZeroMeanUnderASettlingDisk) {
   for (ConstraintCoupling coupling : {ConstraintCoupling::kIncremental, ConstraintCoupling::kPaper,
                                       ConstraintCoupling::kViscous}) {
     Params p = PeriodicBox();
-    p.fluid.viscosity = 0.05;
-    p.gravity = Vec2(0.0, -981.0);
-    p.splitting = SplittingParams::DefaultWeights(coupling);
-    testing::UseStudiedNumerics(p.splitting);
-    p.splitting.steady_correction = SteadyCorrection::kTendency;
-    p.time.dt = 5e-4;
-    p.time.end = 40 * 5e-4;
-    p.output.fields_every = 5e-4;
-    ParticleParams disk;
-    disk.center = Vec2(0.5, 0.5);
-    disk.diameter = 0.2;
-    disk.density = 1.1;
-    p.particles.push_back(disk);
+    SettleADisk(coupling, Vec2(0.5, 0.5), p);
     Simulation sim(p);
     BoxRateLog log;
     StokesMean stokes(sim.grid());
