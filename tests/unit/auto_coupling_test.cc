@@ -194,11 +194,34 @@ TEST(AutoCoupling, ANamedCouplingIsKept) {
   for (const char* word : {"incremental", "paper", "viscous"}) {
     const Params p =
         ParseScene(kPaperDisk, {{"splitting.constraint", std::string("\"") + word + "\""}});
-    EXPECT_STREQ(ConstraintCouplingName(p.splitting.constraint), word);
+    EXPECT_STREQ(ConstraintCouplingName(p.splitting.constraint.value()), word);
     EXPECT_TRUE(p.numerics.resolved.empty()) << word;
   }
   const Params p = ParseScene(kPaperDisk, {{"splitting.constraint", "\"auto\""}});
   EXPECT_EQ(p.splitting.constraint, ConstraintCoupling::kPaper);
+}
+
+// Params built in code leaves the constraint to "auto" as a scene does: the paper's disk written
+// in code runs as the scene that names no coupling, weights included (scene::ResolveDefaults).
+TEST(AutoCoupling, ParamsBuiltInCodeResolveAsTheScene) {
+  const Params scene = ParseScene(kPaperDisk);
+  Params built = scene;
+  built.splitting = SplittingParams{};
+  built.splitting.steady_correction = scene.splitting.steady_correction;
+  built.numerics.resolved.clear();
+  EXPECT_FALSE(built.splitting.constraint);
+  ResolveDefaults(built);
+  EXPECT_EQ(built.splitting.constraint, ConstraintCoupling::kPaper);
+  EXPECT_EQ(WriteScene(built), WriteScene(scene));
+  ASSERT_EQ(built.numerics.resolved.size(), 1u);
+  EXPECT_EQ(built.numerics.resolved.front().value, "paper");
+  // Weights set in code stay: only the struct's own follow the choice.
+  Params weighted = built;
+  weighted.splitting.constraint.reset();
+  weighted.splitting.alpha = 0.75;
+  weighted.splitting.beta = 0.25;
+  ResolveDefaults(weighted);
+  EXPECT_EQ(weighted.splitting.alpha, 0.75);
 }
 
 // The scene as run names the coupling chosen, so reading it back (a rerun, a resume's check)

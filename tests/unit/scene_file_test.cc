@@ -781,7 +781,7 @@ TEST(SceneFile, SplittingWeightsFollowTheConstraint) {
   const char* disk = "[[particles]]\ncenter = [0.5, 0.5]\nmotion = \"fixed\"\n";
   auto weights = [&](const std::string& splitting) {
     const Params p = ParseScene("[splitting]\n" + splitting + disk);
-    return std::make_tuple(p.splitting.constraint, p.splitting.alpha, p.splitting.beta);
+    return std::make_tuple(p.splitting.constraint.value(), p.splitting.alpha, p.splitting.beta);
   };
   EXPECT_EQ(weights(""), std::make_tuple(ConstraintCoupling::kIncremental, 1.0, 0.0));
   EXPECT_EQ(weights("constraint = \"paper\"\n"),
@@ -790,7 +790,7 @@ TEST(SceneFile, SplittingWeightsFollowTheConstraint) {
             std::make_tuple(ConstraintCoupling::kViscous, 1.0, 0.0));
   EXPECT_EQ(weights("constraint = \"paper\"\nalpha = 1.0\nbeta = 0.0\n"),
             std::make_tuple(ConstraintCoupling::kPaper, 1.0, 0.0));
-  EXPECT_EQ(Params{}.splitting.constraint, ConstraintCoupling::kIncremental);
+  EXPECT_FALSE(Params{}.splitting.constraint);  // "auto", as an empty scene's
   const Params fluid_only = ParseScene("[splitting]\nalpha = 0.5\nbeta = 0.5\n");
   EXPECT_EQ(fluid_only.splitting.beta, 0.5);
 }

@@ -22,9 +22,11 @@
 namespace dlmfd {
 namespace {
 
-// The x-force of the liquid on the disk at t = 0.5, with the default coupling of the constraint
-// or another, and the default stress splitting (devss) or another.
-double Drag(double lambda, double beta, ConstraintCoupling coupling = SplittingParams{}.constraint,
+// The x-force of the liquid on the disk at t = 0.5, with the coupling of the constraint these
+// tests studied (the lagged multiplier) or another, and the default stress splitting (devss) or
+// another.
+double Drag(double lambda, double beta,
+            ConstraintCoupling coupling = ConstraintCoupling::kIncremental,
             StressSplitting splitting = FluidParams{}.stress_splitting) {
   Params p = testing::ChannelWithFixedDisk(16, 2e-3, lambda, beta);
   p.splitting = SplittingParams::DefaultWeights(coupling);
@@ -78,7 +80,7 @@ TEST(ViscosityRule, DragIsContinuousAsSolventRatioTendsToOneUnderThePapersSplitt
   double last = 0.0, before = 0.0;
   for (int k = 0; k < 3; ++k) {
     const double drag =
-        Drag(0.05, 1.0 - gaps[k], SplittingParams{}.constraint, StressSplitting::kExplicit);
+        Drag(0.05, 1.0 - gaps[k], ConstraintCoupling::kIncremental, StressSplitting::kExplicit);
     difference[k] = newtonian - drag;
     std::printf("explicit, lambda = 0.05, beta = %.3f: drag %.10g, F(1) - F(beta) = %.4g\n",
                 1.0 - gaps[k], drag, difference[k]);

@@ -60,7 +60,7 @@ void ValidateSupported(const Params& p) {
 // "viscous") the coupled solve's (ViscousConstraint::StokesSettings).
 SolverParams StokesSettings(const Params& p) {
   const bool coupled =
-      !p.particles.empty() && p.splitting.constraint == ConstraintCoupling::kViscous;
+      !p.particles.empty() && p.splitting.constraint.value() == ConstraintCoupling::kViscous;
   return coupled ? ViscousConstraint::StokesSettings(p) : p.solvers;
 }
 

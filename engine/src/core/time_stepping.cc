@@ -40,11 +40,12 @@ void ValidateSplitting(const SplittingParams& s, bool with_particles) {
                            "a number in (0, 1] (the Stokes step (33) carries viscosity for its "
                            "fast solver; with alpha = 0 it has none)");
   }
-  if (with_particles && s.constraint != ConstraintCoupling::kPaper && s.beta != 0.0) {
+  const ConstraintCoupling constraint = s.constraint.value();
+  if (with_particles && constraint != ConstraintCoupling::kPaper && s.beta != 0.0) {
     throw InvalidParameter(
         "splitting.beta", ExactText(s.beta),
         std::string("0 (and splitting.alpha = 1) with splitting.constraint = \"") +
-            (s.constraint == ConstraintCoupling::kViscous ? "viscous" : "incremental") +
+            (constraint == ConstraintCoupling::kViscous ? "viscous" : "incremental") +
             "\": the advection step (34) does not see the particles, so viscosity there "
             "would leak through them; or splitting.constraint = \"paper\"");
   }

@@ -95,8 +95,8 @@ void RequireIndexableGrid(const Params& params, const Grid& grid) {
 
 void RequireCoupledInStokes(const Params& params, std::size_t p) {
   const ParticleParams& q = params.particles[p];
-  if (params.splitting.constraint != ConstraintCoupling::kViscous || q.motion != Motion::kFree ||
-      q.density != params.fluid.density) {
+  if (params.splitting.constraint.value() != ConstraintCoupling::kViscous ||
+      q.motion != Motion::kFree || q.density != params.fluid.density) {
     return;
   }
   throw InvalidParameter(

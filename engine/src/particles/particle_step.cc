@@ -56,12 +56,12 @@ ParticleStep::ParticleStep(const Params& params, const Grid& grid)
     torque_average_.assign(n, 0.0);
     mean_rate_.assign(n, 0.0);
   }
-  if (params.splitting.constraint == ConstraintCoupling::kViscous && n > 0) {
+  if (params.splitting.constraint.value() == ConstraintCoupling::kViscous && n > 0) {
     viscous_ = std::make_unique<ViscousConstraint>(params, grid);
     u_start_.assign(n, Vec2::Zero());
     omega_start_.assign(n, 0.0);
   }
-  if (params.splitting.constraint == ConstraintCoupling::kIncremental && n > 0) {
+  if (params.splitting.constraint.value() == ConstraintCoupling::kIncremental && n > 0) {
     // With the tendency correction the Stokes step's velocity is the field a steady state solves
     // for, so the fixed particles hold their constraint on it (particles/lagged_multiplier.h).
     const bool on_stokes =

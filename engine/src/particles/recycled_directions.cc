@@ -16,7 +16,8 @@ double Dot(const std::vector<double>& a, const std::vector<double>& b) {
 }  // namespace
 
 bool RecycledDirections::Used(const Params& params) {
-  return params.splitting.constraint == ConstraintCoupling::kViscous && !params.particles.empty() &&
+  return params.splitting.constraint.value() == ConstraintCoupling::kViscous &&
+         !params.particles.empty() &&
          std::all_of(params.particles.begin(), params.particles.end(),
                      [](const ParticleParams& q) { return q.motion == Motion::kFixed; });
 }

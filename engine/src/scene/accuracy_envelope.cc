@@ -35,8 +35,9 @@ double KinematicViscosity(const Params& p) { return p.fluid.viscosity / p.fluid.
 // The D / h bound of the scene's multiplier points (accuracy_envelope.h).
 double MinDiskResolution(const Params& p) {
   if (p.particle_mesh.kind == ParticleMeshKind::kRing) return kMinDiskResolution;
-  return p.splitting.constraint == ConstraintCoupling::kPaper ? kMinDiskResolutionCollocationPaper
-                                                              : kMinDiskResolutionCollocation;
+  return p.splitting.constraint.value() == ConstraintCoupling::kPaper
+             ? kMinDiskResolutionCollocationPaper
+             : kMinDiskResolutionCollocation;
 }
 
 bool HasPolymer(const Params& p) { return !p.fluid.IsNewtonian(); }
@@ -137,7 +138,7 @@ std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
 
   const bool particles = !p.particles.empty();
   const double viscous = KinematicViscosity(p) * dt / (h * h);
-  const ConstraintCoupling coupling = p.splitting.constraint;
+  const ConstraintCoupling coupling = p.splitting.constraint.value();
   const double viscous_bound =
       !particles                                     ? kMaxViscousNumberWithoutParticles
       : coupling == ConstraintCoupling::kViscous     ? kMaxViscousNumberViscousCoupling

@@ -185,7 +185,10 @@ std::set<std::string> ReadGivenKeys(TableReader& top, Params& p, AutoKeys& autos
 // the struct leaves absent (ResolveDefaults).
 void ApplyDefaults(const std::set<std::string>& given, AutoKeys& autos, Params& p) {
   for (const SceneKey<Params>& k : scene::SceneKeys()) {
-    if (given.count(k.name) != 0 || k.default_kind != DefaultKind::kPreset || k.unset) continue;
+    // A member the struct leaves absent waits for ResolveDefaults, but "auto", which the keys
+    // derived from it need now.
+    if (given.count(k.name) != 0 || k.default_kind != DefaultKind::kPreset) continue;
+    if (k.unset && k.resolve == nullptr) continue;
     const std::string word = scene::PresetWord(p.numerics.preset, k.name, p);
     if (word == "auto" && k.resolve != nullptr) {
       autos.push_back(&k);
@@ -238,13 +241,28 @@ void ReadParticles(TableReader& top, Params& p) {
 }  // namespace
 
 void ResolveDefaults(Params& params) {
+  // A Params that leaves the constraint to "auto" with the struct's weights gets the weights of the
+  // constraint "auto" picks, as a scene that names neither (SplittingParams).
+  const bool weights_follow = !params.splitting.constraint &&
+                              params.splitting.alpha == SplittingParams{}.alpha &&
+                              params.splitting.beta == SplittingParams{}.beta;
   for (const SceneKey<Params>& k : scene::SceneKeys()) {
     if (!k.unset || !k.unset(params)) continue;
     if (k.default_kind == DefaultKind::kDerived) {
       k.derive(params);
-    } else {
-      k.set_word(params, k.name, scene::PresetWord(params.numerics.preset, k.name, params));
+      continue;
     }
+    std::string word = scene::PresetWord(params.numerics.preset, k.name, params);
+    if (word == "auto" && k.resolve != nullptr) {
+      params.numerics.resolved.push_back(k.resolve(params));
+      word = params.numerics.resolved.back().value;
+    }
+    k.set_word(params, k.name, word);
+  }
+  if (weights_follow) {
+    const SplittingParams weights = SplittingParams::DefaultWeights(*params.splitting.constraint);
+    params.splitting.alpha = weights.alpha;
+    params.splitting.beta = weights.beta;
   }
 }
 

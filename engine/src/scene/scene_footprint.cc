@@ -6,11 +6,18 @@
 
 #include "dlmfd/core/constants.h"
 #include "dlmfd/particles/recycled_directions.h"
+#include "dlmfd/scene/scene_file.h"
 
 namespace dlmfd {
 namespace {
 
 double Saturated(double x) { return std::min(x, std::numeric_limits<double>::max()); }
+
+// The scene as it runs (Params built in code leaves "auto" choices absent).
+Params Resolved(Params params) {
+  ResolveDefaults(params);
+  return params;
+}
 
 }  // namespace
 
@@ -33,8 +40,9 @@ SceneFootprint EstimateFootprint(const Params& params) {
     const double r = q.Radius() / params.particle_mesh.RingMeshSize(d.h);
     f.multiplier_nodes = Saturated(f.multiplier_nodes + kPi * r * (r + 2.0) + 3.0 * r + 4.0);
   }
-  const double recycled =
-      RecycledDirections::Used(params) ? RecycledDirections::kDoublesPerNode * sizeof(double) : 0.0;
+  const double recycled = RecycledDirections::Used(Resolved(params))
+                              ? RecycledDirections::kDoublesPerNode * sizeof(double)
+                              : 0.0;
   f.bytes = Saturated(kBytesPerNode * (f.velocity_nodes + f.multiplier_nodes) +
                       recycled * f.velocity_nodes);
   return f;

@@ -125,32 +125,41 @@ void AddTimeAndSplitting(std::vector<SceneKey<P>>& keys) {
                              "time.end", [](auto& p) -> auto& { return p.time.end; }, kRangeAny,
                              "end time; the run makes round(end / dt) steps"),
                          "> 0"));
-  keys.push_back(Allowed(
-      Derived(RealKey<P>(
-                  "splitting.alpha", [](auto& p) -> auto& { return p.splitting.alpha; }, kRangeAny,
-                  "viscosity weight of the Stokes step (33)"),
-              "`1`, or `0.5` with `constraint = \"paper\"`",
-              [](Params& p) {
-                p.splitting.alpha = SplittingParams::DefaultWeights(p.splitting.constraint).alpha;
-              }),
-      "(0, 1]"));
-  keys.push_back(Allowed(
-      Derived(RealKey<P>(
-                  "splitting.beta", [](auto& p) -> auto& { return p.splitting.beta; }, kRangeAny,
-                  "viscosity weight of the advection step (34)"),
-              "`0`, or `0.5` with `constraint = \"paper\"`",
-              [](Params& p) {
-                p.splitting.beta = SplittingParams::DefaultWeights(p.splitting.constraint).beta;
-              }),
-      "[0, 1], alpha + beta = 1; 0 with particles unless `constraint = \"paper\"`"));
+  keys.push_back(
+      Allowed(Derived(RealKey<P>(
+                          "splitting.alpha", [](auto& p) -> auto& { return p.splitting.alpha; },
+                          kRangeAny, "viscosity weight of the Stokes step (33)"),
+                      "`1`, or `0.5` with `constraint = \"paper\"`",
+                      [](Params& p) {
+                        p.splitting.alpha =
+                            SplittingParams::DefaultWeights(p.splitting.constraint.value()).alpha;
+                      }),
+              "(0, 1]"));
+  keys.push_back(
+      Allowed(Derived(RealKey<P>(
+                          "splitting.beta", [](auto& p) -> auto& { return p.splitting.beta; },
+                          kRangeAny, "viscosity weight of the advection step (34)"),
+                      "`0`, or `0.5` with `constraint = \"paper\"`",
+                      [](Params& p) {
+                        p.splitting.beta =
+                            SplittingParams::DefaultWeights(p.splitting.constraint.value()).beta;
+                      }),
+              "[0, 1], alpha + beta = 1; 0 with particles unless `constraint = \"paper\"`"));
   keys.push_back(FromPreset(ChoiceKey<AdvectionScheme, P>(
       "splitting.advection", [](auto& p) -> auto& { return p.splitting.advection; },
       "step (34): the paper's least-squares CG or the explicit wave-like scheme")));
-  keys.push_back(FromPreset(ChoiceKey<ConstraintCoupling, P>(
+  SceneKey<P> constraint = FromPreset(ChoiceKey<ConstraintCoupling, P>(
       "splitting.constraint", [](auto& p) -> auto& { return p.splitting.constraint; },
       "where the rigid-body constraint meets the fluid; `auto` picks one from the scene's numbers "
       "(scene/auto_coupling.h)",
-      ResolveConstraintCoupling)));
+      ResolveConstraintCoupling));
+  // Absent in the struct: "auto", which depends on the rest of the scene.
+  constraint.unset = [](const P& p) { return !p.splitting.constraint; };
+  constraint.get = [](const P& p) -> KeyValue {
+    const auto& c = p.splitting.constraint;
+    return c ? std::string(WordOf(*c)) : ResolveConstraintCoupling(p).value;
+  };
+  keys.push_back(constraint);
   SceneKey<P> correction = FromPreset(ChoiceKey<SteadyCorrection, P>(
       "splitting.steady_correction", [](auto& p) -> auto& { return p.splitting.steady_correction; },
       "what step (34) does about the splitting's steady-state error"));

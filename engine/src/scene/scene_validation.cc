@@ -19,6 +19,7 @@
 #include "dlmfd/particles/collocation_points.h"
 #include "dlmfd/particles/particle_rules.h"
 #include "dlmfd/scene/accuracy_envelope.h"
+#include "dlmfd/scene/scene_file.h"
 #include "dlmfd/scene/scene_footprint.h"
 #include "dlmfd/scene/scene_keys.h"
 
@@ -186,9 +187,8 @@ void ValidateAccuracy(const Params& p) {
                              ", " + w.source + "; accuracy.strict = true)");
 }
 
-}  // namespace
-
-void ValidateScene(const Params& params) {
+// The checks of a scene whose absent members are resolved (ResolveDefaults).
+void ValidateResolved(const Params& params) {
   ValidateDomain(params);
   ValidateFluid(params);
   ValidateTimeSteps(params.time);
@@ -202,6 +202,14 @@ void ValidateScene(const Params& params) {
   ValidateRingMesh(params);
   ValidateInflowStates(params, grid);
   ValidateAccuracy(params);
+}
+
+}  // namespace
+
+void ValidateScene(const Params& params) {
+  Params resolved = params;  // Params built in code is checked as the scene it runs as
+  ResolveDefaults(resolved);
+  ValidateResolved(resolved);
 }
 
 }  // namespace dlmfd

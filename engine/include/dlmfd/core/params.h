@@ -180,16 +180,17 @@ enum class ConstraintCoupling { kPaper, kViscous, kIncremental };
 // Marchuk-Yanenko weights of the viscous term: alpha in (33), beta in (34), gamma = 1 - alpha -
 // beta in (37). The engine supports gamma = 0 only (the paper's choice), which validation enforces;
 // with constraint = kViscous or kIncremental also beta = 0 (all the viscosity in the step that sees
-// the particles). The struct's defaults are kIncremental with alpha = 1, beta = 0
-// (docs/evidence/constraint_coupling.md, "Coupling the constraint with viscosity"); a scene file's
-// constraint defaults to "auto", which ParseScene resolves from the scene's numbers
-// (scene/auto_coupling.h), and its alpha and beta follow the constraint: 1 and 0, or the paper's
-// 1/2 and 1/2 with constraint = "paper" (DefaultWeights).
+// the particles). The constraint is absent by default, as a scene's is "auto": ParseScene and the
+// Simulation resolve it from the scene's numbers (scene::ResolveDefaults, scene/auto_coupling.h),
+// so the engine's steps read a value. alpha and beta follow the constraint: 1 and 0, or the
+// paper's 1/2 and 1/2 with constraint = "paper" (DefaultWeights; a Params that leaves the
+// constraint to "auto" and its weights at 1 and 0 gets the weights of what "auto" picks, as a scene
+// that names neither does).
 struct SplittingParams {
   double alpha = 1.0;
   double beta = 0.0;
   AdvectionScheme advection = AdvectionScheme::kWave;
-  ConstraintCoupling constraint = ConstraintCoupling::kIncremental;
+  std::optional<ConstraintCoupling> constraint;  // absent: "auto" (see above)
   // Absent: numerics.preset's word for the liquid, which depends on the other keys; ParseScene and
   // the Simulation set it (scene::ResolveDefaults), so the engine's steps read a value.
   std::optional<SteadyCorrection> steady_correction;

@@ -24,10 +24,12 @@ Params ParseScene(const std::string& toml_text, const std::vector<SceneOverride>
                   const std::string& origin = "scene");
 Params LoadSceneFile(const std::string& path, const std::vector<SceneOverride>& overrides = {});
 // Gives every member the struct leaves absent its default, as a scene file that does not give the
-// key gets it: splitting.steady_correction numerics.preset's word for the liquid, particle_mesh.h
-// kPaperParticleMeshRatio domain.h (the keys with SceneKey::unset, scene/scene_keys.h). ParseScene
-// and the Simulation call it, so Params built in code runs as the same scene read from a file does.
-// Idempotent; a member already set is kept.
+// key gets it: splitting.steady_correction numerics.preset's word for the liquid,
+// splitting.constraint what "auto" picks (recorded in numerics.resolved; with the struct's weights
+// alpha and beta, those of the constraint picked), particle_mesh.h kPaperParticleMeshRatio domain.h
+// (the keys with SceneKey::unset, scene/scene_keys.h). ParseScene and the Simulation call it, so
+// Params built in code runs as the same scene read from a file does. Idempotent; a member already
+// set is kept.
 void ResolveDefaults(Params& params);
 // The scene as TOML with every default filled in; ParseScene(WriteScene(p)) == p.
 std::string WriteScene(const Params& params);
