@@ -80,7 +80,7 @@ Errors Solve(int cells) {
   const Grid g = p.domain.VelocityGrid();
   const Grid pg = g.Coarse();
   const BoundaryData data(g, p.domain);
-  StokesSolver stokes(g, p.domain, p.fluid, /*dt=*/1.0, /*alpha=*/1.0, p.solvers, data);
+  StokesSolver stokes(g, p.domain, p.fluid, /*alpha=*/1.0, p.solvers, data);
 
   const BoundaryTopology topo = BoundaryTopology::ForVelocity(p.domain);
   std::vector<double> mass(g.NodeCount());
@@ -94,7 +94,8 @@ Errors Solve(int cells) {
       fy[k] = mass[k] * ForceY(g.X(i), g.Y(j));
     }
   }
-  const StokesReport report = stokes.Solve(fx.data(), fy.data(), u.data(), v.data(), pr.data());
+  const StokesReport report =
+      stokes.Solve(/*dt=*/1.0, fx.data(), fy.data(), u.data(), v.data(), pr.data());
   Errors e;
   e.iterations = report.iterations;
   for (int j = 0; j <= g.ny; ++j) {

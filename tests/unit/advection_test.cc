@@ -70,19 +70,16 @@ TEST(Advection, UniformFlowIsUnchangedByBothSchemes) {
   for (const Params& p : UniformFlowCases()) {
     const Grid g = GridOf(p);
     BoundaryData data(g, p.domain);
-    AdvectionLeastSquares ls(g, p.domain, p.fluid, p.time.dt, 0.5, SteadyCorrection::kNone,
-                             p.solvers, data);
-    AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.5, SteadyCorrection::kNone, p.solvers,
-                       data);
+    AdvectionLeastSquares ls(g, p.domain, p.fluid, 0.5, SteadyCorrection::kNone, p.solvers, data);
+    AdvectionWave wave(g, p.domain, p.fluid, 0.5, SteadyCorrection::kNone, p.solvers, data);
     DomainParams both_domain = p.domain;
     both_domain.diagonals = MeshDiagonals::kBoth;
-    AdvectionWave both(g, both_domain, p.fluid, p.time.dt, 0.5, SteadyCorrection::kNone, p.solvers,
-                       data);
+    AdvectionWave both(g, both_domain, p.fluid, 0.5, SteadyCorrection::kNone, p.solvers, data);
     for (int scheme = 0; scheme < 3; ++scheme) {
       std::vector<double> u(g.NodeCount(), 0.7), v(g.NodeCount(), 0.4);
-      const AdvectionReport r = scheme == 0   ? ls.Solve(u.data(), v.data())
-                                : scheme == 1 ? wave.Solve(u.data(), v.data())
-                                              : both.Solve(u.data(), v.data());
+      const AdvectionReport r = scheme == 0   ? ls.Solve(p.time.dt, u.data(), v.data())
+                                : scheme == 1 ? wave.Solve(p.time.dt, u.data(), v.data())
+                                              : both.Solve(p.time.dt, u.data(), v.data());
       if (scheme == 0) {
         EXPECT_EQ(r.iterations, 0);  // T(u*) = 0 exactly: nothing to minimise
       }
@@ -125,8 +122,8 @@ double StepMirrorMismatch(AdvectionScheme scheme, MeshDiagonals diagonals, bool 
     }
   }
   testing::MirrorVelocity(g, mirror_x, u, v, um, vm);
-  const int iterations = step->Solve(u.data(), v.data()).iterations;
-  const int mirrored_iterations = step->Solve(um.data(), vm.data()).iterations;
+  const int iterations = step->Solve(p.time.dt, u.data(), v.data()).iterations;
+  const int mirrored_iterations = step->Solve(p.time.dt, um.data(), vm.data()).iterations;
   if (diagonals == MeshDiagonals::kBoth) {
     EXPECT_EQ(iterations, mirrored_iterations);
   }
@@ -183,9 +180,9 @@ double MeanStepMismatch(bool periodic_x, bool mirror_x, SteadyCorrection correct
   }
   std::vector<double> um, vm, mean_u = u, mean_v = v, iu, iv;
   testing::MirrorVelocity(g, mirror_x, u, v, um, vm);
-  EXPECT_EQ(both->Solve(mean_u.data(), mean_v.data()).iterations, 1);
-  EXPECT_EQ(mesh->Solve(u.data(), v.data()).iterations, 1);
-  EXPECT_EQ(mesh->Solve(um.data(), vm.data()).iterations, 1);
+  EXPECT_EQ(both->Solve(p.time.dt, mean_u.data(), mean_v.data()).iterations, 1);
+  EXPECT_EQ(mesh->Solve(p.time.dt, u.data(), v.data()).iterations, 1);
+  EXPECT_EQ(mesh->Solve(p.time.dt, um.data(), vm.data()).iterations, 1);
   testing::MirrorVelocity(g, mirror_x, um, vm, iu, iv);  // the NW-SE mesh's step
   double mismatch = 0.0, size = 0.0;
   for (std::size_t k = 0; k < u.size(); ++k) {
@@ -229,7 +226,7 @@ TEST(Advection, TheSchemeIsChosenOnceAndNamesItsReportColumns) {
     EXPECT_EQ(dynamic_cast<AdvectionLeastSquares*>(advection.get()) != nullptr, least_squares);
     EXPECT_EQ(dynamic_cast<AdvectionWave*>(advection.get()) != nullptr, !least_squares);
     std::vector<double> u(g.NodeCount(), 0.7), v(g.NodeCount(), 0.4);
-    const AdvectionReport r = advection->Solve(u.data(), v.data());
+    const AdvectionReport r = advection->Solve(p.time.dt, u.data(), v.data());
     StepReport report;
     advection->Record(r, report);
     if (least_squares) {
@@ -277,8 +274,7 @@ TEST(AdvectionLeastSquares, GradientIsTheAdjointOfTheLinearisedResidual) {
       p.domain.diagonals = diagonals;  // G on the SW-NE mesh, or the mean over both diagonals
       const Grid g = GridOf(p);
       BoundaryData data(g, p.domain);
-      AdvectionLeastSquares ls(g, p.domain, p.fluid, p.time.dt, 0.5, SteadyCorrection::kNone,
-                               p.solvers, data);
+      AdvectionLeastSquares ls(g, p.domain, p.fluid, 0.5, SteadyCorrection::kNone, p.solvers, data);
       const NodeSet& nodes = ls.nodes();
       std::vector<double> u, v, wu, wv, yu, yv, su, sv;
       FillSmooth(g, nodes, data, u, v, 0.0);
@@ -287,7 +283,7 @@ TEST(AdvectionLeastSquares, GradientIsTheAdjointOfTheLinearisedResidual) {
       FillSmooth(g, nodes, data, yu, yv, 2.3);
       for (auto* a : {&wu, &wv, &yu, &yv}) nodes.ZeroKnown(a->data());
       for (auto* a : {&wu, &wv}) nodes.SyncPeriodic(a->data());
-      ls.SetReference(su.data(), sv.data());
+      ls.SetReference(p.time.dt, su.data(), sv.data());
       const std::size_t n = g.NodeCount();
       std::vector<double> jwu(n), jwv(n), jtu(n), jtv(n);
       ls.Jacobian(u.data(), v.data(), wu.data(), wv.data(), jwu.data(), jwv.data());
@@ -327,8 +323,7 @@ TEST(AdvectionLeastSquares, GradientRatioIsBelowToleranceAfterSolve) {
   p.time.dt = 0.05;
   const Grid g = GridOf(p);
   BoundaryData data(g, p.domain);
-  AdvectionLeastSquares ls(g, p.domain, p.fluid, p.time.dt, 0.5, SteadyCorrection::kNone, p.solvers,
-                           data);
+  AdvectionLeastSquares ls(g, p.domain, p.fluid, 0.5, SteadyCorrection::kNone, p.solvers, data);
   const NodeSet& nodes = ls.nodes();
   std::vector<double> u, v;
   FillSmooth(g, nodes, data, u, v, 0.0);
@@ -343,11 +338,11 @@ TEST(AdvectionLeastSquares, GradientRatioIsBelowToleranceAfterSolve) {
     ls.ApplyPreconditioner(ru.data(), rv.data(), gu.data(), gv.data());
     return nodes.Dot2(gu.data(), ru.data(), gv.data(), rv.data());
   };
-  ls.SetReference(su.data(), sv.data());
+  ls.SetReference(p.time.dt, su.data(), sv.data());
   double j0 = 0.0, j1 = 0.0;
   const double gr0 = measure(su, sv, &j0);
-  const AdvectionReport r = ls.Solve(u.data(), v.data());
-  ls.SetReference(su.data(), sv.data());
+  const AdvectionReport r = ls.Solve(p.time.dt, u.data(), v.data());
+  ls.SetReference(p.time.dt, su.data(), sv.data());
   const double gr1 = measure(u, v, &j1);
   EXPECT_GT(r.iterations, 1);
   EXPECT_LE(r.residual, 1e-6);
@@ -365,11 +360,10 @@ TEST(AdvectionWave, AVelocityBeyondAnyBoundThrowsInsteadOfSubCyclingForever) {
   p.time.dt = 1.0;
   const Grid g = GridOf(p);
   BoundaryData data(g, p.domain);
-  AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.5, SteadyCorrection::kNone, p.solvers,
-                     data);
+  AdvectionWave wave(g, p.domain, p.fluid, 0.5, SteadyCorrection::kNone, p.solvers, data);
   std::vector<double> u(g.NodeCount(), 1e6), v(g.NodeCount(), 0.0);
   try {
-    wave.Solve(u.data(), v.data());
+    wave.Solve(p.time.dt, u.data(), v.data());
     ADD_FAILURE() << "no exception";
   } catch (const NumericalBlowUp& e) {
     EXPECT_NE(std::string(e.what()).find("wave sub-steps"), std::string::npos) << e.what();
@@ -395,8 +389,7 @@ double PerturbationGrowth(double courant, Vec2 flow,
   p.domain.diagonals = diagonals;
   const Grid g = GridOf(p);
   BoundaryData data(g, p.domain);
-  AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.0, SteadyCorrection::kNone, p.solvers,
-                     data);
+  AdvectionWave wave(g, p.domain, p.fluid, 0.0, SteadyCorrection::kNone, p.solvers, data);
   NodeSet nodes(g, BoundaryTopology::ForVelocity(p.domain));
   std::vector<double> u(g.NodeCount()), v(g.NodeCount());
   unsigned state = 12345u;
@@ -420,7 +413,7 @@ double PerturbationGrowth(double courant, Vec2 flow,
   };
   const double e0 = perturbation();
   for (int n = 0; n < 400; ++n) {
-    const AdvectionReport r = wave.Solve(u.data(), v.data());
+    const AdvectionReport r = wave.Solve(p.time.dt, u.data(), v.data());
     if (r.iterations != 2) return 1e300;
   }
   return perturbation() / e0;

@@ -107,8 +107,7 @@ double MeasuredRadius(Vec2 flow, double courant, int iterations, int substeps) {
   p.time.dt = substeps * courant * p.domain.h / flow.norm();
   const Grid g{kWaveCells, kWaveCells, p.domain.h, 0.0, 0.0};
   BoundaryData data(g, p.domain);
-  AdvectionWave wave(g, p.domain, p.fluid, p.time.dt, 0.0, SteadyCorrection::kNone, p.solvers,
-                     data);
+  AdvectionWave wave(g, p.domain, p.fluid, 0.0, SteadyCorrection::kNone, p.solvers, data);
   NodeSet nodes(g, BoundaryTopology::ForVelocity(p.domain));
   const std::size_t n = g.NodeCount();
   std::vector<double> xu(n), xv(n), u(n), v(n);
@@ -130,7 +129,7 @@ double MeasuredRadius(Vec2 flow, double courant, int iterations, int substeps) {
       u[k] = flow.x() + eps * xu[k] / before;
       v[k] = flow.y() + eps * xv[k] / before;
     }
-    const AdvectionReport r = wave.Solve(u.data(), v.data());
+    const AdvectionReport r = wave.Solve(p.time.dt, u.data(), v.data());
     EXPECT_EQ(r.iterations, substeps);
     for (std::size_t k = 0; k < n; ++k) {
       xu[k] = (u[k] - flow.x()) / eps;

@@ -111,7 +111,8 @@ double StokesMirrorMismatch(MeshDiagonals diagonals, bool mirror_x) {
   solvers.stokes_max_iterations = 500;
   const Grid g = d.VelocityGrid(), pg = g.Coarse();
   BoundaryData data(g, d);
-  StokesSolver stokes(g, d, fluid, 0.01, 1.0, solvers, data);
+  const double dt = 0.01;
+  StokesSolver stokes(g, d, fluid, 1.0, solvers, data);
   const std::size_t nodes = g.NodeCount();
   std::vector<double> fx(nodes), fy(nodes), mfx, mfy;
   for (int j = 0; j <= g.ny; ++j) {
@@ -124,8 +125,8 @@ double StokesMirrorMismatch(MeshDiagonals diagonals, bool mirror_x) {
   testing::MirrorVelocity(g, mirror_x, fx, fy, mfx, mfy);  // a force mirrors as a velocity
   std::vector<double> u(nodes, 0.0), v(nodes, 0.0), p(pg.NodeCount(), 0.0);
   std::vector<double> mu(nodes, 0.0), mv(nodes, 0.0), mp(pg.NodeCount(), 0.0);
-  stokes.Solve(fx.data(), fy.data(), u.data(), v.data(), p.data());
-  stokes.Solve(mfx.data(), mfy.data(), mu.data(), mv.data(), mp.data());
+  stokes.Solve(dt, fx.data(), fy.data(), u.data(), v.data(), p.data());
+  stokes.Solve(dt, mfx.data(), mfy.data(), mu.data(), mv.data(), mp.data());
   return testing::MirrorMismatch(g, mirror_x, u, v, mu, mv);
 }
 

@@ -87,14 +87,14 @@ TEST(StokesSolver, DivergenceBelowToleranceAfterSolve) {
   for (const Params& p : cases) {
     const Grid g = p.domain.VelocityGrid();
     BoundaryData data(g, p.domain);
-    StokesSolver stokes(g, p.domain, p.fluid, p.time.dt, 1.0, p.solvers, data);
+    StokesSolver stokes(g, p.domain, p.fluid, 1.0, p.solvers, data);
     std::vector<double> u, v, pr(g.Coarse().NodeCount(), 0.0);
     FillSmooth(g, u, v);
     stokes.velocity_nodes().SyncPeriodic(u.data());
     stokes.velocity_nodes().SyncPeriodic(v.data());
-    const double before = stokes.ResidualNorm(u.data(), v.data());
-    const StokesReport r = stokes.Solve(nullptr, nullptr, u.data(), v.data(), pr.data());
-    const double after = stokes.ResidualNorm(u.data(), v.data());
+    const double before = stokes.ResidualNorm(p.time.dt, u.data(), v.data());
+    const StokesReport r = stokes.Solve(p.time.dt, nullptr, nullptr, u.data(), v.data(), pr.data());
+    const double after = stokes.ResidualNorm(p.time.dt, u.data(), v.data());
     EXPECT_GT(r.iterations, 0);
     EXPECT_LE(r.residual, p.solvers.stokes_tolerance);
     // Recomputed residual versus the recursive one: they differ by round-off only (1e-12 of ref).
@@ -204,7 +204,7 @@ void CompareWithDirectSolve(const Params& p) {
   BoundaryData data(g, p.domain);
   SolverParams tight = p.solvers;
   tight.stokes_tolerance = 1e-12;
-  StokesSolver stokes(g, p.domain, p.fluid, p.time.dt, p.splitting.alpha, tight, data);
+  StokesSolver stokes(g, p.domain, p.fluid, p.splitting.alpha, tight, data);
   const BoundaryTopology vt = stokes.velocity_topology(), pt = stokes.pressure_topology();
 
   std::vector<double> u, v, pr(pg.NodeCount(), 0.0), fx(g.NodeCount()), fy(g.NodeCount());
@@ -286,7 +286,8 @@ void CompareWithDirectSolve(const Params& p) {
   ASSERT_EQ(lu.info(), Eigen::Success);
   const Eigen::VectorXd x = lu.solve(rhs);
 
-  const StokesReport r = stokes.Solve(fx.data(), fy.data(), u.data(), v.data(), pr.data());
+  const StokesReport r =
+      stokes.Solve(p.time.dt, fx.data(), fy.data(), u.data(), v.data(), pr.data());
   EXPECT_GT(r.iterations, 3);
   double du = 0.0, umax = 0.0, dp = 0.0, pmax = 0.0;
   // Periodic duplicates are compared through their first node.

@@ -76,7 +76,7 @@ struct CoupledRun {
       : params(prm),
         grid(prm.domain.VelocityGrid()),
         data(grid, prm.domain),
-        stokes(grid, prm.domain, prm.fluid, prm.time.dt, prm.splitting.alpha, prm.solvers, data),
+        stokes(grid, prm.domain, prm.fluid, prm.splitting.alpha, prm.solvers, data),
         step(prm, grid),
         particles(ParticleStep::InitialStates(prm)),
         u(grid.NodeCount(), 0.0),

@@ -95,8 +95,7 @@ struct Simulation::Impl {
         grid(p.domain.VelocityGrid()),
         pgrid(grid.Coarse()),
         boundary_data(grid, p.domain),
-        stokes(grid, p.domain, p.fluid, p.time.dt, p.splitting.alpha, StokesSettings(p),
-               boundary_data),
+        stokes(grid, p.domain, p.fluid, p.splitting.alpha, StokesSettings(p), boundary_data),
         advection(MakeVelocityAdvection(grid, p, boundary_data)),
         viscoelastic(!p.fluid.IsNewtonian()) {
     state.u.assign(grid.NodeCount(), 0.0);
@@ -130,8 +129,8 @@ struct Simulation::Impl {
                                    state.v.data());
     }
     if (cut_cells) {
-      cut_cells->Solve(boundary_data, state.particles, state.u.data(), state.v.data(),
-                       state.p.data(), report);
+      cut_cells->Solve(params.time.dt, boundary_data, state.particles, state.u.data(),
+                       state.v.data(), state.p.data(), report);
     } else if (particle_step && particle_step->CouplesStokes()) {
       const ViscousConstraint::Outcome r = particle_step->CoupleStokes(
           state.time + params.time.dt, params.time.dt, stokes, force.x, force.y, state.particles,
@@ -144,8 +143,8 @@ struct Simulation::Impl {
       report.Set("coupling_stokes_tolerance", r.stokes_tolerance);
       ReportGradient(stokes.flux_control(), r.mean_pressure_gradient, report);
     } else {
-      const StokesReport r =
-          stokes.Solve(force.x, force.y, state.u.data(), state.v.data(), state.p.data());
+      const StokesReport r = stokes.Solve(params.time.dt, force.x, force.y, state.u.data(),
+                                          state.v.data(), state.p.data());
       report.Set("stokes_iterations", r.iterations);
       report.Set("stokes_residual", r.residual);
       report.Set("divergence", r.divergence);
@@ -178,7 +177,7 @@ struct Simulation::Impl {
   // Step (34): u^{n+1/4} -> u^{n+2/4}.
   [[gnu::noinline]] void AdvectVelocity(StepReport& report) {
     const auto t0 = Clock::now();
-    advection->Record(advection->Solve(state.u.data(), state.v.data()), report);
+    advection->Record(advection->Solve(params.time.dt, state.u.data(), state.v.data()), report);
     report.Set("ms_advection", Milliseconds(t0, Clock::now()));
   }
 

@@ -11,7 +11,7 @@
 namespace dlmfd {
 
 AdvectionLeastSquares::AdvectionLeastSquares(const Grid& grid, const DomainParams& domain,
-                                             const FluidParams& fluid, double dt, double beta,
+                                             const FluidParams& fluid, double beta,
                                              SteadyCorrection correction,
                                              const SolverParams& solvers,
                                              const BoundaryData& boundary_data)
@@ -20,16 +20,11 @@ AdvectionLeastSquares::AdvectionLeastSquares(const Grid& grid, const DomainParam
       diagonals_(domain.diagonals),
       nodes_(grid_, topo_),
       rho_(fluid.density),
-      rho_over_dt_(fluid.density / dt),
       nu_b_(beta * fluid.ImplicitViscosity(grid.h)),
-      dt_(dt),
       taylor_viscosity_(SteadyCorrectionCap(correction, fluid, grid.h)),
       tolerance_(solvers.advection_tolerance),
       max_iterations_(solvers.advection_max_iterations),
       boundary_data_(boundary_data) {
-  if (nu_b_ > 0.0) {
-    helmholtz_ = std::make_unique<SeparableHelmholtz>(grid_, topo_, rho_over_dt_, nu_b_, 2);
-  }
   for (int s = 0; s < 4; ++s) outflow_[s] = domain.sides[s].type == SideType::kOutflow;
   const std::size_t n = grid_.NodeCount();
   mass_.assign(n, 0.0);
@@ -56,7 +51,14 @@ void AdvectionLeastSquares::BeginStep(const double* u, const double* v) {
   entry_set_ = true;
 }
 
-void AdvectionLeastSquares::SetReference(const double* u, const double* v) {
+void AdvectionLeastSquares::SetReference(double dt, const double* u, const double* v) {
+  if (dt != dt_) {
+    dt_ = dt;
+    rho_over_dt_ = rho_ / dt;
+    if (nu_b_ > 0.0) {
+      helmholtz_ = std::make_unique<SeparableHelmholtz>(grid_, topo_, rho_over_dt_, nu_b_, 2);
+    }
+  }
   std::copy(u, u + su_.size(), su_.begin());
   std::copy(v, v + sv_.size(), sv_.begin());
 }
@@ -251,9 +253,9 @@ void AdvectionLeastSquares::Record(const AdvectionReport& result, StepReport& re
 }
 
 // NOLINTNEXTLINE(readability-function-size): predates the limit; split it when you change it
-AdvectionReport AdvectionLeastSquares::Solve(double* u, double* v) {
+AdvectionReport AdvectionLeastSquares::Solve(double dt, double* u, double* v) {
   AdvectionReport report;
-  SetReference(u, v);
+  SetReference(dt, u, v);
   const long n = static_cast<long>(mass_.size());
   if (tendency_) {
     // r = (u^{n+1/4} - u^n) / dt at the unknowns (0 without a BeginStep since the last Solve).
@@ -359,7 +361,6 @@ AdvectionReport AdvectionLeastSquares::Solve(double* u, double* v) {
   if (taylor_viscosity_ > 0.0) RemoveBackwardEulerTerm(u, v);
   if (tendency_) {
     const double *ru = tu_.data(), *rv = tv_.data();
-    const double dt = dt_;
 #pragma omp parallel for schedule(static)
     for (long k = 0; k < n; ++k) {
       u[k] -= dt * ru[k];

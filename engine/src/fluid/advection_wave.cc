@@ -80,21 +80,17 @@ void ForEachNodeCorners(const Grid& grid, NodeFn&& fn) {
 }  // namespace
 
 AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const FluidParams& fluid,
-                             double dt, double beta, SteadyCorrection correction,
-                             const SolverParams& solvers, const BoundaryData& boundary_data)
+                             double beta, SteadyCorrection correction, const SolverParams& solvers,
+                             const BoundaryData& boundary_data)
     : grid_(grid),
       topo_(BoundaryTopology::ForVelocity(domain)),
       diagonals_(domain.diagonals),
       nodes_(grid_, topo_),
-      dt_(dt),
-      rho_over_dt_(fluid.density / dt),
+      density_(fluid.density),
       nu_b_(beta * fluid.ImplicitViscosity(grid.h)),
       max_courant_(solvers.wave_max_courant),
       taylor_viscosity_(SteadyCorrectionCap(correction, fluid, grid.h)),
       boundary_data_(boundary_data) {
-  if (nu_b_ > 0.0) {
-    helmholtz_ = std::make_unique<SeparableHelmholtz>(grid_, topo_, rho_over_dt_, nu_b_, 2);
-  }
   for (int s = 0; s < 4; ++s) outflow_[s] = domain.sides[s].type == SideType::kOutflow;
   const std::size_t n = grid_.NodeCount();
   const std::size_t cells = std::size_t(grid_.nx) * grid_.ny;
@@ -126,6 +122,15 @@ AdvectionWave::AdvectionWave(const Grid& grid, const DomainParams& domain, const
 }
 
 AdvectionWave::~AdvectionWave() = default;
+
+void AdvectionWave::PrepareStep(double dt) {
+  if (dt == dt_) return;
+  dt_ = dt;
+  rho_over_dt_ = density_ / dt;
+  if (nu_b_ > 0.0) {
+    helmholtz_ = std::make_unique<SeparableHelmholtz>(grid_, topo_, rho_over_dt_, nu_b_, 2);
+  }
+}
 
 // W_T / h^2 = (1/24)(sum_k V_k V_k^T + S S^T) over the vertices of T, for |T| = h^2 / 2 and
 // unscaled gradients. The products V_k V_k^T of the cell's four corners are formed once and shared
@@ -316,7 +321,8 @@ void AdvectionWave::Record(const AdvectionReport& result, StepReport& report) co
 }
 
 // NOLINTNEXTLINE(readability-function-size): over the limit before it was set; split when changed
-AdvectionReport AdvectionWave::Solve(double* u, double* v) {
+AdvectionReport AdvectionWave::Solve(double dt, double* u, double* v) {
+  PrepareStep(dt);
   AdvectionReport report;
   const long n = static_cast<long>(mass_.size());
   FreezeVelocity(u, v);
@@ -454,7 +460,7 @@ AdvectionReport AdvectionWave::Solve(double* u, double* v) {
   if (tendency_) {
     double *u1 = u1_.data(), *v1 = v1_.data();
     const double *ru = ru_.data(), *rv = rv_.data(), *eu = epsu_.data(), *ev = epsv_.data();
-    const double dt = dt_, half_dt2 = 0.5 * dt_ * dt_;
+    const double half_dt2 = 0.5 * dt_ * dt_;
 #pragma omp parallel for schedule(static)
     for (long k = 0; k < n; ++k) {
       u1[k] -= dt * ru[k] + half_dt2 * eu[k];

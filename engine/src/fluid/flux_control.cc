@@ -7,17 +7,18 @@
 
 namespace dlmfd {
 
-FluxControl::FluxControl(const Grid& grid, const DomainParams& domain, std::vector<double> weights,
-                         std::vector<UnitResponse> responses)
+FluxControl::FluxControl(const Grid& grid, const DomainParams& domain, std::vector<double> weights)
     : period_{grid.Width(), grid.Height()},
       target_(domain.flow_rate.value_or(0.0)),
       weights_(std::move(weights)),
-      responses_(std::move(responses)) {
+      axes_(HeldAxes(domain)) {}
+
+void FluxControl::SetResponses(std::vector<UnitResponse> responses) {
+  responses_ = std::move(responses);
   // R_ab = Q_a(u_b), inverted (1 x 1 or 2 x 2).
   std::array<std::array<double, 2>, 2> rates{};
   const std::size_t m = responses_.size();
   for (std::size_t a = 0; a < m; ++a) {
-    axes_.push_back(responses_[a].axis);
     for (std::size_t b = 0; b < m; ++b) {
       rates[a][b] = FlowRate(responses_[a].axis, responses_[b].u.data(), responses_[b].v.data());
     }

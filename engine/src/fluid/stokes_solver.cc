@@ -18,23 +18,10 @@ namespace {
 // any velocity the tolerances can resolve (tol >= 1e-8 times the flow's own scale).
 constexpr double kQuietFlow = 1e-11;
 
-// The velocity scale of the data of (33), from the scene alone: the boundary values, the change a
-// body force makes in one step, and the change a polymer stress of one modulus G = eta_p / lambda
-// makes in one step over one cell (the scale of the polymer force, whose round-off is what a liquid
-// at rest carries). Gravity is not forcing of (33): the split scheme absorbs rho_L g into p.
-double DataSpeed(const Grid& grid, const FluidParams& fluid, double dt,
-                 const BoundaryData& boundary_data) {
-  double speed = std::max(boundary_data.MaxSpeed(), fluid.body_force.norm() * dt / fluid.density);
-  if (!fluid.IsNewtonian()) {
-    speed = std::max(speed, fluid.PolymerModulus() * dt / (fluid.density * grid.h));
-  }
-  return speed;
-}
-
 }  // namespace
 
 StokesSolver::StokesSolver(const Grid& grid, const DomainParams& domain, const FluidParams& fluid,
-                           double dt, double alpha, const SolverParams& solvers,
+                           double alpha, const SolverParams& solvers,
                            const BoundaryData& boundary_data)
     : grid_(grid),
       pgrid_(grid.Coarse()),
@@ -43,13 +30,15 @@ StokesSolver::StokesSolver(const Grid& grid, const DomainParams& domain, const F
       diagonals_(domain.diagonals),
       vnodes_(grid_, vtopo_),
       pnodes_(pgrid_, ptopo_),
-      rho_over_dt_(fluid.density / dt),
+      density_(fluid.density),
       nu_(alpha * fluid.ImplicitViscosity(grid.h)),
       body_force_(fluid.body_force),
       tolerance_(solvers.stokes_tolerance),
+      data_speed_(boundary_data.MaxSpeed()),
+      polymer_(!fluid.IsNewtonian()),
+      polymer_modulus_(polymer_ ? fluid.PolymerModulus() : 0.0),
       max_iterations_(solvers.stokes_max_iterations),
       boundary_data_(boundary_data),
-      velocity_solver_(grid_, vtopo_, rho_over_dt_, nu_, 2),
       pressure_solver_(pgrid_, ptopo_, 0.0, 1.0, 1) {
   const std::size_t n = grid_.NodeCount(), np = pgrid_.NodeCount();
   mass_.assign(n, 0.0);
@@ -64,38 +53,54 @@ StokesSolver::StokesSolver(const Grid& grid, const DomainParams& domain, const F
   // ubar_, vbar_ keep zero Dirichlet data for good: the fast solves write unknown nodes only.
   for (auto* a : {&fu_, &fv_, &ubar_, &vbar_, &tu_, &tv_}) a->assign(n, 0.0);
   for (auto* a : {&r_, &g_, &w_, &sw_, &z_}) a->assign(np, 0.0);
-  // The floor of the reference: the data's velocity scale, times kQuietFlow, over the domain.
   const std::vector<double>& dist = vnodes_.distinct();
-  double area = 0.0;
-  for (std::size_t k = 0; k < n; ++k) area += dist[k] * mass_[k];
-  reference_floor_ =
-      kQuietFlow * DataSpeed(grid_, fluid, dt, boundary_data_) * std::sqrt(rho_over_dt_ * area);
-  if (domain.flow_rate) flux_ = MakeFluxControl(domain);
+  for (std::size_t k = 0; k < n; ++k) area_ += dist[k] * mass_[k];
+  if (domain.flow_rate) {
+    std::vector<double> weights(n, 0.0);
+    for (std::size_t k = 0; k < n; ++k) weights[k] = dist[k] * mass_[k];
+    flux_ = std::make_unique<FluxControl>(grid_, domain, std::move(weights));
+  }
+}
+
+// The velocity scale of the data of (33), from the scene alone: the boundary values, the change a
+// body force makes in one step, and the change a polymer stress of one modulus G = eta_p / lambda
+// makes in one step over one cell (the scale of the polymer force, whose round-off is what a liquid
+// at rest carries). Gravity is not forcing of (33): the split scheme absorbs rho_L g into p. The
+// floor of the reference is that scale, times kQuietFlow, over the domain.
+void StokesSolver::PrepareStep(double dt) {
+  if (dt == dt_) return;
+  dt_ = dt;
+  rho_over_dt_ = density_ / dt;
+  velocity_solver_ = std::make_unique<SeparableHelmholtz>(grid_, vtopo_, rho_over_dt_, nu_, 2);
+  double speed = std::max(data_speed_, body_force_.norm() * dt / density_);
+  if (polymer_) {
+    speed = std::max(speed, polymer_modulus_ * dt / (density_ * grid_.h));
+  }
+  reference_floor_ = kQuietFlow * speed * std::sqrt(rho_over_dt_ * area_);
+  if (flux_) flux_->SetResponses(UnitResponses());
 }
 
 // The unit responses u_a of fluid/flux_control.h: A u_a = M_l e_a with zero Dirichlet data, one
-// per periodic axis.
-std::unique_ptr<FluxControl> StokesSolver::MakeFluxControl(const DomainParams& domain) {
+// per held axis.
+std::vector<FluxControl::UnitResponse> StokesSolver::UnitResponses() const {
   const std::size_t n = grid_.NodeCount();
-  std::vector<double> weights(n, 0.0);
-  for (std::size_t k = 0; k < n; ++k) weights[k] = vnodes_.distinct()[k] * mass_[k];
   std::vector<FluxControl::UnitResponse> responses;
-  for (int axis : FluxControl::HeldAxes(domain)) {
+  for (int axis : flux_->axes()) {
     std::vector<double> fu(n, 0.0), fv(n, 0.0);
     FluxControl::UnitResponse r{axis, std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
     std::copy(mass_.begin(), mass_.end(), axis == 0 ? fu.begin() : fv.begin());
-    SolveVelocityPair(fu.data(), fv.data(), r.u.data(), r.v.data());
+    velocity_solver_->SolvePair(fu.data(), r.u.data(), fv.data(), r.v.data());
     vnodes_.SyncPeriodic(r.u.data());
     vnodes_.SyncPeriodic(r.v.data());
     responses.push_back(std::move(r));
   }
-  return std::make_unique<FluxControl>(grid_, domain, std::move(weights), std::move(responses));
+  return responses;
 }
 
 StokesSolver::~StokesSolver() = default;
 
 void StokesSolver::SolveVelocityPair(const double* fu, const double* fv, double* u, double* v) {
-  velocity_solver_.SolvePair(fu, u, fv, v);
+  velocity_solver_->SolvePair(fu, u, fv, v);
 }
 
 // g = nu M_p^-1 r + (rho/dt) K_p^-1 r; g is zero on pressure Dirichlet nodes.
@@ -111,7 +116,8 @@ void StokesSolver::ApplyPreconditioner(const double* r, double* g) {
   pnodes_.SyncPeriodic(g);
 }
 
-double StokesSolver::ResidualNorm(const double* u, const double* v) {
+double StokesSolver::ResidualNorm(double dt, const double* u, const double* v) {
+  PrepareStep(dt);
   ApplyDivergence(grid_, ptopo_, u, v, r_.data(), diagonals_);
   pnodes_.ZeroKnown(r_.data());
   ApplyPreconditioner(r_.data(), g_.data());
@@ -130,8 +136,9 @@ double StokesSolver::DivergenceNorm(const double* u, const double* v) {
 }
 
 // NOLINTNEXTLINE(readability-function-size): over the limit before it was set; split when changed
-StokesReport StokesSolver::Solve(const double* fx, const double* fy, double* u, double* v,
-                                 double* p) {
+StokesReport StokesSolver::Solve(double dt, const double* fx, const double* fy, double* u,
+                                 double* v, double* p) {
+  PrepareStep(dt);
   const long n = static_cast<long>(grid_.NodeCount());
   const double* m = mass_.data();
   const double* dist = vnodes_.distinct().data();

@@ -9,12 +9,12 @@ std::unique_ptr<VelocityAdvection> MakeVelocityAdvection(const Grid& grid, const
                                                          const BoundaryData& boundary_data) {
   if (params.splitting.advection == AdvectionScheme::kLeastSquares) {
     return std::make_unique<AdvectionLeastSquares>(
-        grid, params.domain, params.fluid, params.time.dt, params.splitting.beta,
+        grid, params.domain, params.fluid, params.splitting.beta,
         params.splitting.steady_correction.value(), params.solvers, boundary_data);
   }
-  return std::make_unique<AdvectionWave>(
-      grid, params.domain, params.fluid, params.time.dt, params.splitting.beta,
-      params.splitting.steady_correction.value(), params.solvers, boundary_data);
+  return std::make_unique<AdvectionWave>(grid, params.domain, params.fluid, params.splitting.beta,
+                                         params.splitting.steady_correction.value(), params.solvers,
+                                         boundary_data);
 }
 
 }  // namespace dlmfd

@@ -7,7 +7,8 @@
 namespace dlmfd {
 
 CutCellStep::CutCellStep(const Params& params, const Grid& grid)
-    : rho_over_dt_(params.fluid.density / params.time.dt),
+    : domain_(params.domain),
+      viscosity_(params.fluid.ImplicitViscosity(grid.h)),
       body_force_(params.fluid.body_force),
       buoyancy_acceleration_(-params.gravity),
       fluid_density_(params.fluid.density) {
@@ -15,15 +16,9 @@ CutCellStep::CutCellStep(const Params& params, const Grid& grid)
   for (const ParticleParams& q : params.particles)
     bodies_.push_back({Shape::Of(q), q.center, q.angle});
   geometries_.push_back(std::make_unique<CutCellGeometry>(grid, bodies_, CutTriangulation::kSwNe));
-  const double eta = params.fluid.ImplicitViscosity(grid.h);
   if (params.domain.diagonals == MeshDiagonals::kBoth) {
     geometries_.push_back(
         std::make_unique<CutCellGeometry>(grid, bodies_, CutTriangulation::kNwSe));
-    flow_ = std::make_unique<CutCellStokes>(*geometries_[0], *geometries_[1], params.domain, eta,
-                                            params.fluid.density, rho_over_dt_, constants_);
-  } else {
-    flow_ = std::make_unique<CutCellStokes>(*geometries_[0], params.domain, eta,
-                                            params.fluid.density, rho_over_dt_, constants_);
   }
   fu_.assign(grid.NodeCount(), 0.0);
   fv_.assign(grid.NodeCount(), 0.0);
@@ -31,8 +26,23 @@ CutCellStep::CutCellStep(const Params& params, const Grid& grid)
 
 CutCellStep::~CutCellStep() = default;
 
-void CutCellStep::Solve(const BoundaryData& data, std::vector<ParticleState>& particles, double* u,
-                        double* v, double* p, StepReport& report) {
+void CutCellStep::PrepareStep(double dt) {
+  if (dt == dt_) return;
+  dt_ = dt;
+  rho_over_dt_ = fluid_density_ / dt;
+  flow_.reset();  // one saddle point at a time
+  if (geometries_.size() == 2) {
+    flow_ = std::make_unique<CutCellStokes>(*geometries_[0], *geometries_[1], domain_, viscosity_,
+                                            fluid_density_, rho_over_dt_, constants_);
+  } else {
+    flow_ = std::make_unique<CutCellStokes>(*geometries_[0], domain_, viscosity_, fluid_density_,
+                                            rho_over_dt_, constants_);
+  }
+}
+
+void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<ParticleState>& particles,
+                        double* u, double* v, double* p, StepReport& report) {
+  PrepareStep(dt);
   const Eigen::VectorXd& mass = flow_->FluidMass();
   for (std::size_t k = 0; k < fu_.size(); ++k) {
     const auto i = static_cast<Eigen::Index>(k);

@@ -78,9 +78,9 @@ ViscousConstraint::ViscousConstraint(const Params& params, const Grid& grid)
     heavy_free_.push_back(q.motion == Motion::kFree && q.density != params.fluid.density ? 1 : 0);
   }
   recycles_ = RecycledDirections::Used(params);
-  response_solver_ = std::make_unique<StokesSolver>(
-      grid, zero_domain_, WithoutBodyForce(params.fluid), params.time.dt, params.splitting.alpha,
-      StokesSettings(params), zero_data_);
+  response_solver_ =
+      std::make_unique<StokesSolver>(grid, zero_domain_, WithoutBodyForce(params.fluid),
+                                     params.splitting.alpha, StokesSettings(params), zero_data_);
   const std::size_t n = params.particles.size();
   const std::size_t stacked = 2 * inviscid_.points().Total();
   for (auto* a : {&nu_, &r_, &r_old_, &z_, &d_, &sd_}) a->assign(stacked, 0.0);
@@ -134,7 +134,7 @@ int ViscousConstraint::Respond(double dt, const double* dir) {
   coupling.AddAtSlots(slot_u_.data(), slot_v_.data(), du_.data(), dv_.data());
   coupling.CopyPeriodicDuplicates(du_.data(), dv_.data());
   const StokesReport r =
-      response_solver_->Solve(nullptr, nullptr, du_.data(), dv_.data(), dp_.data());
+      response_solver_->Solve(dt, nullptr, nullptr, du_.data(), dv_.data(), dp_.data());
   dgradient_ = r.mean_pressure_gradient;
   for (std::size_t p = 0; p < points.ParticleCount(); ++p) {
     inviscid_.modes().Response(points, p, dt, dir + 2 * points.Begin(p), dvelocity_[p], domega_[p]);
@@ -194,7 +194,7 @@ StokesReport ViscousConstraint::Start(double dt, bool carry, StokesSolver& stoke
       omega_[k] += dom;
     }
   }
-  return stokes.Solve(fx, fy, u, v, p);
+  return stokes.Solve(dt, fx, fy, u, v, p);
 }
 
 // NOLINTNEXTLINE(readability-function-size): predates the limit; split it when you change it
@@ -207,6 +207,10 @@ ViscousConstraint::Outcome ViscousConstraint::Solve(double time, double dt, cons
   const std::size_t n = particles.size();
   const std::size_t nodes = du_.size(), pnodes = dp_.size();
   inviscid_.Locate(time, dt, particles);
+  if (dt != recycled_dt_) {  // S depends on dt: directions of another dt do not span its errors
+    recycled_.Clear();
+    recycled_dt_ = dt;
+  }
   const MultiplierPoints& points = inviscid_.points();
   const RigidModes& modes = inviscid_.modes();
   for (std::size_t k = 0; k < n; ++k) {

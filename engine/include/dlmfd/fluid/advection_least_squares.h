@@ -49,20 +49,22 @@ namespace dlmfd {
 class AdvectionLeastSquares final : public VelocityAdvection {
  public:
   AdvectionLeastSquares(const Grid& grid, const DomainParams& domain, const FluidParams& fluid,
-                        double dt, double beta, SteadyCorrection correction,
-                        const SolverParams& solvers, const BoundaryData& boundary_data);
+                        double beta, SteadyCorrection correction, const SolverParams& solvers,
+                        const BoundaryData& boundary_data);
   ~AdvectionLeastSquares() override;
   AdvectionLeastSquares(const AdvectionLeastSquares&) = delete;
   AdvectionLeastSquares& operator=(const AdvectionLeastSquares&) = delete;
 
-  // In: u, v = u^{n+1/4}. Out: u, v = u^{n+2/4}.
-  AdvectionReport Solve(double* u, double* v) override;
+  // In: u, v = u^{n+1/4}. Out: u, v = u^{n+2/4} after dt.
+  AdvectionReport Solve(double dt, double* u, double* v) override;
   void BeginStep(const double* u, const double* v) override;
   // advection_iterations, advection_residual.
   void Record(const AdvectionReport& result, StepReport& report) const override;
 
-  // Exposed for tests. u* is the last Solve's input (or set by SetReference).
-  void SetReference(const double* u, const double* v);
+  // Exposed for tests. The step, dt and u*, is the last Solve's (or set by SetReference); the
+  // operators below are T's of that step. P = (rho/dt) M_l + nu_b K is built for its dt and rebuilt
+  // when a step brings another.
+  void SetReference(double dt, const double* u, const double* v);
   // u += theta dt M^-1 (N(u, u) - N(u*, u*)) (the steady-state correction, see above).
   void RemoveBackwardEulerTerm(double* u, double* v);
   // out = T(u) (zero at known nodes).
@@ -85,8 +87,9 @@ class AdvectionLeastSquares final : public VelocityAdvection {
   BoundaryTopology topo_;
   MeshDiagonals diagonals_;  // of G (domain.diagonals)
   NodeSet nodes_;
-  double rho_, rho_over_dt_, nu_b_;
-  double dt_, taylor_viscosity_;  // kappa nu_N with the steady correction, 0 without
+  double rho_, nu_b_;
+  double dt_ = 0.0, rho_over_dt_ = 0.0;  // of the step (SetReference); 0 before the first
+  double taylor_viscosity_;              // kappa nu_N with the steady correction, 0 without
   double tolerance_;
   int max_iterations_;
   const BoundaryData& boundary_data_;

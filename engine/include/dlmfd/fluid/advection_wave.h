@@ -83,15 +83,15 @@ namespace dlmfd {
 
 class AdvectionWave final : public VelocityAdvection {
  public:
-  AdvectionWave(const Grid& grid, const DomainParams& domain, const FluidParams& fluid, double dt,
-                double beta, SteadyCorrection correction, const SolverParams& solvers,
+  AdvectionWave(const Grid& grid, const DomainParams& domain, const FluidParams& fluid, double beta,
+                SteadyCorrection correction, const SolverParams& solvers,
                 const BoundaryData& boundary_data);
   ~AdvectionWave() override;
   AdvectionWave(const AdvectionWave&) = delete;
   AdvectionWave& operator=(const AdvectionWave&) = delete;
 
-  // In: u, v = u^{n+1/4}. Out: u, v = u^{n+2/4}. report.iterations = wave sub-steps Q.
-  AdvectionReport Solve(double* u, double* v) override;
+  // In: u, v = u^{n+1/4}. Out: u, v = u^{n+2/4} after dt. report.iterations = wave sub-steps Q.
+  AdvectionReport Solve(double dt, double* u, double* v) override;
   void BeginStep(const double* u, const double* v) override;
   // wave_substeps.
   void Record(const AdvectionReport& result, StepReport& report) const override;
@@ -108,6 +108,8 @@ class AdvectionWave final : public VelocityAdvection {
   struct CellMatrix {
     std::vector<double> bb, bc, bd, cc, cd, dd;
   };
+  // dt and the diffusion's (rho/dt) M_l + nu_b K for a step of dt, rebuilt when dt changes.
+  void PrepareStep(double dt);
   void FreezeVelocity(const double* u, const double* v);  // W_T per triangle from V
   void ComputeWeights(const double* vx, const double* vy);
   void ApplyWaveStiffness(const double* u, const double* v, double* ku, double* kv);  // K_V
@@ -123,10 +125,11 @@ class AdvectionWave final : public VelocityAdvection {
   BoundaryTopology topo_;
   MeshDiagonals diagonals_;
   NodeSet nodes_;
-  double dt_, rho_over_dt_, nu_b_, max_courant_;
-  double taylor_viscosity_;  // kappa nu_N with the correction, 0 without
+  double density_, nu_b_, max_courant_;
+  double dt_ = 0.0, rho_over_dt_ = 0.0;  // of the last step (PrepareStep); 0 before the first
+  double taylor_viscosity_;              // kappa nu_N with the correction, 0 without
   const BoundaryData& boundary_data_;
-  std::unique_ptr<SeparableHelmholtz> helmholtz_;  // null when nu_b == 0
+  std::unique_ptr<SeparableHelmholtz> helmholtz_;  // (rho/dt) M_l + nu_b K; null when nu_b == 0
   std::vector<double> mass_, out_mass_;  // lumped mass; outflow boundary mass (V.n)^+ M_out
   std::vector<double> vx_, vy_;          // frozen V
   TriangleWeights weights_;              // the SW-NE triangles (domain.diagonals = "sw_ne")

@@ -44,9 +44,12 @@ class FluxControl {
     std::vector<double> u, v;
   };
 
-  // weights: w_k (0 at periodic duplicates); responses: one per held axis (the periodic ones).
-  FluxControl(const Grid& grid, const DomainParams& domain, std::vector<double> weights,
-              std::vector<UnitResponse> responses);
+  // weights: w_k (0 at periodic duplicates). Hold needs the responses of the step's A first.
+  FluxControl(const Grid& grid, const DomainParams& domain, std::vector<double> weights);
+
+  // The unit responses of A = (rho/dt) M_l + nu K, one per held axis in the order of axes(): set
+  // by the Stokes step for its dt, again when dt changes (A with it).
+  void SetResponses(std::vector<UnitResponse> responses);
 
   // The periodic axes whose rate is held (0: x, 1: y): one in a channel, both in a box.
   static std::vector<int> HeldAxes(const DomainParams& domain);

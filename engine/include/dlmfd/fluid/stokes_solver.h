@@ -14,6 +14,9 @@
 // (inf-sup stable, mirror-symmetric: tests/unit/mesh_diagonals_test.cc); M_l, K and the
 // preconditioner are the same on both.
 //
+// dt comes with each call, as to every step of the loop (core/simulation.cc); what depends on it
+// (the fast solver of A, the floor of ref below, the flux control's unit responses) is built for
+// the dt of the first call and rebuilt only when a call brings another (PrepareStep).
 // Solver: Uzawa / preconditioned CG on the pressure (Glowinski), Cahouet-Chabard preconditioner
 // P^-1 = nu M_p^-1 + (rho/dt) K_p^-1; each iteration 2 velocity fast solves (u and v side by side
 // on two OpenMP sections), 1 pressure fast solve. Warm start from the given pressure. Stopping
@@ -59,23 +62,25 @@ struct StokesReport {
 
 class StokesSolver {
  public:
-  StokesSolver(const Grid& grid, const DomainParams& domain, const FluidParams& fluid, double dt,
-               double alpha, const SolverParams& solvers, const BoundaryData& boundary_data);
+  StokesSolver(const Grid& grid, const DomainParams& domain, const FluidParams& fluid, double alpha,
+               const SolverParams& solvers, const BoundaryData& boundary_data);
   ~StokesSolver();
   StokesSolver(const StokesSolver&) = delete;
   StokesSolver& operator=(const StokesSolver&) = delete;
 
-  // In: u, v = u^n, p = the warm start (pressure grid). fx, fy: extra dual forcing at velocity
-  // nodes (already integrated against the test functions), or nullptr. Out: u, v = u^{n+1/4}
-  // (boundary data written), p = p^{n+1/4}.
-  StokesReport Solve(const double* fx, const double* fy, double* u, double* v, double* p);
+  // One step of dt. In: u, v = u^n, p = the warm start (pressure grid). fx, fy: extra dual forcing
+  // at velocity nodes (already integrated against the test functions), or nullptr. Out: u, v =
+  // u^{n+1/4} (boundary data written), p = p^{n+1/4}.
+  StokesReport Solve(double dt, const double* fx, const double* fy, double* u, double* v,
+                     double* p);
 
   // Replaces the relative tolerance of the stopping rule (solvers.stokes_tolerance at
   // construction): the viscous coupling tightens it when its outer iteration stalls.
   void set_tolerance(double tolerance) { tolerance_ = tolerance; }
 
-  // sqrt(r.P^-1 r) for r = B(u, v): the residual measure of the stopping rule (for tests).
-  double ResidualNorm(const double* u, const double* v);
+  // sqrt(r.P^-1 r) for r = B(u, v): the residual measure of the stopping rule of a step of dt (for
+  // tests).
+  double ResidualNorm(double dt, const double* u, const double* v);
   // The discrete divergence norm sqrt(sum (B u)^2 / M_p) of (u, v).
   double DivergenceNorm(const double* u, const double* v);
 
@@ -87,22 +92,31 @@ class StokesSolver {
   const FluxControl* flux_control() const { return flux_.get(); }
 
  private:
+  // The operators of a step of dt (header block): (rho/dt) M_l + nu K, the floor of ref and the
+  // flux control's unit responses, built for the dt of the last call and rebuilt when it changes.
+  void PrepareStep(double dt);
   void ApplyPreconditioner(const double* r, double* g);
   double WeightedSquareSum(const double* r) const;  // sum_Q M_p,Q^-1 r_Q^2 over the unknown nodes
   void SolveVelocityPair(const double* fu, const double* fv, double* u, double* v);
-  std::unique_ptr<FluxControl> MakeFluxControl(const DomainParams& domain);
+  std::vector<FluxControl::UnitResponse> UnitResponses() const;
 
   Grid grid_, pgrid_;
   BoundaryTopology vtopo_, ptopo_;
   MeshDiagonals diagonals_;  // of B and B^T (domain.diagonals)
   NodeSet vnodes_, pnodes_;
-  double rho_over_dt_, nu_;
+  double density_, nu_;
   Vec2 body_force_;
   double tolerance_;
-  double reference_floor_ = 0.0;  // the floor of ref (header block)
+  double data_speed_;       // max |u_Gamma| of the data at construction
+  bool polymer_;            // a modelled polymer (not a Newtonian liquid)
+  double polymer_modulus_;  // its G = eta_p / lambda
+  double area_ = 0.0;       // |Omega|: sum of the lumped mass over the distinct nodes
   int max_iterations_;
   const BoundaryData& boundary_data_;
-  SeparableHelmholtz velocity_solver_;            // (rho/dt) M_l + nu K
+  double dt_ = 0.0;  // of the operators below; 0 before the first step
+  double rho_over_dt_ = 0.0;
+  double reference_floor_ = 0.0;                         // the floor of ref (header block)
+  std::unique_ptr<SeparableHelmholtz> velocity_solver_;  // (rho/dt) M_l + nu K
   SeparableHelmholtz pressure_solver_;            // K_p (Neumann: mean-free; Dirichlet on outflow)
   std::vector<double> mass_, pmass_, pmass_inv_;  // pmass_: 0 at known nodes
   std::vector<double> fu_, fv_, ubar_, vbar_, tu_, tv_;  // velocity work

@@ -43,14 +43,15 @@ class VelocityAdvection {
   // (u^{n+1/4} - u^n) / dt. A Solve without a BeginStep since the last one takes that tendency as
   // 0.
   virtual void BeginStep(const double* /*u*/, const double* /*v*/) {}
-  // In: u, v = u^{n+1/4}. Out: u, v = u^{n+2/4}.
-  virtual AdvectionReport Solve(double* u, double* v) = 0;
+  // In: u, v = u^{n+1/4}. Out: u, v = u^{n+2/4} after dt. What depends on dt (the implicit
+  // diffusion's fast solver) is built for the first call's and rebuilt when a call brings another.
+  virtual AdvectionReport Solve(double dt, double* u, double* v) = 0;
   // Writes the scheme's columns of `report` from the result of Solve.
   virtual void Record(const AdvectionReport& result, StepReport& report) const = 0;
 };
 
-// The scheme of params.splitting.advection, with the weight beta of (34) and the run's time step;
-// boundary_data must outlive it.
+// The scheme of params.splitting.advection, with the weight beta of (34); boundary_data must
+// outlive it.
 std::unique_ptr<VelocityAdvection> MakeVelocityAdvection(const Grid& grid, const Params& params,
                                                          const BoundaryData& boundary_data);
 

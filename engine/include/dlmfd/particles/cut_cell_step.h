@@ -42,19 +42,22 @@ class CutCellStep {
   CutCellStep(const CutCellStep&) = delete;
   CutCellStep& operator=(const CutCellStep&) = delete;
 
-  // u, v, p: u^n and the last pressure on entry (the warm start), u^{n+1/4}, p^{n+1/4} on return
-  // with the Dirichlet data of `data` (its time set to t_{n+1}); particles get F_h and T_h.
-  // Throws SolverNotConverged.
-  void Solve(const BoundaryData& data, std::vector<ParticleState>& particles, double* u, double* v,
-             double* p, StepReport& report);
-
-  const CutCellStokes& flow() const { return *flow_; }
+  // A step of dt. u, v, p: u^n and the last pressure on entry (the warm start), u^{n+1/4},
+  // p^{n+1/4} on return with the Dirichlet data of `data` (its time set to t_{n+1}); particles get
+  // F_h and T_h. The saddle point of (rho/dt) is built for the first call's dt and rebuilt when a
+  // call brings another. Throws SolverNotConverged.
+  void Solve(double dt, const BoundaryData& data, std::vector<ParticleState>& particles, double* u,
+             double* v, double* p, StepReport& report);
 
  private:
+  void PrepareStep(double dt);  // flow_ and rho_over_dt_ for a step of dt
+
   std::vector<FixedBody> bodies_;
   std::vector<std::unique_ptr<CutCellGeometry>> geometries_;  // SW-NE, then NW-SE with "both"
-  std::unique_ptr<CutCellStokes> flow_;
-  double rho_over_dt_;
+  DomainParams domain_;
+  double viscosity_;                     // eta of the forms
+  std::unique_ptr<CutCellStokes> flow_;  // of dt_
+  double dt_ = 0.0, rho_over_dt_ = 0.0;  // of the last step; 0 before the first
   Vec2 body_force_;
   Vec2 buoyancy_acceleration_;  // -g: F_h adds rho_L V (-g)
   double fluid_density_;

@@ -2,12 +2,12 @@
 // and the Galerkin start they give (particles/viscous_constraint.h; issue 32).
 //
 // When every particle is fixed, the Schur complement S of the coupled Stokes step (33) is the same
-// operator at every step (the points keep their place against the grid, dt and the Stokes solver
-// do not change), and only the right side g (the mismatch left by the warm start: the polymer
-// stress and the advected velocity change) moves. The directions w_i that the PCG of earlier steps
-// built, with their responses S w_i and the fluid and particle responses that go with them, then
-// span the slow part of the next step's error as well. Before the PCG of a step the correction in
-// their span is the Galerkin one:
+// operator at every step of one dt (the points keep their place against the grid, the Stokes
+// solver does not change; a step of another dt clears the store), and only the right side g (the
+// mismatch left by the warm start: the polymer stress and the advected velocity change) moves. The
+// directions w_i that the PCG of earlier steps built, with their responses S w_i and the fluid and
+// particle responses that go with them, then span the slow part of the next step's error as well.
+// Before the PCG of a step the correction in their span is the Galerkin one:
 //   (W^T S W) a = -W^T g,   nu += W a,   u, p, xi += (responses of W) a,
 // which costs m^2 + m dot products of multiplier size and m updates of fluid size (m stored
 // directions), and no Stokes solve. This is the initial guess of the augmented (recycled) CG for a
@@ -54,6 +54,11 @@ class RecycledDirections {
   static constexpr double kDoublesPerNode = kCapacity * 2.25;
 
   int Count() const { return static_cast<int>(stored_.size()); }
+  // Forgets every direction: S changed (a step of another dt), so their responses no longer hold.
+  void Clear() {
+    stored_.clear();
+    next_ = 0;
+  }
   const Direction& At(int i) const { return stored_[static_cast<std::size_t>(i)]; }
 
   // The coefficients a of the Galerkin start for the mismatch g (multiplier size): (W^T S W) a =

@@ -177,6 +177,7 @@ class ViscousConstraint {
   bool have_warm_ = false;
   bool recycles_ = false;  // RecycledDirections::Used: every particle fixed
   RecycledDirections recycled_;
+  double recycled_dt_ = 0.0;      // the dt of the stored directions' S
   std::vector<char> heavy_free_;  // per particle: free and heavier than the liquid (gets m_e g)
 };
 
