@@ -8,6 +8,7 @@
 #                            # walls at +-H/2 moving at +-G H/2, G = 1) RATIOS="2" (b = a / r)
 #                            # DIFFUSION=2.048 (nu dt / h^2; 32 cells: the case) END=12.5 WORK=runs/jeffery
 #                            # SOLVE=build/solver/dlmfd-solve PYTHON=/usr/bin/python3 THREADS=1
+#                            # SHIFT=0 (the centre moved by SHIFT h along x and y off the node)
 #                            # SETS="--set k=v ..." (every run)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,6 +21,7 @@ HEIGHTS=${HEIGHTS:-2}
 RATIOS=${RATIOS:-2}
 DIFFUSION=${DIFFUSION:-2.048}
 END=${END:-12.5}
+SHIFT=${SHIFT:-0}
 read -r -a EXTRA <<< "${SETS:-}"
 mkdir -p "$WORK"
 for r in $RATIOS; do
@@ -29,16 +31,18 @@ for r in $RATIOS; do
       dt=$(awk -v n="$n" -v d="$DIFFUSION" 'BEGIN { printf "%.17g", d / (4 * n * n) }')  # nu = 4
       b=$(awk -v r="$r" 'BEGIN { printf "%.17g", 0.2 / r }')
       speed=$(awk -v H="$height" 'BEGIN { printf "%.17g", H / 2 }')
-      run="$WORK/r${r}_H${height}_n${n}"
+      x=$(awk -v n="$n" -v f="$SHIFT" 'BEGIN { printf "%.17g", 1 + f / n }')
+      y=$(awk -v n="$n" -v f="$SHIFT" -v H="$height" 'BEGIN { printf "%.17g", H / 2 + f / n }')
+      run="$WORK/r${r}_H${height}_n${n}_s${SHIFT}"
       start=$(date +%s)
       OMP_NUM_THREADS=$THREADS "$SOLVE" cases/shapes/jeffery_orbit.toml --out "$run" --quiet \
         --set domain.h="$h" --set time.dt="$dt" --set time.end="$END" \
-        --set domain.size="[2.0, $height]" --set particles.0.center="[1.0, $(awk -v H="$height" 'BEGIN { print H / 2 }')]" \
+        --set domain.size="[2.0, $height]" --set particles.0.center="[$x, $y]" \
         --set particles.0.semi_axes="[0.2, $b]" \
         --set domain.boundary.bottom.value="[-$speed, 0.0]" \
         --set domain.boundary.top.value="[$speed, 0.0]" "${EXTRA[@]}" > "$run.log" 2>&1 || true
       wall=$(( $(date +%s) - start ))
-      line="r=$r H=$height h=1/$n dt=$dt wall_s=$wall $("$PYTHON" bench/jeffery_orbit.py "$run" --ratio "$r")"
+      line="r=$r H=$height h=1/$n shift=$SHIFT dt=$dt wall_s=$wall $("$PYTHON" bench/jeffery_orbit.py "$run" --ratio "$r")"
       echo "$line"
       echo "$line" >> "$WORK/jeffery.csv"
     done
