@@ -44,6 +44,7 @@ TEST(NumericsPreset, PaperSelectsEveryChoiceOfThePaper) {
   EXPECT_EQ(p.splitting.beta, 0.5);
   EXPECT_EQ(p.splitting.steady_correction, SteadyCorrection::kNone);
   EXPECT_EQ(p.fluid.stress_splitting, StressSplitting::kExplicit);
+  EXPECT_EQ(p.solvers.multiplier_preconditioner, MultiplierPreconditioning::kGram);
   EXPECT_TRUE(p.numerics.resolved.empty());
   // In a Newtonian liquid too: no steady correction.
   const Params newtonian = ParseScene("[numerics]\npreset = \"paper\"\n");
@@ -79,6 +80,7 @@ TEST(NumericsPreset, TheDefaultPresetIsTheMeasuredConfiguration) {
   EXPECT_EQ(p.splitting.beta, d.splitting.beta);
   EXPECT_EQ(p.fluid.stress_splitting, StressSplitting::kDevss);
   EXPECT_EQ(p.fluid.stress_splitting, d.fluid.stress_splitting);
+  EXPECT_EQ(p.solvers.multiplier_preconditioner, d.solvers.multiplier_preconditioner);
   EXPECT_EQ(p.splitting.steady_correction, SteadyCorrection::kNone);  // with a polymer
   EXPECT_EQ(ParseScene("").splitting.steady_correction, SteadyCorrection::kTendency);  // without
 }

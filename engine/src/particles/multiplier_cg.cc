@@ -30,13 +30,17 @@ double Dot(const double* a, const double* b, std::size_t begin, std::size_t end)
 }  // namespace
 
 MultiplierCg::MultiplierCg(const MultiplierPoints& points, std::size_t max_slots,
-                           int max_iterations)
-    : max_iterations_(max_iterations) {
+                           int max_iterations, bool preconditioned)
+    : max_iterations_(max_iterations),
+      preconditioned_(preconditioned),
+      preconditioner_(points.ParticleCount()) {
   const std::size_t n = points.ParticleCount();
   for (auto* a : {&nu_, &g_, &w_, &nub_, &gb_, &scratch_}) a->assign(2 * points.Total(), 0.0);
+  if (preconditioned) gram_g_.assign(2 * points.Total(), 0.0);
   for (auto* a : {&ub_, &vb_, &du_, &dv_}) a->assign(max_slots + 1, 0.0);
   partial_.assign(n, 0.0);
   partial_gg_.assign(n, 0.0);
+  partial_rho_.assign(n, 0.0);
   parallel_ = n >= kParallelParticles;
   velocity_.assign(n, Vec2::Zero());
   velocity_b_.assign(n, Vec2::Zero());
@@ -202,18 +206,51 @@ bool MultiplierCg::WarmStart(const ConstraintOperators& op, double dt,
   return true;
 }
 
+void MultiplierCg::PreconditionOf(const ConstraintOperators& op, std::size_t p, const double* r,
+                                  double* z) {
+  const std::size_t begin = 2 * op.points.Begin(p);
+  if (preconditioned_ && preconditioner_.Factored(p)) {
+    preconditioner_.ApplyOf(op.points, p, r + begin, z + begin);
+  } else {
+    op.points.ApplyProduct(p, r + begin, z + begin);
+  }
+}
+
+void MultiplierCg::Factor(const ConstraintOperators& op, double dt) {
+  if (preconditioner_.Current(op.coupling)) return;
+  const long particles = static_cast<long>(op.points.ParticleCount());
+#pragma omp parallel for schedule(static) if (parallel_)
+  for (long p = 0; p < particles; ++p) {
+    preconditioner_.BuildOf(op.points, op.coupling, op.modes, p, dt);
+  }
+  preconditioner_.MarkBuilt(op.coupling);
+}
+
 int MultiplierCg::Solve(const ConstraintOperators& op, double time, double dt, double threshold,
                         double& gg, double* u, double* v) {
-  std::copy(g_.begin(), g_.end(), w_.begin());
-  ApplyGram(op, w_.data(), nub_.data());
-  // Exact already (w is G-orthogonal to C); keeps round-off out.
+  double rho = gg;  // <g, z>: z = G g, or K g
+  if (preconditioned_) {
+    Factor(op, dt);
+    const long particles = static_cast<long>(op.points.ParticleCount());
+    const std::size_t* offset = op.points.Offsets();
+#pragma omp parallel for schedule(static) if (parallel_)
+    for (long p = 0; p < particles; ++p) {
+      PreconditionOf(op, p, g_.data(), nub_.data());
+      partial_[p] = Dot(g_.data(), nub_.data(), 2 * offset[p], 2 * offset[p + 1]);
+    }
+    rho = 0.0;
+    for (long p = 0; p < particles; ++p) rho += partial_[p];
+  } else {
+    ApplyGram(op, g_.data(), nub_.data());
+  }
+  // Exact already (z is free of net force and torque on a neutral particle); keeps round-off out.
   op.modes.ProjectForces(op.points, nub_.data());
   const std::size_t slots = op.coupling.SlotCount();
   std::fill(du_.begin(), du_.begin() + slots + 1, 0.0);
   std::fill(dv_.begin(), dv_.begin() + slots + 1, 0.0);
   int it = 0;
   double curvature = 0.0;
-  const bool converged_or_stopped = ConjugateGradients(op, dt, threshold, gg, it, &curvature);
+  const bool converged_or_stopped = ConjugateGradients(op, dt, threshold, rho, gg, it, &curvature);
   op.coupling.AddAtSlots(du_.data(), dv_.data(), u, v);
   if (!converged_or_stopped) {
     std::ostringstream what;
@@ -232,7 +269,8 @@ int MultiplierCg::Solve(const ConstraintOperators& op, double time, double dt, d
 }
 
 bool MultiplierCg::ConjugateGradients(const ConstraintOperators& op, double dt, double threshold,
-                                      double& gg, int& iterations, double* curvature_out) {
+                                      double rho, double& gg, int& iterations,
+                                      double* curvature_out) {
   // One parallel region for the whole CG: the loops below are work-shared, and sums are per
   // particle, then over the particles in order (by every thread): the same result for every
   // thread count.
@@ -243,12 +281,14 @@ bool MultiplierCg::ConjugateGradients(const ConstraintOperators& op, double dt, 
   const std::size_t* offset = points.Offsets();
   double* nu = nu_.data();
   double* g = g_.data();
-  double* w = w_.data();
-  double* gw = nub_.data();  // G w
+  double* gw = nub_.data();  // the direction of nu
   double* gb = gb_.data();
-  double* gram_g = scratch_.data();  // G g
+  double* z = scratch_.data();      // G g, or K g
+  double* gram_g = gram_g_.data();  // G g (preconditioned)
   double* partial = partial_.data();
   double* partial_gg = partial_gg_.data();
+  double* partial_rho = partial_rho_.data();
+  const bool preconditioned = preconditioned_;
   double* ub = ub_.data();
   double* vb = vb_.data();
   bool broke_down = false;
@@ -257,7 +297,7 @@ bool MultiplierCg::ConjugateGradients(const ConstraintOperators& op, double dt, 
     // Every thread keeps the CG scalars itself: each sums the per-particle parts in the same order
     // and gets the same values, so the scalars need no extra barrier; the two sums alternate
     // between partial_ and partial_gg_ so that a thread still summing one is never overwritten.
-    double local_gg = gg;
+    double local_gg = gg, local_rho = rho;
     int local_iterations = iterations;
     bool local_broke_down = false;
 #pragma omp for schedule(static)
@@ -277,7 +317,7 @@ bool MultiplierCg::ConjugateGradients(const ConstraintOperators& op, double dt, 
         *curvature_out = curvature;
         break;
       }
-      const double step = local_gg / curvature;
+      const double step = local_rho / curvature;
 #pragma omp for schedule(static) nowait
       for (long p = 0; p < particles; ++p) {
         const std::size_t begin = 2 * offset[p], end = 2 * offset[p + 1];
@@ -285,8 +325,12 @@ bool MultiplierCg::ConjugateGradients(const ConstraintOperators& op, double dt, 
           nu[q] -= step * gw[q];
           g[q] -= step * gb[q];
         }
-        points.ApplyProduct(p, g + begin, gram_g + begin);
-        partial_gg[p] = Dot(g, gram_g, begin, end);
+        PreconditionOf(op, p, g, z);
+        partial_rho[p] = Dot(g, z, begin, end);
+        if (preconditioned) {
+          points.ApplyProduct(p, g + begin, gram_g + begin);
+          partial_gg[p] = Dot(g, gram_g, begin, end);
+        }
         velocity_[p] -= step * velocity_b_[p];
         omega_[p] -= step * omega_b_[p];
       }
@@ -295,19 +339,23 @@ bool MultiplierCg::ConjugateGradients(const ConstraintOperators& op, double dt, 
         du_[slot] -= step * ub_[slot];
         dv_[slot] -= step * vb_[slot];
       }
-      double gg_new = 0.0;
-      for (long p = 0; p < particles; ++p) gg_new += partial_gg[p];
-      const double beta = gg_new / local_gg;
+      double rho_new = 0.0, gg_new = 0.0;
+      for (long p = 0; p < particles; ++p) rho_new += partial_rho[p];
+      if (preconditioned) {
+        for (long p = 0; p < particles; ++p) gg_new += partial_gg[p];
+      } else {
+        gg_new = rho_new;
+      }
+      const double beta = rho_new / local_rho;
+      local_rho = rho_new;
       local_gg = gg_new;
       ++local_iterations;
 #pragma omp for schedule(static)
       for (long p = 0; p < particles; ++p) {
         const std::size_t begin = 2 * offset[p], end = 2 * offset[p + 1];
-        for (std::size_t q = begin; q < end; ++q) {
-          w[q] = g[q] + beta * w[q];
-          gw[q] = gram_g[q] + beta * gw[q];
-        }
-        // Exact already for a neutral particle (w is G-orthogonal to C); keeps round-off out.
+        for (std::size_t q = begin; q < end; ++q) gw[q] = z[q] + beta * gw[q];
+        // Exact already for a neutral particle (z is free of net force and torque); keeps
+        // round-off out.
         if (modes.IsNeutral(p)) modes.ProjectForcesOf(points, p, gw + begin);
         RigidResponseOf(op, p, dt, gw);
       }

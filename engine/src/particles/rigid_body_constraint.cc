@@ -43,7 +43,9 @@ RigidBodyConstraint::RigidBodyConstraint(const Params& params, const Grid& grid)
   }
   modes_ = RigidModes(points_, bodies);
   coupling_ = CouplingOperator(params, grid, points_.Total());
-  cg_ = MultiplierCg(points_, coupling_.MaxSlots(), params.solvers.multiplier_max_iterations);
+  cg_ =
+      MultiplierCg(points_, coupling_.MaxSlots(), params.solvers.multiplier_max_iterations,
+                   params.solvers.multiplier_preconditioner == MultiplierPreconditioning::kBlocks);
   force_sum_.assign(n, Vec2::Zero());
   torque_sum_.assign(n, 0.0);
 }

@@ -199,6 +199,10 @@ void AddSolvers(std::vector<SceneKey<P>>& keys) {
       "solvers.multiplier_max_iterations",
       [](auto& p) -> auto& { return p.solvers.multiplier_max_iterations; }, kRangeAtLeastOne,
       "of the DLM CG (37) and the viscous coupling's PCG"));
+  keys.push_back(FromPreset(ChoiceKey<MultiplierPreconditioning, P>(
+      "solvers.multiplier_preconditioner",
+      [](auto& p) -> auto& { return p.solvers.multiplier_preconditioner; },
+      "DLM CG (37): the product G alone (the paper's), or each particle's block factored")));
 }
 
 void AddParticleMeshAndCollisions(std::vector<SceneKey<P>>& keys) {
@@ -432,12 +436,14 @@ constexpr PresetEntry kPresets[] = {
     {NumericsPreset::kDefault, "fluid.stress_splitting", "devss", PresetLiquid::kAny},
     {NumericsPreset::kDefault, "splitting.steady_correction", "tendency", PresetLiquid::kNewtonian},
     {NumericsPreset::kDefault, "splitting.steady_correction", "none", PresetLiquid::kPolymer},
+    {NumericsPreset::kDefault, "solvers.multiplier_preconditioner", "gram", PresetLiquid::kAny},
     {NumericsPreset::kPaper, "particle_mesh.kind", "ring", PresetLiquid::kAny},
     {NumericsPreset::kPaper, "domain.diagonals", "sw_ne", PresetLiquid::kAny},
     {NumericsPreset::kPaper, "splitting.advection", "least_squares", PresetLiquid::kAny},
     {NumericsPreset::kPaper, "splitting.constraint", "paper", PresetLiquid::kAny},
     {NumericsPreset::kPaper, "fluid.stress_splitting", "explicit", PresetLiquid::kAny},
     {NumericsPreset::kPaper, "splitting.steady_correction", "none", PresetLiquid::kAny},
+    {NumericsPreset::kPaper, "solvers.multiplier_preconditioner", "gram", PresetLiquid::kAny},
 };
 
 }  // namespace

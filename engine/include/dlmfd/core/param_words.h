@@ -101,6 +101,11 @@ struct Words<BoundaryInterpolation> {
       {"biquadratic", BoundaryInterpolation::kBiquadratic}};
 };
 template <>
+struct Words<MultiplierPreconditioning> {
+  static constexpr Word<MultiplierPreconditioning> kAll[] = {
+      {"blocks", MultiplierPreconditioning::kBlocks}, {"gram", MultiplierPreconditioning::kGram}};
+};
+template <>
 struct Words<ConformationForm> {
   static constexpr Word<ConformationForm> kAll[] = {{"A", ConformationForm::kA}};
 };

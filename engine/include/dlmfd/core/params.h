@@ -204,6 +204,8 @@ struct SplittingParams {
   }
 };
 
+enum class MultiplierPreconditioning { kBlocks, kGram };
+
 // Stopping rules and limits of the iterative solvers. The defaults are the loosest level of the
 // work-precision study (docs/evidence/work_precision.md, "Ladders": the tol ladders: 1e-2 ... 1e-8)
 // whose answers differ from the tightest by at most 0.6 % of the discretisation error on all four
@@ -222,6 +224,9 @@ struct SolverParams {
   // failed at step 1; docs/evidence/validation_particles.md, "Creeping flow at a time step set by
   // the motion").
   int multiplier_max_iterations = 2000;
+  // The preconditioner of the DLM CG (37): the product G alone (gram, the paper's CG) or each
+  // particle's block factored (blocks); particles/multiplier_preconditioner.h.
+  MultiplierPreconditioning multiplier_preconditioner = MultiplierPreconditioning::kGram;
 };
 
 enum class Motion { kFree, kFixed, kPrescribed };

@@ -101,6 +101,18 @@ class CouplingOperator {
   // Periodic duplicates of the fluid nodes follow their first node.
   void CopyPeriodicDuplicates(double* u, double* v) const;
 
+  // The entries of E, read by the preconditioner (particles/multiplier_preconditioner.h): stacked
+  // point q has entries StencilBegin(q) .. StencilBegin(q + 1) - 1, each a slot (0: a Dirichlet
+  // node) and a weight; slot s spreads to the points SpreadSource(c) with dt weight / mass
+  // SpreadWeight(c), c in SpreadBegin(s) .. SpreadBegin(s + 1) - 1. Build counts the Builds.
+  std::size_t StencilBegin(std::size_t q) const { return stencil_start_[q]; }
+  std::uint32_t EntrySlot(std::size_t e) const { return stencil_slot_[e]; }
+  double EntryWeight(std::size_t e) const { return stencil_weight_[e]; }
+  std::size_t SpreadBegin(std::size_t s) const { return spread_start_[s]; }
+  std::uint32_t SpreadSource(std::size_t c) const { return spread_source_[c]; }
+  double SpreadWeight(std::size_t c) const { return spread_weight_[c]; }
+  std::uint64_t BuildCount() const { return builds_; }
+
  private:
   // The number of stencil entries of particle p's points (their stencils' sizes).
   std::size_t EntriesOf(const MultiplierPoints& points, std::size_t p) const;

@@ -31,6 +31,7 @@
 #include "dlmfd/core/state.h"
 #include "dlmfd/particles/coupling_operator.h"
 #include "dlmfd/particles/multiplier_points.h"
+#include "dlmfd/particles/multiplier_preconditioner.h"
 #include "dlmfd/particles/rigid_modes.h"
 
 namespace dlmfd {
@@ -51,8 +52,10 @@ class MultiplierCg {
   static constexpr std::size_t kParallelParticles = CouplingOperator::kParallelParticles;
 
   MultiplierCg() = default;
-  // For the stacked points of points and at most max_slots slots of E^T.
-  MultiplierCg(const MultiplierPoints& points, std::size_t max_slots, int max_iterations);
+  // For the stacked points of points and at most max_slots slots of E^T; preconditioned: the
+  // block-Jacobi preconditioner K (particles/multiplier_preconditioner.h) in place of G.
+  MultiplierCg(const MultiplierPoints& points, std::size_t max_slots, int max_iterations,
+               bool preconditioned);
 
   // The iterate at the predictor: (U, omega) = (U*, omega*) of the particles, nu = 0.
   void Start(const std::vector<ParticleState>& particles);
@@ -112,19 +115,27 @@ class MultiplierCg {
   // The iterate takes the last response: u += ub, v += vb, U += Ub, omega += omegab.
   void TakeResponse(const ConstraintOperators& op, double* u, double* v);
   double GramDot(const ConstraintOperators& op, const double* a, const double* b);  // stacked
+  // z = K r (preconditioned) or G r on particle p's block (r, z: stacked arrays).
+  void PreconditionOf(const ConstraintOperators& op, std::size_t p, const double* r, double* z);
+  // K's blocks for this step's E, unless current.
+  void Factor(const ConstraintOperators& op, double dt);
   void ApplyGram(const ConstraintOperators& op, const double* a, double* out) const;
-  // The iterations on (g_, w_, nub_ = G w_); returns false on a breakdown (curvature <= 0) with
-  // the curvature in *curvature_out. Updates nu_, du_, dv_, velocity_, omega_, gg, iterations.
-  bool ConjugateGradients(const ConstraintOperators& op, double dt, double threshold, double& gg,
-                          int& iterations, double* curvature_out);
+  // The iterations on (g_, nub_ = the direction of nu) from rho = <g, z> (z = K g or G g);
+  // returns false on a breakdown (curvature <= 0) with the curvature in *curvature_out. Updates
+  // nu_, du_, dv_, velocity_, omega_, gg, iterations.
+  bool ConjugateGradients(const ConstraintOperators& op, double dt, double threshold, double rho,
+                          double& gg, int& iterations, double* curvature_out);
 
   int max_iterations_ = 0;
   bool parallel_ = false;  // the CG runs on the OpenMP threads (enough particles)
+  bool preconditioned_ = false;
+  MultiplierPreconditioner preconditioner_;
   // Stacked point arrays, 2 per point.
-  std::vector<double> nu_, g_, w_, nub_, gb_, scratch_;
+  std::vector<double> nu_, g_, w_, nub_, gb_, scratch_, gram_g_;
   // Per slot: the fluid response and the accumulated CG update of the fluid velocity.
   std::vector<double> ub_, vb_, du_, dv_;
-  std::vector<double> partial_, partial_gg_;  // per particle: its part of a stacked sum
+  // Per particle: its part of a stacked sum.
+  std::vector<double> partial_, partial_gg_, partial_rho_;
   std::vector<Vec2> velocity_, velocity_b_;
   std::vector<double> omega_, omega_b_;
 };

@@ -49,6 +49,9 @@ class RigidModes {
   void Refresh(const MultiplierPoints& points, std::size_t m) { BuildSet(points, m); }
 
   bool IsNeutral(std::size_t p) const { return neutral_[p] != 0; }
+  // D^-1 of particle p (zeros when its motion is not moved by the forces).
+  double InverseExcessMass(std::size_t p) const { return inv_excess_mass_[p]; }
+  double InverseExcessInertia(std::size_t p) const { return inv_excess_inertia_[p]; }
   bool AnyNeutral() const { return any_neutral_; }
 
   // (sum, torque) = C^T f for the nodal forces f of particle p (f: its block).

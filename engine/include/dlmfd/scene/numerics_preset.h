@@ -9,7 +9,8 @@
 //   "paper": the choices of Singh, Joseph, Hesla, Glowinski and Pan (J. Non-Newtonian Fluid Mech.
 //     91, 2000) at once: the H1 ring mesh of each disk (24), the SW-NE mesh, the least-squares
 //     advection step (34), the constraint only in the DLM step (37) with alpha = beta = 1/2
-//     (gamma = 0), the polymer stress explicit in (33), no steady correction. The paper's case
+//     (gamma = 0), the polymer stress explicit in (33), no steady correction, the DLM CG in the
+//     product G alone. The paper's case
 //     files set it where they must reproduce the paper's numbers, and say so.
 //
 // The struct defaults of core/params.h are the "default" preset's for the particle mesh, the
