@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "../support/max_norms.h"
+#include "../support/periodic_channel.h"
 #include "../support/studied_numerics.h"
 #include "dlmfd/core/simulation.h"
 
@@ -34,13 +35,7 @@ class RateLog : public Observer {
 
 // A channel W = 1 wide (walls left and right), periodic along y with period 0.5, at rest.
 Params PeriodicChannel(double flow_rate) {
-  Params p;
-  testing::UseStudiedNumerics(p);
-  p.domain.size = Vec2(1.0, 0.5);
-  p.domain.h = 1.0 / 16;
-  p.domain.sides[static_cast<int>(Side::kBottom)].type = SideType::kPeriodic;
-  p.domain.sides[static_cast<int>(Side::kTop)].type = SideType::kPeriodic;
-  p.domain.flow_rate = flow_rate;
+  Params p = testing::PeriodicChannel(flow_rate);
   p.fluid.density = 1.0;
   p.fluid.viscosity = 1.0;
   p.time.dt = 0.05;

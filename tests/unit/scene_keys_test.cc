@@ -8,11 +8,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
 
 #include "dlmfd/core/errors.h"
+#include "dlmfd/core/simulation.h"
 #include "dlmfd/scene/scene_file.h"
 
 namespace dlmfd {
@@ -128,8 +130,8 @@ TEST(SceneKeys, EachCrossKeyRuleNamesAKey) {
   for (const SceneKey<ParticleParams>& k : scene::ParticleKeys()) {
     if (!k.rule.empty()) ruled.insert("particles.N." + k.name);
   }
-  EXPECT_EQ(ruled.size(), 23u);  // the entries of kCrossKeyRules
-  for (const char* key : {"domain.size", "time.dt", "output.fields_every", "fluid.mobility",
+  EXPECT_EQ(ruled.size(), 19u);  // the entries of kCrossKeyRules
+  for (const char* key : {"domain.size", "time.dt", "output.fields_every", "fluid.model",
                           "domain.boundary.SIDE.ramp_time", "particles.N.center"}) {
     EXPECT_EQ(ruled.count(key), 1u) << key;
   }
@@ -148,6 +150,110 @@ TEST(SceneKeys, AChoiceNamesItsAllowedWords) {
     } catch (const InvalidParameter& e) {
       EXPECT_EQ(e.key(), k.name);
       for (const std::string& w : k.words) EXPECT_THAT(e.allowed(), ::testing::HasSubstr(w));
+    }
+  }
+}
+
+// A value just outside a key's range, as TOML text ("" where the reader refuses it first).
+std::string JustOutside(const scene::KeyRange& r, bool integer) {
+  const auto number = [integer](double x) {
+    std::ostringstream text;
+    if (integer) {
+      text << static_cast<long>(x);
+    } else {
+      text << std::showpoint << x;
+    }
+    return text.str();
+  };
+  switch (r.kind) {
+    case scene::KeyRange::kFinite:
+      return integer ? "" : "nan";
+    case scene::KeyRange::kPositive:
+    case scene::KeyRange::kHalfOpenUnit:
+      return number(0.0);
+    case scene::KeyRange::kNonNegative:
+      return number(-1.0);
+    case scene::KeyRange::kOpenUnit:
+      return number(1.0);
+    case scene::KeyRange::kAtLeastOne:
+      return number(0.0);
+    case scene::KeyRange::kClosed:
+      return number(r.high + 1.0);
+    case scene::KeyRange::kAbove:
+      return number(r.low);
+    case scene::KeyRange::kAtLeast:
+      return number(r.low - 1.0);
+    case scene::KeyRange::kAny:
+      break;
+  }
+  return "";
+}
+
+// Every range of the scene's keys is the table's: a scene file with a value just outside it is
+// refused naming that key (ValidateScene's RequireSectionKeys), where the key applies.
+TEST(SceneKeys, EachRangeRefusesAValueJustOutsideIt) {
+  const std::string polymer = "relaxation_time = 1.0\nsolvent_ratio = 0.5\n";
+  const std::map<std::string, std::string> where = {
+      {"fluid.mobility", polymer + "model = \"giesekus\"\n"},
+      {"fluid.extensibility", polymer + "model = \"fene_p\"\n"},
+      {"fluid.ptt_epsilon", polymer + "model = \"ptt_linear\"\n"}};
+  int checked = 0;
+  for (const SceneKey<Params>& k : scene::SceneKeys()) {
+    if (k.type == scene::KeyType::kVector) continue;  // finite on reading
+    const std::string value = JustOutside(k.range, k.type == scene::KeyType::kInteger);
+    if (value.empty()) continue;
+    const std::string section = scene::SectionOf(k.name);
+    ASSERT_FALSE(section.empty()) << k.name;
+    const auto extra = where.find(k.name);
+    const std::string text = "[" + section + "]\n" + scene::LeafOf(k.name) + " = " + value + "\n" +
+                             (extra == where.end() ? "" : extra->second);
+    try {
+      ParseScene(text);
+      ADD_FAILURE() << k.name << " = " << value << " accepted";
+    } catch (const InvalidParameter& e) {
+      EXPECT_EQ(e.key(), k.name) << text << e.what();
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 30);
+}
+
+// A model parameter is the table's to require with its model and to refuse without it.
+TEST(SceneKeys, AModelParameterIsRequiredWithItsModelOnly) {
+  const std::string polymer = "[fluid]\nrelaxation_time = 1.0\nsolvent_ratio = 0.5\n";
+  try {
+    ParseScene(polymer + "model = \"fene_p\"\n");
+    ADD_FAILURE() << "fene_p without extensibility accepted";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.key(), "fluid.extensibility");
+    EXPECT_EQ(e.value(), "(absent)");
+    EXPECT_THAT(e.allowed(), ::testing::HasSubstr("> 2"));
+    EXPECT_THAT(e.allowed(), ::testing::HasSubstr("fluid.model = \"fene_p\""));
+  }
+  try {
+    ParseScene(polymer + "ptt_epsilon = 0.1\n");
+    ADD_FAILURE() << "ptt_epsilon with oldroyd_b accepted";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.key(), "fluid.ptt_epsilon");
+    EXPECT_THAT(e.allowed(), ::testing::HasSubstr("absent unless fluid.model"));
+  }
+}
+
+// The engine's own guard (Simulation's constructor) checks the same table for Params built in
+// code: time.end = 0 is refused naming time.end, as the scene validation refuses it.
+TEST(SceneKeys, SimulationChecksTheTimeKeysOfTheTable) {
+  for (const auto& [key, set] : std::vector<std::pair<std::string, void (*)(Params&)>>{
+           {"time.end", [](Params& p) { p.time.end = 0.0; }},
+           {"time.dt", [](Params& p) { p.time.dt = -1.0; }},
+           {"output.fields_every", [](Params& p) { p.output.fields_every = -0.5; }},
+           {"splitting.beta", [](Params& p) { p.splitting.beta = 1.5; }}}) {
+    Params p;
+    set(p);
+    try {
+      Simulation simulation(p);
+      ADD_FAILURE() << key << " accepted";
+    } catch (const InvalidParameter& e) {
+      EXPECT_EQ(e.key(), key);
     }
   }
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "../support/cut_cell_creeping.h"
+#include "../support/periodic_channel.h"
 #include "../support/studied_numerics.h"
 #include "dlmfd/core/state.h"
 #include "dlmfd/fluid/boundary_data.h"
@@ -39,13 +40,7 @@ void Swirl(const Grid& g, std::vector<double>& u, std::vector<double>& v) {
 // A channel periodic along y at a held flow rate, with a polymer: the Stokes step's unit responses
 // and its reference floor depend on dt.
 Params FluxChannel() {
-  Params p;
-  testing::UseStudiedNumerics(p);
-  p.domain.size = Vec2(1.0, 0.5);
-  p.domain.h = 1.0 / 16;
-  p.domain.sides[static_cast<int>(Side::kBottom)].type = SideType::kPeriodic;
-  p.domain.sides[static_cast<int>(Side::kTop)].type = SideType::kPeriodic;
-  p.domain.flow_rate = 0.05;
+  Params p = testing::PeriodicChannel(0.05);
   p.fluid.viscosity = 0.1;
   p.fluid.relaxation_time = 0.1;
   p.fluid.solvent_ratio = 0.5;

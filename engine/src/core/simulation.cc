@@ -39,6 +39,7 @@
 #include "dlmfd/particles/cut_cell_step.h"
 #include "dlmfd/particles/particle_step.h"
 #include "dlmfd/scene/scene_file.h"
+#include "dlmfd/scene/scene_validation.h"
 
 namespace dlmfd {
 namespace {
@@ -47,13 +48,6 @@ using Clock = std::chrono::steady_clock;
 
 double Milliseconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
-// The rules of the time stepping (core/time_stepping.h), which the scene validation applies too.
-void ValidateSupported(const Params& p) {
-  ValidateSplitting(p.splitting, !p.particles.empty());
-  ValidateTimeSteps(p.time);
-  ValidateOutputPeriods(p.time, p.output);
 }
 
 // The settings of step (33)'s solver: with the constraint inside it (splitting.constraint =
@@ -241,7 +235,7 @@ struct Simulation::Impl {
 Simulation::Simulation(const Params& params) {
   Params resolved = params;  // Params built in code runs as the same scene read from a file
   ResolveDefaults(resolved);
-  ValidateSupported(resolved);
+  ValidateTimeStepping(resolved);  // the time loop's own guard, as the scene validation applies it
   if (resolved.threads > 0) omp_set_num_threads(resolved.threads);
   impl_ = std::make_unique<Impl>(resolved);
 }

@@ -50,12 +50,14 @@ SceneKey<Record> RealKey(std::string name, At at, KeyRange range, std::string de
   return k;
 }
 
-// A real that is absent unless given (std::optional<double>).
+// A real that is absent unless given (std::optional<double>); `range` applies when it is given.
 template <typename Record, typename At>
-SceneKey<Record> OptionalRealKey(std::string name, At at, std::string description) {
+SceneKey<Record> OptionalRealKey(std::string name, At at, KeyRange range, std::string description) {
   SceneKey<Record> k;
   k.name = std::move(name);
   k.type = KeyType::kReal;
+  k.range = range;
+  k.optional = true;
   k.default_kind = DefaultKind::kAbsent;
   k.description = std::move(description);
   k.read = [at](TableReader& t, const std::string& leaf, Record& r) {
@@ -151,6 +153,22 @@ SceneKey<Record> Where(SceneKey<Record> k, Applies applies) {
 template <typename Record>
 SceneKey<Record> FromPreset(SceneKey<Record> k) {
   k.default_kind = DefaultKind::kPreset;
+  return k;
+}
+
+// Why the key's range is what it is: the message of a value outside it ends with this.
+template <typename Record>
+SceneKey<Record> Because(SceneKey<Record> k, std::string why) {
+  k.range_why = std::move(why);
+  return k;
+}
+
+// A key of the scene (SceneKeys) that applies only where `applies` holds; `when` is that condition
+// as a message and the docs state it ("fluid.model = \"giesekus\"").
+template <typename Record, typename Applies>
+SceneKey<Record> OnlyWhere(SceneKey<Record> k, Applies applies, std::string when) {
+  k.applies = applies;
+  k.applies_when = std::move(when);
   return k;
 }
 

@@ -28,6 +28,10 @@ std::string RangeText(const KeyRange& r, bool integer) {
       return integer ? "an integer >= 1" : "a number >= 1";
     case KeyRange::kClosed:
       return "a number in [" + ShortText(r.low) + ", " + ShortText(r.high) + "]";
+    case KeyRange::kAbove:
+      return "a finite number > " + ShortText(r.low);
+    case KeyRange::kAtLeast:
+      return "a finite number >= " + ShortText(r.low);
     case KeyRange::kAny:
       break;
   }
@@ -50,6 +54,10 @@ bool InRange(double x, const KeyRange& r) {
       return x >= 1.0;
     case KeyRange::kClosed:
       return x >= r.low && x <= r.high;
+    case KeyRange::kAbove:
+      return x > r.low && std::isfinite(x);
+    case KeyRange::kAtLeast:
+      return x >= r.low && std::isfinite(x);
     case KeyRange::kAny:
       break;
   }
@@ -89,11 +97,25 @@ void RequireInRange(const std::string& key, const KeyValue& value, const KeyRang
   throw InvalidParameter(key, ValueText(value), allowed);
 }
 
-void RequireSectionRanges(const Params& params, const std::string& section) {
+void RequireSectionKeys(const Params& params, const std::string& section) {
   for (const SceneKey<Params>& k : SceneKeys()) {
-    if (SectionOf(k.name) != section || k.range.kind == KeyRange::kAny) continue;
+    if (SectionOf(k.name) != section) continue;
+    const bool given = !k.optional || k.written(params);
+    if (k.applies && !k.applies(params)) {
+      if (!given || !k.optional) continue;
+      throw InvalidParameter(k.name, ValueText(k.get(params)),
+                             "absent unless " + k.applies_when + " (" + k.description +
+                                 ", a parameter of that case only)");
+    }
+    if (!given) {
+      if (k.default_kind != DefaultKind::kRequired) continue;
+      throw InvalidParameter(
+          k.name, "(absent)",
+          RangeText(k.range, false) + " (" + k.range_why + "), required with " + k.applies_when);
+    }
     const bool closed = k.range.kind == KeyRange::kClosed;
-    RequireInRange(k.name, k.get(params), k.range, closed ? k.description : "");
+    const std::string why = !k.range_why.empty() ? k.range_why : closed ? k.description : "";
+    RequireInRange(k.name, k.get(params), k.range, why);
   }
 }
 

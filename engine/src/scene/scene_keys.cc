@@ -2,6 +2,8 @@
 // the writer writes them (scene.toml's text is the one checkpoints compare: do not reorder).
 #include "dlmfd/scene/scene_keys.h"
 
+#include <algorithm>
+
 #include "dlmfd/particles/collocation_points.h"
 #include "dlmfd/scene/auto_coupling.h"
 #include "scene_key_builders.h"
@@ -19,6 +21,7 @@ constexpr KeyRange kRangeNonNegative{KeyRange::kNonNegative};
 constexpr KeyRange kRangeOpenUnit{KeyRange::kOpenUnit};
 constexpr KeyRange kRangeHalfOpenUnit{KeyRange::kHalfOpenUnit};
 constexpr KeyRange kRangeAtLeastOne{KeyRange::kAtLeastOne};
+constexpr KeyRange kRangeUnit{KeyRange::kClosed, 0.0, 1.0};
 
 template <typename Record>
 SceneKey<Record> Derived(SceneKey<Record> k, std::string text,
@@ -60,14 +63,44 @@ void AddTopAndDomain(std::vector<SceneKey<P>>& keys) {
       "domain.diagonals", [](auto& p) -> auto& { return p.domain.diagonals; },
       "which triangles the fluid's forms integrate on: the paper's SW-NE mesh, or the mean over "
       "both diagonals of every square")));
-  keys.push_back(
-      Allowed(OptionalRealKey<P>(
-                  "domain.flow_rate", [](auto& p) -> auto& { return p.domain.flow_rate; },
-                  "volume flux per unit depth along the periodic direction (in a box periodic in "
-                  "both: along x and y), held by a uniform mean pressure gradient "
-                  "(fluid/flux_control.h); absent: none"),
-              "finite in a channel periodic in one direction whose other sides are `wall` or "
-              "`velocity`; 0 in a box periodic in both directions"));
+  keys.push_back(Allowed(
+      OptionalRealKey<P>(
+          "domain.flow_rate", [](auto& p) -> auto& { return p.domain.flow_rate; }, kRangeAny,
+          "volume flux per unit depth along the periodic direction (in a box periodic in "
+          "both: along x and y), held by a uniform mean pressure gradient "
+          "(fluid/flux_control.h); absent: none"),
+      "finite in a channel periodic in one direction whose other sides are `wall` or "
+      "`velocity`; 0 in a box periodic in both directions"));
+}
+
+// The parameters of the constitutive models (conformation/relaxation_model.h): each required with
+// its model and refused with any other.
+void AddModelParameters(std::vector<SceneKey<P>>& keys) {
+  const auto model_is = [](std::vector<ConstitutiveModel> models) {
+    return [models](const P& p) {
+      return std::find(models.begin(), models.end(), p.fluid.model) != models.end();
+    };
+  };
+  keys.push_back(Required(OnlyWhere(
+      Because(OptionalRealKey<P>(
+                  "fluid.mobility", [](auto& p) -> auto& { return p.fluid.mobility; },
+                  KeyRange{KeyRange::kClosed, 0.0, 0.5}, "Giesekus alpha"),
+              "Giesekus alpha; above 0.5 the steady shear stress is not monotone in the shear "
+              "rate"),
+      model_is({ConstitutiveModel::kGiesekus}), "fluid.model = \"giesekus\"")));
+  keys.push_back(Required(OnlyWhere(
+      Because(OptionalRealKey<P>(
+                  "fluid.extensibility", [](auto& p) -> auto& { return p.fluid.extensibility; },
+                  KeyRange{KeyRange::kAbove, 2.0}, "FENE-P L^2"),
+              "FENE-P L^2 with tr A < L^2; the rest state A = I has tr A = 2"),
+      model_is({ConstitutiveModel::kFeneP}), "fluid.model = \"fene_p\"")));
+  keys.push_back(Required(OnlyWhere(
+      Because(OptionalRealKey<P>(
+                  "fluid.ptt_epsilon", [](auto& p) -> auto& { return p.fluid.ptt_epsilon; },
+                  KeyRange{KeyRange::kAtLeast, 0.0}, "PTT epsilon"),
+              "PTT epsilon; 0 is Oldroyd-B"),
+      model_is({ConstitutiveModel::kPttLinear, ConstitutiveModel::kPttExponential}),
+      "fluid.model = \"ptt_linear\" or \"ptt_exponential\"")));
 }
 
 void AddFluid(std::vector<SceneKey<P>>& keys) {
@@ -102,49 +135,39 @@ void AddFluid(std::vector<SceneKey<P>>& keys) {
   keys.push_back(FromPreset(ChoiceKey<StressSplitting, P>(
       "fluid.stress_splitting", [](auto& p) -> auto& { return p.fluid.stress_splitting; },
       "how the polymer stress enters the momentum equation: all explicit, or DEVSS-G")));
-  keys.push_back(Allowed(
-      OptionalRealKey<P>(
-          "fluid.mobility", [](auto& p) -> auto& { return p.fluid.mobility; }, "Giesekus alpha"),
-      "[0, 0.5]; required with `model = \"giesekus\"`, refused otherwise"));
-  keys.push_back(Allowed(OptionalRealKey<P>(
-                             "fluid.extensibility",
-                             [](auto& p) -> auto& { return p.fluid.extensibility; }, "FENE-P L^2"),
-                         "> 2; required with `model = \"fene_p\"`, refused otherwise"));
-  keys.push_back(Allowed(
-      OptionalRealKey<P>(
-          "fluid.ptt_epsilon", [](auto& p) -> auto& { return p.fluid.ptt_epsilon; }, "PTT epsilon"),
-      ">= 0; required with a `ptt_` model, refused otherwise"));
+  AddModelParameters(keys);
 }
 
 void AddTimeAndSplitting(std::vector<SceneKey<P>>& keys) {
+  keys.push_back(Allowed(
+      RealKey<P>(
+          "time.dt", [](auto& p) -> auto& { return p.time.dt; }, kRangePositive, "time step"),
+      "<= `time.end`; at most 2^53 steps"));
+  keys.push_back(Because(RealKey<P>(
+                             "time.end", [](auto& p) -> auto& { return p.time.end; },
+                             kRangePositive, "end time; the run makes round(end / dt) steps"),
+                         "a run to t = 0 makes no step"));
   keys.push_back(
-      Allowed(RealKey<P>(
-                  "time.dt", [](auto& p) -> auto& { return p.time.dt; }, kRangeAny, "time step"),
-              "> 0; <= `time.end`; at most 2^53 steps"));
-  keys.push_back(Allowed(RealKey<P>(
-                             "time.end", [](auto& p) -> auto& { return p.time.end; }, kRangeAny,
-                             "end time; the run makes round(end / dt) steps"),
-                         "> 0"));
-  keys.push_back(
-      Allowed(Derived(RealKey<P>(
+      Because(Derived(RealKey<P>(
                           "splitting.alpha", [](auto& p) -> auto& { return p.splitting.alpha; },
-                          kRangeAny, "viscosity weight of the Stokes step (33)"),
+                          kRangeHalfOpenUnit, "viscosity weight of the Stokes step (33)"),
                       "`1`, or `0.5` with `constraint = \"paper\"`",
                       [](Params& p) {
                         p.splitting.alpha =
                             SplittingParams::DefaultWeights(p.splitting.constraint.value()).alpha;
                       }),
-              "(0, 1]"));
+              "the Stokes step (33) carries viscosity for its fast solver; with alpha = 0 it has "
+              "none"));
   keys.push_back(
       Allowed(Derived(RealKey<P>(
                           "splitting.beta", [](auto& p) -> auto& { return p.splitting.beta; },
-                          kRangeAny, "viscosity weight of the advection step (34)"),
+                          kRangeUnit, "viscosity weight of the advection step (34)"),
                       "`0`, or `0.5` with `constraint = \"paper\"`",
                       [](Params& p) {
                         p.splitting.beta =
                             SplittingParams::DefaultWeights(p.splitting.constraint.value()).beta;
                       }),
-              "[0, 1], alpha + beta = 1; 0 with particles unless `constraint = \"paper\"`"));
+              "alpha + beta = 1; 0 with particles unless `constraint = \"paper\"`"));
   keys.push_back(FromPreset(ChoiceKey<AdvectionScheme, P>(
       "splitting.advection", [](auto& p) -> auto& { return p.splitting.advection; },
       "step (34): the paper's least-squares CG or the explicit wave-like scheme")));
@@ -253,21 +276,21 @@ void AddConformationOutputAccuracy(std::vector<SceneKey<P>>& keys) {
   keys.push_back(RealKey<P>(
       "conformation.blend_kappa", [](auto& p) -> auto& { return p.conformation.blend_kappa; },
       kRangeHalfOpenUnit, "SPD blend: lambda_min(A) >= kappa lambda_min(A_low)"));
-  const char* const kPeriod = "0 or >= `time.end` / 2^53";
+  const char* const kPeriod = "when > 0, at least `time.end` / 2^53";
   keys.push_back(
       Allowed(RealKey<P>(
                   "output.fields_every", [](auto& p) -> auto& { return p.output.fields_every; },
-                  kRangeAny, "simulated time between field snapshots; 0 = none"),
+                  kRangeNonNegative, "simulated time between field snapshots; 0 = none"),
               kPeriod));
   keys.push_back(Allowed(
       RealKey<P>(
           "output.particles_every", [](auto& p) -> auto& { return p.output.particles_every; },
-          kRangeAny, "between records of particles.h5; 0 = every step"),
+          kRangeNonNegative, "between records of particles.h5; 0 = every step"),
       kPeriod));
   keys.push_back(Allowed(
       RealKey<P>(
           "output.checkpoint_every", [](auto& p) -> auto& { return p.output.checkpoint_every; },
-          kRangeAny, "between checkpoints; 0 = none"),
+          kRangeNonNegative, "between checkpoints; 0 = none"),
       kPeriod));
   keys.push_back(
       WrittenWhen(BooleanKey<P>(
@@ -292,11 +315,7 @@ constexpr CrossKeyRule kCrossKeyRules[] = {
     {"fluid.relaxation_time", "ValidateInflowStates (conformation/inflow_state.h)"},
     {"fluid.model", "ValidateConstitutiveModel (conformation/relaxation_model.h)"},
     {"fluid.conformation", "ValidateConstitutiveModel (conformation/relaxation_model.h)"},
-    {"fluid.mobility", "ValidateConstitutiveModel (conformation/relaxation_model.h)"},
-    {"fluid.extensibility", "ValidateConstitutiveModel (conformation/relaxation_model.h)"},
-    {"fluid.ptt_epsilon", "ValidateConstitutiveModel (conformation/relaxation_model.h)"},
     {"time.dt", "ValidateTimeSteps (core/time_stepping.h)"},
-    {"time.end", "ValidateTimeSteps (core/time_stepping.h)"},
     {"splitting.alpha", "ValidateSplitting (core/time_stepping.h)"},
     {"splitting.beta", "ValidateSplitting (core/time_stepping.h)"},
     {"particle_mesh.h", "ValidateRingMesh (scene/scene_validation.cc)"},

@@ -64,7 +64,7 @@ std::string DefaultText(const SceneKey<Record>& k) {
     case DefaultKind::kDerived:
       return k.default_text;
     case DefaultKind::kRequired:
-      return "required";
+      return k.applies_when.empty() ? "required" : "required where it applies";
     case DefaultKind::kAbsent:
       break;
   }
@@ -87,6 +87,10 @@ std::string RangeDocs(const KeyRange& r) {
       return ">= 1";
     case KeyRange::kClosed:
       return "[" + ShortText(r.low) + ", " + ShortText(r.high) + "]";
+    case KeyRange::kAbove:
+      return "> " + ShortText(r.low);
+    case KeyRange::kAtLeast:
+      return ">= " + ShortText(r.low);
     case KeyRange::kAny:
       break;
   }
@@ -102,7 +106,9 @@ std::string AllowedText(const SceneKey<Record>& k) {
   const std::string rule = k.rule.empty() ? "" : "rule: " + k.rule;
   const std::string alias =
       k.alias.empty() ? "" : "also accepted as " + Code(k.alias) + ", not both";
-  for (const std::string& part : {range, alias, k.allowed_note, rule}) {
+  const std::string when =
+      k.applies_when.empty() ? "" : "only with " + Code(k.applies_when) + ", refused otherwise";
+  for (const std::string& part : {range, when, alias, k.allowed_note, rule}) {
     if (!part.empty()) text += (text.empty() ? "" : "; ") + part;
   }
   return text.empty() ? "any" : text;

@@ -96,7 +96,7 @@ void ValidateDomain(const Params& p) {
   if (!(d.size.x() > 0.0 && d.size.y() > 0.0)) {
     throw InvalidParameter("domain.size", VecText(d.size), "two numbers > 0 (width, height)");
   }
-  scene::RequireSectionRanges(p, "domain");
+  scene::RequireSectionKeys(p, "domain");
   const SceneFootprint footprint = EstimateFootprint(p);
   if (!(footprint.velocity_nodes <= kMaxVelocityNodes)) {
     throw InvalidParameter(
@@ -123,16 +123,16 @@ void ValidateDomain(const Params& p) {
   ValidateFlowRate(d);
 }
 
-// The ranges of the tables' keys (scene/scene_keys.h), section by section.
+// The tables' keys (scene/scene_keys.h), section by section.
 void ValidateFluid(const Params& p) {
-  scene::RequireSectionRanges(p, "fluid");
+  scene::RequireSectionKeys(p, "fluid");
   ValidateConstitutiveModel(p.fluid);
 }
 
 void ValidateMeshCollisionsConformation(const Params& p) {
-  scene::RequireSectionRanges(p, "particle_mesh");
-  scene::RequireSectionRanges(p, "collisions");
-  scene::RequireSectionRanges(p, "conformation");
+  scene::RequireSectionKeys(p, "particle_mesh");
+  scene::RequireSectionKeys(p, "collisions");
+  scene::RequireSectionKeys(p, "conformation");
 }
 
 void ValidateParticleRangesAndMeshes(const Params& p) {
@@ -191,11 +191,9 @@ void ValidateAccuracy(const Params& p) {
 void ValidateResolved(const Params& params) {
   ValidateDomain(params);
   ValidateFluid(params);
-  ValidateTimeSteps(params.time);
-  ValidateSplitting(params.splitting, !params.particles.empty());
-  scene::RequireSectionRanges(params, "solvers");
+  ValidateTimeStepping(params);
+  scene::RequireSectionKeys(params, "solvers");
   ValidateMeshCollisionsConformation(params);
-  ValidateOutputPeriods(params.time, params.output);
   ValidateParticleRangesAndMeshes(params);
   const Grid grid = params.domain.VelocityGrid();
   ValidateParticles(params, grid);
@@ -205,6 +203,15 @@ void ValidateResolved(const Params& params) {
 }
 
 }  // namespace
+
+void ValidateTimeStepping(const Params& params) {
+  scene::RequireSectionKeys(params, "time");
+  ValidateTimeSteps(params.time);
+  scene::RequireSectionKeys(params, "splitting");
+  ValidateSplitting(params.splitting, !params.particles.empty());
+  scene::RequireSectionKeys(params, "output");
+  ValidateOutputPeriods(params.time, params.output);
+}
 
 void ValidateScene(const Params& params) {
   Params resolved = params;  // Params built in code is checked as the scene it runs as

@@ -65,9 +65,10 @@ const char* RepresentationName(ConformationRepresentation representation);
 // The model of fluid.model with its parameters (validated: ValidateConstitutiveModel).
 std::unique_ptr<RelaxationModel> MakeRelaxationModel(const FluidParams& fluid);
 
-// The conformation module's scene rule for fluid.model, its parameters and fluid.conformation:
-// each parameter in its range and given only for its model; a non-default model or representation
-// only for a viscoelastic liquid. InvalidParameter names the key and what is allowed.
+// The conformation module's scene rule for fluid.model and fluid.conformation: a non-default model
+// or representation only for a viscoelastic liquid. (Each model parameter's range, and that it is
+// given with its model only, are its scene key's: scene/scene_keys.h.) InvalidParameter names the
+// key and what is allowed.
 void ValidateConstitutiveModel(const FluidParams& fluid);
 
 }  // namespace dlmfd

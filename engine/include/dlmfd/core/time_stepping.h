@@ -48,12 +48,15 @@ inline long SnapshotCount(const TimeParams& time, double every) {
   return every > 0.0 ? OutputPeriod(StepCount(time), time.dt, every) + 1 : 0;
 }
 
-// alpha and beta in [0, 1], gamma = 0, alpha > 0; with particles, beta = 0 unless the constraint
-// coupling is the paper's.
+// The rules between keys, for values already in their ranges (the key table's, scene/scene_keys.h:
+// dt, end > 0; alpha in (0, 1], beta in [0, 1]; periods >= 0). scene::ValidateTimeStepping
+// (scene/scene_validation.h) applies both, for the scene validation and Simulation alike.
+// gamma = 1 - alpha - beta = 0; with particles, beta = 0 unless the constraint coupling is the
+// paper's.
 void ValidateSplitting(const SplittingParams& splitting, bool with_particles);
-// dt > 0, end > 0, dt <= end, end / dt <= kMaxStepCount.
+// dt <= end, end / dt <= kMaxStepCount.
 void ValidateTimeSteps(const TimeParams& time);
-// Each period >= 0 (0: none, or every step for particles), end / period <= kMaxStepCount.
+// end / period <= kMaxStepCount for each period > 0 (0: none, or every step for particles).
 void ValidateOutputPeriods(const TimeParams& time, const OutputParams& output);
 
 }  // namespace dlmfd

@@ -52,10 +52,12 @@ struct KeyRange {
     kOpenUnit,
     kHalfOpenUnit,
     kAtLeastOne,
-    kClosed
+    kClosed,
+    kAbove,   // a finite number > low
+    kAtLeast  // a finite number >= low
   };
   Kind kind = kAny;
-  double low = 0.0;  // kClosed: [low, high]
+  double low = 0.0;  // kClosed: [low, high]; kAbove, kAtLeast: the bound
   double high = 0.0;
 };
 
@@ -70,15 +72,23 @@ struct SceneKey {
   std::string default_text;        // docs, for kDerived: how the default follows the other keys
   std::string allowed_note;        // docs: what is allowed beyond the range and the words
   std::string description;         // one line
+  std::string range_why;           // why the range, after it in the message ("" when evident)
   std::vector<std::string> words;  // kChoice: the allowed words, "auto" first where it is one
+  // A std::optional member the scene may leave out (OptionalRealKey): `written` says whether it
+  // holds a value, and its range applies only when it does.
+  bool optional = false;
   // Sets the member from the key's TOML value (the key is present); `key` is its full dotted name.
   std::function<void(TableReader&, const std::string& leaf, Record&)> read;
   // kChoice: sets the member from a word; throws naming `key` and the allowed words.
   std::function<void(Record&, const std::string& key, const std::string& word)> set_word;
   std::function<KeyValue(const Record&)> get;
   // Whether the key belongs to the record as read so far (null: always). A key given where it
-  // does not apply is unknown there, or refused with `refused` when that is set.
+  // does not apply is unknown there, or refused with `refused` when that is set. A key of the
+  // scene itself (SceneKeys) that has `applies` states its condition in `applies_when`
+  // ("fluid.model = \"giesekus\""): RequireSectionKeys refuses it elsewhere and, when it is
+  // required, asks for it there; docs/scenes.md shows the condition.
   std::function<bool(const Record&)> applies;
+  std::string applies_when;
   std::string refused;
   // Another dotted name of the same top-level key, in a section: "fluid.gravity" (TOML puts a
   // `gravity = ...` line written after [fluid] into that table). A scene gives at most one.
@@ -115,8 +125,10 @@ std::string ValueText(const KeyValue& value);
 void RequireInRange(const std::string& key, const KeyValue& value, const KeyRange& range,
                     const std::string& what = "");
 
-// Every range of the keys of `section` (a section of SceneKeys) that Params holds.
-void RequireSectionRanges(const Params& params, const std::string& section);
+// Every key of `section` (a section of SceneKeys) as its table entry declares it: where it does
+// not apply, absent (else `refused`); where it applies, given if it is required, and in its range
+// (with `range_why` in the message).
+void RequireSectionKeys(const Params& params, const std::string& section);
 // Every range of a particle's keys that apply to it (prefix "particles.N").
 void RequireParticleRanges(const ParticleParams& particle, const std::string& prefix);
 

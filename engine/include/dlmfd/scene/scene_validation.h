@@ -3,7 +3,9 @@
 // admission reject the same scenes; a scene it admits is one the engine's constructors accept.
 //
 // The rules, in the order they are checked (the first broken one is reported):
-// - each key's range (domain.h > 0, fluid.solvent_ratio in (0, 1], ...: docs/scenes.md);
+// - each key as its table entry declares it (scene/scene_keys.h): its range (domain.h > 0,
+//   fluid.solvent_ratio in (0, 1], ...), given where it is required (fluid.mobility with
+//   fluid.model = "giesekus"), absent where it does not apply (docs/scenes.md);
 // - the footprint (scene/scene_footprint.h) within the engine's limits: at most kMaxVelocityNodes
 //   velocity nodes (domain.h) and kMaxMultiplierNodes multiplier nodes (particle_mesh.h);
 // - the mesh: domain.size an even number >= 4 of cells of domain.h in both directions (the
@@ -25,5 +27,10 @@ inline constexpr double kMaxVelocityNodes = 2e7;
 inline constexpr double kMaxMultiplierNodes = 2e7;
 
 void ValidateScene(const Params& params);
+
+// The keys of time, splitting and output: their ranges (the key table, scene/scene_keys.h), then
+// the rules between them (core/time_stepping.h). Part of ValidateScene; Simulation's constructor
+// applies it as the time loop's guard.
+void ValidateTimeStepping(const Params& params);
 
 }  // namespace dlmfd
