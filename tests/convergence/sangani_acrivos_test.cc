@@ -11,6 +11,14 @@
 // The node-centred disk must stay within the largest error of its area fraction over those
 // positions (0.83 % and 2.27 %): a change that moves it outside has moved the boundary's error, not
 // its position's.
+//
+// With cut cells (particle_mesh.kind = "cut_cell", periodic sides; docs/evidence/
+// cut_cell_boundary.md, "Periodic boxes: the square array"): at Phi = 0.3 over the four positions
+// +1.15 to +1.19 % at h = 1/32, +0.29 % at 1/64 (spread 0.04 % and 0.001 %), order 2.00 on the
+// node-centred disk (1.86-2.0 over Phi = 0.1-0.4). The node-centred disk must meet the issue's 1 %
+// at h = 1/64 and converge at order 1.8 at least from h = 1/32 to 1/64 (issue 33's bound): a
+// first-order boundary, or a periodic side treated wrong (an O(1) error that does not converge),
+// fails it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,13 +31,15 @@
 namespace dlmfd {
 namespace {
 
-// K of the square array at area fraction `phi`, the disk node-centred, h = 1/64.
-double SquareArrayDrag(double phi) {
+// K of the square array at area fraction `phi`, the disk node-centred, with the particle mesh
+// `kind` on `cells` cells a side.
+double SquareArrayDrag(double phi, const char* kind = "collocation", int cells = 64) {
   const double diameter = 2.0 * std::sqrt(phi / M_PI);
   Params params = LoadSceneFile(
       std::string(DLMFD_SOURCE_DIR) + "/cases/verification/sangani_acrivos_square_array.toml",
       {{"particles.0.diameter", std::to_string(diameter)},
-       {"particle_mesh.kind", "\"collocation\""},
+       {"domain.h", std::to_string(1.0 / cells)},
+       {"particle_mesh.kind", std::string("\"") + kind + "\""},
        {"domain.diagonals", "\"both\""},
        {"splitting.advection", "\"wave\""},
        {"output.fields_every", "0"},
@@ -58,6 +68,16 @@ TEST(SanganiAcrivos, SquareArrayDragAtPhiPointThree) {
   std::printf("Phi = 0.3: K = %.4f (Sangani & Acrivos 102.90, %+.3f %%)\n", k,
               100.0 * (k / 102.90 - 1.0));
   EXPECT_NEAR(k / 102.90 - 1.0, 0.0, 0.0227);
+}
+
+TEST(SanganiAcrivos, CutCellsAreSecondOrderAndWithinOnePercent) {
+  const double coarse = SquareArrayDrag(0.3, "cut_cell", 32) / 102.90 - 1.0;
+  const double fine = SquareArrayDrag(0.3, "cut_cell", 64) / 102.90 - 1.0;
+  const double order = std::log2(coarse / fine);
+  std::printf("Phi = 0.3, cut cells: %+.3f %% (h = 1/32), %+.3f %% (1/64), order %.2f\n",
+              100.0 * coarse, 100.0 * fine, order);
+  EXPECT_LT(std::abs(fine), 0.01);
+  EXPECT_GT(order, 1.8);
 }
 
 }  // namespace

@@ -247,15 +247,11 @@ const BadScene kBadScenes[] = {
      "[splitting]\nconstraint = \"paper\"\n[[particles]]\ncenter = [0.5, 0.5]\nmotion = "
      "\"fixed\"\n",
      "splitting.beta", "0.5"},
-    {"CutCellWithPeriodicSides",
-     "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nleft = { type = \"periodic\" }\n"
-     "right = { type = \"periodic\" }\ntop = { type = \"outflow\" }\n[[particles]]\n"
+    {"CutCellWithAFlowRate",
+     "[particle_mesh]\nkind = \"cut_cell\"\n[domain]\nflow_rate = 0.5\n[domain.boundary]\n"
+     "left = { type = \"periodic\" }\nright = { type = \"periodic\" }\n[[particles]]\n"
      "center = [0.5, 0.5]\nmotion = \"fixed\"\n",
-     "domain.boundary.left.type", "\"periodic\""},
-    {"CutCellWithoutOutflow",
-     "[particle_mesh]\nkind = \"cut_cell\"\n[[particles]]\ncenter = [0.5, 0.5]\nmotion = "
-     "\"fixed\"\n",
-     "domain.boundary", "(no outflow side)"},
+     "domain.flow_rate", "0.5"},
     {"CollocationSpacingBelowHalf", "[particle_mesh]\nkind = \"collocation\"\nspacing = 0.25\n",
      "particle_mesh.spacing", "0.25"},
     {"CollocationSpacingAboveFour", "[particle_mesh]\nspacing = 5.0\n", "particle_mesh.spacing",

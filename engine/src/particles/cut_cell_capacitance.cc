@@ -33,6 +33,7 @@ CutCellCapacitance::CutCellCapacitance(const SeparableHelmholtz& fast,
   tv_.assign(size, 0.0);
   cu_.assign(size, 0.0);
   cv_.assign(size, 0.0);
+  y_.resize(k, 2);
   // The columns I + C A_0^-1 e_s, two at a time.
   Eigen::MatrixXd capacitance = Eigen::MatrixXd::Identity(k, k);
   for (Eigen::Index j = 0; j < k; j += 2) {
@@ -57,13 +58,12 @@ void CutCellCapacitance::SolvePair(const double* fu, double* u, const double* fv
   std::fill(v, v + n, 0.0);
   fast_.SolvePair(fu, u, fv, v);
   if (rows_.empty()) return;
-  Eigen::MatrixXd y(coupling_.rows(), 2);
-  y.col(0) = coupling_ * Eigen::Map<const Eigen::VectorXd>(u, n);
-  y.col(1) = coupling_ * Eigen::Map<const Eigen::VectorXd>(v, n);
-  y = capacitance_.solve(y);
+  y_.col(0) = coupling_ * Eigen::Map<const Eigen::VectorXd>(u, n);
+  y_.col(1) = coupling_ * Eigen::Map<const Eigen::VectorXd>(v, n);
+  y_ = capacitance_.solve(y_);  // in place: P y, then the two triangular solves
   for (std::size_t s = 0; s < rows_.size(); ++s) {
-    tu_[rows_[s]] = y(static_cast<Eigen::Index>(s), 0);
-    tv_[rows_[s]] = y(static_cast<Eigen::Index>(s), 1);
+    tu_[rows_[s]] = y_(static_cast<Eigen::Index>(s), 0);
+    tv_[rows_[s]] = y_(static_cast<Eigen::Index>(s), 1);
   }
   std::fill(cu_.begin(), cu_.end(), 0.0);
   std::fill(cv_.begin(), cv_.end(), 0.0);

@@ -33,28 +33,47 @@ double TwiceSignedArea(const Vec2& a, const Vec2& b, const Vec2& c) {
   return (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
 }
 
+// A node flag of a periodic mesh set on a node and its repeats alike (either set: both set).
+void SyncPeriodicFlags(const Grid& mesh, CutPeriodicity periodic,
+                       std::vector<unsigned char>& flags) {
+  auto join = [&](std::size_t a, std::size_t b) { flags[a] = flags[b] = flags[a] | flags[b]; };
+  if (periodic.x)
+    for (int j = 0; j <= mesh.ny; ++j) join(mesh.Index(0, j), mesh.Index(mesh.nx, j));
+  if (periodic.y)
+    for (int i = 0; i <= mesh.nx; ++i) join(mesh.Index(i, 0), mesh.Index(i, mesh.ny));
+}
+
 }  // namespace
 
 CutCellGeometry::CutCellGeometry(const Grid& grid, const std::vector<FixedBody>& bodies,
-                                 CutTriangulation triangulation)
+                                 CutTriangulation triangulation, CutPeriodicity periodic)
     : grid_(grid),
-      triangulation_(triangulation) {
+      triangulation_(triangulation),
+      periodic_(periodic) {
   const std::size_t n = grid.NodeCount();
   phi_.assign(n, std::numeric_limits<double>::infinity());
   nearest_.assign(n, -1);
+  // The bodies' periodic images: offsets of -1, 0, 1 box lengths along each periodic axis.
+  std::vector<Vec2> images;
+  for (int a = -1; a <= 1; ++a)
+    for (int c = -1; c <= 1; ++c)
+      if ((a == 0 || periodic.x) && (c == 0 || periodic.y))
+        images.emplace_back(a * grid.Width(), c * grid.Height());
   for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
     const FixedBody& body = bodies[b];
     const double reach = body.shape.BoundingRadius() + 3.0 * grid.h;
-    for (int j = 0; j <= grid.ny; ++j) {
-      for (int i = 0; i <= grid.nx; ++i) {
-        const Vec2 r = Vec2(grid.X(i), grid.Y(j)) - body.centre;
-        // Far nodes: the distance to the bounding circle, a lower bound with the right sign.
-        const double d = r.norm() > reach ? r.norm() - body.shape.BoundingRadius()
-                                          : body.shape.SignedDistance(Rotate(-body.angle, r));
-        const std::size_t k = grid.Index(i, j);
-        if (d < phi_[k]) {
-          phi_[k] = d;
-          nearest_[k] = b;
+    for (const Vec2& offset : images) {
+      for (int j = 0; j <= grid.ny; ++j) {
+        for (int i = 0; i <= grid.nx; ++i) {
+          const Vec2 r = Vec2(grid.X(i), grid.Y(j)) - body.centre - offset;
+          // Far nodes: the distance to the bounding circle, a lower bound with the right sign.
+          const double d = r.norm() > reach ? r.norm() - body.shape.BoundingRadius()
+                                            : body.shape.SignedDistance(Rotate(-body.angle, r));
+          const std::size_t k = grid.Index(i, j);
+          if (d < phi_[k]) {
+            phi_[k] = d;
+            nearest_[k] = b;
+          }
         }
       }
     }
@@ -158,6 +177,8 @@ void CutCellGeometry::ClassifyTriangles() {
   for (int m = 0; m < static_cast<int>(macro_active_.size()); ++m)
     if (macro_active_[m])
       for (int q : MacroNodes(m)) pressure_active_[q] = 1;
+  SyncPeriodicFlags(grid_, periodic_, node_active_);
+  SyncPeriodicFlags(coarse, periodic_, pressure_active_);
 }
 
 void CutCellGeometry::BuildCut(int t) {

@@ -15,10 +15,12 @@ CutCellStep::CutCellStep(const Params& params, const Grid& grid)
   RequireCutCellScene(params);
   for (const ParticleParams& q : params.particles)
     bodies_.push_back({Shape::Of(q), q.center, q.angle});
-  geometries_.push_back(std::make_unique<CutCellGeometry>(grid, bodies_, CutTriangulation::kSwNe));
+  const CutPeriodicity periodic{params.domain.PeriodicX(), params.domain.PeriodicY()};
+  geometries_.push_back(
+      std::make_unique<CutCellGeometry>(grid, bodies_, CutTriangulation::kSwNe, periodic));
   if (params.domain.diagonals == MeshDiagonals::kBoth) {
     geometries_.push_back(
-        std::make_unique<CutCellGeometry>(grid, bodies_, CutTriangulation::kNwSe));
+        std::make_unique<CutCellGeometry>(grid, bodies_, CutTriangulation::kNwSe, periodic));
   }
   fu_.assign(grid.NodeCount(), 0.0);
   fv_.assign(grid.NodeCount(), 0.0);
@@ -57,7 +59,9 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
     ParticleState& s = particles[b];
     const CutCellStokes::BodyLoad load =
         flow_->Load(static_cast<int>(b), s.position, u, v, p, fu_.data(), fv_.data());
-    s.force = load.force + bodies_[b].shape.Mass(fluid_density_) * buoyancy_acceleration_;
+    const Shape& shape = bodies_[b].shape;
+    s.force = load.force + shape.Mass(fluid_density_) * buoyancy_acceleration_ +
+              shape.Area() * body_force_;
     s.torque = load.torque;
     s.velocity = Vec2::Zero();
     s.angular_velocity = 0.0;

@@ -57,10 +57,27 @@ void AddGhostPenalty(const CutCellGeometry& geo, const Grid& mesh, Nodes nodes, 
 }  // namespace
 
 struct CutCellStokes::Impl {
+  // A periodic mesh's node numbering for the forms: a node of the repeated last column (row) of a
+  // periodic pair is its first one's (mesh/boundary_topology.h), so the forms of the elements next
+  // to a periodic side couple across it.
+  struct PeriodicNodes {
+    Grid mesh;
+    bool x, y;
+    int operator()(int node) const {
+      int i = node % mesh.NodesX(), j = node / mesh.NodesX();
+      if (x && i == mesh.nx) i = 0;
+      if (y && j == mesh.ny) j = 0;
+      return static_cast<int>(mesh.Index(i, j));
+    }
+    std::array<int, 3> operator()(const std::array<int, 3>& nodes) const {
+      return {(*this)(nodes[0]), (*this)(nodes[1]), (*this)(nodes[2])};
+    }
+  };
   std::vector<const CutCellGeometry*> geos;  // one triangulation, or both (forms averaged)
   double weight;                             // 1 / geos.size()
   Grid grid, pgrid;
   BoundaryTopology vtopo, ptopo;
+  PeriodicNodes vmap, pmap;  // the forms' node of a velocity (pressure) node
   double eta, rho, rho_over_dt;
   CutCellConstants constants;
   // Full-index forms (velocity nodes n, pressure nodes np).
@@ -115,6 +132,7 @@ struct CutCellStokes::Impl {
                                 std::vector<double>& gu, std::vector<double>& gv) const;
   void Scatter(const Eigen::VectorXd& x, const std::vector<double>& gu,
                const std::vector<double>& gv, double* u, double* v, double* p) const;
+  void RemovePressureMean(Eigen::VectorXd& p) const;
 };
 
 CutCellStokes::Impl::Impl(std::vector<const CutCellGeometry*> g, const DomainParams& domain,
@@ -125,15 +143,19 @@ CutCellStokes::Impl::Impl(std::vector<const CutCellGeometry*> g, const DomainPar
       pgrid(geos[0]->grid().Coarse()),
       vtopo(BoundaryTopology::ForVelocity(domain)),
       ptopo(BoundaryTopology::ForPressure(domain)),
+      vmap{grid, domain.PeriodicX(), domain.PeriodicY()},
+      pmap{pgrid, domain.PeriodicX(), domain.PeriodicY()},
       eta(viscosity),
       rho(density),
       rho_over_dt(rdt),
       constants(c) {
-  if (domain.PeriodicX() || domain.PeriodicY())
-    throw InvalidParameter("domain.sides", "periodic", "no periodic side with a cut-cell boundary");
-  if (ptopo.HasNullSpace())
-    throw InvalidParameter("domain.sides", "no outflow side",
-                           "an outflow side with a cut-cell boundary (it fixes the pressure)");
+  for (const CutCellGeometry* geo : geos)
+    if (geo->periodic().x != domain.PeriodicX() || geo->periodic().y != domain.PeriodicY())
+      throw std::invalid_argument(
+          "CutCellStokes: the geometry's periodic axes are not the domain's");
+  // The capacitance matrix stands on a regular fast solver (the mass term, or a Dirichlet side).
+  if (rho_over_dt == 0.0 && vtopo.HasNullSpace())
+    throw std::invalid_argument("CutCellStokes: a steady problem needs a Dirichlet velocity side");
   const std::size_t n = grid.NodeCount();
   convection.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   AssembleFluidForms();
@@ -167,10 +189,10 @@ void CutCellStokes::Impl::AssembleFluidForms() {
   lumped_mass = Eigen::VectorXd::Zero(n);
   pressure_fluid_mass = Eigen::VectorXd::Zero(np);
   for (const CutCellGeometry* geo : geos) {
-    auto add = [&](int t, const std::array<int, 3>& nodes, const std::array<Vec2, 3>& grads,
+    auto add = [&](int t, const std::array<int, 3>& mesh_nodes, const std::array<Vec2, 3>& grads,
                    double area, const Vec2& centroid, const std::array<double, 3>& mass_rows) {
       const int macro = geo->MacroOf(t);
-      const std::array<int, 3> q = geo->MacroNodes(macro);
+      const std::array<int, 3> nodes = vmap(mesh_nodes), q = pmap(geo->MacroNodes(macro));
       const std::array<double, 3> lam = MacroBasis(*geo, macro, centroid);
       const double wa = weight * area;
       for (int a = 0; a < 3; ++a) {
@@ -216,18 +238,18 @@ void CutCellStokes::Impl::AddChordTerms(const CutCellGeometry& geo, Triplets& ni
     std::array<double, 3> dn{};
     for (int a = 0; a < 3; ++a) dn[a] = c.grads[a].dot(c.normal);
     const int macro = geo.MacroOf(c.triangle);
-    const std::array<int, 3> q = geo.MacroNodes(macro);
+    const std::array<int, 3> q = pmap(geo.MacroNodes(macro)), nodes = vmap(c.nodes);
     for (double s : gauss) {
       const Vec2 xq = c.chord_a + s * (c.chord_b - c.chord_a);
       const std::array<double, 3> phi = Basis(x0, c.grads, xq);
       const std::array<double, 3> lam = MacroBasis(geo, macro, xq);
       for (int a = 0; a < 3; ++a) {
         for (int b = 0; b < 3; ++b) {
-          nit.emplace_back(c.nodes[a], c.nodes[b],
+          nit.emplace_back(nodes[a], nodes[b],
                            w * (-phi[a] * dn[b] - dn[a] * phi[b] +
                                 constants.nitsche / grid.h * phi[a] * phi[b]));
-          cx.emplace_back(q[a], c.nodes[b], w * lam[a] * phi[b] * c.normal.x());
-          cy.emplace_back(q[a], c.nodes[b], w * lam[a] * phi[b] * c.normal.y());
+          cx.emplace_back(q[a], nodes[b], w * lam[a] * phi[b] * c.normal.x());
+          cy.emplace_back(q[a], nodes[b], w * lam[a] * phi[b] * c.normal.y());
         }
       }
     }
@@ -242,12 +264,12 @@ void CutCellStokes::Impl::AssembleChordForms() {
   for (const CutCellGeometry* geo : geos) {
     AddChordTerms(*geo, nit, cx, cy);
     AddGhostPenalty(
-        *geo, grid, [&](int t) { return geo->TriangleNodes(t); },
+        *geo, grid, [&](int t) { return vmap(geo->TriangleNodes(t)); },
         [&](int t) { return geo->TriangleGradients(t); }, [&](int t) { return geo->Active(t); },
         [&](int t) { return geo->State(t) == ElementState::kCut; },
         weight * constants.ghost_velocity * grid.h, gu);
     AddGhostPenalty(
-        *geo, pgrid, [&](int m) { return geo->MacroNodes(m); },
+        *geo, pgrid, [&](int m) { return pmap(geo->MacroNodes(m)); },
         [&](int m) { return geo->MacroGradients(m); }, [&](int m) { return geo->MacroActive(m); },
         [&](int m) { return geo->MacroTouched(m); },
         weight * constants.ghost_pressure * std::pow(pgrid.h, 3), gp);
@@ -338,7 +360,7 @@ Sparse CutCellStokes::Impl::UniformVelocityOperator() const {
   Triplets a;
   for (const CutCellGeometry* geo : geos)
     for (int t = 0; t < geo->TriangleCount(); ++t) {
-      const std::array<int, 3> nodes = geo->TriangleNodes(t);
+      const std::array<int, 3> nodes = vmap(geo->TriangleNodes(t));
       const std::array<Vec2, 3> grads = geo->TriangleGradients(t);
       for (int i = 0; i < 3; ++i) {
         a.emplace_back(nodes[i], nodes[i], weight * rho_over_dt * whole / 3.0);
@@ -440,6 +462,7 @@ GmresResult CutCellStokes::Impl::SolveSchur(const Eigen::VectorXd& rhs, Eigen::V
     return result;
   }
   Eigen::VectorXd u(2 * nu), p = x.tail(npu), w, z, d, sd;
+  RemovePressureMean(p);
   for (int restart = 0; restart < 3; ++restart) {
     SolveVelocity(rhs.head(2 * nu) - bt * p, u);
     Eigen::VectorXd r = b * u + pp * p - rhs.tail(npu);  // -(the continuity residual)
@@ -459,6 +482,7 @@ GmresResult CutCellStokes::Impl::SolveSchur(const Eigen::VectorXd& rhs, Eigen::V
       d = z + (rz_next / rz) * d;
       rz = rz_next;
     }
+    RemovePressureMean(p);
     x.head(2 * nu) = u;
     x.tail(npu) = p;
     result.relative_residual = (rhs - saddle_rows * x).norm() / b_norm;
@@ -504,6 +528,28 @@ void CutCellStokes::Impl::Scatter(const Eigen::VectorXd& x, const std::vector<do
   }
   std::fill(p, p + pgrid.NodeCount(), 0.0);
   for (std::size_t k = 0; k < pnodes.size(); ++k) p[pnodes[k]] = x[2 * nu + static_cast<int>(k)];
+  // The repeats of a periodic pair.
+  for (std::size_t k = 0; k < grid.NodeCount(); ++k) {
+    const auto first = static_cast<std::size_t>(vmap(static_cast<int>(k)));
+    u[k] = u[first];
+    v[k] = v[first];
+  }
+  for (std::size_t k = 0; k < pgrid.NodeCount(); ++k)
+    p[k] = p[static_cast<std::size_t>(pmap(static_cast<int>(k)))];
+}
+
+// Without a Dirichlet pressure side (no outflow side: periodic or closed boxes) p is determined up
+// to a constant, which the forms do not see (B^T 1 = 0: the fluid part's divergence theorem with
+// the chords); the mean over the fluid part, weighted by int_fluid q_Q, is made 0.
+void CutCellStokes::Impl::RemovePressureMean(Eigen::VectorXd& p) const {
+  if (!ptopo.HasNullSpace()) return;
+  double mean = 0.0, area = 0.0;
+  for (std::size_t k = 0; k < pnodes.size(); ++k) {
+    const double w = pressure_fluid_mass[pnodes[k]];
+    mean += w * p[static_cast<Eigen::Index>(k)];
+    area += w;
+  }
+  p.array() -= mean / area;
 }
 
 CutCellStokes::CutCellStokes(const CutCellGeometry& geometry, const DomainParams& domain,
@@ -541,8 +587,9 @@ void CutCellStokes::SetAdvection(const double* wu, const double* wv) {
   if (wu != nullptr) {
     // rho ((w . grad) u, v) with w the P1 interpolant: C_ij = sum_k M_ik w_k . grad phi_j.
     Triplets c;
-    auto add = [&](const std::array<int, 3>& nodes, const std::array<Vec2, 3>& grads,
+    auto add = [&](const std::array<int, 3>& mesh_nodes, const std::array<Vec2, 3>& grads,
                    const std::array<std::array<double, 3>, 3>& mass) {
+      const std::array<int, 3> nodes = m.vmap(mesh_nodes);
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
           double value = 0.0;
@@ -630,7 +677,9 @@ CutCellStokes::BodyLoad CutCellStokes::Load(int body, const Vec2& centre, const 
                       mass * uu[k] - (fu ? fu[k] : 0.0);
     const double rv = m.momentum_rows.row(k).dot(vv) + m.gradient_y_rows.row(k).dot(pp) +
                       mass * vv[k] - (fv ? fv[k] : 0.0);
-    const Vec2 arm = NodePosition(m.grid, static_cast<int>(k)) - centre;
+    Vec2 arm = NodePosition(m.grid, static_cast<int>(k)) - centre;
+    if (m.vmap.x) arm.x() -= m.grid.Width() * std::round(arm.x() / m.grid.Width());  // the image
+    if (m.vmap.y) arm.y() -= m.grid.Height() * std::round(arm.y() / m.grid.Height());
     load.force -= Vec2(ru, rv);
     load.torque -= arm.x() * rv - arm.y() * ru;
   }

@@ -131,21 +131,11 @@ void RequireCutCellScene(const Params& params) {
                                ": the advection step (34) does not see the bodies, so viscosity "
                                "there would leak through them");
   }
-  const char* const names[4] = {"left", "right", "bottom", "top"};
-  bool outflow = false;
-  for (int s = 0; s < 4; ++s) {
-    const SideType type = params.domain.sides[s].type;
-    outflow = outflow || type == SideType::kOutflow;
-    if (type == SideType::kPeriodic) {
-      throw InvalidParameter(std::string("domain.boundary.") + names[s] + ".type", "\"periodic\"",
-                             "\"wall\", \"velocity\" or \"outflow\"" + with +
-                                 " (periodic sides are not supported with cut cells yet)");
-    }
-  }
-  if (!outflow) {
-    throw InvalidParameter("domain.boundary", "(no outflow side)",
-                           "at least one side of type \"outflow\"" + with +
-                               " (it fixes the pressure of the cut-cell step)");
+  if (params.domain.flow_rate) {
+    throw InvalidParameter("domain.flow_rate", ExactText(*params.domain.flow_rate),
+                           "absent" + with +
+                               " (the cut-cell step has no flux control yet: drive the flow by "
+                               "fluid.body_force), or particle_mesh.kind = \"collocation\"");
   }
 }
 

@@ -232,7 +232,7 @@ void AddParticleMeshAndCollisions(std::vector<SceneKey<P>>& keys) {
   keys.push_back(FromPreset(ChoiceKey<ParticleMeshKind, P>(
       "particle_mesh.kind", [](auto& p) -> auto& { return p.particle_mesh.kind; },
       "the multiplier points of (37): the paper's ring mesh, collocation points on the true "
-      "circle, or no multipliers (cut cells, fixed bodies)")));
+      "circle, or no multipliers (cut cells: fixed bodies in a Newtonian liquid, any sides)")));
   SceneKey<P> ring_h = Allowed(
       Derived(RealKey<P>(
                   "particle_mesh.h", [](auto& p) -> auto& { return p.particle_mesh.h; },

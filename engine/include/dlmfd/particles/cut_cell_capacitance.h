@@ -46,6 +46,7 @@ class CutCellCapacitance {
   Eigen::SparseMatrix<double, Eigen::RowMajor> coupling_;  // C: k x n
   Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;       // I_k + C A_0^-1 P
   std::vector<double> zero_, tu_, tv_, cu_, cv_;           // work
+  Eigen::MatrixXd y_;                                      // work: k x 2
 };
 
 }  // namespace dlmfd

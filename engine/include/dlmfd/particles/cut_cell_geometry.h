@@ -23,7 +23,10 @@
 // (i+1, j+1), (i, j+1); on its mirror image, NW-SE, the lower-left (i, j), (i+1, j), (i, j+1) and
 // the upper-right (i+1, j), (i+1, j+1), (i, j+1). The same on the 2h grid, whose macro-triangles
 // are the unions of four h-triangles of the same triangulation.
-// Periodic sides are not supported (the caller refuses them).
+// Periodic sides (CutPeriodicity): the distance is the smallest over the bodies' periodic images,
+// so a body across a periodic side is cut on both sides, and ForEachFace also visits the faces
+// across the periodic sides. Node indices stay those of the grid (the repeated last column or row
+// included); the forms map a repeated node to its first (particles/cut_cell_stokes.h).
 // Reference: Burman, Claus, Hansbo, Larson & Massing, "CutFEM: discretizing geometry and partial
 // differential equations", Int. J. Numer. Methods Eng. 104 (2015) 472-501.
 #pragma once
@@ -46,6 +49,11 @@ struct FixedBody {
 };
 
 enum class ElementState : unsigned char { kFluid, kCut, kSolid };
+// Which axes of the mesh are periodic (the last node column or row repeats the first).
+struct CutPeriodicity {
+  bool x = false;
+  bool y = false;
+};
 enum class CutTriangulation { kSwNe, kNwSe };
 
 struct CutTriangle {
@@ -63,9 +71,11 @@ struct CutTriangle {
 class CutCellGeometry {
  public:
   CutCellGeometry(const Grid& grid, const std::vector<FixedBody>& bodies,
-                  CutTriangulation triangulation = CutTriangulation::kSwNe);
+                  CutTriangulation triangulation = CutTriangulation::kSwNe,
+                  CutPeriodicity periodic = {});
 
   const Grid& grid() const { return grid_; }
+  CutPeriodicity periodic() const { return periodic_; }
   CutTriangulation triangulation() const { return triangulation_; }
   int TriangleCount() const { return 2 * grid_.nx * grid_.ny; }
   // The three velocity nodes of h-triangle t and their P1 gradients.
@@ -77,7 +87,8 @@ class CutCellGeometry {
   std::array<Vec2, 3> MacroGradients(int macro) const;
   // The triangles t (a lower or lower-left one, even) and u (upper or upper-right, odd) of each
   // interior face, its unit normal (any orientation) and length, on this grid's triangulation
-  // (h-mesh) or on the 2h mesh: visits f(t, u, normal, length).
+  // (h-mesh) or on the 2h mesh, the faces across periodic sides included: visits f(t, u, normal,
+  // length).
   template <class Visit>
   void ForEachFace(const Grid& mesh, Visit f) const;
 
@@ -101,6 +112,7 @@ class CutCellGeometry {
 
   Grid grid_;
   CutTriangulation triangulation_;
+  CutPeriodicity periodic_;
   std::vector<double> phi_;
   std::vector<int> nearest_;  // per node: the body of smallest distance
   std::vector<ElementState> state_;
@@ -112,13 +124,17 @@ template <class Visit>
 void CutCellGeometry::ForEachFace(const Grid& mesh, Visit f) const {
   const double s2 = std::sqrt(0.5);
   const bool sw_ne = triangulation_ == CutTriangulation::kSwNe;
+  auto upper = [&](int i, int j) { return 2 * (j * mesh.nx + i) + 1; };
   for (int j = 0; j < mesh.ny; ++j) {
     for (int i = 0; i < mesh.nx; ++i) {
       const int t = 2 * (j * mesh.nx + i);
       f(t, t + 1, sw_ne ? Vec2(s2, -s2) : Vec2(s2, s2), std::sqrt(2.0) * mesh.h);
-      if (j > 0) f(t, 2 * ((j - 1) * mesh.nx + i) + 1, Vec2(0.0, 1.0), mesh.h);
-      if (sw_ne && i + 1 < mesh.nx) f(t, 2 * (j * mesh.nx + i + 1) + 1, Vec2(1.0, 0.0), mesh.h);
-      if (!sw_ne && i > 0) f(t, 2 * (j * mesh.nx + i - 1) + 1, Vec2(1.0, 0.0), mesh.h);
+      if (j > 0) f(t, upper(i, j - 1), Vec2(0.0, 1.0), mesh.h);
+      if (j == 0 && periodic_.y) f(t, upper(i, mesh.ny - 1), Vec2(0.0, 1.0), mesh.h);
+      if (sw_ne && i + 1 < mesh.nx) f(t, upper(i + 1, j), Vec2(1.0, 0.0), mesh.h);
+      if (sw_ne && i + 1 == mesh.nx && periodic_.x) f(t, upper(0, j), Vec2(1.0, 0.0), mesh.h);
+      if (!sw_ne && i > 0) f(t, upper(i - 1, j), Vec2(1.0, 0.0), mesh.h);
+      if (!sw_ne && i == 0 && periodic_.x) f(t, upper(mesh.nx - 1, j), Vec2(1.0, 0.0), mesh.h);
     }
   }
 }

@@ -12,13 +12,16 @@
 // The hydrodynamic force and torque on each body, from the residual of this step's fluid forms
 // with a test function equal to 1 near the body (CutCellStokes::Load; the discrete stress over a
 // closed line in the fluid around it, the fluid's inertia between the line and the body included):
-//   F_h = -sum_i Phi_i R_i - rho_L V g,   T_h = -sum_i Phi_i (x_i - X) x R_i,
+//   F_h = -sum_i Phi_i R_i - rho_L V g + V f,   T_h = -sum_i Phi_i (x_i - X) x R_i,
 // R = (rho/dt) M_l (u^{n+1/4} - u^n) + eta K u^{n+1/4} - B^T p - M_l f. The fluid steps carry no
 // gravity, so -rho_L V g is the hydrostatic buoyancy, as in the DLM force (particles/
-// particle_step.h). With domain.diagonals = "both" every form is the mean over the two
-// triangulations.
-// Report columns: stokes_iterations (Uzawa / CG), stokes_residual (the saddle point's
-// relative residual).
+// particle_step.h); f taken as a mean pressure gradient -grad p_m = f acts on the body's volume
+// too, V f, as the DLM force has it (there f acts on the whole domain, the body's inside
+// included): in a periodic box at steady state F_h = f L^2, the force per body of Sangani &
+// Acrivos. Periodic sides and boxes without an outflow side as in particles/cut_cell_stokes.h (the
+// square array: docs/evidence/cut_cell_boundary.md, "Periodic boxes: the square array"). With
+// domain.diagonals = "both" every form is the mean over the two triangulations. Report columns:
+// stokes_iterations (Uzawa / CG), stokes_residual (the saddle point's relative residual).
 #pragma once
 
 #include <memory>

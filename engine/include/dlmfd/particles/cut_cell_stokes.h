@@ -10,9 +10,12 @@
 // the last two are ghost penalties on the faces of cut h-triangles and cut macro-triangles, which
 // keep small cuts well conditioned; (.,.)_l the lumped mass of the fluid part). The bodies are at
 // rest (boundary value zero). Domain sides as in step (33): Dirichlet data on walls and velocity
-// sides, do-nothing outflow (p = 0 there); periodic sides and domains without an outflow side are
-// refused. The viscous form is eta grad u : grad v, as in the engine's step (33). On one
-// triangulation (the paper's SW-NE) or on both, every form then the mean of the two.
+// sides, do-nothing outflow (p = 0 there), periodic sides periodic (the geometry's periodic axes
+// must be the domain's; the elements next to a periodic side couple across it). Without an outflow
+// side p is fixed by a zero mean over the fluid part (B^T 1 = 0). A steady problem (rho/dt = 0)
+// needs a Dirichlet velocity side (the fast solver is the capacitance matrix's base). The viscous
+// form is eta grad u : grad v, as in the engine's step (33). On one triangulation (the paper's
+// SW-NE) or on both, every form then the mean of the two.
 //
 // Solver. The velocity block A without the Oseen term is solved exactly by its capacitance matrix
 // against the fast solver of (rho/dt) M_l + eta K on the whole uniform grid (particles/

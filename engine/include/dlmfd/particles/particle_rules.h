@@ -10,9 +10,9 @@
 // - The ring mesh (particle_mesh.kind = "ring") is a disk's: other shapes need collocation points.
 // - Cut cells (particle_mesh.kind = "cut_cell", particles/cut_cell_step.h) hold fixed particles
 //   only, in a Newtonian liquid, with all the viscosity in step (33) (splitting.beta = 0: the
-//   advection step (34) does not see the bodies), no periodic side and an outflow side (it fixes
-//   the pressure of the cut-cell saddle point). Moving particles, the polymer and periodic sides
-//   are not supported yet.
+//   advection step (34) does not see the bodies), and without domain.flow_rate (the cut-cell step
+//   has no flux control; a body force drives a periodic box). Periodic sides and boxes without an
+//   outflow side are supported. Moving particles and the polymer are not supported yet.
 // - The velocity grid has at most 2^32 - 1 nodes: E and E^T store 32-bit node indices.
 // - At t = 0 every disk lies inside the domain (crossing periodic sides only) and no two disks
 //   overlap (centre distances by the nearest periodic image).
@@ -37,7 +37,7 @@ void RequireCoupledInStokes(const Params& params, std::size_t p);
 // mesh of particles/particle_mesh.h is built on disks only.
 void RequireRingMeshShape(const Shape& shape, std::size_t p);
 // Throws InvalidParameter (particles.P.motion, fluid.relaxation_time, splitting.beta,
-// domain.boundary) when the scene breaks a cut-cell rule above (particle_mesh.kind = "cut_cell").
+// domain.flow_rate) when the scene breaks a cut-cell rule above (particle_mesh.kind = "cut_cell").
 void RequireCutCellScene(const Params& params);
 // Throws InvalidParameter (domain.h) when `grid` has more nodes than 32-bit indices count.
 void RequireIndexableGrid(const Params& params, const Grid& grid);
