@@ -55,6 +55,7 @@ CouplingOperator::CouplingOperator(const Params& params, const Grid& grid, std::
   spread_weight_.assign(max_slots, 0.0);
   particle_entries_.assign(params.particles.size() + 1, 0);
   crossing_side_.assign(params.particles.size(), -1);
+  inner_inverse_mass_ = InverseNodeMass(grid.nx / 2, grid.ny / 2);
 }
 
 double CouplingOperator::InverseNodeMass(int i, int j) const {
@@ -79,7 +80,9 @@ void CouplingOperator::SetEntry(std::size_t entry, std::size_t point, int i, int
   stencil_point_[entry] = static_cast<std::uint32_t>(point);
   stencil_node_[entry] = static_cast<std::uint32_t>(node);
   stencil_weight_[entry] = weight;
-  stencil_scatter_[entry] = weight * InverseNodeMass(i, j);
+  // Nodes off the sides (nearly all) share one mass; the sides' own rules only where they apply.
+  const bool inner = i > 0 && i < grid_.nx && j > 0 && j < grid_.ny;
+  stencil_scatter_[entry] = weight * (inner ? inner_inverse_mass_ : InverseNodeMass(i, j));
 }
 
 template <class Stencil>
@@ -189,9 +192,11 @@ void CouplingOperator::Build(double time, double dt, const MultiplierPoints& poi
 }
 
 void CouplingOperator::NumberSlotsInOrder(double dt) {
-  // The slots by first entry (a stamped node map), then E^T by a counting sort.
+  // The slots by first entry (a stamped node map), counting each slot's entries in the same pass
+  // (spread_start_[s + 1], zeroed when slot s is numbered), then E^T by a counting sort.
   ++builds_;
   slot_count_ = 0;
+  std::size_t* count = spread_start_.data() + 1;
   for (std::size_t e = 0; e < entries_; ++e) {
     stencil_slot_[e] = 0;
     if (stencil_scatter_[e] == 0.0) continue;
@@ -200,13 +205,13 @@ void CouplingOperator::NumberSlotsInOrder(double dt) {
       stamp_[node] = builds_;
       slot_of_[node] = static_cast<std::uint32_t>(++slot_count_);
       touched_[slot_count_] = node;
+      count[slot_count_] = 0;
     }
-    stencil_slot_[e] = slot_of_[node];
+    const std::uint32_t slot = slot_of_[node];
+    stencil_slot_[e] = slot;
+    ++count[slot];
   }
-  std::fill(spread_start_.begin(), spread_start_.begin() + slot_count_ + 2, 0);
-  for (std::size_t e = 0; e < entries_; ++e) {
-    if (stencil_slot_[e] != 0) ++spread_start_[stencil_slot_[e] + 1];
-  }
+  spread_start_[0] = 0;
   spread_start_[1] = 0;
   for (std::size_t slot = 1; slot <= slot_count_; ++slot)
     spread_start_[slot + 1] += spread_start_[slot];

@@ -146,6 +146,7 @@ class CouplingOperator {
   bool dirichlet_[4] = {};  // by Side
   bool neumann_[4] = {};
   double fluid_density_ = 0.0;
+  double inner_inverse_mass_ = 0.0;  // InverseNodeMass of a node off the sides
   std::size_t max_points_ = 0;
 
   // E, entries stencil_start_[q] .. stencil_start_[q + 1] - 1 of stacked point q (3 or 6): the
