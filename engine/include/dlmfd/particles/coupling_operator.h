@@ -102,10 +102,11 @@ class CouplingOperator {
   void CopyPeriodicDuplicates(double* u, double* v) const;
 
   // The entries of E, read by the preconditioner (particles/multiplier_preconditioner.h): stacked
-  // point q has entries StencilBegin(q) .. StencilBegin(q + 1) - 1, each a slot (0: a Dirichlet
-  // node) and a weight; slot s spreads to the points SpreadSource(c) with dt weight / mass
-  // SpreadWeight(c), c in SpreadBegin(s) .. SpreadBegin(s + 1) - 1. Build counts the Builds.
+  // point q has entries StencilBegin(q) .. StencilBegin(q + 1) - 1, each a fluid node, a slot (0:
+  // a Dirichlet node) and a weight; slot s spreads to the points SpreadSource(c) with dt weight /
+  // mass SpreadWeight(c), c in SpreadBegin(s) .. SpreadBegin(s + 1) - 1. Build counts the Builds.
   std::size_t StencilBegin(std::size_t q) const { return stencil_start_[q]; }
+  std::uint32_t EntryNode(std::size_t e) const { return stencil_node_[e]; }
   std::uint32_t EntrySlot(std::size_t e) const { return stencil_slot_[e]; }
   double EntryWeight(std::size_t e) const { return stencil_weight_[e]; }
   std::size_t SpreadBegin(std::size_t s) const { return spread_start_[s]; }

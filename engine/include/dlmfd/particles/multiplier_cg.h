@@ -99,6 +99,8 @@ class MultiplierCg {
   double AngularVelocity(std::size_t p) const { return omega_[p]; }
   // The stacked nodal forces nu.
   const double* Forces() const { return nu_.data(); }
+  // The block preconditioner (its counts; unused with the product G alone).
+  const MultiplierPreconditioner& Preconditioner() const { return preconditioner_; }
 
  private:
   // The response to nodal forces dir, in three parts: the rigid response (velocity_b_, omega_b_) of

@@ -23,14 +23,24 @@
 // update (the unpreconditioned CG is the CG preconditioned by G); the stopping rule stays
 // <g, g>_G. An isolated particle's block is the whole operator, so the CG takes one iteration to
 // the tolerance (two with round-off); particles that share nodes take a few more.
-// Factorisation: Eigen's SimplicialLDLT (approximate minimum degree ordering) of B_p, once per
-// Build of E (CouplingOperator::BuildCount), per particle on the OpenMP threads from
-// kParallelParticles particles on. B_p is positive definite when the points' stencils are
-// independent; where a pivot is <= 0 (more points than nodes in some stencils) that particle's
-// block of K is G, the unpreconditioned CG's.
-// Cost: the factorisation costs about 10 to 25 unpreconditioned iterations (h = 1/32 to 1/48), so
-// it pays where the CG was dear (a centre in a cell) and not where it was cheap (on a node): opt-in
-// (solvers.multiplier_preconditioner = "blocks") until it is cheaper.
+// Factorisation: Eigen's SimplicialLDLT of B_p in an approximate minimum degree order found on the
+// particle's first factorisation and kept, per particle on the OpenMP threads from
+// kParallelParticles particles on. B_p depends only on the particle's stencils (fluid nodes and
+// weights: the masses are the nodes'), dt and, through the Woodbury term, its points and rigid
+// modes; each Build of E (CouplingOperator::BuildCount) compares them with those of the last
+// factorisation: unchanged (a fixed particle; a second Build at the same positions), the block is
+// kept; the same nodes reached by E^T with other weights (a particle that moved within its
+// stencils' cells), the numeric factorisation alone is redone on the kept symbolic analysis; other
+// nodes (a weight of exactly 0 leaves its node out of E^T), both. Either
+// way K_p is exactly this Build's, so the answer does not depend on what was kept.
+// B_p is positive definite when the points' stencils are independent; where a pivot is <= 0 (more
+// points than nodes in some stencils) that particle's block of K is G, the unpreconditioned CG's.
+// Cost: a factorisation costs about 10 to 25 unpreconditioned iterations (h = 1/32 to 1/48), and a
+// moving particle's weights change every step, so it pays where the CG was dear (a centre in a
+// cell) and not where it was cheap (a quarter cell off; the lagged multiplier of a moving bed):
+// opt-in (solvers.multiplier_preconditioner = "blocks") until it is cheaper
+// (docs/evidence/validation_particles.md, "A multiplier solve whose cost does not depend on
+// sub-grid position").
 // References: Saad, Iterative Methods for Sparse Linear Systems (2003), 10.1 (block Jacobi) and 9.2
 // (the preconditioned CG in a non-Euclidean product); Woodbury (1950).
 #pragma once
@@ -62,9 +72,14 @@ class MultiplierPreconditioner {
     build_ = coupling.BuildCount();
     built_ = true;
   }
-  // Factors particle p's block for this step's E (after CouplingOperator::Build) and dt.
+  // Particle p's block for this step's E (after CouplingOperator::Build) and dt: kept, or factored
+  // again where its stencils, dt or points changed (see the header).
   void BuildOf(const MultiplierPoints& points, const CouplingOperator& coupling,
                const RigidModes& modes, std::size_t p, double dt);
+  // The numeric factorisations of blocks, and the symbolic analyses among them, since construction
+  // (a count for the tests and the measurements).
+  std::uint64_t Factorisations() const;
+  std::uint64_t Analyses() const;
   // Whether particle p's B_p was positive definite (else its block of K is G: the CG as before).
   bool Factored(std::size_t p) const { return blocks_[p].factored; }
   // z = K_p r on particle p's block (r, z: its stacked values, 2 per point).
@@ -72,15 +87,35 @@ class MultiplierPreconditioner {
 
  private:
   struct Block {
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor;
+    // B_p in the order of a minimum-degree permutation found once (on the first factorisation).
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>>
+        factor;
+    std::vector<int> order, point_of;  // point k -> row order[k]; row i -> point point_of[i]
+    std::vector<int> column_start, rows, mark, touched;  // B_p's lower part, compressed; scratch
+    std::vector<double> values, row;
+    // What B_p and the Woodbury term were built from (the stencils' nodes, kNoSlot where E^T
+    // leaves an entry out, and weights, in entry order; dt; the points relative to the centre),
+    // and how often.
+    std::vector<std::uint32_t> nodes;
+    std::vector<double> weights;
+    std::vector<Vec2> points;
+    double dt = 0.0;
+    std::uint64_t factorisations = 0, analyses = 0;
     bool factored = false;        // B_p positive definite
     bool rigid = false;           // heavy or neutral: the Woodbury term
     Eigen::VectorXd one, rx, ry;  // B^-1 of 1, -r_y and r_x (the columns of Y, per component)
     Eigen::Matrix3d t_inverse;    // T^-1
-    Eigen::VectorXd in, out;      // scratch: one component
-    std::vector<Eigen::Triplet<double>> entries;  // scratch: B_p's entries
+    Eigen::MatrixXd in, out;      // scratch: both components, in row order
   };
-  // B_p from E's stencils and E^T's slot lists.
+  // The minimum-degree order of B_p's pattern (from triplets, once per particle).
+  void Order(const MultiplierPoints& points, const CouplingOperator& coupling, std::size_t p,
+             Block& block) const;
+  static constexpr std::uint32_t kNoSlot = 0xffffffffu;
+  // What changed since the block's last factorisation (and records the new stencils, dt, points).
+  enum class Change { kNone, kWeights, kNodes };
+  Change Compare(const MultiplierPoints& points, const CouplingOperator& coupling, std::size_t p,
+                 double dt, Block& block) const;
+  // B_p from E's stencils and E^T's slot lists, in row order, lower part.
   void Assemble(const MultiplierPoints& points, const CouplingOperator& coupling, std::size_t p,
                 Block& block) const;
   void Woodbury(const MultiplierPoints& points, const RigidModes& modes, std::size_t p, double dt,

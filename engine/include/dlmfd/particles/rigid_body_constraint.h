@@ -121,6 +121,7 @@ class RigidBodyConstraint {
   const MultiplierPoints& points() const { return points_; }
   const RigidModes& modes() const { return modes_; }
   const CouplingOperator& coupling() const { return coupling_; }
+  const MultiplierCg& cg() const { return cg_; }
 
   // True for a free particle with rho_d = rho_L (solved by the projected CG).
   bool IsNeutral(std::size_t particle) const { return modes_.IsNeutral(particle); }
