@@ -120,6 +120,22 @@ std::vector<SceneCase> Cases() {
        Disk(0.5, 0.5, 1.5),
        {"particle_mesh.kind=cut_cell"},
        "particles.0.motion"},
+      // What cut cells do not hold yet (particles/particle_rules.h, RequireCutCellScene), and
+      // a fixed disk that they do.
+      {"CutCellFixedDisk", Disk(0.5, 0.5, 1.5, "fixed"), {"particle_mesh.kind=cut_cell"}, ""},
+      {"CutCellWithAPolymer",
+       Disk(0.5, 0.5, 1.5, "fixed"),
+       {"particle_mesh.kind=cut_cell", kOldroydB, kHalfSolvent},
+       "fluid.relaxation_time"},
+      {"CutCellWithViscosityInTheAdvection",
+       Disk(0.5, 0.5, 1.5, "fixed"),
+       {"particle_mesh.kind=cut_cell", "splitting.alpha=0.5", "splitting.beta=0.5"},
+       "splitting.beta"},
+      {"CutCellWithAFlowRate",
+       Disk(0.5, 0.5, 1.5, "fixed"),
+       {"particle_mesh.kind=cut_cell", "domain.boundary.left={ type = \"periodic\" }",
+        "domain.boundary.right={ type = \"periodic\" }", "domain.flow_rate=0.1"},
+       "domain.flow_rate"},
       // The accuracy envelope (scene/accuracy_envelope.h): a warning for both, a rejection for
       // both with accuracy.strict = true.
       // U dt / h = 0.8 > 0.64; D / h = 3.2 < 120.
