@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 #include <utility>
@@ -23,19 +24,27 @@ Params Box(double width, double height, double h, bool periodic_x, bool periodic
   return params;
 }
 
+// n disks of radii 0.02 to 0.1 at random centres in [0, width] x [0, height].
+void RandomDisks(std::mt19937& rng, double width, double height, int n, std::vector<double>& radii,
+                 std::vector<Vec2>& x) {
+  std::uniform_real_distribution<double> ux(0.0, width), uy(0.0, height), ur(0.02, 0.1);
+  radii.resize(n);
+  x.resize(n);
+  for (int i = 0; i < n; ++i) {
+    radii[i] = ur(rng);
+    x[i] = Vec2(ux(rng), uy(rng));
+  }
+}
+
 // Cell lists must find exactly the pairs that all-pairs finds within the cell size.
 void ExpectCellListEqualsAllPairs(bool periodic_x, bool periodic_y) {
   const Params params = Box(2.0, 3.0, 1.0 / 32, periodic_x, periodic_y);
   const Grid grid = params.domain.VelocityGrid();
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> ux(0.0, 2.0), uy(0.0, 3.0), ur(0.02, 0.1);
   const int n = 400;
-  std::vector<double> radii(n);
-  std::vector<Vec2> x(n);
-  for (int i = 0; i < n; ++i) {
-    radii[i] = ur(rng);
-    x[i] = Vec2(ux(rng), uy(rng));
-  }
+  std::vector<double> radii;
+  std::vector<Vec2> x;
+  RandomDisks(rng, 2.0, 3.0, n, radii, x);
   CollisionForces forces(params, grid, radii);
   const double cutoff = forces.CellSize();
   std::set<std::pair<int, int>> cell_pairs, all_pairs;
@@ -133,6 +142,46 @@ TEST(CollisionForces, GapsAreTrueSurfaceGapsBeyondTheCellSize) {
   EXPECT_NEAR(forces.MinGap(x, &first, &second), 0.25, 1e-12);
   EXPECT_EQ(first, 2);
   EXPECT_EQ(second, -1 - static_cast<int>(Side::kLeft));
+}
+
+// The ring search past the neighbouring cells gives the smallest pair gap of every pair, to the
+// bit (the same arithmetic per pair), for sparse particles whose nearest pair lies several cells
+// apart, with walls, periodic sides, and a periodic ring that wraps onto itself.
+void ExpectRingGapEqualsAllPairs(double width, double height, bool periodic_x, bool periodic_y) {
+  const Params params = Box(width, height, 1.0 / 32, periodic_x, periodic_y);
+  const Grid grid = params.domain.VelocityGrid();
+  std::mt19937 rng(11);
+  for (int n : {2, 3, 7, 20}) {
+    for (int trial = 0; trial < 20; ++trial) {
+      std::vector<double> radii;
+      std::vector<Vec2> x;
+      RandomDisks(rng, width, height, n, radii, x);
+      CollisionForces forces(params, grid, radii);
+      double all_pairs = std::numeric_limits<double>::infinity();
+      for (int i = 0; i < n; ++i) {
+        for (int j = i + 1; j < n; ++j) {
+          all_pairs =
+              std::min(all_pairs, forces.MinimumImage(x[i] - x[j]).norm() - radii[i] - radii[j]);
+        }
+      }
+      const CollisionForces::SurfaceGaps gaps = forces.Gaps(x);
+      EXPECT_EQ(gaps.pair, all_pairs) << "n = " << n << ", trial " << trial;
+      ASSERT_GE(gaps.first, 0);
+      EXPECT_EQ(forces.MinimumImage(x[gaps.first] - x[gaps.second]).norm() - radii[gaps.first] -
+                    radii[gaps.second],
+                all_pairs);
+    }
+  }
+}
+
+TEST(CollisionForces, RingGapEqualsAllPairsWithWalls) {
+  ExpectRingGapEqualsAllPairs(2.0, 7.0, false, false);
+}
+TEST(CollisionForces, RingGapEqualsAllPairsPeriodic) {
+  ExpectRingGapEqualsAllPairs(3.0, 2.0, true, true);
+}
+TEST(CollisionForces, RingGapEqualsAllPairsMixed) {
+  ExpectRingGapEqualsAllPairs(0.7, 6.0, true, false);  // 2 periodic cells: the ring wraps
 }
 
 TEST(CollisionForces, GapsWithNothingToMeasureAreNaN) {

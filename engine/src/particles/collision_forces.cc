@@ -124,6 +124,12 @@ int CollisionForces::NeighbourCells(int cx, int cy, int* cells) const {
   return count;
 }
 
+int CollisionForces::RingCount() const {
+  const int x = periodic_x_ ? cells_x_ / 2 : cells_x_ - 1;
+  const int y = periodic_y_ ? cells_y_ / 2 : cells_y_ - 1;
+  return std::max(x, y);
+}
+
 int CollisionForces::Compute(const std::vector<Vec2>& positions, std::vector<Vec2>& forces) {
   const std::size_t n = positions.size();
   for (std::size_t i = 0; i < n; ++i) forces[i].setZero();
@@ -186,16 +192,14 @@ CollisionForces::SurfaceGaps CollisionForces::Gaps(const std::vector<Vec2>& posi
     }
   };
   ForEachNearPair(positions, consider);
-  // A pair outside neighbouring cells has d >= CellSize(), so its gap is >= CellSize() - 2 R_max.
+  // A pair whose cells lie k apart has d >= (k - 1) min(cell_w_, cell_h_) >= (k - 1) CellSize(),
+  // so its gap is at least that less 2 R_max: the rings go on until that reaches the nearest gap.
   double r_max = 0.0;
   for (double r : radii_) r_max = std::max(r_max, r);
-  if (n >= 2 && !(gaps.pair < cell_size_ - 2.0 * r_max)) {
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i + 1; j < n; ++j) {
-        consider(static_cast<int>(i), static_cast<int>(j),
-                 MinimumImage(positions[i] - positions[j]));
-      }
-    }
+  const double cell = std::min(cell_w_, cell_h_);
+  const int rings = n >= 2 ? RingCount() : 0;
+  for (int k = 2; k <= rings && !(gaps.pair <= (k - 1) * cell - 2.0 * r_max); ++k) {
+    ForEachPairInRing(positions, k, consider);
   }
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2& x = positions[i];
@@ -217,12 +221,15 @@ CollisionForces::SurfaceGaps CollisionForces::Gaps(const std::vector<Vec2>& posi
   return gaps;
 }
 
+void CollisionForces::SurfaceGaps::Closest(int* first_out, int* second_out) const {
+  const bool wall_closer = std::isnan(pair) || wall < pair;
+  if (first_out) *first_out = wall_closer ? wall_particle : first;
+  if (second_out) *second_out = wall_closer ? (wall_side >= 0 ? -1 - wall_side : -10) : second;
+}
+
 double CollisionForces::MinGap(const std::vector<Vec2>& positions, int* first, int* second) {
   const SurfaceGaps gaps = Gaps(positions);
-  const bool wall_closer = std::isnan(gaps.pair) || gaps.wall < gaps.pair;
-  if (first) *first = wall_closer ? gaps.wall_particle : gaps.first;
-  if (second)
-    *second = wall_closer ? (gaps.wall_side >= 0 ? -1 - gaps.wall_side : -10) : gaps.second;
+  gaps.Closest(first, second);
   return gaps.Min();
 }
 

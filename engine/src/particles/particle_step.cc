@@ -192,11 +192,11 @@ void ParticleStep::Correct(double dt, std::vector<ParticleState>& particles) {
   }
 }
 
-void ParticleStep::CheckSeparated(double time, const std::vector<ParticleState>& particles) {
+void ParticleStep::CheckSeparated(double time, const std::vector<ParticleState>& particles,
+                                  const CollisionForces::SurfaceGaps& gaps) {
   int first = -10, second = -10;
-  for (std::size_t p = 0; p < particles.size(); ++p) x_[p] = particles[p].position;
-  TurnTo(particles);
-  const double gap = collisions_.MinGap(x_, &first, &second);
+  gaps.Closest(&first, &second);
+  const double gap = gaps.Min();
   if (!(gap < 0.0)) return;  // NaN: nothing to measure
   std::ostringstream what;
   what.precision(10);
@@ -273,7 +273,7 @@ void ParticleStep::Advance(double time, double dt, std::vector<ParticleState>& p
   report.Set("particle_min_gap", gaps.Min());
   report.Set("particle_pair_gap", gaps.pair);
   report.Set("particle_wall_gap", gaps.wall);
-  CheckSeparated(time + dt, particles);
+  CheckSeparated(time + dt, particles, gaps);
 }
 
 std::vector<ParticleState> ParticleStep::InitialStates(const Params& params) {

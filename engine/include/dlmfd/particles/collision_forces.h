@@ -53,9 +53,12 @@ class CollisionForces {
   // their proper distance): over every pair, d - R_i - R_j (minimum
   // image across periodic sides), and over every particle and non-periodic side, the distance to
   // the side minus R_i. The cell lists find the closest pair when it is nearer than
-  // CellSize() - 2 R_max (no pair outside neighbouring cells can be nearer); otherwise every pair
-  // is examined, so the result is never capped. A gap with nothing to measure (fewer than two
-  // particles, or no wall) is NaN, and its indices are -10.
+  // CellSize() - 2 R_max (no pair outside neighbouring cells can be nearer); otherwise the search
+  // goes on ring by ring of cells (cells k apart hold centres at least (k - 1) cells apart) until
+  // no farther ring can hold a nearer pair, so the result is never capped and costs O(N) for a
+  // bed of N particles spread over the domain (every pair was examined before: 29 M instructions a
+  // step for 1,000 disks; docs/evidence/performance.md, "A thousand particles"). A gap with
+  // nothing to measure (fewer than two particles, or no wall) is NaN, and its indices are -10.
   struct SurfaceGaps {
     double pair = 0.0;
     int first = -10, second = -10;  // the closest pair
@@ -63,11 +66,13 @@ class CollisionForces {
     int wall_particle = -10, wall_side = -10;  // the particle closest to a side, and the side
     // The smaller of the two (NaN only when both are).
     double Min() const;
+    // The particles of Min(): *first and *second the particle indices (second = -1 - side index
+    // for a wall, -10 if there was nothing to measure).
+    void Closest(int* first, int* second) const;
   };
   SurfaceGaps Gaps(const std::vector<Vec2>& positions);
 
-  // Gaps(positions).Min(); sets *first and *second to the particle indices (second = -1 - side
-  // index for a wall, -10 if there was nothing to measure).
+  // Gaps(positions).Min(); sets *first and *second as SurfaceGaps::Closest does.
   double MinGap(const std::vector<Vec2>& positions, int* first = nullptr, int* second = nullptr);
 
   // Visits every unordered pair (i < j) whose centres lie in neighbouring cells (a superset of the
@@ -100,6 +105,14 @@ class CollisionForces {
   // Indices of the distinct neighbouring cells of cell (cx, cy), itself included; returns the
   // count.
   int NeighbourCells(int cx, int cy, int* cells) const;
+  // Visits every unordered pair (i < j) whose cells lie k >= 2 cells apart (the larger of the
+  // distances in x and in y, wrapped across periodic sides), from the cells of the last
+  // BuildCells; visit(i, j, delta) as ForEachNearPair's (a pair may come twice when a periodic
+  // ring wraps onto itself).
+  template <class Visit>
+  void ForEachPairInRing(const std::vector<Vec2>& positions, int k, Visit&& visit);
+  // The largest ring k that can hold a pair (every pair lies in some ring 0 .. RingCount()).
+  int RingCount() const;
 
   Grid grid_;
   bool periodic_x_, periodic_y_;
@@ -130,6 +143,39 @@ void CollisionForces::ForEachNearPair(const std::vector<Vec2>& positions, Visit&
             if (j > i) visit(i, j, MinimumImage(positions[i] - positions[j]));
           }
         }
+      }
+    }
+  }
+}
+
+template <class Visit>
+void CollisionForces::ForEachPairInRing(const std::vector<Vec2>& positions, int k, Visit&& visit) {
+  // The ring's cell at (dx, dy) from cell (cx, cy), or -1 off a non-periodic side.
+  auto wrap = [](int c, int count, bool periodic) {
+    if (periodic) return ((c % count) + count) % count;
+    return c >= 0 && c < count ? c : -1;
+  };
+  auto visit_cell = [&](int own, int cx, int cy) {
+    if (cx < 0 || cy < 0) return;
+    for (int i = head_[own]; i >= 0; i = next_[i]) {
+      for (int j = head_[cy * cells_x_ + cx]; j >= 0; j = next_[j]) {
+        if (j > i) visit(i, j, MinimumImage(positions[i] - positions[j]));
+      }
+    }
+  };
+  for (int cy = 0; cy < cells_y_; ++cy) {
+    for (int cx = 0; cx < cells_x_; ++cx) {
+      const int own = cy * cells_x_ + cx;
+      if (head_[own] < 0) continue;
+      for (int d = -k; d <= k; ++d) {  // the bottom and top rows, then the sides between them
+        const int x = wrap(cx + d, cells_x_, periodic_x_);
+        visit_cell(own, x, wrap(cy - k, cells_y_, periodic_y_));
+        visit_cell(own, x, wrap(cy + k, cells_y_, periodic_y_));
+      }
+      for (int d = -k + 1; d <= k - 1; ++d) {
+        const int y = wrap(cy + d, cells_y_, periodic_y_);
+        visit_cell(own, wrap(cx - k, cells_x_, periodic_x_), y);
+        visit_cell(own, wrap(cx + k, cells_x_, periodic_x_), y);
       }
     }
   }

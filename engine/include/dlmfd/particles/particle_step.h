@@ -120,7 +120,10 @@ class ParticleStep {
   // (36) with this gravity on the heavy free particles (zero after a coupled Stokes step).
   void Predict(double dt, const Vec2& gravity, std::vector<ParticleState>& particles);
   void Correct(double dt, std::vector<ParticleState>& particles);
-  void CheckSeparated(double time, const std::vector<ParticleState>& particles);
+  // Throws ParticlesOverlap when the gaps at the particles' positions (Gaps of the step's end)
+  // are negative.
+  void CheckSeparated(double time, const std::vector<ParticleState>& particles,
+                      const CollisionForces::SurfaceGaps& gaps);
   // The collision forces see the particles turned to theta^n + elapsed rate (other shapes than
   // disks only), or to their angles.
   void TurnCollisions(double elapsed, const std::vector<double>& rate);
