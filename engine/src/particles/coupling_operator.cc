@@ -321,20 +321,17 @@ void CouplingOperator::PrefixSumInRegion(std::size_t* a, long n) {
 #pragma omp barrier
 }
 
-void CouplingOperator::Spread(const double* dir, double* ub, double* vb) const {
+void CouplingOperator::Spread(const double* dir, double* uv) const {
   const long slots = static_cast<long>(slot_count_);
   const std::size_t* start = spread_start_.data();
   const std::uint32_t* source = spread_source_.data();
   const double* weight = spread_weight_.data();
 #pragma omp for schedule(static)
   for (long slot = 1; slot <= slots; ++slot) {
-    double su = 0.0, sv = 0.0;
-    for (std::size_t c = start[slot]; c < start[slot + 1]; ++c) {
-      su += weight[c] * dir[2 * source[c]];
-      sv += weight[c] * dir[2 * source[c] + 1];
-    }
-    ub[slot] = su;
-    vb[slot] = sv;
+    ComponentPair sum = {0.0, 0.0};
+    for (std::size_t c = start[slot]; c < start[slot + 1]; ++c)
+      sum += weight[c] * LoadPair(dir + 2 * std::size_t(source[c]));
+    StorePair(uv + 2 * slot, sum);
   }
 }
 

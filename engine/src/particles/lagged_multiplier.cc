@@ -10,9 +10,7 @@ LaggedMultiplier::LaggedMultiplier(const RigidBodyConstraint& constraint,
     : held_(held) {
   const MultiplierPoints& points = constraint.Points();
   stacked_.assign(2 * points.Total(), 0.0);
-  const std::size_t slots = constraint.coupling().MaxSlots() + 1;
-  slot_u_.assign(slots, 0.0);
-  slot_v_.assign(slots, 0.0);
+  slot_uv_.assign(constraint.coupling().SlotFieldSize(), 0.0);
   force_sum_.assign(points.ParticleCount(), Vec2::Zero());
   torque_sum_.assign(points.ParticleCount(), 0.0);
   for (char h : held_) any_held_ = any_held_ || h != 0;
@@ -34,8 +32,8 @@ void LaggedMultiplier::Apply(double time, double dt, RigidBodyConstraint& constr
     }
     constraint.modes().NetForceAndTorque(points, p, block, force_sum_[p], torque_sum_[p]);
   }
-  coupling.Spread(stacked_.data(), slot_u_.data(), slot_v_.data());
-  coupling.AddAtSlots(slot_u_.data(), slot_v_.data(), u, v);
+  coupling.Spread(stacked_.data(), slot_uv_.data());
+  coupling.AddAtSlots(slot_uv_.data(), u, v);
   coupling.CopyPeriodicDuplicates(u, v);
 }
 

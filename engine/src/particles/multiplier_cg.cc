@@ -13,18 +13,17 @@ namespace dlmfd {
 namespace {
 
 // a . b over [begin, end) with four running sums (a fixed order: the same result every time, and
-// no single chain of dependent additions).
+// no single chain of dependent additions), s0 and s1 in one two-lane value, s2 and s3 in another.
 double Dot(const double* a, const double* b, std::size_t begin, std::size_t end) {
-  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  ComponentPair s01 = {0.0, 0.0}, s23 = {0.0, 0.0};
   std::size_t q = begin;
   for (; q + 4 <= end; q += 4) {
-    s0 += a[q] * b[q];
-    s1 += a[q + 1] * b[q + 1];
-    s2 += a[q + 2] * b[q + 2];
-    s3 += a[q + 3] * b[q + 3];
+    s01 += LoadPair(a + q) * LoadPair(b + q);
+    s23 += LoadPair(a + q + 2) * LoadPair(b + q + 2);
   }
+  double s0 = s01[0];
   for (; q < end; ++q) s0 += a[q] * b[q];
-  return (s0 + s1) + (s2 + s3);
+  return (s0 + s01[1]) + (s23[0] + s23[1]);
 }
 
 }  // namespace
@@ -37,7 +36,7 @@ MultiplierCg::MultiplierCg(const MultiplierPoints& points, std::size_t max_slots
   const std::size_t n = points.ParticleCount();
   for (auto* a : {&nu_, &g_, &w_, &nub_, &gb_, &scratch_}) a->assign(2 * points.Total(), 0.0);
   if (preconditioned) gram_g_.assign(2 * points.Total(), 0.0);
-  for (auto* a : {&ub_, &vb_, &du_, &dv_}) a->assign(max_slots + 1, 0.0);
+  for (auto* a : {&uvb_, &duv_}) a->assign(2 * (max_slots + 1), 0.0);
   partial_.assign(n, 0.0);
   partial_gg_.assign(n, 0.0);
   partial_rho_.assign(n, 0.0);
@@ -93,13 +92,12 @@ void MultiplierCg::ResponseMismatchOf(const ConstraintOperators& op, std::size_t
   const CouplingOperator& coupling = op.coupling;
   const std::vector<Vec2>& r = points.Points(p);
   const std::size_t first = points.Begin(p);
-  const double* ub = ub_.data();
-  const double* vb = vb_.data();
+  const double* uvb = uvb_.data();
   double* gb = gb_.data();
   for (int k = 0; k < points.Count(p); ++k) {
     const std::size_t node = first + k;
     double eu, ev;
-    coupling.InterpolateSlots(node, ub, vb, eu, ev);
+    coupling.InterpolateSlots(node, uvb, eu, ev);
     const Vec2 rigid = velocity_b_[p] + omega_b_[p] * RigidModes::Perp(r[k]);
     gb[2 * node] = eu - rigid.x();
     gb[2 * node + 1] = ev - rigid.y();
@@ -113,14 +111,14 @@ void MultiplierCg::Respond(const ConstraintOperators& op, double dt, const doubl
   {
 #pragma omp for schedule(static) nowait
     for (long p = 0; p < particles; ++p) RigidResponseOf(op, p, dt, dir);
-    op.coupling.Spread(dir, ub_.data(), vb_.data());
+    op.coupling.Spread(dir, uvb_.data());
 #pragma omp for schedule(static)
     for (long p = 0; p < particles; ++p) ResponseMismatchOf(op, p);
   }
 }
 
 void MultiplierCg::TakeResponse(const ConstraintOperators& op, double* u, double* v) {
-  op.coupling.AddAtSlots(ub_.data(), vb_.data(), u, v);
+  op.coupling.AddAtSlots(uvb_.data(), u, v);
   for (std::size_t p = 0; p < velocity_.size(); ++p) {
     velocity_[p] += velocity_b_[p];
     omega_[p] += omega_b_[p];
@@ -246,12 +244,11 @@ int MultiplierCg::Solve(const ConstraintOperators& op, double time, double dt, d
   // Exact already (z is free of net force and torque on a neutral particle); keeps round-off out.
   op.modes.ProjectForces(op.points, nub_.data());
   const std::size_t slots = op.coupling.SlotCount();
-  std::fill(du_.begin(), du_.begin() + slots + 1, 0.0);
-  std::fill(dv_.begin(), dv_.begin() + slots + 1, 0.0);
+  std::fill(duv_.begin(), duv_.begin() + 2 * (slots + 1), 0.0);
   int it = 0;
   double curvature = 0.0;
   const bool converged_or_stopped = ConjugateGradients(op, dt, threshold, rho, gg, it, &curvature);
-  op.coupling.AddAtSlots(du_.data(), dv_.data(), u, v);
+  op.coupling.AddAtSlots(duv_.data(), u, v);
   if (!converged_or_stopped) {
     std::ostringstream what;
     what << "DLM multiplier CG (37) broke down at t = " << time << " (curvature " << curvature
@@ -289,8 +286,8 @@ bool MultiplierCg::ConjugateGradients(const ConstraintOperators& op, double dt, 
   double* partial_gg = partial_gg_.data();
   double* partial_rho = partial_rho_.data();
   const bool preconditioned = preconditioned_;
-  double* ub = ub_.data();
-  double* vb = vb_.data();
+  double* uvb = uvb_.data();
+  double* duv = duv_.data();
   bool broke_down = false;
 #pragma omp parallel if (parallel_)
   {
@@ -303,7 +300,7 @@ bool MultiplierCg::ConjugateGradients(const ConstraintOperators& op, double dt, 
 #pragma omp for schedule(static)
     for (long p = 0; p < particles; ++p) RigidResponseOf(op, p, dt, gw);
     while (local_gg > threshold && local_iterations < max_iterations_) {
-      op.coupling.Spread(gw, ub, vb);
+      op.coupling.Spread(gw, uvb);
 #pragma omp for schedule(static)
       for (long p = 0; p < particles; ++p) {
         ResponseMismatchOf(op, p);
@@ -335,10 +332,7 @@ bool MultiplierCg::ConjugateGradients(const ConstraintOperators& op, double dt, 
         omega_[p] -= step * omega_b_[p];
       }
 #pragma omp for schedule(static)
-      for (long slot = 1; slot <= slots; ++slot) {
-        du_[slot] -= step * ub_[slot];
-        dv_[slot] -= step * vb_[slot];
-      }
+      for (long q = 2; q < 2 * (slots + 1); ++q) duv[q] -= step * uvb[q];  // u and v of the slots
       double rho_new = 0.0, gg_new = 0.0;
       for (long p = 0; p < particles; ++p) rho_new += partial_rho[p];
       if (preconditioned) {

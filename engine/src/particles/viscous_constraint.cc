@@ -84,9 +84,7 @@ ViscousConstraint::ViscousConstraint(const Params& params, const Grid& grid)
   const std::size_t n = params.particles.size();
   const std::size_t stacked = 2 * inviscid_.points().Total();
   for (auto* a : {&nu_, &r_, &r_old_, &z_, &d_, &sd_}) a->assign(stacked, 0.0);
-  const std::size_t slots = inviscid_.coupling().MaxSlots() + 1;
-  slot_u_.assign(slots, 0.0);
-  slot_v_.assign(slots, 0.0);
+  slot_uv_.assign(inviscid_.coupling().SlotFieldSize(), 0.0);
   for (auto* a : {&du_, &dv_, &su_, &sv_}) a->assign(grid.NodeCount(), 0.0);
   dp_.assign(grid.Coarse().NodeCount(), 0.0);
   u_in_.assign(grid.NodeCount(), 0.0);
@@ -127,11 +125,11 @@ double ViscousConstraint::MismatchOf(const double* u, const double* v, const std
 int ViscousConstraint::Respond(double dt, const double* dir) {
   const MultiplierPoints& points = inviscid_.points();
   const CouplingOperator& coupling = inviscid_.coupling();
-  coupling.Spread(dir, slot_u_.data(), slot_v_.data());
+  coupling.Spread(dir, slot_uv_.data());
   std::fill(du_.begin(), du_.end(), 0.0);
   std::fill(dv_.begin(), dv_.end(), 0.0);
   std::fill(dp_.begin(), dp_.end(), 0.0);
-  coupling.AddAtSlots(slot_u_.data(), slot_v_.data(), du_.data(), dv_.data());
+  coupling.AddAtSlots(slot_uv_.data(), du_.data(), dv_.data());
   coupling.CopyPeriodicDuplicates(du_.data(), dv_.data());
   const StokesReport r =
       response_solver_->Solve(dt, nullptr, nullptr, du_.data(), dv_.data(), dp_.data());
@@ -183,8 +181,8 @@ StokesReport ViscousConstraint::Start(double dt, bool carry, StokesSolver& stoke
   velocity_ = velocity_in_;
   omega_ = omega_in_;
   if (carry) {
-    coupling.Spread(nu_.data(), slot_u_.data(), slot_v_.data());
-    coupling.AddAtSlots(slot_u_.data(), slot_v_.data(), u, v);
+    coupling.Spread(nu_.data(), slot_uv_.data());
+    coupling.AddAtSlots(slot_uv_.data(), u, v);
     coupling.CopyPeriodicDuplicates(u, v);
     for (std::size_t k = 0; k < points.ParticleCount(); ++k) {
       Vec2 dvel;

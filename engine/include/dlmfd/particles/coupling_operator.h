@@ -15,10 +15,11 @@
 // trapezoid edge factors (1/2 on outflow sides); E^T only reaches fluid nodes that are unknowns
 // (Dirichlet nodes keep their data: their weight / mass is 0). Layout, for a cost per CG iteration
 // proportional to the points: the distinct fluid nodes that E^T reaches get compact slots 1 ..
-// SlotCount() (slot 0 is a slot always zero, the target of the Dirichlet entries), E keeps for
-// every point its stencil (3 to 9 entries from stencil_start_[q]: fluid nodes, slots and weights),
-// and E^T is stored by slot (the transposed list, built by a counting sort once per step, each
-// slot's contributions in increasing stacked point order), so a slot gathers its sum without
+// SlotCount() (slot 0 is a slot always zero, the target of the Dirichlet entries), a field by slot
+// holds u and v side by side (one two-lane load or store per slot: particles/component_pair.h), E
+// keeps for every point its stencil (3 to 9 entries from stencil_start_[q]: fluid nodes, slots and
+// weights), and E^T is stored by slot (the transposed list, built by a counting sort once per step,
+// each slot's contributions in increasing stacked point order), so a slot gathers its sum without
 // atomics and a fluid-sized array is touched only when the response is added to u. Build locates
 // the points particle by particle on the OpenMP threads (each particle's entries at a place fixed
 // by the particles before it), numbers the slots by their first entries and sorts E^T by slot on
@@ -36,6 +37,7 @@
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/params.h"
 #include "dlmfd/core/state.h"
+#include "dlmfd/particles/component_pair.h"
 #include "dlmfd/particles/multiplier_points.h"
 
 namespace dlmfd {
@@ -76,28 +78,27 @@ class CouplingOperator {
     eu = su;
     ev = sv;
   }
-  // The same for a field (ub, vb) given by slot (0 at slot 0).
-  void InterpolateSlots(std::size_t q, const double* ub, const double* vb, double& eu,
-                        double& ev) const {
-    double su = 0.0, sv = 0.0;
-    for (std::size_t e = stencil_start_[q]; e < stencil_start_[q + 1]; ++e) {
-      su += stencil_weight_[e] * ub[stencil_slot_[e]];
-      sv += stencil_weight_[e] * vb[stencil_slot_[e]];
-    }
-    eu = su;
-    ev = sv;
+  // The same for a field given by slot, u and v side by side (uv[2 s], uv[2 s + 1]; 0 at slot 0).
+  void InterpolateSlots(std::size_t q, const double* uv, double& eu, double& ev) const {
+    ComponentPair sum = {0.0, 0.0};
+    for (std::size_t e = stencil_start_[q]; e < stencil_start_[q + 1]; ++e)
+      sum += stencil_weight_[e] * LoadPair(uv + 2 * std::size_t(stencil_slot_[e]));
+    eu = sum[0];
+    ev = sum[1];
   }
-  // (ub, vb) = dt M^-1 E^T dir at every slot (dir: stacked nodal forces). Inside a parallel
-  // region the slots are shared between its threads (an orphaned omp for, static schedule, with
-  // its closing barrier); every thread of the region must call it.
-  void Spread(const double* dir, double* ub, double* vb) const;
-  // u += du, v += dv at the fluid nodes of the slots.
-  void AddAtSlots(const double* du, const double* dv, double* u, double* v) const {
+  // (uv[2 s], uv[2 s + 1]) = dt M^-1 E^T dir at every slot s (dir: stacked nodal forces). Inside a
+  // parallel region the slots are shared between its threads (an orphaned omp for, static
+  // schedule, with its closing barrier); every thread of the region must call it.
+  void Spread(const double* dir, double* uv) const;
+  // u += du, v += dv at the fluid nodes of the slots (duv: by slot, side by side).
+  void AddAtSlots(const double* duv, double* u, double* v) const {
     for (std::size_t s = 1; s <= slot_count_; ++s) {
-      u[touched_[s]] += du[s];
-      v[touched_[s]] += dv[s];
+      u[touched_[s]] += duv[2 * s];
+      v[touched_[s]] += duv[2 * s + 1];
     }
   }
+  // The length of a field by slot (SlotField: both components of every slot up to MaxSlots()).
+  std::size_t SlotFieldSize() const { return 2 * (MaxSlots() + 1); }
   // Periodic duplicates of the fluid nodes follow their first node.
   void CopyPeriodicDuplicates(double* u, double* v) const;
 

@@ -96,8 +96,8 @@ class LaggedMultiplier {
   std::vector<double> stacked_;  // nu^n of every particle, stacked
   std::vector<char> held_;       // per particle: its constraint held on u^{n+1/4}
   bool any_held_ = false;
-  std::vector<double> shift_;  // E u^{n+1/4} at the held particles' points, then the shift
-  std::vector<double> slot_u_, slot_v_;  // the spreading, by slot
+  std::vector<double> shift_;    // E u^{n+1/4} at the held particles' points, then the shift
+  std::vector<double> slot_uv_;  // the spreading, by slot (u and v side by side)
   std::vector<Vec2> force_sum_;
   std::vector<double> torque_sum_;
 };

@@ -29,6 +29,7 @@
 
 #include "dlmfd/core/params.h"
 #include "dlmfd/core/state.h"
+#include "dlmfd/particles/component_pair.h"
 #include "dlmfd/particles/coupling_operator.h"
 #include "dlmfd/particles/multiplier_points.h"
 #include "dlmfd/particles/multiplier_preconditioner.h"
@@ -104,8 +105,8 @@ class MultiplierCg {
 
  private:
   // The response to nodal forces dir, in three parts: the rigid response (velocity_b_, omega_b_) of
-  // particle p; the fluid response (ub_, vb_) = dt M^-1 E^T dir at the slots (CouplingOperator::
-  // Spread); gb_ = P (E ub - Ub - omegab r_perp) at the points of particle p.
+  // particle p; the fluid response uvb_ = dt M^-1 E^T dir at the slots (CouplingOperator::
+  // Spread); gb_ = P (E uvb - Ub - omegab r_perp) at the points of particle p.
   void RigidResponseOf(const ConstraintOperators& op, std::size_t p, double dt, const double* dir);
   void ResponseMismatchOf(const ConstraintOperators& op, std::size_t p);
   void Respond(const ConstraintOperators& op, double dt, const double* dir);  // all three
@@ -124,7 +125,7 @@ class MultiplierCg {
   void ApplyGram(const ConstraintOperators& op, const double* a, double* out) const;
   // The iterations on (g_, nub_ = the direction of nu) from rho = <g, z> (z = K g or G g);
   // returns false on a breakdown (curvature <= 0) with the curvature in *curvature_out. Updates
-  // nu_, du_, dv_, velocity_, omega_, gg, iterations.
+  // nu_, duv_, velocity_, omega_, gg, iterations.
   bool ConjugateGradients(const ConstraintOperators& op, double dt, double threshold, double rho,
                           double& gg, int& iterations, double* curvature_out);
 
@@ -134,8 +135,9 @@ class MultiplierCg {
   MultiplierPreconditioner preconditioner_;
   // Stacked point arrays, 2 per point.
   std::vector<double> nu_, g_, w_, nub_, gb_, scratch_, gram_g_;
-  // Per slot: the fluid response and the accumulated CG update of the fluid velocity.
-  std::vector<double> ub_, vb_, du_, dv_;
+  // Per slot, u and v side by side: the fluid response and the accumulated CG update of the fluid
+  // velocity.
+  std::vector<double> uvb_, duv_;
   // Per particle: its part of a stacked sum.
   std::vector<double> partial_, partial_gg_, partial_rho_;
   std::vector<Vec2> velocity_, velocity_b_;

@@ -169,7 +169,7 @@ class ViscousConstraint {
   // Stacked point vectors (2 per point): nu, residual, previous residual, preconditioned residual,
   // direction, S direction.
   std::vector<double> nu_, r_, r_old_, z_, d_, sd_;
-  std::vector<double> slot_u_, slot_v_;         // dt M^-1 E^T dir at the slots
+  std::vector<double> slot_uv_;  // dt M^-1 E^T dir at the slots (u and v side by side)
   std::vector<double> du_, dv_, dp_, su_, sv_;  // fluid-sized: response, its pressure, scratch
   Vec2 dgradient_ = Vec2::Zero();  // the response's mean pressure gradient (domain.flow_rate)
   std::vector<Vec2> force_sum_;
