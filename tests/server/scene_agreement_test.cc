@@ -121,8 +121,12 @@ std::vector<SceneCase> Cases() {
        {"particle_mesh.kind=cut_cell"},
        "particles.0.motion"},
       // What cut cells do not hold yet (particles/particle_rules.h, RequireCutCellScene), and
-      // a fixed disk that they do.
+      // the fixed and prescribed disks that they do.
       {"CutCellFixedDisk", Disk(0.5, 0.5, 1.5, "fixed"), {"particle_mesh.kind=cut_cell"}, ""},
+      {"CutCellPrescribedDisk",
+       Disk(0.5, 0.5, 1.5, "prescribed"),
+       {"particle_mesh.kind=cut_cell"},
+       ""},
       {"CutCellWithAPolymer",
        Disk(0.5, 0.5, 1.5, "fixed"),
        {"particle_mesh.kind=cut_cell", kOldroydB, kHalfSolvent},

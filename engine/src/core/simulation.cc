@@ -7,9 +7,9 @@
 //   AdvectVelocity (34)     the VelocityAdvection scheme of splitting.advection;
 //   UpdateConformation (35) OldroydBPolymer (conformation module: modulus, A^0, inflow A_L, force);
 //   MoveParticles (36)-(38) ParticleStep (predictor, DLM multiplier, corrector), in place on u.
-// With particle_mesh.kind = "cut_cell" the (fixed) particles are cut out of the mesh instead:
-// step (33) is CutCellStep's (particles/cut_cell_step.h), which also gives their force, and there
-// is no step (36)-(38).
+// With particle_mesh.kind = "cut_cell" the (fixed or prescribed) particles are cut out of the mesh
+// instead: step (33) is CutCellStep's (particles/cut_cell_step.h), which also gives their force
+// and moves the prescribed ones, and there is no step (36)-(38).
 // A step models no more than the scene needs: a Newtonian liquid (relaxation_time = 0 or
 // solvent_ratio = 1) builds no polymer, so no conformation arrays, no force and no step (35); a
 // scene without particles has no step (36)-(38).

@@ -86,6 +86,9 @@ struct CutCellStokes::Impl {
   Eigen::VectorXd pressure_fluid_mass;             // np: int_fluid q_Q
   Sparse div_x, div_y, chord_x, chord_y;           // np x n: -(q, d_c u); <q, u n_c>
   Sparse ghost_p;                                  // np x np
+  // Nitsche's load of the bodies' rigid motion (SetBodyMotion): momentum (n) and continuity (np);
+  // empty for bodies at rest.
+  Eigen::VectorXd boundary_u, boundary_v, boundary_p;
   // Unknowns.
   std::vector<int> vindex, pindex;  // full -> reduced, -1 if not an unknown
   std::vector<int> vnodes, pnodes;  // reduced -> full
@@ -109,6 +112,8 @@ struct CutCellStokes::Impl {
   void AssembleFluidForms();
   void AssembleChordForms();
   void AddChordTerms(const CutCellGeometry& geo, Triplets& nit, Triplets& cx, Triplets& cy) const;
+  void AddChordLoad(const CutCellGeometry& geo, const std::vector<RigidMotion>& motions);
+  Vec2 Arm(const Vec2& x, const Vec2& centre) const;  // x - centre, to the nearest periodic image
   void NumberUnknowns();
   bool ActiveNode(std::size_t k) const {
     for (const CutCellGeometry* geo : geos)
@@ -251,6 +256,41 @@ void CutCellStokes::Impl::AddChordTerms(const CutCellGeometry& geo, Triplets& ni
           cx.emplace_back(q[a], nodes[b], w * lam[a] * phi[b] * c.normal.x());
           cy.emplace_back(q[a], nodes[b], w * lam[a] * phi[b] * c.normal.y());
         }
+      }
+    }
+  }
+}
+
+Vec2 CutCellStokes::Impl::Arm(const Vec2& x, const Vec2& centre) const {
+  Vec2 arm = x - centre;
+  if (vmap.x) arm.x() -= grid.Width() * std::round(arm.x() / grid.Width());
+  if (vmap.y) arm.y() -= grid.Height() * std::round(arm.y() / grid.Height());
+  return arm;
+}
+
+// Nitsche's load of the boundary value g = U + omega x (x - X) on the chords of one triangulation
+// (the same quadrature as AddChordTerms): eta <-d_n phi_a + gamma / h phi_a, g> on the momentum
+// rows and <lambda_a, g . n> on the continuity rows (the saddle point's sign of B).
+void CutCellStokes::Impl::AddChordLoad(const CutCellGeometry& geo,
+                                       const std::vector<RigidMotion>& motions) {
+  const double gauss[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
+  for (const CutTriangle& c : geo.cut_triangles()) {
+    const RigidMotion& body = motions.at(static_cast<std::size_t>(c.body));
+    const Vec2 x0 = NodePosition(grid, c.nodes[0]);
+    const double w = weight * 0.5 * (c.chord_b - c.chord_a).norm();
+    const int macro = geo.MacroOf(c.triangle);
+    const std::array<int, 3> q = pmap(geo.MacroNodes(macro)), nodes = vmap(c.nodes);
+    for (double s : gauss) {
+      const Vec2 xq = c.chord_a + s * (c.chord_b - c.chord_a);
+      const Vec2 g = body.At(Arm(xq, body.centre));
+      const std::array<double, 3> phi = Basis(x0, c.grads, xq);
+      const std::array<double, 3> lam = MacroBasis(geo, macro, xq);
+      for (int a = 0; a < 3; ++a) {
+        const double test =
+            w * eta * (-c.grads[a].dot(c.normal) + constants.nitsche / grid.h * phi[a]);
+        boundary_u[nodes[a]] += test * g.x();
+        boundary_v[nodes[a]] += test * g.y();
+        boundary_p[q[a]] += w * lam[a] * g.dot(c.normal);
       }
     }
   }
@@ -513,6 +553,13 @@ Eigen::VectorXd CutCellStokes::Impl::RightHandSide(const BoundaryData& data, con
     rhs[nu + k] = (fv ? fv[vnodes[k]] : 0.0) - av[vnodes[k]];
   }
   for (int k = 0; k < npu; ++k) rhs[2 * nu + k] = -bu[pnodes[k]];
+  if (boundary_u.size() > 0) {
+    for (int k = 0; k < nu; ++k) {
+      rhs[k] += boundary_u[vnodes[k]];
+      rhs[nu + k] += boundary_v[vnodes[k]];
+    }
+    for (int k = 0; k < npu; ++k) rhs[2 * nu + k] += boundary_p[pnodes[k]];
+  }
   return rhs;
 }
 
@@ -578,6 +625,19 @@ int CutCellStokes::CapacitanceRank() const { return impl_->capacitance->Rank(); 
 void CutCellStokes::SetExactVelocityPreconditioner(bool exact) {
   impl_->exact_velocity = exact;
   impl_->BuildReduced();
+}
+
+void CutCellStokes::SetBodyMotion(const std::vector<RigidMotion>& motions) {
+  Impl& m = *impl_;
+  m.boundary_u.resize(0);
+  m.boundary_v.resize(0);
+  m.boundary_p.resize(0);
+  if (motions.empty()) return;
+  const auto n = static_cast<Eigen::Index>(m.grid.NodeCount());
+  m.boundary_u = Eigen::VectorXd::Zero(n);
+  m.boundary_v = Eigen::VectorXd::Zero(n);
+  m.boundary_p = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m.pgrid.NodeCount()));
+  for (const CutCellGeometry* geo : m.geos) m.AddChordLoad(*geo, motions);
 }
 
 void CutCellStokes::SetAdvection(const double* wu, const double* wv) {
@@ -677,9 +737,7 @@ CutCellStokes::BodyLoad CutCellStokes::Load(int body, const Vec2& centre, const 
                       mass * uu[k] - (fu ? fu[k] : 0.0);
     const double rv = m.momentum_rows.row(k).dot(vv) + m.gradient_y_rows.row(k).dot(pp) +
                       mass * vv[k] - (fv ? fv[k] : 0.0);
-    Vec2 arm = NodePosition(m.grid, static_cast<int>(k)) - centre;
-    if (m.vmap.x) arm.x() -= m.grid.Width() * std::round(arm.x() / m.grid.Width());  // the image
-    if (m.vmap.y) arm.y() -= m.grid.Height() * std::round(arm.y() / m.grid.Height());
+    const Vec2 arm = m.Arm(NodePosition(m.grid, static_cast<int>(k)), centre);  // the image
     load.force -= Vec2(ru, rv);
     load.torque -= arm.x() * rv - arm.y() * ru;
   }

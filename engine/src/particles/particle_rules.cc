@@ -112,12 +112,11 @@ void RequireCutCellScene(const Params& params) {
   const std::string with = " with particle_mesh.kind = \"cut_cell\"";
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
     const Motion motion = params.particles[p].motion;
-    if (motion == Motion::kFixed) continue;
-    throw InvalidParameter("particles." + std::to_string(p) + ".motion",
-                           motion == Motion::kFree ? "\"free\"" : "\"prescribed\"",
-                           "\"fixed\"" + with +
-                               " (cut cells hold bodies at rest only, so far), or "
-                               "particle_mesh.kind = \"collocation\" for moving particles");
+    if (motion != Motion::kFree) continue;
+    throw InvalidParameter("particles." + std::to_string(p) + ".motion", "\"free\"",
+                           "\"fixed\" or \"prescribed\"" + with +
+                               " (cut cells hold bodies at rest or in a given motion only, so "
+                               "far), or particle_mesh.kind = \"collocation\" for free particles");
   }
   if (!params.fluid.IsNewtonian()) {
     throw InvalidParameter("fluid.relaxation_time", ExactText(params.fluid.relaxation_time),

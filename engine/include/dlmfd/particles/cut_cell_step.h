@@ -1,19 +1,34 @@
-// Step (33) of the Marchuk-Yanenko scheme with fixed bodies cut out of the uniform mesh
-// (particle_mesh.kind = "cut_cell"; issue 33, docs/evidence/cut_cell_boundary.md, "A second-order
-// boundary"):
+// Step (33) of the Marchuk-Yanenko scheme with fixed or prescribed bodies cut out of the uniform
+// mesh (particle_mesh.kind = "cut_cell"; issue 33, docs/evidence/cut_cell_boundary.md, "A
+// second-order boundary" and "A body in prescribed motion"):
 //   (rho/dt) (u^{n+1/4} - u^n, v)_l + eta (grad u^{n+1/4}, grad v) - (p, div v) = (f, v),
-//   (q, div u^{n+1/4}) = 0   on the fluid part only, u = 0 on the bodies by Nitsche's method
+//   (q, div u^{n+1/4}) = 0   on the fluid part only, u = U + omega x (x - X) on the bodies by
+// Nitsche's method (0 on fixed ones)
 // (particles/cut_cell_stokes.h has the forms, the ghost penalties and the solver: Uzawa /
 // CG on the pressure with exact velocity solves by a capacitance matrix against the fast solvers,
 // warm-started from p^n). f is the liquid's body force
 // (fluid.body_force); eta the whole viscosity (a Newtonian liquid, splitting.alpha = 1: the rules
 // of particles/particle_rules.h). The advection step (34) then runs on the whole grid as without
-// particles, and there is no step (36)-(38): the bodies do not move.
+// particles, and there is no step (36)-(38): fixed bodies stay, prescribed ones move at their
+// given U and omega. A prescribed body is cut at t_{n+1} (X^{n+1} = X^n + dt U, theta^{n+1} =
+// theta^n + dt omega; step (33) is implicit), so the geometry, the forms and the capacitance
+// matrix are rebuilt every step (the chords move with the body even where the cut set does not
+// change). The nodes inside a body (no fluid in their support) carry its rigid motion, before the
+// step at X^n and after it at X^{n+1}: a node that the body uncovers enters the step with the rigid
+// value u^n = U + omega x (x_i - X^n) in its mass term, and the advection step (34) sees the body
+// move. Cost a step against the fixed body's: docs/evidence/cut_cell_boundary.md, "A body in
+// prescribed motion".
 // The hydrodynamic force and torque on each body, from the residual of this step's fluid forms
 // with a test function equal to 1 near the body (CutCellStokes::Load; the discrete stress over a
 // closed line in the fluid around it, the fluid's inertia between the line and the body included):
 //   F_h = -sum_i Phi_i R_i - rho_L V g + V f,   T_h = -sum_i Phi_i (x_i - X) x R_i,
-// R = (rho/dt) M_l (u^{n+1/4} - u^n) + eta K u^{n+1/4} - B^T p - M_l f. The fluid steps carry no
+// R = (rho/dt) M_l (u^{n+1/4} - u^n) + eta K u^{n+1/4} - B^T p - M_l f; a body turning at omega
+// adds -2 eta omega V to T_h: the viscous form eta grad u : grad v has the traction eta d_n u, not
+// the stress's eta (grad u + grad u^T) n, and on a rigid motion u = U + omega x r the two differ
+// by eta integral of r x (grad u^T n) = eta int_body curl u = 2 eta omega V in the torque (0 in the
+// force: int grad(div u) = 0). E.g. a disk turning in unbounded liquid, u_theta = omega R^2 / r:
+// eta d_n u = -eta omega on its boundary, the stress -2 eta omega (measured: docs/evidence/
+// cut_cell_boundary.md, "A body in prescribed motion"). The fluid steps carry no
 // gravity, so -rho_L V g is the hydrostatic buoyancy, as in the DLM force (particles/
 // particle_step.h); f taken as a mean pressure gradient -grad p_m = f acts on the body's volume
 // too, V f, as the DLM force has it (there f acts on the whole domain, the body's inside
@@ -47,15 +62,26 @@ class CutCellStep {
 
   // A step of dt. u, v, p: u^n and the last pressure on entry (the warm start), u^{n+1/4},
   // p^{n+1/4} on return with the Dirichlet data of `data` (its time set to t_{n+1}); particles get
-  // F_h and T_h. The saddle point of (rho/dt) is built for the first call's dt and rebuilt when a
-  // call brings another. Throws SolverNotConverged.
+  // F_h and T_h (prescribed ones also X^{n+1}, theta^{n+1}). The saddle point of (rho/dt) is
+  // built for the first call's dt and rebuilt when a call brings another, and every step when a
+  // body is prescribed. Throws SolverNotConverged, and ParticlesOverlap when a prescribed body
+  // reaches a side that is not periodic.
   void Solve(double dt, const BoundaryData& data, std::vector<ParticleState>& particles, double* u,
              double* v, double* p, StepReport& report);
 
  private:
   void PrepareStep(double dt);  // flow_ and rho_over_dt_ for a step of dt
+  // Prescribed bodies: X, theta to t + dt, the geometries and the saddle point rebuilt there.
+  void MoveBodies(double dt);
+  std::vector<RigidMotion> Motions() const;
+  // The rigid motion of the nearest body at every node without fluid in its support.
+  void FillBodies(double* u, double* v) const;
 
-  std::vector<FixedBody> bodies_;
+  std::vector<FixedBody> bodies_;  // at the last step's end (X^{n+1})
+  std::vector<Vec2> velocities_;   // U of each body (0: fixed)
+  std::vector<double> rotations_;  // omega of each body
+  bool moving_ = false;            // some body is prescribed
+  Grid grid_;
   std::vector<std::unique_ptr<CutCellGeometry>> geometries_;  // SW-NE, then NW-SE with "both"
   DomainParams domain_;
   double viscosity_;                     // eta of the forms

@@ -9,7 +9,11 @@
 // (n out of the fluid; the chord terms by two-point Gauss; volume terms over the fluid polygons;
 // the last two are ghost penalties on the faces of cut h-triangles and cut macro-triangles, which
 // keep small cuts well conditioned; (.,.)_l the lumped mass of the fluid part). The bodies are at
-// rest (boundary value zero). Domain sides as in step (33): Dirichlet data on walls and velocity
+// rest (boundary value zero) unless SetBodyMotion gives each its rigid motion g = U + omega x
+// (x - X) on its chords: the right side then carries Nitsche's consistent terms
+//   - eta <d_n v, g> + gamma eta / h <g, v>   (momentum),   - <q, g . n>   (continuity)
+// (a body in prescribed motion, particles/cut_cell_step.h; docs/evidence/cut_cell_boundary.md, "A
+// body in prescribed motion"). Domain sides as in step (33): Dirichlet data on walls and velocity
 // sides, do-nothing outflow (p = 0 there), periodic sides periodic (the geometry's periodic axes
 // must be the domain's; the elements next to a periodic side couple across it). Without an outflow
 // side p is fixed by a zero mean over the fluid part (B^T 1 = 0). A steady problem (rho/dt = 0)
@@ -68,6 +72,16 @@ struct CutCellConstants {
   int step_max_iterations = 2000;
 };
 
+// A body's rigid motion: the boundary value U + omega x (x - X) on its chords.
+struct RigidMotion {
+  Vec2 centre = Vec2::Zero();       // X
+  Vec2 velocity = Vec2::Zero();     // U
+  double angular_velocity = 0.0;    // omega
+  Vec2 At(const Vec2& arm) const {  // at x = X + arm
+    return velocity + angular_velocity * Vec2(-arm.y(), arm.x());
+  }
+};
+
 struct CutCellReport {
   int iterations = 0;
   double relative_residual = 0.0;
@@ -91,6 +105,9 @@ class CutCellStokes {
   // Precondition the velocity block by its own sparse factorization instead of the fast solvers
   // (steady Oseen problems, which the Laplacian does not precondition).
   void SetExactVelocityPreconditioner(bool exact);
+  // The rigid motion of every body of the geometry (indexed as its bodies), or an empty vector for
+  // bodies at rest (the default): the boundary value g of Nitsche's terms (header).
+  void SetBodyMotion(const std::vector<RigidMotion>& motions);
   // The advecting velocity w of the Oseen term (full node arrays), or nullptr for none.
   void SetAdvection(const double* wu, const double* wv);
   // Solves with the Dirichlet data of `data` and the load (fu, fv) (dual, at velocity nodes; may be
