@@ -90,15 +90,19 @@ void MultiplierCg::RigidResponseOf(const ConstraintOperators& op, std::size_t p,
 void MultiplierCg::ResponseMismatchOf(const ConstraintOperators& op, std::size_t p) {
   const MultiplierPoints& points = op.points;
   const CouplingOperator& coupling = op.coupling;
-  const std::vector<Vec2>& r = points.Points(p);
+  const Vec2* r = points.Points(p).data();
   const std::size_t first = points.Begin(p);
+  const int count = points.Count(p);
+  // Locals: the stores to gb could alias them, so the compiler would read them again per point.
+  const Vec2 velocity = velocity_b_[p];
+  const double omega = omega_b_[p];
   const double* uvb = uvb_.data();
   double* gb = gb_.data();
-  for (int k = 0; k < points.Count(p); ++k) {
+  for (int k = 0; k < count; ++k) {
     const std::size_t node = first + k;
     double eu, ev;
     coupling.InterpolateSlots(node, uvb, eu, ev);
-    const Vec2 rigid = velocity_b_[p] + omega_b_[p] * RigidModes::Perp(r[k]);
+    const Vec2 rigid = velocity + omega * RigidModes::Perp(r[k]);
     gb[2 * node] = eu - rigid.x();
     gb[2 * node + 1] = ev - rigid.y();
   }
