@@ -10,6 +10,8 @@ its reason, ms a step, and what `auto` resolved.
   bench/cases_at_defaults.py --steps 3        # each case's first 3 steps (the CI test CaseFiles)
 
 The physical keys stay as the case file writes them; results go under --out (one folder per case).
+A shortened run (--steps, --fraction) runs with what each "auto" becomes over the whole run
+(dlmfd-solve --check), named: particle_mesh.kind = "auto" reads the run's length.
 """
 import argparse
 import glob
@@ -46,6 +48,16 @@ def strip_numerics(text):
     return "\n".join(kept) + "\n", dropped
 
 
+def resolved_at_full_length(solve, scene, sets):
+    """What each "auto" of the scene becomes over the run as written (dlmfd-solve --check): a
+    shortened run must not resolve otherwise (particle_mesh.kind reads the run's length)."""
+    command = [solve, str(scene), "--check"]
+    for assignment in sets:
+        command += ["--set", assignment]
+    check = subprocess.run(command, capture_output=True, text=True)
+    return re.findall(r'^numerics: ([a-z_.]+) = "([a-z_]+)"', check.stdout, re.M)
+
+
 def run_case(solve, case, out, fraction, steps, threads, sets):
     text, dropped = strip_numerics(case.read_text())
     scene = tomllib.loads(text)
@@ -58,7 +70,11 @@ def run_case(solve, case, out, fraction, steps, threads, sets):
                "--quiet", "--threads", str(threads)]
     for assignment in sets:
         command += ["--set", assignment]
+    named = []
     if planned != round(end / dt):
+        named = resolved_at_full_length(solve, folder / "scene_at_defaults.toml", sets)
+        for key, value in named:
+            command += ["--set", f'{key}="{value}"']
         command += ["--set", f"time.end={planned * dt!r}"]
     start = time.time()
     proc = subprocess.run(command, capture_output=True, text=True)
@@ -68,6 +84,7 @@ def run_case(solve, case, out, fraction, steps, threads, sets):
     reason = summary.get("reason") or proc.stderr.strip().splitlines()[-1:] or [""]
     reason = reason if isinstance(reason, str) else reason[0]
     resolved = "; ".join(f"{n['key']} = {n['value']}" for n in summary.get("numerics", []))
+    resolved = resolved or "; ".join(f"{key} = {value}" for key, value in named)
     return {
         "case": case.as_posix(), "dropped": dropped, "steps": summary.get("steps", 0),
         "planned": planned, "status": summary.get("status", f"exit {proc.returncode}"),

@@ -43,6 +43,7 @@ double LargestPointVelocity(const RigidBodyConstraint& constraint, const std::ve
 TEST(FixedParticleConstraint, HoldsOnTheStokesVelocityTheResultsWrite) {
   const std::vector<SceneOverride> overrides = {{"domain.h", "0.01025"},
                                                 {"domain.size", "[2.255, 0.41]"},
+                                                {"particle_mesh.kind", "\"collocation\""},
                                                 {"particle_mesh.h", "0.01405714285714"},
                                                 {"splitting.constraint", "incremental"},
                                                 {"solvers.stokes_tolerance", "1e-8"},

@@ -1,12 +1,13 @@
-// Schaefer-Turek 2D-1 at the defaults (issue 32 point 4):
+// Schaefer-Turek 2D-1 at the defaults (issue 32 point 4, issue 33 point 1):
 // cases/verification/schaefer_turek_2d1.toml as shipped, D/h = 20, with no numerics key but the
-// advection it names (the default since issue 32 too): collocation points, both diagonals, the
-// coupling "auto" chose (incremental: a fixed disk), the Taylor steady correction. Reference (the
-// scene's title): Cd = 5.57953523384, Cl = 0.010618948146 (John & Matthies 2001). The targets of
-// issue 32: Cd within 1 % at D/h = 20, the lift's sign right. Cd is steady to 1e-4 by t = 5; the
-// lift's wake mode decays by t = 8 (docs/evidence/particle_boundary.md (e), "The lift's steady
-// state"), so the run goes to t = 8. Measured in docs/accuracy.md (D/h = 20 and 40, with the
-// command).
+// advection it names (the default since issue 32 too): `auto` picks cut cells for its fixed disk
+// in a Newtonian liquid over 1,600 steps (scene/auto_particle_mesh.h), both diagonals, the coupling
+// "auto" chose (unused by cut cells), the tendency steady correction. Reference (the scene's
+// title): Cd = 5.57953523384, Cl = 0.010618948146 (John & Matthies 2001). The targets: Cd within
+// 0.3 % at D/h = 20 (issue 33; issue 32 asks 1 %), Cl within 10 % (issue 32 asks it at D/h = 40)
+// and of the right sign. Measured +0.022 % and +4.2 % at t = 12 (docs/accuracy.md, with the
+// command). Cd is steady to 1e-4 by t = 5; the lift's wake mode decays by t = 8
+// (docs/evidence/particle_boundary.md (e), "The lift's steady state"), so the run goes to t = 8.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -21,7 +22,7 @@ namespace {
 constexpr double kReferenceDrag = 5.57953523384;
 constexpr double kReferenceLift = 0.010618948146;
 
-TEST(SchaeferTurekAtTheDefaults, DragWithinOnePercentAndLiftOfTheRightSignAtDOverHTwenty) {
+TEST(SchaeferTurekAtTheDefaults, DragWithinAThirdOfAPercentAndLiftWithinTenAtDOverHTwenty) {
   Params params =
       LoadSceneFile(std::string(DLMFD_SOURCE_DIR) + "/cases/verification/schaefer_turek_2d1.toml",
                     {{"time.end", "8"},
@@ -29,10 +30,10 @@ TEST(SchaeferTurekAtTheDefaults, DragWithinOnePercentAndLiftOfTheRightSignAtDOve
                      {"output.particles_every", "0"},
                      {"output.checkpoint_every", "0"}});
   params.threads = 1;
-  EXPECT_EQ(params.particle_mesh.kind, ParticleMeshKind::kCollocation);
+  EXPECT_EQ(params.particle_mesh.kind, ParticleMeshKind::kCutCell);
   EXPECT_EQ(params.domain.diagonals, MeshDiagonals::kBoth);
   EXPECT_EQ(params.splitting.advection, AdvectionScheme::kWave);
-  ASSERT_EQ(params.numerics.resolved.size(), 1u);  // "auto"
+  ASSERT_EQ(params.numerics.resolved.size(), 2u);  // the coupling's and the mesh's "auto"
   Simulation sim(params);
   sim.Run();
   const Vec2 force = sim.state().particles.at(0).force;
@@ -41,7 +42,8 @@ TEST(SchaeferTurekAtTheDefaults, DragWithinOnePercentAndLiftOfTheRightSignAtDOve
   const double cl = force.y() / scale;
   std::printf("Schaefer-Turek at the defaults, D/h = 20, t = 8: Cd = %.5f (%+.3f %%), Cl = %.5f\n",
               cd, 100.0 * (cd / kReferenceDrag - 1.0), cl);
-  EXPECT_NEAR(cd, kReferenceDrag, 0.01 * kReferenceDrag);
+  EXPECT_NEAR(cd, kReferenceDrag, 0.003 * kReferenceDrag);
+  EXPECT_NEAR(cl, kReferenceLift, 0.1 * kReferenceLift);
   EXPECT_GT(cl * kReferenceLift, 0.0) << "the lift's sign";
 }
 

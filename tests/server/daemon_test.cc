@@ -531,8 +531,12 @@ TEST(Daemon, JobRecordCarriesTheAccuracyWarningsThroughGetAndARestart) {
     EXPECT_EQ(w.current(), "0.05");
     EXPECT_EQ(w.suggested(), "0.025");
     EXPECT_NE(w.source().find("work_precision.md"), std::string::npos);
-    // And what the scene's "auto" coupling became (no particles: rule 1, scene/auto_coupling.h).
-    ASSERT_EQ(job.numerics_size(), 1);
+    // And what the scene's "auto" coupling and particle mesh became (no particles: rule 1 of
+    // scene/auto_coupling.h and of scene/auto_particle_mesh.h).
+    ASSERT_EQ(job.numerics_size(), 2);
+    EXPECT_EQ(job.numerics(1).key(), "particle_mesh.kind");
+    EXPECT_EQ(job.numerics(1).value(), "collocation");
+    EXPECT_EQ(job.numerics(1).rule(), "no particles");
     EXPECT_EQ(job.numerics(0).key(), "splitting.constraint");
     EXPECT_EQ(job.numerics(0).value(), "incremental");
     EXPECT_EQ(job.numerics(0).rule(), "no particles");

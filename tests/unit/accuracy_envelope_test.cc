@@ -230,6 +230,28 @@ TEST(AccuracyEnvelope, ViscousNumberWithoutParticlesHasTheLargerMeasuredBound) {
   EXPECT_EQ(w[0].suggested, "0.0025");
 }
 
+// Cut cells have no multiplier, so the coupling's bounds on nu dt / h^2 (its leak, the lagged
+// multiplier's settling) do not apply to them; theirs is the creeping fixed disk's 480.
+TEST(AccuracyEnvelope, CutCellsHaveTheViscousBoundTheirRunsMeasured) {
+  const std::string cut = "particle_mesh.kind=\"cut_cell\"";
+  // nu dt / h^2 = 20: above the lagged multiplier's 2.05 and the liquid's 10.24.
+  const std::vector<std::string> lagged = {"fluid.viscosity=0.1",
+                                           "splitting.constraint=\"incremental\""};
+  EXPECT_THAT(Settings(AccuracyWarnings(Scene(kSchaeferTurek, lagged))),
+              ::testing::Contains(std::string("nu dt / h^2")));
+  std::vector<std::string> lagged_cut = lagged;
+  lagged_cut.push_back(cut);
+  EXPECT_THAT(Settings(AccuracyWarnings(Scene(kSchaeferTurek, lagged_cut))),
+              ::testing::Not(::testing::Contains(std::string("nu dt / h^2"))));
+  // nu dt / h^2 = 1000: above theirs, with its source.
+  const std::vector<AccuracyWarning> w = AccuracyWarnings(
+      Scene(kSchaeferTurek, {"fluid.viscosity=0.1", "time.dt=0.25", "time.end=5", cut}));
+  ASSERT_FALSE(w.empty());
+  EXPECT_EQ(w[0].setting, "nu dt / h^2");
+  EXPECT_EQ(w[0].allowed, "<= 480");
+  EXPECT_THAT(w[0].source, HasSubstr("cut_cell_boundary.md"));
+}
+
 TEST(AccuracyEnvelope, AdvectiveCourantAboveTheBoundWarns) {
   const std::vector<AccuracyWarning> w = AccuracyWarnings(Scene(kCavity, {"time.dt=0.02"}));
   EXPECT_EQ(Settings(w), std::vector<std::string>{"U dt / h"});

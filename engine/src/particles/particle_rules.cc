@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "dlmfd/core/errors.h"
@@ -107,35 +108,40 @@ void RequireCoupledInStokes(const Params& params, std::size_t p) {
           "splitting.constraint = \"paper\"");
 }
 
-void RequireCutCellScene(const Params& params) {
-  if (params.particle_mesh.kind != ParticleMeshKind::kCutCell || params.particles.empty()) return;
+std::optional<InvalidParameter> CutCellObstacle(const Params& params) {
   const std::string with = " with particle_mesh.kind = \"cut_cell\"";
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
     const Motion motion = params.particles[p].motion;
     if (motion != Motion::kFree) continue;
-    throw InvalidParameter("particles." + std::to_string(p) + ".motion", "\"free\"",
-                           "\"fixed\" or \"prescribed\"" + with +
-                               " (cut cells hold bodies at rest or in a given motion only, so "
-                               "far), or particle_mesh.kind = \"collocation\" for free particles");
+    return InvalidParameter("particles." + std::to_string(p) + ".motion", "\"free\"",
+                            "\"fixed\" or \"prescribed\"" + with +
+                                " (cut cells hold bodies at rest or in a given motion only, so "
+                                "far), or particle_mesh.kind = \"collocation\" for free particles");
   }
   if (!params.fluid.IsNewtonian()) {
-    throw InvalidParameter("fluid.relaxation_time", ExactText(params.fluid.relaxation_time),
-                           "0 (a Newtonian liquid)" + with +
-                               " (the polymer is not supported with cut cells yet), or "
-                               "particle_mesh.kind = \"collocation\"");
+    return InvalidParameter("fluid.relaxation_time", ExactText(params.fluid.relaxation_time),
+                            "0 (a Newtonian liquid)" + with +
+                                " (the polymer is not supported with cut cells yet), or "
+                                "particle_mesh.kind = \"collocation\"");
   }
   if (params.splitting.beta != 0.0) {
-    throw InvalidParameter("splitting.beta", ExactText(params.splitting.beta),
-                           "0 (and splitting.alpha = 1)" + with +
-                               ": the advection step (34) does not see the bodies, so viscosity "
-                               "there would leak through them");
+    return InvalidParameter("splitting.beta", ExactText(params.splitting.beta),
+                            "0 (and splitting.alpha = 1)" + with +
+                                ": the advection step (34) does not see the bodies, so viscosity "
+                                "there would leak through them");
   }
   if (params.domain.flow_rate) {
-    throw InvalidParameter("domain.flow_rate", ExactText(*params.domain.flow_rate),
-                           "absent" + with +
-                               " (the cut-cell step has no flux control yet: drive the flow by "
-                               "fluid.body_force), or particle_mesh.kind = \"collocation\"");
+    return InvalidParameter("domain.flow_rate", ExactText(*params.domain.flow_rate),
+                            "absent" + with +
+                                " (the cut-cell step has no flux control yet: drive the flow by "
+                                "fluid.body_force), or particle_mesh.kind = \"collocation\"");
   }
+  return std::nullopt;
+}
+
+void RequireCutCellScene(const Params& params) {
+  if (params.particle_mesh.kind != ParticleMeshKind::kCutCell || params.particles.empty()) return;
+  if (std::optional<InvalidParameter> obstacle = CutCellObstacle(params)) throw *obstacle;
 }
 
 void ValidateParticles(const Params& params, const Grid& grid) {

@@ -18,6 +18,8 @@ constexpr const char* kSourceViscous = "docs/evidence/work_precision.md (d) dt l
 constexpr const char* kSourceViscousFluid = "docs/evidence/work_precision.md (a), (b)";
 constexpr const char* kSourceViscousCoupling =
     "docs/evidence/constraint_coupling.md, Coupling the constraint with viscosity";
+constexpr const char* kSourceCutCells =
+    "docs/evidence/cut_cell_boundary.md, `auto` picks cut cells for fixed disks";
 constexpr const char* kSourceCourant = "docs/evidence/work_precision.md (b), Which settings 1";
 constexpr const char* kSourceLaggedCourant =
     "docs/evidence/constraint_coupling.md, The automatic coupling";
@@ -32,10 +34,13 @@ bool Above(double value, double bound) { return value > bound * (1.0 + kRoundOff
 
 double KinematicViscosity(const Params& p) { return p.fluid.viscosity / p.fluid.density; }
 
-// The D / h bound of the scene's multiplier points (accuracy_envelope.h).
+bool CutCells(const Params& p) { return p.particle_mesh.kind == ParticleMeshKind::kCutCell; }
+
+// The D / h bound of the scene's multiplier points (accuracy_envelope.h); cut cells, which have
+// none and ignore the coupling, keep the default's.
 double MinDiskResolution(const Params& p) {
   if (p.particle_mesh.kind == ParticleMeshKind::kRing) return kMinDiskResolution;
-  return p.splitting.constraint.value() == ConstraintCoupling::kPaper
+  return !CutCells(p) && p.splitting.constraint.value() == ConstraintCoupling::kPaper
              ? kMinDiskResolutionCollocationPaper
              : kMinDiskResolutionCollocation;
 }
@@ -139,23 +144,28 @@ std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
   const bool particles = !p.particles.empty();
   const double viscous = KinematicViscosity(p) * dt / (h * h);
   const ConstraintCoupling coupling = p.splitting.constraint.value();
+  // Cut cells hold the bodies in the Stokes step (33) itself, with no multiplier: the coupling's
+  // bounds (its leak, its lag) do not apply; theirs is what their runs measured.
+  const bool multipliers = particles && !CutCells(p);
   const double viscous_bound =
       !particles                                     ? kMaxViscousNumberWithoutParticles
+      : !multipliers                                 ? kMaxViscousNumberCutCells
       : coupling == ConstraintCoupling::kViscous     ? kMaxViscousNumberViscousCoupling
       : coupling == ConstraintCoupling::kIncremental ? kMaxViscousNumberIncrementalCoupling
                                                      : kMaxViscousNumberWithParticles;
   if (Above(viscous, viscous_bound)) {
-    out.push_back(TimeStepWarning(p, "nu dt / h^2", viscous, viscous_bound,
-                                  !particles || coupling == ConstraintCoupling::kPaper
-                                      ? (!particles ? kSourceViscousFluid : kSourceViscous)
-                                      : kSourceViscousCoupling));
+    const char* source = !particles                               ? kSourceViscousFluid
+                         : !multipliers                           ? kSourceCutCells
+                         : coupling == ConstraintCoupling::kPaper ? kSourceViscous
+                                                                  : kSourceViscousCoupling;
+    out.push_back(TimeStepWarning(p, "nu dt / h^2", viscous, viscous_bound, source));
   }
 
   const double courant = VelocityScale(p) * dt / h;
   if (Above(courant, kMaxAdvectiveCourant)) {
     out.push_back(TimeStepWarning(p, "U dt / h", courant, kMaxAdvectiveCourant, kSourceCourant));
   }
-  if (particles && coupling == ConstraintCoupling::kIncremental) {
+  if (multipliers && coupling == ConstraintCoupling::kIncremental) {
     const double particle_courant = ParticleVelocityScale(p) * dt / h;
     if (Above(particle_courant, kMaxLaggedParticleCourant)) {
       out.push_back(TimeStepWarning(p, "U_p dt / h", particle_courant, kMaxLaggedParticleCourant,

@@ -7,6 +7,7 @@
 // allowed.
 #include "dlmfd/scene/scene_file.h"
 
+#include <algorithm>
 #include <fstream>
 #include <optional>
 #include <set>
@@ -180,6 +181,15 @@ std::set<std::string> ReadGivenKeys(TableReader& top, Params& p, AutoKeys& autos
   return given;
 }
 
+// The keys derived from others (kDerived) that the scene does not give, from the values so far.
+void DeriveKeys(const std::set<std::string>& given, Params& p) {
+  for (const SceneKey<Params>& k : scene::SceneKeys()) {
+    if (given.count(k.name) == 0 && k.default_kind == DefaultKind::kDerived && !k.unset) {
+      k.derive(p);
+    }
+  }
+}
+
 // Pass 2: the defaults of the keys not given: the preset's words, then "auto" resolved from the
 // rest of the scene (scene/auto_coupling.h), then the keys derived from others, then the members
 // the struct leaves absent (ResolveDefaults).
@@ -196,15 +206,15 @@ void ApplyDefaults(const std::set<std::string>& given, AutoKeys& autos, Params& 
       k.set_word(p, k.name, word);
     }
   }
-  for (const SceneKey<Params>* k : autos) {
-    p.numerics.resolved.push_back(k->resolve(p));
-    k->set_word(p, k->name, p.numerics.resolved.back().value);
-  }
+  // In the table's order, each rule reading the keys derived from what the ones before chose
+  // (particle_mesh.kind reads splitting.beta, which follows the coupling).
   for (const SceneKey<Params>& k : scene::SceneKeys()) {
-    if (given.count(k.name) == 0 && k.default_kind == DefaultKind::kDerived && !k.unset) {
-      k.derive(p);
-    }
+    if (std::find(autos.begin(), autos.end(), &k) == autos.end()) continue;
+    DeriveKeys(given, p);
+    p.numerics.resolved.push_back(k.resolve(p));
+    k.set_word(p, k.name, p.numerics.resolved.back().value);
   }
+  DeriveKeys(given, p);
   ResolveDefaults(p);
 }
 

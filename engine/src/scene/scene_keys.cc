@@ -3,9 +3,11 @@
 #include "dlmfd/scene/scene_keys.h"
 
 #include <algorithm>
+#include <string>
 
 #include "dlmfd/particles/collocation_points.h"
 #include "dlmfd/scene/auto_coupling.h"
+#include "dlmfd/scene/auto_particle_mesh.h"
 #include "scene_key_builders.h"
 
 namespace dlmfd {
@@ -147,27 +149,27 @@ void AddTimeAndSplitting(std::vector<SceneKey<P>>& keys) {
                              "time.end", [](auto& p) -> auto& { return p.time.end; },
                              kRangePositive, "end time; the run makes round(end / dt) steps"),
                          "a run to t = 0 makes no step"));
-  keys.push_back(
-      Because(Derived(RealKey<P>(
-                          "splitting.alpha", [](auto& p) -> auto& { return p.splitting.alpha; },
-                          kRangeHalfOpenUnit, "viscosity weight of the Stokes step (33)"),
-                      "`1`, or `0.5` with `constraint = \"paper\"`",
-                      [](Params& p) {
-                        p.splitting.alpha =
-                            SplittingParams::DefaultWeights(p.splitting.constraint.value()).alpha;
-                      }),
-              "the Stokes step (33) carries viscosity for its fast solver; with alpha = 0 it has "
-              "none"));
-  keys.push_back(
-      Allowed(Derived(RealKey<P>(
-                          "splitting.beta", [](auto& p) -> auto& { return p.splitting.beta; },
-                          kRangeUnit, "viscosity weight of the advection step (34)"),
-                      "`0`, or `0.5` with `constraint = \"paper\"`",
-                      [](Params& p) {
-                        p.splitting.beta =
-                            SplittingParams::DefaultWeights(p.splitting.constraint.value()).beta;
-                      }),
-              "alpha + beta = 1; 0 with particles unless `constraint = \"paper\"`"));
+  keys.push_back(Because(
+      Derived(RealKey<P>(
+                  "splitting.alpha", [](auto& p) -> auto& { return p.splitting.alpha; },
+                  kRangeHalfOpenUnit, "viscosity weight of the Stokes step (33)"),
+              "`1`, or `0.5` with `constraint = \"paper\"`",
+              [](Params& p) {  // once "auto" has chosen the coupling
+                if (!p.splitting.constraint) return;
+                p.splitting.alpha = SplittingParams::DefaultWeights(*p.splitting.constraint).alpha;
+              }),
+      "the Stokes step (33) carries viscosity for its fast solver; with alpha = 0 it has "
+      "none"));
+  keys.push_back(Allowed(
+      Derived(RealKey<P>(
+                  "splitting.beta", [](auto& p) -> auto& { return p.splitting.beta; }, kRangeUnit,
+                  "viscosity weight of the advection step (34)"),
+              "`0`, or `0.5` with `constraint = \"paper\"`",
+              [](Params& p) {  // once "auto" has chosen the coupling
+                if (!p.splitting.constraint) return;
+                p.splitting.beta = SplittingParams::DefaultWeights(*p.splitting.constraint).beta;
+              }),
+      "alpha + beta = 1; 0 with particles unless `constraint = \"paper\"`"));
   keys.push_back(FromPreset(ChoiceKey<AdvectionScheme, P>(
       "splitting.advection", [](auto& p) -> auto& { return p.splitting.advection; },
       "step (34): the paper's least-squares CG or the explicit wave-like scheme")));
@@ -232,7 +234,11 @@ void AddParticleMeshAndCollisions(std::vector<SceneKey<P>>& keys) {
   keys.push_back(FromPreset(ChoiceKey<ParticleMeshKind, P>(
       "particle_mesh.kind", [](auto& p) -> auto& { return p.particle_mesh.kind; },
       "the multiplier points of (37): the paper's ring mesh, collocation points on the true "
-      "circle, or no multipliers (cut cells: fixed bodies in a Newtonian liquid, any sides)")));
+      "circle, or no multipliers (cut cells: fixed bodies in a Newtonian liquid, any sides); "
+      "`auto` picks cut cells for fixed disks in a Newtonian liquid over a run of at least " +
+          std::to_string(kMinCutCellSteps) +
+          " steps, collocation points otherwise (scene/auto_particle_mesh.h)",
+      ResolveParticleMeshKind)));
   SceneKey<P> ring_h = Allowed(
       Derived(RealKey<P>(
                   "particle_mesh.h", [](auto& p) -> auto& { return p.particle_mesh.h; },
@@ -448,7 +454,7 @@ struct PresetEntry {
 };
 
 constexpr PresetEntry kPresets[] = {
-    {NumericsPreset::kDefault, "particle_mesh.kind", "collocation", PresetLiquid::kAny},
+    {NumericsPreset::kDefault, "particle_mesh.kind", "auto", PresetLiquid::kAny},
     {NumericsPreset::kDefault, "domain.diagonals", "both", PresetLiquid::kAny},
     {NumericsPreset::kDefault, "splitting.advection", "wave", PresetLiquid::kAny},
     {NumericsPreset::kDefault, "splitting.constraint", "auto", PresetLiquid::kAny},

@@ -20,7 +20,9 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 
+#include "dlmfd/core/errors.h"
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/params.h"
 #include "dlmfd/particles/shape.h"
@@ -40,6 +42,10 @@ void RequireRingMeshShape(const Shape& shape, std::size_t p);
 // Throws InvalidParameter (particles.P.motion, fluid.relaxation_time, splitting.beta,
 // domain.flow_rate) when the scene breaks a cut-cell rule above (particle_mesh.kind = "cut_cell").
 void RequireCutCellScene(const Params& params);
+// The first cut-cell rule above that the scene breaks, whatever its particle_mesh.kind, as the
+// error RequireCutCellScene would throw; none where cut cells can run it. particle_mesh.kind =
+// "auto" reads it (scene/auto_particle_mesh.h), so the two never disagree.
+std::optional<InvalidParameter> CutCellObstacle(const Params& params);
 // Throws InvalidParameter (domain.h) when `grid` has more nodes than 32-bit indices count.
 void RequireIndexableGrid(const Params& params, const Grid& grid);
 // Every rule above, for every particle of the scene (none: the grid rule does not apply).

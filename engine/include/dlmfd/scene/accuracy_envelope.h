@@ -5,7 +5,8 @@
 // bound. With `accuracy.strict = true` ValidateScene rejects such a scene instead.
 //
 // The bounds are the constants below, each the edge of what a study measured: D / h, nu dt / h^2
-// (with and without particles, per coupling of the constraint), U dt / h, the elastic Courant
+// (with and without particles, per coupling of the constraint; cut cells, which have no
+// multiplier, their own), U dt / h, the elastic Courant
 // number c dt / h with c = sqrt(eta_p / (rho lambda)), dt / lambda (neither applies to a polymer
 // viscous on the grid's scale under devss), U_p dt / h under the lagged multiplier and h_p / h for
 // the ring mesh. The measurements behind each, and the paper's cases that lie outside, are in
@@ -39,6 +40,9 @@ inline constexpr double kMinDiskResolutionCollocationPaper = 39.0;  // collocati
 inline constexpr double kMaxViscousNumberWithParticles = 0.195;     // nu dt / h^2
 inline constexpr double kMaxViscousNumberViscousCoupling = 922.0;  // splitting.constraint = viscous
 inline constexpr double kMaxViscousNumberIncrementalCoupling = 2.05;  // ... = incremental
+// particle_mesh.kind = cut_cell: the creeping fixed disk in a channel at 480 (+0.17 %;
+// docs/evidence/cut_cell_boundary.md, "`auto` picks cut cells for fixed disks"), above the liquid's
+inline constexpr double kMaxViscousNumberCutCells = 480.0;
 inline constexpr double kMaxViscousNumberWithoutParticles = 10.24;
 inline constexpr double kMaxAdvectiveCourant = 0.64;       // U dt / h
 inline constexpr double kMaxElasticCourant = 0.3017;       // sqrt(eta_p / (rho lambda)) dt / h

@@ -2,7 +2,9 @@
 // the scene sets wins over its preset; the preset only moves the defaults.
 //
 //   "default" (the default): the configuration measured best on the verification suite
-//     (docs/accuracy.md): collocation points on the true circle, the coupling of the constraint
+//     (docs/accuracy.md): the particle mesh chosen from the scene ("auto", scene/
+//     auto_particle_mesh.h: cut cells for fixed disks in a Newtonian liquid over a long run,
+//     collocation points on the true circle otherwise), the coupling of the constraint
 //     chosen from the scene's numbers ("auto", scene/auto_coupling.h), DEVSS for a polymer, the
 //     steady correction in a Newtonian liquid, both diagonals of every square and the wave-like
 //     advection.
@@ -13,11 +15,12 @@
 //     product G alone. The paper's case
 //     files set it where they must reproduce the paper's numbers, and say so.
 //
-// The struct defaults of core/params.h are the "default" preset's for the particle mesh, the
-// coupling and the polymer stress; for the advection scheme and the diagonals they stay the
-// paper's (least squares, SW-NE): the engine's tests and benches that build Params themselves
-// studied those (a test holds this table to it). The presets' key = word pairs are declared with
-// the keys they set (PresetWord, scene/scene_keys.h).
+// The struct defaults of core/params.h are the "default" preset's for the coupling and the
+// polymer stress, and for the particle mesh what its "auto" picks but for fixed disks in a long
+// Newtonian run (collocation points; code that wants cut cells names them); for the advection
+// scheme and the diagonals they stay the paper's (least squares, SW-NE): the engine's tests and
+// benches that build Params themselves studied those (a test holds this table to it). The presets'
+// key = word pairs are declared with the keys they set (PresetWord, scene/scene_keys.h).
 #pragma once
 
 #include "dlmfd/core/params.h"

@@ -1,0 +1,106 @@
+// particle_mesh.kind = "auto": the rules, one function each, tried in order
+// (scene/auto_particle_mesh.h). A rule returns the kind it picks, or nothing when it does not
+// apply; the evidence for each is beside it. To add a rule: write its function, put it in kRules at
+// its place in the order, pin it with a test in tests/unit/auto_particle_mesh_test.cc and list it
+// in the header and in the key's description (docs/scenes.md is generated from it).
+#include "dlmfd/scene/auto_particle_mesh.h"
+
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "dlmfd/core/param_words.h"
+#include "dlmfd/particles/particle_rules.h"
+
+namespace dlmfd {
+namespace mesh_rules {  // named: the unity build puts auto_coupling.cc's rules beside these
+namespace {
+
+struct Pick {
+  ParticleMeshKind kind;
+  std::string rule;  // why, in words; the numbers follow it in the record
+};
+
+using Rule = std::optional<Pick> (*)(const Params&);
+
+// round(end / dt), the run's steps, as a double: "auto" is resolved before ValidateScene bounds
+// the step count (StepCount, core/time_stepping.h, wants a validated time).
+double Steps(const Params& p) { return std::round(p.time.end / p.time.dt); }
+
+// 1. Nothing to hold: the kind is not used; the struct's default names it.
+std::optional<Pick> NoParticles(const Params& p) {
+  if (!p.particles.empty()) return std::nullopt;
+  return Pick{ParticleMeshKind::kCollocation, "no particles"};
+}
+
+// 2. The cut cells' accuracy and cost were measured on disks only (docs/evidence/
+// cut_cell_boundary.md); an ellipse keeps the collocation points that particles.N.shape names.
+std::optional<Pick> NotDisks(const Params& p) {
+  for (std::size_t i = 0; i < p.particles.size(); ++i) {
+    if (p.particles[i].shape == ShapeKind::kDisk) continue;
+    return Pick{ParticleMeshKind::kCollocation,
+                "particles." + std::to_string(i) +
+                    " is not a disk (cut cells were measured on disks only)"};
+  }
+  return std::nullopt;
+}
+
+// 3. A particle that moves: cut cells refuse free ones, and rebuild their forms and capacitance
+// matrix every step for prescribed ones, 30 CPU ms a step at D/h = 20 against 0.7 for a fixed body
+// (docs/evidence/cut_cell_boundary.md, "A body in prescribed motion"): not yet affordable.
+std::optional<Pick> MovingParticles(const Params& p) {
+  for (std::size_t i = 0; i < p.particles.size(); ++i) {
+    if (p.particles[i].motion == Motion::kFixed) continue;
+    return Pick{ParticleMeshKind::kCollocation,
+                "particles." + std::to_string(i) +
+                    " moves (cut cells are measured affordable for fixed bodies only)"};
+  }
+  return std::nullopt;
+}
+
+// 4. What the cut-cell step cannot run (the one predicate RequireCutCellScene throws from).
+std::optional<Pick> CutCellsRefuse(const Params& p) {
+  const std::optional<InvalidParameter> obstacle = CutCellObstacle(p);
+  if (!obstacle) return std::nullopt;
+  return Pick{ParticleMeshKind::kCollocation,
+              "cut cells cannot run " + obstacle->key() + " = " + obstacle->value()};
+}
+
+// 5. A short run: the cut cells' set-up costs as much as 56-101 of their first steps (2.1 CPU s
+// at Schaefer-Turek D/h = 20 against 0.15 for the collocation points), which only a run of
+// kMinCutCellSteps steps or more repays (auto_particle_mesh.h).
+std::optional<Pick> ShortRun(const Params& p) {
+  if (Steps(p) >= static_cast<double>(kMinCutCellSteps)) return std::nullopt;
+  return Pick{ParticleMeshKind::kCollocation,
+              "fewer steps than the cut cells' set-up needs to pay"};
+}
+
+// 6. Fixed disks in a Newtonian liquid over a run long enough: second order, no dependence on the
+// sub-grid position, at less cost than the grid the collocation points need for that accuracy.
+std::optional<Pick> CutCells(const Params&) {
+  return Pick{ParticleMeshKind::kCutCell,
+              "fixed disks in a Newtonian liquid over a run long enough for the set-up to pay"};
+}
+
+constexpr Rule kRules[] = {NoParticles,    NotDisks, MovingParticles,
+                           CutCellsRefuse, ShortRun, CutCells};
+
+}  // namespace
+}  // namespace mesh_rules
+
+ResolvedChoice ResolveParticleMeshKind(const Params& params) {
+  ResolvedChoice choice;
+  choice.key = "particle_mesh.kind";
+  for (mesh_rules::Rule rule : mesh_rules::kRules) {
+    std::optional<mesh_rules::Pick> pick = rule(params);
+    if (!pick) continue;
+    choice.value = WordOf(pick->kind);
+    choice.rule = std::move(pick->rule);
+    break;
+  }
+  choice.numbers = {{"steps", mesh_rules::Steps(params)},
+                    {"steps to pay the set-up", static_cast<double>(kMinCutCellSteps)}};
+  return choice;
+}
+
+}  // namespace dlmfd
