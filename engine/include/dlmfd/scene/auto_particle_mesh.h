@@ -24,7 +24,7 @@
 // The choice, the rule and the numbers it read go where the coupling's "auto" goes (the run's log,
 // summary.json `numerics`, the daemon's job record and `dlmfd show`); the scene as run (scene.toml)
 // names the kind chosen, so a resume or a rerun uses the same one. Its numbers: the run's steps
-// and kMinCutCellSteps. splitting.constraint is resolved before (its weights decide rule 3).
+// and kMinCutCellSteps. splitting.constraint is resolved before (its weights decide rule 4).
 #pragma once
 
 #include "dlmfd/core/params.h"
