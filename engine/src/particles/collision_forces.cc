@@ -32,6 +32,15 @@ CollisionForces::CollisionForces(const Params& params, const Grid& grid, std::ve
   cell_w_ = grid.Width() / cells_x_;
   cell_h_ = grid.Height() / cells_y_;
   head_.assign(std::size_t(cells_x_) * std::size_t(cells_y_), -1);
+  neighbour_start_.assign(head_.size() + 1, 0);
+  int cells[9];
+  for (int cy = 0; cy < cells_y_; ++cy) {
+    for (int cx = 0; cx < cells_x_; ++cx) {
+      const int count = NeighbourCells(cx, cy, cells);
+      neighbours_.insert(neighbours_.end(), cells, cells + count);
+      neighbour_start_[cy * cells_x_ + cx + 1] = static_cast<int>(neighbours_.size());
+    }
+  }
   next_.assign(radii_.size(), -1);
   torques_.assign(radii_.size(), 0.0);
 }

@@ -75,55 +75,60 @@ double CouplingOperator::InverseNodeMass(int i, int j) const {
   return 1.0 / (fluid_density_ * grid_.h * grid_.h * factor);
 }
 
-void CouplingOperator::SetEntry(std::size_t entry, std::size_t point, int i, int j, double weight) {
-  const std::size_t node = grid_.Index(i, j);
-  stencil_point_[entry] = static_cast<std::uint32_t>(point);
-  stencil_node_[entry] = static_cast<std::uint32_t>(node);
-  stencil_weight_[entry] = weight;
-  // Nodes off the sides (nearly all) share one mass; the sides' own rules only where they apply.
-  const bool inner = i > 0 && i < grid_.nx && j > 0 && j < grid_.ny;
-  stencil_scatter_[entry] = weight * (inner ? inner_inverse_mass_ : InverseNodeMass(i, j));
-}
-
 template <class Stencil>
 std::size_t CouplingOperator::SetStencil(std::size_t entry, std::size_t point,
                                          const Stencil& stencil) {
+  // Each node: its index, the point, the weight and weight / mass (the nodes off the sides, nearly
+  // all, share one mass; the sides' own rules only where they apply). Members in locals: the
+  // stores to the entry arrays could alias them, so the compiler would read them again per node.
   constexpr int kNodes = static_cast<int>(sizeof(stencil.weight) / sizeof(stencil.weight[0]));
-  for (int q = 0; q < kNodes; ++q)
-    SetEntry(entry + q, point, stencil.i[q], stencil.j[q], stencil.weight[q]);
+  const int nx = grid_.nx, ny = grid_.ny;
+  const std::size_t row = std::size_t(nx) + 1;
+  const double inner_mass = inner_inverse_mass_;
+  std::uint32_t* node = stencil_node_.data() + entry;
+  std::uint32_t* owner = stencil_point_.data() + entry;
+  double* weight = stencil_weight_.data() + entry;
+  double* scatter = stencil_scatter_.data() + entry;
+  for (int q = 0; q < kNodes; ++q) {
+    const int i = stencil.i[q], j = stencil.j[q];
+    const double w = stencil.weight[q];
+    node[q] = static_cast<std::uint32_t>(std::size_t(j) * row + std::size_t(i));  // Grid::Index
+    owner[q] = static_cast<std::uint32_t>(point);
+    weight[q] = w;
+    const bool inner = i > 0 && i < nx && j > 0 && j < ny;
+    scatter[q] = w * (inner ? inner_mass : InverseNodeMass(i, j));
+  }
   return entry + kNodes;
 }
 
 std::size_t CouplingOperator::EntriesOf(const MultiplierPoints& points, std::size_t p) const {
-  std::size_t entries = 0;
-  for (int k = 0; k < points.Count(p); ++k) {
-    if (points.Quadratic(p, k)) {
-      entries += biquadratic_ || both_diagonals_ ? 9 : 6;  // Q2 or the mean P2; P2
-    } else {
-      entries += both_diagonals_ ? 4 : 3;  // the mean P1; P1
-    }
-  }
-  return entries;
+  const std::size_t quadratic = static_cast<std::size_t>(points.QuadraticCount(p));
+  const std::size_t linear = static_cast<std::size_t>(points.Count(p)) - quadratic;
+  const std::size_t quadratic_nodes = biquadratic_ || both_diagonals_ ? 9 : 6;  // Q2, mean P2; P2
+  const std::size_t linear_nodes = both_diagonals_ ? 4 : 3;                     // the mean P1; P1
+  return quadratic * quadratic_nodes + linear * linear_nodes;
 }
 
 int CouplingOperator::LocateParticle(const MultiplierPoints& points, const Vec2& centre,
                                      std::size_t p) {
-  const std::vector<Vec2>& relative = points.Points(p);
+  const Vec2* relative = points.Points(p).data();
+  const int count = points.Count(p), quadratic = points.QuadraticCount(p);
+  const std::size_t first = points.Begin(p);
   std::size_t entry = particle_entries_[p];
-  for (int k = 0; k < points.Count(p); ++k) {
+  for (int k = 0; k < count; ++k) {
     const Vec2 y = centre + relative[k];
     int side = 0;
-    const std::size_t point = points.Begin(p) + k;
+    const std::size_t point = first + k;
     stencil_start_[point] = entry;
     bool inside = true;
-    if (points.Quadratic(p, k) && (biquadratic_ || both_diagonals_)) {
+    if (k < quadratic && (biquadratic_ || both_diagonals_)) {
       kernels::Q2Stencil stencil;
       inside = biquadratic_ ? kernels::LocatePointBiquadratic(grid_, periodic_x_, periodic_y_,
                                                               y.x(), y.y(), &stencil, &side)
                             : kernels::LocatePointMeanQuadratic(grid_, periodic_x_, periodic_y_,
                                                                 y.x(), y.y(), &stencil, &side);
       if (inside) entry = SetStencil(entry, point, stencil);
-    } else if (points.Quadratic(p, k)) {
+    } else if (k < quadratic) {
       kernels::P2Stencil stencil;
       inside = kernels::LocatePointQuadratic(grid_, periodic_x_, periodic_y_, y.x(), y.y(),
                                              &stencil, &side);
@@ -193,34 +198,50 @@ void CouplingOperator::Build(double time, double dt, const MultiplierPoints& poi
 
 void CouplingOperator::NumberSlotsInOrder(double dt) {
   // The slots by first entry (a stamped node map), counting each slot's entries in the same pass
-  // (spread_start_[s + 1], zeroed when slot s is numbered), then E^T by a counting sort.
-  ++builds_;
-  slot_count_ = 0;
-  std::size_t* count = spread_start_.data() + 1;
-  for (std::size_t e = 0; e < entries_; ++e) {
-    stencil_slot_[e] = 0;
-    if (stencil_scatter_[e] == 0.0) continue;
-    const std::uint32_t node = stencil_node_[e];
-    if (stamp_[node] != builds_) {
-      stamp_[node] = builds_;
-      slot_of_[node] = static_cast<std::uint32_t>(++slot_count_);
-      touched_[slot_count_] = node;
-      count[slot_count_] = 0;
+  // (count[s], zeroed when slot s is numbered), then E^T by a counting sort. Members in locals:
+  // the stores to the index arrays could alias them, so the compiler would read them again per
+  // entry (docs/evidence/performance.md, "A thousand particles").
+  const std::uint64_t build = ++builds_;
+  const std::size_t entries = entries_;
+  const std::uint32_t* node_of = stencil_node_.data();
+  const std::uint32_t* point_of = stencil_point_.data();
+  const double* scatter = stencil_scatter_.data();
+  std::uint32_t* slot_of_entry = stencil_slot_.data();
+  std::uint64_t* stamp = stamp_.data();
+  std::uint32_t* slot_of_node = slot_of_.data();
+  std::uint32_t* touched = touched_.data();
+  std::size_t* start = spread_start_.data();
+  std::size_t* count = start + 1;
+  std::size_t slots = 0;
+  for (std::size_t e = 0; e < entries; ++e) {
+    std::uint32_t slot = 0;
+    if (scatter[e] != 0.0) {
+      const std::uint32_t node = node_of[e];
+      if (stamp[node] != build) {
+        stamp[node] = build;
+        slot_of_node[node] = static_cast<std::uint32_t>(++slots);
+        touched[slots] = node;
+        count[slots] = 0;
+      }
+      slot = slot_of_node[node];
+      ++count[slot];
     }
-    const std::uint32_t slot = slot_of_[node];
-    stencil_slot_[e] = slot;
-    ++count[slot];
+    slot_of_entry[e] = slot;
   }
-  spread_start_[0] = 0;
-  spread_start_[1] = 0;
-  for (std::size_t slot = 1; slot <= slot_count_; ++slot)
-    spread_start_[slot + 1] += spread_start_[slot];
-  std::copy(spread_start_.begin(), spread_start_.begin() + slot_count_ + 2, spread_cursor_.begin());
-  for (std::size_t e = 0; e < entries_; ++e) {
-    if (stencil_slot_[e] == 0) continue;
-    const std::size_t at = spread_cursor_[stencil_slot_[e]]++;
-    spread_source_[at] = stencil_point_[e];
-    spread_weight_[at] = dt * stencil_scatter_[e];
+  slot_count_ = slots;
+  start[0] = 0;
+  start[1] = 0;
+  for (std::size_t slot = 1; slot <= slots; ++slot) start[slot + 1] += start[slot];
+  std::size_t* cursor = spread_cursor_.data();
+  std::copy(start, start + slots + 2, cursor);
+  std::uint32_t* source = spread_source_.data();
+  double* weight = spread_weight_.data();
+  for (std::size_t e = 0; e < entries; ++e) {
+    const std::uint32_t slot = slot_of_entry[e];
+    if (slot == 0) continue;
+    const std::size_t at = cursor[slot]++;
+    source[at] = point_of[e];
+    weight[at] = dt * scatter[e];
   }
 }
 
@@ -328,9 +349,16 @@ void CouplingOperator::Spread(const double* dir, double* uv) const {
   const double* weight = spread_weight_.data();
 #pragma omp for schedule(static)
   for (long slot = 1; slot <= slots; ++slot) {
+    // Two contributions a pass (the same sum in the same order, half the loop's count and branch).
+    auto at = [&](std::size_t c) { return weight[c] * LoadPair(dir + 2 * std::size_t(source[c])); };
     ComponentPair sum = {0.0, 0.0};
-    for (std::size_t c = start[slot]; c < start[slot + 1]; ++c)
-      sum += weight[c] * LoadPair(dir + 2 * std::size_t(source[c]));
+    const std::size_t end = start[slot + 1];
+    std::size_t c = start[slot];
+    for (; c + 2 <= end; c += 2) {
+      sum += at(c);
+      sum += at(c + 1);
+    }
+    if (c < end) sum += at(c);
     StorePair(uv + 2 * slot, sum);
   }
 }

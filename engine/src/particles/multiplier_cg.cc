@@ -57,14 +57,21 @@ void MultiplierCg::Start(const std::vector<ParticleState>& particles) {
 
 void MultiplierCg::MismatchOf(const ConstraintOperators& op, std::size_t p, const double* u,
                               const double* v) {
-  const std::vector<Vec2>& r = op.points.Points(p);
-  for (int k = 0; k < op.points.Count(p); ++k) {
-    const std::size_t node = op.points.Begin(p) + k;
+  // Locals: the stores to g could alias the members, so the compiler would read them again per
+  // point (as in ResponseMismatchOf).
+  const Vec2* r = op.points.Points(p).data();
+  const std::size_t first = op.points.Begin(p);
+  const int count = op.points.Count(p);
+  const Vec2 velocity = velocity_[p];
+  const double omega = omega_[p];
+  double* g = g_.data();
+  for (int k = 0; k < count; ++k) {
+    const std::size_t node = first + k;
     double eu, ev;
     op.coupling.Interpolate(node, u, v, eu, ev);
-    const Vec2 rigid = velocity_[p] + omega_[p] * RigidModes::Perp(r[k]);
-    g_[2 * node] = eu - rigid.x();
-    g_[2 * node + 1] = ev - rigid.y();
+    const Vec2 rigid = velocity + omega * RigidModes::Perp(r[k]);
+    g[2 * node] = eu - rigid.x();
+    g[2 * node + 1] = ev - rigid.y();
   }
 }
 

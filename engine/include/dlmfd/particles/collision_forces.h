@@ -103,7 +103,7 @@ class CollisionForces {
   int CellOf(const Vec2& x) const;
   void BuildCells(const std::vector<Vec2>& positions);
   // Indices of the distinct neighbouring cells of cell (cx, cy), itself included; returns the
-  // count.
+  // count. The constructor lists them once per cell (neighbours_).
   int NeighbourCells(int cx, int cy, int* cells) const;
   // Visits every unordered pair (i < j) whose cells lie k >= 2 cells apart (the larger of the
   // distances in x and in y, wrapped across periodic sides), from the cells of the last
@@ -123,7 +123,11 @@ class CollisionForces {
   int cells_x_, cells_y_;
   double cell_w_, cell_h_;
   std::vector<int> head_, next_;  // linked cell lists
-  bool any_shape_ = false;        // some particle is not a disk
+  // The distinct neighbouring cells of cell c (NeighbourCells, in its order): neighbours_[k] for k
+  // in neighbour_start_[c] .. neighbour_start_[c + 1] - 1, listed once at construction rather than
+  // deduplicated on every sweep (85 M instructions over 5 steps of the 1,000-disk bed).
+  std::vector<int> neighbour_start_, neighbours_;
+  bool any_shape_ = false;  // some particle is not a disk
   std::vector<Shape> shapes_;
   std::vector<double> angles_, torques_, area_radius_;  // per particle; R = sqrt(a b)
 };
@@ -131,17 +135,15 @@ class CollisionForces {
 template <class Visit>
 void CollisionForces::ForEachNearPair(const std::vector<Vec2>& positions, Visit&& visit) {
   BuildCells(positions);
-  int cells[9];
-  for (int cy = 0; cy < cells_y_; ++cy) {
-    for (int cx = 0; cx < cells_x_; ++cx) {
-      const int own = cy * cells_x_ + cx;
-      if (head_[own] < 0) continue;
-      const int count = NeighbourCells(cx, cy, cells);
-      for (int i = head_[own]; i >= 0; i = next_[i]) {
-        for (int c = 0; c < count; ++c) {
-          for (int j = head_[cells[c]]; j >= 0; j = next_[j]) {
-            if (j > i) visit(i, j, MinimumImage(positions[i] - positions[j]));
-          }
+  const int cell_count = cells_x_ * cells_y_;
+  for (int own = 0; own < cell_count; ++own) {
+    if (head_[own] < 0) continue;
+    const int* first = neighbours_.data() + neighbour_start_[own];
+    const int* last = neighbours_.data() + neighbour_start_[own + 1];
+    for (int i = head_[own]; i >= 0; i = next_[i]) {
+      for (const int* c = first; c != last; ++c) {
+        for (int j = head_[*c]; j >= 0; j = next_[j]) {
+          if (j > i) visit(i, j, MinimumImage(positions[i] - positions[j]));
         }
       }
     }

@@ -68,12 +68,24 @@ class CouplingOperator {
   std::size_t SlotCount() const { return slot_count_; }  // slots 1 .. SlotCount() in use
   std::size_t MaxSlots() const { return kMaxStencil * max_points_; }
 
-  // (eu, ev) = (E u, E v) at stacked point q.
+  // (eu, ev) = (E u, E v) at stacked point q; the interior points' 4-node stencils unrolled, as in
+  // InterpolateSlots (the same sums in the same order).
   void Interpolate(std::size_t q, const double* u, const double* v, double& eu, double& ev) const {
+    const std::size_t begin = stencil_start_[q], end = stencil_start_[q + 1];
+    const double* w = stencil_weight_.data();
+    const std::uint32_t* node = stencil_node_.data();
     double su = 0.0, sv = 0.0;
-    for (std::size_t e = stencil_start_[q]; e < stencil_start_[q + 1]; ++e) {
-      su += stencil_weight_[e] * u[stencil_node_[e]];
-      sv += stencil_weight_[e] * v[stencil_node_[e]];
+    auto add = [&](std::size_t e) {
+      su += w[e] * u[node[e]];
+      sv += w[e] * v[node[e]];
+    };
+    if (end - begin == 4) {
+      add(begin);
+      add(begin + 1);
+      add(begin + 2);
+      add(begin + 3);
+    } else {
+      for (std::size_t e = begin; e < end; ++e) add(e);
     }
     eu = su;
     ev = sv;
@@ -142,9 +154,8 @@ class CouplingOperator {
   void NumberSlotsInOrder(double dt);
   // a[k] = a[0] + ... + a[k - 1] for k in [0, n), on the team of the enclosing region.
   void PrefixSumInRegion(std::size_t* a, long n);
-  // Sets stencil entry `entry`: fluid node (i, j) with this weight for stacked point `point`.
-  void SetEntry(std::size_t entry, std::size_t point, int i, int j, double weight);
-  // SetEntry for each node of the stencil from `entry` on; returns the next entry.
+  // Sets the stencil entries from `entry` on, one per node of the stencil (its fluid node (i, j)
+  // and weight) for stacked point `point`; returns the next entry.
   template <class Stencil>
   std::size_t SetStencil(std::size_t entry, std::size_t point, const Stencil& stencil);
   [[noreturn]] void ThrowCrossing(double time, const MultiplierPoints& points,

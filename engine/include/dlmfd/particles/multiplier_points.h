@@ -64,6 +64,13 @@ class MultiplierPoints {
   bool Quadratic(std::size_t p, int k) const {
     return mesh_.kind == ParticleMeshKind::kCollocation && collocation_[set_of_[p]].Quadratic(k);
   }
+  // The quadratic points of particle p are its first QuadraticCount(p) (the boundary points come
+  // first): Quadratic(p, k) is k < QuadraticCount(p).
+  int QuadraticCount(std::size_t p) const {
+    if (mesh_.kind != ParticleMeshKind::kCollocation) return 0;
+    const CollocationPoints& set = collocation_[set_of_[p]];
+    return set.Quadratic(0) ? set.BoundaryCount() : 0;
+  }
   // The ring mesh of particle p (ring kind only).
   const ParticleMesh& Mesh(std::size_t p) const { return meshes_[set_of_[p]]; }
 
