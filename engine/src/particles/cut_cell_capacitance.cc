@@ -4,10 +4,55 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dlmfd/core/errors.h"
+#include "dlmfd/solvers/gmres.h"
+
 namespace dlmfd {
 
+int CutCellResponses::Update(const std::vector<int>& rows) {
+  const std::size_t n = fast_.grid().NodeCount();
+  std::vector<char> wanted(n, 0);
+  for (const int s : rows) wanted[static_cast<std::size_t>(s)] = 1;
+  for (auto it = held_.begin(); it != held_.end();) {
+    if (wanted[static_cast<std::size_t>(it->first)] != 0) {
+      ++it;
+    } else {
+      spare_.push_back(std::move(it->second));  // its Dirichlet nodes hold 0, as a new one's
+      it = held_.erase(it);
+    }
+  }
+  std::vector<int> missing;
+  for (const int s : rows)
+    if (held_.count(s) == 0) missing.push_back(s);
+  auto take = [&] {
+    if (spare_.empty()) return std::vector<double>(n, 0.0);
+    std::vector<double> x = std::move(spare_.back());
+    spare_.pop_back();
+    return x;
+  };
+  std::vector<double> tu(n, 0.0), tv(n, 0.0);
+  for (std::size_t j = 0; j < missing.size(); j += 2) {
+    const bool pair = j + 1 < missing.size();
+    std::vector<double> cu = take(), cv = take();
+    tu[missing[j]] = 1.0;
+    if (pair) tv[missing[j + 1]] = 1.0;
+    fast_.SolvePair(tu.data(), cu.data(), tv.data(), cv.data());
+    tu[missing[j]] = 0.0;
+    held_.emplace(missing[j], std::move(cu));
+    if (pair) {
+      tv[missing[j + 1]] = 0.0;
+      held_.emplace(missing[j + 1], std::move(cv));
+    } else {
+      spare_.push_back(std::move(cv));
+    }
+  }
+  return static_cast<int>(missing.size());
+}
+
 CutCellCapacitance::CutCellCapacitance(const SeparableHelmholtz& fast,
-                                       const Eigen::SparseMatrix<double>& difference, double drop)
+                                       const Eigen::SparseMatrix<double>& difference, double drop,
+                                       CutCellResponses* responses,
+                                       std::shared_ptr<const CutCellFactor> reference)
     : fast_(fast) {
   const Eigen::Index n = difference.rows();
   const Eigen::SparseMatrix<double, Eigen::RowMajor> rows = difference;
@@ -34,9 +79,15 @@ CutCellCapacitance::CutCellCapacitance(const SeparableHelmholtz& fast,
   cu_.assign(size, 0.0);
   cv_.assign(size, 0.0);
   y_.resize(k, 2);
-  // The columns I + C A_0^-1 e_s, two at a time.
+  // The columns I + C A_0^-1 e_s: held by the responses, or solved for two at a time.
   Eigen::MatrixXd capacitance = Eigen::MatrixXd::Identity(k, k);
-  for (Eigen::Index j = 0; j < k; j += 2) {
+  if (responses != nullptr) {
+    set_up_solves_ = responses->Update(rows_);
+    for (Eigen::Index j = 0; j < k; ++j)
+      capacitance.col(j) +=
+          coupling_ * Eigen::Map<const Eigen::VectorXd>(responses->Of(rows_[j]).data(), n);
+  }
+  for (Eigen::Index j = 0; responses == nullptr && j < k; j += 2) {
     const bool pair = j + 1 < k;
     tu_[rows_[j]] = 1.0;
     if (pair) tv_[rows_[j + 1]] = 1.0;
@@ -48,8 +99,61 @@ CutCellCapacitance::CutCellCapacitance(const SeparableHelmholtz& fast,
       capacitance.col(j + 1) += coupling_ * Eigen::Map<const Eigen::VectorXd>(cv_.data(), n);
     tu_[rows_[j]] = 0.0;
     if (pair) tv_[rows_[j + 1]] = 0.0;
+    set_up_solves_ += pair ? 2 : 1;
   }
-  if (k > 0) capacitance_.compute(capacitance);
+  if (k == 0) return;
+  if (reference == nullptr) {
+    auto own = std::make_shared<CutCellFactor>();
+    own->rows = rows_;
+    own->lu.compute(capacitance);
+    factor_ = std::move(own);
+    return;
+  }
+  // GMRES on this matrix, preconditioned by the reference's factorisation: its rows that are
+  // still in the band, the identity on the new ones.
+  factor_ = std::move(reference);
+  matrix_ = std::move(capacitance);
+  std::unordered_map<int, int> position;
+  for (std::size_t j = 0; j < factor_->rows.size(); ++j)
+    position.emplace(factor_->rows[j], static_cast<int>(j));
+  reference_position_.assign(rows_.size(), -1);
+  for (std::size_t j = 0; j < rows_.size(); ++j) {
+    auto it = position.find(rows_[j]);
+    if (it != position.end()) reference_position_[j] = it->second;
+  }
+}
+
+// y := M^-1 y for each column of y: by the factorisation (exact), or by GMRES on M preconditioned
+// by the reference's (header).
+void CutCellCapacitance::SolveCapacitance() {
+  if (matrix_.size() == 0) {
+    y_ = factor_->lu.solve(y_);  // in place: P y, then the two triangular solves
+    return;
+  }
+  const auto k = static_cast<Eigen::Index>(rows_.size());
+  const auto kr = static_cast<Eigen::Index>(factor_->rows.size());
+  Eigen::VectorXd t(kr);
+  auto precondition = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+    t.setZero();
+    for (Eigen::Index j = 0; j < k; ++j)
+      if (reference_position_[j] >= 0) t[reference_position_[j]] = in[j];
+    t = factor_->lu.solve(t);
+    out = in;
+    for (Eigen::Index j = 0; j < k; ++j)
+      if (reference_position_[j] >= 0) out[j] = t[reference_position_[j]];
+  };
+  auto apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out.noalias() = matrix_ * in; };
+  for (Eigen::Index c = 0; c < 2; ++c) {
+    const Eigen::VectorXd rhs = y_.col(c);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(k);
+    const GmresResult r = SolveGmres(apply, precondition, rhs, x, kGmresTolerance, kMaxIterations,
+                                     kMaxIterations);
+    if (!r.converged)
+      throw SolverNotConverged("cut-cell capacitance matrix: GMRES did not converge");
+    iterations_ += r.iterations;
+    ++solves_;
+    y_.col(c) = x;
+  }
 }
 
 void CutCellCapacitance::SolvePair(const double* fu, double* u, const double* fv, double* v) {
@@ -60,7 +164,7 @@ void CutCellCapacitance::SolvePair(const double* fu, double* u, const double* fv
   if (rows_.empty()) return;
   y_.col(0) = coupling_ * Eigen::Map<const Eigen::VectorXd>(u, n);
   y_.col(1) = coupling_ * Eigen::Map<const Eigen::VectorXd>(v, n);
-  y_ = capacitance_.solve(y_);  // in place: P y, then the two triangular solves
+  SolveCapacitance();
   for (std::size_t s = 0; s < rows_.size(); ++s) {
     tu_[rows_[s]] = y_(static_cast<Eigen::Index>(s), 0);
     tv_[rows_[s]] = y_(static_cast<Eigen::Index>(s), 1);

@@ -38,8 +38,8 @@ CutCellStep::CutCellStep(const Params& params, const Grid& grid)
 
 CutCellStep::~CutCellStep() = default;
 
-void CutCellStep::PrepareStep(double dt) {
-  if (dt == dt_ && flow_) return;
+bool CutCellStep::PrepareStep(double dt) {
+  if (dt == dt_ && flow_) return false;
   dt_ = dt;
   rho_over_dt_ = fluid_density_ / dt;
   flow_.reset();  // one saddle point at a time
@@ -50,7 +50,7 @@ void CutCellStep::PrepareStep(double dt) {
     flow_ = std::make_unique<CutCellStokes>(*geometries_[0], domain_, viscosity_, fluid_density_,
                                             rho_over_dt_, constants_);
   }
-  if (moving_) flow_->SetBodyMotion(Motions());
+  return true;
 }
 
 std::vector<RigidMotion> CutCellStep::Motions() const {
@@ -83,14 +83,11 @@ void CutCellStep::MoveBodies(double dt) {
       }
     }
   }
+  // In place: the saddle point refers to them (CutCellStokes::Recut).
   const CutPeriodicity periodic_axes{periodic[0], periodic[1]};
-  geometries_[0] =
-      std::make_unique<CutCellGeometry>(grid_, bodies_, CutTriangulation::kSwNe, periodic_axes);
-  if (geometries_.size() == 2) {
-    geometries_[1] =
-        std::make_unique<CutCellGeometry>(grid_, bodies_, CutTriangulation::kNwSe, periodic_axes);
-  }
-  flow_.reset();
+  *geometries_[0] = CutCellGeometry(grid_, bodies_, CutTriangulation::kSwNe, periodic_axes);
+  if (geometries_.size() == 2)
+    *geometries_[1] = CutCellGeometry(grid_, bodies_, CutTriangulation::kNwSe, periodic_axes);
 }
 
 void CutCellStep::FillBodies(double* u, double* v) const {
@@ -117,7 +114,11 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
     FillBodies(u, v);  // u^n inside the bodies at X^n: the value of the nodes they uncover
     MoveBodies(dt);
   }
-  PrepareStep(dt);
+  const bool fresh = PrepareStep(dt);
+  if (moving_) {
+    if (!fresh) flow_->Recut();  // the band anew, the rest kept
+    flow_->SetBodyMotion(Motions());
+  }
   const Eigen::VectorXd& mass = flow_->FluidMass();
   for (std::size_t k = 0; k < fu_.size(); ++k) {
     const auto i = static_cast<Eigen::Index>(k);

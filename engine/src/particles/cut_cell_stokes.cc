@@ -1,7 +1,9 @@
 #include "dlmfd/particles/cut_cell_stokes.h"
 
 #include <Eigen/SparseLU>
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -54,6 +56,39 @@ void AddGhostPenalty(const CutCellGeometry& geo, const Grid& mesh, Nodes nodes, 
   });
 }
 
+// A row-major matrix assembled row by row (Reserve at least its entries first): row `row` of m,
+// its columns through `index` (-1: left out) plus `offset`, divided by `divisor`.
+struct ReducedRows {
+  std::vector<int> outer{0}, inner;
+  std::vector<double> values;
+  std::size_t size = 0;
+  void Append(const RowSparse& m, int row, const std::vector<int>& index, int offset,
+              double divisor) {
+    const int* cols = m.innerIndexPtr();
+    const double* vals = m.valuePtr();
+    for (int e = m.outerIndexPtr()[row]; e < m.outerIndexPtr()[row + 1]; ++e) {
+      const int c = index[static_cast<std::size_t>(cols[e])];
+      if (c < 0) continue;
+      inner[size] = offset + c;
+      values[size] = vals[e] / divisor;
+      ++size;
+    }
+  }
+  void EndRow() { outer.push_back(static_cast<int>(size)); }
+  void Reserve(Eigen::Index nonzeros) {
+    inner.resize(static_cast<std::size_t>(nonzeros));
+    values.resize(static_cast<std::size_t>(nonzeros));
+  }
+  RowSparse Build(int rows, int cols) const {
+    RowSparse m(rows, cols);
+    m.resizeNonZeros(static_cast<Eigen::Index>(size));
+    std::copy(outer.begin(), outer.end(), m.outerIndexPtr());
+    std::copy_n(inner.begin(), size, m.innerIndexPtr());
+    std::copy_n(values.begin(), size, m.valuePtr());
+    return m;
+  }
+};
+
 }  // namespace
 
 struct CutCellStokes::Impl {
@@ -86,6 +121,7 @@ struct CutCellStokes::Impl {
   Eigen::VectorXd pressure_fluid_mass;             // np: int_fluid q_Q
   Sparse div_x, div_y, chord_x, chord_y;           // np x n: -(q, d_c u); <q, u n_c>
   Sparse ghost_p;                                  // np x np
+  Sparse band_stiffness;  // Recut: the stiffness less the uniform one (the band's correction)
   // Nitsche's load of the bodies' rigid motion (SetBodyMotion): momentum (n) and continuity (np);
   // empty for bodies at rest.
   Eigen::VectorXd boundary_u, boundary_v, boundary_p;
@@ -93,23 +129,46 @@ struct CutCellStokes::Impl {
   std::vector<int> vindex, pindex;  // full -> reduced, -1 if not an unknown
   std::vector<int> vnodes, pnodes;  // reduced -> full
   // The reduced operators; the divergence with the chords' terms over every node.
-  Sparse momentum_full, velocity, saddle, bx_full, by_full;
+  Sparse momentum_full, velocity, bx_full, by_full;
   // Row-major rows of the fluid forms for the force: eta K + rho C, and -B_x^T, -B_y^T of the
   // volume divergence (n x np).
   RowSparse momentum_rows, gradient_x_rows, gradient_y_rows;
   // Row-major copies for the products of the iterations: bt = [Bx^T; By^T] and b = [Bx, By] over
   // the unknowns, pp = -G_p / eta.
-  RowSparse saddle_rows, bt, b, pp;
+  RowSparse saddle_rows, bt, b, pp, velocity_rows;
   bool exact_velocity = false;  // precondition the velocity by its own factorization
   Eigen::SparseLU<Sparse> velocity_lu;
   std::unique_ptr<SeparableHelmholtz> fast_velocity, fast_pressure;
   std::unique_ptr<CutCellCapacitance> capacitance;  // the exact solve of the Stokes velocity block
   Eigen::VectorXd pressure_mass;                    // at pressure unknowns
   std::vector<double> work_fu, work_fv, work_u, work_v, work_fp, work_p;
+  // A moving body's steps (Recut): the uniform grid's fluid forms (every triangle whole, the same
+  // assembly) and the fast solver's responses A_0^-1 e_s of the band.
+  struct Uniform {
+    Sparse stiffness, div_x, div_y;
+    Eigen::VectorXd lumped_mass, pressure_fluid_mass;
+  };
+  std::unique_ptr<Uniform> uniform;
+  std::unique_ptr<CutCellResponses> responses;
+  bool band_forms = false;  // the forms are the uniform ones plus the band's correction
 
   Impl(std::vector<const CutCellGeometry*> g, const DomainParams& domain, double viscosity,
        double density, double rdt, const CutCellConstants& c);
   void AssembleFluidForms();
+  // Adds scale times the fluid forms of one triangle (whole or its cut part) of geo.
+  struct FormTriplets {
+    Triplets k, bx, by;
+    Eigen::VectorXd lumped_mass, pressure_fluid_mass;
+  };
+  void AddTriangleForms(const CutCellGeometry& geo, int t, const std::array<int, 3>& mesh_nodes,
+                        const std::array<Vec2, 3>& grads, double area, const Vec2& centroid,
+                        const std::array<double, 3>& mass_rows, double scale,
+                        FormTriplets& out) const;
+  void AddWholeTriangle(const CutCellGeometry& geo, int t, double scale, FormTriplets& out) const;
+  void AddCutTriangle(const CutCellGeometry& geo, const CutTriangle& c, FormTriplets& out) const;
+  void AssembleUniformForms();
+  void AssembleBandForms();
+  void Recut();
   void AssembleChordForms();
   void AddChordTerms(const CutCellGeometry& geo, Triplets& nit, Triplets& cx, Triplets& cy) const;
   void AddChordLoad(const CutCellGeometry& geo, const std::vector<RigidMotion>& motions);
@@ -126,6 +185,8 @@ struct CutCellStokes::Impl {
     return false;
   }
   void BuildReduced();
+  void BuildSaddleRows();
+  Eigen::VectorXd SaddleProduct(const Eigen::VectorXd& x) const;
   Sparse UniformVelocityOperator() const;
   void BuildCapacitance();
   void Precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z);
@@ -170,11 +231,6 @@ CutCellStokes::Impl::Impl(std::vector<const CutCellGeometry*> g, const DomainPar
   BuildCapacitance();
   if (rho_over_dt > 0.0)
     fast_pressure = std::make_unique<SeparableHelmholtz>(pgrid, ptopo, 0.0, 1.0, 1);
-  // The Schur complement's diagonal model: (M_p + G_p) / eta over the fluid part.
-  pressure_mass.resize(static_cast<Eigen::Index>(pnodes.size()));
-  const Eigen::VectorXd ghost_diagonal = ghost_p.diagonal();
-  for (std::size_t k = 0; k < pnodes.size(); ++k)
-    pressure_mass[k] = pressure_fluid_mass[pnodes[k]] + ghost_diagonal[pnodes[k]];
   work_fu.assign(n, 0.0);
   work_fv.assign(n, 0.0);
   work_u.assign(n, 0.0);
@@ -184,53 +240,136 @@ CutCellStokes::Impl::Impl(std::vector<const CutCellGeometry*> g, const DomainPar
   BuildReduced();
 }
 
+// The geometries have moved (a body in prescribed motion): the forms anew as the uniform ones plus
+// the band's correction, the unknowns, the capacitance matrix from the responses held (fast solves
+// for the rows new to the band only), the reduced operators. The fast solvers are kept; the
+// Oseen term and the bodies' motion are cleared.
+void CutCellStokes::Impl::Recut() {
+  const auto n = static_cast<Eigen::Index>(grid.NodeCount());
+  if (!uniform) AssembleUniformForms();
+  if (!responses) responses = std::make_unique<CutCellResponses>(*fast_velocity);
+  band_forms = true;
+  convection.resize(n, n);
+  convection.setZero();
+  boundary_u.resize(0);
+  boundary_v.resize(0);
+  boundary_p.resize(0);
+  AssembleBandForms();
+  AssembleChordForms();
+  NumberUnknowns();
+  BuildCapacitance();
+  BuildReduced();
+}
+
 // Stiffness, lumped mass and divergence over the fluid part of every active h-triangle: whole
 // triangles, and the fluid polygons of cut ones (the divergence by the one-point rule at the
 // polygon's centroid, exact for linear q times the constant div u). Both triangulations: the mean.
+void CutCellStokes::Impl::AddTriangleForms(const CutCellGeometry& geo, int t,
+                                           const std::array<int, 3>& mesh_nodes,
+                                           const std::array<Vec2, 3>& grads, double area,
+                                           const Vec2& centroid,
+                                           const std::array<double, 3>& mass_rows, double scale,
+                                           FormTriplets& out) const {
+  const int macro = geo.MacroOf(t);
+  const std::array<int, 3> nodes = vmap(mesh_nodes), q = pmap(geo.MacroNodes(macro));
+  const std::array<double, 3> lam = MacroBasis(geo, macro, centroid);
+  const double wa = scale * weight * area;
+  for (int a = 0; a < 3; ++a) {
+    out.lumped_mass[nodes[a]] += scale * weight * mass_rows[a];
+    out.pressure_fluid_mass[q[a]] += wa * lam[a];
+    for (int b = 0; b < 3; ++b) {
+      out.k.emplace_back(nodes[a], nodes[b], wa * grads[a].dot(grads[b]));
+      out.bx.emplace_back(q[a], nodes[b], -wa * lam[a] * grads[b].x());
+      out.by.emplace_back(q[a], nodes[b], -wa * lam[a] * grads[b].y());
+    }
+  }
+}
+
+void CutCellStokes::Impl::AddWholeTriangle(const CutCellGeometry& geo, int t, double scale,
+                                           FormTriplets& out) const {
+  const double whole = 0.5 * grid.h * grid.h;
+  const std::array<int, 3> nodes = geo.TriangleNodes(t);
+  Vec2 centroid = Vec2::Zero();
+  for (int a : nodes) centroid += NodePosition(grid, a) / 3.0;
+  AddTriangleForms(geo, t, nodes, geo.TriangleGradients(t), whole, centroid,
+                   {whole / 3.0, whole / 3.0, whole / 3.0}, scale, out);
+}
+
+void CutCellStokes::Impl::AddCutTriangle(const CutCellGeometry& geo, const CutTriangle& c,
+                                         FormTriplets& out) const {
+  std::array<double, 3> rows{};
+  for (int a = 0; a < 3; ++a) rows[a] = c.mass[a][0] + c.mass[a][1] + c.mass[a][2];
+  AddTriangleForms(geo, c.triangle, c.nodes, c.grads, c.area, c.centroid, rows, 1.0, out);
+}
+
 void CutCellStokes::Impl::AssembleFluidForms() {
   const auto n = static_cast<Eigen::Index>(grid.NodeCount());
   const auto np = static_cast<Eigen::Index>(pgrid.NodeCount());
-  Triplets k, bx, by;
-  lumped_mass = Eigen::VectorXd::Zero(n);
-  pressure_fluid_mass = Eigen::VectorXd::Zero(np);
+  FormTriplets f{{}, {}, {}, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(np)};
   for (const CutCellGeometry* geo : geos) {
-    auto add = [&](int t, const std::array<int, 3>& mesh_nodes, const std::array<Vec2, 3>& grads,
-                   double area, const Vec2& centroid, const std::array<double, 3>& mass_rows) {
-      const int macro = geo->MacroOf(t);
-      const std::array<int, 3> nodes = vmap(mesh_nodes), q = pmap(geo->MacroNodes(macro));
-      const std::array<double, 3> lam = MacroBasis(*geo, macro, centroid);
-      const double wa = weight * area;
-      for (int a = 0; a < 3; ++a) {
-        lumped_mass[nodes[a]] += weight * mass_rows[a];
-        pressure_fluid_mass[q[a]] += wa * lam[a];
-        for (int b = 0; b < 3; ++b) {
-          k.emplace_back(nodes[a], nodes[b], wa * grads[a].dot(grads[b]));
-          bx.emplace_back(q[a], nodes[b], -wa * lam[a] * grads[b].x());
-          by.emplace_back(q[a], nodes[b], -wa * lam[a] * grads[b].y());
-        }
-      }
-    };
-    const double whole = 0.5 * grid.h * grid.h;
-    for (int t = 0; t < geo->TriangleCount(); ++t) {
-      if (geo->State(t) != ElementState::kFluid) continue;
-      const std::array<int, 3> nodes = geo->TriangleNodes(t);
-      Vec2 centroid = Vec2::Zero();
-      for (int a : nodes) centroid += NodePosition(grid, a) / 3.0;
-      add(t, nodes, geo->TriangleGradients(t), whole, centroid,
-          {whole / 3.0, whole / 3.0, whole / 3.0});
-    }
-    for (const CutTriangle& c : geo->cut_triangles()) {
-      std::array<double, 3> rows{};
-      for (int a = 0; a < 3; ++a) rows[a] = c.mass[a][0] + c.mass[a][1] + c.mass[a][2];
-      add(c.triangle, c.nodes, c.grads, c.area, c.centroid, rows);
-    }
+    for (int t = 0; t < geo->TriangleCount(); ++t)
+      if (geo->State(t) == ElementState::kFluid) AddWholeTriangle(*geo, t, 1.0, f);
+    for (const CutTriangle& c : geo->cut_triangles()) AddCutTriangle(*geo, c, f);
   }
+  lumped_mass = std::move(f.lumped_mass);
+  pressure_fluid_mass = std::move(f.pressure_fluid_mass);
   stiffness.resize(n, n);
-  stiffness.setFromTriplets(k.begin(), k.end());
+  stiffness.setFromTriplets(f.k.begin(), f.k.end());
   div_x.resize(np, n);
-  div_x.setFromTriplets(bx.begin(), bx.end());
+  div_x.setFromTriplets(f.bx.begin(), f.bx.end());
   div_y.resize(np, n);
-  div_y.setFromTriplets(by.begin(), by.end());
+  div_y.setFromTriplets(f.by.begin(), f.by.end());
+}
+
+// The fluid forms of the uniform grid (every triangle whole).
+void CutCellStokes::Impl::AssembleUniformForms() {
+  const auto n = static_cast<Eigen::Index>(grid.NodeCount());
+  const auto np = static_cast<Eigen::Index>(pgrid.NodeCount());
+  FormTriplets f{{}, {}, {}, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(np)};
+  for (const CutCellGeometry* geo : geos)
+    for (int t = 0; t < geo->TriangleCount(); ++t) AddWholeTriangle(*geo, t, 1.0, f);
+  uniform = std::make_unique<Uniform>();
+  uniform->lumped_mass = std::move(f.lumped_mass);
+  uniform->pressure_fluid_mass = std::move(f.pressure_fluid_mass);
+  uniform->stiffness.resize(n, n);
+  uniform->stiffness.setFromTriplets(f.k.begin(), f.k.end());
+  uniform->div_x.resize(np, n);
+  uniform->div_x.setFromTriplets(f.bx.begin(), f.bx.end());
+  uniform->div_y.resize(np, n);
+  uniform->div_y.setFromTriplets(f.by.begin(), f.by.end());
+}
+
+// The fluid forms as the uniform ones less every triangle that is not fluid plus the fluid parts of
+// the cut ones: the triangles of the band and inside the bodies only (the same forms up to
+// round-off, which leaves entries of order 1e-16 of the largest where the exact assembly has
+// none: in rows and columns of nodes without fluid, which the solver does not read, and Load
+// skips them). The lumped masses are set to 0 at the nodes without fluid.
+void CutCellStokes::Impl::AssembleBandForms() {
+  const auto n = static_cast<Eigen::Index>(grid.NodeCount());
+  const auto np = static_cast<Eigen::Index>(pgrid.NodeCount());
+  FormTriplets f{{}, {}, {}, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(np)};
+  for (const CutCellGeometry* geo : geos) {
+    for (int t = 0; t < geo->TriangleCount(); ++t)
+      if (geo->State(t) != ElementState::kFluid) AddWholeTriangle(*geo, t, -1.0, f);
+    for (const CutTriangle& c : geo->cut_triangles()) AddCutTriangle(*geo, c, f);
+  }
+  lumped_mass = uniform->lumped_mass + f.lumped_mass;
+  pressure_fluid_mass = uniform->pressure_fluid_mass + f.pressure_fluid_mass;
+  for (Eigen::Index k = 0; k < n; ++k)
+    if (!ActiveNode(static_cast<std::size_t>(k))) lumped_mass[k] = 0.0;
+  for (Eigen::Index k = 0; k < np; ++k)
+    if (!ActivePressureNode(static_cast<std::size_t>(k))) pressure_fluid_mass[k] = 0.0;
+  Sparse band(n, n);
+  band.setFromTriplets(f.k.begin(), f.k.end());
+  stiffness = uniform->stiffness + band;
+  band.resize(np, n);
+  band.setFromTriplets(f.bx.begin(), f.bx.end());
+  div_x = uniform->div_x + band;
+  band.resize(np, n);
+  band.setFromTriplets(f.by.begin(), f.by.end());
+  div_y = uniform->div_y + band;
+  band_stiffness.resize(n, n);
+  band_stiffness.setFromTriplets(f.k.begin(), f.k.end());
 }
 
 // Nitsche's terms on the chords (two-point Gauss) of one triangulation, weighted.
@@ -327,6 +466,8 @@ void CutCellStokes::Impl::AssembleChordForms() {
 }
 
 void CutCellStokes::Impl::NumberUnknowns() {
+  vnodes.clear();
+  pnodes.clear();
   vindex.assign(grid.NodeCount(), -1);
   for (int j = 0; j <= grid.ny; ++j)
     for (int i = 0; i <= grid.nx; ++i) {
@@ -346,50 +487,93 @@ void CutCellStokes::Impl::NumberUnknowns() {
 }
 
 // The reduced saddle point [[A, 0, Bx^T], [0, A, By^T], [Bx, By, -G_p / eta]] over the unknowns,
-// and the row-major blocks of the iterations.
+// and the row-major blocks of the iterations: the rows of the full forms at the unknowns, their
+// columns renumbered (the numbering keeps the nodes' order, so no sorting).
 void CutCellStokes::Impl::BuildReduced() {
   const Sparse diag_mass = Sparse(lumped_mass.asDiagonal());
   momentum_full =
       rho_over_dt * diag_mass + eta * (stiffness + nitsche + ghost_u) + rho * convection;
   bx_full = div_x + chord_x;
   by_full = div_y + chord_y;
-  momentum_rows = eta * stiffness + rho * convection;
-  gradient_x_rows = div_x.transpose();
-  gradient_y_rows = div_y.transpose();
-  const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
-  Triplets a, s;
-  for (int col = 0; col < momentum_full.outerSize(); ++col)
-    for (Sparse::InnerIterator it(momentum_full, col); it; ++it) {
-      const int r = vindex[it.row()], c = vindex[col];
-      if (r < 0 || c < 0) continue;
-      a.emplace_back(r, c, it.value());
-      s.emplace_back(r, c, it.value());
-      s.emplace_back(nu + r, nu + c, it.value());
-    }
-  for (int comp = 0; comp < 2; ++comp) {
-    const Sparse& div = comp == 0 ? bx_full : by_full;
-    for (int col = 0; col < div.outerSize(); ++col)
-      for (Sparse::InnerIterator it(div, col); it; ++it) {
-        const int r = pindex[it.row()], c = vindex[col];
-        if (r < 0 || c < 0) continue;
-        s.emplace_back(2 * nu + r, comp * nu + c, it.value());
-        s.emplace_back(comp * nu + c, 2 * nu + r, it.value());
-      }
+  // A moving body's steps read the force from the columns of the symmetric stiffness and of the
+  // divergence instead (Load), and the saddle point's residual by blocks (SaddleProduct).
+  momentum_rows.resize(0, 0);
+  gradient_x_rows.resize(0, 0);
+  gradient_y_rows.resize(0, 0);
+  if (!band_forms || convection.nonZeros() > 0) {
+    momentum_rows = eta * stiffness + rho * convection;
+    gradient_x_rows = div_x.transpose();
+    gradient_y_rows = div_y.transpose();
   }
-  for (int col = 0; col < ghost_p.outerSize(); ++col)
-    for (Sparse::InnerIterator it(ghost_p, col); it; ++it) {
-      const int r = pindex[it.row()], c = pindex[col];
-      if (r >= 0 && c >= 0) s.emplace_back(2 * nu + r, 2 * nu + c, -it.value() / eta);
+  // The Schur complement's diagonal model: (M_p + G_p) / eta over the fluid part.
+  pressure_mass.resize(static_cast<Eigen::Index>(pnodes.size()));
+  const Eigen::VectorXd ghost_diagonal = ghost_p.diagonal();
+  for (std::size_t k = 0; k < pnodes.size(); ++k)
+    pressure_mass[k] = pressure_fluid_mass[pnodes[k]] + ghost_diagonal[pnodes[k]];
+  const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
+  const RowSparse a_full = momentum_full, bx_rows = bx_full, by_rows = by_full;
+  const RowSparse g_rows = ghost_p;
+  ReducedRows av, bb, gg;
+  av.Reserve(a_full.nonZeros());
+  bb.Reserve(bx_rows.nonZeros() + by_rows.nonZeros());
+  gg.Reserve(g_rows.nonZeros());
+  for (int r = 0; r < nu; ++r) {
+    av.Append(a_full, vnodes[r], vindex, 0, 1.0);
+    av.EndRow();
+  }
+  for (int r = 0; r < npu; ++r) {
+    bb.Append(bx_rows, pnodes[r], vindex, 0, 1.0);
+    bb.Append(by_rows, pnodes[r], vindex, nu, 1.0);
+    bb.EndRow();
+    gg.Append(g_rows, pnodes[r], pindex, 0, -eta);
+    gg.EndRow();
+  }
+  velocity_rows = av.Build(nu, nu);
+  b = bb.Build(npu, 2 * nu);
+  pp = gg.Build(npu, npu);
+  bt = b.transpose();
+  saddle_rows.resize(0, 0);
+  if (!band_forms) BuildSaddleRows();
+  if (exact_velocity) {
+    velocity = velocity_rows;
+    velocity_lu.compute(velocity);
+  }
+}
+
+// The whole saddle point row by row from its blocks (GMRES, the direct solve, and the Uzawa
+// solve's residual on fixed bodies).
+void CutCellStokes::Impl::BuildSaddleRows() {
+  if (saddle_rows.rows() > 0) return;
+  const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
+  std::vector<int> identity_index(static_cast<std::size_t>(2 * nu + npu));
+  std::iota(identity_index.begin(), identity_index.end(), 0);
+  ReducedRows ss;
+  ss.Reserve(2 * velocity_rows.nonZeros() + 2 * b.nonZeros() + pp.nonZeros());
+  for (int comp = 0; comp < 2; ++comp)
+    for (int r = 0; r < nu; ++r) {
+      ss.Append(velocity_rows, r, identity_index, comp * nu, 1.0);
+      ss.Append(bt, comp * nu + r, identity_index, 2 * nu, 1.0);
+      ss.EndRow();
     }
-  velocity.resize(nu, nu);
-  velocity.setFromTriplets(a.begin(), a.end());
-  saddle.resize(2 * nu + npu, 2 * nu + npu);
-  saddle.setFromTriplets(s.begin(), s.end());
-  saddle_rows = saddle;
-  bt = saddle_rows.block(0, 2 * nu, 2 * nu, npu);
-  b = saddle_rows.block(2 * nu, 0, npu, 2 * nu);
-  pp = saddle_rows.block(2 * nu, 2 * nu, npu, npu);
-  if (exact_velocity) velocity_lu.compute(velocity);
+  for (int r = 0; r < npu; ++r) {
+    ss.Append(b, r, identity_index, 0, 1.0);
+    ss.Append(pp, r, identity_index, 2 * nu, 1.0);
+    ss.EndRow();
+  }
+  saddle_rows = ss.Build(2 * nu + npu, 2 * nu + npu);
+}
+
+// K x for the saddle point: by its rows when built, else by blocks (the same up to round-off).
+Eigen::VectorXd CutCellStokes::Impl::SaddleProduct(const Eigen::VectorXd& x) const {
+  if (saddle_rows.rows() > 0) return saddle_rows * x;
+  const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
+  Eigen::VectorXd y(x.size());
+  const Eigen::VectorXd p = x.tail(npu);
+  const Eigen::VectorXd gradient = bt * p;
+  y.head(nu) = velocity_rows * x.head(nu) + gradient.head(nu);
+  y.segment(nu, nu) = velocity_rows * x.segment(nu, nu) + gradient.tail(nu);
+  y.tail(npu) = b * x.head(2 * nu) + pp * p;
+  return y;
 }
 
 // (rho/dt) M_l + eta K over every whole triangle: the fast solver's operator, assembled as the
@@ -422,6 +606,29 @@ void CutCellStokes::Impl::BuildCapacitance() {
   std::vector<char> unknown(grid.NodeCount(), 0);
   for (int j = 0; j <= grid.ny; ++j)
     for (int i = 0; i <= grid.nx; ++i) unknown[grid.Index(i, j)] = vtopo.IsUnknown(grid, i, j);
+  if (band_forms) {
+    // The difference is the band's: its mass, the stiffness's correction, Nitsche and the ghost
+    // penalty (in a column of a node without fluid the correction is -A_0's entry up to round-off).
+    const Eigen::VectorXd mass = lumped_mass - uniform->lumped_mass;
+    const Sparse band = rho_over_dt * Sparse(mass.asDiagonal()) +
+                        eta * (band_stiffness + nitsche + ghost_u);
+    Triplets d;
+    for (int col = 0; col < n; ++col) {
+      if (!unknown[col]) continue;
+      for (Sparse::InnerIterator it(band, col); it; ++it)
+        if (vindex[it.row()] >= 0) d.emplace_back(static_cast<int>(it.row()), col, it.value());
+    }
+    Sparse difference(n, n);
+    difference.setFromTriplets(d.begin(), d.end());
+    // The last factorisation as GMRES's preconditioner while its iterations stay few.
+    std::shared_ptr<const CutCellFactor> reference;
+    if (capacitance && constants.capacitance_refactor > 0.0 &&
+        capacitance->MeanIterations() <= constants.capacitance_refactor)
+      reference = capacitance->Factor();
+    capacitance = std::make_unique<CutCellCapacitance>(*fast_velocity, difference, 1e-12,
+                                                       responses.get(), std::move(reference));
+    return;
+  }
   const Sparse cut =
       rho_over_dt * Sparse(lumped_mass.asDiagonal()) + eta * (stiffness + nitsche + ghost_u);
   const Sparse uniform = UniformVelocityOperator();
@@ -525,7 +732,7 @@ GmresResult CutCellStokes::Impl::SolveSchur(const Eigen::VectorXd& rhs, Eigen::V
     RemovePressureMean(p);
     x.head(2 * nu) = u;
     x.tail(npu) = p;
-    result.relative_residual = (rhs - saddle_rows * x).norm() / b_norm;
+    result.relative_residual = (rhs - SaddleProduct(x)).norm() / b_norm;
     result.converged = result.relative_residual <= tolerance;
     if (result.converged || result.iterations >= max_iterations) break;
   }
@@ -621,6 +828,13 @@ std::size_t CutCellStokes::NodeCount() const { return impl_->grid.NodeCount(); }
 int CutCellStokes::VelocityUnknowns() const { return static_cast<int>(impl_->vnodes.size()); }
 int CutCellStokes::PressureUnknowns() const { return static_cast<int>(impl_->pnodes.size()); }
 int CutCellStokes::CapacitanceRank() const { return impl_->capacitance->Rank(); }
+int CutCellStokes::CapacitanceFastSolves() const { return impl_->capacitance->FastSolvesAtSetUp(); }
+
+double CutCellStokes::CapacitanceIterations() const {
+  return impl_->capacitance->MeanIterations();
+}
+
+void CutCellStokes::Recut() { impl_->Recut(); }
 
 void CutCellStokes::SetExactVelocityPreconditioner(bool exact) {
   impl_->exact_velocity = exact;
@@ -686,6 +900,7 @@ CutCellReport CutCellStokes::Solve(const BoundaryData& data, const double* fu, c
   for (std::size_t k = 0; k < m.pnodes.size(); ++k)
     x[2 * nu + static_cast<int>(k)] = p[m.pnodes[k]];
   const bool uzawa = m.convection.nonZeros() == 0 && !m.exact_velocity;
+  if (!uzawa) m.BuildSaddleRows();
   const GmresResult result =
       uzawa
           ? m.SolveSchur(rhs, x, tolerance, max_iterations)
@@ -710,7 +925,8 @@ void CutCellStokes::SolveDirect(const BoundaryData& data, const double* fu, cons
   std::vector<double> gu, gv;
   const Eigen::VectorXd rhs = m.RightHandSide(data, fu, fv, gu, gv);
   Eigen::SparseLU<Sparse> lu;
-  lu.compute(m.saddle);
+  m.BuildSaddleRows();
+  lu.compute(Sparse(m.saddle_rows));
   if (lu.info() != Eigen::Success)
     throw SolverNotConverged("cut-cell Stokes: singular saddle point");
   m.Scatter(lu.solve(rhs), gu, gv, u, v, p);
@@ -732,11 +948,25 @@ CutCellStokes::BodyLoad CutCellStokes::Load(int body, const Vec2& centre, const 
   for (Eigen::Index k = 0; k < n; ++k) {
     const auto node = static_cast<std::size_t>(k);
     if (geo.NearestBody(node) != body || geo.distance()[node] >= 1.5 * m.grid.h) continue;
+    if (!m.ActiveNode(node)) continue;  // no fluid in its support: a residual of 0
     const double mass = m.rho_over_dt * m.lumped_mass[k];
-    const double ru = m.momentum_rows.row(k).dot(uu) + m.gradient_x_rows.row(k).dot(pp) +
-                      mass * uu[k] - (fu ? fu[k] : 0.0);
-    const double rv = m.momentum_rows.row(k).dot(vv) + m.gradient_y_rows.row(k).dot(pp) +
-                      mass * vv[k] - (fv ? fv[k] : 0.0);
+    double ru = 0.0, rv = 0.0;
+    if (m.momentum_rows.rows() > 0) {
+      ru = m.momentum_rows.row(k).dot(uu) + m.gradient_x_rows.row(k).dot(pp);
+      rv = m.momentum_rows.row(k).dot(vv) + m.gradient_y_rows.row(k).dot(pp);
+    } else {  // no Oseen term: row k of K is its column, -B^T's rows are B's columns
+      double ku = 0.0, kv = 0.0, gx = 0.0, gy = 0.0;
+      for (Sparse::InnerIterator it(m.stiffness, k); it; ++it) {
+        ku += m.eta * it.value() * uu[it.row()];
+        kv += m.eta * it.value() * vv[it.row()];
+      }
+      for (Sparse::InnerIterator it(m.div_x, k); it; ++it) gx += it.value() * pp[it.row()];
+      for (Sparse::InnerIterator it(m.div_y, k); it; ++it) gy += it.value() * pp[it.row()];
+      ru = ku + gx;
+      rv = kv + gy;
+    }
+    ru = ru + mass * uu[k] - (fu ? fu[k] : 0.0);  // the order of the sums of the rows' form
+    rv = rv + mass * vv[k] - (fv ? fv[k] : 0.0);
     const Vec2 arm = m.Arm(NodePosition(m.grid, static_cast<int>(k)), centre);  // the image
     load.force -= Vec2(ru, rv);
     load.torque -= arm.x() * rv - arm.y() * ru;

@@ -11,7 +11,10 @@
 //   A_e^-1 f = w - A_0^-1 P y,   w = A_0^-1 f,   (I_k + C A_0^-1 P) y = C w.
 // The capacitance matrix I_k + C A_0^-1 P is built once (k fast solves) and factorised (dense LU);
 // a solve is two fast solves, a sparse product over the k rows and a dense k x k solve. Exact for
-// fixed bodies; a moving body changes P and C every step.
+// fixed bodies; a moving body changes P and C every step. Its columns A_0^-1 e_s depend on the row
+// s only (A_0 does not move), so a moving body keeps them between steps (CutCellResponses): a step
+// makes fast solves only for the rows that enter the cut band, then forms C A_0^-1 P and factorises
+// it (docs/evidence/cut_cell_boundary.md, "A body in prescribed motion").
 // References: Buzbee, Dorr, George & Golub, SIAM J. Numer. Anal. 8 (1971) 722-736 (the
 // capacitance matrix of a fast Poisson solver on irregular regions); Proskurowski & Widlund, Math.
 // Comp. 30 (1976) 433-468; Hager, SIAM Rev. 31 (1989) 221-239 (the Woodbury formula).
@@ -19,19 +22,49 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
+#include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include "dlmfd/solvers/separable_helmholtz.h"
 
 namespace dlmfd {
 
+// The fast solver's responses to unit loads, A_0^-1 e_s (full node arrays), kept between the
+// capacitance matrices of a moving body's steps: n doubles a row held.
+class CutCellResponses {
+ public:
+  explicit CutCellResponses(const SeparableHelmholtz& fast) : fast_(fast) {}
+  // Holds A_0^-1 e_s for every s of rows, by fast solves two at a time for the ones not held (in
+  // the order of rows), and forgets the others. Returns the number of fast solves made.
+  int Update(const std::vector<int>& rows);
+  const std::vector<double>& Of(int s) const { return held_.at(s); }
+
+ private:
+  const SeparableHelmholtz& fast_;
+  std::unordered_map<int, std::vector<double>> held_;
+  std::vector<std::vector<double>> spare_;  // arrays of rows that left, for new ones
+};
+
+// A factorised capacitance matrix and its rows s_1 ... s_k.
+struct CutCellFactor {
+  std::vector<int> rows;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+};
+
 class CutCellCapacitance {
  public:
   // difference: A_e - A_0 over the velocity nodes of the fast solver's grid (full node indices;
   // nonzero only in rows and columns of unknown nodes). Entries below `drop` times the largest
-  // entry are the two assemblies' round-off and are left out. The fast solver must outlive this.
+  // entry are the two assemblies' round-off and are left out. The fast solver (and responses) must
+  // outlive this. With responses, the columns A_0^-1 e_s are taken from it (Update with the rows);
+  // without, they are solved for here and not kept (the same bits). Without a reference the
+  // capacitance matrix is factorised (dense LU); with one (an earlier step's factor), it is not:
+  // each solve is GMRES on it to a relative residual of kGmresTolerance, preconditioned by the
+  // reference's factorisation on the rows they share and the identity on the others.
   CutCellCapacitance(const SeparableHelmholtz& fast, const Eigen::SparseMatrix<double>& difference,
-                     double drop);
+                     double drop, CutCellResponses* responses = nullptr,
+                     std::shared_ptr<const CutCellFactor> reference = nullptr);
 
   // Solves A_e (u, v) = (fu, fv) (full node arrays, f read at the unknown nodes; u and v are 0 at
   // the other nodes on return, and hold the extension's values at inactive ones). The two
@@ -39,14 +72,28 @@ class CutCellCapacitance {
   void SolvePair(const double* fu, double* u, const double* fv, double* v);
 
   int Rank() const { return static_cast<int>(rows_.size()); }
+  int FastSolvesAtSetUp() const { return set_up_solves_; }  // responses made by the constructor
+  // The factorisation used: this matrix's own, or the reference's (then GMRES).
+  const std::shared_ptr<const CutCellFactor>& Factor() const { return factor_; }
+  bool Factorised() const { return matrix_.size() == 0; }
+  // GMRES iterations a capacitance solve (one component) so far; 0 when factorised.
+  double MeanIterations() const { return solves_ > 0 ? double(iterations_) / solves_ : 0.0; }
+
+  static constexpr double kGmresTolerance = 1e-13;
+  static constexpr int kMaxIterations = 200;
 
  private:
   const SeparableHelmholtz& fast_;
   std::vector<int> rows_;                                  // s_1 ... s_k
   Eigen::SparseMatrix<double, Eigen::RowMajor> coupling_;  // C: k x n
-  Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;       // I_k + C A_0^-1 P
+  std::shared_ptr<const CutCellFactor> factor_;  // I_k + C A_0^-1 P's, or the reference's
+  Eigen::MatrixXd matrix_;                        // I_k + C A_0^-1 P with a reference; else empty
+  std::vector<int> reference_position_;           // row j's index in the reference, or -1
+  long iterations_ = 0, solves_ = 0;
+  void SolveCapacitance();
   std::vector<double> zero_, tu_, tv_, cu_, cv_;           // work
   Eigen::MatrixXd y_;                                      // work: k x 2
+  int set_up_solves_ = 0;
 };
 
 }  // namespace dlmfd

@@ -13,7 +13,8 @@
 // given U and omega. A prescribed body is cut at t_{n+1} (X^{n+1} = X^n + dt U, theta^{n+1} =
 // theta^n + dt omega; step (33) is implicit), so the geometry, the forms and the capacitance
 // matrix are rebuilt every step (the chords move with the body even where the cut set does not
-// change). The nodes inside a body (no fluid in their support) carry its rigid motion, before the
+// change), at the cost of the band (CutCellStokes::Recut: the uniform forms, the fast solvers and
+// the capacitance matrix's fast solves of the rows that stay in the band are kept). The nodes inside a body (no fluid in their support) carry its rigid motion, before the
 // step at X^n and after it at X^{n+1}: a node that the body uncovers enters the step with the rigid
 // value u^n = U + omega x (x_i - X^n) in its mass term, and the advection step (34) sees the body
 // move. Cost a step against the fixed body's: docs/evidence/cut_cell_boundary.md, "A body in
@@ -70,8 +71,9 @@ class CutCellStep {
              double* v, double* p, StepReport& report);
 
  private:
-  void PrepareStep(double dt);  // flow_ and rho_over_dt_ for a step of dt
-  // Prescribed bodies: X, theta to t + dt, the geometries and the saddle point rebuilt there.
+  // flow_ and rho_over_dt_ for a step of dt; true when flow_ was made anew.
+  bool PrepareStep(double dt);
+  // Prescribed bodies: X, theta to t + dt, the geometries cut anew there (in place).
   void MoveBodies(double dt);
   std::vector<RigidMotion> Motions() const;
   // The rigid motion of the nearest body at every node without fluid in its support.

@@ -70,6 +70,10 @@ struct CutCellConstants {
   // (docs/evidence/cut_cell_boundary.md, "A second-order boundary: the time loop").
   double step_tolerance = 1e-7;
   int step_max_iterations = 2000;
+  // A moving body (CutCellStokes::Recut): a step's capacitance matrix is solved by GMRES
+  // preconditioned by an earlier step's factorisation while that took at most this many
+  // iterations a solve, and factorised anew otherwise; 0: factorised every step.
+  double capacitance_refactor = 0.0;
 };
 
 // A body's rigid motion: the boundary value U + omega x (x - X) on its chords.
@@ -102,6 +106,14 @@ class CutCellStokes {
   CutCellStokes(const CutCellStokes&) = delete;
   CutCellStokes& operator=(const CutCellStokes&) = delete;
 
+  // The geometries have changed in place (a body in prescribed motion, particles/cut_cell_step.h):
+  // the forms, the unknowns and the capacitance matrix anew for them, at the cost of the band.
+  // The forms are the uniform grid's (assembled at the first call) plus the correction of the
+  // triangles cut by or inside the bodies (the same up to round-off); the fast solvers are kept,
+  // and the capacitance matrix's columns A_0^-1 e_s are kept for the rows that stay in the band
+  // (fast solves for the new rows only: CapacitanceFastSolves; n doubles a row held). The Oseen
+  // term and the bodies' motion are cleared (SetBodyMotion after).
+  void Recut();
   // Precondition the velocity block by its own sparse factorization instead of the fast solvers
   // (steady Oseen problems, which the Laplacian does not precondition).
   void SetExactVelocityPreconditioner(bool exact);
@@ -139,6 +151,12 @@ class CutCellStokes {
   int PressureUnknowns() const;
   // k, the rank of the capacitance matrix (particles/cut_cell_capacitance.h).
   int CapacitanceRank() const;
+  // The fast solves the last capacitance matrix's set-up made (k at construction; after Recut,
+  // the rows new to the band).
+  int CapacitanceFastSolves() const;
+  // GMRES's iterations a capacitance solve (CutCellConstants::capacitance_refactor); 0 when the
+  // capacitance matrix is factorised.
+  double CapacitanceIterations() const;
 
  private:
   struct Impl;
