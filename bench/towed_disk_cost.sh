@@ -5,7 +5,8 @@
 # at each D/h of D_OVER_H with U dt / h = 0.1, in these configurations, run in turn ROUNDS times so
 # that a shared machine's load falls on all alike:
 #   towed              cut cells, the disk prescribed (cut anew every step);
-#   fixed              cut cells, the disk fixed (particles.0.motion = "fixed");
+#   fixed              cut cells, the disk fixed and the walls moving at -U: the towed disk's
+#                      flow in its frame (Galileo), as bench/towed_disk.sh runs it;
 #   towed_collocation  the default collocation points, the disk prescribed;
 #   towed_before       the towed disk with the solver BEFORE, when set (a copy of an earlier build:
 #                      the cost of a change measured in the same run).
@@ -28,7 +29,9 @@ SCENE=cases/verification/towed_disk_cut_cell.toml
 
 declare -A KEYS=(
   [towed]=''
-  [fixed]='--set particles.0.motion="fixed"'
+  [fixed]='--set particles.0.motion="fixed" --set particles.0.velocity=[0,0]
+    --set domain.boundary.bottom.type="velocity" --set domain.boundary.bottom.value=[-1,0]
+    --set domain.boundary.top.type="velocity" --set domain.boundary.top.value=[-1,0]'
   [towed_collocation]='--set particle_mesh.kind="collocation"'
   [towed_before]=''
 )

@@ -4,9 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "dlmfd/core/errors.h"
-#include "dlmfd/solvers/gmres.h"
-
 namespace dlmfd {
 
 int CutCellResponses::Update(const std::vector<int>& rows) {
@@ -51,8 +48,7 @@ int CutCellResponses::Update(const std::vector<int>& rows) {
 
 CutCellCapacitance::CutCellCapacitance(const SeparableHelmholtz& fast,
                                        const Eigen::SparseMatrix<double>& difference, double drop,
-                                       CutCellResponses* responses,
-                                       std::shared_ptr<const CutCellFactor> reference)
+                                       CutCellResponses* responses)
     : fast_(fast) {
   const Eigen::Index n = difference.rows();
   const Eigen::SparseMatrix<double, Eigen::RowMajor> rows = difference;
@@ -101,59 +97,7 @@ CutCellCapacitance::CutCellCapacitance(const SeparableHelmholtz& fast,
     if (pair) tv_[rows_[j + 1]] = 0.0;
     set_up_solves_ += pair ? 2 : 1;
   }
-  if (k == 0) return;
-  if (reference == nullptr) {
-    auto own = std::make_shared<CutCellFactor>();
-    own->rows = rows_;
-    own->lu.compute(capacitance);
-    factor_ = std::move(own);
-    return;
-  }
-  // GMRES on this matrix, preconditioned by the reference's factorisation: its rows that are
-  // still in the band, the identity on the new ones.
-  factor_ = std::move(reference);
-  matrix_ = std::move(capacitance);
-  std::unordered_map<int, int> position;
-  for (std::size_t j = 0; j < factor_->rows.size(); ++j)
-    position.emplace(factor_->rows[j], static_cast<int>(j));
-  reference_position_.assign(rows_.size(), -1);
-  for (std::size_t j = 0; j < rows_.size(); ++j) {
-    auto it = position.find(rows_[j]);
-    if (it != position.end()) reference_position_[j] = it->second;
-  }
-}
-
-// y := M^-1 y for each column of y: by the factorisation (exact), or by GMRES on M preconditioned
-// by the reference's (header).
-void CutCellCapacitance::SolveCapacitance() {
-  if (matrix_.size() == 0) {
-    y_ = factor_->lu.solve(y_);  // in place: P y, then the two triangular solves
-    return;
-  }
-  const auto k = static_cast<Eigen::Index>(rows_.size());
-  const auto kr = static_cast<Eigen::Index>(factor_->rows.size());
-  Eigen::VectorXd t(kr);
-  auto precondition = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
-    t.setZero();
-    for (Eigen::Index j = 0; j < k; ++j)
-      if (reference_position_[j] >= 0) t[reference_position_[j]] = in[j];
-    t = factor_->lu.solve(t);
-    out = in;
-    for (Eigen::Index j = 0; j < k; ++j)
-      if (reference_position_[j] >= 0) out[j] = t[reference_position_[j]];
-  };
-  auto apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out.noalias() = matrix_ * in; };
-  for (Eigen::Index c = 0; c < 2; ++c) {
-    const Eigen::VectorXd rhs = y_.col(c);
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(k);
-    const GmresResult r = SolveGmres(apply, precondition, rhs, x, kGmresTolerance, kMaxIterations,
-                                     kMaxIterations);
-    if (!r.converged)
-      throw SolverNotConverged("cut-cell capacitance matrix: GMRES did not converge");
-    iterations_ += r.iterations;
-    ++solves_;
-    y_.col(c) = x;
-  }
+  if (k > 0) capacitance_.compute(capacitance);
 }
 
 void CutCellCapacitance::SolvePair(const double* fu, double* u, const double* fv, double* v) {
@@ -164,7 +108,7 @@ void CutCellCapacitance::SolvePair(const double* fu, double* u, const double* fv
   if (rows_.empty()) return;
   y_.col(0) = coupling_ * Eigen::Map<const Eigen::VectorXd>(u, n);
   y_.col(1) = coupling_ * Eigen::Map<const Eigen::VectorXd>(v, n);
-  SolveCapacitance();
+  y_ = capacitance_.solve(y_);  // in place: P y, then the two triangular solves
   for (std::size_t s = 0; s < rows_.size(); ++s) {
     tu_[rows_[s]] = y_(static_cast<Eigen::Index>(s), 0);
     tv_[rows_[s]] = y_(static_cast<Eigen::Index>(s), 1);

@@ -620,13 +620,8 @@ void CutCellStokes::Impl::BuildCapacitance() {
     }
     Sparse difference(n, n);
     difference.setFromTriplets(d.begin(), d.end());
-    // The last factorisation as GMRES's preconditioner while its iterations stay few.
-    std::shared_ptr<const CutCellFactor> reference;
-    if (capacitance && constants.capacitance_refactor > 0.0 &&
-        capacitance->MeanIterations() <= constants.capacitance_refactor)
-      reference = capacitance->Factor();
     capacitance = std::make_unique<CutCellCapacitance>(*fast_velocity, difference, 1e-12,
-                                                       responses.get(), std::move(reference));
+                                                       responses.get());
     return;
   }
   const Sparse cut =
@@ -829,10 +824,6 @@ int CutCellStokes::VelocityUnknowns() const { return static_cast<int>(impl_->vno
 int CutCellStokes::PressureUnknowns() const { return static_cast<int>(impl_->pnodes.size()); }
 int CutCellStokes::CapacitanceRank() const { return impl_->capacitance->Rank(); }
 int CutCellStokes::CapacitanceFastSolves() const { return impl_->capacitance->FastSolvesAtSetUp(); }
-
-double CutCellStokes::CapacitanceIterations() const {
-  return impl_->capacitance->MeanIterations();
-}
 
 void CutCellStokes::Recut() { impl_->Recut(); }
 

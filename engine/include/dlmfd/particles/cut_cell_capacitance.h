@@ -22,7 +22,6 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
-#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -46,25 +45,15 @@ class CutCellResponses {
   std::vector<std::vector<double>> spare_;  // arrays of rows that left, for new ones
 };
 
-// A factorised capacitance matrix and its rows s_1 ... s_k.
-struct CutCellFactor {
-  std::vector<int> rows;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-};
-
 class CutCellCapacitance {
  public:
   // difference: A_e - A_0 over the velocity nodes of the fast solver's grid (full node indices;
   // nonzero only in rows and columns of unknown nodes). Entries below `drop` times the largest
   // entry are the two assemblies' round-off and are left out. The fast solver (and responses) must
   // outlive this. With responses, the columns A_0^-1 e_s are taken from it (Update with the rows);
-  // without, they are solved for here and not kept (the same bits). Without a reference the
-  // capacitance matrix is factorised (dense LU); with one (an earlier step's factor), it is not:
-  // each solve is GMRES on it to a relative residual of kGmresTolerance, preconditioned by the
-  // reference's factorisation on the rows they share and the identity on the others.
+  // without, they are solved for here and not kept (the same bits).
   CutCellCapacitance(const SeparableHelmholtz& fast, const Eigen::SparseMatrix<double>& difference,
-                     double drop, CutCellResponses* responses = nullptr,
-                     std::shared_ptr<const CutCellFactor> reference = nullptr);
+                     double drop, CutCellResponses* responses = nullptr);
 
   // Solves A_e (u, v) = (fu, fv) (full node arrays, f read at the unknown nodes; u and v are 0 at
   // the other nodes on return, and hold the extension's values at inactive ones). The two
@@ -73,24 +62,12 @@ class CutCellCapacitance {
 
   int Rank() const { return static_cast<int>(rows_.size()); }
   int FastSolvesAtSetUp() const { return set_up_solves_; }  // responses made by the constructor
-  // The factorisation used: this matrix's own, or the reference's (then GMRES).
-  const std::shared_ptr<const CutCellFactor>& Factor() const { return factor_; }
-  bool Factorised() const { return matrix_.size() == 0; }
-  // GMRES iterations a capacitance solve (one component) so far; 0 when factorised.
-  double MeanIterations() const { return solves_ > 0 ? double(iterations_) / solves_ : 0.0; }
-
-  static constexpr double kGmresTolerance = 1e-13;
-  static constexpr int kMaxIterations = 200;
 
  private:
   const SeparableHelmholtz& fast_;
   std::vector<int> rows_;                                  // s_1 ... s_k
   Eigen::SparseMatrix<double, Eigen::RowMajor> coupling_;  // C: k x n
-  std::shared_ptr<const CutCellFactor> factor_;  // I_k + C A_0^-1 P's, or the reference's
-  Eigen::MatrixXd matrix_;                        // I_k + C A_0^-1 P with a reference; else empty
-  std::vector<int> reference_position_;           // row j's index in the reference, or -1
-  long iterations_ = 0, solves_ = 0;
-  void SolveCapacitance();
+  Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;       // I_k + C A_0^-1 P
   std::vector<double> zero_, tu_, tv_, cu_, cv_;           // work
   Eigen::MatrixXd y_;                                      // work: k x 2
   int set_up_solves_ = 0;

@@ -94,6 +94,9 @@ class CutCellStep {
   double fluid_density_;
   CutCellConstants constants_;
   std::vector<double> fu_, fv_;  // the load of the step: M_l (rho/dt u^n + f)
+  // A moving body: p^{n-1}, for the extrapolated start of the pressure iteration.
+  void ExtrapolatePressure(double* p);
+  std::vector<double> last_pressure_;
 };
 
 }  // namespace dlmfd

@@ -70,10 +70,6 @@ struct CutCellConstants {
   // (docs/evidence/cut_cell_boundary.md, "A second-order boundary: the time loop").
   double step_tolerance = 1e-7;
   int step_max_iterations = 2000;
-  // A moving body (CutCellStokes::Recut): a step's capacitance matrix is solved by GMRES
-  // preconditioned by an earlier step's factorisation while that took at most this many
-  // iterations a solve, and factorised anew otherwise; 0: factorised every step.
-  double capacitance_refactor = 0.0;
 };
 
 // A body's rigid motion: the boundary value U + omega x (x - X) on its chords.
@@ -154,9 +150,6 @@ class CutCellStokes {
   // The fast solves the last capacitance matrix's set-up made (k at construction; after Recut,
   // the rows new to the band).
   int CapacitanceFastSolves() const;
-  // GMRES's iterations a capacitance solve (CutCellConstants::capacitance_refactor); 0 when the
-  // capacitance matrix is factorised.
-  double CapacitanceIterations() const;
 
  private:
   struct Impl;
