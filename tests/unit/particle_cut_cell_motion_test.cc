@@ -93,8 +93,8 @@ RecutStep StepOn(CutCellStokes& flow, const DomainParams& d, const FixedBody& bo
               std::vector<double>(g.Coarse().NodeCount())};
   const BoundaryData data(g, d);
   flow.Solve(data, fu.data(), fv.data(), s.u.data(), s.v.data(), s.p.data(), 1e-11, 2000);
-  s.force = flow.Load(0, body.centre, s.u.data(), s.v.data(), s.p.data(), fu.data(), fv.data())
-                .force;
+  s.force =
+      flow.Load(0, body.centre, s.u.data(), s.v.data(), s.p.data(), fu.data(), fv.data()).force;
   s.rank = flow.CapacitanceRank();
   s.fast_solves = flow.CapacitanceFastSolves();
   return s;
@@ -127,10 +127,11 @@ TEST(CutCellMotion, RecutIsTheSaddlePointBuiltAnew) {
       dp = std::max(dp, std::abs(a.p[k] - b.p[k]));
       pmax = std::max(pmax, std::abs(b.p[k]));
     }
-    std::printf("move %d: |du| / |u| %.2e, |dp| / |p| %.2e, |dF| / |F| %.2e, rank %d, fast "
-                "solves %d\n",
-                move, du / umax, dp / pmax, (a.force - b.force).norm() / b.force.norm(), a.rank,
-                a.fast_solves);
+    std::printf(
+        "move %d: |du| / |u| %.2e, |dp| / |p| %.2e, |dF| / |F| %.2e, rank %d, fast "
+        "solves %d\n",
+        move, du / umax, dp / pmax, (a.force - b.force).norm() / b.force.norm(), a.rank,
+        a.fast_solves);
     // Both stop at a relative residual of 1e-11 (the pressure: see CutCellStokes's
     // IterativeSolveIsTheDirectSolve, particle_cut_cell_test.cc).
     EXPECT_LT(du, 1e-8 * umax);
@@ -145,7 +146,6 @@ TEST(CutCellMotion, RecutIsTheSaddlePointBuiltAnew) {
     }
   }
 }
-
 
 TEST(CutCellMotion, FreeParticlesAreRefusedPrescribedTaken) {
   EXPECT_NO_THROW(RequireCutCellScene(ParseScene(TranslatingScene("prescribed"))));

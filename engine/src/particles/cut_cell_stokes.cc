@@ -610,8 +610,8 @@ void CutCellStokes::Impl::BuildCapacitance() {
     // The difference is the band's: its mass, the stiffness's correction, Nitsche and the ghost
     // penalty (in a column of a node without fluid the correction is -A_0's entry up to round-off).
     const Eigen::VectorXd mass = lumped_mass - uniform->lumped_mass;
-    const Sparse band = rho_over_dt * Sparse(mass.asDiagonal()) +
-                        eta * (band_stiffness + nitsche + ghost_u);
+    const Sparse band =
+        rho_over_dt * Sparse(mass.asDiagonal()) + eta * (band_stiffness + nitsche + ghost_u);
     Triplets d;
     for (int col = 0; col < n; ++col) {
       if (!unknown[col]) continue;
@@ -620,8 +620,8 @@ void CutCellStokes::Impl::BuildCapacitance() {
     }
     Sparse difference(n, n);
     difference.setFromTriplets(d.begin(), d.end());
-    capacitance = std::make_unique<CutCellCapacitance>(*fast_velocity, difference, 1e-12,
-                                                       responses.get());
+    capacitance =
+        std::make_unique<CutCellCapacitance>(*fast_velocity, difference, 1e-12, responses.get());
     return;
   }
   const Sparse cut =

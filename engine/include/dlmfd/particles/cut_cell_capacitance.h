@@ -33,7 +33,8 @@ namespace dlmfd {
 // capacitance matrices of a moving body's steps: n doubles a row held.
 class CutCellResponses {
  public:
-  explicit CutCellResponses(const SeparableHelmholtz& fast) : fast_(fast) {}
+  explicit CutCellResponses(const SeparableHelmholtz& fast)
+      : fast_(fast) {}
   // Holds A_0^-1 e_s for every s of rows, by fast solves two at a time for the ones not held (in
   // the order of rows), and forgets the others. Returns the number of fast solves made.
   int Update(const std::vector<int>& rows);

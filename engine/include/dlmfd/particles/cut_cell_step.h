@@ -14,11 +14,12 @@
 // theta^n + dt omega; step (33) is implicit), so the geometry, the forms and the capacitance
 // matrix are rebuilt every step (the chords move with the body even where the cut set does not
 // change), at the cost of the band (CutCellStokes::Recut: the uniform forms, the fast solvers and
-// the capacitance matrix's fast solves of the rows that stay in the band are kept). The nodes inside a body (no fluid in their support) carry its rigid motion, before the
-// step at X^n and after it at X^{n+1}: a node that the body uncovers enters the step with the rigid
-// value u^n = U + omega x (x_i - X^n) in its mass term, and the advection step (34) sees the body
-// move. Cost a step against the fixed body's: docs/evidence/cut_cell_boundary.md, "A body in
-// prescribed motion".
+// the capacitance matrix's fast solves of the rows that stay in the band are kept), and the
+// pressure iteration starts from 2 p^n - p^{n-1}. The nodes inside a body (no fluid in their
+// support) carry its rigid motion, before the step at X^n and after it at X^{n+1}: a node that the
+// body uncovers enters the step with the rigid value u^n = U + omega x (x_i - X^n) in its mass
+// term, and the advection step (34) sees the body move. Cost a step against the fixed body's:
+// docs/evidence/cut_cell_boundary.md, "A body in prescribed motion".
 // The hydrodynamic force and torque on each body, from the residual of this step's fluid forms
 // with a test function equal to 1 near the body (CutCellStokes::Load; the discrete stress over a
 // closed line in the fluid around it, the fluid's inertia between the line and the body included):
