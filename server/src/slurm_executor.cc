@@ -245,15 +245,19 @@ void SlurmRun::FollowUntilEnd(const EventHandler& on_event) {
     return asked_;
   };
   while (true) {
+    // The exit file of the attempt followed (an older one is a requeued attempt's), read before
+    // the events: the batch script writes it after the solver has exited, so the events read next
+    // are all that the solver wrote. Read after them, an exit that came while they were handled
+    // (the store's writes on a loaded machine) would end the run without its last events: the
+    // finished event, the last progress (the job COMPLETED at an earlier step, its stream short).
+    std::optional<ExitFile> exit = ReadExitFile();
+    if (exit && exit->restarts < restarts_) exit.reset();
     delivered = 0;
     tail.ReadNew(deliver);
     if (delivered > 0 && reported_.waiting) {
       ran_at = SlurmQueue::Clock::now();
       Report(ExecutorState{"RUNNING", "", false});
     }
-    // The exit file of the attempt followed (an older one is a requeued attempt's).
-    std::optional<ExitFile> exit = ReadExitFile();
-    if (exit && exit->restarts < restarts_) exit.reset();
     if (exit) {
       const int s = exit->status;
       const bool warned = fs::exists(fs::path(job_dir_) / kSlurmWarnedFile);

@@ -25,7 +25,8 @@
 // says PENDING is ignored. The end:
 //   - DIR/solver.exit ("STATUS RESTARTS", written by the batch script) of the current Slurm
 //     restart with status 0, 1 or 2, or after the daemon's own signal: the scheduler maps the
-//     status as for a local run;
+//     status as for a local run; each round reads it before events.bin, so every event the solver
+//     wrote is delivered before its end;
 //   - status 130 after Slurm's time-limit warning (DIR/slurm.warned): the solver checkpointed
 //     before the limit: a retryable end (the scheduler queues the job again up to
 //     slurm_max_attempts);
