@@ -7,11 +7,14 @@
 # answer jobs.proto does not promise, or a stuck input (-timeout) fails the run; libFuzzer leaves
 # the input that did it as build-fuzz/fuzz-artifacts/crash-* (reproduce: TARGET FILE).
 # Usage: scripts/fuzz.sh [seconds per target, default 30]
+#        scripts/fuzz.sh --build-only     (builds the targets and stops: CI builds them beforehand)
 # The rpc target runs the daemon's jobs with $DLMFD_SOLVER_BINARY, else build/solver/dlmfd-solve
 # (the release build's), else a Release one built in build-fuzz-solver.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 seconds="${1:-30}"
+build_only=0
+if [[ "$seconds" == --build-only ]]; then build_only=1; fi
 build="$root/build-fuzz"
 jobs="${JOBS:-$(nproc)}"
 
@@ -19,7 +22,7 @@ solver="${DLMFD_SOLVER_BINARY:-}"
 if [[ -z "$solver" && -x "$root/build/solver/dlmfd-solve" ]]; then
   solver="$root/build/solver/dlmfd-solve"
 fi
-if [[ -z "$solver" ]]; then
+if [[ -z "$solver" && "$build_only" == 0 ]]; then
   cmake -S "$root" -B "$root/build-fuzz-solver" -DCMAKE_BUILD_TYPE=Release \
     -DDLMFD_BUILD_SERVICE=OFF -DDLMFD_BUILD_TESTS=OFF -DDLMFD_BUILD_BENCH=OFF > /dev/null
   cmake --build "$root/build-fuzz-solver" --target dlmfd-solve -j "$jobs"
@@ -31,6 +34,7 @@ cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang
   -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
   -DDLMFD_FUZZ=ON -DDLMFD_BUILD_TESTS=OFF -DDLMFD_BUILD_BENCH=OFF > /dev/null
 cmake --build "$build" -j "$jobs" --target scene_text_fuzz rpc_request_fuzz
+if [[ "$build_only" == 1 ]]; then exit 0; fi
 
 # Seeds: every scene of cases/; one request per rpc (its first byte picks the rpc, in the order of
 # jobs.proto's service), built with the Python stubs' wire format by hand: field 1 as a string.
