@@ -5,7 +5,9 @@
 //                           ParticleStep::CoupleStokes; with "incremental" the last step's
 //                           multiplier, through ParticleStep::LagMultiplier);
 //   AdvectVelocity (34)     the VelocityAdvection scheme of splitting.advection;
-//   UpdateConformation (35) OldroydBPolymer (conformation module: modulus, A^0, inflow A_L, force);
+//   UpdateConformation (35) OldroydBPolymer (conformation module: modulus, A^0, inflow A_L, force),
+//                           with the velocity of conformation.velocity: u^{n+2/4} (the paper's)
+//                           or the Stokes step's u^{n+1/4}, lent by the same swap as below;
 //   MoveParticles (36)-(38) ParticleStep (predictor, DLM multiplier, corrector), in place on u.
 // With particle_mesh.kind = "cut_cell" the (fixed or prescribed) particles are cut out of the mesh
 // instead: step (33) is CutCellStep's (particles/cut_cell_step.h), which also gives their force
@@ -151,7 +153,8 @@ struct Simulation::Impl {
   }
 
   // With the tendency correction, snapshots show u^{n+1/4}: the observers' OnSnapshot sees it in
-  // place of u^{n+1} (swapped in and back, no copy).
+  // place of u^{n+1} (swapped in and back, no copy). With conformation.velocity = "stokes" step
+  // (35) sees it in place of u^{n+2/4} the same way.
   struct StokesVelocityLent {
     StokesVelocityLent(Impl& impl, bool lend)
         : s(impl),
@@ -227,7 +230,8 @@ struct Simulation::Impl {
   std::unique_ptr<CutCellStep> cut_cells;       // particle_mesh.kind = "cut_cell" only
   StepReport report;  // reused: its columns are created by the first step, overwritten after
   FlowState state;
-  // u^{n+1/4} of the last step whose fields were written (steady_correction = "tendency" only).
+  // u^{n+1/4}: of the last step whose fields were written (steady_correction = "tendency"), and of
+  // every step where step (35) freezes it (conformation.velocity = "stokes").
   std::vector<double> stokes_u, stokes_v;
   std::vector<Observer*> observers;
 };
@@ -265,13 +269,18 @@ void Simulation::Step() {
       fields_due && s.params.splitting.steady_correction == SteadyCorrection::kTendency;
   s.boundary_data.SetTime(s.state.time + s.params.time.dt);  // the data of t_{n+1}
   s.advection->BeginStep(s.state.u.data(), s.state.v.data());
+  const bool conformation_sees_stokes =
+      s.polymer && s.params.conformation.velocity == ConformationVelocity::kStokes;
   s.SolveStokes(report);
-  if (show_stokes) {
+  if (show_stokes || conformation_sees_stokes) {
     s.stokes_u.assign(s.state.u.begin(), s.state.u.end());
     s.stokes_v.assign(s.state.v.begin(), s.state.v.end());
   }
   s.AdvectVelocity(report);
-  if (s.polymer) s.UpdateConformation(report);
+  if (s.polymer) {
+    const Impl::StokesVelocityLent lent(s, conformation_sees_stokes);
+    s.UpdateConformation(report);
+  }
   if (s.particle_step) s.MoveParticles(report);
   s.state.step += 1;
   s.state.time = static_cast<double>(s.state.step) * s.params.time.dt;

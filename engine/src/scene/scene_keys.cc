@@ -276,6 +276,10 @@ void AddConformationOutputAccuracy(std::vector<SceneKey<P>>& keys) {
   keys.push_back(ChoiceKey<ConformationForm, P>(
       "conformation.form", [](auto& p) -> auto& { return p.conformation.form; },
       "the conformation tensor is stored as A itself"));
+  keys.push_back(ChoiceKey<ConformationVelocity, P>(
+      "conformation.velocity", [](auto& p) -> auto& { return p.conformation.velocity; },
+      "the velocity step (35) freezes: the advected u^{n+2/4} (the paper's) or the Stokes step's "
+      "u^{n+1/4}"));
   keys.push_back(RealKey<P>(
       "conformation.max_courant", [](auto& p) -> auto& { return p.conformation.max_courant; },
       kRangeHalfOpenUnit, "advection sub-cycling of (35)"));

@@ -1,5 +1,7 @@
 // Step (35) of the paper: the Oldroyd-B configuration tensor A from t_n to t_{n+1} with the
-// velocity u = u^{n+2/4} frozen (construction A of method notes 2, section 2.1).
+// velocity u = u^{n+2/4} frozen (construction A of method notes 2, section 2.1); u^{n+2/4} stands
+// for the velocity the Simulation passes, the Stokes step's u^{n+1/4} under conformation.velocity =
+// "stokes" (core/params.h, ConformationVelocity).
 //
 // Equation (5): dA/dt + u . grad A = L A + A L^T - (A - I)/lambda, L_ij = du_i/dx_j; A = I inside
 //   the particles, A = A_L on the upstream boundary. A is P1 on the h-mesh (values at the velocity

@@ -60,7 +60,8 @@ class OldroydBPolymer {
   void SetInitialState(FlowState& state);
   // The polymer force of (33) for A^n of state; the arrays stay valid until the next call.
   NodeForce MomentumForce(const FlowState& state);
-  // Step (35): A^n at state.time -> A^{n+1}, with u^{n+2/4} = state.u, state.v and the particles
+  // Step (35): A^n at state.time -> A^{n+1}, with u^{n+2/4} = state.u, state.v (or u^{n+1/4}:
+  // conformation.velocity, core/simulation.cc) and the particles
   // of state at X^n; with devss also D_h of u^{n+2/4} into state.d11, d12, d22.
   void Update(double dt, FlowState& state, StepReport& report);
 

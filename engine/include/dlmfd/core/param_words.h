@@ -106,6 +106,11 @@ struct Words<MultiplierPreconditioning> {
       {"blocks", MultiplierPreconditioning::kBlocks}, {"gram", MultiplierPreconditioning::kGram}};
 };
 template <>
+struct Words<ConformationVelocity> {
+  static constexpr Word<ConformationVelocity> kAll[] = {
+      {"advected", ConformationVelocity::kAdvected}, {"stokes", ConformationVelocity::kStokes}};
+};
+template <>
 struct Words<ConformationForm> {
   static constexpr Word<ConformationForm> kAll[] = {{"A", ConformationForm::kA}};
 };

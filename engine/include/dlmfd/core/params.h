@@ -303,8 +303,21 @@ struct CollisionParams {
 
 enum class ConformationForm { kA };
 
+// The velocity step (35) freezes (conformation.velocity): kAdvected, u^{n+2/4} after step (34),
+// the paper's; kStokes, the Stokes step's u^{n+1/4}, which is discretely divergence-free, meets the
+// particles' constraint where (33) holds it, and at a fixed point of the splitting solves the
+// steady equations. u^{n+2/4} = u^{n+1/4} - dt (u.grad) u + O(dt^2) whatever the density, so with
+// kAdvected a steady stress carries an O(dt U / L) error even in creeping flow; kStokes removes
+// that term (the Lie splitting of (35) itself, advection then pointwise, stays first order). The
+// confined cylinder at Wi = 0.9, R/h = 16: K moves by 1.2 % from dt = lambda / 120 to lambda / 480
+// with kAdvected, and kStokes at lambda / 120 lies 0.7 % below kAdvected at lambda / 480;
+// docs/evidence/splitting.md, "The velocity the conformation step sees"). The default is still
+// kAdvected: kStokes is measured at Wi = 0.9 only (opt-in until Wi = 0.3 and 0.6 are remeasured).
+enum class ConformationVelocity { kAdvected, kStokes };
+
 struct ConformationParams {
   ConformationForm form = ConformationForm::kA;
+  ConformationVelocity velocity = ConformationVelocity::kAdvected;
   double max_courant = 0.4;  // advection sub-cycling: |u| tau / h <= this
   double blend_kappa = 0.5;  // SPD blend: lambda_min(A) >= kappa lambda_min(A_low)
 };
