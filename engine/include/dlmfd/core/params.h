@@ -312,7 +312,8 @@ enum class ConformationForm { kA };
 // confined cylinder at Wi = 0.9, R/h = 16: K moves by 1.2 % from dt = lambda / 120 to lambda / 480
 // with kAdvected, and kStokes at lambda / 120 lies 0.7 % below kAdvected at lambda / 480;
 // docs/evidence/splitting.md, "The velocity the conformation step sees"). The default is still
-// kAdvected: kStokes is measured at Wi = 0.9 only (opt-in until Wi = 0.3 and 0.6 are remeasured).
+// kAdvected, the engine's tests' choice: kStokes is opt-in until it is measured across the
+// polymer suite (that page says what was measured and what is left).
 enum class ConformationVelocity { kAdvected, kStokes };
 
 struct ConformationParams {
