@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace dlmfd {
 
@@ -46,10 +47,44 @@ int CutCellResponses::Update(const std::vector<int>& rows) {
   return static_cast<int>(missing.size());
 }
 
+bool CutCellLocalResponses::Add(const double* response) {
+  if (!kept_) return false;
+  double largest = 0.0;
+  for (std::size_t i = 0; i < nodes_; ++i) largest = std::max(largest, std::abs(response[i]));
+  const double drop = std::numeric_limits<double>::epsilon() * largest;
+  for (std::size_t i = 0; i < nodes_; ++i) {
+    if (std::abs(response[i]) <= drop) continue;
+    if (value_.size() == budget_) {
+      kept_ = false;
+      start_ = {0};
+      index_ = {};
+      value_ = {};
+      return false;
+    }
+    index_.push_back(static_cast<int>(i));
+    value_.push_back(response[i]);
+  }
+  start_.push_back(value_.size());
+  return true;
+}
+
+void CutCellLocalResponses::SubtractPair(const double* ys, const double* zs, double* u,
+                                         double* v) const {
+  for (std::size_t s = 0; s + 1 < start_.size(); ++s) {
+    const double a = ys[s], b = zs[s];
+    for (std::size_t e = start_[s]; e < start_[s + 1]; ++e) {
+      const auto i = static_cast<std::size_t>(index_[e]);
+      u[i] -= a * value_[e];
+      v[i] -= b * value_[e];
+    }
+  }
+}
+
 CutCellCapacitance::CutCellCapacitance(const SeparableHelmholtz& fast,
                                        const Eigen::SparseMatrix<double>& difference, double drop,
                                        CutCellResponses* responses)
-    : fast_(fast) {
+    : fast_(fast),
+      local_(static_cast<std::size_t>(difference.rows())) {
   const Eigen::Index n = difference.rows();
   const Eigen::SparseMatrix<double, Eigen::RowMajor> rows = difference;
   double largest = 0.0;
@@ -79,9 +114,11 @@ CutCellCapacitance::CutCellCapacitance(const SeparableHelmholtz& fast,
   Eigen::MatrixXd capacitance = Eigen::MatrixXd::Identity(k, k);
   if (responses != nullptr) {
     set_up_solves_ = responses->Update(rows_);
-    for (Eigen::Index j = 0; j < k; ++j)
-      capacitance.col(j) +=
-          coupling_ * Eigen::Map<const Eigen::VectorXd>(responses->Of(rows_[j]).data(), n);
+    for (Eigen::Index j = 0; j < k; ++j) {
+      const std::vector<double>& r = responses->Of(rows_[j]);
+      capacitance.col(j) += coupling_ * Eigen::Map<const Eigen::VectorXd>(r.data(), n);
+      local_.Add(r.data());
+    }
   }
   for (Eigen::Index j = 0; responses == nullptr && j < k; j += 2) {
     const bool pair = j + 1 < k;
@@ -91,8 +128,11 @@ CutCellCapacitance::CutCellCapacitance(const SeparableHelmholtz& fast,
     std::fill(cv_.begin(), cv_.end(), 0.0);
     fast_.SolvePair(tu_.data(), cu_.data(), pair ? tv_.data() : zero_.data(), cv_.data());
     capacitance.col(j) += coupling_ * Eigen::Map<const Eigen::VectorXd>(cu_.data(), n);
-    if (pair)
+    local_.Add(cu_.data());
+    if (pair) {
       capacitance.col(j + 1) += coupling_ * Eigen::Map<const Eigen::VectorXd>(cv_.data(), n);
+      local_.Add(cv_.data());
+    }
     tu_[rows_[j]] = 0.0;
     if (pair) tv_[rows_[j + 1]] = 0.0;
     set_up_solves_ += pair ? 2 : 1;
@@ -109,6 +149,10 @@ void CutCellCapacitance::SolvePair(const double* fu, double* u, const double* fv
   y_.col(0) = coupling_ * Eigen::Map<const Eigen::VectorXd>(u, n);
   y_.col(1) = coupling_ * Eigen::Map<const Eigen::VectorXd>(v, n);
   y_ = capacitance_.solve(y_);  // in place: P y, then the two triangular solves
+  if (local_.Kept()) {
+    local_.SubtractPair(y_.col(0).data(), y_.col(1).data(), u, v);
+    return;
+  }
   for (std::size_t s = 0; s < rows_.size(); ++s) {
     tu_[rows_[s]] = y_(static_cast<Eigen::Index>(s), 0);
     tv_[rows_[s]] = y_(static_cast<Eigen::Index>(s), 1);

@@ -10,7 +10,12 @@
 // and by the Sherman-Morrison-Woodbury formula
 //   A_e^-1 f = w - A_0^-1 P y,   w = A_0^-1 f,   (I_k + C A_0^-1 P) y = C w.
 // The capacitance matrix I_k + C A_0^-1 P is built once (k fast solves) and factorised (dense LU);
-// a solve is two fast solves, a sparse product over the k rows and a dense k x k solve. Exact for
+// a solve is two fast solves, a sparse product over the k rows and a dense k x k solve. The second
+// fast solve, A_0^-1 P y = sum_s y_s A_0^-1 e_s, is a sum of the k responses where they are kept
+// (CutCellLocalResponses below): they decay away from their row, by a factor of about
+// exp(-acosh(1 + a h^2 / (2 b))) a cell along the axes (0.15 at nu dt / h^2 = b / (a h^2) = 0.2),
+// so that with a mass term they stand above round-off on a patch of nodes (about 1000 at nu dt /
+// h^2 = 0.2), not on the whole grid. Exact for
 // fixed bodies; a moving body changes P and C every step. Its columns A_0^-1 e_s depend on the row
 // s only (A_0 does not move), so a moving body keeps them between steps (CutCellResponses): a step
 // makes fast solves only for the rows that enter the cut band, then forms C A_0^-1 P and factorises
@@ -22,6 +27,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
+#include <cstddef>
 #include <unordered_map>
 #include <vector>
 
@@ -46,6 +52,36 @@ class CutCellResponses {
   std::vector<std::vector<double>> spare_;  // arrays of rows that left, for new ones
 };
 
+// The responses A_0^-1 e_s of the capacitance rows, each without its entries at or below the unit
+// round-off times its largest (those are below the fast solver's own round-off on that response:
+// its transforms spread an error of that size over every node). The correction A_0^-1 P y is then
+// sum_s y_s r_s over the kept entries, the same up to round-off as the fast solve of P y. They are
+// kept only while they have at most kEntriesPerNode entries a node of the grid in all; beyond,
+// the sum would cost more than half the fast solve (a fast solve pair costs about 450 instructions
+// a node, the sum about 16 an entry for both components: callgrind, Schaefer-Turek at D/h = 20,
+// docs/evidence/cut_cell_boundary.md, "The fixed body's step: the second fast solve as a sum of
+// responses"). Creeping flows (nu dt / h^2 of 1 and more) keep the fast solve.
+class CutCellLocalResponses {
+ public:
+  static constexpr int kEntriesPerNode = 16;
+  explicit CutCellLocalResponses(std::size_t nodes)
+      : nodes_(nodes),
+        budget_(kEntriesPerNode * nodes) {}
+  // Appends the next response (a full node array); false, and forgets all, once over the budget.
+  bool Add(const double* response);
+  bool Kept() const { return kept_; }
+  // u -= sum_s ys[s] r_s, v -= sum_s zs[s] r_s.
+  void SubtractPair(const double* ys, const double* zs, double* u, double* v) const;
+  std::size_t Entries() const { return value_.size(); }
+
+ private:
+  std::size_t nodes_, budget_;
+  bool kept_ = true;
+  std::vector<std::size_t> start_{0};
+  std::vector<int> index_;
+  std::vector<double> value_;
+};
+
 class CutCellCapacitance {
  public:
   // difference: A_e - A_0 over the velocity nodes of the fast solver's grid (full node indices;
@@ -63,6 +99,8 @@ class CutCellCapacitance {
 
   int Rank() const { return static_cast<int>(rows_.size()); }
   int FastSolvesAtSetUp() const { return set_up_solves_; }  // responses made by the constructor
+  // Whether a solve sums the kept responses instead of its second fast solve.
+  bool LocalCorrection() const { return local_.Kept(); }
 
  private:
   const SeparableHelmholtz& fast_;
@@ -71,6 +109,7 @@ class CutCellCapacitance {
   Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;       // I_k + C A_0^-1 P
   std::vector<double> zero_, tu_, tv_, cu_, cv_;           // work
   Eigen::MatrixXd y_;                                      // work: k x 2
+  CutCellLocalResponses local_;                            // r_s of s_1 ... s_k, if kept
   int set_up_solves_ = 0;
 };
 

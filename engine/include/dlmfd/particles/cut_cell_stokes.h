@@ -24,7 +24,8 @@
 // Solver. The velocity block A without the Oseen term is solved exactly by its capacitance matrix
 // against the fast solver of (rho/dt) M_l + eta K on the whole uniform grid (particles/
 // cut_cell_capacitance.h: built once, two fast solves and a dense solve of rank about 3 x 3 pi D/h
-// an application). Without an Oseen term the saddle point [[A, B^T], [B, -G_p / eta]] is then
+// an application, the second fast solve a sum of kept responses where a mass term makes them
+// local). Without an Oseen term the saddle point [[A, B^T], [B, -G_p / eta]] is then
 // solved by Uzawa / preconditioned CG on the pressure (Glowinski, as the default step (33),
 // fluid/stokes_solver.h): u = A^-1 (f - B^T p) exactly, CG on the Schur complement B A^-1 B^T +
 // G_p / eta (symmetric positive definite) with Cahouet-Chabard's S~^-1 = eta M_p^-1 + (rho/dt)
@@ -150,6 +151,9 @@ class CutCellStokes {
   // The fast solves the last capacitance matrix's set-up made (k at construction; after Recut,
   // the rows new to the band).
   int CapacitanceFastSolves() const;
+  // Whether a velocity solve sums the capacitance rows' responses in place of its second fast
+  // solve (particles/cut_cell_capacitance.h: a mass term that makes them decay within the budget).
+  bool CapacitanceSumsResponses() const;
 
  private:
   struct Impl;
