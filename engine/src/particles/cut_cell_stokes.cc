@@ -162,6 +162,14 @@ struct CutCellStokes::Impl {
   struct FormTriplets {
     Triplets k, bx, by;
     Eigen::VectorXd lumped_mass, pressure_fluid_mass;
+    // Room for every triangle of the geometries (at most one whole or cut piece each), so that
+    // the vectors of the whole grid's forms (tens of MB) are not grown and copied.
+    void Reserve(const std::vector<const CutCellGeometry*>& geometries) {
+      std::size_t triangles = 0;
+      for (const CutCellGeometry* geo : geometries)
+        triangles += static_cast<std::size_t>(geo->TriangleCount());
+      for (Triplets* t : {&k, &bx, &by}) t->reserve(9 * triangles);
+    }
   };
   void AddTriangleForms(const CutCellGeometry& geo, int t, const std::array<int, 3>& mesh_nodes,
                         const std::array<Vec2, 3>& grads, double area, const Vec2& centroid,
@@ -309,6 +317,7 @@ void CutCellStokes::Impl::AssembleFluidForms() {
   const auto n = static_cast<Eigen::Index>(grid.NodeCount());
   const auto np = static_cast<Eigen::Index>(pgrid.NodeCount());
   FormTriplets f{{}, {}, {}, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(np)};
+  f.Reserve(geos);
   for (const CutCellGeometry* geo : geos) {
     for (int t = 0; t < geo->TriangleCount(); ++t)
       if (geo->State(t) == ElementState::kFluid) AddWholeTriangle(*geo, t, 1.0, f);
@@ -329,6 +338,7 @@ void CutCellStokes::Impl::AssembleUniformForms() {
   const auto n = static_cast<Eigen::Index>(grid.NodeCount());
   const auto np = static_cast<Eigen::Index>(pgrid.NodeCount());
   FormTriplets f{{}, {}, {}, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(np)};
+  f.Reserve(geos);
   for (const CutCellGeometry* geo : geos)
     for (int t = 0; t < geo->TriangleCount(); ++t) AddWholeTriangle(*geo, t, 1.0, f);
   uniform = std::make_unique<Uniform>();
@@ -585,6 +595,10 @@ Sparse CutCellStokes::Impl::UniformVelocityOperator() const {
   const auto n = static_cast<Eigen::Index>(grid.NodeCount());
   const double whole = 0.5 * grid.h * grid.h;
   Triplets a;
+  std::size_t triangles = 0;
+  for (const CutCellGeometry* geo : geos)
+    triangles += static_cast<std::size_t>(geo->TriangleCount());
+  a.reserve(12 * triangles);
   for (const CutCellGeometry* geo : geos)
     for (int t = 0; t < geo->TriangleCount(); ++t) {
       const std::array<int, 3> nodes = vmap(geo->TriangleNodes(t));
@@ -631,6 +645,7 @@ void CutCellStokes::Impl::BuildCapacitance() {
       rho_over_dt * Sparse(lumped_mass.asDiagonal()) + eta * (stiffness + nitsche + ghost_u);
   const Sparse uniform = UniformVelocityOperator();
   Triplets d;
+  d.reserve(static_cast<std::size_t>(cut.nonZeros() + uniform.nonZeros()));
   for (int col = 0; col < n; ++col) {
     if (!unknown[col]) continue;
     for (Sparse::InnerIterator it(cut, col); it; ++it)
