@@ -60,7 +60,8 @@ class CutCellResponses {
 // the sum would cost more than half the fast solve (a fast solve pair costs about 450 instructions
 // a node, the sum about 16 an entry for both components: callgrind, Schaefer-Turek at D/h = 20,
 // docs/evidence/cut_cell_boundary.md, "The fixed body's step: the second fast solve as a sum of
-// responses"). Creeping flows (nu dt / h^2 of 1 and more) keep the fast solve.
+// responses"). Creeping flows (nu dt / h^2 of 1 and more) keep the fast solve, and so do moving
+// bodies (their capacitance matrix is made every step).
 class CutCellLocalResponses {
  public:
   static constexpr int kEntriesPerNode = 16;
@@ -69,6 +70,7 @@ class CutCellLocalResponses {
         budget_(kEntriesPerNode * nodes) {}
   // Appends the next response (a full node array); false, and forgets all, once over the budget.
   bool Add(const double* response);
+  void Clear();  // forgets all: the fast solve is used
   bool Kept() const { return kept_; }
   // u -= sum_s ys[s] r_s, v -= sum_s zs[s] r_s.
   void SubtractPair(const double* ys, const double* zs, double* u, double* v) const;
