@@ -140,7 +140,7 @@ struct Simulation::Impl {
       ReportGradient(stokes.flux_control(), r.mean_pressure_gradient, report);
     } else {
       const StokesReport r = stokes.Solve(params.time.dt, force.x, force.y, state.u.data(),
-                                          state.v.data(), state.p.data());
+                                          state.v.data(), state.p.data(), &state.stokes_defect);
       report.Set("stokes_iterations", r.iterations);
       report.Set("stokes_residual", r.residual);
       report.Set("divergence", r.divergence);

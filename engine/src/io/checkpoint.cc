@@ -38,6 +38,7 @@ void WriteCheckpoint(const std::string& path, const FlowState& state, const std:
       WriteField(f, "d12", state.d12);
       WriteField(f, "d22", state.d22);
     }
+    if (!state.stokes_defect.empty()) WriteField(f, "stokes_defect", state.stokes_defect);
     h5::Handle group(h5::CheckId(H5Gcreate2(f, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                                  "create group"),
                      H5Gclose);
@@ -97,6 +98,8 @@ Checkpoint ReadCheckpoint(const std::string& path) {
     s.d12 = ReadField(f, "d12");
     s.d22 = ReadField(f, "d22");
   }
+  if (H5Lexists(f, "stokes_defect", H5P_DEFAULT) > 0)
+    s.stokes_defect = ReadField(f, "stokes_defect");
   h5::Handle group(
       h5::CheckId(H5Gopen2(f, "particles", H5P_DEFAULT), "open " + path + ":/particles"), H5Gclose);
   const hid_t g = group.get();

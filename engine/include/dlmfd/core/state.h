@@ -36,6 +36,10 @@ struct FlowState {
   // fluid.stress_splitting = "devss" only (else empty): the nodal strain rate D_h of the velocity
   // that step (35) used for A (0 inside particles, 0 before the first step).
   std::vector<double> d11, d12, d22;
+  // Step (33)'s predicted warm start (fluid/stokes_solver.h, "Warm start"): the defect e = r - d of
+  // its last solve, on the 2h-grid nodes; empty before the first step (and where (33) is the
+  // viscous coupling's or the cut cells'), which then starts from p alone.
+  std::vector<double> stokes_defect;
   std::vector<ParticleState> particles;
 };
 
