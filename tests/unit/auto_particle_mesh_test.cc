@@ -105,13 +105,25 @@ motion = "fixed"
   EXPECT_THAT(MeshChoice(p).rule, HasSubstr("particles.1 is not a disk"));
 }
 
-// Rules 3 and 4: each scene the cut cells refuse resolves to collocation points, naming the key
+// Rule 4: a polymer keeps the collocation points, which cut cells could replace (they run it
+// around fixed bodies) once measured on the polymer suite.
+TEST(AutoParticleMesh, APolymerKeepsCollocationPoints) {
+  const std::vector<SceneOverride> polymer = {{"fluid.relaxation_time", "0.1"},
+                                              {"fluid.solvent_ratio", "0.5"}};
+  const Params p = ParseScene(kFixedDisk, polymer);
+  EXPECT_EQ(p.particle_mesh.kind, ParticleMeshKind::kCollocation);
+  EXPECT_THAT(MeshChoice(p).rule, HasSubstr("a polymer"));
+  std::vector<SceneOverride> named = polymer;
+  named.push_back({"particle_mesh.kind", "\"cut_cell\""});
+  EXPECT_EQ(ParseScene(kFixedDisk, named).particle_mesh.kind, ParticleMeshKind::kCutCell);
+}
+
+// Rules 3 and 5: each scene the cut cells refuse resolves to collocation points, naming the key
 // that RequireCutCellScene names when the scene asks for cut cells (one predicate,
 // CutCellObstacle).
 TEST(AutoParticleMesh, EveryCutCellRefusalResolvesToCollocation) {
   const std::vector<std::pair<std::vector<SceneOverride>, std::string>> refused = {
       {{{"particles.0.motion", "\"free\""}, {"particles.0.density", "1.5"}}, "particles.0.motion"},
-      {{{"fluid.relaxation_time", "0.1"}, {"fluid.solvent_ratio", "0.5"}}, "fluid.relaxation_time"},
       {{{"splitting.constraint", "\"paper\""}}, "splitting.beta"},  // beta follows: 1/2
       {{{"domain.flow_rate", "0.05"}}, "domain.flow_rate"},
   };

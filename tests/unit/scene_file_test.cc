@@ -237,11 +237,11 @@ const BadScene kBadScenes[] = {
      "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"
      "[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n",
      "particles.0.motion", "\"free\""},
-    {"CutCellWithAPolymer",
+    {"CutCellWithAPolymerAroundAMovingBody",
      "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"
      "[fluid]\nrelaxation_time = 0.1\nsolvent_ratio = 0.5\n"
-     "[[particles]]\ncenter = [0.5, 0.5]\nmotion = \"fixed\"\n",
-     "fluid.relaxation_time", "0.1"},
+     "[[particles]]\ncenter = [0.5, 0.5]\nmotion = \"prescribed\"\n",
+     "particles.0.motion", "\"prescribed\""},
     {"CutCellWithViscosityInAdvection",
      "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"
      "[splitting]\nconstraint = \"paper\"\n[[particles]]\ncenter = [0.5, 0.5]\nmotion = "

@@ -52,7 +52,7 @@ ParticleParams Disk(Vec2 centre, double density, Vec2 velocity, double omega, Mo
 }
 
 // A non-rigid start: a smooth solenoidal swirl, zero on the walls.
-void Swirl(const Grid& g, std::vector<double>& u, std::vector<double>& v) {
+void SolenoidalSwirl(const Grid& g, std::vector<double>& u, std::vector<double>& v) {
   for (int j = 0; j <= g.ny; ++j) {
     for (int i = 0; i <= g.nx; ++i) {
       const double x = kPi * g.X(i), y = kPi * g.Y(j);
@@ -90,7 +90,7 @@ TEST(ViscousConstraint, StokesStepIsRigidAtTheMultiplierPointsAndDivergenceFree)
   params.particles.push_back(Disk(Vec2(0.71, 0.43), 1.0, Vec2::Zero(), 0.0, Motion::kFixed));
   CoupledRun run(params);
   ASSERT_TRUE(run.step.CouplesStokes());
-  Swirl(run.grid, run.u, run.v);
+  SolenoidalSwirl(run.grid, run.u, run.v);
   const ViscousConstraint::Outcome out =
       run.step.CoupleStokes(params.time.dt, params.time.dt, run.stokes, nullptr, nullptr,
                             run.particles, run.u.data(), run.v.data(), run.p.data());
@@ -131,7 +131,7 @@ TEST(ViscousConstraint, HydrodynamicForceOfTheWholeStepSatisfiesTheMomentumIdent
   params.gravity = Vec2(0.0, -981.0);
   params.particles.push_back(Disk(Vec2(0.37, 0.52), 1.5, Vec2(0.2, -0.1), 0.7, Motion::kFree));
   CoupledRun run(params);
-  Swirl(run.grid, run.u, run.v);
+  SolenoidalSwirl(run.grid, run.u, run.v);
   for (int n = 0; n < 3; ++n) {
     const ParticleState before = run.particles[0];
     const double dt = params.time.dt;

@@ -70,12 +70,13 @@ NodeForce OldroydBPolymer::MomentumForce(const FlowState& state) {
     s11 = s11_.data(), s12 = s12_.data(), s22 = s22_.data();
   }
   AddPolymerForce(grid_, domain_, modulus_, s11, s12, s22, fx_.data(), fy_.data());
-  return NodeForce{fx_.data(), fy_.data()};
+  return NodeForce{fx_.data(), fy_.data(), s11, s12, s22, modulus_};
 }
 
-void OldroydBPolymer::Update(double dt, FlowState& state, StepReport& report) {
-  const unsigned char* inside = nullptr;
-  if (!inside_particle_.empty()) {
+void OldroydBPolymer::Update(double dt, FlowState& state, StepReport& report,
+                             const unsigned char* solid_nodes) {
+  const unsigned char* inside = solid_nodes;
+  if (inside == nullptr && !inside_particle_.empty()) {
     MarkParticleNodes(state.particles);
     inside = inside_particle_.data();
   }

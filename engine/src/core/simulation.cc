@@ -11,7 +11,9 @@
 //   MoveParticles (36)-(38) ParticleStep (predictor, DLM multiplier, corrector), in place on u.
 // With particle_mesh.kind = "cut_cell" the (fixed or prescribed) particles are cut out of the mesh
 // instead: step (33) is CutCellStep's (particles/cut_cell_step.h), which also gives their force
-// and moves the prescribed ones, and there is no step (36)-(38).
+// and moves the prescribed ones, and there is no step (36)-(38); a polymer's force then acts on the
+// fluid part only, and after step (35) the nodes inside a body next to the fluid take the fluid's A
+// (CutCellStep::ExtendIntoBodies).
 // A step models no more than the scene needs: a Newtonian liquid (relaxation_time = 0 or
 // solvent_ratio = 1) builds no polymer, so no conformation arrays, no force and no step (35); a
 // scene without particles has no step (36)-(38).
@@ -125,8 +127,9 @@ struct Simulation::Impl {
                                    state.v.data());
     }
     if (cut_cells) {
+      const PolymerLoad load{force.x, force.y, force.s11, force.s12, force.s22, force.modulus};
       cut_cells->Solve(params.time.dt, boundary_data, state.particles, state.u.data(),
-                       state.v.data(), state.p.data(), report);
+                       state.v.data(), state.p.data(), report, load);
     } else if (particle_step && particle_step->CouplesStokes()) {
       const ViscousConstraint::Outcome r = particle_step->CoupleStokes(
           state.time + params.time.dt, params.time.dt, stokes, force.x, force.y, state.particles,
@@ -181,7 +184,16 @@ struct Simulation::Impl {
   // Step (35): A^n -> A^{n+1} with u^{n+2/4}; A = I inside the particles at X^n.
   [[gnu::noinline]] void UpdateConformation(StepReport& report) {
     const auto t0 = Clock::now();
-    polymer->Update(params.time.dt, state, report);
+    polymer->Update(params.time.dt, state, report,
+                    cut_cells ? cut_cells->InsideNodes().data() : nullptr);
+    if (cut_cells) {
+      // With devss D_h too: the stress there is then G (A - I) - w eta_p 2 D_h of fluid values,
+      // the share the implicit viscosity carries taken out as in the fluid.
+      cut_cells->ExtendIntoBodies(state.a11.data(), state.a12.data(), state.a22.data());
+      if (!state.d11.empty()) {
+        cut_cells->ExtendIntoBodies(state.d11.data(), state.d12.data(), state.d22.data());
+      }
+    }
     report.Set("ms_conformation", Milliseconds(t0, Clock::now()));
   }
 

@@ -34,6 +34,60 @@ CutCellStep::CutCellStep(const Params& params, const Grid& grid)
   }
   fu_.assign(grid.NodeCount(), 0.0);
   fv_.assign(grid.NodeCount(), 0.0);
+  MarkNodes();
+}
+
+void CutCellStep::MarkNodes() {
+  const std::vector<double>& phi = geometries_[0]->distance();
+  solid_nodes_.assign(grid_.NodeCount(), 1);
+  inside_nodes_.assign(grid_.NodeCount(), 0);
+  band_.clear();
+  const bool px = domain_.PeriodicX(), py = domain_.PeriodicY();
+  // The node (i, j) of the grid, across periodic sides; false outside it.
+  auto neighbour = [&](int i, int j, std::size_t* k) {
+    if (px) i = (i + grid_.nx) % grid_.nx;
+    if (py) j = (j + grid_.ny) % grid_.ny;
+    if (i < 0 || i > grid_.nx || j < 0 || j > grid_.ny) return false;
+    *k = grid_.Index(i, j);
+    return true;
+  };
+  for (int j = 0; j <= grid_.ny; ++j) {
+    for (int i = 0; i <= grid_.nx; ++i) {
+      const std::size_t k = grid_.Index(i, j);
+      for (const auto& geo : geometries_) {
+        if (geo->NodeActive(k)) solid_nodes_[k] = 0;
+      }
+      if (phi[k] >= 0.0) continue;
+      inside_nodes_[k] = 1;
+      if (solid_nodes_[k] != 0) continue;
+      BandNode band{k, {}};
+      for (int dj = -1; dj <= 1; ++dj) {
+        for (int di = -1; di <= 1; ++di) {
+          std::size_t n = 0;
+          if ((di != 0 || dj != 0) && neighbour(i + di, j + dj, &n) && phi[n] >= 0.0) {
+            band.fluid_neighbours.push_back(n);
+          }
+        }
+      }
+      band_.push_back(std::move(band));
+    }
+  }
+}
+
+void CutCellStep::ExtendIntoBodies(double* a11, double* a12, double* a22) const {
+  for (const BandNode& b : band_) {
+    if (b.fluid_neighbours.empty()) continue;
+    double s11 = 0.0, s12 = 0.0, s22 = 0.0;
+    for (const std::size_t n : b.fluid_neighbours) {
+      s11 += a11[n];
+      s12 += a12[n];
+      s22 += a22[n];
+    }
+    const double w = 1.0 / static_cast<double>(b.fluid_neighbours.size());
+    a11[b.node] = w * s11;
+    a12[b.node] = w * s12;
+    a22[b.node] = w * s22;
+  }
 }
 
 CutCellStep::~CutCellStep() = default;
@@ -88,14 +142,13 @@ void CutCellStep::MoveBodies(double dt) {
   *geometries_[0] = CutCellGeometry(grid_, bodies_, CutTriangulation::kSwNe, periodic_axes);
   if (geometries_.size() == 2)
     *geometries_[1] = CutCellGeometry(grid_, bodies_, CutTriangulation::kNwSe, periodic_axes);
+  MarkNodes();
 }
 
 void CutCellStep::FillBodies(double* u, double* v) const {
   const std::vector<RigidMotion> motions = Motions();
   for (std::size_t k = 0; k < grid_.NodeCount(); ++k) {
-    bool active = false;
-    for (const auto& geo : geometries_) active = active || geo->NodeActive(k);
-    if (active) continue;
+    if (solid_nodes_[k] == 0) continue;
     const RigidMotion& body = motions[static_cast<std::size_t>(geometries_[0]->NearestBody(k))];
     Vec2 arm = Vec2(grid_.X(static_cast<int>(k % grid_.NodesX())),
                     grid_.Y(static_cast<int>(k / grid_.NodesX()))) -
@@ -125,7 +178,8 @@ void CutCellStep::ExtrapolatePressure(double* p) {
 }
 
 void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<ParticleState>& particles,
-                        double* u, double* v, double* p, StepReport& report) {
+                        double* u, double* v, double* p, StepReport& report,
+                        const PolymerLoad& polymer) {
   if (moving_) {
     FillBodies(u, v);  // u^n inside the bodies at X^n: the value of the nodes they uncover
     MoveBodies(dt);
@@ -140,6 +194,16 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
     const auto i = static_cast<Eigen::Index>(k);
     fu_[k] = mass[i] * (rho_over_dt_ * u[k] + body_force_.x());
     fv_[k] = mass[i] * (rho_over_dt_ * v[k] + body_force_.y());
+  }
+  if (polymer.present()) {
+    for (std::size_t k = 0; k < fu_.size(); ++k) {
+      fu_[k] += polymer.fx[k];
+      fv_[k] += polymer.fy[k];
+    }
+    std::vector<const CutCellGeometry*> geometries;
+    for (const auto& geo : geometries_) geometries.push_back(geo.get());
+    AddCutCellPolymerCorrection(geometries, polymer.modulus, polymer.s11, polymer.s12, polymer.s22,
+                                fu_.data(), fv_.data());
   }
   if (moving_) ExtrapolatePressure(p);
   const CutCellReport r = flow_->Solve(data, fu_.data(), fv_.data(), u, v, p,

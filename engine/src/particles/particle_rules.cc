@@ -119,10 +119,13 @@ std::optional<InvalidParameter> CutCellObstacle(const Params& params) {
                                 "far), or particle_mesh.kind = \"collocation\" for free particles");
   }
   if (!params.fluid.IsNewtonian()) {
-    return InvalidParameter("fluid.relaxation_time", ExactText(params.fluid.relaxation_time),
-                            "0 (a Newtonian liquid)" + with +
-                                " (the polymer is not supported with cut cells yet), or "
-                                "particle_mesh.kind = \"collocation\"");
+    for (std::size_t p = 0; p < params.particles.size(); ++p) {
+      if (params.particles[p].motion == Motion::kFixed) continue;
+      return InvalidParameter("particles." + std::to_string(p) + ".motion", "\"prescribed\"",
+                              "\"fixed\"" + with +
+                                  " and a polymer (cut cells hold the polymer around bodies at "
+                                  "rest only, so far), or particle_mesh.kind = \"collocation\"");
+    }
   }
   if (params.splitting.beta != 0.0) {
     return InvalidParameter("splitting.beta", ExactText(params.splitting.beta),

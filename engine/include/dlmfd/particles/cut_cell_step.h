@@ -37,7 +37,14 @@
 // included): in a periodic box at steady state F_h = f L^2, the force per body of Sangani &
 // Acrivos. Periodic sides and boxes without an outflow side as in particles/cut_cell_stokes.h (the
 // square array: docs/evidence/cut_cell_boundary.md, "Periodic boxes: the square array"). With
-// domain.diagonals = "both" every form is the mean over the two triangulations. Report columns:
+// domain.diagonals = "both" every form is the mean over the two triangulations. With a polymer
+// (fixed bodies only, so far) its force joins the load as the fluid part's integral
+// (particles/cut_cell_polymer_force.h), so F_h holds the polymer's traction; step (35) holds A = I
+// at the nodes inside the bodies (InsideNodes), and then the nodes inside a body that are vertices
+// of a cut triangle take the mean of their neighbours' A in the fluid (ExtendIntoBodies), so that
+// the fluid polygon's stress is interpolated from fluid values. (Letting those nodes evolve by
+// step (35) with the velocity's extension into the body ran away at Wi = 0.9, R/h = 8: nothing
+// carries A out of the body there.) Report columns:
 // stokes_iterations (Uzawa / CG), stokes_residual (the saddle point's relative residual).
 #pragma once
 
@@ -49,6 +56,7 @@
 #include "dlmfd/core/state.h"
 #include "dlmfd/fluid/boundary_data.h"
 #include "dlmfd/particles/cut_cell_geometry.h"
+#include "dlmfd/particles/cut_cell_polymer_force.h"
 #include "dlmfd/particles/cut_cell_stokes.h"
 
 namespace dlmfd {
@@ -68,8 +76,16 @@ class CutCellStep {
   // built for the first call's dt and rebuilt when a call brings another, and every step when a
   // body is prescribed. Throws SolverNotConverged, and ParticlesOverlap when a prescribed body
   // reaches a side that is not periodic.
+  // polymer: the polymer's whole-mesh load of (33) and its stress (absent: a Newtonian liquid).
   void Solve(double dt, const BoundaryData& data, std::vector<ParticleState>& particles, double* u,
-             double* v, double* p, StepReport& report);
+             double* v, double* p, StepReport& report, const PolymerLoad& polymer = {});
+  // Per velocity node, 1 inside a body (the distance phi < 0, particles/cut_cell_geometry.h), at
+  // the bodies' last positions: where step (35) holds A = I.
+  const std::vector<unsigned char>& InsideNodes() const { return inside_nodes_; }
+  // A at the nodes inside a body that are vertices of a cut triangle: the mean of their
+  // neighbours' (the 8 around them, across periodic sides) in the fluid, phi >= 0; every such
+  // node has one, a vertex of its cut triangle. A convex combination: SPD stays SPD.
+  void ExtendIntoBodies(double* a11, double* a12, double* a22) const;
 
  private:
   // flow_ and rho_over_dt_ for a step of dt; true when flow_ was made anew.
@@ -79,6 +95,8 @@ class CutCellStep {
   std::vector<RigidMotion> Motions() const;
   // The rigid motion of the nearest body at every node without fluid in its support.
   void FillBodies(double* u, double* v) const;
+  // solid_nodes_, inside_nodes_ and band_ of the present geometries.
+  void MarkNodes();
 
   std::vector<FixedBody> bodies_;  // at the last step's end (X^{n+1})
   std::vector<Vec2> velocities_;   // U of each body (0: fixed)
@@ -94,7 +112,14 @@ class CutCellStep {
   Vec2 buoyancy_acceleration_;  // -g: F_h adds rho_L V (-g)
   double fluid_density_;
   CutCellConstants constants_;
-  std::vector<double> fu_, fv_;  // the load of the step: M_l (rho/dt u^n + f)
+  std::vector<double> fu_, fv_;  // the load of the step: M_l (rho/dt u^n + f) (+ the polymer's)
+  std::vector<unsigned char> solid_nodes_;   // no fluid in the node's support
+  std::vector<unsigned char> inside_nodes_;  // phi < 0
+  struct BandNode {
+    std::size_t node;
+    std::vector<std::size_t> fluid_neighbours;
+  };
+  std::vector<BandNode> band_;  // inside a body, not solid
   // A moving body: p^{n-1}, for the extrapolated start of the pressure iteration.
   void ExtrapolatePressure(double* p);
   std::vector<double> last_pressure_;

@@ -17,21 +17,23 @@
 //      an ellipse keeps the collocation points its key names).
 //   3. A particle that is not fixed: "collocation" (cut cells refuse free ones and rebuild every
 //      step for prescribed ones, some 40 times a fixed body's step).
-//   4. A scene that cut cells refuse otherwise (CutCellObstacle, particles/particle_rules.h: a
-//      polymer, splitting.beta != 0, domain.flow_rate): "collocation", naming the key.
-//   5. A run of fewer than kMinCutCellSteps steps: "collocation" (the set-up would not pay).
-//   6. Otherwise: "cut_cell".
+//   4. A liquid with a polymer: "collocation" (cut cells run it around fixed bodies, but are not
+//      yet measured as the default on the polymer suite).
+//   5. A scene that cut cells refuse otherwise (CutCellObstacle, particles/particle_rules.h:
+//      splitting.beta != 0, domain.flow_rate): "collocation", naming the key.
+//   6. A run of fewer than kMinCutCellSteps steps: "collocation" (the set-up would not pay).
+//   7. Otherwise: "cut_cell".
 // The choice, the rule and the numbers it read go where the coupling's "auto" goes (the run's log,
 // summary.json `numerics`, the daemon's job record and `dlmfd show`); the scene as run (scene.toml)
 // names the kind chosen, so a resume or a rerun uses the same one. Its numbers: the run's steps
-// and kMinCutCellSteps. splitting.constraint is resolved before (its weights decide rule 4).
+// and kMinCutCellSteps. splitting.constraint is resolved before (its weights decide rule 5).
 #pragma once
 
 #include "dlmfd/core/params.h"
 
 namespace dlmfd {
 
-// Steps from which the cut cells' set-up pays (rule 5). The set-up (the cut band's forms and the
+// Steps from which the cut cells' set-up pays (rule 6). The set-up (the cut band's forms and the
 // capacitance matrix) costs as much as 56-101 cut-cell steps at the start of a run on every case
 // measured (Schaefer-Turek D/h = 20: 1.9-2.1 CPU s against 29-35 ms a step over the first 200-300
 // steps from rest; the square array at h = 1/64: 0.21 s against 2.1 ms, at 1/128: 0.78 s against
