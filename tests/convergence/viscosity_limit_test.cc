@@ -132,10 +132,12 @@ TEST(ViscosityLimit, DiskGapOfTheLambdaToZeroLimitIsFirstOrder) {
 // fluid take the fluid's A and D_h (CutCellStep::ExtendIntoBodies), so the explicit rest
 // G (A - I) - w eta_p 2 D_h is O(lambda) at every node the fluid polygons read: the gap to the
 // Newtonian cut-cell drag falls at first order in lambda or faster, with no O(h) band left.
-// Measured (h = 1/16, dt = 2e-3): gaps 7.62e-3, 8.24e-4, 8.31e-5 of 51.0469 at lambda = 1e-3,
-// 1e-4, 1e-5, orders 0.97 and 1.00. With D_h left at 0 inside the disk the gap grew as lambda fell
-// (to 1.6 % at lambda = 1e-5, the case file's numerics: the band carried the whole polymer stress
-// beside the implicit w eta_p). Test: observed order >= 0.9 over each decade.
+// The velocity's ghost penalty follows the polymer's elastic share 1 - w (particles/
+// cut_cell_step.h), O(lambda) too. Measured (h = 1/16, dt = 2e-3): gaps 5.06e-3, 5.28e-4,
+// 5.31e-5 of 51.0469 at lambda = 1e-3, 1e-4, 1e-5, orders 0.98 and 1.00 (with the Newtonian
+// penalty throughout: 7.62e-3, 8.24e-4, 8.31e-5). With D_h left at 0 inside the disk the gap grew
+// as lambda fell (to 1.6 % at lambda = 1e-5, the case file's numerics: the band carried the whole
+// polymer stress beside the implicit w eta_p). Test: observed order >= 0.9 over each decade.
 TEST(ViscosityLimit, WithCutCellsTheDevssGapIsFirstOrderInLambda) {
   auto drag = [](double lambda) {
     Params p = testing::ChannelWithFixedDisk(16, 2e-3, 0.0, 1.0);

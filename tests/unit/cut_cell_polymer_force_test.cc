@@ -105,8 +105,8 @@ TEST_P(CutCellPolymerForce, ItsMomentsAreTheStressIntegralsOverTheFluidPart) {
   const double disk_x = centre.x() * disk;
   const double int_t11 = modulus * ((0.5 * w * w * hgt + w * hgt) - (disk_x + disk));
   const double int_t12 = modulus * 0.5 * (0.5 * w * hgt * hgt - centre.y() * disk);
-  const double int_t22 = modulus * ((2.0 * w * hgt - 0.5 * w * hgt * hgt) -
-                                    (2.0 * disk - centre.y() * disk));
+  const double int_t22 =
+      modulus * ((2.0 * w * hgt - 0.5 * w * hgt * hgt) - (2.0 * disk - centre.y() * disk));
   // The chords' area error bound times the largest |tau| over the box (|G (S - I)| <= 2.25 G).
   const double chords = 2.0 * pi * r * (2.0 * g.h * g.h) / (8.0 * r) * 2.25 * modulus;
   EXPECT_NEAR(m.sum_fx, 0.0, 1e-13 * m.scale * g.NodeCount());

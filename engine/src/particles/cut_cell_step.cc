@@ -18,6 +18,11 @@ CutCellStep::CutCellStep(const Params& params, const Grid& grid)
       buoyancy_acceleration_(-params.gravity),
       fluid_density_(params.fluid.density) {
   RequireCutCellScene(params);
+  const double elastic_share = 1.0 - params.fluid.DevssWeight(grid.h);  // 0 without a polymer
+  if (!params.fluid.IsNewtonian()) {
+    constants_.ghost_velocity +=
+        (constants_.ghost_velocity_elastic - constants_.ghost_velocity) * elastic_share;
+  }
   for (const ParticleParams& q : params.particles) {
     bodies_.push_back({Shape::Of(q), q.center, q.angle});
     const bool prescribed = q.motion == Motion::kPrescribed;

@@ -44,7 +44,9 @@
 // of a cut triangle take the mean of their neighbours' A in the fluid (ExtendIntoBodies), so that
 // the fluid polygon's stress is interpolated from fluid values. (Letting those nodes evolve by
 // step (35) with the velocity's extension into the body ran away at Wi = 0.9, R/h = 8: nothing
-// carries A out of the body there.) Report columns:
+// carries A out of the body there.) The velocity's ghost penalty grows with the polymer's elastic
+// share (CutCellConstants::ghost_velocity_elastic): with the Newtonian one the confined cylinder
+// blew up at Wi = 0.6, R/h = 24. Report columns:
 // stokes_iterations (Uzawa / CG), stokes_residual (the saddle point's relative residual).
 #pragma once
 

@@ -65,7 +65,13 @@ struct CutCellConstants {
   double nitsche = 20.0;          // gamma
   double ghost_velocity = 0.01;   // g_u
   double ghost_pressure = 0.001;  // g_p
-  int restart = 120;              // GMRES restart length (80: 2.1 times the iterations at D/h 40)
+  // g_u with a polymer that is elastic on the grid's scale (particles/cut_cell_step.h: g_u =
+  // ghost_velocity + (ghost_velocity_elastic - ghost_velocity) (1 - w), w the devss weight, so g_u
+  // -> ghost_velocity as lambda -> 0): with 0.01 the confined cylinder at Wi = 0.6, R/h = 24 blew
+  // up at step 550-630 of 1800, with 0.1 it ran (docs/evidence/cut_cell_boundary.md, "The polymer
+  // around fixed bodies").
+  double ghost_velocity_elastic = 0.1;
+  int restart = 120;  // GMRES restart length (80: 2.1 times the iterations at D/h 40)
   // Step (33) in the time loop (particles/cut_cell_step.h): the saddle point's relative residual
   // and the iteration limit; the loosest tolerance at which Schaefer-Turek's C_D no longer moves
   // (docs/evidence/cut_cell_boundary.md, "A second-order boundary: the time loop").
