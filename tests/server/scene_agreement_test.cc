@@ -59,6 +59,35 @@ struct SceneCase {
 // Failures name the case, not its bytes.
 void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.name; }
 
+// What cut cells do not hold yet (particles/particle_rules.h, RequireCutCellScene), and the fixed
+// and prescribed disks, and the polymer around fixed ones, that they do.
+std::vector<SceneCase> CutCellCases() {
+  return {
+      {"CutCellFixedDisk", Disk(0.5, 0.5, 1.5, "fixed"), {"particle_mesh.kind=cut_cell"}, ""},
+      {"CutCellPrescribedDisk",
+       Disk(0.5, 0.5, 1.5, "prescribed"),
+       {"particle_mesh.kind=cut_cell"},
+       ""},
+      {"CutCellWithAPolymer",
+       Disk(0.5, 0.5, 1.5, "fixed"),
+       {"particle_mesh.kind=cut_cell", kOldroydB, kHalfSolvent},
+       ""},
+      {"CutCellWithAPolymerAroundAMovingBody",
+       Disk(0.5, 0.5, 1.5, "prescribed"),
+       {"particle_mesh.kind=cut_cell", kOldroydB, kHalfSolvent},
+       "particles.0.motion"},
+      {"CutCellWithViscosityInTheAdvection",
+       Disk(0.5, 0.5, 1.5, "fixed"),
+       {"particle_mesh.kind=cut_cell", "splitting.alpha=0.5", "splitting.beta=0.5"},
+       "splitting.beta"},
+      {"CutCellWithAFlowRate",
+       Disk(0.5, 0.5, 1.5, "fixed"),
+       {"particle_mesh.kind=cut_cell", "domain.boundary.left={ type = \"periodic\" }",
+        "domain.boundary.right={ type = \"periodic\" }", "domain.flow_rate=0.1"},
+       "domain.flow_rate"},
+  };
+}
+
 std::vector<SceneCase> Cases() {
   const std::string normal_inflow =
       "domain.boundary.bottom={ type = \"velocity\", profile = \"poiseuille\", max = [0.0, 1.0] }";
@@ -120,30 +149,6 @@ std::vector<SceneCase> Cases() {
        Disk(0.5, 0.5, 1.5),
        {"particle_mesh.kind=cut_cell"},
        "particles.0.motion"},
-      // What cut cells do not hold yet (particles/particle_rules.h, RequireCutCellScene), and
-      // the fixed and prescribed disks that they do.
-      {"CutCellFixedDisk", Disk(0.5, 0.5, 1.5, "fixed"), {"particle_mesh.kind=cut_cell"}, ""},
-      {"CutCellPrescribedDisk",
-       Disk(0.5, 0.5, 1.5, "prescribed"),
-       {"particle_mesh.kind=cut_cell"},
-       ""},
-      {"CutCellWithAPolymer",
-       Disk(0.5, 0.5, 1.5, "fixed"),
-       {"particle_mesh.kind=cut_cell", kOldroydB, kHalfSolvent},
-       ""},
-      {"CutCellWithAPolymerAroundAMovingBody",
-       Disk(0.5, 0.5, 1.5, "prescribed"),
-       {"particle_mesh.kind=cut_cell", kOldroydB, kHalfSolvent},
-       "particles.0.motion"},
-      {"CutCellWithViscosityInTheAdvection",
-       Disk(0.5, 0.5, 1.5, "fixed"),
-       {"particle_mesh.kind=cut_cell", "splitting.alpha=0.5", "splitting.beta=0.5"},
-       "splitting.beta"},
-      {"CutCellWithAFlowRate",
-       Disk(0.5, 0.5, 1.5, "fixed"),
-       {"particle_mesh.kind=cut_cell", "domain.boundary.left={ type = \"periodic\" }",
-        "domain.boundary.right={ type = \"periodic\" }", "domain.flow_rate=0.1"},
-       "domain.flow_rate"},
       // The accuracy envelope (scene/accuracy_envelope.h): a warning for both, a rejection for
       // both with accuracy.strict = true.
       // U dt / h = 0.8 > 0.64; D / h = 3.2 < 120.
@@ -166,6 +171,13 @@ std::vector<SceneCase> Cases() {
        {"domain.boundary.left={ type = \"periodic\" }"},
        "domain.boundary.right.type"},
   };
+}
+
+std::vector<SceneCase> AllCases() {
+  std::vector<SceneCase> all = Cases();
+  const std::vector<SceneCase> cut = CutCellCases();
+  all.insert(all.end(), cut.begin(), cut.end());
+  return all;
 }
 
 std::string ReadAll(const std::string& path) {
@@ -231,7 +243,7 @@ TEST_P(SceneAgreement, SolverAndDaemonAgree) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, SceneAgreement, ::testing::ValuesIn(Cases()),
+INSTANTIATE_TEST_SUITE_P(Scenes, SceneAgreement, ::testing::ValuesIn(AllCases()),
                          [](const ::testing::TestParamInfo<SceneCase>& param_info) {
                            return param_info.param.name;
                          });
