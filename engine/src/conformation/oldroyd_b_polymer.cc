@@ -74,8 +74,8 @@ NodeForce OldroydBPolymer::MomentumForce(const FlowState& state) {
 }
 
 void OldroydBPolymer::Update(double dt, FlowState& state, StepReport& report,
-                             const unsigned char* solid_nodes) {
-  const unsigned char* inside = solid_nodes;
+                             const unsigned char* inside_nodes) {
+  const unsigned char* inside = inside_nodes;
   if (inside == nullptr && !inside_particle_.empty()) {
     MarkParticleNodes(state.particles);
     inside = inside_particle_.data();

@@ -127,9 +127,8 @@ struct Simulation::Impl {
                                    state.v.data());
     }
     if (cut_cells) {
-      const PolymerLoad load{force.x, force.y, force.s11, force.s12, force.s22, force.modulus};
       cut_cells->Solve(params.time.dt, boundary_data, state.particles, state.u.data(),
-                       state.v.data(), state.p.data(), report, load);
+                       state.v.data(), state.p.data(), report, force);
     } else if (particle_step && particle_step->CouplesStokes()) {
       const ViscousConstraint::Outcome r = particle_step->CoupleStokes(
           state.time + params.time.dt, params.time.dt, stokes, force.x, force.y, state.particles,

@@ -18,8 +18,8 @@ CutCellStep::CutCellStep(const Params& params, const Grid& grid)
       buoyancy_acceleration_(-params.gravity),
       fluid_density_(params.fluid.density) {
   RequireCutCellScene(params);
-  const double elastic_share = 1.0 - params.fluid.DevssWeight(grid.h);  // 0 without a polymer
   if (!params.fluid.IsNewtonian()) {
+    const double elastic_share = 1.0 - params.fluid.DevssWeight(grid.h);  // 1 - w
     constants_.ghost_velocity +=
         (constants_.ghost_velocity_elastic - constants_.ghost_velocity) * elastic_share;
   }
@@ -184,7 +184,7 @@ void CutCellStep::ExtrapolatePressure(double* p) {
 
 void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<ParticleState>& particles,
                         double* u, double* v, double* p, StepReport& report,
-                        const PolymerLoad& polymer) {
+                        const NodeForce& polymer) {
   if (moving_) {
     FillBodies(u, v);  // u^n inside the bodies at X^n: the value of the nodes they uncover
     MoveBodies(dt);
@@ -202,8 +202,8 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
   }
   if (polymer.present()) {
     for (std::size_t k = 0; k < fu_.size(); ++k) {
-      fu_[k] += polymer.fx[k];
-      fv_[k] += polymer.fy[k];
+      fu_[k] += polymer.x[k];
+      fv_[k] += polymer.y[k];
     }
     std::vector<const CutCellGeometry*> geometries;
     for (const auto& geo : geometries_) geometries.push_back(geo.get());

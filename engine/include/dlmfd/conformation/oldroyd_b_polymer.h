@@ -39,20 +39,11 @@
 
 #include "dlmfd/conformation/conformation_step.h"
 #include "dlmfd/core/grid.h"
+#include "dlmfd/core/node_force.h"
 #include "dlmfd/core/params.h"
 #include "dlmfd/core/state.h"
 
 namespace dlmfd {
-
-// A force on the momentum equation as dual node vectors; null components mean none. The polymer's
-// also names the stress it integrates, tau_p = modulus (S - I) with S P1 at the velocity nodes
-// (the cut-cell step integrates it over the fluid part only: particles/cut_cell_polymer_force.h).
-struct NodeForce {
-  const double* x = nullptr;
-  const double* y = nullptr;
-  const double *s11 = nullptr, *s12 = nullptr, *s22 = nullptr;
-  double modulus = 0.0;
-};
 
 class OldroydBPolymer {
  public:
@@ -66,11 +57,11 @@ class OldroydBPolymer {
   NodeForce MomentumForce(const FlowState& state);
   // Step (35): A^n at state.time -> A^{n+1}, with u^{n+2/4} = state.u, state.v (or u^{n+1/4}:
   // conformation.velocity, core/simulation.cc) and the particles
-  // of state at X^n; with devss also D_h of u^{n+2/4} into state.d11, d12, d22. solid_nodes, when
+  // of state at X^n; with devss also D_h of u^{n+2/4} into state.d11, d12, d22. inside_nodes, when
   // given, marks the nodes where A = I in place of the particles' insides (the cut cells' nodes
   // inside the bodies: particles/cut_cell_step.h).
   void Update(double dt, FlowState& state, StepReport& report,
-              const unsigned char* solid_nodes = nullptr);
+              const unsigned char* inside_nodes = nullptr);
 
   double modulus() const { return modulus_; }  // G = eta_p / lambda
 

@@ -23,19 +23,10 @@
 #include <vector>
 
 #include "dlmfd/core/grid.h"
+#include "dlmfd/core/node_force.h"
 #include "dlmfd/particles/cut_cell_geometry.h"
 
 namespace dlmfd {
-
-// The polymer's load on step (33): the whole-mesh dual force (fx, fy) and the fields it came from,
-// tau_p = modulus (S - I), P1 at the velocity nodes.
-struct PolymerLoad {
-  const double* fx = nullptr;
-  const double* fy = nullptr;
-  const double *s11 = nullptr, *s12 = nullptr, *s22 = nullptr;
-  double modulus = 0.0;
-  bool present() const { return fx != nullptr; }
-};
 
 // fx, fy += the correction above for every geometry (one, or the two triangulations of "both"),
 // so that a whole-mesh force in (fx, fy) becomes the fluid part's.

@@ -78,9 +78,10 @@ class CutCellStep {
   // built for the first call's dt and rebuilt when a call brings another, and every step when a
   // body is prescribed. Throws SolverNotConverged, and ParticlesOverlap when a prescribed body
   // reaches a side that is not periodic.
-  // polymer: the polymer's whole-mesh load of (33) and its stress (absent: a Newtonian liquid).
+  // polymer: the polymer's whole-mesh force of (33) and its stress (core/node_force.h; absent: a
+  // Newtonian liquid).
   void Solve(double dt, const BoundaryData& data, std::vector<ParticleState>& particles, double* u,
-             double* v, double* p, StepReport& report, const PolymerLoad& polymer = {});
+             double* v, double* p, StepReport& report, const NodeForce& polymer = {});
   // Per velocity node, 1 inside a body (the distance phi < 0, particles/cut_cell_geometry.h), at
   // the bodies' last positions: where step (35) holds A = I.
   const std::vector<unsigned char>& InsideNodes() const { return inside_nodes_; }
