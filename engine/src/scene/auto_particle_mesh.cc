@@ -58,9 +58,11 @@ std::optional<Pick> MovingParticles(const Params& p) {
   return std::nullopt;
 }
 
-// 4. A polymer: cut cells run it around fixed bodies (particles/cut_cell_polymer_force.h), but
-// the polymer suite (the confined cylinder over Wi, both representations) has not been measured
-// with them at the defaults: the collocation points, whose figures docs/accuracy.md gives, stay.
+// 4. A polymer: cut cells run it around fixed bodies (particles/cut_cell_polymer_force.h) and on
+// the confined cylinder at Wi = 0.3 and 0.6 they are closer to the literature than the collocation
+// points (docs/evidence/cut_cell_boundary.md, "The polymer around fixed bodies"), but Wi = 0.9 at
+// R/h = 24, the sub-grid positions and the other models are not measured: the collocation points,
+// whose figures docs/accuracy.md gives, stay.
 std::optional<Pick> Polymer(const Params& p) {
   if (p.fluid.IsNewtonian()) return std::nullopt;
   return Pick{ParticleMeshKind::kCollocation,
