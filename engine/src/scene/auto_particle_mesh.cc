@@ -60,9 +60,9 @@ std::optional<Pick> MovingParticles(const Params& p) {
 
 // 4. A polymer: cut cells run it around fixed bodies (particles/cut_cell_polymer_force.h) and on
 // the confined cylinder at Wi = 0.3 and 0.6 they are closer to the literature than the collocation
-// points (docs/evidence/cut_cell_boundary.md, "The polymer around fixed bodies"), but Wi = 0.9 at
-// R/h = 24, the sub-grid positions and the other models are not measured: the collocation points,
-// whose figures docs/accuracy.md gives, stay.
+// points (docs/evidence/cut_cell_boundary.md, "The polymer around fixed bodies"; at Wi = 0.9 a
+// little closer), but the sub-grid positions, a third grid and the other models are not measured:
+// the collocation points, whose figures docs/accuracy.md gives, stay.
 std::optional<Pick> Polymer(const Params& p) {
   if (p.fluid.IsNewtonian()) return std::nullopt;
   return Pick{ParticleMeshKind::kCollocation,
