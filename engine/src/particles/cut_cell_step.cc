@@ -37,6 +37,7 @@ CutCellStep::CutCellStep(const Params& params, const Grid& grid)
     geometries_.push_back(
         std::make_unique<CutCellGeometry>(grid, bodies_, CutTriangulation::kNwSe, periodic));
   }
+  for (const auto& geo : geometries_) geometry_views_.push_back(geo.get());
   fu_.assign(grid.NodeCount(), 0.0);
   fv_.assign(grid.NodeCount(), 0.0);
   MarkNodes();
@@ -205,10 +206,8 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
       fu_[k] += polymer.x[k];
       fv_[k] += polymer.y[k];
     }
-    std::vector<const CutCellGeometry*> geometries;
-    for (const auto& geo : geometries_) geometries.push_back(geo.get());
-    AddCutCellPolymerCorrection(geometries, polymer.modulus, polymer.s11, polymer.s12, polymer.s22,
-                                fu_.data(), fv_.data());
+    AddCutCellPolymerCorrection(geometry_views_, polymer.modulus, polymer.s11, polymer.s12,
+                                polymer.s22, fu_.data(), fv_.data());
   }
   if (moving_) ExtrapolatePressure(p);
   const CutCellReport r = flow_->Solve(data, fu_.data(), fv_.data(), u, v, p,

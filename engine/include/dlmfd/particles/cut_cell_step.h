@@ -107,6 +107,7 @@ class CutCellStep {
   bool moving_ = false;            // some body is prescribed
   Grid grid_;
   std::vector<std::unique_ptr<CutCellGeometry>> geometries_;  // SW-NE, then NW-SE with "both"
+  std::vector<const CutCellGeometry*> geometry_views_;  // the same, read-only (moved in place)
   DomainParams domain_;
   double viscosity_;                     // eta of the forms
   std::unique_ptr<CutCellStokes> flow_;  // of dt_
