@@ -10,7 +10,8 @@
 #   bench/confined_cylinder.sh                # RH="8 16 24" WI="0 0.3 0.6 0.9" REPR="standard log"
 #                                             # SOLVE=build/solver/dlmfd-solve WORK=runs/confined_cylinder
 #                                             # THREADS=1 PYTHON=python3 (with h5py); SETS="--set k=v ..."
-# Cost: R/h = 24 takes 20-40 min a polymer run on one thread of this machine; R/h = 8 about 1 min.
+# Cost: R/h = 24 takes 4-8 min a polymer run on one thread of this machine with the cut cells that
+# `auto` picks (2026-12-06; 20-40 min with the collocation points before); R/h = 8 under a minute.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SOLVE=${SOLVE:-build/solver/dlmfd-solve}

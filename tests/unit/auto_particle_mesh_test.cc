@@ -105,15 +105,29 @@ motion = "fixed"
   EXPECT_THAT(MeshChoice(p).rule, HasSubstr("particles.1 is not a disk"));
 }
 
-// Rule 4: a polymer keeps the collocation points, which cut cells could replace (they run it
-// around fixed bodies) once measured on the polymer suite.
-TEST(AutoParticleMesh, APolymerKeepsCollocationPoints) {
-  const std::vector<SceneOverride> polymer = {{"fluid.relaxation_time", "0.1"},
-                                              {"fluid.solvent_ratio", "0.5"}};
-  const Params p = ParseScene(kFixedDisk, polymer);
+// Rule 4: the polymers the cut cells were measured with (Oldroyd-B, Giesekus) get them around
+// fixed disks, like a Newtonian liquid; the others keep the collocation points, and get cut cells
+// when the scene names them.
+TEST(AutoParticleMesh, OldroydBAndGiesekusGetCutCells) {
+  const std::vector<SceneOverride> oldroyd_b = {{"fluid.relaxation_time", "0.1"},
+                                                {"fluid.solvent_ratio", "0.5"}};
+  const Params p = ParseScene(kFixedDisk, oldroyd_b);
+  EXPECT_EQ(p.particle_mesh.kind, ParticleMeshKind::kCutCell);
+  std::vector<SceneOverride> giesekus = oldroyd_b;
+  giesekus.push_back({"fluid.model", "\"giesekus\""});
+  giesekus.push_back({"fluid.mobility", "0.1"});
+  EXPECT_EQ(ParseScene(kFixedDisk, giesekus).particle_mesh.kind, ParticleMeshKind::kCutCell);
+}
+
+TEST(AutoParticleMesh, AnUnmeasuredPolymerKeepsCollocationPoints) {
+  const std::vector<SceneOverride> fene_p = {{"fluid.relaxation_time", "0.1"},
+                                             {"fluid.solvent_ratio", "0.5"},
+                                             {"fluid.model", "\"fene_p\""},
+                                             {"fluid.extensibility", "100"}};
+  const Params p = ParseScene(kFixedDisk, fene_p);
   EXPECT_EQ(p.particle_mesh.kind, ParticleMeshKind::kCollocation);
-  EXPECT_THAT(MeshChoice(p).rule, HasSubstr("a polymer"));
-  std::vector<SceneOverride> named = polymer;
+  EXPECT_THAT(MeshChoice(p).rule, HasSubstr("fluid.model = \"fene_p\""));
+  std::vector<SceneOverride> named = fene_p;
   named.push_back({"particle_mesh.kind", "\"cut_cell\""});
   EXPECT_EQ(ParseScene(kFixedDisk, named).particle_mesh.kind, ParticleMeshKind::kCutCell);
 }

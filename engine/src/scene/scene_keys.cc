@@ -236,7 +236,8 @@ void AddParticleMeshAndCollisions(std::vector<SceneKey<P>>& keys) {
       "the multiplier points of (37): the paper's ring mesh, collocation points on the true "
       "circle, or no multipliers (cut cells: fixed or prescribed bodies, fixed ones only with a "
       "polymer, any sides); "
-      "`auto` picks cut cells for fixed disks in a Newtonian liquid over a run of at least " +
+      "`auto` picks cut cells for fixed disks (in a Newtonian, Oldroyd-B or Giesekus liquid) over "
+      "a run of at least " +
           std::to_string(kMinCutCellSteps) +
           " steps, collocation points otherwise (scene/auto_particle_mesh.h)",
       ResolveParticleMeshKind)));

@@ -1,7 +1,8 @@
 // particle_mesh.kind = "auto", the default since issue 32 / 33: cut cells (particles/
-// cut_cell_step.h) where every particle is a fixed disk in a Newtonian liquid and the run is long
-// enough for their set-up to pay, collocation points otherwise (docs/evidence/cut_cell_boundary.md,
-// "Should `auto` choose cut cells for fixed bodies?"; docs/accuracy.md).
+// cut_cell_step.h) where every particle is a fixed disk, the liquid Newtonian or a polymer they
+// were measured with, and the run long enough for their set-up to pay, collocation points
+// otherwise (docs/evidence/cut_cell_boundary.md, "Should `auto` choose cut cells for fixed
+// bodies?" and "The polymer around fixed bodies"; docs/accuracy.md).
 //
 // Why: on the same grid a cut-cell step costs 2-7 times the collocation points' one, but its drag
 // is second order and does not depend on where the body sits in the grid (Schaefer-Turek C_D
@@ -17,8 +18,8 @@
 //      an ellipse keeps the collocation points its key names).
 //   3. A particle that is not fixed: "collocation" (cut cells refuse free ones and rebuild every
 //      step for prescribed ones, some 40 times a fixed body's step).
-//   4. A liquid with a polymer: "collocation" (cut cells run it around fixed bodies, but are not
-//      yet measured as the default on the polymer suite).
+//   4. A polymer model other than Oldroyd-B and Giesekus: "collocation" (cut cells carry any
+//      model around fixed bodies, but FENE-P and PTT were not measured with them).
 //   5. A scene that cut cells refuse otherwise (CutCellObstacle, particles/particle_rules.h:
 //      splitting.beta != 0, domain.flow_rate): "collocation", naming the key.
 //   6. A run of fewer than kMinCutCellSteps steps: "collocation" (the set-up would not pay).

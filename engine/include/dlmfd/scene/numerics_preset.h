@@ -3,7 +3,7 @@
 //
 //   "default" (the default): the configuration measured best on the verification suite
 //     (docs/accuracy.md): the particle mesh chosen from the scene ("auto", scene/
-//     auto_particle_mesh.h: cut cells for fixed disks in a Newtonian liquid over a long run,
+//     auto_particle_mesh.h: cut cells for fixed disks over a long run (not yet with FENE-P or PTT),
 //     collocation points on the true circle otherwise), the coupling of the constraint
 //     chosen from the scene's numbers ("auto", scene/auto_coupling.h), DEVSS for a polymer, the
 //     steady correction in a Newtonian liquid, both diagonals of every square and the wave-like
