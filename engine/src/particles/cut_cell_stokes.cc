@@ -137,7 +137,7 @@ struct CutCellStokes::Impl {
   // volume divergence (n x np).
   RowSparse momentum_rows, gradient_x_rows, gradient_y_rows;
   // Row-major copies for the products of the iterations: bt = [Bx^T; By^T] and b = [Bx, By] over
-  // the unknowns, pp = -G_p / eta.
+  // the unknowns, pp = -G_p / phi_p.
   RowSparse saddle_rows, bt, b, pp, velocity_rows;
   bool exact_velocity = false;  // precondition the velocity by its own factorization
   Eigen::SparseLU<Sparse> velocity_lu;
@@ -499,7 +499,7 @@ void CutCellStokes::Impl::NumberUnknowns() {
     }
 }
 
-// The reduced saddle point [[A, 0, Bx^T], [0, A, By^T], [Bx, By, -G_p / eta]] over the unknowns,
+// The reduced saddle point [[A, 0, Bx^T], [0, A, By^T], [Bx, By, -G_p / phi_p]] over the unknowns,
 // and the row-major blocks of the iterations: the rows of the full forms at the unknowns, their
 // columns renumbered (the numbering keeps the nodes' order, so no sorting).
 void CutCellStokes::Impl::BuildReduced() {
@@ -518,11 +518,14 @@ void CutCellStokes::Impl::BuildReduced() {
     gradient_x_rows = div_x.transpose();
     gradient_y_rows = div_y.transpose();
   }
-  // The Schur complement's diagonal model: (M_p + G_p) / eta over the fluid part.
+  // The pressure penalty's scale phi_p = eta + (rho/dt) H^2 (header), and the Schur complement's
+  // diagonal model M_p / eta + G_p / phi_p over the fluid part, held as eta times its inverse's
+  // denominator: M_p + (eta / phi_p) G_p.
+  const double phi_p = eta + rho_over_dt * pgrid.h * pgrid.h;
   pressure_mass.resize(static_cast<Eigen::Index>(pnodes.size()));
   const Eigen::VectorXd ghost_diagonal = ghost_p.diagonal();
   for (std::size_t k = 0; k < pnodes.size(); ++k)
-    pressure_mass[k] = pressure_fluid_mass[pnodes[k]] + ghost_diagonal[pnodes[k]];
+    pressure_mass[k] = pressure_fluid_mass[pnodes[k]] + eta / phi_p * ghost_diagonal[pnodes[k]];
   const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
   const RowSparse a_full = momentum_full, bx_rows = bx_full, by_rows = by_full;
   const RowSparse g_rows = ghost_p;
@@ -538,7 +541,7 @@ void CutCellStokes::Impl::BuildReduced() {
     bb.Append(bx_rows, pnodes[r], vindex, 0, 1.0);
     bb.Append(by_rows, pnodes[r], vindex, nu, 1.0);
     bb.EndRow();
-    gg.Append(g_rows, pnodes[r], pindex, 0, -eta);
+    gg.Append(g_rows, pnodes[r], pindex, 0, -phi_p);
     gg.EndRow();
   }
   velocity_rows = av.Build(nu, nu);
@@ -708,7 +711,7 @@ void CutCellStokes::Impl::SolveVelocity(const Eigen::VectorXd& r, Eigen::VectorX
 }
 
 // Uzawa / preconditioned CG on the pressure (header): u = A^-1 (f - B^T p) exactly, CG on
-// S p = B A^-1 f - g with S = B A^-1 B^T + G_p / eta (symmetric positive definite) and Cahouet-
+// S p = B A^-1 f - g with S = B A^-1 B^T + G_p / phi_p (symmetric positive definite) and Cahouet-
 // Chabard's S~^-1, until the saddle point's residual, which is then its continuity part, is below
 // tolerance |rhs|; then the true residual decides (a restart from u(p) if round-off left it above).
 GmresResult CutCellStokes::Impl::SolveSchur(const Eigen::VectorXd& rhs, Eigen::VectorXd& x,

@@ -5,10 +5,15 @@
 //   find u (P1-iso-P2, active nodes), p (P1 on the 2h macro-triangles, active nodes) with
 //   (rho/dt) (u, v)_l + rho ((w . grad) u, v) + eta (grad u, grad v) - (p, div v) + (q, div u)
 //   - eta <d_n u, v> - eta <d_n v, u> + gamma eta / h <u, v> + <p, v . n> - <q, u . n>
-//   + g_u eta h sum_F [d_n u][d_n v] - g_p (2h)^3 / eta sum_F [d_n p][d_n q] = (f, v)
+//   + g_u eta h sum_F [d_n u][d_n v] - g_p H^3 / phi_p sum_F [d_n p][d_n q] = (f, v)
 // (n out of the fluid; the chord terms by two-point Gauss; volume terms over the fluid polygons;
 // the last two are ghost penalties on the faces of cut h-triangles and cut macro-triangles, which
-// keep small cuts well conditioned; (.,.)_l the lumped mass of the fluid part). The bodies are at
+// keep small cuts well conditioned; (.,.)_l the lumped mass of the fluid part). H = 2h, and
+// phi_p = eta + (rho/dt) H^2: with the mass term the Schur complement on the grid's scale is
+// M_p / phi_p (Cahouet-Chabard's model below, K_p ~ M_p / H^2 there; Massing, Schott & Wall
+// 2018's scaling without its Oseen part). Over eta alone the penalty was 42 times that on
+// Schaefer-Turek at D/h = 9.76, dt = h, and 0.47 points of its +1.29 % drag
+// (docs/evidence/cut_cell_boundary.md, "The pressure ghost penalty's scale"). The bodies are at
 // rest (boundary value zero) unless SetBodyMotion gives each its rigid motion g = U + omega x
 // (x - X) on its chords: the right side then carries Nitsche's consistent terms
 //   - eta <d_n v, g> + gamma eta / h <g, v>   (momentum),   - <q, g . n>   (continuity)
@@ -25,26 +30,28 @@
 // against the fast solver of (rho/dt) M_l + eta K on the whole uniform grid (particles/
 // cut_cell_capacitance.h: built once, two fast solves and a dense solve of rank about 3 x 3 pi D/h
 // an application, the second fast solve a sum of kept responses where a mass term makes them
-// local). Without an Oseen term the saddle point [[A, B^T], [B, -G_p / eta]] is then
+// local). Without an Oseen term the saddle point [[A, B^T], [B, -G_p / phi_p]] is then
 // solved by Uzawa / preconditioned CG on the pressure (Glowinski, as the default step (33),
 // fluid/stokes_solver.h): u = A^-1 (f - B^T p) exactly, CG on the Schur complement B A^-1 B^T +
-// G_p / eta (symmetric positive definite) with Cahouet-Chabard's S~^-1 = eta M_p^-1 + (rho/dt)
-// K_p^-1 (fast solver), M_p the lumped pressure mass of the fluid part plus the pressure ghost
-// penalty's diagonal (a pressure node with a small cut support gets a small M_p: with the whole
-// cell's mass the iterations at D/h = 10 / 20 were 211 / 389 against 104 / 130). Stopping rule:
-// the saddle point's relative residual |rhs - K x|_2 <= tolerance |rhs|_2, as GMRES's. Cost and
-// iterations: docs/evidence/cut_cell_boundary.md, "The time loop's cost". With an Oseen term (or
-// SetExactVelocityPreconditioner): restarted GMRES on the saddle point, right-preconditioned by
-// the block upper triangle [[A~, B^T], [0, -S~]] (z_p = -S~^-1 r_p, then z_u = A~^-1 (r_u - B^T
-// z_p)), A~^-1 the exact Stokes solve above or the Oseen velocity block's own factorization.
-// The force on a body is read from the momentum residual of the fluid forms (Nitsche and ghost
-// terms left out) with a test function equal to 1 at the nodes within 1.5 h of the body's boundary
-// and inside it: F = -sum_i Phi_i (rho (w . grad) u + eta K u - B^T p)_i (the discrete stress
-// integrated over a closed line in the fluid around the body; steady flows).
+// G_p / phi_p (symmetric positive definite) with Cahouet-Chabard's S~^-1 = eta M_p^-1 + (rho/dt)
+// K_p^-1 (fast solver), M_p the lumped pressure mass of the fluid part plus eta / phi_p times the
+// pressure ghost penalty's diagonal (a pressure node with a small cut support gets a small M_p:
+// with the whole cell's mass the iterations at D/h = 10 / 20 were 211 / 389 against 104 / 130).
+// Stopping rule: the saddle point's relative residual |rhs - K x|_2 <= tolerance |rhs|_2, as
+// GMRES's. Cost and iterations: docs/evidence/cut_cell_boundary.md, "The time loop's cost". With an
+// Oseen term (or SetExactVelocityPreconditioner): restarted GMRES on the saddle point,
+// right-preconditioned by the block upper triangle [[A~, B^T], [0, -S~]] (z_p = -S~^-1 r_p, then
+// z_u = A~^-1 (r_u - B^T z_p)), A~^-1 the exact Stokes solve above or the Oseen velocity block's
+// own factorization. The force on a body is read from the momentum residual of the fluid forms
+// (Nitsche and ghost terms left out) with a test function equal to 1 at the nodes within 1.5 h of
+// the body's boundary and inside it: F = -sum_i Phi_i (rho (w . grad) u + eta K u - B^T p)_i (the
+// discrete stress integrated over a closed line in the fluid around the body; steady flows).
 // References: Burman & Hansbo, Appl. Numer. Math. 62 (2012) 328-341 (fictitious domain Stokes,
 // ghost penalty); Massing, Larson, Logg & Rognes, J. Sci. Comput. 61 (2014) 604-628 (Nitsche for
 // Stokes on cut meshes); Cahouet & Chabard, Int. J. Numer. Methods Fluids 8 (1988) 869-895;
-// Glowinski, Finite element methods for incompressible viscous flow (2003), sections 21-22.
+// Glowinski, Finite element methods for incompressible viscous flow (2003), sections 21-22;
+// Massing, Schott & Wall, Comput. Methods Appl. Mech. Engrg. 328 (2018) 262-300 (arXiv:1611.02895;
+// the ghost penalties' scaling functions).
 #pragma once
 
 #include <Eigen/SparseCore>
@@ -60,7 +67,8 @@ namespace dlmfd {
 
 // The method's constants, declared once. The ghost penalties are the smaller pair of the study
 // (docs/evidence/cut_cell_boundary.md, "A second-order boundary"): the penalty is most of the
-// drag's error and 0.1 / 0.01 miss 0.3 % at D/h = 20.
+// drag's error and 0.1 / 0.01 miss 0.3 % at D/h = 20. g_p multiplies H^3 / phi_p (header), which
+// is the study's H^3 / eta in its steady problems.
 struct CutCellConstants {
   double nitsche = 20.0;          // gamma
   double ghost_velocity = 0.01;   // g_u
