@@ -293,7 +293,7 @@ TEST(AccuracyEnvelope, PolymerViscousOnTheGridHasNoElasticBoundUnderDevss) {
 }
 
 // The collocation points have their own D / h bound (accuracy_envelope.h): 19.2 under the default
-// coupling, 39 under the paper's; the ring mesh keeps 120.
+// coupling, 39 under the paper's; the ring mesh keeps 120; cut cells 9.75.
 TEST(AccuracyEnvelope, CollocationPointsHaveTheirOwnDiskResolutionBound) {
   auto bound = [](const std::vector<std::string>& sets) {
     for (const AccuracyWarning& w : AccuracyWarnings(Scene(kSchaeferTurek, sets)))
@@ -307,6 +307,10 @@ TEST(AccuracyEnvelope, CollocationPointsHaveTheirOwnDiskResolutionBound) {
       ">= 19.2");  // D / h = 9.76
   EXPECT_EQ(bound({"particle_mesh.kind=\"collocation\"", "splitting.constraint=\"paper\""}),
             ">= 39");
+  // Cut cells: 9.75 (D / h = 9.76 is inside, 7.8 outside).
+  const std::string cut = "particle_mesh.kind=\"cut_cell\"";
+  EXPECT_EQ(bound({cut, "domain.size=[2.255,0.41]", "domain.h=0.01025"}), "none");
+  EXPECT_EQ(bound({cut, "domain.size=[2.46,0.41]", "domain.h=0.0128125"}), ">= 9.75");
 }
 
 TEST(AccuracyEnvelope, DiskResolutionBelowTheBoundWarnsOnceOnTheSmallestParticle) {

@@ -20,6 +20,8 @@ constexpr const char* kSourceViscousCoupling =
     "docs/evidence/constraint_coupling.md, Coupling the constraint with viscosity";
 constexpr const char* kSourceCutCells =
     "docs/evidence/cut_cell_boundary.md, `auto` picks cut cells for fixed disks";
+constexpr const char* kSourceDCutCells =
+    "docs/evidence/cut_cell_boundary.md, The pressure ghost penalty's scale";
 constexpr const char* kSourceCourant = "docs/evidence/work_precision.md (b), Which settings 1";
 constexpr const char* kSourceLaggedCourant =
     "docs/evidence/constraint_coupling.md, The automatic coupling";
@@ -36,10 +38,11 @@ double KinematicViscosity(const Params& p) { return p.fluid.viscosity / p.fluid.
 
 bool CutCells(const Params& p) { return p.particle_mesh.kind == ParticleMeshKind::kCutCell; }
 
-// The D / h bound of the scene's multiplier points (accuracy_envelope.h); cut cells, which have
-// none and ignore the coupling, keep the default's.
+// The D / h bound of the scene's particle boundary (accuracy_envelope.h): the ring mesh's, the
+// collocation points' per coupling, the cut cells' (no multiplier: the coupling does not matter).
 double MinDiskResolution(const Params& p) {
   if (p.particle_mesh.kind == ParticleMeshKind::kRing) return kMinDiskResolution;
+  if (CutCells(p)) return kMinDiskResolutionCutCells;
   return !CutCells(p) && p.splitting.constraint.value() == ConstraintCoupling::kPaper
              ? kMinDiskResolutionCollocationPaper
              : kMinDiskResolutionCollocation;
@@ -210,7 +213,9 @@ std::vector<AccuracyWarning> AccuracyWarnings(const Params& p) {
     w.key = "domain.h";
     w.current = ExactText(h);
     w.suggested = ExactText(h / k);
-    w.source = p.particle_mesh.kind == ParticleMeshKind::kRing ? kSourceD : kSourceDCollocation;
+    w.source = p.particle_mesh.kind == ParticleMeshKind::kRing ? kSourceD
+               : CutCells(p)                                   ? kSourceDCutCells
+                                                               : kSourceDCollocation;
     out.push_back(std::move(w));
   }
 

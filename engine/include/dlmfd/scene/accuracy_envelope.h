@@ -37,7 +37,11 @@ namespace dlmfd {
 inline constexpr double kMinDiskResolution = 120.0;                 // D / h, ring mesh
 inline constexpr double kMinDiskResolutionCollocation = 19.2;       // collocation, default coupling
 inline constexpr double kMinDiskResolutionCollocationPaper = 39.0;  // collocation, paper coupling
-inline constexpr double kMaxViscousNumberWithParticles = 0.195;     // nu dt / h^2
+// particle_mesh.kind = cut_cell: Schaefer-Turek at D/h = 9.76 within 0.85 % at eight sub-grid
+// positions, the creeping fixed disk at D/h = 10 within 0.93 % (docs/evidence/cut_cell_boundary.md,
+// "The pressure ghost penalty's scale", "A second-order boundary: the engine's cut cells").
+inline constexpr double kMinDiskResolutionCutCells = 9.75;
+inline constexpr double kMaxViscousNumberWithParticles = 0.195;    // nu dt / h^2
 inline constexpr double kMaxViscousNumberViscousCoupling = 922.0;  // splitting.constraint = viscous
 inline constexpr double kMaxViscousNumberIncrementalCoupling = 2.05;  // ... = incremental
 // particle_mesh.kind = cut_cell: the creeping fixed disk in a channel at 480 (+0.17 %;
