@@ -139,7 +139,8 @@ def quadratic_fit(points, values, origin, n, t, h):
     return c[0], c[1] / h
 
 
-def measure(run, angles):
+def read_run(run):
+    """lambda, both diagonals or not, and the last snapshot's grid, u, v, trA, bodies and time."""
     scene = tomllib.loads(open(os.path.join(run, "scene.toml")).read())
     lam = float(scene["fluid"]["relaxation_time"])
     both = scene["domain"].get("diagonals", "sw_ne") == "both"
@@ -149,6 +150,11 @@ def measure(run, angles):
         tra = f["trA"][:] if "trA" in f else np.full(u.shape, 2.0)  # a Newtonian run: A = I
         centres, radii = f["particles/position"][:], f["particles/radius"][:]
         time = float(f.attrs["time"])
+    return lam, both, x, y, u, v, tra, centres, radii, time
+
+
+def measure(run, angles):
+    lam, both, x, y, u, v, tra, centres, radii, time = read_run(run)
     h = float(x[1] - x[0])
     p1 = P1Field(float(x[0]), float(y[0]), h, both)
     lu = node_gradient(u, h, both)
@@ -200,13 +206,8 @@ def measure(run, angles):
 
 def profile(run, theta):
     """trA_h along the normal at theta (the P1 interpolant), against the wall value."""
-    scene = tomllib.loads(open(os.path.join(run, "scene.toml")).read())
-    lam = float(scene["fluid"]["relaxation_time"])
-    both = scene["domain"].get("diagonals", "sw_ne") == "both"
-    with h5py.File(last_snapshot(run), "r") as f:
-        x, y = f["x"][:], f["y"][:]
-        u, v, tra = f["u"][:], f["v"][:], f["trA"][:]
-        c, radius = f["particles/position"][0], f["particles/radius"][0]
+    lam, both, x, y, u, v, tra, centres, radii, _ = read_run(run)
+    c, radius = centres[0], radii[0]
     h = float(x[1] - x[0])
     p1 = P1Field(float(x[0]), float(y[0]), h, both)
     n = np.array([math.cos(theta), math.sin(theta)])
