@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "../../engine/src/mesh/point_location.h"
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/scene/scene_file.h"
 
@@ -36,20 +37,23 @@ namespace {
 constexpr int kPoints = 128;
 
 // The P1 interpolant of the nodal field f at (x, y): on the SW-NE triangle holding the point, or
-// the mean of the SW-NE and NW-SE triangles' (core/grid.h).
-double P1(const Grid& g, const std::vector<double>& f, double x, double y, bool both) {
-  const double s = (x - g.x0) / g.h, r = (y - g.y0) / g.h;
-  const int i = static_cast<int>(std::floor(s)), j = static_cast<int>(std::floor(r));
-  EXPECT_TRUE(i >= 0 && j >= 0 && i < g.nx && j < g.ny) << "(" << x << ", " << y << ")";
-  const double xi = s - i, eta = r - j;
-  const double f00 = f[g.Index(i, j)], f10 = f[g.Index(i + 1, j)];
-  const double f01 = f[g.Index(i, j + 1)], f11 = f[g.Index(i + 1, j + 1)];
-  const double sw_ne = xi >= eta ? f00 + xi * (f10 - f00) + eta * (f11 - f10)
-                                 : f00 + eta * (f01 - f00) + xi * (f11 - f01);
-  if (!both) return sw_ne;
-  const double nw_se = xi + eta <= 1.0 ? f00 + xi * (f10 - f00) + eta * (f01 - f00)
-                                       : f11 + (1.0 - xi) * (f01 - f11) + (1.0 - eta) * (f10 - f11);
-  return 0.5 * (sw_ne + nw_se);
+// the mean of the SW-NE and NW-SE triangles' (the kernels of the coupling operator,
+// mesh/point_location.h).
+double P1(const Grid& g, const DomainParams& d, const std::vector<double>& f, double x, double y,
+          bool both) {
+  int side = -1;
+  double value = 0.0;
+  if (both) {
+    kernels::MeanP1Stencil m;
+    EXPECT_TRUE(kernels::LocatePointMean(g, d.PeriodicX(), d.PeriodicY(), x, y, &m, &side));
+    for (int q = 0; q < 4; ++q) value += m.weight[q] * f[g.Index(m.i[q], m.j[q])];
+  } else {
+    kernels::P1Stencil m;
+    EXPECT_TRUE(kernels::LocatePoint(g, d.PeriodicX(), d.PeriodicY(), x, y, &m, &side));
+    for (int q = 0; q < 3; ++q) value += m.weight[q] * f[g.Index(m.i[q], m.j[q])];
+  }
+  EXPECT_EQ(side, -1) << "(" << x << ", " << y << ") beyond side " << side;
+  return value;
 }
 
 // The RMS of r = trA_h - 2 - 2 (lambda gamma_dot_h)^2 over the points (header) at R/h.
@@ -70,7 +74,8 @@ double WallValueResidual(int r_over_h) {
   const double lambda = params.fluid.relaxation_time;
   const Vec2 c = params.particles[0].center;
   auto tangential = [&](const Vec2& q, const Vec2& t) {
-    return t.x() * P1(g, s.u, q.x(), q.y(), both) + t.y() * P1(g, s.v, q.x(), q.y(), both);
+    return t.x() * P1(g, params.domain, s.u, q.x(), q.y(), both) +
+           t.y() * P1(g, params.domain, s.v, q.x(), q.y(), both);
   };
   double sum = 0.0;
   for (int k = 0; k < kPoints; ++k) {
@@ -79,8 +84,8 @@ double WallValueResidual(int r_over_h) {
     const Vec2 xb = c + radius * n;
     const double gamma =
         (4.0 * tangential(xb + g.h * n, t) - tangential(xb + 2.0 * g.h * n, t)) / (2.0 * g.h);
-    const double r =
-        P1(g, tra, xb.x(), xb.y(), both) - 2.0 - 2.0 * (lambda * gamma) * (lambda * gamma);
+    const double r = P1(g, params.domain, tra, xb.x(), xb.y(), both) - 2.0 -
+                     2.0 * (lambda * gamma) * (lambda * gamma);
     EXPECT_TRUE(std::isfinite(r)) << "theta = " << theta;
     sum += r * r;
   }
