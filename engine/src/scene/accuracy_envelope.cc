@@ -43,7 +43,7 @@ bool CutCells(const Params& p) { return p.particle_mesh.kind == ParticleMeshKind
 double MinDiskResolution(const Params& p) {
   if (p.particle_mesh.kind == ParticleMeshKind::kRing) return kMinDiskResolution;
   if (CutCells(p)) return kMinDiskResolutionCutCells;
-  return !CutCells(p) && p.splitting.constraint.value() == ConstraintCoupling::kPaper
+  return p.splitting.constraint.value() == ConstraintCoupling::kPaper
              ? kMinDiskResolutionCollocationPaper
              : kMinDiskResolutionCollocation;
 }
