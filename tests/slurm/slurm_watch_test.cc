@@ -19,11 +19,13 @@ namespace {
 
 class SlurmWatch : public SlurmTest {};
 
+// About 3 s of one core a run (h = 1/64, 1600 steps), so the third point waits several of the
+// daemon's 1 s polls of squeue; at h = 1/32 a run took 0.8 s and a poll could miss the wait.
 std::string SettlingDisk() {
   return "title = \"a disk settling in a closed box\"\n"
-         "[domain]\nsize = [1.0, 2.0]\nh = 0.03125\n"
+         "[domain]\nsize = [1.0, 2.0]\nh = 0.015625\n"
          "[fluid]\ndensity = 1.0\nviscosity = 0.1\ngravity = [0.0, -10.0]\n"
-         "[time]\ndt = 0.005\nend = 4.0\n"
+         "[time]\ndt = 0.0025\nend = 4.0\n"
          "[[particles]]\ncenter = [0.5, 1.5]\ndiameter = 0.25\ndensity = 1.5\n"
          "[output]\nfields_every = 0.5\nparticles_every = 0.02\ncheckpoint_every = 0.5\n";
 }
