@@ -84,6 +84,14 @@ void CutCellLocalResponses::SubtractPair(const double* ys, const double* zs, dou
   }
 }
 
+void CutCellLocalResponses::Subtract(const double* ys, double* u) const {
+  for (std::size_t s = 0; s + 1 < start_.size(); ++s) {
+    const double a = ys[s];
+    for (std::size_t e = start_[s]; e < start_[s + 1]; ++e)
+      u[static_cast<std::size_t>(index_[e])] -= a * value_[e];
+  }
+}
+
 CutCellCapacitance::CutCellCapacitance(const SeparableHelmholtz& fast,
                                        const Eigen::SparseMatrix<double>& difference, double drop,
                                        CutCellResponses* responses)
@@ -171,6 +179,23 @@ void CutCellCapacitance::SolvePair(const double* fu, double* u, const double* fv
     v[i] -= cv_[i];
   }
   for (const int s : rows_) tu_[s] = tv_[s] = 0.0;
+}
+
+void CutCellCapacitance::Solve(const double* f, double* x) {
+  const auto n = static_cast<Eigen::Index>(zero_.size());
+  std::fill(x, x + n, 0.0);
+  fast_.Solve(f, x);
+  if (rows_.empty()) return;
+  const Eigen::VectorXd y = capacitance_.solve(coupling_ * Eigen::Map<const Eigen::VectorXd>(x, n));
+  if (local_.Kept()) {
+    local_.Subtract(y.data(), x);
+    return;
+  }
+  for (std::size_t s = 0; s < rows_.size(); ++s) tu_[rows_[s]] = y[static_cast<Eigen::Index>(s)];
+  std::fill(cu_.begin(), cu_.end(), 0.0);
+  fast_.Solve(tu_.data(), cu_.data());
+  for (Eigen::Index i = 0; i < n; ++i) x[i] -= cu_[i];
+  for (const int s : rows_) tu_[s] = 0.0;
 }
 
 }  // namespace dlmfd

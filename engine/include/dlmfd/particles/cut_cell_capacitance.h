@@ -74,6 +74,7 @@ class CutCellLocalResponses {
   bool Kept() const { return kept_; }
   // u -= sum_s ys[s] r_s, v -= sum_s zs[s] r_s.
   void SubtractPair(const double* ys, const double* zs, double* u, double* v) const;
+  void Subtract(const double* ys, double* u) const;  // u -= sum_s ys[s] r_s
   std::size_t Entries() const { return value_.size(); }
 
  private:
@@ -98,6 +99,8 @@ class CutCellCapacitance {
   // the other nodes on return, and hold the extension's values at inactive ones). The two
   // components side by side (SeparableHelmholtz::SolvePair).
   void SolvePair(const double* fu, double* u, const double* fv, double* v);
+  // One field: A_e x = f, by one fast solve and a second or the kept responses' sum.
+  void Solve(const double* f, double* x);
 
   int Rank() const { return static_cast<int>(rows_.size()); }
   int FastSolvesAtSetUp() const { return set_up_solves_; }  // responses made by the constructor

@@ -34,11 +34,19 @@
 // solved by Uzawa / preconditioned CG on the pressure (Glowinski, as the default step (33),
 // fluid/stokes_solver.h): u = A^-1 (f - B^T p) exactly, CG on the Schur complement B A^-1 B^T +
 // G_p / phi_p (symmetric positive definite) with Cahouet-Chabard's S~^-1 = eta M_p^-1 + (rho/dt)
-// K_p^-1 (fast solver), M_p the lumped pressure mass of the fluid part plus eta / phi_p times the
-// pressure ghost penalty's diagonal (a pressure node with a small cut support gets a small M_p:
-// with the whole cell's mass the iterations at D/h = 10 / 20 were 211 / 389 against 104 / 130).
-// Stopping rule: the saddle point's relative residual |rhs - K x|_2 <= tolerance |rhs|_2, as
-// GMRES's. Cost and iterations: docs/evidence/cut_cell_boundary.md, "The time loop's cost". With an
+// K~^-1, M_p the lumped pressure mass of the fluid part plus eta / phi_p times the pressure ghost
+// penalty's diagonal (a pressure node with a small cut support gets a small M_p: with the whole
+// cell's mass the iterations at D/h = 10 / 20 were 211 / 389 against 104 / 130). K~ = K_p +
+// (rho/dt) / phi_p G_p, K_p the pressure's P1 stiffness over the fluid part (the Schur complement
+// is about (dt/rho) K~ where the mass term rules), solved by a capacitance matrix against the fast
+// solver of the whole grid's K_p (rank: the pressure nodes of the cut macro-triangles); with a
+// moving body, or without a Dirichlet pressure side, the whole grid's K_p (the fast solver alone).
+// The fluid part's took the Uzawa iterations of Schaefer-Turek 2D-1 over t = 5 from 2300 to 1464
+// at D/h = 9.76 and from 2165 to 1578 at D/h = 19.5 (docs/evidence/cut_cell_boundary.md, "The Uzawa
+// step's cost at D/h = 19.5"). Stopping rule: the saddle point's relative residual |rhs - K x|_2
+// <= tolerance |rhs|_2, as GMRES's; Uzawa forms its continuity part only (the momentum part is the
+// exact velocity solves' round-off). Cost and iterations: docs/evidence/cut_cell_boundary.md, "The
+// time loop's cost". With an
 // Oseen term (or SetExactVelocityPreconditioner): restarted GMRES on the saddle point,
 // right-preconditioned by the block upper triangle [[A~, B^T], [0, -S~]] (z_p = -S~^-1 r_p, then
 // z_u = A~^-1 (r_u - B^T z_p)), A~^-1 the exact Stokes solve above or the Oseen velocity block's
@@ -85,6 +93,9 @@ struct CutCellConstants {
   // (docs/evidence/cut_cell_boundary.md, "A second-order boundary: the time loop").
   double step_tolerance = 1e-7;
   int step_max_iterations = 2000;
+  // Cahouet-Chabard's Laplacian over the fluid part (header; fixed bodies with a Dirichlet pressure
+  // side), or the whole grid's as a moving body's steps use (false: tests that compare the two).
+  bool fluid_pressure_laplacian = true;
 };
 
 // A body's rigid motion: the boundary value U + omega x (x - X) on its chords.
