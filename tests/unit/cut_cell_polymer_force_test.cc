@@ -20,7 +20,7 @@
 namespace dlmfd {
 namespace {
 
-struct Case {
+struct MeshCase {
   MeshDiagonals diagonals;
   bool periodic_x;
 };
@@ -31,7 +31,7 @@ struct Moments {
 
 // The fluid-part force of tau_p = G (S - I) with S given by its node values s(x, y).
 template <class Field>
-std::vector<double> CutForce(const Case& c, const Grid& g, const Vec2& centre, double radius,
+std::vector<double> CutForce(const MeshCase& c, const Grid& g, const Vec2& centre, double radius,
                              double modulus, Field s, std::vector<double>* fy_out) {
   DomainParams domain;
   domain.size = Vec2(g.Width(), g.Height());
@@ -83,12 +83,12 @@ Moments MomentsOf(const Grid& g, const std::vector<double>& fx, const std::vecto
   return m;
 }
 
-class CutCellPolymerForce : public ::testing::TestWithParam<Case> {};
+class CutCellPolymerForce : public ::testing::TestWithParam<MeshCase> {};
 
 // tau_11 = G (x + 1), tau_12 = G y / 2, tau_22 = G (2 - y): linear, so the integrals over the
 // fluid part are the box's minus the disk's, exactly but for the chords.
 TEST_P(CutCellPolymerForce, ItsMomentsAreTheStressIntegralsOverTheFluidPart) {
-  const Case c = GetParam();
+  const MeshCase c = GetParam();
   const Grid g{40, 32, 1.0 / 32, 0.0, 0.0};  // 1.25 x 1
   const double r = 0.21, modulus = 0.7;
   const Vec2 centre = c.periodic_x ? Vec2(0.07, 0.513) : Vec2(0.61, 0.487);
@@ -123,7 +123,7 @@ TEST_P(CutCellPolymerForce, ItsMomentsAreTheStressIntegralsOverTheFluidPart) {
 
 // A constant stress: no force at a node whose support is fluid and inside the box.
 TEST_P(CutCellPolymerForce, AConstantStressPushesOnlyAtTheBodyAndTheSides) {
-  const Case c = GetParam();
+  const MeshCase c = GetParam();
   const Grid g{40, 32, 1.0 / 32, 0.0, 0.0};
   const Vec2 centre = c.periodic_x ? Vec2(0.07, 0.513) : Vec2(0.61, 0.487);
   const double r = 0.21;
@@ -151,9 +151,9 @@ TEST_P(CutCellPolymerForce, AConstantStressPushesOnlyAtTheBodyAndTheSides) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, CutCellPolymerForce,
-                         ::testing::Values(Case{MeshDiagonals::kSwNe, false},
-                                           Case{MeshDiagonals::kBoth, false},
-                                           Case{MeshDiagonals::kBoth, true}));
+                         ::testing::Values(MeshCase{MeshDiagonals::kSwNe, false},
+                                           MeshCase{MeshDiagonals::kBoth, false},
+                                           MeshCase{MeshDiagonals::kBoth, true}));
 
 }  // namespace
 }  // namespace dlmfd

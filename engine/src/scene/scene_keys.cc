@@ -6,6 +6,7 @@
 #include <string>
 
 #include "dlmfd/particles/collocation_points.h"
+#include "dlmfd/scene/auto_conformation_velocity.h"
 #include "dlmfd/scene/auto_coupling.h"
 #include "dlmfd/scene/auto_particle_mesh.h"
 #include "scene_key_builders.h"
@@ -278,10 +279,12 @@ void AddConformationOutputAccuracy(std::vector<SceneKey<P>>& keys) {
   keys.push_back(ChoiceKey<ConformationForm, P>(
       "conformation.form", [](auto& p) -> auto& { return p.conformation.form; },
       "the conformation tensor is stored as A itself"));
-  keys.push_back(ChoiceKey<ConformationVelocity, P>(
+  keys.push_back(FromPreset(ChoiceKey<ConformationVelocity, P>(
       "conformation.velocity", [](auto& p) -> auto& { return p.conformation.velocity; },
       "the velocity step (35) freezes: the advected u^{n+2/4} (the paper's) or the Stokes step's "
-      "u^{n+1/4}"));
+      "u^{n+1/4}; `auto` (the default in a polymer liquid) picks the Stokes step's around fixed "
+      "disks cut out of the mesh, the paper's otherwise (scene/auto_conformation_velocity.h)",
+      ResolveConformationVelocity)));
   keys.push_back(RealKey<P>(
       "conformation.max_courant", [](auto& p) -> auto& { return p.conformation.max_courant; },
       kRangeHalfOpenUnit, "advection sub-cycling of (35)"));
@@ -468,6 +471,8 @@ constexpr PresetEntry kPresets[] = {
     {NumericsPreset::kDefault, "splitting.steady_correction", "tendency", PresetLiquid::kNewtonian},
     {NumericsPreset::kDefault, "splitting.steady_correction", "none", PresetLiquid::kPolymer},
     {NumericsPreset::kDefault, "solvers.multiplier_preconditioner", "gram", PresetLiquid::kAny},
+    {NumericsPreset::kDefault, "conformation.velocity", "advected", PresetLiquid::kNewtonian},
+    {NumericsPreset::kDefault, "conformation.velocity", "auto", PresetLiquid::kPolymer},
     {NumericsPreset::kPaper, "particle_mesh.kind", "ring", PresetLiquid::kAny},
     {NumericsPreset::kPaper, "domain.diagonals", "sw_ne", PresetLiquid::kAny},
     {NumericsPreset::kPaper, "splitting.advection", "least_squares", PresetLiquid::kAny},
@@ -475,6 +480,7 @@ constexpr PresetEntry kPresets[] = {
     {NumericsPreset::kPaper, "fluid.stress_splitting", "explicit", PresetLiquid::kAny},
     {NumericsPreset::kPaper, "splitting.steady_correction", "none", PresetLiquid::kAny},
     {NumericsPreset::kPaper, "solvers.multiplier_preconditioner", "gram", PresetLiquid::kAny},
+    {NumericsPreset::kPaper, "conformation.velocity", "advected", PresetLiquid::kAny},
 };
 
 }  // namespace

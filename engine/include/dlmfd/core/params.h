@@ -311,9 +311,10 @@ enum class ConformationForm { kA };
 // that term (the Lie splitting of (35) itself, advection then pointwise, stays first order). The
 // confined cylinder at Wi = 0.9, R/h = 16: K moves by 1.2 % from dt = lambda / 120 to lambda / 480
 // with kAdvected, and kStokes at lambda / 120 lies 0.7 % below kAdvected at lambda / 480;
-// docs/evidence/splitting.md, "The velocity the conformation step sees"). The default is still
-// kAdvected, the engine's tests' choice: kStokes is opt-in until it is measured across the
-// polymer suite (that page says what was measured and what is left).
+// docs/evidence/splitting.md, "The velocity the conformation step sees"). A scene's default is
+// "auto" in a polymer liquid (scene/auto_conformation_velocity.h: kStokes around fixed disks cut
+// out of the mesh, where it was measured, kAdvected otherwise); the struct keeps kAdvected, the
+// engine's tests' choice.
 enum class ConformationVelocity { kAdvected, kStokes };
 
 struct ConformationParams {
