@@ -68,8 +68,8 @@ TEST(AutoConformationVelocity, CutCellsGetTheStokesStepsVelocity) {
 
 // Rule 2: multiplier points (here a free disk, which cut cells refuse) keep the paper's velocity.
 TEST(AutoConformationVelocity, MultiplierPointsKeepTheAdvectedVelocity) {
-  const Params p = ParseScene(kConfinedCylinder, {{"particles.0.motion", "\"free\""},
-                                                  {"particles.0.density", "1.5"}});
+  const Params p = ParseScene(kConfinedCylinder,
+                              {{"particles.0.motion", "\"free\""}, {"particles.0.density", "1.5"}});
   ASSERT_EQ(p.particle_mesh.kind, ParticleMeshKind::kCollocation);
   EXPECT_EQ(p.conformation.velocity, ConformationVelocity::kAdvected);
   ASSERT_NE(VelocityChoice(p), nullptr);
@@ -90,8 +90,8 @@ TEST(AutoConformationVelocity, WithoutParticlesItIsTheAdvectedVelocity) {
 // A Newtonian liquid has no step (35): "advected" without a rule; numerics.preset = "paper" gives
 // the paper's velocity; a named velocity is kept.
 TEST(AutoConformationVelocity, NewtonianPaperOrNamedResolveNothing) {
-  const Params newtonian = ParseScene(kConfinedCylinder, {{"fluid.relaxation_time", "0.0"},
-                                                          {"fluid.solvent_ratio", "1.0"}});
+  const Params newtonian = ParseScene(
+      kConfinedCylinder, {{"fluid.relaxation_time", "0.0"}, {"fluid.solvent_ratio", "1.0"}});
   EXPECT_EQ(newtonian.conformation.velocity, ConformationVelocity::kAdvected);
   EXPECT_EQ(VelocityChoice(newtonian), nullptr);
   const Params paper = ParseScene(kConfinedCylinder, {{"numerics.preset", "\"paper\""}});
