@@ -15,6 +15,7 @@
 // the iterative solves); --exact-velocity (GMRES preconditioned by the velocity block's
 // factorization). On stderr: the rank of the capacitance matrix (particles/cut_cell_capacitance.h).
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -77,6 +78,20 @@ int main(int argc, char** argv) {
   d.diagonals = dlmfd::MeshDiagonals::kSwNe;  // the mesh of the numbers in docs/
   d.size = c.size;
   d.h = 0.1 / d_over_h;
+  // The pressure's 2h grid needs an even whole number of cells of h across the box (the scene's
+  // RequireEvenCells; this bench builds DomainParams without the scene's checks).
+  for (const double length : {d.size.x(), d.size.y()}) {
+    const double cells = length / d.h;
+    const double whole = std::round(cells);
+    if (std::abs(cells - whole) > 1e-9 * cells || static_cast<long long>(whole) % 2 != 0) {
+      std::fprintf(stderr,
+                   "D_OVER_H = %g: %g / h = %g cells; the pressure's 2h grid needs an even whole "
+                   "number across the box (schaefer_turek: 0.41 / h even, e.g. D_OVER_H = 20, "
+                   "40 or 9.75609756097561)\n",
+                   d_over_h, length, cells);
+      return 2;
+    }
+  }
   dlmfd::BoundarySide& inflow = d.sides[static_cast<int>(dlmfd::Side::kLeft)];
   inflow.type = dlmfd::SideType::kVelocity;
   inflow.profile = dlmfd::Profile::kPoiseuille;
