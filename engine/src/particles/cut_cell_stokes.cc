@@ -200,7 +200,8 @@ struct CutCellStokes::Impl {
   }
   void BuildReduced();
   void BuildSaddleRows();
-  Sparse UniformVelocityOperator() const;
+  std::vector<char> BandNodes() const;
+  Sparse UniformVelocityOperator(const std::vector<char>& columns) const;
   void BuildCapacitance();
   void BuildPressureCapacitance();
   void Precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z);
@@ -584,19 +585,42 @@ void CutCellStokes::Impl::BuildSaddleRows() {
   saddle_rows = ss.Build(2 * nu + npu, 2 * nu + npu);
 }
 
-// (rho/dt) M_l + eta K over every whole triangle: the fast solver's operator, assembled as the
-// fluid forms are (the mean over the triangulations).
-Sparse CutCellStokes::Impl::UniformVelocityOperator() const {
-  const auto n = static_cast<Eigen::Index>(grid.NodeCount());
-  const double whole = 0.5 * grid.h * grid.h;
-  Triplets a;
-  std::size_t triangles = 0;
+// The nodes (forms' numbering) whose columns of the cut operator can differ from the uniform one's
+// by more than round-off: the nodes of the triangles that are not wholly fluid (their mass,
+// stiffness and Nitsche's terms; every node without fluid is one), and of the triangles that share
+// a node with those (the ghost penalty's faces join a cut triangle to its neighbours).
+std::vector<char> CutCellStokes::Impl::BandNodes() const {
+  std::vector<char> touched(grid.NodeCount(), 0), band(grid.NodeCount(), 0);
   for (const CutCellGeometry* geo : geos)
-    triangles += static_cast<std::size_t>(geo->TriangleCount());
-  a.reserve(12 * triangles);
+    for (int t = 0; t < geo->TriangleCount(); ++t)
+      if (geo->State(t) != ElementState::kFluid)
+        for (const int k : vmap(geo->TriangleNodes(t))) touched[static_cast<std::size_t>(k)] = 1;
   for (const CutCellGeometry* geo : geos)
     for (int t = 0; t < geo->TriangleCount(); ++t) {
       const std::array<int, 3> nodes = vmap(geo->TriangleNodes(t));
+      if (touched[static_cast<std::size_t>(nodes[0])] ||
+          touched[static_cast<std::size_t>(nodes[1])] ||
+          touched[static_cast<std::size_t>(nodes[2])])
+        for (const int k : nodes) band[static_cast<std::size_t>(k)] = 1;
+    }
+  return band;
+}
+
+// (rho/dt) M_l + eta K over every whole triangle: the fast solver's operator, assembled as the
+// fluid forms are (the mean over the triangulations); its columns at the nodes of `columns` only
+// (the triangles with a node there, in the same order: those columns' entries are the whole
+// assembly's to the bit; the other columns are partial).
+Sparse CutCellStokes::Impl::UniformVelocityOperator(const std::vector<char>& columns) const {
+  const auto n = static_cast<Eigen::Index>(grid.NodeCount());
+  const double whole = 0.5 * grid.h * grid.h;
+  Triplets a;
+  for (const CutCellGeometry* geo : geos)
+    for (int t = 0; t < geo->TriangleCount(); ++t) {
+      const std::array<int, 3> nodes = vmap(geo->TriangleNodes(t));
+      if (!columns[static_cast<std::size_t>(nodes[0])] &&
+          !columns[static_cast<std::size_t>(nodes[1])] &&
+          !columns[static_cast<std::size_t>(nodes[2])])
+        continue;
       const std::array<Vec2, 3> grads = geo->TriangleGradients(t);
       for (int i = 0; i < 3; ++i) {
         a.emplace_back(nodes[i], nodes[i], weight * rho_over_dt * whole / 3.0);
@@ -636,13 +660,15 @@ void CutCellStokes::Impl::BuildCapacitance() {
         std::make_unique<CutCellCapacitance>(*fast_velocity, difference, 1e-12, responses.get());
     return;
   }
+  // The columns off the band differ by the two assemblies' round-off only, which the capacitance
+  // drops (below 1e-12 of the largest entry, a band's): they are not formed.
+  const std::vector<char> band = BandNodes();
   const Sparse cut =
       rho_over_dt * Sparse(lumped_mass.asDiagonal()) + eta * (stiffness + nitsche + ghost_u);
-  const Sparse uniform = UniformVelocityOperator();
+  const Sparse uniform = UniformVelocityOperator(band);
   Triplets d;
-  d.reserve(static_cast<std::size_t>(cut.nonZeros() + uniform.nonZeros()));
   for (int col = 0; col < n; ++col) {
-    if (!unknown[col]) continue;
+    if (!unknown[col] || !band[static_cast<std::size_t>(col)]) continue;
     for (Sparse::InnerIterator it(cut, col); it; ++it)
       if (vindex[it.row()] >= 0 && vindex[col] >= 0)
         d.emplace_back(static_cast<int>(it.row()), col, it.value());
