@@ -34,10 +34,14 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-// 16 x 16 cavity; `end` and the output cadence vary per test.
-std::string CavityScene(double end, double fields_every, double checkpoint_every) {
+// A cavity of 16 x 16 cells (h = 1/16) unless h is given; `end` and the output cadence vary per
+// test.
+std::string CavityScene(double end, double fields_every, double checkpoint_every,
+                        const std::string& h = "0.0625") {
   return "title = \"e2e cavity\"\n"
-         "[domain]\nsize = [1.0, 1.0]\nh = 0.0625\n"
+         "[domain]\nsize = [1.0, 1.0]\nh = " +
+         h +
+         "\n"
          "[domain.boundary]\ntop = { type = \"velocity\", profile = \"uniform\", value = [1.0, "
          "0.0] }\n"
          "[fluid]\nviscosity = 0.01\n"
@@ -272,8 +276,11 @@ void ExpectSameDoubles(const std::vector<double>& a, const std::vector<double>& 
 
 TEST(SolveApp, ResumeAfterSigkillEqualsAnUninterruptedRun) {
   const std::string dir = Fresh("resume");
-  // 300 steps, a checkpoint every 50: the killed run is far from its end when it dies.
-  const std::string scene = WriteFile(dir + "/cavity.toml", CavityScene(0.3, 0.1, 0.05));
+  // 300 steps, a checkpoint every 10, on 64 x 64 cells: the killed run is far from its end
+  // when it dies. (On 16 x 16 cells the whole run took a few tens of ms, and under load it could
+  // finish between the first checkpoint's appearance and the kill.)
+  const std::string scene =
+      WriteFile(dir + "/cavity.toml", CavityScene(0.3, 0.1, 0.01, "0.015625"));
   const std::string whole = dir + "/whole", resumed = dir + "/resumed";
   ASSERT_EQ(RunToEnd({scene, "--out", whole, "--quiet"}, dir + "/stderr1.txt"), 0);
 
