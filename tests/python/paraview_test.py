@@ -17,6 +17,7 @@ import os
 import shutil
 import subprocess
 import tempfile
+import time
 import unittest
 
 import support
@@ -165,8 +166,12 @@ class ParaViewTest(unittest.TestCase):
         # once it accepts connections. pvbatch still, rarely, finds no server there when other X
         # servers start at the same moment ("bad X server connection": with xvfb-run twice in CI,
         # and once in 3 here with three of these tests started together); that is the display's
-        # failure, not the screenshot's, so only that one is tried again, at most twice.
-        for _ in range(3):
+        # failure, not the screenshot's, so only that one is tried again, at most four times,
+        # waiting 2, 4, 6, 8 s first: in a CI run of 2026-12-06 three tries in a row met it within
+        # 6 s (display :0 each time), with no other X server started beside them.
+        for attempt in range(5):
+            if attempt:
+                time.sleep(2 * attempt)
             shot = self.pvbatch_under_xvfb(xvfb, png, out)
             if shot.returncode == 0 or "bad X server connection" not in shot.stdout + shot.stderr:
                 break
