@@ -1,5 +1,6 @@
-// conformation.velocity = "auto" (scene/auto_conformation_velocity.h): one test per rule, the
-// Newtonian and "paper" defaults that resolve nothing, and a named velocity that is kept.
+// conformation.velocity = "auto" (scene/auto_conformation_velocity.h): one test per rule, a Params
+// built in code that resolves as its scene, the Newtonian and "paper" defaults that resolve
+// nothing, and a named velocity that is kept.
 #include "dlmfd/scene/auto_conformation_velocity.h"
 
 #include <gmock/gmock.h>
@@ -8,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "dlmfd/core/simulation.h"
 #include "dlmfd/scene/scene_file.h"
 
 namespace dlmfd {
@@ -85,6 +87,38 @@ TEST(AutoConformationVelocity, WithoutParticlesItIsTheAdvectedVelocity) {
   EXPECT_EQ(p.conformation.velocity, ConformationVelocity::kAdvected);
   ASSERT_NE(VelocityChoice(p), nullptr);
   EXPECT_THAT(VelocityChoice(p)->rule, HasSubstr("no particles"));
+}
+
+// A polymer built in code leaves the velocity absent, as a scene that names none: around a fixed
+// disk cut out of the mesh ResolveDefaults (and so the Simulation) resolves the same velocity,
+// by the same rule, as the same scene read from text, and both write the same scene as run.
+TEST(AutoConformationVelocity, ParamsBuiltInCodeResolveAsTheSceneDoes) {
+  const Params scene = ParseScene(
+      "[fluid]\nrelaxation_time = 0.1\nsolvent_ratio = 0.5\n[particle_mesh]\nkind = "
+      "\"cut_cell\"\n[[particles]]\ncenter = [0.5, 0.5]\ndiameter = 0.25\nmotion = \"fixed\"\n");
+  Params built;
+  built.fluid.relaxation_time = 0.1;
+  built.fluid.solvent_ratio = 0.5;
+  built.particle_mesh.kind = ParticleMeshKind::kCutCell;
+  ParticleParams disk;
+  disk.center = Vec2(0.5, 0.5);
+  disk.diameter = 0.25;
+  disk.motion = Motion::kFixed;
+  built.particles.push_back(disk);
+  EXPECT_FALSE(built.conformation.velocity.has_value());
+  Params resolved = built;
+  ResolveDefaults(resolved);
+  EXPECT_EQ(scene.conformation.velocity, ConformationVelocity::kStokes);
+  EXPECT_EQ(resolved.conformation.velocity, ConformationVelocity::kStokes);
+  ASSERT_NE(VelocityChoice(resolved), nullptr);
+  EXPECT_EQ(VelocityChoice(resolved)->rule, VelocityChoice(scene)->rule);
+  EXPECT_EQ(WriteScene(resolved), WriteScene(scene));
+  const Simulation sim(built);
+  EXPECT_EQ(sim.params().conformation.velocity, ConformationVelocity::kStokes);
+  // The same Params without particles resolves the paper's velocity (rule 1), as its scene does.
+  built.particles.clear();
+  ResolveDefaults(built);
+  EXPECT_EQ(built.conformation.velocity, ConformationVelocity::kAdvected);
 }
 
 // A Newtonian liquid has no step (35): "advected" without a rule; numerics.preset = "paper" gives

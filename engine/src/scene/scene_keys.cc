@@ -279,12 +279,21 @@ void AddConformationOutputAccuracy(std::vector<SceneKey<P>>& keys) {
   keys.push_back(ChoiceKey<ConformationForm, P>(
       "conformation.form", [](auto& p) -> auto& { return p.conformation.form; },
       "the conformation tensor is stored as A itself"));
-  keys.push_back(FromPreset(ChoiceKey<ConformationVelocity, P>(
+  SceneKey<P> velocity = FromPreset(ChoiceKey<ConformationVelocity, P>(
       "conformation.velocity", [](auto& p) -> auto& { return p.conformation.velocity; },
       "the velocity step (35) freezes: the advected u^{n+2/4} (the paper's) or the Stokes step's "
       "u^{n+1/4}; `auto` (the default in a polymer liquid) picks the Stokes step's around fixed "
       "disks cut out of the mesh, the paper's otherwise (scene/auto_conformation_velocity.h)",
-      ResolveConformationVelocity)));
+      ResolveConformationVelocity));
+  // Absent in the struct: the preset's word depends on the liquid, and "auto" on the particles.
+  velocity.unset = [](const P& p) { return !p.conformation.velocity; };
+  velocity.get = [](const P& p) -> KeyValue {
+    const auto& v = p.conformation.velocity;
+    if (v) return std::string(WordOf(*v));
+    const std::string word = PresetWord(p.numerics.preset, "conformation.velocity", p);
+    return word == "auto" ? ResolveConformationVelocity(p).value : word;
+  };
+  keys.push_back(velocity);
   keys.push_back(RealKey<P>(
       "conformation.max_courant", [](auto& p) -> auto& { return p.conformation.max_courant; },
       kRangeHalfOpenUnit, "advection sub-cycling of (35)"));

@@ -313,13 +313,16 @@ enum class ConformationForm { kA };
 // with kAdvected, and kStokes at lambda / 120 lies 0.7 % below kAdvected at lambda / 480;
 // docs/evidence/splitting.md, "The velocity the conformation step sees"). A scene's default is
 // "auto" in a polymer liquid (scene/auto_conformation_velocity.h: kStokes around fixed disks cut
-// out of the mesh, where it was measured, kAdvected otherwise); the struct keeps kAdvected, the
-// engine's tests' choice.
+// out of the mesh, where it was measured, kAdvected otherwise). The struct leaves it absent, as a
+// scene that names none: ParseScene and the Simulation resolve it (scene::ResolveDefaults), so a
+// Params built in code runs the velocity of the same scene read from a file.
 enum class ConformationVelocity { kAdvected, kStokes };
 
 struct ConformationParams {
   ConformationForm form = ConformationForm::kA;
-  ConformationVelocity velocity = ConformationVelocity::kAdvected;
+  // Absent: numerics.preset's word for the liquid ("auto" in a polymer liquid); set by
+  // scene::ResolveDefaults before the engine's steps read it.
+  std::optional<ConformationVelocity> velocity;
   double max_courant = 0.4;  // advection sub-cycling: |u| tau / h <= this
   double blend_kappa = 0.5;  // SPD blend: lambda_min(A) >= kappa lambda_min(A_low)
 };
