@@ -161,24 +161,24 @@ struct CutCellStokes::Impl {
   Impl(std::vector<const CutCellGeometry*> g, const DomainParams& domain, double viscosity,
        double density, double rdt, const CutCellConstants& c);
   void AssembleFluidForms();
-  // The fluid forms being assembled: as triplets (the band's corrections), or, for the whole
-  // grid's, summed entry by entry into matrices with room for the whole pattern (Direct): each
+  // The fluid forms' sums being assembled: as triplets (the band's corrections), or, for the whole
+  // grid's, summed entry by entry into matrices with room for the whole pattern (InPlace): each
   // entry's terms are added in the triangles' order either way, so the sums are the same to the
   // bit, and the whole grid's forms no longer pass through triplets (61 MB at D/h = 19.5 with both
   // triangulations, whose first touch and sort were 4 % of a run's CPU time: docs/evidence/
   // cut_cell_boundary.md, "The step's floor against the peer").
-  struct FormTriplets {
-    FormTriplets(Eigen::Index n, Eigen::Index np)
+  struct FormSums {
+    FormSums(Eigen::Index n, Eigen::Index np)
         : lumped_mass(Eigen::VectorXd::Zero(n)),
           pressure_fluid_mass(Eigen::VectorXd::Zero(np)) {}
     Triplets k, bx, by;
     Eigen::VectorXd lumped_mass, pressure_fluid_mass;
-    bool direct = false;
+    bool in_place = false;
     Sparse dk, dbx, dby;
     // Matrices with room for the entries of a node's column: its 3 x 3 neighbourhood of velocity
     // nodes (stiffness), of pressure nodes (divergence), on either triangulation.
-    void Direct(Eigen::Index n, Eigen::Index np) {
-      direct = true;
+    void InPlace(Eigen::Index n, Eigen::Index np) {
+      in_place = true;
       dk.resize(n, n);
       dk.reserve(Eigen::VectorXi::Constant(n, kColumnRoom));
       for (Sparse* d : {&dbx, &dby}) {
@@ -187,7 +187,7 @@ struct CutCellStokes::Impl {
       }
     }
     void Add(int row, int col, double v, Triplets& t, Sparse& d) {
-      if (direct) {
+      if (in_place) {
         d.coeffRef(row, col) += v;
       } else {
         t.emplace_back(row, col, v);
@@ -198,9 +198,9 @@ struct CutCellStokes::Impl {
   void AddTriangleForms(const CutCellGeometry& geo, int t, const std::array<int, 3>& mesh_nodes,
                         const std::array<Vec2, 3>& grads, double area, const Vec2& centroid,
                         const std::array<double, 3>& mass_rows, double scale,
-                        FormTriplets& out) const;
-  void AddWholeTriangle(const CutCellGeometry& geo, int t, double scale, FormTriplets& out) const;
-  void AddCutTriangle(const CutCellGeometry& geo, const CutTriangle& c, FormTriplets& out) const;
+                        FormSums& out) const;
+  void AddWholeTriangle(const CutCellGeometry& geo, int t, double scale, FormSums& out) const;
+  void AddCutTriangle(const CutCellGeometry& geo, const CutTriangle& c, FormSums& out) const;
   void AssembleUniformForms();
   void AssembleBandForms();
   void Recut();
@@ -309,7 +309,7 @@ void CutCellStokes::Impl::AddTriangleForms(const CutCellGeometry& geo, int t,
                                            const std::array<Vec2, 3>& grads, double area,
                                            const Vec2& centroid,
                                            const std::array<double, 3>& mass_rows, double scale,
-                                           FormTriplets& out) const {
+                                           FormSums& out) const {
   const int macro = geo.MacroOf(t);
   const std::array<int, 3> nodes = vmap(mesh_nodes), q = pmap(geo.MacroNodes(macro));
   const std::array<double, 3> lam = MacroBasis(geo, macro, centroid);
@@ -326,7 +326,7 @@ void CutCellStokes::Impl::AddTriangleForms(const CutCellGeometry& geo, int t,
 }
 
 void CutCellStokes::Impl::AddWholeTriangle(const CutCellGeometry& geo, int t, double scale,
-                                           FormTriplets& out) const {
+                                           FormSums& out) const {
   const double whole = 0.5 * grid.h * grid.h;
   const std::array<int, 3> nodes = geo.TriangleNodes(t);
   Vec2 centroid = Vec2::Zero();
@@ -336,7 +336,7 @@ void CutCellStokes::Impl::AddWholeTriangle(const CutCellGeometry& geo, int t, do
 }
 
 void CutCellStokes::Impl::AddCutTriangle(const CutCellGeometry& geo, const CutTriangle& c,
-                                         FormTriplets& out) const {
+                                         FormSums& out) const {
   std::array<double, 3> rows{};
   for (int a = 0; a < 3; ++a) rows[a] = c.mass[a][0] + c.mass[a][1] + c.mass[a][2];
   AddTriangleForms(geo, c.triangle, c.nodes, c.grads, c.area, c.centroid, rows, 1.0, out);
@@ -345,8 +345,8 @@ void CutCellStokes::Impl::AddCutTriangle(const CutCellGeometry& geo, const CutTr
 void CutCellStokes::Impl::AssembleFluidForms() {
   const auto n = static_cast<Eigen::Index>(grid.NodeCount());
   const auto np = static_cast<Eigen::Index>(pgrid.NodeCount());
-  FormTriplets f(n, np);
-  f.Direct(n, np);
+  FormSums f(n, np);
+  f.InPlace(n, np);
   for (const CutCellGeometry* geo : geos) {
     for (int t = 0; t < geo->TriangleCount(); ++t)
       if (geo->State(t) == ElementState::kFluid) AddWholeTriangle(*geo, t, 1.0, f);
@@ -366,8 +366,8 @@ void CutCellStokes::Impl::AssembleFluidForms() {
 void CutCellStokes::Impl::AssembleUniformForms() {
   const auto n = static_cast<Eigen::Index>(grid.NodeCount());
   const auto np = static_cast<Eigen::Index>(pgrid.NodeCount());
-  FormTriplets f(n, np);
-  f.Direct(n, np);
+  FormSums f(n, np);
+  f.InPlace(n, np);
   for (const CutCellGeometry* geo : geos)
     for (int t = 0; t < geo->TriangleCount(); ++t) AddWholeTriangle(*geo, t, 1.0, f);
   uniform = std::make_unique<Uniform>();
@@ -389,7 +389,7 @@ void CutCellStokes::Impl::AssembleUniformForms() {
 void CutCellStokes::Impl::AssembleBandForms() {
   const auto n = static_cast<Eigen::Index>(grid.NodeCount());
   const auto np = static_cast<Eigen::Index>(pgrid.NodeCount());
-  FormTriplets f(n, np);
+  FormSums f(n, np);
   for (const CutCellGeometry* geo : geos) {
     for (int t = 0; t < geo->TriangleCount(); ++t)
       if (geo->State(t) != ElementState::kFluid) AddWholeTriangle(*geo, t, -1.0, f);
