@@ -10,6 +10,7 @@
 #include "dlmfd/core/errors.h"
 #include "dlmfd/mesh/boundary_topology.h"
 #include "dlmfd/particles/cut_cell_capacitance.h"
+#include "dlmfd/particles/pressure_correction_basis.h"
 #include "dlmfd/solvers/gmres.h"
 #include "dlmfd/solvers/separable_helmholtz.h"
 
@@ -147,6 +148,8 @@ struct CutCellStokes::Impl {
   // (SchurInverse); null: the uniform grid's Laplacian.
   std::unique_ptr<CutCellCapacitance> pressure_capacitance;
   Eigen::VectorXd pressure_mass;  // at pressure unknowns
+  // The earlier steps' pressure corrections for the Uzawa start (S fixed: cleared by BuildReduced).
+  PressureCorrectionBasis corrections;
   std::vector<double> work_fu, work_fv, work_u, work_v, work_fp, work_p;
   // A moving body's steps (Recut): the uniform grid's fluid forms (every triangle whole, the same
   // assembly) and the fast solver's responses A_0^-1 e_s of the band.
@@ -197,8 +200,7 @@ struct CutCellStokes::Impl {
   static constexpr int kColumnRoom = 12;
   void AddTriangleForms(const CutCellGeometry& geo, int t, const std::array<int, 3>& mesh_nodes,
                         const std::array<Vec2, 3>& grads, double area, const Vec2& centroid,
-                        const std::array<double, 3>& mass_rows, double scale,
-                        FormSums& out) const;
+                        const std::array<double, 3>& mass_rows, double scale, FormSums& out) const;
   void AddWholeTriangle(const CutCellGeometry& geo, int t, double scale, FormSums& out) const;
   void AddCutTriangle(const CutCellGeometry& geo, const CutTriangle& c, FormSums& out) const;
   void AssembleUniformForms();
@@ -578,6 +580,7 @@ void CutCellStokes::Impl::BuildReduced() {
   pp = gg.Build(npu, npu);
   bt = b.transpose();
   saddle_rows.resize(0, 0);
+  corrections.Clear();
   if (exact_velocity) {
     velocity = velocity_rows;
     velocity_lu.compute(velocity);
@@ -818,6 +821,16 @@ GmresResult CutCellStokes::Impl::SolveSchur(const Eigen::VectorXd& rhs, Eigen::V
   for (int restart = 0; restart < 3; ++restart) {
     SolveVelocity(rhs.head(2 * nu) - bt * p, u);
     Eigen::VectorXd r = b * u + pp * p - rhs.tail(npu);  // -(the continuity residual)
+    // The first pass of a step that needs iterations starts from the Galerkin correction in the
+    // span of the earlier steps' corrections, and adds its own correction to them.
+    const bool keep = restart == 0 && r.norm() > tolerance * b_norm;
+    Eigen::VectorXd p0, u0, r0;
+    if (keep) {
+      corrections.Project(p, u, r);
+      p0 = p;
+      u0 = u;
+      r0 = r;
+    }
     double rz = 0.0;
     bool started = false;  // S~^-1 r only once an iteration is needed
     while (r.norm() > tolerance * b_norm && result.iterations < max_iterations) {
@@ -839,6 +852,7 @@ GmresResult CutCellStokes::Impl::SolveSchur(const Eigen::VectorXd& rhs, Eigen::V
       d = z + (rz_next / rz) * d;
       rz = rz_next;
     }
+    if (keep && started) corrections.Add(p - p0, r0 - r, u0 - u);
     RemovePressureMean(p);
     x.head(2 * nu) = u;
     x.tail(npu) = p;

@@ -43,7 +43,11 @@
 // moving body, or without a Dirichlet pressure side, the whole grid's K_p (the fast solver alone).
 // The fluid part's took the Uzawa iterations of Schaefer-Turek 2D-1 over t = 5 from 2300 to 1464
 // at D/h = 9.76 and from 2165 to 1578 at D/h = 19.5 (docs/evidence/cut_cell_boundary.md, "The Uzawa
-// step's cost at D/h = 19.5"). Stopping rule: the saddle point's relative residual |rhs - K x|_2
+// step's cost at D/h = 19.5"). The CG starts from the given pressure plus the Galerkin correction
+// in the span of the earlier solves' corrections (Fischer's projection, particles/
+// pressure_correction_basis.h: S is the same until the operators change), which took them on to
+// 708 and 758 (docs/evidence/cut_cell_boundary.md, "The Uzawa start from the earlier steps'
+// corrections"). Stopping rule: the saddle point's relative residual |rhs - K x|_2
 // <= tolerance |rhs|_2, as GMRES's; Uzawa forms its continuity part only (the momentum part is the
 // exact velocity solves' round-off). Cost and iterations: docs/evidence/cut_cell_boundary.md, "The
 // time loop's cost". With an
