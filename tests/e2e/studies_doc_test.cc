@@ -58,21 +58,22 @@ TEST(StudiesDoc, TheWorkedStudyRunsAsWritten) {
       Execute({"/bin/bash", (work / "study.sh").string()}, env, nullptr, work.string());
   ASSERT_EQ(run.code, 0) << "stdout:\n" << run.out << "\nstderr:\n" << run.err;
 
-  EXPECT_THAT(run.out, HasSubstr("4 jobs  0 queued  0 running  3 done  1 failed"));
+  // Both points at dt = 0.04 fail (docs/studies.md says why) and are retried at 0.01.
+  EXPECT_THAT(run.out, HasSubstr("4 jobs  0 queued  0 running  2 done  2 failed"));
   EXPECT_THAT(run.out, HasSubstr("(attempt 2)"));
   EXPECT_THAT(run.out, HasSubstr("4 jobs  0 queued  0 running  4 done  0 failed"));
   EXPECT_THAT(run.out, HasSubstr("  attempt 1: failed ("));
-  // Issue 38: the retried point is named after the time step it ran with.
+  // Issue 38: a retried point is named after the time step it ran with.
   EXPECT_THAT(run.out, HasSubstr("name:        waters-king[fluid.relaxation_time=3,time.dt=0.01]"));
   for (const char* point :
-       {"fluid.relaxation_time=1,time.dt=0.005", "fluid.relaxation_time=1,time.dt=0.04",
+       {"fluid.relaxation_time=1,time.dt=0.005", "fluid.relaxation_time=1,time.dt=0.01",
         "fluid.relaxation_time=3,time.dt=0.005", "fluid.relaxation_time=3,time.dt=0.01"}) {
     EXPECT_TRUE(fs::exists(work / "runs/waters-king" / point / "summary.json")) << point;
   }
-  // The table: a row per point with its typed parameters, the retried point with its new dt.
+  // The table: a row per point with its typed parameters, the retried points with their new dt.
   EXPECT_THAT(run.out, HasSubstr("fluid.relaxation_time,time.dt,status,steps,time,max_trA,"
                                  "min_eig_A\n1,0.005,completed,600,3,"));
-  EXPECT_THAT(run.out, HasSubstr("\n1,0.04,completed,75,3,"));
+  EXPECT_THAT(run.out, HasSubstr("\n1,0.01,completed,300,3,"));
   EXPECT_THAT(run.out, HasSubstr("\n3,0.01,completed,300,3,"));
   const std::string json = Slurp(work / "waters-king.json");
   EXPECT_THAT(json, HasSubstr("\"fluid.relaxation_time\": 3,\n    \"time.dt\": 0.01,\n"));

@@ -81,12 +81,17 @@ TEST(AutoConformationVelocity, MultiplierPointsKeepTheAdvectedVelocity) {
   EXPECT_EQ(named.conformation.velocity, ConformationVelocity::kAdvected);
 }
 
-// Rule 1: a polymer without particles keeps the paper's velocity.
-TEST(AutoConformationVelocity, WithoutParticlesItIsTheAdvectedVelocity) {
+// Rule 1: a polymer without particles gets the Stokes step's velocity, and the scene as run names
+// it.
+TEST(AutoConformationVelocity, WithoutParticlesItIsTheStokesStepsVelocity) {
   const Params p = ParseScene("[fluid]\nrelaxation_time = 0.1\nsolvent_ratio = 0.5\n");
-  EXPECT_EQ(p.conformation.velocity, ConformationVelocity::kAdvected);
+  EXPECT_EQ(p.conformation.velocity, ConformationVelocity::kStokes);
   ASSERT_NE(VelocityChoice(p), nullptr);
+  EXPECT_EQ(VelocityChoice(p)->value, "stokes");
   EXPECT_THAT(VelocityChoice(p)->rule, HasSubstr("no particles"));
+  const Params again = ParseScene(WriteScene(p));
+  EXPECT_EQ(again.conformation.velocity, ConformationVelocity::kStokes);
+  EXPECT_EQ(VelocityChoice(again), nullptr);
 }
 
 // A polymer built in code leaves the velocity absent, as a scene that names none: around a fixed
@@ -115,10 +120,13 @@ TEST(AutoConformationVelocity, ParamsBuiltInCodeResolveAsTheSceneDoes) {
   EXPECT_EQ(WriteScene(resolved), WriteScene(scene));
   const Simulation sim(built);
   EXPECT_EQ(sim.params().conformation.velocity, ConformationVelocity::kStokes);
-  // The same Params without particles resolves the paper's velocity (rule 1), as its scene does.
+  // The same Params without particles resolves the Stokes step's velocity by rule 1, as its scene
+  // does.
   built.particles.clear();
   ResolveDefaults(built);
-  EXPECT_EQ(built.conformation.velocity, ConformationVelocity::kAdvected);
+  EXPECT_EQ(built.conformation.velocity, ConformationVelocity::kStokes);
+  ASSERT_NE(VelocityChoice(built), nullptr);
+  EXPECT_THAT(VelocityChoice(built)->rule, HasSubstr("no particles"));
 }
 
 // A Newtonian liquid has no step (35): "advected" without a rule; numerics.preset = "paper" gives

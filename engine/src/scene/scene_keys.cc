@@ -282,8 +282,9 @@ void AddConformationOutputAccuracy(std::vector<SceneKey<P>>& keys) {
   SceneKey<P> velocity = FromPreset(ChoiceKey<ConformationVelocity, P>(
       "conformation.velocity", [](auto& p) -> auto& { return p.conformation.velocity; },
       "the velocity step (35) freezes: the advected u^{n+2/4} (the paper's) or the Stokes step's "
-      "u^{n+1/4}; `auto` (the default in a polymer liquid) picks the Stokes step's around fixed "
-      "disks cut out of the mesh, the paper's otherwise (scene/auto_conformation_velocity.h)",
+      "u^{n+1/4}; `auto` (the default in a polymer liquid) picks the Stokes step's without "
+      "particles and around fixed disks cut out of the mesh, the paper's with multiplier "
+      "points (scene/auto_conformation_velocity.h)",
       ResolveConformationVelocity));
   // Absent in the struct: the preset's word depends on the liquid, and "auto" on the particles.
   velocity.unset = [](const P& p) { return !p.conformation.velocity; };

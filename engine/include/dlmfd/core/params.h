@@ -312,10 +312,10 @@ enum class ConformationForm { kA };
 // confined cylinder at Wi = 0.9, R/h = 16: K moves by 1.2 % from dt = lambda / 120 to lambda / 480
 // with kAdvected, and kStokes at lambda / 120 lies 0.7 % below kAdvected at lambda / 480;
 // docs/evidence/splitting.md, "The velocity the conformation step sees"). A scene's default is
-// "auto" in a polymer liquid (scene/auto_conformation_velocity.h: kStokes around fixed disks cut
-// out of the mesh, where it was measured, kAdvected otherwise). The struct leaves it absent, as a
-// scene that names none: ParseScene and the Simulation resolve it (scene::ResolveDefaults), so a
-// Params built in code runs the velocity of the same scene read from a file.
+// "auto" in a polymer liquid (scene/auto_conformation_velocity.h: kStokes without particles and
+// around fixed disks cut out of the mesh, kAdvected with multiplier points). The struct leaves it
+// absent, as a scene that names none: ParseScene and the Simulation resolve it
+// (scene::ResolveDefaults), so a Params built in code runs the velocity of the scene from a file.
 enum class ConformationVelocity { kAdvected, kStokes };
 
 struct ConformationParams {

@@ -9,17 +9,20 @@
 // sees"). Around fixed disks with cut cells it made the confined cylinder's K nearly independent
 // of dt (within 0.07 % of its dt -> 0 limit at dt = lambda / 120, against 0.34 %) and closer to
 // the literature at Wi = 0.6 and 0.9 (docs/evidence/splitting.md, "Around fixed disks cut out of
-// the mesh").
-//
+// the mesh"); without particles it put the steady stress of the cavity and of the stagnation flow
+// 2-14 times closer to its dt -> 0 limit (docs/evidence/splitting.md, "Without particles and
+// around moving ones").
 // The rules are tried in order and the first that applies decides; each is one function in
 // scene/auto_conformation_velocity.cc with its evidence beside it, and one test pins it
 // (tests/unit/auto_conformation_velocity_test.cc). The last rule always applies.
-//   1. No particles: "advected" (the channel and shear flows of the polymer's verification were
-//      measured with it; "stokes" was not run on them).
+//   1. No particles: "stokes" (the Fattal-Kupferman cavity and the planar stagnation flow; the
+//      Waters-King start-up, whose advection vanishes, is the same to round-off, and its time
+//      step's stability limit is the same; past it "stokes" fails sooner).
 //   2. Particles held by multiplier points (ring mesh or collocation points), which includes every
 //      moving particle: "advected" (the paper's polymer cases 5.2 and 5.3 and the collocation
-//      points' polymer figures in docs/accuracy.md were measured with it; "stokes" was not run on
-//      them).
+//      points' polymer figures in docs/accuracy.md were measured with it; "stokes" was measured on
+//      a settling disk and the 5.2 pair on a coarse grid only: the same below Re ~ 1, 1.5 times
+//      closer to its dt -> 0 limit at Re ~ 30).
 //   3. Otherwise (fixed disks cut out of the mesh): "stokes".
 // The choice, the rule and the numbers it read go where the particle mesh's "auto" goes (the run's
 // log, summary.json `numerics`, the daemon's job record and `dlmfd show`); the scene as run
