@@ -32,6 +32,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "../mesh/grid_kernels.h"
 #include "dlmfd/conformation/oldroyd_b_polymer.h"
@@ -173,6 +174,18 @@ struct Simulation::Impl {
     bool lent;
   };
 
+  // A checkpoint (io/results_writer.cc writes one in OnStepEnd where output.checkpoint_every is
+  // due, and in OnStopped) holds what the cut-cell step keeps of earlier steps: lent to the state
+  // for the observers' call, as it is large (core/state.h).
+  struct CutCellStartLent {
+    CutCellStartLent(Impl& impl, bool lend)
+        : s(impl) {
+      if (lend && s.cut_cells) s.state.cut_cell_start = s.cut_cells->SavedStart();
+    }
+    ~CutCellStartLent() { s.state.cut_cell_start = {}; }
+    Impl& s;
+  };
+
   // Step (34): u^{n+1/4} -> u^{n+2/4}.
   [[gnu::noinline]] void AdvectVelocity(StepReport& report) {
     const auto t0 = Clock::now();
@@ -311,12 +324,14 @@ void Simulation::Step() {
       o->OnSnapshot(s.state);
     }
   }
+  const Impl::CutCellStartLent lent(s, OutputDue(s.state.step, dt, out.checkpoint_every));
   for (Observer* o : s.observers) o->OnStepEnd(s.state);
 }
 
 void Simulation::Run(const std::atomic<bool>* stop) {
   while (!Done() && !(stop && stop->load())) Step();
   if (!Done()) {
+    const Impl::CutCellStartLent lent(*impl_, true);
     for (Observer* o : impl_->observers) o->OnStopped(impl_->state);
   }
 }
@@ -362,6 +377,12 @@ void Simulation::Restore(const FlowState& state) {
           std::to_string(s.state.particles[p].multiplier.size()) + " (the same scene)");
     }
   }
+  const std::size_t previous_pressure = state.cut_cell_start.previous_pressure.size();
+  if (previous_pressure != 0 && previous_pressure != s.pgrid.NodeCount()) {
+    throw InvalidParameter("checkpoint:/cut_cell_start/previous_pressure",
+                           std::to_string(previous_pressure) + " values",
+                           std::to_string(s.pgrid.NodeCount()) + " (the same scene)");
+  }
   // The shapes come from the scene (a checkpoint stores the bounding radius only).
   std::vector<ParticleState> initial = impl_->state.particles;
   impl_->state = state;
@@ -369,6 +390,10 @@ void Simulation::Restore(const FlowState& state) {
     impl_->state.particles[p].shape = initial[p].shape;
     impl_->state.particles[p].semi_axes = initial[p].semi_axes;
   }
+  if (impl_->cut_cells) {
+    impl_->cut_cells->Restore(impl_->state.particles, std::move(impl_->state.cut_cell_start));
+  }
+  impl_->state.cut_cell_start = {};
 }
 
 const Params& Simulation::params() const { return impl_->params; }

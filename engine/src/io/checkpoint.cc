@@ -13,6 +13,59 @@ void WriteField(hid_t f, const char* name, const std::vector<double>& values) {
 
 std::vector<double> ReadField(hid_t f, const char* name) { return h5::ReadDoubles(f, name); }
 
+// Vectors of one length as the rows of a (count, length) dataset.
+void WriteRows(hid_t g, const char* name, const std::vector<Eigen::VectorXd>& rows) {
+  const auto length = static_cast<hsize_t>(rows.front().size());
+  std::vector<double> flat;
+  flat.reserve(rows.size() * length);
+  for (const Eigen::VectorXd& row : rows) flat.insert(flat.end(), row.begin(), row.end());
+  h5::WriteDoubles(g, name, {rows.size(), length}, flat.data());
+}
+
+std::vector<Eigen::VectorXd> ReadRows(hid_t g, const char* name, const std::string& path) {
+  std::vector<hsize_t> dims;
+  const std::vector<double> flat = h5::ReadDoubles(g, name, &dims);
+  if (dims.size() != 2) {
+    throw Error("checkpoint " + path + ": /cut_cell_start/" + name + " is not (count, length)");
+  }
+  std::vector<Eigen::VectorXd> rows;
+  const auto length = static_cast<Eigen::Index>(dims[1]);
+  for (hsize_t i = 0; i < dims[0]; ++i)
+    rows.emplace_back(Eigen::Map<const Eigen::VectorXd>(flat.data() + i * dims[1], length));
+  return rows;
+}
+
+void WriteCutCellStart(hid_t f, const CutCellStart& start) {
+  const PressureCorrections& c = start.corrections;
+  if (start.previous_pressure.empty() && c.q.empty()) return;
+  const h5::Handle group = h5::CreateGroup(f, "cut_cell_start");
+  const hid_t g = group.get();
+  if (!start.previous_pressure.empty()) WriteField(g, "previous_pressure", start.previous_pressure);
+  if (c.q.empty()) return;
+  h5::WriteAttribute(g, "corrections_dt", start.corrections_dt);
+  WriteRows(g, "q", c.q);
+  WriteRows(g, "sq", c.sq);
+  WriteRows(g, "wq", c.wq);
+}
+
+CutCellStart ReadCutCellStart(hid_t f, const std::string& path) {
+  CutCellStart start;
+  if (!h5::Exists(f, "cut_cell_start")) return start;
+  const h5::Handle group = h5::OpenObject(f, "cut_cell_start");
+  const hid_t g = group.get();
+  if (h5::Exists(g, "previous_pressure"))
+    start.previous_pressure = ReadField(g, "previous_pressure");
+  if (!h5::Exists(g, "q")) return start;
+  start.corrections_dt = h5::ReadDoubleAttribute(g, "corrections_dt");
+  PressureCorrections& c = start.corrections;
+  c.q = ReadRows(g, "q", path);
+  c.sq = ReadRows(g, "sq", path);
+  c.wq = ReadRows(g, "wq", path);
+  if (c.sq.size() != c.q.size() || c.wq.size() != c.q.size())
+    throw Error("checkpoint " + path + ": inconsistent /cut_cell_start arrays");
+  return start;
+}
+
 }  // namespace
 
 void WriteCheckpoint(const std::string& path, const FlowState& state, const std::string& scene_text,
@@ -39,6 +92,7 @@ void WriteCheckpoint(const std::string& path, const FlowState& state, const std:
       WriteField(f, "d22", state.d22);
     }
     if (!state.stokes_defect.empty()) WriteField(f, "stokes_defect", state.stokes_defect);
+    WriteCutCellStart(f, state.cut_cell_start);
     h5::Handle group(h5::CheckId(H5Gcreate2(f, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                                  "create group"),
                      H5Gclose);
@@ -100,6 +154,7 @@ Checkpoint ReadCheckpoint(const std::string& path) {
   }
   if (H5Lexists(f, "stokes_defect", H5P_DEFAULT) > 0)
     s.stokes_defect = ReadField(f, "stokes_defect");
+  s.cut_cell_start = ReadCutCellStart(f, path);
   h5::Handle group(
       h5::CheckId(H5Gopen2(f, "particles", H5P_DEFAULT), "open " + path + ":/particles"), H5Gclose);
   const hid_t g = group.get();

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "dlmfd/core/errors.h"
 #include "dlmfd/particles/particle_rules.h"
@@ -98,8 +99,8 @@ void CutCellStep::ExtendIntoBodies(double* a11, double* a12, double* a22) const 
 
 CutCellStep::~CutCellStep() = default;
 
-bool CutCellStep::PrepareStep(double dt) {
-  if (dt == dt_ && flow_) return false;
+void CutCellStep::PrepareStep(double dt) {
+  if (dt == dt_ && flow_) return;
   dt_ = dt;
   rho_over_dt_ = fluid_density_ / dt;
   flow_.reset();  // one saddle point at a time
@@ -110,7 +111,6 @@ bool CutCellStep::PrepareStep(double dt) {
     flow_ = std::make_unique<CutCellStokes>(*geometries_[0], domain_, viscosity_, fluid_density_,
                                             rho_over_dt_, constants_);
   }
-  return true;
 }
 
 std::vector<RigidMotion> CutCellStep::Motions() const {
@@ -143,8 +143,12 @@ void CutCellStep::MoveBodies(double dt) {
       }
     }
   }
+  CutBodies();
+}
+
+void CutCellStep::CutBodies() {
   // In place: the saddle point refers to them (CutCellStokes::Recut).
-  const CutPeriodicity periodic_axes{periodic[0], periodic[1]};
+  const CutPeriodicity periodic_axes{domain_.PeriodicX(), domain_.PeriodicY()};
   *geometries_[0] = CutCellGeometry(grid_, bodies_, CutTriangulation::kSwNe, periodic_axes);
   if (geometries_.size() == 2)
     *geometries_[1] = CutCellGeometry(grid_, bodies_, CutTriangulation::kNwSe, periodic_axes);
@@ -183,6 +187,29 @@ void CutCellStep::ExtrapolatePressure(double* p) {
   }
 }
 
+CutCellStart CutCellStep::SavedStart() const {
+  if (restored_) return *restored_;  // not taken yet: no step since Restore
+  CutCellStart start;
+  start.previous_pressure = last_pressure_;
+  if (flow_ && !moving_) {  // a moving body's operator changes every step
+    start.corrections_dt = dt_;
+    start.corrections = flow_->Corrections();
+  }
+  return start;
+}
+
+void CutCellStep::Restore(const std::vector<ParticleState>& particles, CutCellStart start) {
+  if (moving_) {  // prescribed bodies go on from where the checkpoint has them
+    for (std::size_t b = 0; b < bodies_.size() && b < particles.size(); ++b) {
+      bodies_[b].centre = particles[b].position;
+      bodies_[b].angle = particles[b].angle;
+    }
+    CutBodies();
+  }
+  last_pressure_ = start.previous_pressure;
+  restored_ = std::move(start);
+}
+
 void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<ParticleState>& particles,
                         double* u, double* v, double* p, StepReport& report,
                         const NodeForce& polymer) {
@@ -190,10 +217,19 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
     FillBodies(u, v);  // u^n inside the bodies at X^n: the value of the nodes they uncover
     MoveBodies(dt);
   }
-  const bool fresh = PrepareStep(dt);
+  PrepareStep(dt);
   if (moving_) {
-    if (!fresh) flow_->Recut();  // the band anew, the rest kept
+    // The band anew, the rest kept; after a fresh build too, so that every step's forms come from
+    // the one sum (the uniform forms and the band's), which a fresh build's whole-mesh assembly
+    // matches to round-off only: the first step of a run resumed from a checkpoint is then the
+    // uninterrupted run's, bit for bit.
+    flow_->Recut();
     flow_->SetBodyMotion(Motions());
+  }
+  if (restored_) {
+    if (!moving_ && restored_->corrections_dt == dt && !restored_->corrections.q.empty())
+      flow_->RestoreCorrections(std::move(restored_->corrections));
+    restored_.reset();
   }
   const Eigen::VectorXd& mass = flow_->FluidMass();
   for (std::size_t k = 0; k < fu_.size(); ++k) {

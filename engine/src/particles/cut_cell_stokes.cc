@@ -6,6 +6,8 @@
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "dlmfd/core/errors.h"
 #include "dlmfd/mesh/boundary_topology.h"
@@ -581,6 +583,11 @@ void CutCellStokes::Impl::BuildReduced() {
   bt = b.transpose();
   saddle_rows.resize(0, 0);
   corrections.Clear();
+  // SolveVelocity writes the load at the unknowns only: off them it is 0, not what a node held
+  // while it was an unknown (a moving body's former place), which the capacitance solve passes to
+  // the unknowns at round-off (a resumed run would differ from the uninterrupted one there).
+  std::fill(work_fu.begin(), work_fu.end(), 0.0);
+  std::fill(work_fv.begin(), work_fv.end(), 0.0);
   if (exact_velocity) {
     velocity = velocity_rows;
     velocity_lu.compute(velocity);
@@ -976,6 +983,27 @@ void CutCellStokes::Recut() { impl_->Recut(); }
 void CutCellStokes::SetExactVelocityPreconditioner(bool exact) {
   impl_->exact_velocity = exact;
   impl_->BuildReduced();
+}
+
+const PressureCorrections& CutCellStokes::Corrections() const { return impl_->corrections.Data(); }
+
+void CutCellStokes::RestoreCorrections(PressureCorrections corrections) {
+  const auto nu = static_cast<Eigen::Index>(impl_->vnodes.size());
+  const auto npu = static_cast<Eigen::Index>(impl_->pnodes.size());
+  const std::size_t count = corrections.q.size();
+  bool fits = count <= PressureCorrectionBasis::kCapacity && corrections.sq.size() == count &&
+              corrections.wq.size() == count;
+  for (std::size_t i = 0; fits && i < count; ++i) {
+    fits = corrections.q[i].size() == npu && corrections.sq[i].size() == npu &&
+           corrections.wq[i].size() == 2 * nu;
+  }
+  if (!fits) {
+    throw InvalidParameter("checkpoint:/cut_cell_start", "pressure corrections of other sizes",
+                           "at most " + std::to_string(PressureCorrectionBasis::kCapacity) +
+                               " of " + std::to_string(npu) + " pressure and " +
+                               std::to_string(2 * nu) + " velocity unknowns (the same scene)");
+  }
+  impl_->corrections.Restore(std::move(corrections));
 }
 
 void CutCellStokes::SetBodyMotion(const std::vector<RigidMotion>& motions) {

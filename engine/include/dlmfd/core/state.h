@@ -2,6 +2,7 @@
 // bit-for-bit, and everything an observer may read.
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -27,6 +28,24 @@ struct ParticleState {
   std::vector<double> multiplier;  // DLM nodal forces of the last step (warm start); may be empty
 };
 
+// The cut-cell step's pressure corrections of earlier steps
+// (particles/pressure_correction_basis.h): q_i on the pressure unknowns with S q_i and A^-1 B^T q_i
+// on the velocity unknowns, oldest first.
+struct PressureCorrections {
+  std::vector<Eigen::VectorXd> q, sq, wq;
+};
+
+// What the cut-cell step (33) keeps of earlier steps to start its pressure iteration, beyond p
+// (particles/cut_cell_step.h), so that a run resumed from a checkpoint takes the same steps as the
+// run that wrote it.
+struct CutCellStart {
+  std::vector<double> previous_pressure;  // p^{n-1} on the 2h-grid: a moving body's extrapolation
+  // Around fixed bodies only (a moving body's S changes every step): the corrections and the dt of
+  // the S they belong to (0: none).
+  double corrections_dt = 0.0;
+  PressureCorrections corrections;
+};
+
 struct FlowState {
   long step = 0;
   double time = 0.0;
@@ -41,6 +60,10 @@ struct FlowState {
   // viscous coupling's or the cut cells'), which then starts from p alone.
   std::vector<double> stokes_defect;
   std::vector<ParticleState> particles;
+  // particle_mesh.kind = "cut_cell" only, and only while a checkpoint is written (Simulation lends
+  // it to the observers' OnStepEnd and OnStopped) or read: else empty, as it is large (16
+  // corrections of the unknowns).
+  CutCellStart cut_cell_start;
 };
 
 // Per-step diagnostics: named columns, the same names in the same order at every step of a run

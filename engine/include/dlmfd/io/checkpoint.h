@@ -8,7 +8,12 @@
 // radius, density, motion (0 free, 1 fixed, 2 prescribed), and the multiplier vectors concatenated
 // in multiplier with multiplier_offset (np + 1), and (since results format 2) each particle's
 // rotation angle, /particles/angle, which the results writer integrates (results_writer.h). Doubles
-// are stored as native doubles: what is read back equals what was written. Written to a temporary
+// are stored as native doubles: what is read back equals what was written. With particle_mesh.kind
+// = "cut_cell", the group /cut_cell_start holds what the cut-cell step keeps of earlier steps
+// (core/state.h's CutCellStart): previous_pressure (a moving body), and around fixed bodies the
+// Uzawa start's pressure corrections q, sq (count, pressure unknowns) and wq (count, velocity
+// unknowns) with their attribute corrections_dt; a checkpoint without it resumes from p alone
+// (the same run to the solver's tolerance, not bit for bit). Written to a temporary
 // name and renamed, so a crash while writing leaves the previous checkpoint intact.
 #pragma once
 

@@ -51,6 +51,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "dlmfd/core/grid.h"
@@ -82,6 +83,15 @@ class CutCellStep {
   // Newtonian liquid).
   void Solve(double dt, const BoundaryData& data, std::vector<ParticleState>& particles, double* u,
              double* v, double* p, StepReport& report, const NodeForce& polymer = {});
+  // What the step keeps of earlier steps beyond the state, for a checkpoint (core/state.h): p^{n-1}
+  // of a moving body's extrapolated start, and around fixed bodies the pressure corrections of the
+  // Uzawa start with the dt of their operator.
+  CutCellStart SavedStart() const;
+  // A run resumed from a checkpoint: prescribed bodies where the particles are (X^n, theta^n), and
+  // SavedStart's start again (the corrections at the next Solve, once its operator is built, if it
+  // is theirs: fixed bodies, the same dt), so the resumed run takes the steps of the run that wrote
+  // the checkpoint, bit for bit.
+  void Restore(const std::vector<ParticleState>& particles, CutCellStart start);
   // Per velocity node, 1 inside a body (the distance phi < 0, particles/cut_cell_geometry.h), at
   // the bodies' last positions: where step (35) holds A = I.
   const std::vector<unsigned char>& InsideNodes() const { return inside_nodes_; }
@@ -91,10 +101,12 @@ class CutCellStep {
   void ExtendIntoBodies(double* a11, double* a12, double* a22) const;
 
  private:
-  // flow_ and rho_over_dt_ for a step of dt; true when flow_ was made anew.
-  bool PrepareStep(double dt);
-  // Prescribed bodies: X, theta to t + dt, the geometries cut anew there (in place).
+  // flow_ and rho_over_dt_ for a step of dt (flow_ made anew for a new dt).
+  void PrepareStep(double dt);
+  // Prescribed bodies: X, theta to t + dt, the geometries cut anew there (CutBodies).
   void MoveBodies(double dt);
+  // The geometries cut anew (in place) at the bodies' places, and the nodes marked for them.
+  void CutBodies();
   std::vector<RigidMotion> Motions() const;
   // The rigid motion of the nearest body at every node without fluid in its support.
   void FillBodies(double* u, double* v) const;
@@ -127,6 +139,7 @@ class CutCellStep {
   // A moving body: p^{n-1}, for the extrapolated start of the pressure iteration.
   void ExtrapolatePressure(double* p);
   std::vector<double> last_pressure_;
+  std::optional<CutCellStart> restored_;  // Restore's, until the next Solve takes it
 };
 
 }  // namespace dlmfd

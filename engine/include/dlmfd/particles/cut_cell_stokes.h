@@ -72,6 +72,7 @@
 
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/params.h"
+#include "dlmfd/core/state.h"
 #include "dlmfd/fluid/boundary_data.h"
 #include "dlmfd/particles/cut_cell_geometry.h"
 
@@ -143,6 +144,12 @@ class CutCellStokes {
   // Precondition the velocity block by its own sparse factorization instead of the fast solvers
   // (steady Oseen problems, which the Laplacian does not precondition).
   void SetExactVelocityPreconditioner(bool exact);
+  // The earlier solves' pressure corrections that start a solve's Uzawa CG (particles/
+  // pressure_correction_basis.h; forgotten whenever the operator is built anew), and the same
+  // again, read from a checkpoint, for the same operator. Throws InvalidParameter when their sizes
+  // are not the unknowns'.
+  const PressureCorrections& Corrections() const;
+  void RestoreCorrections(PressureCorrections corrections);
   // The rigid motion of every body of the geometry (indexed as its bodies), or an empty vector for
   // bodies at rest (the default): the boundary value g of Nitsche's terms (header).
   void SetBodyMotion(const std::vector<RigidMotion>& motions);

@@ -18,7 +18,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
+
+#include "dlmfd/core/state.h"
 
 namespace dlmfd {
 
@@ -26,7 +29,10 @@ class PressureCorrectionBasis {
  public:
   static constexpr int kCapacity = 16;
 
-  int Count() const { return static_cast<int>(q_.size()); }
+  int Count() const { return static_cast<int>(data_.q.size()); }
+  // What a checkpoint keeps (core/state.h), and the basis again from it.
+  const PressureCorrections& Data() const { return data_; }
+  void Restore(PressureCorrections data) { data_ = std::move(data); }
   // Forgets the basis: S changed (the forms, the unknowns or dt).
   void Clear();
   // The Galerkin start in p + span{q_i} for the residual r = c - S p of p, with the velocity
@@ -36,7 +42,7 @@ class PressureCorrectionBasis {
   void Add(Eigen::VectorXd dp, Eigen::VectorXd s, Eigen::VectorXd w);
 
  private:
-  std::vector<Eigen::VectorXd> q_, sq_, wq_;
+  PressureCorrections data_;
 };
 
 }  // namespace dlmfd
