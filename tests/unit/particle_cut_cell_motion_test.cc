@@ -7,7 +7,11 @@
 //   uncovers and the ones it covers change) u = U to round-off and the force is 0; the disk is
 //   where dt U puts it. A wrong sign or weight of the load, a node uncovered with a wrong value or
 //   a geometry not moved gives O(1) errors.
-// - the rules: free particles stay refused with cut cells, prescribed ones are taken.
+// - the rules: free and prescribed particles are taken (a free one of any density), a polymer
+//   around them is refused;
+// - a free disk (particles/cut_cell_free_bodies.h) moving with the liquid keeps u = U and its
+//   velocity; the first step of a heavy free disk is the solve at its new velocity, and Newton's
+//   law holds with the force the step reports.
 // - a moving body's saddle point recut in place (CutCellStokes::Recut: the uniform forms plus the
 //   band's correction, the capacitance matrix's responses of the rows that stay in the band kept)
 //   is the saddle point built anew on the moved geometry: the same solution to the solver's
@@ -26,6 +30,7 @@
 #include "dlmfd/core/state.h"
 #include "dlmfd/fluid/boundary_data.h"
 #include "dlmfd/particles/cut_cell_step.h"
+#include "dlmfd/particles/shape.h"
 #include "dlmfd/particles/particle_rules.h"
 #include "dlmfd/scene/scene_file.h"
 
@@ -151,9 +156,119 @@ TEST(CutCellMotion, RecutIsTheSaddlePointBuiltAnew) {
   }
 }
 
-TEST(CutCellMotion, FreeParticlesAreRefusedPrescribedTaken) {
+TEST(CutCellMotion, FreeAndPrescribedTakenPolymerAroundThemRefused) {
   EXPECT_NO_THROW(RequireCutCellScene(ParseScene(TranslatingScene("prescribed"))));
-  EXPECT_THROW(RequireCutCellScene(ParseScene(TranslatingScene("free"))), InvalidParameter);
+  EXPECT_NO_THROW(RequireCutCellScene(ParseScene(TranslatingScene("free"))));
+  // A free disk lighter than the liquid: taken by cut cells (no multiplier), refused by the
+  // collocation points (the multiplier problem (37) would be indefinite).
+  Params light = ParseScene(TranslatingScene("free"));
+  light.particles[0].density = 0.5;
+  const Grid g = light.domain.VelocityGrid();
+  EXPECT_NO_THROW(ValidateParticles(light, g));
+  light.particle_mesh.kind = ParticleMeshKind::kCollocation;
+  EXPECT_THROW(ValidateParticles(light, g), InvalidParameter);
+  // The polymer around a moving body stays refused, with the motion named.
+  Params polymer = ParseScene(TranslatingScene("free"));
+  polymer.fluid.relaxation_time = 0.1;
+  polymer.fluid.solvent_ratio = 0.5;
+  try {
+    RequireCutCellScene(polymer);
+    ADD_FAILURE() << "a free body in a polymer was taken";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.key(), "particles.0.motion");
+    EXPECT_EQ(e.value(), "\"free\"");
+  }
+}
+
+// A free disk moving with the liquid (neutrally buoyant, no gravity, at the liquid's velocity):
+// the same exact discrete solution as the prescribed disk's above, now kept by Newton's law
+// through the unit solves (particles/cut_cell_free_bodies.h): u = U, the disk's velocity U and
+// its rotation 0 to round-off while it crosses cells.
+TEST(CutCellMotion, FreeDiskMovingWithTheLiquidKeepsItsVelocity) {
+  const Params params = ParseScene(TranslatingScene("free"));
+  const Grid g = params.domain.VelocityGrid();
+  const Vec2 velocity = params.particles[0].velocity;
+  CutCellStep step(params, g);
+  const BoundaryData data(g, params.domain);
+  std::vector<double> u(g.NodeCount(), velocity.x()), v(g.NodeCount(), velocity.y());
+  std::vector<double> p(g.Coarse().NodeCount(), 0.0);
+  std::vector<ParticleState> particles(1);
+  StepReport report;
+  double u_error = 0.0, velocity_error = 0.0, force = 0.0;
+  Vec2 moved = params.particles[0].center;
+  for (int n = 0; n < 10; ++n) {
+    step.Solve(params.time.dt, data, particles, u.data(), v.data(), p.data(), report);
+    for (std::size_t k = 0; k < u.size(); ++k)
+      u_error = std::max({u_error, std::abs(u[k] - velocity.x()), std::abs(v[k] - velocity.y())});
+    velocity_error = std::max({velocity_error, (particles[0].velocity - velocity).norm(),
+                               std::abs(particles[0].angular_velocity)});
+    force = std::max(force, particles[0].force.norm() + std::abs(particles[0].torque));
+    moved += params.time.dt * velocity;
+  }
+  EXPECT_LT(u_error, 1e-9);
+  EXPECT_LT(velocity_error, 1e-9);
+  EXPECT_LT(force, 1e-8);
+  EXPECT_NEAR(particles[0].position.x(), moved.x() - std::floor(moved.x()), 1e-9);
+  EXPECT_NEAR(particles[0].position.y(), moved.y(), 1e-9);
+}
+
+// The first step of a heavy free disk from rest under gravity in a closed box (walls; both
+// triangulations): the step's solution, the first solve's plus the unit solves' times V - V*
+// (V* = 0: all of it the unit solves'), is the solve with g = V^{n+1} on the step's geometry
+// (X^{n+1} = X^n, at rest) to the unit solves' stopping rule (the direct solve is exact),
+// and Newton's law holds with the force the step reports: M V^{n+1} / dt = F_h + M g, to round-
+// off. A wrong column of K, a sign of the update or a superposition with the wrong weights gives
+// O(1) differences.
+TEST(CutCellMotion, FreeDiskStepIsTheSolveAtItsNewVelocity) {
+  Params params = ParseScene(
+      "[domain]\nsize = [1.0, 1.0]\nh = 0.0625\n"
+      "[fluid]\ndensity = 1.0\nviscosity = 0.5\ngravity = [0.3, -9.81]\n"
+      "[time]\ndt = 0.02\nend = 0.1\n"
+      "[particle_mesh]\nkind = \"cut_cell\"\n"
+      "[[particles]]\ndiameter = 0.4\ncenter = [0.47, 0.53]\ndensity = 1.5\n");
+  const Grid g = params.domain.VelocityGrid();
+  CutCellStep step(params, g);
+  const BoundaryData data(g, params.domain);
+  std::vector<double> u(g.NodeCount(), 0.0), v(g.NodeCount(), 0.0);
+  std::vector<double> p(g.Coarse().NodeCount(), 0.0);
+  std::vector<ParticleState> particles(1);
+  StepReport report;
+  const double dt = params.time.dt;
+  step.Solve(dt, data, particles, u.data(), v.data(), p.data(), report);
+  const ParticleState& s = particles[0];
+  EXPECT_EQ(s.position, params.particles[0].center);  // X^1 = X^0 + dt V^0, V^0 = 0
+  const Shape shape = Shape::Of(params.particles[0]);
+  const double mass = shape.Mass(1.5), inertia = shape.MomentOfInertia(1.5);
+  const Vec2 newton = mass * s.velocity / dt - s.force - mass * params.gravity;
+  EXPECT_LT(newton.norm(), 1e-10 * s.force.norm());
+  EXPECT_LT(std::abs(inertia * s.angular_velocity / dt - s.torque), 1e-10 * s.force.norm());
+  EXPECT_GT(s.velocity.norm(), 0.01);  // it moves: the check above is not 0 = 0
+  // The solve with g = V^1 on the same geometry: no load (u^0 = 0), the same forms.
+  std::vector<FixedBody> body{{shape, s.position, 0.0}};
+  const CutCellGeometry sw_ne(g, body), nw_se(g, body, CutTriangulation::kNwSe);
+  CutCellStokes direct(sw_ne, nw_se, params.domain, params.fluid.viscosity, 1.0, 1.0 / dt);
+  direct.SetBodyMotion({{s.position, s.velocity, s.angular_velocity}});
+  std::vector<double> du(g.NodeCount(), 0.0), dv(g.NodeCount(), 0.0);
+  std::vector<double> dp(g.Coarse().NodeCount(), 0.0);
+  direct.SolveDirect(data, nullptr, nullptr, du.data(), dv.data(), dp.data());
+  double diff = 0.0, umax = 0.0;
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    if (direct.FluidMass()[static_cast<Eigen::Index>(k)] == 0.0) continue;  // rigid: filled
+    diff = std::max({diff, std::abs(u[k] - du[k]), std::abs(v[k] - dv[k])});
+    umax = std::max({umax, std::abs(du[k]), std::abs(dv[k])});
+  }
+  const CutCellStokes::BodyLoad load =
+      direct.Load(0, s.position, du.data(), dv.data(), dp.data(), nullptr, nullptr);
+  const Vec2 f_direct = load.force + shape.Mass(1.0) * (-params.gravity);
+  std::printf(
+      "V^1 = (%.6f, %.6f), omega^1 = %.3e; |u - u(g = V^1)| / |u| = %.2e, |dF| / |F| = %.2e\n",
+      s.velocity.x(), s.velocity.y(), s.angular_velocity, diff / umax,
+      (f_direct - s.force).norm() / s.force.norm());
+  // The unit solves stop at a relative residual of 1e-7 (CutCellConstants::step_tolerance), which
+  // leaves the velocity 2.9e-6 and the force 2.2e-7 off (measured); what fails here is an O(1)
+  // error, 1e5 times as large.
+  EXPECT_LT(diff, 1e-5 * umax);
+  EXPECT_LT((f_direct - s.force).norm(), 1e-5 * s.force.norm());
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Step (33) with fixed or prescribed bodies cut out of the mesh; see particles/cut_cell_step.h.
 #include "dlmfd/particles/cut_cell_step.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <utility>
@@ -29,7 +30,18 @@ CutCellStep::CutCellStep(const Params& params, const Grid& grid)
     const bool prescribed = q.motion == Motion::kPrescribed;
     velocities_.push_back(prescribed ? q.velocity : Vec2::Zero());
     rotations_.push_back(prescribed ? q.angular_velocity : 0.0);
-    moving_ = moving_ || prescribed;
+    moving_ = moving_ || q.motion != Motion::kFixed;
+  }
+  // A free body starts at its given velocity; it is then Newton's law's (CutCellFreeBodies).
+  for (std::size_t b = 0; b < params.particles.size(); ++b) {
+    const ParticleParams& q = params.particles[b];
+    if (q.motion != Motion::kFree) continue;
+    velocities_[b] = q.velocity;
+    rotations_[b] = q.angular_velocity;
+  }
+  if (std::any_of(params.particles.begin(), params.particles.end(),
+                  [](const ParticleParams& q) { return q.motion == Motion::kFree; })) {
+    free_bodies_ = std::make_unique<CutCellFreeBodies>(params, grid);
   }
   const CutPeriodicity periodic{params.domain.PeriodicX(), params.domain.PeriodicY()};
   geometries_.push_back(
@@ -143,6 +155,15 @@ void CutCellStep::MoveBodies(double dt) {
       }
     }
   }
+  if (free_bodies_) {
+    const double gap = free_bodies_->PairGap(bodies_);
+    if (gap < 0.0) {
+      std::ostringstream what;
+      what << "two bodies overlap (surface gap " << gap
+           << "): the collision forces (collisions.*) did not hold them apart";
+      throw ParticlesOverlap(what.str());
+    }
+  }
   CutBodies();
 }
 
@@ -199,10 +220,14 @@ CutCellStart CutCellStep::SavedStart() const {
 }
 
 void CutCellStep::Restore(const std::vector<ParticleState>& particles, CutCellStart start) {
-  if (moving_) {  // prescribed bodies go on from where the checkpoint has them
+  if (moving_) {  // prescribed and free bodies go on from where the checkpoint has them
     for (std::size_t b = 0; b < bodies_.size() && b < particles.size(); ++b) {
       bodies_[b].centre = particles[b].position;
       bodies_[b].angle = particles[b].angle;
+      if (free_bodies_ && free_bodies_->IsFree(b)) {  // and free ones at its velocity
+        velocities_[b] = particles[b].velocity;
+        rotations_[b] = particles[b].angular_velocity;
+      }
     }
     CutBodies();
   }
@@ -248,24 +273,54 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
   if (moving_) ExtrapolatePressure(p);
   const CutCellReport r = flow_->Solve(data, fu_.data(), fv_.data(), u, v, p,
                                        constants_.step_tolerance, constants_.step_max_iterations);
-  if (moving_) FillBodies(u, v);
   report.Set("stokes_iterations", r.iterations);
   report.Set("stokes_residual", r.relative_residual);
+  if (free_bodies_) {
+    // Newton's law of the free bodies, implicit in their velocities (CutCellFreeBodies).
+    CutCellFreeBodies::Loads first;
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      const CutCellStokes::BodyLoad load = HydrodynamicLoad(b, u, v, p);
+      first.force.push_back(load.force);
+      first.torque.push_back(load.torque);
+    }
+    std::vector<RigidMotion> motions = Motions();
+    const CutCellFreeBodies::Outcome o =
+        free_bodies_->Couple(*flow_, dt, bodies_, first, motions, u, v, p,
+                             constants_.step_tolerance, constants_.step_max_iterations);
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      velocities_[b] = motions[b].velocity;
+      rotations_[b] = motions[b].angular_velocity;
+    }
+    flow_->SetBodyMotion(motions);
+    report.Set("rigid_mode_iterations", o.unit_iterations);
+    report.Set("collision_contacts", o.contacts);
+  }
+  if (moving_) FillBodies(u, v);
   for (std::size_t b = 0; b < particles.size(); ++b) {
     ParticleState& s = particles[b];
     const FixedBody& body = bodies_[b];
     s.position = body.centre;
     s.angle = body.angle;
-    const CutCellStokes::BodyLoad load =
-        flow_->Load(static_cast<int>(b), s.position, u, v, p, fu_.data(), fv_.data());
-    s.force = load.force + body.shape.Mass(fluid_density_) * buoyancy_acceleration_ +
-              body.shape.Area() * body_force_;
-    // The viscous form is eta grad u : grad v, whose traction on a rigid body differs from the
-    // stress's in the torque by 2 eta omega V (header).
-    s.torque = load.torque - 2.0 * viscosity_ * rotations_[b] * body.shape.Area();
+    const CutCellStokes::BodyLoad load = HydrodynamicLoad(b, u, v, p);
+    s.force = load.force;
+    s.torque = load.torque;
     s.velocity = velocities_[b];
     s.angular_velocity = rotations_[b];
   }
+}
+
+// F_h and T_h of body b (header), at its present motion.
+CutCellStokes::BodyLoad CutCellStep::HydrodynamicLoad(std::size_t b, const double* u,
+                                                      const double* v, const double* p) const {
+  const FixedBody& body = bodies_[b];
+  CutCellStokes::BodyLoad load =
+      flow_->Load(static_cast<int>(b), body.centre, u, v, p, fu_.data(), fv_.data());
+  load.force = load.force + body.shape.Mass(fluid_density_) * buoyancy_acceleration_ +
+               body.shape.Area() * body_force_;
+  // The viscous form is eta grad u : grad v, whose traction on a rigid body differs from the
+  // stress's in the torque by 2 eta omega V (header).
+  load.torque -= 2.0 * viscosity_ * rotations_[b] * body.shape.Area();
+  return load;
 }
 
 }  // namespace dlmfd

@@ -110,18 +110,12 @@ void RequireCoupledInStokes(const Params& params, std::size_t p) {
 
 std::optional<InvalidParameter> CutCellObstacle(const Params& params) {
   const std::string with = " with particle_mesh.kind = \"cut_cell\"";
-  for (std::size_t p = 0; p < params.particles.size(); ++p) {
-    const Motion motion = params.particles[p].motion;
-    if (motion != Motion::kFree) continue;
-    return InvalidParameter("particles." + std::to_string(p) + ".motion", "\"free\"",
-                            "\"fixed\" or \"prescribed\"" + with +
-                                " (cut cells hold bodies at rest or in a given motion only, so "
-                                "far), or particle_mesh.kind = \"collocation\" for free particles");
-  }
   if (!params.fluid.IsNewtonian()) {
     for (std::size_t p = 0; p < params.particles.size(); ++p) {
-      if (params.particles[p].motion == Motion::kFixed) continue;
-      return InvalidParameter("particles." + std::to_string(p) + ".motion", "\"prescribed\"",
+      const Motion motion = params.particles[p].motion;
+      if (motion == Motion::kFixed) continue;
+      return InvalidParameter("particles." + std::to_string(p) + ".motion",
+                              motion == Motion::kFree ? "\"free\"" : "\"prescribed\"",
                               "\"fixed\"" + with +
                                   " and a polymer (cut cells hold the polymer around bodies at "
                                   "rest only, so far), or particle_mesh.kind = \"collocation\"");
@@ -151,9 +145,13 @@ void ValidateParticles(const Params& params, const Grid& grid) {
   if (params.particles.empty()) return;
   RequireIndexableGrid(params, grid);
   RequireCutCellScene(params);
+  // Cut cells have no multiplier: a free body of any density (particles/cut_cell_free_bodies.h).
+  const bool multipliers = params.particle_mesh.kind != ParticleMeshKind::kCutCell;
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
-    RequireNotLighterThanLiquid(params, p);
-    RequireCoupledInStokes(params, p);
+    if (multipliers) {
+      RequireNotLighterThanLiquid(params, p);
+      RequireCoupledInStokes(params, p);
+    }
     if (params.particle_mesh.kind == ParticleMeshKind::kRing) {
       RequireRingMeshShape(Shape::Of(params.particles[p]), p);
     }

@@ -235,8 +235,8 @@ void AddParticleMeshAndCollisions(std::vector<SceneKey<P>>& keys) {
   keys.push_back(FromPreset(ChoiceKey<ParticleMeshKind, P>(
       "particle_mesh.kind", [](auto& p) -> auto& { return p.particle_mesh.kind; },
       "the multiplier points of (37): the paper's ring mesh, collocation points on the true "
-      "circle, or no multipliers (cut cells: fixed or prescribed bodies, fixed ones only with a "
-      "polymer, any sides); "
+      "circle, or no multipliers (cut cells: fixed, prescribed or free disks, fixed ones only with "
+      "a polymer, any sides); "
       "`auto` picks cut cells for fixed disks (in a Newtonian, Oldroyd-B or Giesekus liquid) over "
       "a run of at least " +
           std::to_string(kMinCutCellSteps) +
@@ -451,7 +451,8 @@ std::vector<SceneKey<Q>> MakeParticleKeys() {
   keys.push_back(
       Allowed(RealKey<Q>(
                   "density", [](auto& q) -> auto& { return q.density; }, kRangePositive, "rho_d"),
-              ">= `fluid.density` for a free particle (equal: neutrally buoyant)"));
+              ">= `fluid.density` for a free particle (equal: neutrally buoyant), any with "
+              "`particle_mesh.kind = \"cut_cell\"`"));
   keys.push_back(VectorKey<Q>(
       "velocity", [](auto& q) -> auto& { return q.velocity; }, "initial (or prescribed) velocity"));
   keys.push_back(RealKey<Q>(

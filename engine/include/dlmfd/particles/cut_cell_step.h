@@ -10,8 +10,11 @@
 // (fluid.body_force); eta the whole viscosity (a Newtonian liquid, splitting.alpha = 1: the rules
 // of particles/particle_rules.h). The advection step (34) then runs on the whole grid as without
 // particles, and there is no step (36)-(38): fixed bodies stay, prescribed ones move at their
-// given U and omega. A prescribed body is cut at t_{n+1} (X^{n+1} = X^n + dt U, theta^{n+1} =
-// theta^n + dt omega; step (33) is implicit), so the geometry, the forms and the capacitance
+// given U and omega, free ones by Newton's law, implicit in their velocities through step (33)
+// (particles/cut_cell_free_bodies.h: 3 more Stokes solves a free body, the paper's collision
+// forces (14)-(15)). A moving body is cut at t_{n+1} (X^{n+1} = X^n + dt U, theta^{n+1} =
+// theta^n + dt omega, with a free body's U^n, omega^n; step (33) is implicit), so the geometry,
+// the forms and the capacitance
 // matrix are rebuilt every step (the chords move with the body even where the cut set does not
 // change), at the cost of the band (CutCellStokes::Recut: the uniform forms, the fast solvers and
 // the capacitance matrix's fast solves of the rows that stay in the band are kept), and the
@@ -47,7 +50,9 @@
 // carries A out of the body there.) The velocity's ghost penalty grows with the polymer's elastic
 // share (CutCellConstants::ghost_velocity_elastic): with the Newtonian one the confined cylinder
 // blew up at Wi = 0.6, R/h = 24. Report columns:
-// stokes_iterations (Uzawa / CG), stokes_residual (the saddle point's relative residual).
+// stokes_iterations (Uzawa / CG), stokes_residual (the saddle point's relative residual); with
+// free bodies rigid_mode_iterations (the unit solves' Uzawa iterations, all together) and
+// collision_contacts.
 #pragma once
 
 #include <memory>
@@ -58,6 +63,7 @@
 #include "dlmfd/core/params.h"
 #include "dlmfd/core/state.h"
 #include "dlmfd/fluid/boundary_data.h"
+#include "dlmfd/particles/cut_cell_free_bodies.h"
 #include "dlmfd/particles/cut_cell_geometry.h"
 #include "dlmfd/particles/cut_cell_polymer_force.h"
 #include "dlmfd/particles/cut_cell_stokes.h"
@@ -75,10 +81,10 @@ class CutCellStep {
 
   // A step of dt. u, v, p: u^n and the last pressure on entry (the warm start), u^{n+1/4},
   // p^{n+1/4} on return with the Dirichlet data of `data` (its time set to t_{n+1}); particles get
-  // F_h and T_h (prescribed ones also X^{n+1}, theta^{n+1}). The saddle point of (rho/dt) is
+  // F_h and T_h (prescribed ones also X^{n+1}, theta^{n+1}; free ones also U^{n+1}, omega^{n+1}). The saddle point of (rho/dt) is
   // built for the first call's dt and rebuilt when a call brings another, and every step when a
-  // body is prescribed. Throws SolverNotConverged, and ParticlesOverlap when a prescribed body
-  // reaches a side that is not periodic.
+  // body moves. Throws SolverNotConverged, and ParticlesOverlap when a moving body reaches a side
+  // that is not periodic or two bodies overlap.
   // polymer: the polymer's whole-mesh force of (33) and its stress (core/node_force.h; absent: a
   // Newtonian liquid).
   void Solve(double dt, const BoundaryData& data, std::vector<ParticleState>& particles, double* u,
@@ -108,6 +114,9 @@ class CutCellStep {
   // The geometries cut anew (in place) at the bodies' places, and the nodes marked for them.
   void CutBodies();
   std::vector<RigidMotion> Motions() const;
+  // F_h and T_h of body b at its present motion (header), from the step's solution.
+  CutCellStokes::BodyLoad HydrodynamicLoad(std::size_t b, const double* u, const double* v,
+                                           const double* p) const;
   // The rigid motion of the nearest body at every node without fluid in its support.
   void FillBodies(double* u, double* v) const;
   // solid_nodes_, inside_nodes_ and band_ of the present geometries.
@@ -116,7 +125,8 @@ class CutCellStep {
   std::vector<FixedBody> bodies_;  // at the last step's end (X^{n+1})
   std::vector<Vec2> velocities_;   // U of each body (0: fixed)
   std::vector<double> rotations_;  // omega of each body
-  bool moving_ = false;            // some body is prescribed
+  bool moving_ = false;            // some body is prescribed or free
+  std::unique_ptr<CutCellFreeBodies> free_bodies_;  // some body is free
   Grid grid_;
   std::vector<std::unique_ptr<CutCellGeometry>> geometries_;  // SW-NE, then NW-SE with "both"
   std::vector<const CutCellGeometry*> geometry_views_;  // the same, read-only (moved in place)

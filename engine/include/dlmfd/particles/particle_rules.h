@@ -5,15 +5,18 @@
 //
 // - A free particle is not lighter than the liquid: its excess mass (rho_d - rho_L) V in (36)-(38)
 //   is positive, or zero (neutrally buoyant: the rigid-mode projector handles it); a negative one
-//   makes the multiplier problem (37) indefinite, and its solver is CG.
-// - With splitting.constraint = "viscous", no free particle is neutrally buoyant.
+//   makes the multiplier problem (37) indefinite, and its solver is CG. (Not with cut cells, which
+//   have no multiplier: particles/cut_cell_free_bodies.h.)
+// - With splitting.constraint = "viscous", no free particle is neutrally buoyant (nor this with
+//   cut cells).
 // - The ring mesh (particle_mesh.kind = "ring") is a disk's: other shapes need collocation points.
-// - Cut cells (particle_mesh.kind = "cut_cell", particles/cut_cell_step.h) hold fixed and
-//   prescribed particles only (no free ones), fixed ones only in a liquid with a polymer, with all
-//   the viscosity in step (33) (splitting.beta = 0: the advection step (34) does not see the
-//   bodies), and without domain.flow_rate (the cut-cell step has no flux control; a body force
-//   drives a periodic box). Periodic sides and boxes without an outflow side are supported. Free
-//   particles and the polymer around moving bodies are not supported yet.
+// - Cut cells (particle_mesh.kind = "cut_cell", particles/cut_cell_step.h) hold fixed, prescribed
+//   and free disks (particles/cut_cell_free_bodies.h), fixed ones only in a liquid with a polymer,
+//   with all the viscosity in step (33) (splitting.beta = 0: the advection step (34) does not see
+//   the bodies), and without domain.flow_rate (the cut-cell step has no flux control; a body force
+//   drives a periodic box). Periodic sides and boxes without an outflow side are supported. The
+//   polymer around moving bodies and other shapes than disks (the scene's key particles.N.shape)
+//   are not supported yet.
 // - The velocity grid has at most 2^32 - 1 nodes: E and E^T store 32-bit node indices.
 // - At t = 0 every disk lies inside the domain (crossing periodic sides only) and no two disks
 //   overlap (centre distances by the nearest periodic image).

@@ -1,0 +1,89 @@
+// Free rigid bodies cut out of the mesh (particle_mesh.kind = "cut_cell", particles/cut_cell_step.h;
+// issue 33 point 2; docs/evidence/cut_cell_boundary.md, "A free body"): Newton's law over a step,
+// implicit in the bodies' velocities through the fluid.
+//
+// For the step's cut geometry (the bodies at X^{n+1}) and load, step (33) is linear in the
+// boundary value g = V_b + omega_b x (x - X_b) that Nitsche's terms impose on each body's chords,
+// and so is the hydrodynamic force and torque read from its residual (CutCellStokes::Load):
+//   F_h(V) = F_h(V*) + K (V - V*),   V = (U_1, omega_1, ..., U_N, omega_N) over the free bodies,
+// with column s of K the force and torque on every free body of the solve with g = e_s on one
+// body (a unit translation along x or y, or a unit rotation), no load and homogeneous Dirichlet
+// data (velocity sides read as walls), plus -2 eta V_b on the rotation's own torque (the
+// traction of eta grad u : grad v, particles/cut_cell_step.h). V* = V^n is the motion of the
+// step's first solve. Newton's law over the step,
+//   M_b (U_b - U_b^n) / dt = F_h,b(V) + M_b g + F'_b,   I_b (omega_b - omega_b^n) / dt = T_h,b(V),
+// is then a linear system of 3N unknowns (the bodies coupled through the liquid),
+//   (M / dt - K) (V - V*) = F_h(V*) + M g + F' + M (V^n - V*) / dt,
+// and the step's solution is the first solve's plus sum_s (V - V*)_s times the unit solves' (the
+// same as a solve with g = V up to the solves' tolerance, which enters times V - V*, small when
+// the motion is smooth). F_h holds the liquid's inertia between the line where it is read and the
+// body ((rho_L / dt) M_l (u^{n+1/4} - u^n) there, and the pressure the body's acceleration
+// makes), so K holds the added mass: M / dt - K is positive definite for any body density, and
+// the update stays stable for light and neutrally buoyant bodies, where an explicit force then
+// velocity update is not (the added-mass instability at rho_p / rho_f near or below 1).
+// F' are the collision forces (14)-(15) of the paper (particles/collision_forces.h) at X^{n+1},
+// on the free bodies only (fixed and prescribed ones do not feel them; they push the free ones).
+// M = rho_p V, I = rho_p V R^2 / 2 (a disk); g the gravity (F_h holds the buoyancy -rho_L V g).
+// The position: X^{n+1} = X^n + dt U^n, theta^{n+1} = theta^n + dt omega^n (the cut at t_{n+1}
+// must be known before the step: first order in the transient, exact at a terminal velocity).
+// Cost: 1 + 3N Stokes solves a step, the 3N sharing the step's operators and factorisations and
+// starting from the step's Galerkin start (particles/pressure_correction_basis.h) from their last
+// step's pressure. Disks only (an ellipse's cut is not measured: the scene refuses it).
+#pragma once
+
+#include <vector>
+
+#include "dlmfd/core/grid.h"
+#include "dlmfd/core/params.h"
+#include "dlmfd/fluid/boundary_data.h"
+#include "dlmfd/particles/collision_forces.h"
+#include "dlmfd/particles/cut_cell_geometry.h"
+#include "dlmfd/particles/cut_cell_stokes.h"
+
+namespace dlmfd {
+
+class CutCellFreeBodies {
+ public:
+  CutCellFreeBodies(const Params& params, const Grid& grid);
+
+  bool Any() const { return !free_.empty(); }
+  bool IsFree(std::size_t body) const { return is_free_[body] != 0; }
+
+  // The hydrodynamic load of the step's first solve on each body (F_h, T_h as the step reports
+  // them, at the motion the solve imposed), indexed as the bodies.
+  struct Loads {
+    std::vector<Vec2> force;
+    std::vector<double> torque;
+  };
+  struct Outcome {
+    int unit_iterations = 0;  // the unit solves' Uzawa iterations, all together
+    int contacts = 0;         // active collision contacts at X^{n+1}
+  };
+  // After the step's first solve (u, v, p: its solution, with every body's motion `motions`, the
+  // free ones at V*): the free bodies' velocities and rotations of t_{n+1} into `motions`, the
+  // solution into u, v, p (inactive nodes 0, as the solve leaves them). bodies: at X^{n+1}, as the
+  // flow is cut. Throws SolverNotConverged.
+  Outcome Couple(CutCellStokes& flow, double dt, const std::vector<FixedBody>& bodies,
+                 const Loads& first, std::vector<RigidMotion>& motions, double* u, double* v,
+                 double* p, double tolerance, int max_iterations);
+
+  // The smallest surface gap between two bodies at these centres (NaN for fewer than two), for
+  // the step's overlap check.
+  double PairGap(const std::vector<FixedBody>& bodies);
+
+ private:
+  Grid grid_;
+  double viscosity_;
+  Vec2 gravity_;
+  std::vector<std::size_t> free_;      // the free bodies' indices
+  std::vector<unsigned char> is_free_;  // per body
+  std::vector<double> mass_, inertia_;  // per body (free ones)
+  std::vector<double> area_;            // per body
+  BoundaryData homogeneous_;            // the Dirichlet sides' data read as walls: zero
+  CollisionForces collisions_;
+  std::vector<Vec2> positions_, contact_forces_;
+  // The unit solves' solutions (3 per free body), kept: their pressure is the next step's start.
+  std::vector<std::vector<double>> unit_u_, unit_v_, unit_p_;
+};
+
+}  // namespace dlmfd

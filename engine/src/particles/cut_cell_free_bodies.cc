@@ -1,0 +1,139 @@
+// Newton's law of free bodies cut out of the mesh; see particles/cut_cell_free_bodies.h.
+#include "dlmfd/particles/cut_cell_free_bodies.h"
+
+#include <Eigen/LU>
+
+#include "dlmfd/particles/shape.h"
+
+namespace dlmfd {
+namespace {
+
+// The scene's sides with every Dirichlet side's data zero (a wall): the unit solves' data.
+DomainParams Homogeneous(DomainParams domain) {
+  for (BoundarySide& side : domain.sides) {
+    if (side.type == SideType::kVelocity) side = BoundarySide{};
+  }
+  return domain;
+}
+
+std::vector<double> Radii(const Params& params) {
+  std::vector<double> radii;
+  for (const ParticleParams& q : params.particles) radii.push_back(q.Radius());
+  return radii;
+}
+
+}  // namespace
+
+CutCellFreeBodies::CutCellFreeBodies(const Params& params, const Grid& grid)
+    : grid_(grid),
+      viscosity_(params.fluid.ImplicitViscosity(grid.h)),
+      gravity_(params.gravity),
+      homogeneous_(grid, Homogeneous(params.domain)),
+      collisions_(params, grid, Radii(params)) {
+  for (std::size_t b = 0; b < params.particles.size(); ++b) {
+    const ParticleParams& q = params.particles[b];
+    const Shape shape = Shape::Of(q);
+    const bool free = q.motion == Motion::kFree;
+    is_free_.push_back(free ? 1 : 0);
+    if (free) free_.push_back(b);
+    mass_.push_back(shape.Mass(q.density));
+    inertia_.push_back(shape.MomentOfInertia(q.density));
+    area_.push_back(shape.Area());
+  }
+  const std::size_t units = 3 * free_.size();
+  unit_u_.assign(units, std::vector<double>(grid.NodeCount(), 0.0));
+  unit_v_.assign(units, std::vector<double>(grid.NodeCount(), 0.0));
+  unit_p_.assign(units, std::vector<double>(grid.Coarse().NodeCount(), 0.0));
+  positions_.resize(params.particles.size());
+  contact_forces_.resize(params.particles.size());
+}
+
+double CutCellFreeBodies::PairGap(const std::vector<FixedBody>& bodies) {
+  for (std::size_t b = 0; b < bodies.size(); ++b) positions_[b] = bodies[b].centre;
+  return collisions_.Gaps(positions_).pair;
+}
+
+CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(CutCellStokes& flow, double dt,
+                                                     const std::vector<FixedBody>& bodies,
+                                                     const Loads& first,
+                                                     std::vector<RigidMotion>& motions, double* u,
+                                                     double* v, double* p, double tolerance,
+                                                     int max_iterations) {
+  Outcome outcome;
+  const std::size_t nf = free_.size(), units = 3 * nf;
+  const std::vector<RigidMotion> start = motions;  // V*
+  // K: the force and torque on every free body of each unit motion.
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(units),
+                                            static_cast<Eigen::Index>(units));
+  for (std::size_t s = 0; s < units; ++s) {
+    const std::size_t body = free_[s / 3];
+    const int mode = static_cast<int>(s % 3);  // 0: U_x, 1: U_y, 2: omega
+    std::vector<RigidMotion> unit = motions;
+    for (RigidMotion& m : unit) {
+      m.velocity = Vec2::Zero();
+      m.angular_velocity = 0.0;
+    }
+    if (mode < 2) {
+      unit[body].velocity[mode] = 1.0;
+    } else {
+      unit[body].angular_velocity = 1.0;
+    }
+    flow.SetBodyMotion(unit);
+    outcome.unit_iterations += flow.Solve(homogeneous_, nullptr, nullptr, unit_u_[s].data(),
+                                          unit_v_[s].data(), unit_p_[s].data(), tolerance,
+                                          max_iterations)
+                                   .iterations;
+    for (std::size_t c = 0; c < nf; ++c) {
+      const CutCellStokes::BodyLoad load =
+          flow.Load(static_cast<int>(free_[c]), bodies[free_[c]].centre, unit_u_[s].data(),
+                    unit_v_[s].data(), unit_p_[s].data(), nullptr, nullptr);
+      const auto col = static_cast<Eigen::Index>(s);
+      k(static_cast<Eigen::Index>(3 * c), col) = load.force.x();
+      k(static_cast<Eigen::Index>(3 * c + 1), col) = load.force.y();
+      k(static_cast<Eigen::Index>(3 * c + 2), col) = load.torque;
+    }
+  }
+  for (std::size_t c = 0; c < nf; ++c) {  // the stress's torque of a turning body
+    const auto r = static_cast<Eigen::Index>(3 * c + 2);
+    k(r, r) -= 2.0 * viscosity_ * area_[free_[c]];
+  }
+  flow.SetBodyMotion(start);
+  // The collision forces at X^{n+1}.
+  for (std::size_t b = 0; b < bodies.size(); ++b) positions_[b] = bodies[b].centre;
+  outcome.contacts = collisions_.Compute(positions_, contact_forces_);
+  // (M / dt - K) dV = F_h(V*) + M g + F' (V* = V^n).
+  Eigen::MatrixXd a = -k;
+  Eigen::VectorXd rhs(static_cast<Eigen::Index>(units));
+  for (std::size_t c = 0; c < nf; ++c) {
+    const std::size_t b = free_[c];
+    const auto r = static_cast<Eigen::Index>(3 * c);
+    const double m_dt = mass_[b] / dt, i_dt = inertia_[b] / dt;
+    a(r, r) += m_dt;
+    a(r + 1, r + 1) += m_dt;
+    a(r + 2, r + 2) += i_dt;
+    const Vec2 f = first.force[b] + mass_[b] * gravity_ + contact_forces_[b];
+    rhs[r] = f.x();
+    rhs[r + 1] = f.y();
+    rhs[r + 2] = first.torque[b];
+  }
+  const Eigen::VectorXd dv = a.partialPivLu().solve(rhs);
+  // The step's solution: the first solve's plus the unit solves' times V - V*.
+  const std::size_t n = grid_.NodeCount(), np = grid_.Coarse().NodeCount();
+  for (std::size_t s = 0; s < units; ++s) {
+    const double w = dv[static_cast<Eigen::Index>(s)];
+    for (std::size_t i = 0; i < n; ++i) {
+      u[i] += w * unit_u_[s][i];
+      v[i] += w * unit_v_[s][i];
+    }
+    for (std::size_t i = 0; i < np; ++i) p[i] += w * unit_p_[s][i];
+  }
+  for (std::size_t c = 0; c < nf; ++c) {
+    const std::size_t b = free_[c];
+    const auto r = static_cast<Eigen::Index>(3 * c);
+    motions[b].velocity += Vec2(dv[r], dv[r + 1]);
+    motions[b].angular_velocity += dv[r + 2];
+  }
+  return outcome;
+}
+
+}  // namespace dlmfd
