@@ -8,6 +8,10 @@
 #   fixed              cut cells, the disk fixed and the walls moving at -U: the towed disk's
 #                      flow in its frame (Galileo), as bench/towed_disk.sh runs it;
 #   towed_collocation  the default collocation points, the disk prescribed;
+#   free               cut cells, the disk free (particles/cut_cell_free_bodies.h: 1 + 3 Stokes
+#                      solves a step), twice the liquid's density, starting at U and pulled along
+#                      the channel by gravity with the towed disk's drag at D/h = 20 (12.35) as
+#                      its weight less buoyancy, so that it moves as the towed one;
 #   towed_before       the towed disk with the solver BEFORE, when set (a copy of an earlier build:
 #                      the cost of a change measured in the same run).
 # Each runs FIRST and FIRST + STEPS steps from rest on one thread with no output; printed: the CPU
@@ -33,9 +37,10 @@ declare -A KEYS=(
     --set domain.boundary.bottom.type="velocity" --set domain.boundary.bottom.value=[-1,0]
     --set domain.boundary.top.type="velocity" --set domain.boundary.top.value=[-1,0]'
   [towed_collocation]='--set particle_mesh.kind="collocation"'
+  [free]='--set particles.0.motion="free" --set particles.0.density=2 --set gravity=[15.724305,0]'
   [towed_before]=''
 )
-CONFIGURATIONS=(towed fixed towed_collocation)
+CONFIGURATIONS=(towed fixed towed_collocation free)
 [[ -n "${BEFORE:-}" ]] && CONFIGURATIONS+=(towed_before)
 
 # CPU seconds (user + system) of a run of n steps of configuration $1 at D/h $2.
