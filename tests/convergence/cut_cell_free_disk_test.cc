@@ -52,7 +52,8 @@ FaxenFallSpeed SettleFaxen(const std::string& h, bool light) {
   std::vector<double> speed;
   while (sim.state().time < kFaxenEnd - 0.5 * kFaxenDt) {
     sim.Step();
-    if (sim.state().time > kFaxenFrom - 0.5 * kFaxenDt) speed.push_back(sim.state().particles[0].velocity.y());
+    if (sim.state().time > kFaxenFrom - 0.5 * kFaxenDt)
+      speed.push_back(sim.state().particles[0].velocity.y());
   }
   FaxenFallSpeed f;
   for (double s : speed) f.mean += s / static_cast<double>(speed.size());
@@ -74,8 +75,9 @@ TEST(CutCellFreeDisk, FaxensSettlingDiskAtSecondOrder) {
 TEST(CutCellFreeDisk, LightDiskRisesAtTheHeavyOnesSpeed) {
   const FaxenFallSpeed heavy = SettleFaxen("0.02", false), light = SettleFaxen("0.02", true);
   const double difference = light.mean / -heavy.mean - 1.0;
-  std::printf("heavy: U = %.7f (half range %.1e); light: U = %.7f (%.1e); light / heavy - 1 = %.1e\n",
-              -heavy.mean, heavy.half_range, light.mean, light.half_range, difference);
+  std::printf(
+      "heavy: U = %.7f (half range %.1e); light: U = %.7f (%.1e); light / heavy - 1 = %.1e\n",
+      -heavy.mean, heavy.half_range, light.mean, light.half_range, difference);
   EXPECT_GT(light.mean, 0.0);
   EXPECT_LT(std::abs(difference), heavy.half_range);
 }

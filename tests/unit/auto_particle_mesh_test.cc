@@ -132,12 +132,10 @@ TEST(AutoParticleMesh, AnUnmeasuredPolymerKeepsCollocationPoints) {
   EXPECT_EQ(ParseScene(kFixedDisk, named).particle_mesh.kind, ParticleMeshKind::kCutCell);
 }
 
-// Rules 3 and 5: each scene the cut cells refuse resolves to collocation points, naming the key
-// that RequireCutCellScene names when the scene asks for cut cells (one predicate,
-// CutCellObstacle).
+// Rule 5: each scene the cut cells refuse resolves to collocation points, naming the key that
+// RequireCutCellScene names when the scene asks for cut cells (one predicate, CutCellObstacle).
 TEST(AutoParticleMesh, EveryCutCellRefusalResolvesToCollocation) {
   const std::vector<std::pair<std::vector<SceneOverride>, std::string>> refused = {
-      {{{"particles.0.motion", "\"free\""}, {"particles.0.density", "1.5"}}, "particles.0.motion"},
       {{{"splitting.constraint", "\"paper\""}}, "splitting.beta"},  // beta follows: 1/2
       {{{"domain.flow_rate", "0.05"}}, "domain.flow_rate"},
   };
@@ -145,10 +143,7 @@ TEST(AutoParticleMesh, EveryCutCellRefusalResolvesToCollocation) {
     const std::string scene = key == "domain.flow_rate" ? PeriodicChannel() : kFixedDisk;
     const Params p = ParseScene(scene, overrides);
     EXPECT_EQ(p.particle_mesh.kind, ParticleMeshKind::kCollocation) << key;
-    EXPECT_THAT(MeshChoice(p).rule, key == "particles.0.motion"
-                                        ? HasSubstr("particles.0 moves")
-                                        : HasSubstr("cut cells cannot run " + key))
-        << key;
+    EXPECT_THAT(MeshChoice(p).rule, HasSubstr("cut cells cannot run " + key)) << key;
     std::vector<SceneOverride> named = overrides;
     named.push_back({"particle_mesh.kind", "\"cut_cell\""});
     try {
@@ -160,11 +155,20 @@ TEST(AutoParticleMesh, EveryCutCellRefusalResolvesToCollocation) {
   }
 }
 
-// Rule 3: a body in prescribed motion, which cut cells can run, keeps the collocation points.
-TEST(AutoParticleMesh, APrescribedBodyKeepsCollocationPoints) {
-  const Params p = ParseScene(kFixedDisk, {{"particles.0.motion", "\"prescribed\""}});
-  EXPECT_EQ(p.particle_mesh.kind, ParticleMeshKind::kCollocation);
-  EXPECT_THAT(MeshChoice(p).rule, HasSubstr("particles.0 moves"));
+// Rule 3: a body in prescribed motion or a free one, which cut cells can run (named, they take
+// it), keeps the collocation points.
+TEST(AutoParticleMesh, AMovingBodyKeepsCollocationPoints) {
+  const std::vector<std::vector<SceneOverride>> moving = {
+      {{"particles.0.motion", "\"prescribed\""}},
+      {{"particles.0.motion", "\"free\""}, {"particles.0.density", "1.5"}}};
+  for (const std::vector<SceneOverride>& overrides : moving) {
+    const Params p = ParseScene(kFixedDisk, overrides);
+    EXPECT_EQ(p.particle_mesh.kind, ParticleMeshKind::kCollocation);
+    EXPECT_THAT(MeshChoice(p).rule, HasSubstr("particles.0 moves"));
+    std::vector<SceneOverride> named = overrides;
+    named.push_back({"particle_mesh.kind", "\"cut_cell\""});
+    EXPECT_EQ(ParseScene(kFixedDisk, named).particle_mesh.kind, ParticleMeshKind::kCutCell);
+  }
 }
 
 // Rule 5: on each side of the run length from which the set-up pays.

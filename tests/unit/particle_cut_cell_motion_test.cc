@@ -30,8 +30,8 @@
 #include "dlmfd/core/state.h"
 #include "dlmfd/fluid/boundary_data.h"
 #include "dlmfd/particles/cut_cell_step.h"
-#include "dlmfd/particles/shape.h"
 #include "dlmfd/particles/particle_rules.h"
+#include "dlmfd/particles/shape.h"
 #include "dlmfd/scene/scene_file.h"
 
 namespace dlmfd {

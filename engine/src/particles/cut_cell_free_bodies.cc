@@ -63,8 +63,8 @@ CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(CutCellStokes& flow, double
   const std::size_t nf = free_.size(), units = 3 * nf;
   const std::vector<RigidMotion> start = motions;  // V*
   // K: the force and torque on every free body of each unit motion.
-  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(units),
-                                            static_cast<Eigen::Index>(units));
+  Eigen::MatrixXd k =
+      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(units), static_cast<Eigen::Index>(units));
   for (std::size_t s = 0; s < units; ++s) {
     const std::size_t body = free_[s / 3];
     const int mode = static_cast<int>(s % 3);  // 0: U_x, 1: U_y, 2: omega
@@ -79,10 +79,10 @@ CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(CutCellStokes& flow, double
       unit[body].angular_velocity = 1.0;
     }
     flow.SetBodyMotion(unit);
-    outcome.unit_iterations += flow.Solve(homogeneous_, nullptr, nullptr, unit_u_[s].data(),
-                                          unit_v_[s].data(), unit_p_[s].data(), tolerance,
-                                          max_iterations)
-                                   .iterations;
+    outcome.unit_iterations +=
+        flow.Solve(homogeneous_, nullptr, nullptr, unit_u_[s].data(), unit_v_[s].data(),
+                   unit_p_[s].data(), tolerance, max_iterations)
+            .iterations;
     for (std::size_t c = 0; c < nf; ++c) {
       const CutCellStokes::BodyLoad load =
           flow.Load(static_cast<int>(free_[c]), bodies[free_[c]].centre, unit_u_[s].data(),

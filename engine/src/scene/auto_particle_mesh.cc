@@ -45,9 +45,10 @@ std::optional<Pick> NotDisks(const Params& p) {
   return std::nullopt;
 }
 
-// 3. A particle that moves: cut cells refuse free ones, and rebuild their forms and capacitance
-// matrix every step for prescribed ones, 30 CPU ms a step at D/h = 20 against 0.7 for a fixed body
-// (docs/evidence/cut_cell_boundary.md, "A body in prescribed motion"): not yet affordable.
+// 3. A particle that moves: cut cells recut the band and refactorise the capacitance matrix every
+// step, 5.5 times a fixed body's step at D/h = 20 (docs/evidence/cut_cell_boundary.md, "A body in
+// prescribed motion"), and a free body adds three Stokes solves a step ("A free body"): not yet
+// affordable.
 std::optional<Pick> MovingParticles(const Params& p) {
   for (std::size_t i = 0; i < p.particles.size(); ++i) {
     if (p.particles[i].motion == Motion::kFixed) continue;

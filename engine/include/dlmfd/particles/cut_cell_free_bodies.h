@@ -1,6 +1,6 @@
-// Free rigid bodies cut out of the mesh (particle_mesh.kind = "cut_cell", particles/cut_cell_step.h;
-// issue 33 point 2; docs/evidence/cut_cell_boundary.md, "A free body"): Newton's law over a step,
-// implicit in the bodies' velocities through the fluid.
+// Free rigid bodies cut out of the mesh (particle_mesh.kind = "cut_cell",
+// particles/cut_cell_step.h; issue 33 point 2; docs/evidence/cut_cell_boundary.md, "A free body"):
+// Newton's law over a step, implicit in the bodies' velocities through the fluid.
 //
 // For the step's cut geometry (the bodies at X^{n+1}) and load, step (33) is linear in the
 // boundary value g = V_b + omega_b x (x - X_b) that Nitsche's terms impose on each body's chords,
@@ -75,7 +75,7 @@ class CutCellFreeBodies {
   Grid grid_;
   double viscosity_;
   Vec2 gravity_;
-  std::vector<std::size_t> free_;      // the free bodies' indices
+  std::vector<std::size_t> free_;       // the free bodies' indices
   std::vector<unsigned char> is_free_;  // per body
   std::vector<double> mass_, inertia_;  // per body (free ones)
   std::vector<double> area_;            // per body

@@ -81,12 +81,11 @@ class CutCellStep {
 
   // A step of dt. u, v, p: u^n and the last pressure on entry (the warm start), u^{n+1/4},
   // p^{n+1/4} on return with the Dirichlet data of `data` (its time set to t_{n+1}); particles get
-  // F_h and T_h (prescribed ones also X^{n+1}, theta^{n+1}; free ones also U^{n+1}, omega^{n+1}). The saddle point of (rho/dt) is
-  // built for the first call's dt and rebuilt when a call brings another, and every step when a
-  // body moves. Throws SolverNotConverged, and ParticlesOverlap when a moving body reaches a side
-  // that is not periodic or two bodies overlap.
-  // polymer: the polymer's whole-mesh force of (33) and its stress (core/node_force.h; absent: a
-  // Newtonian liquid).
+  // F_h and T_h (prescribed ones also X^{n+1}, theta^{n+1}; free ones also U^{n+1}, omega^{n+1}).
+  // The saddle point of (rho/dt) is built for the first call's dt and rebuilt when a call brings
+  // another, and every step when a body moves. Throws SolverNotConverged, and ParticlesOverlap when
+  // a moving body reaches a side that is not periodic or two bodies overlap. polymer: the polymer's
+  // whole-mesh force of (33) and its stress (core/node_force.h; absent: a Newtonian liquid).
   void Solve(double dt, const BoundaryData& data, std::vector<ParticleState>& particles, double* u,
              double* v, double* p, StepReport& report, const NodeForce& polymer = {});
   // What the step keeps of earlier steps beyond the state, for a checkpoint (core/state.h): p^{n-1}
@@ -122,10 +121,10 @@ class CutCellStep {
   // solid_nodes_, inside_nodes_ and band_ of the present geometries.
   void MarkNodes();
 
-  std::vector<FixedBody> bodies_;  // at the last step's end (X^{n+1})
-  std::vector<Vec2> velocities_;   // U of each body (0: fixed)
-  std::vector<double> rotations_;  // omega of each body
-  bool moving_ = false;            // some body is prescribed or free
+  std::vector<FixedBody> bodies_;                   // at the last step's end (X^{n+1})
+  std::vector<Vec2> velocities_;                    // U of each body (0: fixed)
+  std::vector<double> rotations_;                   // omega of each body
+  bool moving_ = false;                             // some body is prescribed or free
   std::unique_ptr<CutCellFreeBodies> free_bodies_;  // some body is free
   Grid grid_;
   std::vector<std::unique_ptr<CutCellGeometry>> geometries_;  // SW-NE, then NW-SE with "both"

@@ -16,8 +16,8 @@
 //   1. No particles: "collocation" (nothing to hold; the kind is not used).
 //   2. A particle that is not a disk: "collocation" (the cut cells were measured on disks only;
 //      an ellipse keeps the collocation points its key names).
-//   3. A particle that is not fixed: "collocation" (cut cells refuse free ones and rebuild every
-//      step for prescribed ones, some 40 times a fixed body's step).
+//   3. A particle that is not fixed: "collocation" (cut cells recut every step, 5.5 times a fixed
+//      body's step, and a free body adds three Stokes solves a step).
 //   4. A polymer model other than Oldroyd-B and Giesekus: "collocation" (cut cells carry any
 //      model around fixed bodies, but FENE-P and PTT were not measured with them).
 //   5. A scene that cut cells refuse otherwise (CutCellObstacle, particles/particle_rules.h:
