@@ -59,8 +59,9 @@ struct SceneCase {
 // Failures name the case, not its bytes.
 void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.name; }
 
-// What cut cells do not hold yet (particles/particle_rules.h, RequireCutCellScene), and the fixed
-// and prescribed disks, and the polymer around fixed ones, that they do.
+// What cut cells do not hold yet (particles/particle_rules.h, RequireCutCellScene; ellipses, by
+// the key particles.N.shape), and the fixed, prescribed and free disks (of any density), and the
+// polymer around fixed ones, that they do.
 std::vector<SceneCase> CutCellCases() {
   return {
       {"CutCellFixedDisk", Disk(0.5, 0.5, 1.5, "fixed"), {"particle_mesh.kind=cut_cell"}, ""},
@@ -76,6 +77,18 @@ std::vector<SceneCase> CutCellCases() {
        Disk(0.5, 0.5, 1.5, "prescribed"),
        {"particle_mesh.kind=cut_cell", kOldroydB, kHalfSolvent},
        "particles.0.motion"},
+      {"CutCellFreeDisk", Disk(0.5, 0.5, 1.5), {"particle_mesh.kind=cut_cell"}, ""},
+      // Lighter than the liquid: refused with multipliers (LightFreeDisk), taken by cut cells.
+      {"CutCellLightFreeDisk", Disk(0.5, 0.5, 0.9), {"particle_mesh.kind=cut_cell"}, ""},
+      {"CutCellWithAPolymerAroundAFreeBody",
+       Disk(0.5, 0.5, 1.5),
+       {"particle_mesh.kind=cut_cell", kOldroydB, kHalfSolvent},
+       "particles.0.motion"},
+      {"CutCellEllipse",
+       "[[particles]]\ncenter = [0.5, 0.5]\nshape = \"ellipse\"\nsemi_axes = [0.1, 0.05]\n"
+       "density = 1.5\nmotion = \"fixed\"\n",
+       {"particle_mesh.kind=cut_cell"},
+       "particles.0.shape"},
       {"CutCellWithViscosityInTheAdvection",
        Disk(0.5, 0.5, 1.5, "fixed"),
        {"particle_mesh.kind=cut_cell", "splitting.alpha=0.5", "splitting.beta=0.5"},
@@ -145,10 +158,6 @@ std::vector<SceneCase> Cases() {
        Disk(0.5, 0.5, 1.5),
        {"particle_mesh.kind=cut_cells"},
        "particle_mesh.kind"},
-      {"CutCellWithAFreeParticle",
-       Disk(0.5, 0.5, 1.5),
-       {"particle_mesh.kind=cut_cell"},
-       "particles.0.motion"},
       // The accuracy envelope (scene/accuracy_envelope.h): a warning for both, a rejection for
       // both with accuracy.strict = true.
       // U dt / h = 0.8 > 0.64; D / h = 3.2 < 120.
