@@ -8,6 +8,7 @@
 
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/number_text.h"
+#include "dlmfd/core/param_words.h"
 #include "dlmfd/particles/shape.h"
 
 namespace dlmfd {
@@ -110,6 +111,15 @@ void RequireCoupledInStokes(const Params& params, std::size_t p) {
 
 std::optional<InvalidParameter> CutCellObstacle(const Params& params) {
   const std::string with = " with particle_mesh.kind = \"cut_cell\"";
+  for (std::size_t p = 0; p < params.particles.size(); ++p) {
+    const ParticleParams& q = params.particles[p];
+    if (q.motion != Motion::kFree || q.shape == ShapeKind::kDisk) continue;
+    return InvalidParameter("particles." + std::to_string(p) + ".shape",
+                            "\"" + std::string(WordOf(q.shape)) + "\"",
+                            "\"disk\" for a free particle" + with +
+                                " (free bodies were measured as disks only), or "
+                                "particle_mesh.kind = \"collocation\"");
+  }
   if (!params.fluid.IsNewtonian()) {
     for (std::size_t p = 0; p < params.particles.size(); ++p) {
       const Motion motion = params.particles[p].motion;
