@@ -59,8 +59,8 @@ struct SceneCase {
 // Failures name the case, not its bytes.
 void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.name; }
 
-// What cut cells do not hold yet (particles/particle_rules.h, RequireCutCellScene: a free ellipse
-// among them), and the fixed, prescribed and free disks (of any density), and the
+// What cut cells do not hold yet (particles/particle_rules.h, RequireCutCellScene: an ellipse,
+// even a fixed one, among them), and the fixed, prescribed and free disks (of any density), and the
 // polymer around fixed ones, that they do.
 std::vector<SceneCase> CutCellCases() {
   return {
@@ -84,9 +84,9 @@ std::vector<SceneCase> CutCellCases() {
        Disk(0.5, 0.5, 1.5),
        {"particle_mesh.kind=cut_cell", kOldroydB, kHalfSolvent},
        "particles.0.motion"},
-      {"CutCellFreeEllipse",
+      {"CutCellFixedEllipse",
        "[[particles]]\ncenter = [0.5, 0.5]\nshape = \"ellipse\"\nsemi_axes = [0.1, 0.05]\n"
-       "density = 1.5\n",
+       "density = 1.5\nmotion = \"fixed\"\n",
        {"particle_mesh.kind=cut_cell"},
        "particles.0.shape"},
       {"CutCellWithViscosityInTheAdvection",

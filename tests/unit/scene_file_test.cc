@@ -238,10 +238,10 @@ const BadScene kBadScenes[] = {
      "[fluid]\nrelaxation_time = 0.1\nsolvent_ratio = 0.5\n"
      "[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n",
      "particles.0.motion", "\"free\""},
-    {"CutCellWithAFreeEllipse",
+    {"CutCellWithAFixedEllipse",
      "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"
      "[[particles]]\ncenter = [0.5, 0.5]\nshape = \"ellipse\"\nsemi_axes = [0.1, 0.05]\n"
-     "density = 1.5\n",
+     "motion = \"fixed\"\n",
      "particles.0.shape", "\"ellipse\""},
     {"CutCellWithAPolymerAroundAMovingBody",
      "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"

@@ -113,11 +113,11 @@ std::optional<InvalidParameter> CutCellObstacle(const Params& params) {
   const std::string with = " with particle_mesh.kind = \"cut_cell\"";
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
     const ParticleParams& q = params.particles[p];
-    if (q.motion != Motion::kFree || q.shape == ShapeKind::kDisk) continue;
+    if (q.shape == ShapeKind::kDisk) continue;
     return InvalidParameter("particles." + std::to_string(p) + ".shape",
                             "\"" + std::string(WordOf(q.shape)) + "\"",
-                            "\"disk\" for a free particle" + with +
-                                " (free bodies were measured as disks only), or "
+                            "\"disk\"" + with +
+                                " (cut cells were measured on disks only), or "
                                 "particle_mesh.kind = \"collocation\"");
   }
   if (!params.fluid.IsNewtonian()) {
