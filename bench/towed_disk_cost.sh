@@ -12,6 +12,9 @@
 #                      solves a step), twice the liquid's density, starting at U and pulled along
 #                      the channel by gravity with the towed disk's drag at D/h = 20 (12.35) as
 #                      its weight less buoyancy, so that it moves as the towed one;
+#   free_kept          the free disk with K kept over steps (particle_mesh.rigid_modes_refresh =
+#                      1: K's 3 unit solves once the disk has moved a cell, every 10 steps here;
+#                      in between one solve at the new velocity: 2 solves a step);
 #   towed_before       the towed disk with the solver BEFORE, when set (a copy of an earlier build:
 #                      the cost of a change measured in the same run).
 # Each runs FIRST and FIRST + STEPS steps from rest on one thread with no output; printed: the CPU
@@ -19,6 +22,7 @@
 # set-up and the first steps left out) and the set-up plus FIRST steps in CPU seconds.
 #   bench/towed_disk_cost.sh     # BUILD=build D_OVER_H="10 20 40" FIRST=10 STEPS=100 ROUNDS=2
 #                                # BEFORE=/tmp/dlmfd-solve-main WORK=...
+#                                # CONFIGURATIONS="free free_kept" (a subset; default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -38,9 +42,11 @@ declare -A KEYS=(
     --set domain.boundary.top.type="velocity" --set domain.boundary.top.value=[-1,0]'
   [towed_collocation]='--set particle_mesh.kind="collocation"'
   [free]='--set particles.0.motion="free" --set particles.0.density=2 --set gravity=[15.724305,0]'
+  [free_kept]='--set particles.0.motion="free" --set particles.0.density=2 --set gravity=[15.724305,0]
+    --set particle_mesh.rigid_modes_refresh=1'
   [towed_before]=''
 )
-CONFIGURATIONS=(towed fixed towed_collocation free)
+read -r -a CONFIGURATIONS <<< "${CONFIGURATIONS:-towed fixed towed_collocation free free_kept}"
 [[ -n "${BEFORE:-}" ]] && CONFIGURATIONS+=(towed_before)
 
 # CPU seconds (user + system) of a run of n steps of configuration $1 at D/h $2.

@@ -1,6 +1,8 @@
 // Newton's law of free bodies cut out of the mesh; see particles/cut_cell_free_bodies.h.
 #include "dlmfd/particles/cut_cell_free_bodies.h"
 
+#include <cmath>
+
 #include <Eigen/LU>
 
 #include "dlmfd/particles/shape.h"
@@ -29,7 +31,10 @@ CutCellFreeBodies::CutCellFreeBodies(const Params& params, const Grid& grid)
       viscosity_(params.fluid.ImplicitViscosity(grid.h)),
       gravity_(params.gravity),
       homogeneous_(grid, Homogeneous(params.domain)),
-      collisions_(params, grid, Radii(params)) {
+      collisions_(params, grid, Radii(params)),
+      refresh_(params.particle_mesh.rigid_modes_refresh),
+      periodic_x_(params.domain.PeriodicX()),
+      periodic_y_(params.domain.PeriodicY()) {
   for (std::size_t b = 0; b < params.particles.size(); ++b) {
     const ParticleParams& q = params.particles[b];
     const Shape shape = Shape::Of(q);
@@ -48,23 +53,31 @@ CutCellFreeBodies::CutCellFreeBodies(const Params& params, const Grid& grid)
   contact_forces_.resize(params.particles.size());
 }
 
+bool CutCellFreeBodies::NeedsK(double dt, const std::vector<FixedBody>& bodies) const {
+  if (refresh_ <= 0.0 || k_.size() == 0 || dt != k_dt_ || k_centres_.size() != bodies.size())
+    return true;
+  const double reach = refresh_ * grid_.h;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    Vec2 moved = bodies[b].centre - k_centres_[b];  // across a periodic seam: the shortest way
+    if (periodic_x_) moved.x() -= grid_.Width() * std::round(moved.x() / grid_.Width());
+    if (periodic_y_) moved.y() -= grid_.Height() * std::round(moved.y() / grid_.Height());
+    if (moved.norm() > reach) return true;
+  }
+  return false;
+}
+
 double CutCellFreeBodies::PairGap(const std::vector<FixedBody>& bodies) {
   for (std::size_t b = 0; b < bodies.size(); ++b) positions_[b] = bodies[b].centre;
   return collisions_.Gaps(positions_).pair;
 }
 
-CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(CutCellStokes& flow, double dt,
-                                                     const std::vector<FixedBody>& bodies,
-                                                     const Loads& first,
-                                                     std::vector<RigidMotion>& motions, double* u,
-                                                     double* v, double* p, double tolerance,
-                                                     int max_iterations) {
-  Outcome outcome;
+// K: the force and torque on every free body of each unit motion (the bodies at `motions`' centres,
+// which the flow is left at).
+void CutCellFreeBodies::MakeK(CutCellStokes& flow, const std::vector<FixedBody>& bodies,
+                              const std::vector<RigidMotion>& motions, double tolerance,
+                              int max_iterations, Outcome& outcome) {
   const std::size_t nf = free_.size(), units = 3 * nf;
-  const std::vector<RigidMotion> start = motions;  // V*
-  // K: the force and torque on every free body of each unit motion.
-  Eigen::MatrixXd k =
-      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(units), static_cast<Eigen::Index>(units));
+  k_ = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(units), static_cast<Eigen::Index>(units));
   for (std::size_t s = 0; s < units; ++s) {
     const std::size_t body = free_[s / 3];
     const int mode = static_cast<int>(s % 3);  // 0: U_x, 1: U_y, 2: omega
@@ -88,16 +101,34 @@ CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(CutCellStokes& flow, double
           flow.Load(static_cast<int>(free_[c]), bodies[free_[c]].centre, unit_u_[s].data(),
                     unit_v_[s].data(), unit_p_[s].data(), nullptr, nullptr);
       const auto col = static_cast<Eigen::Index>(s);
-      k(static_cast<Eigen::Index>(3 * c), col) = load.force.x();
-      k(static_cast<Eigen::Index>(3 * c + 1), col) = load.force.y();
-      k(static_cast<Eigen::Index>(3 * c + 2), col) = load.torque;
+      k_(static_cast<Eigen::Index>(3 * c), col) = load.force.x();
+      k_(static_cast<Eigen::Index>(3 * c + 1), col) = load.force.y();
+      k_(static_cast<Eigen::Index>(3 * c + 2), col) = load.torque;
     }
   }
   for (std::size_t c = 0; c < nf; ++c) {  // the stress's torque of a turning body
     const auto r = static_cast<Eigen::Index>(3 * c + 2);
-    k(r, r) -= 2.0 * viscosity_ * area_[free_[c]];
+    k_(r, r) -= 2.0 * viscosity_ * area_[free_[c]];
   }
-  flow.SetBodyMotion(start);
+  flow.SetBodyMotion(motions);
+}
+
+CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(CutCellStokes& flow, double dt,
+                                                     const std::vector<FixedBody>& bodies,
+                                                     const Loads& first,
+                                                     std::vector<RigidMotion>& motions, double* u,
+                                                     double* v, double* p, double tolerance,
+                                                     int max_iterations) {
+  Outcome outcome;
+  const std::size_t nf = free_.size(), units = 3 * nf;
+  outcome.composed = NeedsK(dt, bodies);
+  if (outcome.composed) {
+    k_dt_ = dt;
+    k_centres_.clear();
+    for (const FixedBody& body : bodies) k_centres_.push_back(body.centre);
+    MakeK(flow, bodies, motions, tolerance, max_iterations, outcome);
+  }
+  const Eigen::MatrixXd& k = k_;
   // The collision forces at X^{n+1}.
   for (std::size_t b = 0; b < bodies.size(); ++b) positions_[b] = bodies[b].centre;
   outcome.contacts = collisions_.Compute(positions_, contact_forces_);
@@ -117,9 +148,10 @@ CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(CutCellStokes& flow, double
     rhs[r + 2] = first.torque[b];
   }
   const Eigen::VectorXd dv = a.partialPivLu().solve(rhs);
-  // The step's solution: the first solve's plus the unit solves' times V - V*.
+  // The step's solution: the first solve's plus the unit solves' times V - V* (with K made this
+  // step; else the step solves again at V).
   const std::size_t n = grid_.NodeCount(), np = grid_.Coarse().NodeCount();
-  for (std::size_t s = 0; s < units; ++s) {
+  for (std::size_t s = 0; outcome.composed && s < units; ++s) {
     const double w = dv[static_cast<Eigen::Index>(s)];
     for (std::size_t i = 0; i < n; ++i) {
       u[i] += w * unit_u_[s][i];

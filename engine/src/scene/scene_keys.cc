@@ -261,6 +261,14 @@ void AddParticleMeshAndCollisions(std::vector<SceneKey<P>>& keys) {
       "particle_mesh.interpolation", [](auto& p) -> auto& { return p.particle_mesh.interpolation; },
       "`collocation`: how E evaluates the velocity at the boundary points"));
   keys.push_back(RealKey<P>(
+      "particle_mesh.rigid_modes_refresh",
+      [](auto& p) -> auto& { return p.particle_mesh.rigid_modes_refresh; }, kRangeNonNegative,
+      "`cut_cell`, free bodies: Newton's law's matrix K (3 unit Stokes solves a body) is made anew "
+      "once a body has moved this far since it was made, in units of h (0: every step); in "
+      "between a step makes one more Stokes solve, at the new velocity. At 1 the 5.2 pair's "
+      "velocities move by 1e-4 of their largest and a step costs a quarter of K every step's "
+      "(docs/evidence/cut_cell_boundary.md, \"A free body\")"));
+  keys.push_back(RealKey<P>(
       "collisions.range", [](auto& p) -> auto& { return p.collisions.range; }, kRangePositive,
       "rho of (14)-(15), in units of h"));
   keys.push_back(RealKey<P>(

@@ -287,6 +287,13 @@ struct ParticleMeshParams {
   std::optional<double> h;
   double spacing = 2.0;  // collocation: boundary point spacing in units of domain.h, in [0.5, 4]
   BoundaryInterpolation interpolation = BoundaryInterpolation::kQuadratic;  // collocation
+  // cut_cell, free bodies: the coupling matrix K of Newton's law (particles/cut_cell_free_bodies.h)
+  // is made anew once a body has moved this far (in units of domain.h) since it was made; 0:
+  // every step. In between a step makes one solve at the new velocity instead of 3N unit solves.
+  // 1 (docs/evidence/cut_cell_boundary.md, "A free body"): Faxen's fall speed moves by 2e-8, the
+  // 5.2 pair's velocities over its first second by 1.1e-4 (a tenth of the grid's error: 7.9e-4),
+  // at a quarter of the CPU a step.
+  double rigid_modes_refresh = 1.0;
   // h_p of the ring mesh on the velocity mesh of size domain_h: h, or kPaperParticleMeshRatio
   // domain_h when absent.
   double RingMeshSize(double domain_h) const {

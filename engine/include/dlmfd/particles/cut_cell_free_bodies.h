@@ -29,9 +29,18 @@
 // Cost: 1 + 3N Stokes solves a step, the 3N sharing the step's operators and factorisations and
 // starting from the step's Galerkin start (particles/pressure_correction_basis.h) from their last
 // step's pressure. Disks only (an ellipse's cut is not measured: the scene refuses it).
+// K kept (particle_mesh.rigid_modes_refresh = r > 0, the default 1): K changes by O(|U| dt / h) a
+// step, so it is made anew only once a body has moved r h since it was made (or dt changed); in
+// between dV comes from the older K and the step solves once more, with g = V (started from the
+// first solve: a few Uzawa iterations), for its solution and the force it reports. Newton's law
+// then holds to (K - K_old) dV, which vanishes at a terminal velocity: 2 solves a step instead of
+// 1 + 3N (docs/evidence/cut_cell_boundary.md, "A free body": Faxen's fall speed moves by 2e-8,
+// the 5.2 pair's first second by 1.1e-4 of its speed, light bodies as stable).
 #pragma once
 
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "dlmfd/core/grid.h"
 #include "dlmfd/core/params.h"
@@ -58,6 +67,10 @@ class CutCellFreeBodies {
   struct Outcome {
     int unit_iterations = 0;  // the unit solves' Uzawa iterations, all together
     int contacts = 0;         // active collision contacts at X^{n+1}
+    // K was made this step and u, v, p hold the step's solution; else (K kept from an earlier
+    // step, particle_mesh.rigid_modes_refresh) only `motions` is set, and the step solves again
+    // with them.
+    bool composed = true;
   };
   // After the step's first solve (u, v, p: its solution, with every body's motion `motions`, the
   // free ones at V*): the free bodies' velocities and rotations of t_{n+1} into `motions`, the
@@ -66,6 +79,14 @@ class CutCellFreeBodies {
   Outcome Couple(CutCellStokes& flow, double dt, const std::vector<FixedBody>& bodies,
                  const Loads& first, std::vector<RigidMotion>& motions, double* u, double* v,
                  double* p, double tolerance, int max_iterations);
+
+  // Whether K must be made anew this step: never made, another dt, or a body moved more than
+  // refresh_ h since it was (across a periodic seam the shortest way: a wrap is no move).
+  bool NeedsK(double dt, const std::vector<FixedBody>& bodies) const;
+  // K (k_) from the 3N unit solves; the flow's body motion is left at `motions`.
+  void MakeK(CutCellStokes& flow, const std::vector<FixedBody>& bodies,
+             const std::vector<RigidMotion>& motions, double tolerance, int max_iterations,
+             Outcome& outcome);
 
   // The smallest surface gap between two bodies at these centres (NaN for fewer than two), for
   // the step's overlap check.
@@ -84,6 +105,13 @@ class CutCellFreeBodies {
   std::vector<Vec2> positions_, contact_forces_;
   // The unit solves' solutions (3 per free body), kept: their pressure is the next step's start.
   std::vector<std::vector<double>> unit_u_, unit_v_, unit_p_;
+  // K kept (particle_mesh.rigid_modes_refresh): the matrix, the dt and the bodies' centres it was
+  // made with.
+  double refresh_ = 0.0;  // in units of h
+  bool periodic_x_ = false, periodic_y_ = false;
+  Eigen::MatrixXd k_;
+  double k_dt_ = 0.0;
+  std::vector<Vec2> k_centres_;
 };
 
 }  // namespace dlmfd
