@@ -9,7 +9,7 @@
 #                      flow in its frame (Galileo), as bench/towed_disk.sh runs it;
 #   towed_collocation  the default collocation points, the disk prescribed;
 #   free               cut cells, the disk free (particles/cut_cell_free_bodies.h: 1 + 3 Stokes
-#                      solves a step), twice the liquid's density, starting at U and pulled along
+#                      solves a step, K made every step), twice the liquid's density, starting at U and pulled along
 #                      the channel by gravity with the towed disk's drag at D/h = 20 (12.35) as
 #                      its weight less buoyancy, so that it moves as the towed one;
 #   free_kept          the free disk with K kept over steps (particle_mesh.rigid_modes_refresh =
@@ -41,7 +41,8 @@ declare -A KEYS=(
     --set domain.boundary.bottom.type="velocity" --set domain.boundary.bottom.value=[-1,0]
     --set domain.boundary.top.type="velocity" --set domain.boundary.top.value=[-1,0]'
   [towed_collocation]='--set particle_mesh.kind="collocation"'
-  [free]='--set particles.0.motion="free" --set particles.0.density=2 --set gravity=[15.724305,0]'
+  [free]='--set particles.0.motion="free" --set particles.0.density=2 --set gravity=[15.724305,0]
+    --set particle_mesh.rigid_modes_refresh=0'
   [free_kept]='--set particles.0.motion="free" --set particles.0.density=2 --set gravity=[15.724305,0]
     --set particle_mesh.rigid_modes_refresh=1'
   [towed_before]=''
