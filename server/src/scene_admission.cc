@@ -63,13 +63,22 @@ SceneEstimate AdmitScene(const std::string& scene, const std::vector<std::string
   }
   const double mib = footprint.bytes / (1024.0 * 1024.0);
   if (!(mib <= static_cast<double>(config.max_memory_mb))) {
-    const char* key =
-        footprint.multiplier_nodes > footprint.velocity_nodes ? "particle_mesh.h" : "domain.h";
+    // The largest share names the key: the moving cut bodies' responses (a node array a
+    // capacitance row, scene/scene_footprint.h), the multiplier meshes, or the grid.
+    const bool responses = sizeof(double) * footprint.cut_cell_rows > kCutCellBytesPerNode;
+    const char* key = responses                                               ? "particle_mesh.kind"
+                      : footprint.multiplier_nodes > footprint.velocity_nodes ? "particle_mesh.h"
+                                                                              : "domain.h";
+    const std::string why =
+        responses ? " (moving cut-cell bodies hold a grid array per boundary row: " +
+                        std::to_string(static_cast<int64_t>(footprint.cut_cell_rows)) +
+                        " rows; \"collocation\" needs a fraction of it)"
+                  : "";
     throw ServiceError(StatusCode::RESOURCE_EXHAUSTED,
                        std::string(key) + ": the run needs an estimated " +
                            std::to_string(static_cast<int64_t>(std::ceil(mib))) +
                            " MiB, over the limit of " + std::to_string(config.max_memory_mb) +
-                           " MiB");
+                           " MiB" + why);
   }
   CheckRunLimits(params, config);
   SceneEstimate estimate;

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -275,6 +276,30 @@ TEST(SceneAdmission, DaemonLimitsHoldTheEngineFootprint) {
   EXPECT_EQ(nodes.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_EQ(nodes.error_message(),
             "domain.h: the grid has 4225 velocity nodes, over the limit of 1000");
+}
+
+// Twenty free disks cut out of the mesh at D/h = 19.2 hold 4,520 capacitance rows, a grid array
+// each (scene/scene_footprint.h): that, not the grid, is most of the estimate, and the refusal
+// names particle_mesh.kind.
+TEST(SceneAdmission, MovingCutCellBodiesNameTheParticleMesh) {
+  std::string scene =
+      "[domain]\nsize = [2.0, 2.0]\nh = 0.010416666666666666\n"
+      "[particle_mesh]\nkind = \"cut_cell\"\n";
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      scene += "[[particles]]\ncenter = [" + std::to_string(0.3 + 0.4 * i) + ", " +
+               std::to_string(0.2 + 0.4 * j) + "]\ndiameter = 0.2\ndensity = 1.1\n";
+    }
+  }
+  const SceneFootprint footprint = EstimateFootprint(ParseScene(scene));
+  EXPECT_DOUBLE_EQ(footprint.cut_cell_rows, 20 * (11.25 * 19.2 + 10.0));
+  Config config;
+  config.max_memory_mb = 1000;
+  const grpc::Status refused = Guarded([&] { AdmitScene(scene, {}, config); });
+  EXPECT_EQ(refused.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(refused.error_message().rfind("particle_mesh.kind: the run needs an estimated", 0), 0u)
+      << refused.error_message();
+  EXPECT_THAT(refused.error_message(), ::testing::HasSubstr("4520 rows"));
 }
 
 }  // namespace

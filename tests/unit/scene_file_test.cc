@@ -460,6 +460,31 @@ TEST(SceneFile, FootprintCountsTheRecycledDirectionsOfFixedParticles) {
   EXPECT_NEAR(fixed.bytes - free.bytes, 16 * 2.25 * 8.0 * fixed.velocity_nodes, 1e-9 * fixed.bytes);
 }
 
+// Cut cells (scene/scene_footprint.h): kCutCellBytesPerNode a velocity node, and a moving body's
+// responses, a node array for each of its 11.25 D/h + 10 capacitance rows (measured 216 rows at
+// D/h = 19.2: docs/evidence/cut_cell_boundary.md, "The memory of a cut-cell run"), plus a free
+// body's three unit solves.
+TEST(SceneFile, FootprintCountsAMovingCutBodysResponses) {
+  Params p;  // 32 x 32 cells, h = 1/32
+  ParticleParams q;
+  q.center = Vec2(0.5, 0.5);
+  q.diameter = 0.25;  // D/h = 8
+  q.motion = Motion::kFixed;
+  p.particles.push_back(q);
+  p.particle_mesh.kind = ParticleMeshKind::kCutCell;
+  const SceneFootprint fixed = EstimateFootprint(p);
+  EXPECT_EQ(fixed.multiplier_nodes, 0.0);
+  EXPECT_EQ(fixed.cut_cell_rows, 0.0);
+  EXPECT_DOUBLE_EQ(fixed.bytes, kCutCellBytesPerNode * 33.0 * 33.0);
+  p.particles[0].motion = Motion::kPrescribed;
+  const SceneFootprint towed = EstimateFootprint(p);
+  EXPECT_DOUBLE_EQ(towed.cut_cell_rows, 11.25 * 8.0 + 10.0);
+  EXPECT_DOUBLE_EQ(towed.bytes, (kCutCellBytesPerNode + 8.0 * 100.0) * 33.0 * 33.0);
+  p.particles[0].motion = Motion::kFree;
+  const SceneFootprint free = EstimateFootprint(p);
+  EXPECT_DOUBLE_EQ(free.bytes - towed.bytes, 3.0 * 2.25 * 8.0 * 33.0 * 33.0);
+}
+
 TEST(SceneFile, GammaMessageSaysOnlyGammaZeroIsSupported) {
   try {
     ParseScene("[splitting]\nalpha = 0.3\nbeta = 0.3\n");

@@ -29,8 +29,15 @@ SceneFootprint EstimateFootprint(const Params& params) {
   f.velocity_nodes = Saturated((nx + 1.0) * (ny + 1.0));
   const bool collocation = params.particle_mesh.kind == ParticleMeshKind::kCollocation;
   const bool cut_cell = params.particle_mesh.kind == ParticleMeshKind::kCutCell;
+  double free_bodies = 0.0;
   for (const ParticleParams& q : params.particles) {
-    if (cut_cell) continue;  // no multipliers
+    if (cut_cell) {  // no multipliers; a moving body's responses
+      if (q.motion == Motion::kFixed) continue;
+      f.cut_cell_rows = Saturated(f.cut_cell_rows + kCutCellRowsPerDiameter * q.diameter / d.h +
+                                  kCutCellRowsFloor);
+      if (q.motion == Motion::kFree) free_bodies += 1.0;
+      continue;
+    }
     if (collocation) {
       const double r = q.Radius() / d.h;
       f.multiplier_nodes = Saturated(f.multiplier_nodes + kPi * r * r +
@@ -43,8 +50,13 @@ SceneFootprint EstimateFootprint(const Params& params) {
   const double recycled = RecycledDirections::Used(Resolved(params))
                               ? RecycledDirections::kDoublesPerNode * sizeof(double)
                               : 0.0;
-  f.bytes = Saturated(kBytesPerNode * (f.velocity_nodes + f.multiplier_nodes) +
-                      recycled * f.velocity_nodes);
+  double grid_and_meshes = kBytesPerNode * (f.velocity_nodes + f.multiplier_nodes);
+  if (cut_cell) {
+    grid_and_meshes = (kCutCellBytesPerNode + sizeof(double) * f.cut_cell_rows +
+                       kCutCellFreeBodyBytesPerNode * free_bodies) *
+                      f.velocity_nodes;
+  }
+  f.bytes = Saturated(grid_and_meshes + recycled * f.velocity_nodes);
   return f;
 }
 

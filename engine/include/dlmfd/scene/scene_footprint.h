@@ -18,6 +18,15 @@
 // node's arrays (E, E^T, the CG vectors) well under that. The viscous coupling around fixed
 // particles adds its recycled PCG directions (particles/recycled_directions.h, 288 bytes a velocity
 // node).
+// Cut cells (particle_mesh.kind = "cut_cell"; docs/evidence/cut_cell_boundary.md, "The memory of a
+// cut-cell run"): no multipliers, but the assembled cut-cell forms and their reduced rows,
+// kCutCellBytesPerNode a velocity node in all (measured 2.4-2.7 KB with fixed bodies, 3.0-3.4
+// with moving ones); a moving body (prescribed or free) also holds the fast solver's response to
+// each of its capacitance rows, a node array each (particles/cut_cell_capacitance.h: 8 bytes a
+// node a row), k = kCutCellRowsPerDiameter D / h + kCutCellRowsFloor rows a disk (measured
+// 11.1-11.25 D/h from D/h = 9.6 to 28.8, 64 at 4.8); a free body its three unit solves (velocity
+// and pressure, particles/cut_cell_free_bodies.h). So a moving disk's memory grows as (D/h) h^-2:
+// at D/h = 19.2 in Faxen's 1 x 8 channel (74,590 nodes) a free disk holds 129 MB of responses.
 #pragma once
 
 #include "dlmfd/core/params.h"
@@ -25,10 +34,15 @@
 namespace dlmfd {
 
 inline constexpr double kBytesPerNode = 640.0;
+inline constexpr double kCutCellBytesPerNode = 3500.0;
+inline constexpr double kCutCellRowsPerDiameter = 11.25;  // capacitance rows a moving disk, per D/h
+inline constexpr double kCutCellRowsFloor = 10.0;
+inline constexpr double kCutCellFreeBodyBytesPerNode = 3.0 * 2.25 * 8.0;  // 3 unit solves (u, v, p)
 
 struct SceneFootprint {
   double velocity_nodes = 0.0;
   double multiplier_nodes = 0.0;  // over all particles
+  double cut_cell_rows = 0.0;     // capacitance rows of the moving cut bodies (a node array each)
   double bytes = 0.0;             // estimated peak memory of dlmfd-solve
 };
 
