@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "../support/build_paths.h"
+#include "../support/scratch_path.h"
 #include "dlmfd/io/atomic_file.h"
 #include "dlmfd/io/field_snapshot.h"
 #include "dlmfd/io/particle_history.h"
@@ -52,7 +53,7 @@ struct CaseRun {
 // end.
 CaseRun RunCase(const std::string& name, double end) {
   CaseRun run;
-  run.out = ::testing::TempDir() + "/paper_smoke_" + name;
+  run.out = dlmfd::testing::ScratchPath("paper_smoke_" + name);
   fs::remove_all(run.out);
   const std::vector<std::string> args = {kCases + name + ".toml",
                                          "--out",

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "../support/build_paths.h"
+#include "../support/scratch_path.h"
 #include "dlmfd/io/atomic_file.h"
 #include "dlmfd/io/checkpoint.h"
 #include "dlmfd/io/diagnostics_csv.h"
@@ -57,7 +58,7 @@ std::string CavityScene(double end, double fields_every, double checkpoint_every
 }
 
 std::string Fresh(const std::string& name) {
-  const std::string dir = ::testing::TempDir() + "/solve_app_test_" + name;
+  const std::string dir = dlmfd::testing::ScratchPath("solve_app_test_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "../support/build_paths.h"
+#include "../support/scratch_path.h"
 #include "dlmfd/scene/scene_file.h"
 #include "dlmfd/scene/scene_footprint.h"
 
@@ -36,7 +37,7 @@ struct Peak {
 // Runs dlmfd-solve on one thread with `args` (output to a fresh folder); its exit status and peak
 // resident set.
 Peak PeakOfRun(const std::string& name, const std::vector<std::string>& args) {
-  const std::string out = ::testing::TempDir() + "/solve_memory_test_" + name;
+  const std::string out = dlmfd::testing::ScratchPath("solve_memory_test_" + name);
   fs::remove_all(out);
   std::vector<std::string> all = args;
   for (const char* a : {"--threads", "1", "--quiet", "--out"}) all.emplace_back(a);
@@ -73,7 +74,7 @@ SceneFootprint EstimateOf(const std::string& scene, const std::vector<std::strin
 }
 
 double ProcessAlone() {
-  const std::string scene = ::testing::TempDir() + "/solve_memory_test_cavity.toml";
+  const std::string scene = dlmfd::testing::ScratchPath("solve_memory_test_cavity", ".toml");
   std::ofstream(scene) << "[domain]\nsize = [1.0, 1.0]\nh = 0.0625\n"
                           "[domain.boundary]\ntop = { type = \"velocity\", value = [1.0, 0.0] }\n"
                           "[time]\ndt = 0.001\nend = 0.002\n"

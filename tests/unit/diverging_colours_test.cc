@@ -5,8 +5,6 @@
 // scale, a user's range is kept as given with zero still neutral and the sign still the hue,
 // isolines stay visible (black) over the light middle, and only the vorticity, A12 and the
 // pressure are signed.
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -16,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/scratch_path.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/viz/canvas.h"
 #include "dlmfd/viz/colour_map.h"
@@ -48,8 +47,7 @@ PictureOptions Diverging(int width = 500, int height = 300) {
 
 // The picture through a PNG file and back, as a user's file holds it.
 RgbImage WrittenPng(const FieldPicture& picture, const std::string& stem) {
-  const std::string path =
-      ::testing::TempDir() + "/" + stem + "_" + std::to_string(::getpid()) + ".png";
+  const std::string path = dlmfd::testing::ScratchPath(stem, ".png");
   picture.image.Write(path);
   RgbImage png = ReadPng(path);
   std::remove(path.c_str());

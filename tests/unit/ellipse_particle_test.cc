@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/scratch_path.h"
 #include "../support/walled_box_scene.h"
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
@@ -169,7 +170,7 @@ TEST(EllipseParticle, ParticlesH5CarriesTheShapeTheSemiAxesAndTheAngle) {
       EllipseScene("shape = \"ellipse\"\nsemi_axes = [0.1, 0.2]\nangle = 0.3\ndensity = 2.0\n") +
       "[[particles]]\ncenter = [0.2, 0.8]\ndiameter = 0.1\ndensity = 2.0\n");
   Simulation sim(p);
-  const std::string dir = ::testing::TempDir() + "/ellipse_particles_h5";
+  const std::string dir = dlmfd::testing::ScratchPath("ellipse_particles_h5");
   std::filesystem::create_directories(dir);
   {
     auto w = ParticleHistoryWriter::Create(dir + "/particles.h5", sim.state());

@@ -3,8 +3,6 @@
 // antialiased lines of 2 px or more, so the pixels along a line's centre are fully covered), a NaN
 // or a value <= 0 on a log axis breaking the line instead of crashing, clear errors for empty
 // input, equal axis scales, styles that tell 28 and more series apart, and a legend title.
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -18,6 +16,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "../support/scratch_path.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/viz/canvas.h"
 #include "dlmfd/viz/line_chart.h"
@@ -356,7 +355,7 @@ TEST(LineChart, ThirtyTwoSeriesHaveDistinctStylesAndALegendTitle) {
 TEST(LineChart, SaveWritesTheFormatOfTheExtension) {
   LineChart chart(Options());
   chart.AddSeries({"a", {0.0, 1.0}, {0.0, 1.0}, false});
-  const std::string stem = ::testing::TempDir() + "/line_chart_save_" + std::to_string(::getpid());
+  const std::string stem = dlmfd::testing::ScratchPath("line_chart_save");
   const ChartPicture png = chart.Save(stem + ".png");
   const RgbImage back = ReadPng(stem + ".png");
   EXPECT_EQ(back.width, 600);

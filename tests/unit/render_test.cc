@@ -4,8 +4,6 @@
 // labels, isolines at the exact level sets, arrows, particles drawn where they are with their
 // rotation mark, real fonts with descenders, the derived quantities of a snapshot, and degenerate
 // fields (constant, NaN) giving finite scales instead of dividing by zero.
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +17,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "../support/scratch_path.h"
 #include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/io/atomic_file.h"
@@ -36,7 +35,7 @@ namespace dlmfd {
 namespace {
 
 std::string TempFile(const std::string& stem, const std::string& extension) {
-  return ::testing::TempDir() + "/" + stem + "_" + std::to_string(::getpid()) + extension;
+  return dlmfd::testing::ScratchPath(stem, extension);
 }
 
 // The picture written as a PNG file and read back (cairo's PNG reader).
@@ -478,7 +477,7 @@ TEST(RenderTest, RejectsMismatchedValuesAndSizesWithoutRoom) {
 class ResultsFrameTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = ::testing::TempDir() + "/render_results_" + std::to_string(::getpid());
+    dir_ = dlmfd::testing::ScratchPath("render_results");
     std::filesystem::create_directories(dir_ + "/fields");
     grid_ = Grid{8, 4, 0.25, 0.0, 0.0};
     FlowState state;

@@ -11,6 +11,7 @@
 #include <random>
 #include <string>
 
+#include "../support/scratch_path.h"
 #include "../support/viscous_channel.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/simulation.h"
@@ -31,7 +32,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
 std::string FreshDir(const std::string& name) {
-  const std::string dir = ::testing::TempDir() + "/results_io_test_" + name;
+  const std::string dir = dlmfd::testing::ScratchPath("results_io_test_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

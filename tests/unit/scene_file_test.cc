@@ -12,6 +12,7 @@
 #include <tuple>
 #include <vector>
 
+#include "../support/scratch_path.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/scene/scene_footprint.h"
 #include "dlmfd/scene/scene_validation.h"
@@ -931,7 +932,7 @@ TEST(SceneFile, WriteSceneRoundTripsAwkwardValues) {
 }
 
 TEST(SceneFile, LoadSceneFileReadsAndNamesAMissingFile) {
-  const std::string path = ::testing::TempDir() + "/scene_file_test.toml";
+  const std::string path = dlmfd::testing::ScratchPath("scene_file_test", ".toml");
   {
     std::ofstream out(path);
     out << "[fluid]\nviscosity = 0.25\n";

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/scratch_path.h"
 #include "../support/studied_numerics.h"
 #include "dlmfd/conformation/inflow_state.h"
 #include "dlmfd/core/constants.h"
@@ -243,7 +244,7 @@ TEST(SimulationCoupling, RestoreFromCheckpointContinuesBitwise) {
 
   Simulation first(p);
   for (int k = 0; k < 6; ++k) first.Step();
-  const std::string path = ::testing::TempDir() + "/simulation_coupling_checkpoint.h5";
+  const std::string path = dlmfd::testing::ScratchPath("simulation_coupling_checkpoint", ".h5");
   WriteCheckpoint(path, first.state(), "scene");
   Simulation second(p);
   second.Restore(ReadCheckpoint(path).state);

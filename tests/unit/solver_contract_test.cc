@@ -11,6 +11,7 @@
 #include <limits>
 #include <string>
 
+#include "../support/scratch_path.h"
 #include "dlmfd/io/atomic_file.h"
 #include "dlmfd/solver/event_file.h"
 #include "dlmfd/solver/exit_codes.h"
@@ -282,7 +283,7 @@ TEST(RunSummary, StatisticsReadBackAndAnOlderSummaryHasNaN) {
 }
 
 TEST(RunSummary, FileRoundTripAndErrors) {
-  const std::string dir = ::testing::TempDir() + "/dlmfd_solver_contract";
+  const std::string dir = dlmfd::testing::ScratchPath("dlmfd_solver_contract");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const std::string path = dir + "/" + kRunSummaryFile;
