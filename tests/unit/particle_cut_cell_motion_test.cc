@@ -7,8 +7,8 @@
 //   uncovers and the ones it covers change) u = U to round-off and the force is 0; the disk is
 //   where dt U puts it. A wrong sign or weight of the load, a node uncovered with a wrong value or
 //   a geometry not moved gives O(1) errors.
-// - the rules: free and prescribed particles are taken (a free one of any density), a polymer
-//   around them is refused;
+// - the rules: free and prescribed particles are taken (a free one of any density), and a polymer
+//   around a free one; around a prescribed one it is refused;
 // - a free disk (particles/cut_cell_free_bodies.h) moving with the liquid keeps u = U and its
 //   velocity; the first step of a heavy free disk is the solve at its new velocity, and Newton's
 //   law holds with the force the step reports.
@@ -176,7 +176,7 @@ TEST(CutCellMotion, RecutIsTheSaddlePointBuiltAnew) {
   }
 }
 
-TEST(CutCellMotion, FreeAndPrescribedTakenPolymerAroundThemRefused) {
+TEST(CutCellMotion, FreeAndPrescribedTakenPolymerAroundPrescribedRefused) {
   EXPECT_NO_THROW(RequireCutCellScene(ParseScene(TranslatingScene("prescribed"))));
   EXPECT_NO_THROW(RequireCutCellScene(ParseScene(TranslatingScene("free"))));
   // A free disk lighter than the liquid: taken by cut cells (no multiplier), refused by the
@@ -187,16 +187,19 @@ TEST(CutCellMotion, FreeAndPrescribedTakenPolymerAroundThemRefused) {
   EXPECT_NO_THROW(ValidateParticles(light, g));
   light.particle_mesh.kind = ParticleMeshKind::kCollocation;
   EXPECT_THROW(ValidateParticles(light, g), InvalidParameter);
-  // The polymer around a moving body stays refused, with the motion named.
+  // The polymer around a free body is taken (docs/evidence/cut_cell_boundary.md, "The polymer
+  // around a free body"); around a prescribed one it stays refused, with the motion named.
   Params polymer = ParseScene(TranslatingScene("free"));
   polymer.fluid.relaxation_time = 0.1;
   polymer.fluid.solvent_ratio = 0.5;
+  EXPECT_NO_THROW(RequireCutCellScene(polymer));
+  polymer.particles[0].motion = Motion::kPrescribed;
   try {
     RequireCutCellScene(polymer);
-    ADD_FAILURE() << "a free body in a polymer was taken";
+    ADD_FAILURE() << "a prescribed body in a polymer was taken";
   } catch (const InvalidParameter& e) {
     EXPECT_EQ(e.key(), "particles.0.motion");
-    EXPECT_EQ(e.value(), "\"free\"");
+    EXPECT_EQ(e.value(), "\"prescribed\"");
   }
 }
 

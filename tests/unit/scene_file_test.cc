@@ -234,11 +234,6 @@ const BadScene kBadScenes[] = {
     {"ParticleMeshHZero", "[particle_mesh]\nh = 0.0\n", "particle_mesh.h", "0.0"},
     {"ParticleMeshKindUnknown", "[particle_mesh]\nkind = \"cut_cells\"\n", "particle_mesh.kind",
      "\"cut_cells\""},
-    {"CutCellWithAPolymerAroundAFreeBody",
-     "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"
-     "[fluid]\nrelaxation_time = 0.1\nsolvent_ratio = 0.5\n"
-     "[[particles]]\ncenter = [0.5, 0.5]\ndensity = 1.5\n",
-     "particles.0.motion", "\"free\""},
     {"CutCellWithAFixedEllipse",
      "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"
      "[[particles]]\ncenter = [0.5, 0.5]\nshape = \"ellipse\"\nsemi_axes = [0.1, 0.05]\n"

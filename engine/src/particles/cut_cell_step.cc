@@ -192,6 +192,14 @@ void CutCellStep::FillBodies(double* u, double* v) const {
   }
 }
 
+bool CutCellStep::MoveBeforeStep(double dt, double* u, double* v) {
+  if (!moving_) return false;
+  FillBodies(u, v);
+  MoveBodies(dt);
+  moved_ = true;
+  return true;
+}
+
 // The Uzawa iteration's start for a moving body: p* = 2 p^n - p^{n-1} where both are set (a
 // pattern that moves with the body changes p at a fixed node by O(dt) a step, p* by O(dt^2)); p^n
 // at nodes that were not in the fluid. The step's result is the same within its stopping rule.
@@ -238,10 +246,11 @@ void CutCellStep::Restore(const std::vector<ParticleState>& particles, CutCellSt
 void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<ParticleState>& particles,
                         double* u, double* v, double* p, StepReport& report,
                         const NodeForce& polymer) {
-  if (moving_) {
+  if (moving_ && !moved_) {
     FillBodies(u, v);  // u^n inside the bodies at X^n: the value of the nodes they uncover
     MoveBodies(dt);
   }
+  moved_ = false;
   PrepareStep(dt);
   if (moving_) {
     // The band anew, the rest kept; after a fresh build too, so that every step's forms come from

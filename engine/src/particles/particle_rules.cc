@@ -122,13 +122,11 @@ std::optional<InvalidParameter> CutCellObstacle(const Params& params) {
   }
   if (!params.fluid.IsNewtonian()) {
     for (std::size_t p = 0; p < params.particles.size(); ++p) {
-      const Motion motion = params.particles[p].motion;
-      if (motion == Motion::kFixed) continue;
-      return InvalidParameter("particles." + std::to_string(p) + ".motion",
-                              motion == Motion::kFree ? "\"free\"" : "\"prescribed\"",
-                              "\"fixed\"" + with +
-                                  " and a polymer (cut cells hold the polymer around bodies at "
-                                  "rest only, so far), or particle_mesh.kind = \"collocation\"");
+      if (params.particles[p].motion != Motion::kPrescribed) continue;
+      return InvalidParameter("particles." + std::to_string(p) + ".motion", "\"prescribed\"",
+                              "\"fixed\" or \"free\"" + with +
+                                  " and a polymer (cut cells hold the polymer around fixed and "
+                                  "free bodies, so far), or particle_mesh.kind = \"collocation\"");
     }
   }
   if (params.splitting.beta != 0.0) {

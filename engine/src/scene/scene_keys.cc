@@ -235,8 +235,8 @@ void AddParticleMeshAndCollisions(std::vector<SceneKey<P>>& keys) {
   keys.push_back(FromPreset(ChoiceKey<ParticleMeshKind, P>(
       "particle_mesh.kind", [](auto& p) -> auto& { return p.particle_mesh.kind; },
       "the multiplier points of (37): the paper's ring mesh, collocation points on the true "
-      "circle, or no multipliers (cut cells: fixed, prescribed or free disks, fixed ones only with "
-      "a polymer, any sides); "
+      "circle, or no multipliers (cut cells: fixed, prescribed or free disks, fixed and free ones "
+      "only with a polymer, any sides); "
       "`auto` picks cut cells for fixed disks (in a Newtonian, Oldroyd-B or Giesekus liquid) over "
       "a run of at least " +
           std::to_string(kMinCutCellSteps) +
@@ -291,7 +291,7 @@ void AddConformationOutputAccuracy(std::vector<SceneKey<P>>& keys) {
       "conformation.velocity", [](auto& p) -> auto& { return p.conformation.velocity; },
       "the velocity step (35) freezes: the advected u^{n+2/4} (the paper's) or the Stokes step's "
       "u^{n+1/4}; `auto` (the default in a polymer liquid) picks the Stokes step's without "
-      "particles and around fixed disks cut out of the mesh, the paper's with multiplier "
+      "particles and around fixed and free disks cut out of the mesh, the paper's with multiplier "
       "points (scene/auto_conformation_velocity.h)",
       ResolveConformationVelocity));
   // Absent in the struct: the preset's word depends on the liquid, and "auto" on the particles.

@@ -41,7 +41,7 @@
 // Acrivos. Periodic sides and boxes without an outflow side as in particles/cut_cell_stokes.h (the
 // square array: docs/evidence/cut_cell_boundary.md, "Periodic boxes: the square array"). With
 // domain.diagonals = "both" every form is the mean over the two triangulations. With a polymer
-// (fixed bodies only, so far) its force joins the load as the fluid part's integral
+// (fixed and free bodies, so far) its force joins the load as the fluid part's integral
 // (particles/cut_cell_polymer_force.h), so F_h holds the polymer's traction; step (35) holds A = I
 // at the nodes inside the bodies (InsideNodes), and then the nodes inside a body that are vertices
 // of a cut triangle take the mean of their neighbours' A in the fluid (ExtendIntoBodies), so that
@@ -79,6 +79,12 @@ class CutCellStep {
   CutCellStep(const CutCellStep&) = delete;
   CutCellStep& operator=(const CutCellStep&) = delete;
 
+  // The bodies to X^{n+1} and the band marked there (u^n filled into them at X^n first), ahead of
+  // the step's Solve, which then does not move them again: so that A can be extended into the
+  // new band (ExtendIntoBodies) before the polymer's force of the step is made from it (a node of
+  // the new band that was deeper inside at X^n holds A = I from step (35)). False, and nothing
+  // done, without a moving body.
+  bool MoveBeforeStep(double dt, double* u, double* v);
   // A step of dt. u, v, p: u^n and the last pressure on entry (the warm start), u^{n+1/4},
   // p^{n+1/4} on return with the Dirichlet data of `data` (its time set to t_{n+1}); particles get
   // F_h and T_h (prescribed ones also X^{n+1}, theta^{n+1}; free ones also U^{n+1}, omega^{n+1}).
@@ -125,6 +131,7 @@ class CutCellStep {
   std::vector<Vec2> velocities_;                    // U of each body (0: fixed)
   std::vector<double> rotations_;                   // omega of each body
   bool moving_ = false;                             // some body is prescribed or free
+  bool moved_ = false;                              // MoveBeforeStep ran since the last Solve
   std::unique_ptr<CutCellFreeBodies> free_bodies_;  // some body is free
   Grid grid_;
   std::vector<std::unique_ptr<CutCellGeometry>> geometries_;  // SW-NE, then NW-SE with "both"
