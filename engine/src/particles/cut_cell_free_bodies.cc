@@ -66,6 +66,48 @@ bool CutCellFreeBodies::NeedsK(double dt, const std::vector<FixedBody>& bodies) 
   return false;
 }
 
+int CutCellFreeBodies::ContactForces(const std::vector<FixedBody>& bodies) {
+  for (std::size_t b = 0; b < bodies.size(); ++b) positions_[b] = bodies[b].centre;
+  return collisions_.Compute(positions_, contact_forces_);
+}
+
+Eigen::MatrixXd CutCellFreeBodies::NewtonMatrix(double dt) const {
+  Eigen::MatrixXd a = -k_;
+  for (std::size_t c = 0; c < free_.size(); ++c) {
+    const std::size_t b = free_[c];
+    const auto r = static_cast<Eigen::Index>(3 * c);
+    a(r, r) += mass_[b] / dt;
+    a(r + 1, r + 1) += mass_[b] / dt;
+    a(r + 2, r + 2) += inertia_[b] / dt;
+  }
+  return a;
+}
+
+// Newton's law over the step with the load F_h^n + K (V* - V^n): the last step's, the kept K
+// and the collision forces at X^{n+1} (header).
+void CutCellFreeBodies::Predict(double dt, const std::vector<FixedBody>& bodies, const Loads& last,
+                                std::vector<RigidMotion>& motions) {
+  if (k_.size() == 0 || dt != k_dt_) return;  // no K of this dt yet: V* = V^n
+  ContactForces(bodies);
+  const std::size_t nf = free_.size();
+  Eigen::VectorXd rhs(static_cast<Eigen::Index>(3 * nf));
+  for (std::size_t c = 0; c < nf; ++c) {
+    const std::size_t b = free_[c];
+    const auto r = static_cast<Eigen::Index>(3 * c);
+    const Vec2 f = last.force[b] + mass_[b] * gravity_ + contact_forces_[b];
+    rhs[r] = f.x();
+    rhs[r + 1] = f.y();
+    rhs[r + 2] = last.torque[b];
+  }
+  const Eigen::VectorXd dv = NewtonMatrix(dt).partialPivLu().solve(rhs);
+  for (std::size_t c = 0; c < nf; ++c) {
+    const std::size_t b = free_[c];
+    const auto r = static_cast<Eigen::Index>(3 * c);
+    motions[b].velocity += Vec2(dv[r], dv[r + 1]);
+    motions[b].angular_velocity += dv[r + 2];
+  }
+}
+
 double CutCellFreeBodies::PairGap(const std::vector<FixedBody>& bodies) {
   for (std::size_t b = 0; b < bodies.size(); ++b) positions_[b] = bodies[b].centre;
   return collisions_.Gaps(positions_).pair;
@@ -113,12 +155,10 @@ void CutCellFreeBodies::MakeK(CutCellStokes& flow, const std::vector<FixedBody>&
   flow.SetBodyMotion(motions);
 }
 
-CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(CutCellStokes& flow, double dt,
-                                                     const std::vector<FixedBody>& bodies,
-                                                     const Loads& first,
-                                                     std::vector<RigidMotion>& motions, double* u,
-                                                     double* v, double* p, double tolerance,
-                                                     int max_iterations) {
+CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(
+    CutCellStokes& flow, double dt, const std::vector<FixedBody>& bodies, const Loads& first,
+    const std::vector<RigidMotion>& now, std::vector<RigidMotion>& motions, double* u, double* v,
+    double* p, double tolerance, int max_iterations) {
   Outcome outcome;
   const std::size_t nf = free_.size(), units = 3 * nf;
   outcome.composed = NeedsK(dt, bodies);
@@ -128,24 +168,20 @@ CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(CutCellStokes& flow, double
     for (const FixedBody& body : bodies) k_centres_.push_back(body.centre);
     MakeK(flow, bodies, motions, tolerance, max_iterations, outcome);
   }
-  const Eigen::MatrixXd& k = k_;
-  // The collision forces at X^{n+1}.
-  for (std::size_t b = 0; b < bodies.size(); ++b) positions_[b] = bodies[b].centre;
-  outcome.contacts = collisions_.Compute(positions_, contact_forces_);
-  // (M / dt - K) dV = F_h(V*) + M g + F' (V* = V^n).
-  Eigen::MatrixXd a = -k;
+  // The collision forces at X^{n+1};
+  // (M / dt - K) (V - V*) = F_h(V*) + M g + F' + M (V^n - V*) / dt.
+  outcome.contacts = ContactForces(bodies);
+  const Eigen::MatrixXd a = NewtonMatrix(dt);
   Eigen::VectorXd rhs(static_cast<Eigen::Index>(units));
   for (std::size_t c = 0; c < nf; ++c) {
     const std::size_t b = free_[c];
     const auto r = static_cast<Eigen::Index>(3 * c);
-    const double m_dt = mass_[b] / dt, i_dt = inertia_[b] / dt;
-    a(r, r) += m_dt;
-    a(r + 1, r + 1) += m_dt;
-    a(r + 2, r + 2) += i_dt;
-    const Vec2 f = first.force[b] + mass_[b] * gravity_ + contact_forces_[b];
+    const Vec2 f = first.force[b] + mass_[b] * gravity_ + contact_forces_[b] +
+                   (mass_[b] / dt) * (now[b].velocity - motions[b].velocity);
     rhs[r] = f.x();
     rhs[r + 1] = f.y();
-    rhs[r + 2] = first.torque[b];
+    rhs[r + 2] = first.torque[b] +
+                 (inertia_[b] / dt) * (now[b].angular_velocity - motions[b].angular_velocity);
   }
   const Eigen::VectorXd dv = a.partialPivLu().solve(rhs);
   // The step's solution: the first solve's plus the unit solves' times V - V* (with K made this

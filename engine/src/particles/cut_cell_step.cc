@@ -252,6 +252,21 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
   }
   moved_ = false;
   PrepareStep(dt);
+  const std::vector<RigidMotion> now = Motions();  // V^n
+  if (free_bodies_) {
+    // The first solve's motion V* (CutCellFreeBodies::Predict), from the load of the last step.
+    CutCellFreeBodies::Loads last;
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      last.force.push_back(b < particles.size() ? particles[b].force : Vec2::Zero());
+      last.torque.push_back(b < particles.size() ? particles[b].torque : 0.0);
+    }
+    std::vector<RigidMotion> predicted = now;
+    free_bodies_->Predict(dt, bodies_, last, predicted);
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      velocities_[b] = predicted[b].velocity;
+      rotations_[b] = predicted[b].angular_velocity;
+    }
+  }
   if (moving_) {
     // The band anew, the rest kept; after a fresh build too, so that every step's forms come from
     // the one sum (the uniform forms and the band's), which a fresh build's whole-mesh assembly
@@ -294,7 +309,7 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
     }
     std::vector<RigidMotion> motions = Motions();
     const CutCellFreeBodies::Outcome o =
-        free_bodies_->Couple(*flow_, dt, bodies_, first, motions, u, v, p,
+        free_bodies_->Couple(*flow_, dt, bodies_, first, now, motions, u, v, p,
                              constants_.step_tolerance, constants_.step_max_iterations);
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
       velocities_[b] = motions[b].velocity;

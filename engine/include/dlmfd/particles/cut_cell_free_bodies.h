@@ -9,8 +9,8 @@
 // with column s of K the force and torque on every free body of the solve with g = e_s on one
 // body (a unit translation along x or y, or a unit rotation), no load and homogeneous Dirichlet
 // data (velocity sides read as walls), plus -2 eta V_b on the rotation's own torque (the
-// traction of eta grad u : grad v, particles/cut_cell_step.h). V* = V^n is the motion of the
-// step's first solve. Newton's law over the step,
+// traction of eta grad u : grad v, particles/cut_cell_step.h). V* is the motion of the step's
+// first solve (Predict, below). Newton's law over the step,
 //   M_b (U_b - U_b^n) / dt = F_h,b(V) + M_b g + F'_b,   I_b (omega_b - omega_b^n) / dt = T_h,b(V),
 // is then a linear system of 3N unknowns (the bodies coupled through the liquid),
 //   (M / dt - K) (V - V*) = F_h(V*) + M g + F' + M (V^n - V*) / dt,
@@ -36,6 +36,19 @@
 // then holds to (K - K_old) dV, which vanishes at a terminal velocity: 2 solves a step instead of
 // 1 + 3N (docs/evidence/cut_cell_boundary.md, "A free body": Faxen's fall speed moves by 2e-8,
 // the 5.2 pair's first second by 1.1e-4 of its speed, light bodies as stable).
+// The first solve's motion (Predict; docs/evidence/cut_cell_boundary.md, "The first solve's
+// motion"): Newton's law over the step with the last step's load F_h^n for F_h(V*), the kept K
+// and the collision forces at X^{n+1}, which are known before the step's solves,
+//   (M / dt - K) (V* - V^n) = F_h^n + M g + F'(X^{n+1}),
+// V* = V^n while no K of this dt is kept (the first step, after a resume or a new dt). The error
+// of a kept K, (K - K_old) (V - V*), shrinks with V - V*; a stiff wall force that switches on
+// within the step is in V* too, and the implicit M / dt - K keeps V* from growing where
+// M / dt << K (creeping flow). Measured against V* = V^n: the wall-contact disk's overshoot
+// 0.956 -> 0.976 g*, the light disk 2.7e-5 -> 1.5e-5 of K every step, the 5.2 pair's Uzawa
+// iterations a step (first solve, at V) 12.5 / 8.8 -> 11.4 / 7.2. The linear extrapolation
+// 2 V^n - V^{n-1} (10.5 / 0.7 on the pair) overshoots the wall contact (0.867 g*) and, since both
+// solves then start near their answer and stop just within the stopping rule, the light disk
+// drifts 3.0e-4 from K every step (2.0e-4 with the change of the load extrapolated too).
 #pragma once
 
 #include <vector>
@@ -76,9 +89,17 @@ class CutCellFreeBodies {
   // free ones at V*): the free bodies' velocities and rotations of t_{n+1} into `motions`, the
   // solution into u, v, p (inactive nodes 0, as the solve leaves them). bodies: at X^{n+1}, as the
   // flow is cut. Throws SolverNotConverged.
+  // now: V^n.
   Outcome Couple(CutCellStokes& flow, double dt, const std::vector<FixedBody>& bodies,
-                 const Loads& first, std::vector<RigidMotion>& motions, double* u, double* v,
-                 double* p, double tolerance, int max_iterations);
+                 const Loads& first, const std::vector<RigidMotion>& now,
+                 std::vector<RigidMotion>& motions, double* u, double* v, double* p,
+                 double tolerance, int max_iterations);
+
+  // The motion V* of the step's first solve (header): `motions` holds V^n on entry and V* on
+  // return (V^n where no K of this dt is kept yet). last: the load the last step reported, F_h^n.
+  // bodies: at X^{n+1}.
+  void Predict(double dt, const std::vector<FixedBody>& bodies, const Loads& last,
+               std::vector<RigidMotion>& motions);
 
   // Whether K must be made anew this step: never made, another dt, or a body moved more than
   // refresh_ h since it was (across a periodic seam the shortest way: a wrap is no move).
@@ -103,6 +124,10 @@ class CutCellFreeBodies {
   BoundaryData homogeneous_;            // the Dirichlet sides' data read as walls: zero
   CollisionForces collisions_;
   std::vector<Vec2> positions_, contact_forces_;
+  // The collision forces at these centres into contact_forces_; the number of active contacts.
+  int ContactForces(const std::vector<FixedBody>& bodies);
+  // M / dt - K (the bodies' own mass and inertia on the diagonal).
+  Eigen::MatrixXd NewtonMatrix(double dt) const;
   // The unit solves' solutions (3 per free body), kept: their pressure is the next step's start.
   std::vector<std::vector<double>> unit_u_, unit_v_, unit_p_;
   // K kept (particle_mesh.rigid_modes_refresh): the matrix, the dt and the bodies' centres it was
