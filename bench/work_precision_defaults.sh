@@ -64,7 +64,7 @@ if [[ $only == *dfg* ]]; then
   factor=${DFG_DT:-2}
   echo "series,h,d_over_h,dt,steps,max_speed,courant,cpu_ms_per_step,cpu_s_to_t5,cd,cl,error" > "$csv"
   declare -A speed
-  for h in ${DFG_H:-0.01025 0.005125 0.0025625 0.00128125}; do
+  for h in ${DFG_H:-0.01025 0.00854166666667 0.00732142857143 0.005125 0.0025625 0.00128125}; do
     dt=$(awk -v h="$h" -v f="$factor" 'BEGIN { printf "%.10g", f * h }')
     dir=$work/dfg_h${h}_dt$factor
     run "$dir" "$root/cases/verification/schaefer_turek_2d1.toml" --set domain.h="$h" \
