@@ -9,6 +9,7 @@
 #   bench/towed_disk.sh     # D_OVER_H="10 20 40" DT_CELLS="0.1" FIXED_SHIFTS="0 0.25 0.5 0.75"
 #                           # END=4 FROM=2 WORK=runs/towed SOLVE=build/solver/dlmfd-solve
 #                           # FIGURE=docs/figures/towed_disk_spectrum.png
+#                           # EXTRA="--set fluid.relaxation_time=0.1 ..." (to every run)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SOLVE=${SOLVE:-build/solver/dlmfd-solve}
@@ -20,6 +21,7 @@ END=${END:-4}
 FROM=${FROM:-2}
 FIGURE=${FIGURE:-docs/figures/towed_disk_spectrum.png}
 PYTHON=${PYTHON:-/usr/bin/python3}
+read -r -a EXTRA_ARGS <<< "${EXTRA:-}"
 SCENE=cases/verification/towed_disk_cut_cell.toml
 mkdir -p "$WORK"
 
@@ -28,7 +30,7 @@ run() {  # out, then overrides
   shift
   rm -rf "$out"
   /usr/bin/time -f "%U %S" -o "$out.time" "$SOLVE" "$SCENE" --out "$out" --threads 1 \
-    --set "time.end=$END" "$@" > "$out.log" 2>&1
+    --set "time.end=$END" "${EXTRA_ARGS[@]}" "$@" > "$out.log" 2>&1
   echo "$out: $(cat "$out.time") CPU s (user, system)"
 }
 

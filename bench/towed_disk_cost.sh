@@ -23,6 +23,7 @@
 #   bench/towed_disk_cost.sh     # BUILD=build D_OVER_H="10 20 40" FIRST=10 STEPS=100 ROUNDS=2
 #                                # BEFORE=/tmp/dlmfd-solve-main WORK=...
 #                                # CONFIGURATIONS="free free_kept" (a subset; default: all)
+#                                # EXTRA="--set fluid.relaxation_time=0.1 ..." (to every run)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -34,6 +35,7 @@ ROUNDS=${ROUNDS:-2}
 WORK=${WORK:-$(mktemp -d /tmp/towed_disk_cost.XXXXXX)}
 SOLVER=${SOLVE:-$BUILD/solver/dlmfd-solve}
 SCENE=cases/verification/towed_disk_cut_cell.toml
+read -r -a EXTRA_ARGS <<< "${EXTRA:-}"
 
 declare -A KEYS=(
   [towed]=''
@@ -61,7 +63,8 @@ cpu_seconds() {  # name, d_over_h, steps
   # shellcheck disable=SC2086  # KEYS holds several --set words
   /usr/bin/time -f "%U %S" -o "$WORK/time" "$solver" "$SCENE" --out "$WORK/run" --threads 1 \
     --set "domain.h=$h" --set "time.dt=$dt" --set "time.end=$end" --set output.fields_every=0 \
-    --set output.particles_every=0 --set output.checkpoint_every=0 ${KEYS[$1]} > /dev/null 2>&1
+    --set output.particles_every=0 --set output.checkpoint_every=0 "${EXTRA_ARGS[@]}" \
+    ${KEYS[$1]} > /dev/null 2>&1
   awk '{ printf "%.3f", $1 + $2 }' "$WORK/time"
 }
 

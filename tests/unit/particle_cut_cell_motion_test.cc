@@ -176,7 +176,7 @@ TEST(CutCellMotion, RecutIsTheSaddlePointBuiltAnew) {
   }
 }
 
-TEST(CutCellMotion, FreeAndPrescribedTakenPolymerAroundPrescribedRefused) {
+TEST(CutCellMotion, FreeAndPrescribedTakenAlsoInAPolymer) {
   EXPECT_NO_THROW(RequireCutCellScene(ParseScene(TranslatingScene("prescribed"))));
   EXPECT_NO_THROW(RequireCutCellScene(ParseScene(TranslatingScene("free"))));
   // A free disk lighter than the liquid: taken by cut cells (no multiplier), refused by the
@@ -187,19 +187,22 @@ TEST(CutCellMotion, FreeAndPrescribedTakenPolymerAroundPrescribedRefused) {
   EXPECT_NO_THROW(ValidateParticles(light, g));
   light.particle_mesh.kind = ParticleMeshKind::kCollocation;
   EXPECT_THROW(ValidateParticles(light, g), InvalidParameter);
-  // The polymer around a free body is taken (docs/evidence/cut_cell_boundary.md, "The polymer
-  // around a free body"); around a prescribed one it stays refused, with the motion named.
-  Params polymer = ParseScene(TranslatingScene("free"));
-  polymer.fluid.relaxation_time = 0.1;
-  polymer.fluid.solvent_ratio = 0.5;
-  EXPECT_NO_THROW(RequireCutCellScene(polymer));
-  polymer.particles[0].motion = Motion::kPrescribed;
-  try {
-    RequireCutCellScene(polymer);
-    ADD_FAILURE() << "a prescribed body in a polymer was taken";
-  } catch (const InvalidParameter& e) {
-    EXPECT_EQ(e.key(), "particles.0.motion");
-    EXPECT_EQ(e.value(), "\"prescribed\"");
+  // The polymer around a free body and around a prescribed one is taken (docs/evidence/
+  // cut_cell_boundary.md, "The polymer around a free body" and "The polymer around a towed
+  // body"); an ellipse in it is still refused, with its shape named.
+  for (const char* motion : {"free", "prescribed"}) {
+    Params polymer = ParseScene(TranslatingScene(motion));
+    polymer.fluid.relaxation_time = 0.1;
+    polymer.fluid.solvent_ratio = 0.5;
+    EXPECT_FALSE(polymer.fluid.IsNewtonian());
+    EXPECT_NO_THROW(RequireCutCellScene(polymer)) << motion;
+    polymer.particles[0].shape = ShapeKind::kEllipse;
+    try {
+      RequireCutCellScene(polymer);
+      ADD_FAILURE() << "an ellipse was taken by cut cells";
+    } catch (const InvalidParameter& e) {
+      EXPECT_EQ(e.key(), "particles.0.shape");
+    }
   }
 }
 

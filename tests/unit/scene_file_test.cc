@@ -239,11 +239,6 @@ const BadScene kBadScenes[] = {
      "[[particles]]\ncenter = [0.5, 0.5]\nshape = \"ellipse\"\nsemi_axes = [0.1, 0.05]\n"
      "motion = \"fixed\"\n",
      "particles.0.shape", "\"ellipse\""},
-    {"CutCellWithAPolymerAroundAMovingBody",
-     "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"
-     "[fluid]\nrelaxation_time = 0.1\nsolvent_ratio = 0.5\n"
-     "[[particles]]\ncenter = [0.5, 0.5]\nmotion = \"prescribed\"\n",
-     "particles.0.motion", "\"prescribed\""},
     {"CutCellWithViscosityInAdvection",
      "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"
      "[splitting]\nconstraint = \"paper\"\n[[particles]]\ncenter = [0.5, 0.5]\nmotion = "

@@ -9,12 +9,13 @@
 //                           with the velocity of conformation.velocity: u^{n+2/4} (the paper's)
 //                           or the Stokes step's u^{n+1/4}, lent by the same swap as below;
 //   MoveParticles (36)-(38) ParticleStep (predictor, DLM multiplier, corrector), in place on u.
-// With particle_mesh.kind = "cut_cell" the (fixed or prescribed) particles are cut out of the mesh
-// instead: step (33) is CutCellStep's (particles/cut_cell_step.h), which also gives their force
-// and moves the prescribed ones, and there is no step (36)-(38); a polymer's force then acts on the
-// fluid part only, and after step (35) the nodes inside a body next to the fluid take the fluid's A
-// (CutCellStep::ExtendIntoBodies); a free body moves to X^{n+1} before the polymer's force of step
-// (33) is made, and A is extended into its new band first (CutCellStep::MoveBeforeStep).
+// With particle_mesh.kind = "cut_cell" the (fixed, prescribed or free) particles are cut out of
+// the mesh instead: step (33) is CutCellStep's (particles/cut_cell_step.h), which also gives their
+// force and moves the moving ones, and there is no step (36)-(38); a polymer's force then acts on
+// the fluid part only, and after step (35) the nodes inside a body next to the fluid take the
+// fluid's A (CutCellStep::ExtendIntoBodies); a prescribed or free body moves to X^{n+1} before the
+// polymer's force of step (33) is made, and A is extended into its new band first
+// (CutCellStep::MoveBeforeStep).
 // A step models no more than the scene needs: a Newtonian liquid (relaxation_time = 0 or
 // solvent_ratio = 1) builds no polymer, so no conformation arrays, no force and no step (35); a
 // scene without particles has no step (36)-(38).
@@ -125,7 +126,7 @@ struct Simulation::Impl {
     const auto t0 = Clock::now();
     if (cut_cells && polymer &&
         cut_cells->MoveBeforeStep(params.time.dt, state.u.data(), state.v.data())) {
-      // A free body's band at X^{n+1} holds nodes that were deeper inside at X^n (A = I there),
+      // A moving body's band at X^{n+1} holds nodes that were deeper inside at X^n (A = I there),
       // which the polymer's force of the step reads: the bodies move first and A is extended.
       cut_cells->ExtendIntoBodies(state.a11.data(), state.a12.data(), state.a22.data());
       if (!state.d11.empty()) {

@@ -120,15 +120,6 @@ std::optional<InvalidParameter> CutCellObstacle(const Params& params) {
                                 " (cut cells were measured on disks only), or "
                                 "particle_mesh.kind = \"collocation\"");
   }
-  if (!params.fluid.IsNewtonian()) {
-    for (std::size_t p = 0; p < params.particles.size(); ++p) {
-      if (params.particles[p].motion != Motion::kPrescribed) continue;
-      return InvalidParameter("particles." + std::to_string(p) + ".motion", "\"prescribed\"",
-                              "\"fixed\" or \"free\"" + with +
-                                  " and a polymer (cut cells hold the polymer around fixed and "
-                                  "free bodies, so far), or particle_mesh.kind = \"collocation\"");
-    }
-  }
   if (params.splitting.beta != 0.0) {
     return InvalidParameter("splitting.beta", ExactText(params.splitting.beta),
                             "0 (and splitting.alpha = 1)" + with +

@@ -235,8 +235,8 @@ void AddParticleMeshAndCollisions(std::vector<SceneKey<P>>& keys) {
   keys.push_back(FromPreset(ChoiceKey<ParticleMeshKind, P>(
       "particle_mesh.kind", [](auto& p) -> auto& { return p.particle_mesh.kind; },
       "the multiplier points of (37): the paper's ring mesh, collocation points on the true "
-      "circle, or no multipliers (cut cells: fixed, prescribed or free disks, fixed and free ones "
-      "only with a polymer, any sides); "
+      "circle, or no multipliers (cut cells: fixed, prescribed or free disks, with or without a "
+      "polymer, any sides); "
       "`auto` picks cut cells for fixed disks (in a Newtonian, Oldroyd-B or Giesekus liquid) over "
       "a run of at least " +
           std::to_string(kMinCutCellSteps) +

@@ -41,7 +41,7 @@
 // Acrivos. Periodic sides and boxes without an outflow side as in particles/cut_cell_stokes.h (the
 // square array: docs/evidence/cut_cell_boundary.md, "Periodic boxes: the square array"). With
 // domain.diagonals = "both" every form is the mean over the two triangulations. With a polymer
-// (fixed and free bodies, so far) its force joins the load as the fluid part's integral
+// (fixed, prescribed or free bodies) its force joins the load as the fluid part's integral
 // (particles/cut_cell_polymer_force.h), so F_h holds the polymer's traction; step (35) holds A = I
 // at the nodes inside the bodies (InsideNodes), and then the nodes inside a body that are vertices
 // of a cut triangle take the mean of their neighbours' A in the fluid (ExtendIntoBodies), so that

@@ -11,14 +11,14 @@
 //   cut cells).
 // - The ring mesh (particle_mesh.kind = "ring") is a disk's: other shapes need collocation points.
 // - Cut cells (particle_mesh.kind = "cut_cell", particles/cut_cell_step.h) hold fixed, prescribed
-//   and free disks (particles/cut_cell_free_bodies.h), fixed and free ones only in a liquid with a
-//   polymer (free ones: first order in h there, docs/evidence/cut_cell_boundary.md, "The polymer
-//   around a free body"),
+//   and free disks (particles/cut_cell_free_bodies.h), also in a liquid with a polymer (moving ones
+//   are moved and A extended before the polymer's force: docs/evidence/cut_cell_boundary.md, "The
+//   polymer around a free body" and "The polymer around a towed body"),
 //   with all the viscosity in step (33) (splitting.beta = 0: the advection step (34) does not see
 //   the bodies), and without domain.flow_rate (the cut-cell step has no flux control; a body force
-//   drives a periodic box). Periodic sides and boxes without an outflow side are supported. The
-//   polymer around prescribed bodies is not supported yet, nor other shapes than disks (the
-//   geometry cuts an ellipse, but its accuracy with cut cells was never measured).
+//   drives a periodic box). Periodic sides and boxes without an outflow side are supported. Other
+//   shapes than disks are not supported yet (the geometry cuts an ellipse, but its accuracy with
+//   cut cells was never measured).
 // - The velocity grid has at most 2^32 - 1 nodes: E and E^T store 32-bit node indices.
 // - At t = 0 every disk lies inside the domain (crossing periodic sides only) and no two disks
 //   overlap (centre distances by the nearest periodic image).
@@ -44,8 +44,8 @@ void RequireCoupledInStokes(const Params& params, std::size_t p);
 // Throws InvalidParameter (particle_mesh.kind) when particle p's shape is not a disk: the ring
 // mesh of particles/particle_mesh.h is built on disks only.
 void RequireRingMeshShape(const Shape& shape, std::size_t p);
-// Throws InvalidParameter (particles.P.shape, particles.P.motion, splitting.beta,
-// domain.flow_rate) when the scene breaks a cut-cell rule above (particle_mesh.kind = "cut_cell").
+// Throws InvalidParameter (particles.P.shape, splitting.beta, domain.flow_rate) when the scene
+// breaks a cut-cell rule above (particle_mesh.kind = "cut_cell").
 void RequireCutCellScene(const Params& params);
 // The first cut-cell rule above that the scene breaks, whatever its particle_mesh.kind, as the
 // error RequireCutCellScene would throw; none where cut cells can run it. particle_mesh.kind =

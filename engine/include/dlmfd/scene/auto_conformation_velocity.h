@@ -19,11 +19,11 @@
 //      Waters-King start-up, whose advection vanishes, is the same to round-off, and its time
 //      step's stability limit is the same; past it "stokes" fails sooner).
 //   2. Particles held by multiplier points (ring mesh or collocation points), which includes every
-//      moving particle but the free cut-cell disks: "advected" (the paper's polymer cases 5.2
+//      moving particle but the cut-cell disks: "advected" (the paper's polymer cases 5.2
 //      and 5.3 and the collocation points' polymer figures in docs/accuracy.md were measured with
 //      it; "stokes" was measured on a settling disk and the 5.2 pair on a coarse grid only: the
 //      same below Re ~ 1, 1.5 times closer to its dt -> 0 limit at Re ~ 30).
-//   3. Otherwise (fixed or free disks cut out of the mesh): "stokes".
+//   3. Otherwise (fixed, prescribed or free disks cut out of the mesh): "stokes".
 // The choice, the rule and the numbers it read go where the particle mesh's "auto" goes (the run's
 // log, summary.json `numerics`, the daemon's job record and `dlmfd show`); the scene as run
 // (scene.toml) names the velocity chosen. particle_mesh.kind is resolved before (rule 2 reads it).
