@@ -69,6 +69,7 @@ TranslatingRun RunWithTheLiquid(const std::string& motion, int steps) {
   std::vector<ParticleState> particles(1);
   StepReport report;
   for (int n = 0; n < steps; ++n) {
+    step.MoveBeforeStep(params.time.dt, u.data(), v.data());
     step.Solve(params.time.dt, data, particles, u.data(), v.data(), p.data(), report);
     for (std::size_t k = 0; k < u.size(); ++k) {
       run.u_error =
@@ -245,6 +246,7 @@ TEST(CutCellMotion, FreeDiskStepIsTheSolveAtItsNewVelocity) {
   std::vector<ParticleState> particles(1);
   StepReport report;
   const double dt = params.time.dt;
+  step.MoveBeforeStep(dt, u.data(), v.data());
   step.Solve(dt, data, particles, u.data(), v.data(), p.data(), report);
   const ParticleState& s = particles[0];
   EXPECT_EQ(s.position, params.particles[0].center);  // X^1 = X^0 + dt V^0, V^0 = 0

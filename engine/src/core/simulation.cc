@@ -11,11 +11,11 @@
 //   MoveParticles (36)-(38) ParticleStep (predictor, DLM multiplier, corrector), in place on u.
 // With particle_mesh.kind = "cut_cell" the (fixed, prescribed or free) particles are cut out of
 // the mesh instead: step (33) is CutCellStep's (particles/cut_cell_step.h), which also gives their
-// force and moves the moving ones, and there is no step (36)-(38); a polymer's force then acts on
-// the fluid part only, and after step (35) the nodes inside a body next to the fluid take the
-// fluid's A (CutCellStep::ExtendIntoBodies); a prescribed or free body moves to X^{n+1} before the
-// polymer's force of step (33) is made, and A is extended into its new band first
-// (CutCellStep::MoveBeforeStep).
+// force, and there is no step (36)-(38); a polymer's force then acts on the fluid part only, and
+// after step (35) the nodes inside a body next to the fluid take the fluid's A
+// (CutCellStep::ExtendIntoBodies); a prescribed or free body moves to X^{n+1} before step (33)
+// (CutCellStep::MoveBeforeStep), so that A is extended into its new band before the polymer's
+// force of step (33) is made.
 // A step models no more than the scene needs: a Newtonian liquid (relaxation_time = 0 or
 // solvent_ratio = 1) builds no polymer, so no conformation arrays, no force and no step (35); a
 // scene without particles has no step (36)-(38).
@@ -124,8 +124,8 @@ struct Simulation::Impl {
   // velocities: particles/viscous_constraint.h).
   [[gnu::noinline]] void SolveStokes(StepReport& report) {
     const auto t0 = Clock::now();
-    if (cut_cells && polymer &&
-        cut_cells->MoveBeforeStep(params.time.dt, state.u.data(), state.v.data())) {
+    if (cut_cells && cut_cells->MoveBeforeStep(params.time.dt, state.u.data(), state.v.data()) &&
+        polymer) {
       // A moving body's band at X^{n+1} holds nodes that were deeper inside at X^n (A = I there),
       // which the polymer's force of the step reads: the bodies move first and A is extended.
       cut_cells->ExtendIntoBodies(state.a11.data(), state.a12.data(), state.a22.data());

@@ -51,6 +51,7 @@ CutCellFreeBodies::CutCellFreeBodies(const Params& params, const Grid& grid)
   unit_p_.assign(units, std::vector<double>(grid.Coarse().NodeCount(), 0.0));
   positions_.resize(params.particles.size());
   contact_forces_.resize(params.particles.size());
+  last_contact_forces_.assign(params.particles.size(), Vec2::Zero());
 }
 
 bool CutCellFreeBodies::NeedsK(double dt, const std::vector<FixedBody>& bodies) const {
@@ -87,8 +88,16 @@ Eigen::MatrixXd CutCellFreeBodies::NewtonMatrix(double dt) const {
 // and the collision forces at X^{n+1} (header).
 void CutCellFreeBodies::Predict(double dt, const std::vector<FixedBody>& bodies, const Loads& last,
                                 std::vector<RigidMotion>& motions) {
+  contacts_ = ContactForces(bodies);  // at X^{n+1}: Couple's too
+  has_last_ = false;
   if (k_.size() == 0 || dt != k_dt_) return;  // no K of this dt yet: V* = V^n
-  ContactForces(bodies);
+  last_ = last;
+  has_last_ = true;
+  // D, the last step's change of the load at a fixed motion, left out while a body is in contact
+  // (now or in the last step).
+  bool touching = contacts_ > 0;
+  for (const std::size_t b : free_) touching = touching || last_contact_forces_[b].norm() > 0.0;
+  const bool with_change = has_change_ && !touching;
   const std::size_t nf = free_.size();
   Eigen::VectorXd rhs(static_cast<Eigen::Index>(3 * nf));
   for (std::size_t c = 0; c < nf; ++c) {
@@ -99,6 +108,7 @@ void CutCellFreeBodies::Predict(double dt, const std::vector<FixedBody>& bodies,
     rhs[r + 1] = f.y();
     rhs[r + 2] = last.torque[b];
   }
+  if (with_change) rhs += change_;
   const Eigen::VectorXd dv = NewtonMatrix(dt).partialPivLu().solve(rhs);
   for (std::size_t c = 0; c < nf; ++c) {
     const std::size_t b = free_[c];
@@ -168,9 +178,9 @@ CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(
     for (const FixedBody& body : bodies) k_centres_.push_back(body.centre);
     MakeK(flow, bodies, motions, tolerance, max_iterations, outcome);
   }
-  // The collision forces at X^{n+1};
+  // The collision forces at X^{n+1} (Predict's);
   // (M / dt - K) (V - V*) = F_h(V*) + M g + F' + M (V^n - V*) / dt.
-  outcome.contacts = ContactForces(bodies);
+  outcome.contacts = contacts_;
   const Eigen::MatrixXd a = NewtonMatrix(dt);
   Eigen::VectorXd rhs(static_cast<Eigen::Index>(units));
   for (std::size_t c = 0; c < nf; ++c) {
@@ -183,7 +193,29 @@ CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(
     rhs[r + 2] = first.torque[b] +
                  (inertia_[b] / dt) * (now[b].angular_velocity - motions[b].angular_velocity);
   }
+  last_contact_forces_ = contact_forces_;
   const Eigen::VectorXd dv = a.partialPivLu().solve(rhs);
+  // D = F_h(V*) - F_h^n - K (V* - V^n): the change of the load at a fixed motion over the step.
+  has_change_ = has_last_;
+  if (has_last_) {
+    Eigen::VectorXd dstar(static_cast<Eigen::Index>(units));
+    for (std::size_t c = 0; c < nf; ++c) {
+      const std::size_t b = free_[c];
+      const auto r = static_cast<Eigen::Index>(3 * c);
+      dstar[r] = motions[b].velocity.x() - now[b].velocity.x();
+      dstar[r + 1] = motions[b].velocity.y() - now[b].velocity.y();
+      dstar[r + 2] = motions[b].angular_velocity - now[b].angular_velocity;
+    }
+    change_ = -(k_ * dstar);
+    for (std::size_t c = 0; c < nf; ++c) {
+      const std::size_t b = free_[c];
+      const auto r = static_cast<Eigen::Index>(3 * c);
+      change_[r] += first.force[b].x() - last_.force[b].x();
+      change_[r + 1] += first.force[b].y() - last_.force[b].y();
+      change_[r + 2] += first.torque[b] - last_.torque[b];
+    }
+  }
+  has_last_ = false;
   // The step's solution: the first solve's plus the unit solves' times V - V* (with K made this
   // step; else the step solves again at V).
   const std::size_t n = grid_.NodeCount(), np = grid_.Coarse().NodeCount();

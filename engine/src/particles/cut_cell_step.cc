@@ -6,6 +6,7 @@
 #include <sstream>
 #include <utility>
 
+#include "dlmfd/core/constants.h"
 #include "dlmfd/core/errors.h"
 #include "dlmfd/particles/particle_rules.h"
 #include "dlmfd/particles/shape.h"
@@ -30,6 +31,7 @@ CutCellStep::CutCellStep(const Params& params, const Grid& grid)
     const bool prescribed = q.motion == Motion::kPrescribed;
     velocities_.push_back(prescribed ? q.velocity : Vec2::Zero());
     rotations_.push_back(prescribed ? q.angular_velocity : 0.0);
+    density_.push_back(q.density);
     moving_ = moving_ || q.motion != Motion::kFixed;
   }
   // A free body starts at its given velocity; it is then Newton's law's (CutCellFreeBodies).
@@ -194,9 +196,8 @@ void CutCellStep::FillBodies(double* u, double* v) const {
 
 bool CutCellStep::MoveBeforeStep(double dt, double* u, double* v) {
   if (!moving_) return false;
-  FillBodies(u, v);
+  FillBodies(u, v);  // u^n inside the bodies at X^n: the value of the nodes they uncover
   MoveBodies(dt);
-  moved_ = true;
   return true;
 }
 
@@ -246,11 +247,6 @@ void CutCellStep::Restore(const std::vector<ParticleState>& particles, CutCellSt
 void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<ParticleState>& particles,
                         double* u, double* v, double* p, StepReport& report,
                         const NodeForce& polymer) {
-  if (moving_ && !moved_) {
-    FillBodies(u, v);  // u^n inside the bodies at X^n: the value of the nodes they uncover
-    MoveBodies(dt);
-  }
-  moved_ = false;
   PrepareStep(dt);
   const std::vector<RigidMotion> now = Motions();  // V^n
   if (free_bodies_) {
@@ -295,8 +291,11 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
                                 polymer.s22, fu_.data(), fv_.data());
   }
   if (moving_) ExtrapolatePressure(p);
-  const CutCellReport r = flow_->Solve(data, fu_.data(), fv_.data(), u, v, p,
-                                       constants_.step_tolerance, constants_.step_max_iterations);
+  const CutCellStokes::LoadStop stop = FreeLoadStop(particles);
+  const CutCellStokes::LoadStop* load_stop = stop.bodies.empty() ? nullptr : &stop;
+  const CutCellReport r =
+      flow_->Solve(data, fu_.data(), fv_.data(), u, v, p, constants_.step_tolerance,
+                   constants_.step_max_iterations, load_stop);
   report.Set("stokes_iterations", r.iterations);
   report.Set("stokes_residual", r.relative_residual);
   if (free_bodies_) {
@@ -320,7 +319,7 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
     if (!o.composed) {
       const CutCellReport again =
           flow_->Solve(data, fu_.data(), fv_.data(), u, v, p, constants_.step_tolerance,
-                       constants_.step_max_iterations);
+                       constants_.step_max_iterations, load_stop);
       second = again.iterations;
     }
     report.Set("rigid_mode_iterations", o.unit_iterations);
@@ -339,6 +338,33 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
     s.velocity = velocities_[b];
     s.angular_velocity = rotations_[b];
   }
+}
+
+// The free bodies' load stop: bound epsilon S_b on the force, epsilon S_b R_b on the torque, S_b
+// the largest of the weight less buoyancy, the last step's load less buoyancy and the viscous
+// load of the body's own motion, 4 pi eta (|U_b| + R_b |omega_b|) (header).
+CutCellStokes::LoadStop CutCellStep::FreeLoadStop(
+    const std::vector<ParticleState>& particles) const {
+  CutCellStokes::LoadStop stop;
+  if (!free_bodies_) return stop;
+  const double epsilon = constants_.free_load_tolerance;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    if (!free_bodies_->IsFree(b)) continue;
+    const Shape& shape = bodies_[b].shape;
+    const Vec2 buoyancy = shape.Mass(fluid_density_) * buoyancy_acceleration_;
+    const double weight = (shape.Mass(density_[b]) * -buoyancy_acceleration_ + buoyancy).norm();
+    const double last = b < particles.size() ? (particles[b].force - buoyancy).norm() : 0.0;
+    const double radius = shape.BoundingRadius();
+    const double viscous =
+        4.0 * kPi * viscosity_ * (velocities_[b].norm() + radius * std::abs(rotations_[b]));
+    const double scale = std::max({weight, last, viscous});
+    if (scale == 0.0) continue;
+    stop.bodies.push_back(static_cast<int>(b));
+    stop.centres.push_back(bodies_[b].centre);
+    stop.force_bound.push_back(epsilon * scale);
+    stop.torque_bound.push_back(epsilon * scale * radius);
+  }
+  return stop;
 }
 
 // F_h and T_h of body b (header), at its present motion.

@@ -3,6 +3,7 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -232,8 +233,23 @@ struct CutCellStokes::Impl {
   void Precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z);
   void SchurInverse(const Eigen::VectorXd& r, Eigen::VectorXd& z);
   void SolveVelocity(const Eigen::VectorXd& r, Eigen::VectorXd& z);
+  // The loads of LoadStop's bodies as rows over the unknowns [u; v; p] (Load's sums, linear in
+  // them): three a body (F_x, F_y, T), each a list of (unknown, coefficient).
+  struct LoadRows {
+    std::vector<std::vector<std::pair<int, double>>> rows;
+    std::vector<double> force_bound, torque_bound;
+    // Without a pressure side the solution's pressure has its mean removed (RemovePressureMean):
+    // a row's pressure part then reads p less that mean, the weights w / sum w (else empty) and
+    // each row's sum of pressure coefficients.
+    Eigen::VectorXd mean_weights;
+    std::vector<double> pressure_sums;
+  };
+  LoadRows BuildLoadRows(const LoadStop& stop) const;
+  // Whether an iteration's change, alpha (-w, d) of (u, p), moves every load within its bound.
+  static bool LoadSettled(const LoadRows& load, double alpha, const Eigen::VectorXd& w,
+                          const Eigen::VectorXd& d, int nu);
   GmresResult SolveSchur(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, double tolerance,
-                         int max_iterations);
+                         int max_iterations, const LoadRows* load = nullptr);
   Eigen::VectorXd RightHandSide(const BoundaryData& data, const double* fu, const double* fv,
                                 std::vector<double>& gu, std::vector<double>& gv) const;
   void Scatter(const Eigen::VectorXd& x, const std::vector<double>& gu,
@@ -806,6 +822,82 @@ void CutCellStokes::Impl::SolveVelocity(const Eigen::VectorXd& r, Eigen::VectorX
   }
 }
 
+// Load's sums over the unknowns: F = -sum_k (eta K u + mass u - B^T p)_k over the body's nodes
+// k within 1.5 h (no Oseen term: K and B's columns), T = -sum_k arm_k x (the same)_k.
+CutCellStokes::Impl::LoadRows CutCellStokes::Impl::BuildLoadRows(const LoadStop& stop) const {
+  const int nu = static_cast<int>(vnodes.size());
+  const CutCellGeometry& geo = *geos[0];
+  LoadRows out;
+  out.force_bound = stop.force_bound;
+  out.torque_bound = stop.torque_bound;
+  for (std::size_t i = 0; i < stop.bodies.size(); ++i) {
+    std::map<int, double> fx, fy, tq;
+    for (std::size_t k = 0; k < grid.NodeCount(); ++k) {
+      if (geo.NearestBody(k) != stop.bodies[i] || geo.distance()[k] >= 1.5 * grid.h) continue;
+      if (!ActiveNode(k)) continue;
+      const Vec2 arm = Arm(NodePosition(grid, static_cast<int>(k)), stop.centres[i]);
+      // (ru, rv)_k = sum_j a_j (u_j, v_j) + sum_q (d_x, d_y)_q p_q: F -= (ru, rv),
+      // T -= arm_x rv - arm_y ru.
+      auto velocity = [&](int j, double a) {
+        const int r = vindex[static_cast<std::size_t>(j)];
+        if (r < 0 || a == 0.0) return;
+        fx[r] -= a;
+        fy[nu + r] -= a;
+        tq[r] += arm.y() * a;
+        tq[nu + r] -= arm.x() * a;
+      };
+      const auto col = static_cast<Eigen::Index>(k);
+      for (Sparse::InnerIterator it(stiffness, col); it; ++it)
+        velocity(static_cast<int>(it.row()), eta * it.value());
+      velocity(static_cast<int>(k), rho_over_dt * lumped_mass[col]);
+      for (Sparse::InnerIterator it(div_x, col); it; ++it) {
+        const int r = pindex[static_cast<std::size_t>(it.row())];
+        if (r < 0) continue;
+        fx[2 * nu + r] -= it.value();
+        tq[2 * nu + r] += arm.y() * it.value();
+      }
+      for (Sparse::InnerIterator it(div_y, col); it; ++it) {
+        const int r = pindex[static_cast<std::size_t>(it.row())];
+        if (r < 0) continue;
+        fy[2 * nu + r] -= it.value();
+        tq[2 * nu + r] -= arm.x() * it.value();
+      }
+    }
+    for (const std::map<int, double>* row : {&fx, &fy, &tq}) {
+      out.rows.emplace_back(row->begin(), row->end());
+      double sum = 0.0;
+      for (const auto& [unknown, c] : *row)
+        if (unknown >= 2 * nu) sum += c;
+      out.pressure_sums.push_back(sum);
+    }
+  }
+  if (ptopo.HasNullSpace()) {
+    out.mean_weights.resize(static_cast<Eigen::Index>(pnodes.size()));
+    for (std::size_t k = 0; k < pnodes.size(); ++k)
+      out.mean_weights[static_cast<Eigen::Index>(k)] = pressure_fluid_mass[pnodes[k]];
+    out.mean_weights /= out.mean_weights.sum();
+  }
+  return out;
+}
+
+bool CutCellStokes::Impl::LoadSettled(const LoadRows& load, double alpha, const Eigen::VectorXd& w,
+                                      const Eigen::VectorXd& d, int nu) {
+  const int velocities = 2 * nu;
+  const double mean = load.mean_weights.size() > 0 ? load.mean_weights.dot(d) : 0.0;
+  std::vector<double> change;
+  for (std::size_t i = 0; i < load.rows.size(); ++i) {
+    double sum = -load.pressure_sums[i] * mean;
+    for (const auto& [unknown, c] : load.rows[i])
+      sum += c * (unknown < velocities ? -w[unknown] : d[unknown - velocities]);
+    change.push_back(alpha * sum);
+  }
+  for (std::size_t i = 0; i < load.force_bound.size(); ++i) {
+    if (std::hypot(change[3 * i], change[3 * i + 1]) > load.force_bound[i]) return false;
+    if (std::abs(change[3 * i + 2]) > load.torque_bound[i]) return false;
+  }
+  return true;
+}
+
 // Uzawa / preconditioned CG on the pressure (header): u = A^-1 (f - B^T p) exactly, CG on
 // S p = B A^-1 f - g with S = B A^-1 B^T + G_p / phi_p (symmetric positive definite) and Cahouet-
 // Chabard's S~^-1, until the saddle point's residual, which is then its continuity part, is below
@@ -813,8 +905,11 @@ void CutCellStokes::Impl::SolveVelocity(const Eigen::VectorXd& r, Eigen::VectorX
 // from u(p) if round-off left it above). The momentum part is the exact velocity solves' round-off
 // (at most 7.4e-13 |rhs| on Schaefer-Turek at D/h = 9.76 and 19.5, against the tolerance 1e-7:
 // docs/evidence/cut_cell_boundary.md, "The Uzawa step's cost at D/h = 19.5"), so it is not formed.
+// With a LoadStop (load) it also iterates, at least once, until an iteration changes each listed
+// body's load within its bound.
 GmresResult CutCellStokes::Impl::SolveSchur(const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
-                                            double tolerance, int max_iterations) {
+                                            double tolerance, int max_iterations,
+                                            const LoadRows* load) {
   const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
   GmresResult result;
   const double b_norm = rhs.norm();
@@ -840,7 +935,9 @@ GmresResult CutCellStokes::Impl::SolveSchur(const Eigen::VectorXd& rhs, Eigen::V
     }
     double rz = 0.0;
     bool started = false;  // S~^-1 r only once an iteration is needed
-    while (r.norm() > tolerance * b_norm && result.iterations < max_iterations) {
+    // The loads' change over the last iteration within their bounds (LoadStop).
+    bool settled = load == nullptr || result.iterations > 0;
+    while ((r.norm() > tolerance * b_norm || !settled) && result.iterations < max_iterations) {
       if (!started) {
         SchurInverse(r, z);
         d = z;
@@ -854,6 +951,7 @@ GmresResult CutCellStokes::Impl::SolveSchur(const Eigen::VectorXd& rhs, Eigen::V
       u -= alpha * w;
       r -= alpha * sd;
       ++result.iterations;
+      if (load) settled = LoadSettled(*load, alpha, w, d, nu);
       SchurInverse(r, z);
       const double rz_next = r.dot(z);
       d = z + (rz_next / rz) * d;
@@ -1052,7 +1150,7 @@ void CutCellStokes::SetAdvection(const double* wu, const double* wv) {
 
 CutCellReport CutCellStokes::Solve(const BoundaryData& data, const double* fu, const double* fv,
                                    double* u, double* v, double* p, double tolerance,
-                                   int max_iterations) {
+                                   int max_iterations, const LoadStop* stop) {
   Impl& m = *impl_;
   std::vector<double> gu, gv;
   const Eigen::VectorXd rhs = m.RightHandSide(data, fu, fv, gu, gv);
@@ -1066,9 +1164,11 @@ CutCellReport CutCellStokes::Solve(const BoundaryData& data, const double* fu, c
     x[2 * nu + static_cast<int>(k)] = p[m.pnodes[k]];
   const bool uzawa = m.convection.nonZeros() == 0 && !m.exact_velocity;
   if (!uzawa) m.BuildSaddleRows();
+  Impl::LoadRows load;
+  if (uzawa && stop) load = m.BuildLoadRows(*stop);
   const GmresResult result =
       uzawa
-          ? m.SolveSchur(rhs, x, tolerance, max_iterations)
+          ? m.SolveSchur(rhs, x, tolerance, max_iterations, stop ? &load : nullptr)
           : SolveGmres(
                 [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = m.saddle_rows * in; },
                 [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { m.Precondition(in, out); },

@@ -37,18 +37,23 @@
 // 1 + 3N (docs/evidence/cut_cell_boundary.md, "A free body": Faxen's fall speed moves by 2e-8,
 // the 5.2 pair's first second by 1.1e-4 of its speed, light bodies as stable).
 // The first solve's motion (Predict; docs/evidence/cut_cell_boundary.md, "The first solve's
-// motion"): Newton's law over the step with the last step's load F_h^n for F_h(V*), the kept K
-// and the collision forces at X^{n+1}, which are known before the step's solves,
-//   (M / dt - K) (V* - V^n) = F_h^n + M g + F'(X^{n+1}),
-// V* = V^n while no K of this dt is kept (the first step, after a resume or a new dt). The error
-// of a kept K, (K - K_old) (V - V*), shrinks with V - V*; a stiff wall force that switches on
-// within the step is in V* too, and the implicit M / dt - K keeps V* from growing where
-// M / dt << K (creeping flow). Measured against V* = V^n: the wall-contact disk's overshoot
-// 0.956 -> 0.976 g*, the light disk 2.7e-5 -> 1.5e-5 of K every step, the 5.2 pair's Uzawa
-// iterations a step (first solve, at V) 12.5 / 8.8 -> 11.4 / 7.2. The linear extrapolation
-// 2 V^n - V^{n-1} (10.5 / 0.7 on the pair) overshoots the wall contact (0.867 g*) and, since both
-// solves then start near their answer and stop just within the stopping rule, the light disk
-// drifts 3.0e-4 from K every step (2.0e-4 with the change of the load extrapolated too).
+// motion" and "A stopping rule on the body's load"): Newton's law over the step with the last
+// step's load F_h^n for F_h(V*), the kept K, the collision forces at X^{n+1} (known before the
+// step's solves; Couple reads the same) and the load's change at a fixed motion over the last
+// step, D = F_h(V*') - F_h^{n-1} - K (V*' - V^{n-1}) (V*', F_h(V*'): the last step's first solve),
+//   (M / dt - K) (V* - V^n) = F_h^n + M g + F'(X^{n+1}) + D,
+// D left out while a body is in contact (now or in the last step: a wall force's change is not
+// smooth) and until a step has measured it; V* = V^n while no K of this dt is kept (the first
+// step, after a resume or a new dt). The error of a kept K, (K - K_old) (V - V*), shrinks with
+// V - V*; the implicit M / dt - K keeps V* from growing where M / dt << K (creeping flow); D makes
+// V* the linear extrapolation of V for light bodies (F_h^n holds the added mass's reaction to the
+// last step's acceleration), so the solve at V starts near its answer. Both solves then stop on
+// the body's load too (CutCellStokes::LoadStop, particles/cut_cell_step.h), or the force's error,
+// of one sign step after step, drifts. Measured against D left out (main ef534c1): the 5.2 pair's
+// Uzawa iterations a step (first solve, at V) 11.4 / 7.2 -> 11.6 / 3.8, the light disk 1.5e-5 ->
+// 8.8e-6 of K every step, the wall-contact disk 0.976 -> 0.977 g*; without the load's rule the
+// light disk drifted 2.0e-4. The linear extrapolation 2 V^n - V^{n-1} overshoots the wall
+// contact (0.867 g*).
 #pragma once
 
 #include <vector>
@@ -85,18 +90,18 @@ class CutCellFreeBodies {
     // with them.
     bool composed = true;
   };
-  // After the step's first solve (u, v, p: its solution, with every body's motion `motions`, the
-  // free ones at V*): the free bodies' velocities and rotations of t_{n+1} into `motions`, the
-  // solution into u, v, p (inactive nodes 0, as the solve leaves them). bodies: at X^{n+1}, as the
-  // flow is cut. Throws SolverNotConverged.
-  // now: V^n.
+  // After Predict and the step's first solve (u, v, p: its solution, with every body's motion
+  // `motions`, the free ones at V*): the free bodies' velocities and rotations of t_{n+1} into
+  // `motions`, the solution into u, v, p (inactive nodes 0, as the solve leaves them). bodies: at
+  // X^{n+1}, as the flow is cut. Throws SolverNotConverged. now: V^n.
   Outcome Couple(CutCellStokes& flow, double dt, const std::vector<FixedBody>& bodies,
                  const Loads& first, const std::vector<RigidMotion>& now,
                  std::vector<RigidMotion>& motions, double* u, double* v, double* p,
                  double tolerance, int max_iterations);
 
-  // The motion V* of the step's first solve (header): `motions` holds V^n on entry and V* on
-  // return (V^n where no K of this dt is kept yet). last: the load the last step reported, F_h^n.
+  // The motion V* of the step's first solve (header), and the collision forces at X^{n+1}
+  // (Couple's: call Predict first in every step): `motions` holds V^n on entry and V* on return
+  // (V^n where no K of this dt is kept yet). last: the load the last step reported, F_h^n.
   // bodies: at X^{n+1}.
   void Predict(double dt, const std::vector<FixedBody>& bodies, const Loads& last,
                std::vector<RigidMotion>& motions);
@@ -124,6 +129,11 @@ class CutCellFreeBodies {
   BoundaryData homogeneous_;            // the Dirichlet sides' data read as walls: zero
   CollisionForces collisions_;
   std::vector<Vec2> positions_, contact_forces_;
+  int contacts_ = 0;                       // active contacts at X^{n+1} (Predict)
+  std::vector<Vec2> last_contact_forces_;  // F' of the last step (Predict: a body in contact)
+  Loads last_;                             // F_h^n, as Predict read it
+  bool has_last_ = false, has_change_ = false;
+  Eigen::VectorXd change_;  // D of the last step (Couple)
   // The collision forces at these centres into contact_forces_; the number of active contacts.
   int ContactForces(const std::vector<FixedBody>& bodies);
   // M / dt - K (the bodies' own mass and inertia on the diagonal).

@@ -12,16 +12,19 @@
 // particles, and there is no step (36)-(38): fixed bodies stay, prescribed ones move at their
 // given U and omega, free ones by Newton's law, implicit in their velocities through step (33)
 // (particles/cut_cell_free_bodies.h: 3 more Stokes solves a free body, the paper's collision
-// forces (14)-(15)). A moving body is cut at t_{n+1} (X^{n+1} = X^n + dt U, theta^{n+1} =
-// theta^n + dt omega, with a free body's U^n, omega^n; step (33) is implicit), so the geometry,
-// the forms and the capacitance
-// matrix are rebuilt every step (the chords move with the body even where the cut set does not
-// change), at the cost of the band (CutCellStokes::Recut: the uniform forms, the fast solvers and
-// the capacitance matrix's fast solves of the rows that stay in the band are kept), and the
-// pressure iteration starts from 2 p^n - p^{n-1}. The nodes inside a body (no fluid in their
-// support) carry its rigid motion, before the step at X^n and after it at X^{n+1}: a node that the
-// body uncovers enters the step with the rigid value u^n = U + omega x (x_i - X^n) in its mass
-// term, and the advection step (34) sees the body move. Cost a step against the fixed body's:
+// forces (14)-(15); the step's solves stop also on the free bodies' loads, FreeLoadStop, within
+// CutCellConstants::free_load_tolerance of each one's load scale: the largest of its weight less
+// buoyancy, its last load less buoyancy and 4 pi eta (|U| + R |omega|), the viscous load of its
+// motion: docs/evidence/cut_cell_boundary.md, "A stopping rule on the body's load"). A moving body
+// is cut at t_{n+1} (X^{n+1} = X^n + dt U, theta^{n+1} = theta^n + dt omega, with a free body's
+// U^n, omega^n; step (33) is implicit), so the geometry, the forms and the capacitance matrix are
+// rebuilt every step (the chords move with the body even where the cut set does not change), at the
+// cost of the band (CutCellStokes::Recut: the uniform forms, the fast solvers and the capacitance
+// matrix's fast solves of the rows that stay in the band are kept), and the pressure iteration
+// starts from 2 p^n - p^{n-1}. The nodes inside a body (no fluid in their support) carry its rigid
+// motion, before the step at X^n and after it at X^{n+1}: a node that the body uncovers enters the
+// step with the rigid value u^n = U + omega x (x_i - X^n) in its mass term, and the advection step
+// (34) sees the body move. Cost a step against the fixed body's:
 // docs/evidence/cut_cell_boundary.md, "A body in prescribed motion".
 // The hydrodynamic force and torque on each body, from the residual of this step's fluid forms
 // with a test function equal to 1 near the body (CutCellStokes::Load; the discrete stress over a
@@ -79,19 +82,21 @@ class CutCellStep {
   CutCellStep(const CutCellStep&) = delete;
   CutCellStep& operator=(const CutCellStep&) = delete;
 
-  // The bodies to X^{n+1} and the band marked there (u^n filled into them at X^n first), ahead of
-  // the step's Solve, which then does not move them again: so that A can be extended into the
-  // new band (ExtendIntoBodies) before the polymer's force of the step is made from it (a node of
-  // the new band that was deeper inside at X^n holds A = I from step (35)). False, and nothing
-  // done, without a moving body.
+  // The bodies to X^{n+1} and the band marked there (u^n filled into them at X^n first): every
+  // step calls it before Solve, which does not move the bodies, so that with a polymer A can be
+  // extended into the new band (ExtendIntoBodies) before the polymer's force of the step is made
+  // from it (a node of the new band that was deeper inside at X^n holds A = I from step (35)).
+  // False, and nothing done, without a moving body.
   bool MoveBeforeStep(double dt, double* u, double* v);
-  // A step of dt. u, v, p: u^n and the last pressure on entry (the warm start), u^{n+1/4},
-  // p^{n+1/4} on return with the Dirichlet data of `data` (its time set to t_{n+1}); particles get
-  // F_h and T_h (prescribed ones also X^{n+1}, theta^{n+1}; free ones also U^{n+1}, omega^{n+1}).
-  // The saddle point of (rho/dt) is built for the first call's dt and rebuilt when a call brings
-  // another, and every step when a body moves. Throws SolverNotConverged, and ParticlesOverlap when
-  // a moving body reaches a side that is not periodic or two bodies overlap. polymer: the polymer's
-  // whole-mesh force of (33) and its stress (core/node_force.h; absent: a Newtonian liquid).
+  // A step of dt, the bodies at X^{n+1} (MoveBeforeStep first). u, v, p: u^n (at nodes that were
+  // inside a body at X^n, its rigid motion) and the last pressure on entry (the warm start),
+  // u^{n+1/4}, p^{n+1/4} on return with the Dirichlet data of `data` (its time set to t_{n+1});
+  // particles get F_h and T_h (prescribed ones also X^{n+1}, theta^{n+1}; free ones also U^{n+1},
+  // omega^{n+1}). The saddle point of (rho/dt) is built for the first call's dt and rebuilt when a
+  // call brings another, and every step when a body moves. Throws SolverNotConverged, and
+  // ParticlesOverlap when a moving body reaches a side that is not periodic or two bodies overlap.
+  // polymer: the polymer's whole-mesh force of (33) and its stress (core/node_force.h; absent: a
+  // Newtonian liquid).
   void Solve(double dt, const BoundaryData& data, std::vector<ParticleState>& particles, double* u,
              double* v, double* p, StepReport& report, const NodeForce& polymer = {});
   // What the step keeps of earlier steps beyond the state, for a checkpoint (core/state.h): p^{n-1}
@@ -122,6 +127,9 @@ class CutCellStep {
   // F_h and T_h of body b at its present motion (header), from the step's solution.
   CutCellStokes::BodyLoad HydrodynamicLoad(std::size_t b, const double* u, const double* v,
                                            const double* p) const;
+  // The free bodies' solves' stopping rule on their loads (CutCellConstants::free_load_tolerance);
+  // particles: the last step's state (its load). Empty without free bodies.
+  CutCellStokes::LoadStop FreeLoadStop(const std::vector<ParticleState>& particles) const;
   // The rigid motion of the nearest body at every node without fluid in its support.
   void FillBodies(double* u, double* v) const;
   // solid_nodes_, inside_nodes_ and band_ of the present geometries.
@@ -130,8 +138,8 @@ class CutCellStep {
   std::vector<FixedBody> bodies_;                   // at the last step's end (X^{n+1})
   std::vector<Vec2> velocities_;                    // U of each body (0: fixed)
   std::vector<double> rotations_;                   // omega of each body
+  std::vector<double> density_;                     // rho_p of each body
   bool moving_ = false;                             // some body is prescribed or free
-  bool moved_ = false;                              // MoveBeforeStep ran since the last Solve
   std::unique_ptr<CutCellFreeBodies> free_bodies_;  // some body is free
   Grid grid_;
   std::vector<std::unique_ptr<CutCellGeometry>> geometries_;  // SW-NE, then NW-SE with "both"

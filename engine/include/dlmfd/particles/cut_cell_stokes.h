@@ -49,8 +49,8 @@
 // 708 and 758 (docs/evidence/cut_cell_boundary.md, "The Uzawa start from the earlier steps'
 // corrections"). Stopping rule: the saddle point's relative residual |rhs - K x|_2
 // <= tolerance |rhs|_2, as GMRES's; Uzawa forms its continuity part only (the momentum part is the
-// exact velocity solves' round-off). Cost and iterations: docs/evidence/cut_cell_boundary.md, "The
-// time loop's cost". With an
+// exact velocity solves' round-off); a free body's solves also stop on its load (LoadStop, below).
+// Cost and iterations: docs/evidence/cut_cell_boundary.md, "The time loop's cost". With an
 // Oseen term (or SetExactVelocityPreconditioner): restarted GMRES on the saddle point,
 // right-preconditioned by the block upper triangle [[A~, B^T], [0, -S~]] (z_p = -S~^-1 r_p, then
 // z_u = A~^-1 (r_u - B^T z_p)), A~^-1 the exact Stokes solve above or the Oseen velocity block's
@@ -98,6 +98,11 @@ struct CutCellConstants {
   // (docs/evidence/cut_cell_boundary.md, "A second-order boundary: the time loop").
   double step_tolerance = 1e-7;
   int step_max_iterations = 2000;
+  // A free body's solves (the step's first and the one at V, particles/cut_cell_step.h) also stop
+  // on its load (CutCellStokes::LoadStop): an iteration changes its force by at most this times
+  // its load scale (the largest of its weight less buoyancy, the last step's load less buoyancy
+  // and the viscous load of its motion, particles/cut_cell_step.h).
+  double free_load_tolerance = 1e-4;
   // Cahouet-Chabard's Laplacian over the fluid part (header; fixed bodies with a Dirichlet pressure
   // side), or the whole grid's as a moving body's steps use (false: tests that compare the two).
   bool fluid_pressure_laplacian = true;
@@ -155,11 +160,22 @@ class CutCellStokes {
   void SetBodyMotion(const std::vector<RigidMotion>& motions);
   // The advecting velocity w of the Oseen term (full node arrays), or nullptr for none.
   void SetAdvection(const double* wu, const double* wv);
+  // A stopping rule on some bodies' loads (Load, below), besides the residual's: Uzawa stops only
+  // once its last iteration has changed each listed body's force by at most force_bound and its
+  // torque about its centre by at most torque_bound, and makes at least one iteration (the change
+  // of an iteration is the estimate of the load's error; a free body's solves, particles/
+  // cut_cell_step.h). GMRES (an Oseen term) ignores it.
+  struct LoadStop {
+    std::vector<int> bodies;
+    std::vector<Vec2> centres;
+    std::vector<double> force_bound, torque_bound;
+  };
   // Solves with the Dirichlet data of `data` and the load (fu, fv) (dual, at velocity nodes; may be
   // nullptr). u, v, p: full node arrays, the initial guess on entry (values at unknowns), the
   // solution on return (Dirichlet data written, inactive nodes 0). Throws SolverNotConverged.
   CutCellReport Solve(const BoundaryData& data, const double* fu, const double* fv, double* u,
-                      double* v, double* p, double tolerance, int max_iterations);
+                      double* v, double* p, double tolerance, int max_iterations,
+                      const LoadStop* stop = nullptr);
   // The same by a sparse direct factorization of the whole saddle point (tests, small grids).
   void SolveDirect(const BoundaryData& data, const double* fu, const double* fv, double* u,
                    double* v, double* p);
