@@ -177,6 +177,29 @@ TEST(ConformationStep, IdentityInsideParticlesAndInflowDataOnUpstreamNodes) {
   EXPECT_GT(report.Get("min_eig_A"), 0.99);
 }
 
+// The report's min_eig_A is the smallest eigenvalue over the nodes, also where a node's diagonal
+// is large and its off-diagonal term makes it small: at rest A relaxes exactly,
+// A -> I + (A - I) e^{-dt / lambda}. A node of lambda_min 0.5 (diagonal 0.6) comes first in its
+// row, one of lambda_min 0.1 (diagonal 1, A12 0.9) after it: the minimum is the second's,
+// 1 - 0.9 e^{-dt}. (The report used to skip nodes whose diagonal was above the running minimum,
+// and gave the first's, 1 - 0.5 e^{-dt}.)
+TEST(ConformationStep, ReportsTheSmallestEigenvalueOverTheNodes) {
+  const int n = 8;
+  const Grid grid{n, n, 1.0 / n, 0.0, 0.0};
+  Params p = MakeParams(n, n, 1.0 / n, SideType::kWall, SideType::kWall, 1.0);
+  ConformationStep step(p, grid);
+  Fields f(grid.NodeCount());
+  f.a11[grid.Index(1, 3)] = f.a22[grid.Index(1, 3)] = 0.6;
+  f.a12[grid.Index(1, 3)] = 0.1;
+  f.a12[grid.Index(5, 3)] = 0.9;
+  StepReport report;
+  const double dt = 0.01;
+  step.Advance(0.0, dt, f.u.data(), f.v.data(), nullptr, f.a11.data(), f.a12.data(), f.a22.data(),
+               report);
+  EXPECT_NEAR(f.a12[grid.Index(5, 3)], 0.9 * std::exp(-dt), 1e-14);
+  EXPECT_NEAR(report.Get("min_eig_A"), 1.0 - 0.9 * std::exp(-dt), 1e-14);
+}
+
 TEST(ConformationStep, SubCyclesToTheCourantLimit) {
   const int n = 8;
   const Grid grid{n, n, 1.0 / n, 0.0, 0.0};

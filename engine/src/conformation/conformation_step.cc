@@ -245,9 +245,11 @@ void ConformationStep::Advance(double time, double dt, const double* u, const do
       a11[k] = a.a11;
       a12[k] = a.a12;
       a22[k] = a.a22;
-      // min over nodes of lambda_min: min(A11, A22) >= lambda_min bounds what a node can lower.
-      const bool spd = GershgorinLowerBound(a) > 0.0 && IsFinite(a);
-      if (!spd || std::min(a.a11, a.a22) < min_eig) {
+      // min over nodes of lambda_min: Gershgorin's min(A11, A22) - |A12| <= lambda_min, so a node
+      // whose bound is not below min_eig cannot lower it (min(A11, A22) is an upper bound).
+      const double bound = GershgorinLowerBound(a);
+      const bool spd = bound > 0.0 && IsFinite(a);
+      if (!spd || bound < min_eig) {
         const double m = MinEigenvalue(a);
         if (!IsFinite(a) || !(m > 0.0)) first_bad = std::min(first_bad, static_cast<long>(k));
         min_eig = std::min(min_eig, m);
