@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/conformation_eigenvalue.h"
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/scene/scene_file.h"
 
@@ -41,15 +42,6 @@ struct Settling {
   double off_line = 0.0;    // largest |U_x| and |omega| over the run
   double min_eigenvalue = 1e300;
 };
-
-double MinEigenvalue(const FlowState& s) {
-  double m = 1e300;
-  for (std::size_t k = 0; k < s.a11.size(); ++k) {
-    const double mean = 0.5 * (s.a11[k] + s.a22[k]), half = 0.5 * (s.a11[k] - s.a22[k]);
-    m = std::min(m, mean - std::sqrt(half * half + s.a12[k] * s.a12[k]));
-  }
-  return m;
-}
 
 // relaxation_time: "0.1" (the polymer, the fall speed over t in (0.4, 0.6]) or "0" (the Newtonian
 // liquid of the same viscosity, terminal from t = 0.03 (docs/evidence/cut_cell_boundary.md, "A free
@@ -79,7 +71,9 @@ Settling Settle(const std::string& h, const std::string& relaxation_time) {
     sim.Step();
     const ParticleState& p = sim.state().particles[0];
     s.off_line = std::max({s.off_line, std::abs(p.velocity.x()), std::abs(p.angular_velocity)});
-    if (polymer) s.min_eigenvalue = std::min(s.min_eigenvalue, MinEigenvalue(sim.state()));
+    if (polymer)
+      s.min_eigenvalue =
+          std::min(s.min_eigenvalue, testing::SmallestConformationEigenvalue(sim.state()));
     if (sim.state().time > from + 0.0025) {
       s.fall_speed -= p.velocity.y();
       ++counted;

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/conformation_eigenvalue.h"
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/scene/scene_file.h"
 
@@ -35,16 +36,6 @@ struct TowedPolymerRun {
   std::vector<double> drag;  // -F_x at every step after kTowedSteady
   double smallest_eigenvalue = 1e300;
 };
-
-// The smallest eigenvalue of A over the grid's nodes.
-double SmallestConformationEigenvalue(const FlowState& s) {
-  double m = 1e300;
-  for (std::size_t k = 0; k < s.a11.size(); ++k) {
-    const double mean = 0.5 * (s.a11[k] + s.a22[k]), half = 0.5 * (s.a11[k] - s.a22[k]);
-    m = std::min(m, mean - std::sqrt(half * half + s.a12[k] * s.a12[k]));
-  }
-  return m;
-}
 
 TowedPolymerRun RunTowedPolymer(double d_over_h, const std::vector<SceneOverride>& extra) {
   const double h = 1.0 / d_over_h, dt = 0.1 * h;
@@ -66,7 +57,7 @@ TowedPolymerRun RunTowedPolymer(double d_over_h, const std::vector<SceneOverride
   while (sim.state().time < kTowedEnd - 0.5 * dt) {
     sim.Step();
     run.smallest_eigenvalue =
-        std::min(run.smallest_eigenvalue, SmallestConformationEigenvalue(sim.state()));
+        std::min(run.smallest_eigenvalue, testing::SmallestConformationEigenvalue(sim.state()));
     if (sim.state().time > kTowedSteady + 0.5 * dt)
       run.drag.push_back(-sim.state().particles[0].force.x());
   }
