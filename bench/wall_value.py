@@ -31,7 +31,14 @@ over the points. Every point on the circle is counted; a point whose triangles r
 grid is an error. A Newtonian run (no trA) counts as A = I: its shear rates can be compared. With
 several runs (coarse to fine) it prints the observed orders log(e_c / e_f) / log(h_c / h_f) of each
 largest |r| and RMS between successive runs; --profile THETA prints trA along the normal at THETA.
+--torque compares the first disk's torque (particles.h5, the last record) with the torque of its
+wall traction, R^2 times the integral over theta of the shear stress t . sigma n at x_b, taken two
+ways from g_normal: eta_s g + G A_tn (A_tn = t . A n, the P1 interpolant of A at x_b; G = eta_p /
+lambda) and the viscometric eta g (A at its wall value). In the steady liquid the three agree as h
+-> 0; a wall shear rate that is too large for the body's load shows as a viscometric torque above
+the body's (docs/evidence/cut_cell_boundary.md, "Imposing the wall value").
   /usr/bin/python3 bench/wall_value.py RUN [RUN ...] [--angles 128] [--csv FILE] [--profile THETA]
+                                       [--torque]
 Reference: Singh, Joseph, Hesla, Glowinski & Pan, J. Non-Newtonian Fluid Mech. 91 (2000), section
 5.1; docs/evidence/cut_cell_boundary.md, "The polymer's wall value".
 """
@@ -224,6 +231,38 @@ def profile(run, theta):
         print(f"  s = {k * h:.6f} ({k} h): trA_h {p1.value_grad(tra, *q)[0]:.4f}")
 
 
+def torque(run, angles):
+    """The first disk's torque against its wall traction's (the module's header, --torque)."""
+    lam, both, x, y, u, v, _, centres, radii, _ = read_run(run)
+    scene = tomllib.loads(open(os.path.join(run, "scene.toml")).read())
+    eta = float(scene["fluid"]["viscosity"])
+    eta_s = eta * float(scene["fluid"]["solvent_ratio"])
+    modulus = (eta - eta_s) / lam
+    with h5py.File(last_snapshot(run), "r") as f:
+        a11, a12, a22 = f["A11"][:], f["A12"][:], f["A22"][:]
+    with h5py.File(os.path.join(run, "particles.h5"), "r") as f:
+        body = float(f["torque"][-1, 0])
+    h = float(x[1] - x[0])
+    p1 = P1Field(float(x[0]), float(y[0]), h, both)
+    c, radius = centres[0], radii[0]
+    split = viscometric = 0.0
+    for k in range(angles):
+        th = 2.0 * math.pi * (k + 0.5) / angles
+        n = np.array([math.cos(th), math.sin(th)])
+        t = np.array([-n[1], n[0]])
+        xb = c + radius * n
+        ut = [t @ np.array([p1.value_grad(u, *(xb + s * n))[0], p1.value_grad(v, *(xb + s * n))[0]])
+              for s in (h, 2.0 * h)]
+        g = (4.0 * ut[0] - ut[1]) / (2.0 * h)
+        a = np.array([[p1.value_grad(a11, *xb)[0], p1.value_grad(a12, *xb)[0]],
+                      [p1.value_grad(a12, *xb)[0], p1.value_grad(a22, *xb)[0]]])
+        weight = radius * radius * 2.0 * math.pi / angles
+        split += weight * (eta_s * g + modulus * (t @ a @ n))
+        viscometric += weight * eta * g
+    print(f"{run}: torque {body:.5f}; of the wall traction: eta_s g + G A_tn {split:.5f}, "
+          f"eta g {viscometric:.5f} ({100 * (viscometric / body - 1):+.2f} %)")
+
+
 def summary(m):
     """Largest |r| and RMS r of each pair over the points."""
     out = {}
@@ -241,7 +280,12 @@ def main():
     ap.add_argument("--profile", type=float, metavar="THETA",
                     help="also print trA_h along the normal at the angle THETA of the first disk, "
                     "at s = 0, h, 2h, ... 8h from the wall, and its wall value by g_normal")
+    ap.add_argument("--torque", action="store_true",
+                    help="also compare the first disk's torque with its wall traction's")
     a = ap.parse_args()
+    if a.torque:
+        for r in a.runs:
+            torque(r, a.angles)
     if a.profile is not None:
         for r in a.runs:
             profile(r, a.profile)
