@@ -7,6 +7,28 @@
 
 namespace dlmfd {
 
+void CutCellResponses::Hold(int s, std::vector<double> full) {
+  Held held;
+  const std::size_t n = full.size();
+  std::vector<int> index;  // the scan's, freed unless kept (a wide response holds none)
+  std::vector<double> value;
+  held.local = CutCellLocalResponses::EntriesOf(full.data(), n, n / kLocalShare, index, value);
+  if (held.local) {
+    held.index.assign(index.begin(), index.end());  // to size: 12 bytes an entry
+    held.value.assign(value.begin(), value.end());
+  }
+  held.full = std::move(full);
+  held_.emplace(s, std::move(held));
+}
+
+bool CutCellResponses::Local(int s, const std::vector<int>** index,
+                             const std::vector<double>** value) const {
+  const Held& held = held_.at(s);
+  *index = &held.index;
+  *value = &held.value;
+  return held.local;
+}
+
 int CutCellResponses::Update(const std::vector<int>& rows) {
   const std::size_t n = fast_.grid().NodeCount();
   std::vector<char> wanted(n, 0);
@@ -15,7 +37,7 @@ int CutCellResponses::Update(const std::vector<int>& rows) {
     if (wanted[static_cast<std::size_t>(it->first)] != 0) {
       ++it;
     } else {
-      spare_.push_back(std::move(it->second));  // its Dirichlet nodes hold 0, as a new one's
+      spare_.push_back(std::move(it->second.full));  // its Dirichlet nodes hold 0, as a new one's
       it = held_.erase(it);
     }
   }
@@ -36,10 +58,10 @@ int CutCellResponses::Update(const std::vector<int>& rows) {
     if (pair) tv[missing[j + 1]] = 1.0;
     fast_.SolvePair(tu.data(), cu.data(), tv.data(), cv.data());
     tu[missing[j]] = 0.0;
-    held_.emplace(missing[j], std::move(cu));
+    Hold(missing[j], std::move(cu));
     if (pair) {
       tv[missing[j + 1]] = 0.0;
-      held_.emplace(missing[j + 1], std::move(cv));
+      Hold(missing[j + 1], std::move(cv));
     } else {
       spare_.push_back(std::move(cv));
     }
@@ -54,20 +76,42 @@ void CutCellLocalResponses::Clear() {
   value_ = {};
 }
 
+bool CutCellLocalResponses::EntriesOf(const double* response, std::size_t nodes, std::size_t cap,
+                                      std::vector<int>& index, std::vector<double>& value) {
+  double largest = 0.0;
+  for (std::size_t i = 0; i < nodes; ++i) largest = std::max(largest, std::abs(response[i]));
+  const double drop = std::numeric_limits<double>::epsilon() * largest;
+  index.clear();
+  value.clear();
+  for (std::size_t i = 0; i < nodes; ++i) {
+    if (std::abs(response[i]) <= drop) continue;
+    if (value.size() == cap) return false;
+    index.push_back(static_cast<int>(i));
+    value.push_back(response[i]);
+  }
+  return true;
+}
+
 bool CutCellLocalResponses::Add(const double* response) {
   if (!kept_) return false;
-  double largest = 0.0;
-  for (std::size_t i = 0; i < nodes_; ++i) largest = std::max(largest, std::abs(response[i]));
-  const double drop = std::numeric_limits<double>::epsilon() * largest;
-  for (std::size_t i = 0; i < nodes_; ++i) {
-    if (std::abs(response[i]) <= drop) continue;
-    if (value_.size() == budget_) {
-      Clear();
-      return false;
-    }
-    index_.push_back(static_cast<int>(i));
-    value_.push_back(response[i]);
+  std::vector<int> index;
+  std::vector<double> value;
+  if (!EntriesOf(response, nodes_, budget_ - value_.size(), index, value)) {
+    Clear();
+    return false;
   }
+  return Append(index, value);
+}
+
+bool CutCellLocalResponses::Append(const std::vector<int>& index,
+                                   const std::vector<double>& value) {
+  if (!kept_) return false;
+  if (value.size() > budget_ - value_.size()) {
+    Clear();
+    return false;
+  }
+  index_.insert(index_.end(), index.begin(), index.end());
+  value_.insert(value_.end(), value.begin(), value.end());
   start_.push_back(value_.size());
   return true;
 }
@@ -130,9 +174,17 @@ CutCellCapacitance::CutCellCapacitance(const SeparableHelmholtz& fast,
       const std::vector<double>& r = responses->Of(rows_[j]);
       capacitance.col(j) += coupling_ * Eigen::Map<const Eigen::VectorXd>(r.data(), n);
     }
-    // Made anew every step: a scan of the responses would cost a step more than the sum saves
-    // (the towed disk's nu dt / h^2 = 2 never fits the budget; the scan cost it 0.3 % a step).
-    local_.Clear();
+    // Their entries were found when they were made (CutCellResponses); a response without them
+    // (more than n / kLocalShare) or a sum over the budget keeps the fast solve.
+    for (Eigen::Index j = 0; j < k && local_.Kept(); ++j) {
+      const std::vector<int>* index = nullptr;
+      const std::vector<double>* value = nullptr;
+      if (!responses->Local(rows_[j], &index, &value)) {
+        local_.Clear();
+      } else {
+        local_.Append(*index, *value);
+      }
+    }
   }
   for (Eigen::Index j = 0; responses == nullptr && j < k; j += 2) {
     const bool pair = j + 1 < k;

@@ -307,9 +307,9 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
       first.torque.push_back(load.torque);
     }
     std::vector<RigidMotion> motions = Motions();
-    const CutCellFreeBodies::Outcome o =
-        free_bodies_->Couple(*flow_, dt, bodies_, first, now, motions, u, v, p,
-                             constants_.step_tolerance, constants_.step_max_iterations);
+    const CutCellFreeBodies::Outcome o = free_bodies_->Couple(
+        *flow_, dt, bodies_, first, now, motions, u, v, p, constants_.step_tolerance,
+        constants_.unit_tolerance, constants_.step_max_iterations);
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
       velocities_[b] = motions[b].velocity;
       rotations_[b] = motions[b].angular_velocity;

@@ -141,7 +141,8 @@ struct CutCellStokes::Impl {
   // volume divergence (n x np).
   RowSparse momentum_rows, gradient_x_rows, gradient_y_rows;
   // Row-major copies for the products of the iterations: bt = [Bx^T; By^T] and b = [Bx, By] over
-  // the unknowns, pp = -G_p / phi_p.
+  // the unknowns, pp = -G_p / phi_p; A over the unknowns (velocity_rows) and the whole saddle point
+  // (saddle_rows) for GMRES and the direct solve only, made when first needed.
   RowSparse saddle_rows, bt, b, pp, velocity_rows;
   bool exact_velocity = false;  // precondition the velocity by its own factorization
   Eigen::SparseLU<Sparse> velocity_lu;
@@ -225,6 +226,7 @@ struct CutCellStokes::Impl {
     return false;
   }
   void BuildReduced();
+  void BuildVelocityRows();
   void BuildSaddleRows();
   std::vector<char> BandNodes() const;
   Sparse UniformVelocityOperator(const std::vector<char>& columns) const;
@@ -576,16 +578,11 @@ void CutCellStokes::Impl::BuildReduced() {
   for (std::size_t k = 0; k < pnodes.size(); ++k)
     pressure_mass[k] = pressure_fluid_mass[pnodes[k]] + eta / phi_p * ghost_diagonal[pnodes[k]];
   const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
-  const RowSparse a_full = momentum_full, bx_rows = bx_full, by_rows = by_full;
+  const RowSparse bx_rows = bx_full, by_rows = by_full;
   const RowSparse g_rows = ghost_p;
-  ReducedRows av, bb, gg;
-  av.Reserve(a_full.nonZeros());
+  ReducedRows bb, gg;
   bb.Reserve(bx_rows.nonZeros() + by_rows.nonZeros());
   gg.Reserve(g_rows.nonZeros());
-  for (int r = 0; r < nu; ++r) {
-    av.Append(a_full, vnodes[r], vindex, 0, 1.0);
-    av.EndRow();
-  }
   for (int r = 0; r < npu; ++r) {
     bb.Append(bx_rows, pnodes[r], vindex, 0, 1.0);
     bb.Append(by_rows, pnodes[r], vindex, nu, 1.0);
@@ -593,7 +590,7 @@ void CutCellStokes::Impl::BuildReduced() {
     gg.Append(g_rows, pnodes[r], pindex, 0, -phi_p);
     gg.EndRow();
   }
-  velocity_rows = av.Build(nu, nu);
+  velocity_rows.resize(0, 0);  // when GMRES or the direct solve needs it (BuildVelocityRows)
   b = bb.Build(npu, 2 * nu);
   pp = gg.Build(npu, npu);
   bt = b.transpose();
@@ -605,14 +602,31 @@ void CutCellStokes::Impl::BuildReduced() {
   std::fill(work_fu.begin(), work_fu.end(), 0.0);
   std::fill(work_fv.begin(), work_fv.end(), 0.0);
   if (exact_velocity) {
+    BuildVelocityRows();
     velocity = velocity_rows;
     velocity_lu.compute(velocity);
   }
 }
 
+// The velocity block A over the unknowns, row by row: GMRES's and the direct solve's only (Uzawa
+// solves it by the capacitance matrix), so made when they first need it.
+void CutCellStokes::Impl::BuildVelocityRows() {
+  if (velocity_rows.rows() > 0 || vnodes.empty()) return;
+  const int nu = static_cast<int>(vnodes.size());
+  const RowSparse a_full = momentum_full;
+  ReducedRows av;
+  av.Reserve(a_full.nonZeros());
+  for (int r = 0; r < nu; ++r) {
+    av.Append(a_full, vnodes[r], vindex, 0, 1.0);
+    av.EndRow();
+  }
+  velocity_rows = av.Build(nu, nu);
+}
+
 // The whole saddle point row by row from its blocks (GMRES and the direct solve).
 void CutCellStokes::Impl::BuildSaddleRows() {
   if (saddle_rows.rows() > 0) return;
+  BuildVelocityRows();
   const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
   std::vector<int> identity_index(static_cast<std::size_t>(2 * nu + npu));
   std::iota(identity_index.begin(), identity_index.end(), 0);

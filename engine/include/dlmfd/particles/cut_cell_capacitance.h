@@ -36,20 +36,34 @@
 namespace dlmfd {
 
 // The fast solver's responses to unit loads, A_0^-1 e_s (full node arrays), kept between the
-// capacitance matrices of a moving body's steps: n doubles a row held.
+// capacitance matrices of a moving body's steps: n doubles a row held. Each also with its entries
+// above the unit round-off times its largest (CutCellLocalResponses::EntriesOf, found once, when
+// it is made) where they are at most n / kLocalShare: a moving body's capacitance solve then sums
+// them instead of its second fast solve, as a fixed body's does (12 bytes an entry).
 class CutCellResponses {
  public:
+  static constexpr std::size_t kLocalShare = 8;  // at most n / kLocalShare entries a response
   explicit CutCellResponses(const SeparableHelmholtz& fast)
       : fast_(fast) {}
   // Holds A_0^-1 e_s for every s of rows, by fast solves two at a time for the ones not held (in
   // the order of rows), and forgets the others. Returns the number of fast solves made.
   int Update(const std::vector<int>& rows);
-  const std::vector<double>& Of(int s) const { return held_.at(s); }
+  const std::vector<double>& Of(int s) const { return held_.at(s).full; }
+  // The entries of A_0^-1 e_s above round-off (index, value), or false where it has more than
+  // n / kLocalShare (then both are empty).
+  bool Local(int s, const std::vector<int>** index, const std::vector<double>** value) const;
 
  private:
+  struct Held {
+    std::vector<double> full;
+    std::vector<int> index;
+    std::vector<double> value;
+    bool local = false;
+  };
   const SeparableHelmholtz& fast_;
-  std::unordered_map<int, std::vector<double>> held_;
+  std::unordered_map<int, Held> held_;
   std::vector<std::vector<double>> spare_;  // arrays of rows that left, for new ones
+  void Hold(int s, std::vector<double> full);
 };
 
 // The responses A_0^-1 e_s of the capacitance rows, each without its entries at or below the unit
@@ -60,16 +74,23 @@ class CutCellResponses {
 // the sum would cost more than half the fast solve (a fast solve pair costs about 450 instructions
 // a node, the sum about 16 an entry for both components: callgrind, Schaefer-Turek at D/h = 20,
 // docs/evidence/cut_cell_boundary.md, "The fixed body's step: the second fast solve as a sum of
-// responses"). Creeping flows (nu dt / h^2 of 1 and more) keep the fast solve, and so do moving
-// bodies (their capacitance matrix is made every step).
+// responses"). Creeping flows (nu dt / h^2 of 1 and more) keep the fast solve. A moving body's
+// solves sum too, from the entries its held responses keep (CutCellResponses: found once, when a
+// response is made, not every step).
 class CutCellLocalResponses {
  public:
   static constexpr int kEntriesPerNode = 16;
   explicit CutCellLocalResponses(std::size_t nodes)
       : nodes_(nodes),
         budget_(kEntriesPerNode * nodes) {}
+  // The entries of a response (a full node array of `nodes`) above the unit round-off times its
+  // largest, in the order of the nodes; false (and index, value cut short) beyond `cap` of them.
+  static bool EntriesOf(const double* response, std::size_t nodes, std::size_t cap,
+                        std::vector<int>& index, std::vector<double>& value);
   // Appends the next response (a full node array); false, and forgets all, once over the budget.
   bool Add(const double* response);
+  // The same with a response's entries (EntriesOf's).
+  bool Append(const std::vector<int>& index, const std::vector<double>& value);
   void Clear();  // forgets all: the fast solve is used
   bool Kept() const { return kept_; }
   // u -= sum_s ys[s] r_s, v -= sum_s zs[s] r_s.

@@ -36,6 +36,13 @@
 // then holds to (K - K_old) dV, which vanishes at a terminal velocity: 2 solves a step instead of
 // 1 + 3N (docs/evidence/cut_cell_boundary.md, "A free body": Faxen's fall speed moves by 2e-8,
 // the 5.2 pair's first second by 1.1e-4 of its speed, light bodies as stable).
+// The unit solves' tolerance (docs/evidence/cut_cell_boundary.md, "Where a free step's CPU
+// goes"): where a K of this dt was kept before this step (Predict made V*), K is made anew from
+// unit solves that stop at CutCellConstants::unit_tolerance (K's accuracy: it enters the step
+// times V - V*), and the step's solution is a solve at V started from their composition, as where
+// K is kept (Newton's law then holds to the new K's error times V - V*); where none was (the first
+// step, after a resume or a new dt: V* = V^n, the motion all from the unit solves) they stop at
+// the step's tolerance and their composition is the step's solution (Newton's law to round-off).
 // The first solve's motion (Predict; docs/evidence/cut_cell_boundary.md, "The first solve's
 // motion" and "A stopping rule on the body's load"): Newton's law over the step with the last
 // step's load F_h^n for F_h(V*), the kept K, the collision forces at X^{n+1} (known before the
@@ -85,19 +92,22 @@ class CutCellFreeBodies {
   struct Outcome {
     int unit_iterations = 0;  // the unit solves' Uzawa iterations, all together
     int contacts = 0;         // active collision contacts at X^{n+1}
-    // K was made this step and u, v, p hold the step's solution; else (K kept from an earlier
-    // step, particle_mesh.rigid_modes_refresh) only `motions` is set, and the step solves again
-    // with them.
+    // K was made this step at the step's tolerance and u, v, p hold the step's solution; else (K
+    // kept from an earlier step, particle_mesh.rigid_modes_refresh, or made at unit_tolerance)
+    // `motions` is set and u, v, p hold a start, and the step solves again with them.
     bool composed = true;
   };
   // After Predict and the step's first solve (u, v, p: its solution, with every body's motion
   // `motions`, the free ones at V*): the free bodies' velocities and rotations of t_{n+1} into
   // `motions`, the solution into u, v, p (inactive nodes 0, as the solve leaves them). bodies: at
-  // X^{n+1}, as the flow is cut. Throws SolverNotConverged. now: V^n.
+  // X^{n+1}, as the flow is cut. Throws SolverNotConverged. now: V^n. The unit solves stop at
+  // `tolerance` where no K of this dt was kept before this step (no prediction: the first step,
+  // after a resume or a new dt), and their composition is then the step's solution; else at
+  // unit_tolerance (K's accuracy: header), and the step solves again at V from their composition.
   Outcome Couple(CutCellStokes& flow, double dt, const std::vector<FixedBody>& bodies,
                  const Loads& first, const std::vector<RigidMotion>& now,
                  std::vector<RigidMotion>& motions, double* u, double* v, double* p,
-                 double tolerance, int max_iterations);
+                 double tolerance, double unit_tolerance, int max_iterations);
 
   // The motion V* of the step's first solve (header), and the collision forces at X^{n+1}
   // (Couple's: call Predict first in every step): `motions` holds V^n on entry and V* on return
