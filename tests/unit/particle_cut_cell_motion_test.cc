@@ -127,6 +127,28 @@ RecutStep StepOn(CutCellStokes& flow, const DomainParams& d, const FixedBody& bo
   return s;
 }
 
+// A recut's step against the saddle point built anew at the same place: the largest differences
+// of u, v and p against their largest values, and of the body's force, printed and held to the
+// bounds of both solves' stopping rule (a relative residual of 1e-11; the pressure: see
+// CutCellStokes's IterativeSolveIsTheDirectSolve, particle_cut_cell_test.cc).
+void ExpectTheSaddlePointBuiltAnew(int move, const RecutStep& a, const RecutStep& b) {
+  double du = 0.0, dp = 0.0, umax = 0.0, pmax = 0.0;
+  for (std::size_t k = 0; k < a.u.size(); ++k) {
+    du = std::max({du, std::abs(a.u[k] - b.u[k]), std::abs(a.v[k] - b.v[k])});
+    umax = std::max({umax, std::abs(b.u[k]), std::abs(b.v[k])});
+  }
+  for (std::size_t k = 0; k < a.p.size(); ++k) {
+    dp = std::max(dp, std::abs(a.p[k] - b.p[k]));
+    pmax = std::max(pmax, std::abs(b.p[k]));
+  }
+  std::printf(
+      "move %d: |du| / |u| %.2e, |dp| / |p| %.2e, |dF| / |F| %.2e, rank %d, fast solves %d\n", move,
+      du / umax, dp / pmax, (a.force - b.force).norm() / b.force.norm(), a.rank, a.fast_solves);
+  EXPECT_LT(du, 1e-8 * umax);
+  EXPECT_LT(dp, 1e-7 * pmax);
+  EXPECT_LT((a.force - b.force).norm(), 1e-8 * b.force.norm());
+}
+
 TEST(CutCellMotion, RecutIsTheSaddlePointBuiltAnew) {
   const DomainParams d = CutCreepingChannel(20.0);
   const Grid g = d.VelocityGrid();
@@ -149,25 +171,7 @@ TEST(CutCellMotion, RecutIsTheSaddlePointBuiltAnew) {
     const RecutStep a = StepOn(recut, d, body[0]);
     CutCellStokes anew(sw_ne, nw_se, d, 1.0, 1.0, 100.0, uniform_laplacian);
     const RecutStep b = StepOn(anew, d, body[0]);
-    double du = 0.0, dp = 0.0, umax = 0.0, pmax = 0.0;
-    for (std::size_t k = 0; k < a.u.size(); ++k) {
-      du = std::max({du, std::abs(a.u[k] - b.u[k]), std::abs(a.v[k] - b.v[k])});
-      umax = std::max({umax, std::abs(b.u[k]), std::abs(b.v[k])});
-    }
-    for (std::size_t k = 0; k < a.p.size(); ++k) {
-      dp = std::max(dp, std::abs(a.p[k] - b.p[k]));
-      pmax = std::max(pmax, std::abs(b.p[k]));
-    }
-    std::printf(
-        "move %d: |du| / |u| %.2e, |dp| / |p| %.2e, |dF| / |F| %.2e, rank %d, fast "
-        "solves %d\n",
-        move, du / umax, dp / pmax, (a.force - b.force).norm() / b.force.norm(), a.rank,
-        a.fast_solves);
-    // Both stop at a relative residual of 1e-11 (the pressure: see CutCellStokes's
-    // IterativeSolveIsTheDirectSolve, particle_cut_cell_test.cc).
-    EXPECT_LT(du, 1e-8 * umax);
-    EXPECT_LT(dp, 1e-7 * pmax);
-    EXPECT_LT((a.force - b.force).norm(), 1e-8 * b.force.norm());
+    ExpectTheSaddlePointBuiltAnew(move, a, b);
     EXPECT_EQ(a.rank, b.rank);
     EXPECT_EQ(b.fast_solves, b.rank);
     // The first recut solves for every row; then only the rows new to the band (measured 8-15 of
@@ -203,21 +207,7 @@ TEST(CutCellMotion, RecutSumsTheHeldResponsesWhereTheyAreLocal) {
     const RecutStep b = StepOn(anew, d, body[0]);
     EXPECT_TRUE(recut.CapacitanceSumsResponses());
     EXPECT_TRUE(anew.CapacitanceSumsResponses());
-    double du = 0.0, dp = 0.0, umax = 0.0, pmax = 0.0;
-    for (std::size_t k = 0; k < a.u.size(); ++k) {
-      du = std::max({du, std::abs(a.u[k] - b.u[k]), std::abs(a.v[k] - b.v[k])});
-      umax = std::max({umax, std::abs(b.u[k]), std::abs(b.v[k])});
-    }
-    for (std::size_t k = 0; k < a.p.size(); ++k) {
-      dp = std::max(dp, std::abs(a.p[k] - b.p[k]));
-      pmax = std::max(pmax, std::abs(b.p[k]));
-    }
-    std::printf("move %d: |du| / |u| %.2e, |dp| / |p| %.2e, |dF| / |F| %.2e, rank %d\n", move,
-                du / umax, dp / pmax, (a.force - b.force).norm() / b.force.norm(), a.rank);
-    // The bounds of RecutIsTheSaddlePointBuiltAnew (both stop at 1e-11).
-    EXPECT_LT(du, 1e-8 * umax);
-    EXPECT_LT(dp, 1e-7 * pmax);
-    EXPECT_LT((a.force - b.force).norm(), 1e-8 * b.force.norm());
+    ExpectTheSaddlePointBuiltAnew(move, a, b);
   }
 }
 
