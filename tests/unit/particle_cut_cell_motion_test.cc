@@ -149,28 +149,44 @@ void ExpectTheSaddlePointBuiltAnew(int move, const RecutStep& a, const RecutStep
   EXPECT_LT((a.force - b.force).norm(), 1e-8 * b.force.norm());
 }
 
-TEST(CutCellMotion, RecutIsTheSaddlePointBuiltAnew) {
-  const DomainParams d = CutCreepingChannel(20.0);
-  const Grid g = d.VelocityGrid();
+// A disk in the creeping channel (D/h = 20) that moves by 0.23 h and 0.07 h a move (more than a
+// cell in five, the cut set changing on the way), cut in both triangulations, with Cahouet-
+// Chabard's Laplacian of the whole grid, as a recut's (the fluid part's is for fixed bodies
+// only): a recut and a saddle point built anew then differ by their forms only.
+std::vector<FixedBody> OffNodeDisk(const DomainParams& d) {
   std::vector<FixedBody> body(1);
   body[0].shape = Shape::Disk(0.05);
   body[0].centre = Vec2(0.2 + 0.3 * d.h, 0.2 + 0.1 * d.h);
-  CutCellGeometry sw_ne(g, body), nw_se(g, body, CutTriangulation::kNwSe);
-  // Cahouet-Chabard's Laplacian of the whole grid in both, as a recut's (the fluid part's is for
-  // fixed bodies only): the same iterations, so that the solutions differ by the forms only.
-  CutCellConstants uniform_laplacian;
-  uniform_laplacian.fluid_pressure_laplacian = false;
-  CutCellStokes recut(sw_ne, nw_se, d, 1.0, 1.0, 100.0, uniform_laplacian);
-  StepOn(recut, d, body[0]);
-  // Five moves of 0.23 h and 0.07 h: more than a cell, the cut set changing on the way.
-  for (int move = 0; move < 5; ++move) {
+  return body;
+}
+CutCellConstants WholeGridLaplacian() {
+  CutCellConstants c;
+  c.fluid_pressure_laplacian = false;
+  return c;
+}
+struct MovingDisk {
+  void Move() {
     body[0].centre += Vec2(0.23 * d.h, 0.07 * d.h);
     sw_ne = CutCellGeometry(g, body);
     nw_se = CutCellGeometry(g, body, CutTriangulation::kNwSe);
+  }
+  const DomainParams d = CutCreepingChannel(20.0);
+  const Grid g = d.VelocityGrid();
+  std::vector<FixedBody> body = OffNodeDisk(d);
+  CutCellGeometry sw_ne{g, body}, nw_se{g, body, CutTriangulation::kNwSe};
+  const CutCellConstants constants = WholeGridLaplacian();
+};
+
+TEST(CutCellMotion, RecutIsTheSaddlePointBuiltAnew) {
+  MovingDisk m;
+  CutCellStokes recut(m.sw_ne, m.nw_se, m.d, 1.0, 1.0, 100.0, m.constants);
+  StepOn(recut, m.d, m.body[0]);
+  for (int move = 0; move < 5; ++move) {
+    m.Move();
     recut.Recut();
-    const RecutStep a = StepOn(recut, d, body[0]);
-    CutCellStokes anew(sw_ne, nw_se, d, 1.0, 1.0, 100.0, uniform_laplacian);
-    const RecutStep b = StepOn(anew, d, body[0]);
+    const RecutStep a = StepOn(recut, m.d, m.body[0]);
+    CutCellStokes anew(m.sw_ne, m.nw_se, m.d, 1.0, 1.0, 100.0, m.constants);
+    const RecutStep b = StepOn(anew, m.d, m.body[0]);
     ExpectTheSaddlePointBuiltAnew(move, a, b);
     EXPECT_EQ(a.rank, b.rank);
     EXPECT_EQ(b.fast_solves, b.rank);
@@ -187,24 +203,15 @@ TEST(CutCellMotion, RecutIsTheSaddlePointBuiltAnew) {
 // built anew does (CutCellResponses keeps each response's entries; before, a moving body's solves
 // always made the second fast solve), and the solutions are the same to the solver's tolerance.
 TEST(CutCellMotion, RecutSumsTheHeldResponsesWhereTheyAreLocal) {
-  const DomainParams d = CutCreepingChannel(20.0);
-  const Grid g = d.VelocityGrid();
-  std::vector<FixedBody> body(1);
-  body[0].shape = Shape::Disk(0.05);
-  body[0].centre = Vec2(0.2 + 0.3 * d.h, 0.2 + 0.1 * d.h);
-  CutCellGeometry sw_ne(g, body), nw_se(g, body, CutTriangulation::kNwSe);
-  CutCellConstants uniform_laplacian;  // as a recut's (RecutIsTheSaddlePointBuiltAnew)
-  uniform_laplacian.fluid_pressure_laplacian = false;
-  CutCellStokes recut(sw_ne, nw_se, d, 1.0, 1.0, 1e6, uniform_laplacian);
-  StepOn(recut, d, body[0]);
+  MovingDisk m;
+  CutCellStokes recut(m.sw_ne, m.nw_se, m.d, 1.0, 1.0, 1e6, m.constants);
+  StepOn(recut, m.d, m.body[0]);
   for (int move = 0; move < 3; ++move) {
-    body[0].centre += Vec2(0.23 * d.h, 0.07 * d.h);
-    sw_ne = CutCellGeometry(g, body);
-    nw_se = CutCellGeometry(g, body, CutTriangulation::kNwSe);
+    m.Move();
     recut.Recut();
-    const RecutStep a = StepOn(recut, d, body[0]);
-    CutCellStokes anew(sw_ne, nw_se, d, 1.0, 1.0, 1e6, uniform_laplacian);
-    const RecutStep b = StepOn(anew, d, body[0]);
+    const RecutStep a = StepOn(recut, m.d, m.body[0]);
+    CutCellStokes anew(m.sw_ne, m.nw_se, m.d, 1.0, 1.0, 1e6, m.constants);
+    const RecutStep b = StepOn(anew, m.d, m.body[0]);
     EXPECT_TRUE(recut.CapacitanceSumsResponses());
     EXPECT_TRUE(anew.CapacitanceSumsResponses());
     ExpectTheSaddlePointBuiltAnew(move, a, b);
