@@ -34,6 +34,17 @@ CutCellStep::CutCellStep(const Params& params, const Grid& grid)
     density_.push_back(q.density);
     moving_ = moving_ || q.motion != Motion::kFixed;
   }
+  // The report's surface gaps by the collision model's measure (particles/collision_forces.h).
+  std::vector<double> radii;
+  std::vector<Shape> shapes;
+  for (const FixedBody& body : bodies_) {
+    radii.push_back(body.shape.BoundingRadius());
+    shapes.push_back(body.shape);
+  }
+  gaps_ = std::make_unique<CollisionForces>(params, grid, std::move(radii));
+  gaps_->SetShapes(shapes);
+  gap_centres_.resize(bodies_.size());
+  gap_angles_.resize(bodies_.size());
   // A free body starts at its given velocity; it is then Newton's law's (CutCellFreeBodies).
   for (std::size_t b = 0; b < params.particles.size(); ++b) {
     const ParticleParams& q = params.particles[b];
@@ -338,6 +349,20 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
     s.velocity = velocities_[b];
     s.angular_velocity = rotations_[b];
   }
+  ReportGaps(report);
+}
+
+// The true surface gaps at X^{n+1}, the positions the particles get (header).
+void CutCellStep::ReportGaps(StepReport& report) {
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    gap_centres_[b] = bodies_[b].centre;
+    gap_angles_[b] = bodies_[b].angle;
+  }
+  gaps_->SetAngles(gap_angles_);
+  const CollisionForces::SurfaceGaps gaps = gaps_->Gaps(gap_centres_);
+  report.Set("particle_min_gap", gaps.Min());
+  report.Set("particle_pair_gap", gaps.pair);
+  report.Set("particle_wall_gap", gaps.wall);
 }
 
 // The free bodies' load stop: bound epsilon S_b on the force, epsilon S_b R_b on the torque, S_b

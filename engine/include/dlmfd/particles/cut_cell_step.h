@@ -55,7 +55,9 @@
 // blew up at Wi = 0.6, R/h = 24. Report columns:
 // stokes_iterations (Uzawa / CG), stokes_residual (the saddle point's relative residual); with
 // free bodies rigid_mode_iterations (the unit solves' Uzawa iterations, all together) and
-// collision_contacts.
+// collision_contacts; with any bodies particle_pair_gap, particle_wall_gap and particle_min_gap at
+// X^{n+1}, the true surface gaps of the collocation path (particles/particle_step.h), measured by
+// the collision model (CollisionForces::Gaps; NaN where there is nothing to measure).
 #pragma once
 
 #include <memory>
@@ -66,6 +68,7 @@
 #include "dlmfd/core/params.h"
 #include "dlmfd/core/state.h"
 #include "dlmfd/fluid/boundary_data.h"
+#include "dlmfd/particles/collision_forces.h"
 #include "dlmfd/particles/cut_cell_free_bodies.h"
 #include "dlmfd/particles/cut_cell_geometry.h"
 #include "dlmfd/particles/cut_cell_polymer_force.h"
@@ -130,6 +133,8 @@ class CutCellStep {
   // The free bodies' solves' stopping rule on their loads (CutCellConstants::free_load_tolerance);
   // particles: the last step's state (its load). Empty without free bodies.
   CutCellStokes::LoadStop FreeLoadStop(const std::vector<ParticleState>& particles) const;
+  // particle_pair_gap, particle_wall_gap, particle_min_gap at the bodies' places (header).
+  void ReportGaps(StepReport& report);
   // The rigid motion of the nearest body at every node without fluid in its support.
   void FillBodies(double* u, double* v) const;
   // solid_nodes_, inside_nodes_ and band_ of the present geometries.
@@ -141,6 +146,9 @@ class CutCellStep {
   std::vector<double> density_;                     // rho_p of each body
   bool moving_ = false;                             // some body is prescribed or free
   std::unique_ptr<CutCellFreeBodies> free_bodies_;  // some body is free
+  std::unique_ptr<CollisionForces> gaps_;           // the report's surface gaps
+  std::vector<Vec2> gap_centres_;                   // X^{n+1} of each body, for gaps_
+  std::vector<double> gap_angles_;                  // theta^{n+1} of each body, for gaps_
   Grid grid_;
   std::vector<std::unique_ptr<CutCellGeometry>> geometries_;  // SW-NE, then NW-SE with "both"
   std::vector<const CutCellGeometry*> geometry_views_;  // the same, read-only (moved in place)
