@@ -17,7 +17,9 @@
 //   is the saddle point built anew on the moved geometry: the same solution to the solver's
 //   tolerance, the same rank, and after a move of a fraction of a cell far fewer fast solves than
 //   the rank (a wrong band correction or a response of another row gives O(1) differences); where
-//   the responses decay within a few cells, its solves sum their held entries, as one built anew.
+//   the responses decay within a few cells, its solves sum their held entries, as one built anew;
+//   its forms, updated in place in the band's columns, are a fresh saddle point's first recut to
+//   the bit.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -216,6 +218,28 @@ TEST(CutCellMotion, RecutSumsTheHeldResponsesWhereTheyAreLocal) {
     EXPECT_TRUE(anew.CapacitanceSumsResponses());
     ExpectTheSaddlePointBuiltAnew(move, a, b);
   }
+}
+
+// A recut updates the forms in place, in the columns of the last band and of the new one only
+// (CutCellStokes::Recut); after moves that change the cut set, the step is the one of a saddle
+// point built at the last place and recut once (its forms the whole sums), to the bit: a column
+// left with the last band's correction, or an entry summed in another order, would differ.
+TEST(CutCellMotion, RecutInPlaceIsTheWholeSumToTheBit) {
+  MovingDisk m;
+  CutCellStokes moved(m.sw_ne, m.nw_se, m.d, 1.0, 1.0, 100.0, m.constants);
+  StepOn(moved, m.d, m.body[0]);
+  for (int move = 0; move < 4; ++move) {
+    m.Move();
+    moved.Recut();
+  }
+  const RecutStep a = StepOn(moved, m.d, m.body[0]);
+  CutCellStokes fresh(m.sw_ne, m.nw_se, m.d, 1.0, 1.0, 100.0, m.constants);
+  fresh.Recut();
+  const RecutStep b = StepOn(fresh, m.d, m.body[0]);
+  EXPECT_EQ(a.u, b.u);
+  EXPECT_EQ(a.v, b.v);
+  EXPECT_EQ(a.p, b.p);
+  EXPECT_EQ(a.force, b.force);
 }
 
 TEST(CutCellMotion, FreeAndPrescribedTakenAlsoInAPolymer) {

@@ -2,6 +2,7 @@
 
 #include <Eigen/SparseLU>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -96,6 +97,63 @@ struct ReducedRows {
   }
 };
 
+// Visits the entries of the sum of two sparse vectors (inner vectors, sorted) as Eigen's sum of
+// the matrices makes them: a + b where both store an entry, else the one that does.
+template <class Iterator, class Visit>
+void ForEachSumEntry(Iterator a, Iterator b, Visit visit) {
+  while (a || b) {
+    if (a && b && a.index() == b.index()) {
+      visit(a.index(), a.value() + b.value());
+      ++a;
+      ++b;
+    } else if (a && (!b || a.index() < b.index())) {
+      visit(a.index(), a.value());
+      ++a;
+    } else {
+      visit(b.index(), b.value());
+      ++b;
+    }
+  }
+}
+
+// sum = base + band where sum already holds base + the last band of the columns (rows, row-major)
+// `touched` (`in_place`; else sum is formed anew, as Eigen's sum): those back to base, then
+// base + the new band's entries in place. The band's pattern lies in base's (the same triangles'
+// couplings), so the sum keeps base's pattern and each entry is the sum's own a + b: the same bits
+// as base + band, at the cost of the band's columns. `touched` becomes the new band's columns;
+// in_place false where the band reaches outside base's pattern (the sum is then made whole).
+template <class Matrix>
+void AddBandInPlace(const Matrix& base, const Matrix& band, Matrix& sum, std::vector<int>& touched,
+                    bool& in_place) {
+  const int* outer = base.outerIndexPtr();
+  if (in_place) {
+    for (const int c : touched)
+      std::copy(base.valuePtr() + outer[c], base.valuePtr() + outer[c + 1],
+                sum.valuePtr() + outer[c]);
+  }
+  touched.clear();
+  for (Eigen::Index c = 0; c < band.outerSize() && in_place; ++c) {
+    int e = outer[c];
+    for (typename Matrix::InnerIterator it(band, c); it; ++it) {
+      while (e < outer[c + 1] && base.innerIndexPtr()[e] < it.index()) ++e;
+      if (e == outer[c + 1] || base.innerIndexPtr()[e] != it.index()) {
+        in_place = false;
+        break;
+      }
+      sum.valuePtr()[e] = base.valuePtr()[e] + it.value();
+    }
+    if (band.outerIndexPtr()[c] < band.outerIndexPtr()[c + 1])
+      touched.push_back(static_cast<int>(c));
+  }
+  if (in_place) return;
+  sum = base + band;
+  touched.clear();
+  for (Eigen::Index c = 0; c < band.outerSize(); ++c)
+    if (band.outerIndexPtr()[c] < band.outerIndexPtr()[c + 1])
+      touched.push_back(static_cast<int>(c));
+  in_place = sum.isCompressed() && sum.nonZeros() == base.nonZeros();
+}
+
 }  // namespace
 
 struct CutCellStokes::Impl {
@@ -129,14 +187,21 @@ struct CutCellStokes::Impl {
   Sparse div_x, div_y, chord_x, chord_y;           // np x n: -(q, d_c u); <q, u n_c>
   Sparse ghost_p;                                  // np x np
   Sparse band_stiffness;  // Recut: the stiffness less the uniform one (the band's correction)
+  // Recut: stiffness, div_x and div_y hold the uniform forms plus the band's correction in these
+  // columns (AddBandInPlace), updated in place where band_in_place.
+  std::array<std::vector<int>, 5> band_columns;
+  std::array<bool, 5> band_in_place{false, false, false, false, false};
+  // Recut: div_x and div_y by rows (the uniform ones plus the band's, in place), for b's rows.
+  RowSparse div_x_rows, div_y_rows;
   // Nitsche's load of the bodies' rigid motion (SetBodyMotion): momentum (n) and continuity (np);
   // empty for bodies at rest.
   Eigen::VectorXd boundary_u, boundary_v, boundary_p;
   // Unknowns.
   std::vector<int> vindex, pindex;  // full -> reduced, -1 if not an unknown
   std::vector<int> vnodes, pnodes;  // reduced -> full
-  // The reduced operators; the divergence with the chords' terms over every node.
-  Sparse momentum_full, velocity, bx_full, by_full;
+  // The reduced operators; the velocity block over every node (MomentumFull: GMRES and the direct
+  // solve only).
+  Sparse momentum_full, velocity;
   // Row-major rows of the fluid forms for the force: eta K + rho C, and -B_x^T, -B_y^T of the
   // volume divergence (n x np).
   RowSparse momentum_rows, gradient_x_rows, gradient_y_rows;
@@ -159,6 +224,7 @@ struct CutCellStokes::Impl {
   // assembly) and the fast solver's responses A_0^-1 e_s of the band.
   struct Uniform {
     Sparse stiffness, div_x, div_y;
+    RowSparse div_x_rows, div_y_rows;  // the same by rows
     Eigen::VectorXd lumped_mass, pressure_fluid_mass;
   };
   std::unique_ptr<Uniform> uniform;
@@ -226,6 +292,16 @@ struct CutCellStokes::Impl {
     return false;
   }
   void BuildReduced();
+  // b = [Bx, By] and bt = b^T over the unknowns (BuildReduced), Bx = div_x + chord_x: bt row by
+  // row from the columns of the divergence and the chords' terms, b from their rows.
+  void BuildDivergenceRows();
+  // (rho/dt) M_l + eta (K + N + G_u) + rho C over every node (made when first needed after
+  // BuildReduced), and one of its columns' entries, and of Bx's or By's, without it
+  // (RightHandSide).
+  const Sparse& MomentumFull();
+  void AddMomentumColumn(Eigen::Index j, double value, Eigen::VectorXd& out) const;
+  static void AddDivergenceColumn(const Sparse& div, const Sparse& chord, Eigen::Index j,
+                                  double value, Eigen::VectorXd& out);
   void BuildVelocityRows();
   void BuildSaddleRows();
   std::vector<char> BandNodes() const;
@@ -302,9 +378,11 @@ CutCellStokes::Impl::Impl(std::vector<const CutCellGeometry*> g, const DomainPar
 }
 
 // The geometries have moved (a body in prescribed motion): the forms anew as the uniform ones plus
-// the band's correction, the unknowns, the capacitance matrix from the responses held (fast solves
-// for the rows new to the band only), the reduced operators. The fast solvers are kept; the
-// Oseen term and the bodies' motion are cleared.
+// the band's correction (in place in the last and the new band's columns: AddBandInPlace), the
+// unknowns, the capacitance matrix from the responses held (fast solves for the rows new to the
+// band only), the reduced operators (b and bt copied from the forms; the velocity block over every
+// node only when GMRES or the direct solve needs it). The fast solvers are kept; the Oseen term and
+// the bodies' motion are cleared.
 void CutCellStokes::Impl::Recut() {
   const auto n = static_cast<Eigen::Index>(grid.NodeCount());
   if (!uniform) AssembleUniformForms();
@@ -401,6 +479,8 @@ void CutCellStokes::Impl::AssembleUniformForms() {
   uniform->div_x.makeCompressed();
   uniform->div_y.swap(f.dby);
   uniform->div_y.makeCompressed();
+  uniform->div_x_rows = uniform->div_x;
+  uniform->div_y_rows = uniform->div_y;
 }
 
 // The fluid forms as the uniform ones less every triangle that is not fluid plus the fluid parts of
@@ -423,17 +503,23 @@ void CutCellStokes::Impl::AssembleBandForms() {
     if (!ActiveNode(static_cast<std::size_t>(k))) lumped_mass[k] = 0.0;
   for (Eigen::Index k = 0; k < np; ++k)
     if (!ActivePressureNode(static_cast<std::size_t>(k))) pressure_fluid_mass[k] = 0.0;
-  Sparse band(n, n);
-  band.setFromTriplets(f.k.begin(), f.k.end());
-  stiffness = uniform->stiffness + band;
-  band.resize(np, n);
-  band.setFromTriplets(f.bx.begin(), f.bx.end());
-  div_x = uniform->div_x + band;
-  band.resize(np, n);
-  band.setFromTriplets(f.by.begin(), f.by.end());
-  div_y = uniform->div_y + band;
   band_stiffness.resize(n, n);
   band_stiffness.setFromTriplets(f.k.begin(), f.k.end());
+  AddBandInPlace(uniform->stiffness, band_stiffness, stiffness, band_columns[0], band_in_place[0]);
+  // The divergence by columns and by rows (each entry's band sum in the triplets' order either
+  // way).
+  Sparse band(np, n);
+  RowSparse band_rows(np, n);
+  band.setFromTriplets(f.bx.begin(), f.bx.end());
+  AddBandInPlace(uniform->div_x, band, div_x, band_columns[1], band_in_place[1]);
+  band_rows.setFromTriplets(f.bx.begin(), f.bx.end());
+  AddBandInPlace(uniform->div_x_rows, band_rows, div_x_rows, band_columns[3], band_in_place[3]);
+  band.resize(np, n);
+  band.setFromTriplets(f.by.begin(), f.by.end());
+  AddBandInPlace(uniform->div_y, band, div_y, band_columns[2], band_in_place[2]);
+  band_rows.resize(np, n);
+  band_rows.setFromTriplets(f.by.begin(), f.by.end());
+  AddBandInPlace(uniform->div_y_rows, band_rows, div_y_rows, band_columns[4], band_in_place[4]);
 }
 
 // Nitsche's terms on the chords (two-point Gauss) of one triangulation, weighted.
@@ -554,11 +640,7 @@ void CutCellStokes::Impl::NumberUnknowns() {
 // and the row-major blocks of the iterations: the rows of the full forms at the unknowns, their
 // columns renumbered (the numbering keeps the nodes' order, so no sorting).
 void CutCellStokes::Impl::BuildReduced() {
-  const Sparse diag_mass = Sparse(lumped_mass.asDiagonal());
-  momentum_full =
-      rho_over_dt * diag_mass + eta * (stiffness + nitsche + ghost_u) + rho * convection;
-  bx_full = div_x + chord_x;
-  by_full = div_y + chord_y;
+  momentum_full.resize(0, 0);  // when GMRES or the direct solve needs it (BuildVelocityRows)
   // A moving body's steps read the force from the columns of the symmetric stiffness and of the
   // divergence instead (Load).
   momentum_rows.resize(0, 0);
@@ -577,23 +659,17 @@ void CutCellStokes::Impl::BuildReduced() {
   const Eigen::VectorXd ghost_diagonal = ghost_p.diagonal();
   for (std::size_t k = 0; k < pnodes.size(); ++k)
     pressure_mass[k] = pressure_fluid_mass[pnodes[k]] + eta / phi_p * ghost_diagonal[pnodes[k]];
-  const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
-  const RowSparse bx_rows = bx_full, by_rows = by_full;
+  const int npu = static_cast<int>(pnodes.size());
   const RowSparse g_rows = ghost_p;
-  ReducedRows bb, gg;
-  bb.Reserve(bx_rows.nonZeros() + by_rows.nonZeros());
+  ReducedRows gg;
   gg.Reserve(g_rows.nonZeros());
   for (int r = 0; r < npu; ++r) {
-    bb.Append(bx_rows, pnodes[r], vindex, 0, 1.0);
-    bb.Append(by_rows, pnodes[r], vindex, nu, 1.0);
-    bb.EndRow();
     gg.Append(g_rows, pnodes[r], pindex, 0, -phi_p);
     gg.EndRow();
   }
   velocity_rows.resize(0, 0);  // when GMRES or the direct solve needs it (BuildVelocityRows)
-  b = bb.Build(npu, 2 * nu);
+  BuildDivergenceRows();
   pp = gg.Build(npu, npu);
-  bt = b.transpose();
   saddle_rows.resize(0, 0);
   corrections.Clear();
   // SolveVelocity writes the load at the unknowns only: off them it is 0, not what a node held
@@ -608,12 +684,109 @@ void CutCellStokes::Impl::BuildReduced() {
   }
 }
 
+void CutCellStokes::Impl::BuildDivergenceRows() {
+  const int nu = static_cast<int>(vnodes.size()), npu = static_cast<int>(pnodes.size());
+  // Written straight into the matrices' storage (kept from step to step), at most every entry of
+  // div + chord: then cut to the entries kept.
+  const Eigen::Index most =
+      div_x.nonZeros() + div_y.nonZeros() + chord_x.nonZeros() + chord_y.nonZeros();
+  bt.resize(2 * nu, npu);
+  bt.resizeNonZeros(most);
+  int* outer = bt.outerIndexPtr();
+  int* inner = bt.innerIndexPtr();
+  double* values = bt.valuePtr();
+  int count = 0;
+  for (int comp = 0; comp < 2; ++comp) {
+    const Sparse& div = comp == 0 ? div_x : div_y;
+    const Sparse& chord = comp == 0 ? chord_x : chord_y;
+    for (int r = 0; r < nu; ++r) {
+      // Column vnodes[r] of div + chord (the sum's entries: d + c where both are stored), at the
+      // pressure unknowns, without exact zeros (as ReducedRows).
+      ForEachSumEntry(Sparse::InnerIterator(div, vnodes[r]),
+                      Sparse::InnerIterator(chord, vnodes[r]), [&](Eigen::Index row, double value) {
+                        const int q = pindex[static_cast<std::size_t>(row)];
+                        if (q < 0 || value == 0.0) return;
+                        inner[count] = q;
+                        values[count++] = value;
+                      });
+      outer[comp * nu + r + 1] = count;
+    }
+  }
+  bt.resizeNonZeros(count);
+  // b row by row from the rows of div + chord: a moving body's divergence by rows (kept in place),
+  // else made here (a fixed body's operator is built once). The same entries as bt's.
+  RowSparse made_x, made_y;
+  if (!band_forms) {
+    made_x = div_x;
+    made_y = div_y;
+  }
+  const RowSparse& dx = band_forms ? div_x_rows : made_x;
+  const RowSparse& dy = band_forms ? div_y_rows : made_y;
+  const RowSparse cx = chord_x, cy = chord_y;
+  b.resize(npu, 2 * nu);
+  b.resizeNonZeros(most);
+  outer = b.outerIndexPtr();
+  inner = b.innerIndexPtr();
+  values = b.valuePtr();
+  count = 0;
+  for (int r = 0; r < npu; ++r) {
+    for (int comp = 0; comp < 2; ++comp) {
+      const int offset = comp * nu;
+      ForEachSumEntry(RowSparse::InnerIterator(comp == 0 ? dx : dy, pnodes[r]),
+                      RowSparse::InnerIterator(comp == 0 ? cx : cy, pnodes[r]),
+                      [&](Eigen::Index col, double value) {
+                        const int k = vindex[static_cast<std::size_t>(col)];
+                        if (k < 0 || value == 0.0) return;
+                        inner[count] = offset + k;
+                        values[count++] = value;
+                      });
+    }
+    outer[r + 1] = count;
+  }
+  b.resizeNonZeros(count);
+}
+
+const Sparse& CutCellStokes::Impl::MomentumFull() {
+  if (momentum_full.rows() == 0) {
+    const Sparse diag_mass = Sparse(lumped_mass.asDiagonal());
+    momentum_full =
+        rho_over_dt * diag_mass + eta * (stiffness + nitsche + ghost_u) + rho * convection;
+  }
+  return momentum_full;
+}
+
+// out += value times column j of MomentumFull, entry by entry as its sum makes them: (rho/dt) m_j
+// on the diagonal + eta ((k + n) + g) + rho c, an entry that a matrix does not store read as 0
+// (x + 0 is x: the same bits).
+void CutCellStokes::Impl::AddMomentumColumn(Eigen::Index j, double value,
+                                            Eigen::VectorXd& out) const {
+  std::vector<Eigen::Index> rows{j};
+  for (const Sparse* m : {&stiffness, &nitsche, &ghost_u, &convection})
+    for (Sparse::InnerIterator it(*m, j); it; ++it) rows.push_back(it.row());
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  for (const Eigen::Index i : rows) {
+    const double mass = i == j ? rho_over_dt * lumped_mass[j] : 0.0;
+    const double a = mass +
+                     eta * ((stiffness.coeff(i, j) + nitsche.coeff(i, j)) + ghost_u.coeff(i, j)) +
+                     rho * convection.coeff(i, j);
+    out[i] += a * value;
+  }
+}
+
+// out += value times column j of div + chord (the sum's entries).
+void CutCellStokes::Impl::AddDivergenceColumn(const Sparse& div, const Sparse& chord,
+                                              Eigen::Index j, double value, Eigen::VectorXd& out) {
+  ForEachSumEntry(Sparse::InnerIterator(div, j), Sparse::InnerIterator(chord, j),
+                  [&](Eigen::Index i, double entry) { out[i] += entry * value; });
+}
+
 // The velocity block A over the unknowns, row by row: GMRES's and the direct solve's only (Uzawa
 // solves it by the capacitance matrix), so made when they first need it.
 void CutCellStokes::Impl::BuildVelocityRows() {
   if (velocity_rows.rows() > 0 || vnodes.empty()) return;
   const int nu = static_cast<int>(vnodes.size());
-  const RowSparse a_full = momentum_full;
+  const RowSparse a_full = MomentumFull();
   ReducedRows av;
   av.Reserve(a_full.nonZeros());
   for (int r = 0; r < nu; ++r) {
@@ -706,9 +879,16 @@ void CutCellStokes::Impl::BuildCapacitance() {
   if (band_forms) {
     // The difference is the band's: its mass, the stiffness's correction, Nitsche and the ghost
     // penalty (in a column of a node without fluid the correction is -A_0's entry up to round-off).
-    const Eigen::VectorXd mass = lumped_mass - uniform->lumped_mass;
-    const Sparse band =
-        rho_over_dt * Sparse(mass.asDiagonal()) + eta * (band_stiffness + nitsche + ghost_u);
+    // The mass's difference only where it is not 0 (the band's nodes): an entry of 0 adds nothing
+    // to the others' sums (x + 0 is x) and the capacitance drops entries of 0.
+    Triplets masses;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const double mass = lumped_mass[k] - uniform->lumped_mass[k];
+      if (mass != 0.0) masses.emplace_back(static_cast<int>(k), static_cast<int>(k), mass);
+    }
+    Sparse mass_band(n, n);
+    mass_band.setFromTriplets(masses.begin(), masses.end());
+    const Sparse band = rho_over_dt * mass_band + eta * (band_stiffness + nitsche + ghost_u);
     Triplets d;
     for (int col = 0; col < n; ++col) {
       if (!unknown[col]) continue;
@@ -996,17 +1176,17 @@ Eigen::VectorXd CutCellStokes::Impl::RightHandSide(const BoundaryData& data, con
   // whole matrices, term by term in the same order, without the columns that would add 0).
   const auto nodes = static_cast<Eigen::Index>(n);
   Eigen::VectorXd au = Eigen::VectorXd::Zero(nodes), av = Eigen::VectorXd::Zero(nodes);
-  Eigen::VectorXd bxu = Eigen::VectorXd::Zero(bx_full.rows());
-  Eigen::VectorXd byv = Eigen::VectorXd::Zero(by_full.rows());
+  Eigen::VectorXd bxu = Eigen::VectorXd::Zero(div_x.rows());
+  Eigen::VectorXd byv = Eigen::VectorXd::Zero(div_y.rows());
   for (Eigen::Index j = 0; j < nodes; ++j) {
     const double dj = gu[static_cast<std::size_t>(j)], ej = gv[static_cast<std::size_t>(j)];
     if (dj != 0.0) {
-      for (Sparse::InnerIterator it(momentum_full, j); it; ++it) au[it.row()] += it.value() * dj;
-      for (Sparse::InnerIterator it(bx_full, j); it; ++it) bxu[it.row()] += it.value() * dj;
+      AddMomentumColumn(j, dj, au);
+      AddDivergenceColumn(div_x, chord_x, j, dj, bxu);
     }
     if (ej != 0.0) {
-      for (Sparse::InnerIterator it(momentum_full, j); it; ++it) av[it.row()] += it.value() * ej;
-      for (Sparse::InnerIterator it(by_full, j); it; ++it) byv[it.row()] += it.value() * ej;
+      AddMomentumColumn(j, ej, av);
+      AddDivergenceColumn(div_y, chord_y, j, ej, byv);
     }
   }
   const Eigen::VectorXd bu = bxu + byv;

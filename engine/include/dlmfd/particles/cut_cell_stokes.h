@@ -148,9 +148,13 @@ class CutCellStokes {
   // The geometries have changed in place (a body in prescribed motion, particles/cut_cell_step.h):
   // the forms, the unknowns and the capacitance matrix anew for them, at the cost of the band.
   // The forms are the uniform grid's (assembled at the first call) plus the correction of the
-  // triangles cut by or inside the bodies (the same up to round-off); the fast solvers are kept,
-  // and the capacitance matrix's columns A_0^-1 e_s are kept for the rows that stay in the band
-  // (fast solves for the new rows only: CapacitanceFastSolves; n doubles a row held). The Oseen
+  // triangles cut by or inside the bodies (the same up to round-off), updated in place in the
+  // columns of the last band and of the new one only (the rest of the grid's forms do not change:
+  // the same bits as the whole sums); the fast solvers are kept, and the capacitance matrix's
+  // columns A_0^-1 e_s are kept for the rows that stay in the band (fast solves for the new rows
+  // only: CapacitanceFastSolves; n doubles a row held). What stays of the order of the grid: B and
+  // B^T over the unknowns, copied from the forms in one pass over their entries (the unknowns'
+  // numbering moves as nodes enter and leave the liquid), and scans of the grid's nodes. The Oseen
   // term and the bodies' motion are cleared (SetBodyMotion after).
   void Recut();
   // Precondition the velocity block by its own sparse factorization instead of the fast solvers

@@ -26,7 +26,9 @@
 // node a row; where the responses are local also their entries, at most n / 8 of 12 bytes, which
 // the velocity block's rows a moving body no longer builds outweigh: the 5.2 pair at h = 1/48
 // peaks at 211 MB against 218 before, docs/evidence/cut_cell_boundary.md, "Where a free
-// step's CPU goes"), k = kCutCellRowsPerDiameter D / h + kCutCellRowsFloor rows a disk (measured
+// step's CPU goes"; since the recut in place, without the velocity block and the summed
+// divergence over every node, at 183-191 MB: "The recut in place"), k = kCutCellRowsPerDiameter
+// D / h + kCutCellRowsFloor rows a disk (measured
 // 11.1-11.25 D/h from D/h = 9.6 to 28.8, 64 at 4.8); a free body its three unit solves (velocity
 // and pressure, particles/cut_cell_free_bodies.h). So a moving disk's memory grows as (D/h) h^-2:
 // at D/h = 19.2 in Faxen's 1 x 8 channel (74,590 nodes) a free disk holds 129 MB of responses.
