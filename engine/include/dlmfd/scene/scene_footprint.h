@@ -21,14 +21,15 @@
 // Cut cells (particle_mesh.kind = "cut_cell"; docs/evidence/cut_cell_boundary.md, "The memory of a
 // cut-cell run"): no multipliers, but the assembled cut-cell forms and their reduced rows,
 // kCutCellBytesPerNode a velocity node in all (measured 2.4-2.7 KB with fixed bodies, 3.0-3.4
-// with moving ones); a moving body (prescribed or free) also holds the fast solver's response to
-// each of its capacitance rows, a node array each (particles/cut_cell_capacitance.h: 8 bytes a
-// node a row; where the responses are local also their entries, at most n / 8 of 12 bytes, which
-// the velocity block's rows a moving body no longer builds outweigh: the 5.2 pair at h = 1/48
-// peaks at 211 MB against 218 before, docs/evidence/cut_cell_boundary.md, "Where a free
-// step's CPU goes"; since the recut in place, without the velocity block and the summed
-// divergence over every node, at 183-191 MB: "The recut in place"), k = kCutCellRowsPerDiameter
-// D / h + kCutCellRowsFloor rows a disk (measured
+// with moving ones; since the recut in place 1.7 KB on SolveMemory's fixed disk, 2.35-2.7 on its
+// towed and free ones, which 3,500 held to 1.14-2.04 times and 3,200 holds to 1.09-1.86); a moving
+// body (prescribed or free) also holds the fast solver's response to each of its capacitance rows,
+// a node array each (particles/cut_cell_capacitance.h: 8 bytes a node a row; where the responses
+// are local also their entries, at most n / 8 of 12 bytes, which the velocity block's rows a moving
+// body no longer builds outweigh: the 5.2 pair at h = 1/48 peaks at 211 MB against 218 before,
+// docs/evidence/cut_cell_boundary.md, "Where a free step's CPU goes"; since the recut in place,
+// without the velocity block and the summed divergence over every node, at 183-191 MB: "The recut
+// in place"), k = kCutCellRowsPerDiameter D / h + kCutCellRowsFloor rows a disk (measured
 // 11.1-11.25 D/h from D/h = 9.6 to 28.8, 64 at 4.8); a free body its three unit solves (velocity
 // and pressure, particles/cut_cell_free_bodies.h). So a moving disk's memory grows as (D/h) h^-2:
 // at D/h = 19.2 in Faxen's 1 x 8 channel (74,590 nodes) a free disk holds 129 MB of responses.
@@ -39,7 +40,7 @@
 namespace dlmfd {
 
 inline constexpr double kBytesPerNode = 640.0;
-inline constexpr double kCutCellBytesPerNode = 3500.0;
+inline constexpr double kCutCellBytesPerNode = 3200.0;
 inline constexpr double kCutCellRowsPerDiameter = 11.25;  // capacitance rows a moving disk, per D/h
 inline constexpr double kCutCellRowsFloor = 10.0;
 inline constexpr double kCutCellFreeBodyBytesPerNode = 3.0 * 2.25 * 8.0;  // 3 unit solves (u, v, p)
