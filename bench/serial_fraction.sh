@@ -10,7 +10,10 @@
 # (a shared machine's timings do), but they weigh a memory-bound copy as little as its
 # instructions: the wall-clock speed-up from 1 to 2 threads needs a quiet machine. A region whose
 # if clause is false (the multiplier CG and the coupling build below 32 particles,
-# MultiplierCg::kParallelParticles) runs on one thread but counts here as parallel.
+# MultiplierCg::kParallelParticles) runs on one thread but counts here as parallel. The last two
+# columns count the calls into libgomp's region entry (GOMP_parallel) and explicit barriers
+# (GOMP_barrier) over the run: each costs a fork and join or a wait on a team, whatever its work
+# (bench/machine_ceiling_bench's BM_ForkJoin and BM_Barrier time them).
 #
 #   bench/serial_fraction.sh SCENE [--set key=value]...   # BUILD=build END=0.002 (time.end) WORK=...
 #                                                         # SUBSTEPS="MoveParticles" (default: all)
@@ -26,7 +29,7 @@ shift
 SOLVER="$BUILD/solver/dlmfd-solve"
 mkdir -p "$WORK"
 
-echo "substep,instructions,in_parallel_regions,serial_fraction,amdahl_speedup_2,amdahl_efficiency_16"
+echo "substep,instructions,in_parallel_regions,serial_fraction,amdahl_speedup_2,amdahl_efficiency_16,regions,barriers"
 SUBSTEPS=${SUBSTEPS:-SolveStokes AdvectVelocity UpdateConformation MoveParticles}
 for sub in $SUBSTEPS; do
   out="$WORK/$sub.callgrind"
@@ -37,14 +40,22 @@ for sub in $SUBSTEPS; do
     --set output.fields_every=0 --set output.checkpoint_every=0 \
     --set "time.end=$END" \
     >"$WORK/$sub.log" 2>&1
+  # Calls into a function: callgrind's "cfn=(id) name" (the name only at an id's first use), then
+  # "calls=N ...".
+  counts=$(awk '
+    /^c?fn=\(/ { id = $1; sub(/^c?fn=/, "", id); if (NF > 1) names[id] = $2 }
+    /^cfn=/ { callee = names[id] }
+    /^calls=/ { split($1, c, "="); if (callee == "GOMP_parallel") r += c[2]
+                if (callee == "GOMP_barrier") b += c[2]; callee = "" }
+    END { printf "%d,%d", r, b }' "$out")
   callgrind_annotate --inclusive=yes --threshold=100 "$out" 2>/dev/null |
-    awk -v name="$sub" '
+    awk -v name="$sub" -v counts="$counts" '
       /PROGRAM TOTALS/ { gsub(",", "", $1); total = $1 }
       /GOMP_parallel/ { v = $1; gsub(",", "", v); par += v }
       END {
-        if (total == 0) { printf "%s,0,0,,,\n", name; exit }
+        if (total == 0) { printf "%s,0,0,,,,%s\n", name, counts; exit }
         s = (total - par) / total
         sp2 = 1 / (s + (1 - s) / 2); sp16 = 1 / (s + (1 - s) / 16)
-        printf "%s,%d,%d,%.4f,%.3f,%.3f\n", name, total, par, s, sp2, sp16 / 16
+        printf "%s,%d,%d,%.4f,%.3f,%.3f,%s\n", name, total, par, s, sp2, sp16 / 16, counts
       }'
 done
