@@ -5,6 +5,7 @@
 
 #include "../mesh/grid_kernels.h"
 #include "dlmfd/conformation/polymer_force.h"
+#include "dlmfd/core/parallel_copy.h"
 
 namespace dlmfd {
 
@@ -41,8 +42,8 @@ void OldroydBPolymer::SetInitialState(FlowState& state) {
 }
 
 NodeForce OldroydBPolymer::MomentumForce(const FlowState& state) {
-  std::fill(fx_.begin(), fx_.end(), 0.0);
-  std::fill(fy_.begin(), fy_.end(), 0.0);
+  ParallelFill(fx_.data(), static_cast<long>(fx_.size()), 0.0);
+  ParallelFill(fy_.data(), static_cast<long>(fy_.size()), 0.0);
   // tau_p = G (S - I): S = A, or T(A) + I for the models whose T(A) is not A - I, and with devss
   // S - 2 w lambda D_h; the force reads S as it reads A.
   const RelaxationModel& model = step_.model();

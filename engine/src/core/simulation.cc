@@ -39,6 +39,7 @@
 #include "../mesh/grid_kernels.h"
 #include "dlmfd/conformation/oldroyd_b_polymer.h"
 #include "dlmfd/core/errors.h"
+#include "dlmfd/core/parallel_copy.h"
 #include "dlmfd/core/time_stepping.h"
 #include "dlmfd/fluid/boundary_data.h"
 #include "dlmfd/fluid/stokes_solver.h"
@@ -308,8 +309,11 @@ void Simulation::Step() {
       s.polymer && s.params.conformation.velocity == ConformationVelocity::kStokes;
   s.SolveStokes(report);
   if (show_stokes || conformation_sees_stokes) {
-    s.stokes_u.assign(s.state.u.begin(), s.state.u.end());
-    s.stokes_v.assign(s.state.v.begin(), s.state.v.end());
+    const long nodes = static_cast<long>(s.state.u.size());
+    s.stokes_u.resize(s.state.u.size());
+    s.stokes_v.resize(s.state.v.size());
+    ParallelCopy(s.state.u.data(), nodes, s.stokes_u.data());
+    ParallelCopy(s.state.v.data(), nodes, s.stokes_v.data());
   }
   s.AdvectVelocity(report);
   if (s.polymer) {

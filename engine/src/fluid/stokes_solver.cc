@@ -7,6 +7,7 @@
 
 #include "dlmfd/core/errors.h"
 #include "dlmfd/core/ordered_sum.h"
+#include "dlmfd/core/parallel_copy.h"
 #include "dlmfd/mesh/fem_operators.h"
 
 namespace dlmfd {
@@ -105,7 +106,7 @@ void StokesSolver::SolveVelocityPair(const double* fu, const double* fv, double*
 
 // g = nu M_p^-1 r + (rho/dt) K_p^-1 r; g is zero on pressure Dirichlet nodes.
 void StokesSolver::ApplyPreconditioner(const double* r, double* g) {
-  std::fill(z_.begin(), z_.end(), 0.0);  // Dirichlet data p = 0 for the solve
+  ParallelFill(z_.data(), static_cast<long>(z_.size()), 0.0);  // Dirichlet data p = 0 for the solve
   pressure_solver_.Solve(r, z_.data());
   const long np = static_cast<long>(z_.size());
   const double* minv = pmass_inv_.data();
@@ -129,8 +130,8 @@ void StokesSolver::RemoveMean(double* p) const {
 double StokesSolver::PredictDivergence(const double* fx, const double* fy, const double* u,
                                        const double* v) {
   const long n = static_cast<long>(grid_.NodeCount());
-  std::copy(u, u + n, tu_.begin());
-  std::copy(v, v + n, tv_.begin());
+  ParallelCopy(u, n, tu_.data());
+  ParallelCopy(v, n, tv_.data());
   boundary_data_.Apply(tu_.data(), tv_.data());
   ApplyStiffness(grid_, vtopo_, tu_.data(), fu_.data());
   ApplyStiffness(grid_, vtopo_, tv_.data(), fv_.data());
@@ -241,7 +242,7 @@ StokesReport StokesSolver::Solve(double dt, const double* fx, const double* fy, 
   pnodes_.ZeroKnown(r_.data());
   ApplyPreconditioner(r_.data(), g_.data());
   double rg = pnodes_.Dot(r_.data(), g_.data());
-  std::copy(g_.begin(), g_.end(), w_.begin());
+  ParallelCopy(g_.data(), static_cast<long>(g_.size()), w_.data());
   const double target = tolerance_ * ref;
 
   int it = 0;
