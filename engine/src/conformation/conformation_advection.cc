@@ -81,8 +81,9 @@ void ConformationAdvection::RestoreFixedAndGhosts(double* const f[3]) const {
 
 void ConformationAdvection::Load(const double* a11, const double* a12, const double* a22) {
   const double* src[3] = {a11, a12, a22};
-  for (int c = 0; c < 3; ++c) {
-    for (int j = 0; j <= grid_.ny; ++j) {
+#pragma omp parallel for schedule(static)  // the rows of Stage's static split
+  for (int j = 0; j <= grid_.ny; ++j) {
+    for (int c = 0; c < 3; ++c) {
       std::copy_n(src[c] + grid_.Index(0, j), grid_.nx + 1, a_[c] + Padded(0, j));
     }
   }
