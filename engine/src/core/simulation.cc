@@ -232,8 +232,14 @@ struct Simulation::Impl {
   // NaN/Inf anywhere ends the run with the quantity, the time and a node position.
   void CheckFinite() const {
     auto check = [&](const std::vector<double>& f, const Grid& g, const char* name) {
-      for (std::size_t k = 0; k < f.size(); ++k) {
-        if (std::isfinite(f[k])) continue;
+      const long n = static_cast<long>(f.size());
+      long first_bad = n;  // the first node, whatever the team
+#pragma omp parallel for schedule(static) reduction(min : first_bad)
+      for (long k = 0; k < n; ++k) {
+        if (!std::isfinite(f[k])) first_bad = std::min(first_bad, k);
+      }
+      if (first_bad < n) {
+        const auto k = static_cast<std::size_t>(first_bad);
         const auto [i, j] = kernels::NodeAt(g, k);
         std::ostringstream msg;
         msg << "numerical blow-up: " << name << " = " << f[k] << " at t = " << state.time
@@ -248,10 +254,11 @@ struct Simulation::Impl {
   }
 
   double MaxSpeed() const {
-    double m = 0.0;
-    for (std::size_t k = 0; k < state.u.size(); ++k) {
-      m = std::max(m, state.u[k] * state.u[k] + state.v[k] * state.v[k]);
-    }
+    const long n = static_cast<long>(state.u.size());
+    const double *u = state.u.data(), *v = state.v.data();
+    double m = 0.0;  // a maximum: the same on any team
+#pragma omp parallel for schedule(static) reduction(max : m)
+    for (long k = 0; k < n; ++k) m = std::max(m, u[k] * u[k] + v[k] * v[k]);
     return std::sqrt(m);
   }
 
