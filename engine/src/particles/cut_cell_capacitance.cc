@@ -160,6 +160,12 @@ CutCellCapacitance::CutCellCapacitance(const SeparableHelmholtz& fast,
   coupling_.resize(k, n);
   coupling_.setFromTriplets(c.begin(), c.end());
   const auto size = static_cast<std::size_t>(n);
+  // The Dirichlet nodes lie on the sides: the perimeter's nodes, each once.
+  const Grid& grid = fast.grid();
+  for (int j = 0; j <= grid.ny; ++j)
+    for (int i = 0; i <= grid.nx; i += (j == 0 || j == grid.ny || grid.nx == 0) ? 1 : grid.nx)
+      if (!fast.topology().IsUnknown(grid, i, j))
+        dirichlet_.push_back(static_cast<int>(grid.Index(i, j)));
   zero_.assign(size, 0.0);
   tu_.assign(size, 0.0);
   tv_.assign(size, 0.0);
@@ -206,10 +212,12 @@ CutCellCapacitance::CutCellCapacitance(const SeparableHelmholtz& fast,
   if (k > 0) capacitance_.compute(capacitance);
 }
 
+// The fast solver reads x at its Dirichlet nodes only and writes every other node: only those are
+// zeroed (the data of the homogeneous extension), here and in its second solve (cu_, cv_ hold 0
+// there from construction: the fast solver leaves them as they are).
 void CutCellCapacitance::SolvePair(const double* fu, double* u, const double* fv, double* v) {
   const auto n = static_cast<Eigen::Index>(zero_.size());
-  std::fill(u, u + n, 0.0);
-  std::fill(v, v + n, 0.0);
+  for (const int k : dirichlet_) u[k] = v[k] = 0.0;
   fast_.SolvePair(fu, u, fv, v);
   if (rows_.empty()) return;
   y_.col(0) = coupling_ * Eigen::Map<const Eigen::VectorXd>(u, n);
@@ -223,8 +231,6 @@ void CutCellCapacitance::SolvePair(const double* fu, double* u, const double* fv
     tu_[rows_[s]] = y_(static_cast<Eigen::Index>(s), 0);
     tv_[rows_[s]] = y_(static_cast<Eigen::Index>(s), 1);
   }
-  std::fill(cu_.begin(), cu_.end(), 0.0);
-  std::fill(cv_.begin(), cv_.end(), 0.0);
   fast_.SolvePair(tu_.data(), cu_.data(), tv_.data(), cv_.data());
   for (Eigen::Index i = 0; i < n; ++i) {
     u[i] -= cu_[i];
@@ -235,7 +241,7 @@ void CutCellCapacitance::SolvePair(const double* fu, double* u, const double* fv
 
 void CutCellCapacitance::Solve(const double* f, double* x) {
   const auto n = static_cast<Eigen::Index>(zero_.size());
-  std::fill(x, x + n, 0.0);
+  for (const int k : dirichlet_) x[k] = 0.0;
   fast_.Solve(f, x);
   if (rows_.empty()) return;
   const Eigen::VectorXd y = capacitance_.solve(coupling_ * Eigen::Map<const Eigen::VectorXd>(x, n));
@@ -244,7 +250,6 @@ void CutCellCapacitance::Solve(const double* f, double* x) {
     return;
   }
   for (std::size_t s = 0; s < rows_.size(); ++s) tu_[rows_[s]] = y[static_cast<Eigen::Index>(s)];
-  std::fill(cu_.begin(), cu_.end(), 0.0);
   fast_.Solve(tu_.data(), cu_.data());
   for (Eigen::Index i = 0; i < n; ++i) x[i] -= cu_[i];
   for (const int s : rows_) tu_[s] = 0.0;

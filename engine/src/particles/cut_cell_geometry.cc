@@ -117,19 +117,22 @@ std::array<Vec2, 3> CutCellGeometry::TriangleGradients(int t) const {
   return MeshTriangleGradients(grid_.h, triangulation_, t);
 }
 
+// In units of h from the macro's corner (i % 2, j % 2), with a the centroid's offset in it: SW-NE:
+// lower (a + 2/3, b + 1/3), upper (a + 1/3, b + 2/3), lower in its macro where x >= y; NW-SE:
+// lower-left (a + 1/3, b + 1/3), upper-right (a + 2/3, b + 2/3), lower-left where x + y <= 2. In
+// thirds of h, integers: the same choice as in floating point (its two sides differ by 1/3 h or
+// more), without rounding.
 int CutCellGeometry::MacroOf(int t) const {
   const int square = t / 2, i = square % grid_.nx, j = square / grid_.nx;
-  const int mi = i / 2, mj = j / 2;
+  const int first = 2 * ((j / 2) * (grid_.nx / 2) + i / 2);
+  const int a = i % 2, b = j % 2;
   if (triangulation_ == CutTriangulation::kSwNe) {
-    // The centroid in units of h: lower (i + 2/3, j + 1/3), upper (i + 1/3, j + 2/3).
-    const double cx = i + (t % 2 == 0 ? 2.0 : 1.0) / 3.0, cy = j + (t % 2 == 0 ? 1.0 : 2.0) / 3.0;
-    const bool lower = (cx / 2.0 - mi) >= (cy / 2.0 - mj);
-    return 2 * (mj * (grid_.nx / 2) + mi) + (lower ? 0 : 1);
+    const bool lower = t % 2 == 0 ? 3 * a + 2 >= 3 * b + 1 : 3 * a + 1 >= 3 * b + 2;
+    return first + (lower ? 0 : 1);
   }
-  // Lower-left (i + 1/3, j + 1/3), upper-right (i + 2/3, j + 2/3).
-  const double c = (t % 2 == 0 ? 1.0 : 2.0) / 3.0;
-  const bool lower_left = ((i + c) / 2.0 - mi) + ((j + c) / 2.0 - mj) <= 1.0;
-  return 2 * (mj * (grid_.nx / 2) + mi) + (lower_left ? 0 : 1);
+  const int c = t % 2 == 0 ? 1 : 2;  // thirds
+  const bool lower_left = 3 * (a + b) + 2 * c <= 6;
+  return first + (lower_left ? 0 : 1);
 }
 
 std::array<int, 3> CutCellGeometry::MacroNodes(int macro) const {

@@ -300,12 +300,15 @@ struct CutCellStokes::Impl {
   // (RightHandSide).
   const Sparse& MomentumFull();
   void AddMomentumColumn(Eigen::Index j, double value, Eigen::VectorXd& out) const;
+  mutable std::vector<Eigen::Index> column_rows;  // AddMomentumColumn's work
   static void AddDivergenceColumn(const Sparse& div, const Sparse& chord, Eigen::Index j,
                                   double value, Eigen::VectorXd& out);
   void BuildVelocityRows();
   void BuildSaddleRows();
   std::vector<char> BandNodes() const;
   Sparse UniformVelocityOperator(const std::vector<char>& columns) const;
+  std::vector<char> fast_unknown;  // the fast solver's unknowns (velocity nodes), made once
+  Sparse BandDifference(const std::vector<char>& unknown) const;
   void BuildCapacitance();
   void BuildPressureCapacitance();
   void Precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z);
@@ -677,6 +680,7 @@ void CutCellStokes::Impl::BuildReduced() {
   // the unknowns at round-off (a resumed run would differ from the uninterrupted one there).
   std::fill(work_fu.begin(), work_fu.end(), 0.0);
   std::fill(work_fv.begin(), work_fv.end(), 0.0);
+  std::fill(work_fp.begin(), work_fp.end(), 0.0);  // the same for SchurInverse's load
   if (exact_velocity) {
     BuildVelocityRows();
     velocity = velocity_rows;
@@ -760,7 +764,8 @@ const Sparse& CutCellStokes::Impl::MomentumFull() {
 // (x + 0 is x: the same bits).
 void CutCellStokes::Impl::AddMomentumColumn(Eigen::Index j, double value,
                                             Eigen::VectorXd& out) const {
-  std::vector<Eigen::Index> rows{j};
+  std::vector<Eigen::Index>& rows = column_rows;
+  rows.assign(1, j);
   for (const Sparse* m : {&stiffness, &nitsche, &ghost_u, &convection})
     for (Sparse::InnerIterator it(*m, j); it; ++it) rows.push_back(it.row());
   std::sort(rows.begin(), rows.end());
@@ -867,38 +872,88 @@ Sparse CutCellStokes::Impl::UniformVelocityOperator(const std::vector<char>& col
   return uniform;
 }
 
+// A moving body's difference of the cut operator and the uniform one: the band's mass, the
+// stiffness's correction, Nitsche and the ghost penalty (in a column of a node without fluid the
+// correction is -A_0's entry up to round-off), (rho/dt) dM + eta ((dK + N) + G_u), in the columns
+// of the unknowns and the rows of the active ones. Made column by column (a column without band
+// entries skipped at once), each entry the sum's own terms in its order (a term that a matrix does
+// not store is left out, as Eigen's sum of the matrices leaves it out), written straight into the
+// matrix's storage: the same entries, to the bit, as that sum filtered, without the whole grid's
+// sums and triplets.
+// The mass's difference only where it is not 0 (the band's nodes).
+Sparse CutCellStokes::Impl::BandDifference(const std::vector<char>& unknown) const {
+  const auto n = static_cast<Eigen::Index>(grid.NodeCount());
+  std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0), inner;
+  std::vector<double> values;
+  struct Term {
+    int row;
+    int matrix;  // 0: dK, 1: N, 2: G_u
+    double value;
+  };
+  std::vector<Term> terms;
+  const std::array<const Sparse*, 3> parts{&band_stiffness, &nitsche, &ghost_u};
+  for (Eigen::Index col = 0; col < n; ++col) {
+    outer[static_cast<std::size_t>(col)] = static_cast<int>(values.size());
+    if (!unknown[static_cast<std::size_t>(col)]) continue;
+    const double mass = lumped_mass[col] - uniform->lumped_mass[col];
+    terms.clear();
+    for (int m = 0; m < 3; ++m)
+      for (Sparse::InnerIterator it(*parts[static_cast<std::size_t>(m)], col); it; ++it)
+        terms.push_back({static_cast<int>(it.row()), m, it.value()});
+    if (terms.empty() && mass == 0.0) continue;
+    // By row, and within a row in the matrices' order (each stores a row once).
+    std::sort(terms.begin(), terms.end(), [](const Term& a, const Term& b) {
+      return a.row != b.row ? a.row < b.row : a.matrix < b.matrix;
+    });
+    bool mass_done = mass == 0.0;
+    auto emit = [&](int row, double value) {
+      if (vindex[static_cast<std::size_t>(row)] < 0) return;
+      inner.push_back(row);
+      values.push_back(value);
+    };
+    for (std::size_t e = 0; e < terms.size();) {
+      const int row = terms[e].row;
+      if (!mass_done && col < row) {  // the mass alone on the diagonal, before this row
+        emit(static_cast<int>(col), rho_over_dt * mass);
+        mass_done = true;
+      }
+      // ((dK + N) + G_u): a sum of the terms present, left to right in the matrices' order.
+      double sum = terms[e].value;
+      for (++e; e < terms.size() && terms[e].row == row; ++e) sum = sum + terms[e].value;
+      double value = eta * sum;
+      if (!mass_done && row == col) {
+        value = rho_over_dt * mass + value;
+        mass_done = true;
+      }
+      emit(row, value);
+    }
+    if (!mass_done) emit(static_cast<int>(col), rho_over_dt * mass);
+  }
+  outer[static_cast<std::size_t>(n)] = static_cast<int>(values.size());
+  Sparse difference(n, n);
+  difference.resizeNonZeros(static_cast<Eigen::Index>(values.size()));
+  std::copy(outer.begin(), outer.end(), difference.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), difference.innerIndexPtr());
+  std::copy(values.begin(), values.end(), difference.valuePtr());
+  return difference;
+}
+
 // The capacitance matrix of the Stokes velocity block (Oseen term left out) against the fast
 // solver: the difference of the extended cut operator and the uniform one, over the fast solver's
 // unknowns (particles/cut_cell_capacitance.h). Entries below 1e-12 of the largest are the two
 // assemblies' round-off (the sums run in different orders).
 void CutCellStokes::Impl::BuildCapacitance() {
   const auto n = static_cast<Eigen::Index>(grid.NodeCount());
-  std::vector<char> unknown(grid.NodeCount(), 0);
-  for (int j = 0; j <= grid.ny; ++j)
-    for (int i = 0; i <= grid.nx; ++i) unknown[grid.Index(i, j)] = vtopo.IsUnknown(grid, i, j);
+  if (fast_unknown.empty()) {
+    fast_unknown.assign(grid.NodeCount(), 0);
+    for (int j = 0; j <= grid.ny; ++j)
+      for (int i = 0; i <= grid.nx; ++i)
+        fast_unknown[grid.Index(i, j)] = vtopo.IsUnknown(grid, i, j);
+  }
+  const std::vector<char>& unknown = fast_unknown;
   if (band_forms) {
-    // The difference is the band's: its mass, the stiffness's correction, Nitsche and the ghost
-    // penalty (in a column of a node without fluid the correction is -A_0's entry up to round-off).
-    // The mass's difference only where it is not 0 (the band's nodes): an entry of 0 adds nothing
-    // to the others' sums (x + 0 is x) and the capacitance drops entries of 0.
-    Triplets masses;
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const double mass = lumped_mass[k] - uniform->lumped_mass[k];
-      if (mass != 0.0) masses.emplace_back(static_cast<int>(k), static_cast<int>(k), mass);
-    }
-    Sparse mass_band(n, n);
-    mass_band.setFromTriplets(masses.begin(), masses.end());
-    const Sparse band = rho_over_dt * mass_band + eta * (band_stiffness + nitsche + ghost_u);
-    Triplets d;
-    for (int col = 0; col < n; ++col) {
-      if (!unknown[col]) continue;
-      for (Sparse::InnerIterator it(band, col); it; ++it)
-        if (vindex[it.row()] >= 0) d.emplace_back(static_cast<int>(it.row()), col, it.value());
-    }
-    Sparse difference(n, n);
-    difference.setFromTriplets(d.begin(), d.end());
-    capacitance =
-        std::make_unique<CutCellCapacitance>(*fast_velocity, difference, 1e-12, responses.get());
+    capacitance = std::make_unique<CutCellCapacitance>(*fast_velocity, BandDifference(unknown),
+                                                       1e-12, responses.get());
     return;
   }
   // The columns off the band differ by the two assemblies' round-off only, which the capacitance
@@ -989,8 +1044,9 @@ void CutCellStokes::Impl::SchurInverse(const Eigen::VectorXd& r, Eigen::VectorXd
   const int npu = static_cast<int>(pnodes.size());
   z = eta * r.cwiseQuotient(pressure_mass);
   if (!fast_pressure) return;
-  std::fill(work_fp.begin(), work_fp.end(), 0.0);
-  std::fill(work_p.begin(), work_p.end(), 0.0);
+  // work_fp is 0 off the pressure unknowns (BuildReduced) and the solves read it at the unknowns
+  // only; work_p is read at the Dirichlet nodes only, which hold 0 (the fast solver leaves them,
+  // the capacitance solve zeroes them).
   for (int k = 0; k < npu; ++k) work_fp[pnodes[k]] = r[k];
   if (pressure_capacitance) {
     pressure_capacitance->Solve(work_fp.data(), work_p.data());
@@ -1112,7 +1168,7 @@ GmresResult CutCellStokes::Impl::SolveSchur(const Eigen::VectorXd& rhs, Eigen::V
     result.converged = true;
     return result;
   }
-  Eigen::VectorXd u(2 * nu), p = x.tail(npu), w, z, d, sd;
+  Eigen::VectorXd u(2 * nu), p = x.tail(npu), w, z, d, sd, btd(2 * nu);
   RemovePressureMean(p);
   for (int restart = 0; restart < 3; ++restart) {
     SolveVelocity(rhs.head(2 * nu) - bt * p, u);
@@ -1138,7 +1194,8 @@ GmresResult CutCellStokes::Impl::SolveSchur(const Eigen::VectorXd& rhs, Eigen::V
         rz = r.dot(z);
         started = true;
       }
-      SolveVelocity(bt * d, w);
+      btd.noalias() = bt * d;  // into the same storage every iteration (the same sums)
+      SolveVelocity(btd, w);
       sd = b * w - pp * d;
       const double alpha = rz / d.dot(sd);
       p += alpha * d;

@@ -130,7 +130,8 @@ class CutCellCapacitance {
 
  private:
   const SeparableHelmholtz& fast_;
-  std::vector<int> rows_;                                  // s_1 ... s_k
+  std::vector<int> rows_;       // s_1 ... s_k
+  std::vector<int> dirichlet_;  // the fast solver's Dirichlet nodes (zeroed before a solve)
   Eigen::SparseMatrix<double, Eigen::RowMajor> coupling_;  // C: k x n
   Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;       // I_k + C A_0^-1 P
   std::vector<double> zero_, tu_, tv_, cu_, cv_;           // work
