@@ -14,6 +14,7 @@ them).
 
 import json
 import os
+import random
 import shutil
 import subprocess
 import tempfile
@@ -131,10 +132,15 @@ class ParaViewTest(unittest.TestCase):
         self.assertNotEqual(first, last)
 
     def pvbatch_under_xvfb(self, xvfb, png, out):
-        """paraview_screenshot.py run by pvbatch on a display of a private Xvfb."""
+        """paraview_screenshot.py run by pvbatch on a display of a private Xvfb: a display
+        number drawn from 100-999 that no lock file or socket claims (not the first free one,
+        :0, which is where pvbatch lost its server), and -displayfd to know when it is ready."""
+        number = random.choice([n for n in range(100, 1000)
+                                if not os.path.exists(f"/tmp/.X{n}-lock")
+                                and not os.path.exists(f"/tmp/.X11-unix/X{n}")])
         read_end, write_end = os.pipe()
-        server = subprocess.Popen([xvfb, "-displayfd", str(write_end), "-screen", "0", "640x800x24",
-                                   "-nolisten", "tcp"], pass_fds=(write_end,),
+        server = subprocess.Popen([xvfb, f":{number}", "-displayfd", str(write_end), "-screen", "0",
+                                   "640x800x24", "-nolisten", "tcp"], pass_fds=(write_end,),
                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         os.close(write_end)
         try:
@@ -162,13 +168,14 @@ class ParaViewTest(unittest.TestCase):
         self.assertIsNotNone(xvfb, "Xvfb is missing (Debian: xvfb; scripts/setup.sh)")
         png = os.path.join(self.dir, "trA.png")
         out = os.path.join(self.dir, "screenshot.json")
-        # A fresh Xvfb for each try picks a free display itself (-displayfd) and says its number
-        # once it accepts connections. pvbatch still, rarely, finds no server there when other X
-        # servers start at the same moment ("bad X server connection": with xvfb-run twice in CI,
-        # and once in 3 here with three of these tests started together); that is the display's
-        # failure, not the screenshot's, so only that one is tried again, at most four times,
-        # waiting 2, 4, 6, 8 s first: in a CI run of 2026-12-06 three tries in a row met it within
-        # 6 s (display :0 each time), with no other X server started beside them.
+        # A fresh Xvfb for each try says its display once it accepts connections. pvbatch still,
+        # rarely, found no server there ("bad X server connection": with xvfb-run twice in CI,
+        # and once in 3 here with three of these tests started together); in CI runs of
+        # 2026-12-06 and 2026-12-07 three and then five tries in a row met it, each on display :0
+        # (the first free one, which -displayfd alone takes), with no other X server of ours
+        # beside them. So each try draws another display far from :0, and only that failure, the
+        # display's and not the screenshot's, is tried again, at most four times, waiting 2, 4,
+        # 6, 8 s first.
         for attempt in range(5):
             if attempt:
                 time.sleep(2 * attempt)
