@@ -8,10 +8,13 @@
 #include <omp.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "dlmfd/core/constants.h"
 #include "dlmfd/particles/particle_step.h"
+#include "dlmfd/scene/auto_coupling.h"
+#include "dlmfd/scene/scene_file.h"
 
 namespace dlmfd {
 namespace {
@@ -38,6 +41,8 @@ Params PaperScene(int count) {
       params.particles.push_back(p);
     }
   }
+  // The keys a scene file would leave to their defaults (the coupling by `auto`), as a run does.
+  ResolveDefaults(params);
   return params;
 }
 
@@ -75,6 +80,8 @@ void BM_ParticleStepAdvance(benchmark::State& state) {
   state.counters["us_per_particle"] = benchmark::Counter(
       static_cast<double>(params.particles.size()),
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.SetLabel(std::string("constraint ") +
+                 ConstraintCouplingName(params.splitting.constraint.value()));
   omp_set_num_threads(omp_get_num_procs());
 }
 BENCHMARK(BM_ParticleStepAdvance)
