@@ -111,7 +111,10 @@ void CheckAxis(const char* name, int cells, const AxisBoundary& ends) {
 
 // Rows per block of phases (1) and (3): a block's rows and the transform's scratch stay in L2.
 constexpr int kBlockRows = TypeOneTransform::kBlockRows;
-// The sweeps' mode pieces start on whole cache lines (8 doubles) so that threads share none.
+// The sweeps' mode pieces start on multiples of 8 modes (a cache line of doubles). A row of the
+// buffer is `modes` long, so the threads still share one line a row where `modes` is not a
+// multiple of 8; padding the rows to whole lines was measured and gained nothing (the pressure
+// solve on two threads, docs/evidence/performance.md, "What this machine gives a second thread").
 constexpr int kModeAlign = 8;
 
 }  // namespace
