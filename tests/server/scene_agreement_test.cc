@@ -60,9 +60,9 @@ struct SceneCase {
 // Failures name the case, not its bytes.
 void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.name; }
 
-// What cut cells do not hold yet (particles/particle_rules.h, RequireCutCellScene: an ellipse,
-// even a fixed one, among them), and the fixed, prescribed and free disks (of any density), and the
-// polymer around each of them, that they do.
+// What cut cells do not hold yet (particles/particle_rules.h, RequireCutCellScene: a moving
+// ellipse among them), and the fixed, prescribed and free disks (of any density), the polymer
+// around each of them, and the fixed ellipse, that they do.
 std::vector<SceneCase> CutCellCases() {
   return {
       {"CutCellFixedDisk", Disk(0.5, 0.5, 1.5, "fixed"), {"particle_mesh.kind=cut_cell"}, ""},
@@ -88,6 +88,11 @@ std::vector<SceneCase> CutCellCases() {
       {"CutCellFixedEllipse",
        "[[particles]]\ncenter = [0.5, 0.5]\nshape = \"ellipse\"\nsemi_axes = [0.1, 0.05]\n"
        "density = 1.5\nmotion = \"fixed\"\n",
+       {"particle_mesh.kind=cut_cell"},
+       ""},
+      {"CutCellPrescribedEllipse",
+       "[[particles]]\ncenter = [0.5, 0.5]\nshape = \"ellipse\"\nsemi_axes = [0.1, 0.05]\n"
+       "density = 1.5\nmotion = \"prescribed\"\n",
        {"particle_mesh.kind=cut_cell"},
        "particles.0.shape"},
       {"CutCellWithViscosityInTheAdvection",

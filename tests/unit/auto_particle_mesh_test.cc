@@ -1,6 +1,7 @@
 // particle_mesh.kind = "auto" (scene/auto_particle_mesh.h): one test per rule (each exclusion
-// resolves to collocation points, the fixed disk in a Newtonian liquid to cut cells), on each side
-// of the run-length bound, and the record of the choice (the numbers, the scene as run).
+// resolves to collocation points, the fixed disk or ellipse in a Newtonian liquid to cut cells),
+// on each side of the run-length bound, and the record of the choice (the numbers, the scene as
+// run).
 #include "dlmfd/scene/auto_particle_mesh.h"
 
 #include <gmock/gmock.h>
@@ -91,8 +92,10 @@ TEST(AutoParticleMesh, WithoutParticlesItIsCollocation) {
   EXPECT_EQ(MeshChoice(p).rule, "no particles");
 }
 
-// Rule 2: an ellipse keeps the collocation points (the key table says it needs them).
-TEST(AutoParticleMesh, AnEllipseKeepsCollocationPoints) {
+// Rule 2: a fixed ellipse in a Newtonian liquid is cut out of the mesh as a disk is (measured:
+// docs/evidence/cut_cell_boundary.md, "A fixed ellipse"); a moving one, or one in a polymer
+// liquid, keeps the collocation points (the cut cells were not measured there).
+TEST(AutoParticleMesh, OnlyAFixedEllipseInANewtonianLiquidGetsCutCells) {
   const std::string scene = std::string(kFixedDisk) + R"TOML(
 [[particles]]
 center = [1.0, 0.2]
@@ -101,8 +104,14 @@ semi_axes = [0.05, 0.025]
 motion = "fixed"
 )TOML";
   const Params p = ParseScene(scene);
-  EXPECT_EQ(p.particle_mesh.kind, ParticleMeshKind::kCollocation);
-  EXPECT_THAT(MeshChoice(p).rule, HasSubstr("particles.1 is not a disk"));
+  EXPECT_EQ(p.particle_mesh.kind, ParticleMeshKind::kCutCell);
+  const Params polymer =
+      ParseScene(scene, {{"fluid.relaxation_time", "0.1"}, {"fluid.solvent_ratio", "0.5"}});
+  EXPECT_EQ(polymer.particle_mesh.kind, ParticleMeshKind::kCollocation);
+  EXPECT_THAT(MeshChoice(polymer).rule, HasSubstr("particles.1 is not a disk"));
+  const Params moving = ParseScene(scene, {{"particles.1.motion", "\"prescribed\""}});
+  EXPECT_EQ(moving.particle_mesh.kind, ParticleMeshKind::kCollocation);
+  EXPECT_THAT(MeshChoice(moving).rule, HasSubstr("particles.1 is not a disk"));
 }
 
 // Rule 4: the polymers the cut cells were measured with (Oldroyd-B, Giesekus) get them around
@@ -217,7 +226,7 @@ TEST(AutoParticleMesh, TheSceneAsRunNamesTheChoice) {
 
 TEST(AutoParticleMesh, TheTextNamesTheRuleAndItsNumbers) {
   const std::string text = ResolvedChoiceText(MeshChoice(ParseScene(kFixedDisk)));
-  EXPECT_THAT(text, HasSubstr("particle_mesh.kind = \"cut_cell\" (auto: fixed disks"));
+  EXPECT_THAT(text, HasSubstr("particle_mesh.kind = \"cut_cell\" (auto: fixed bodies"));
   EXPECT_THAT(text, HasSubstr("steps = 2400"));
 }
 

@@ -234,10 +234,10 @@ const BadScene kBadScenes[] = {
     {"ParticleMeshHZero", "[particle_mesh]\nh = 0.0\n", "particle_mesh.h", "0.0"},
     {"ParticleMeshKindUnknown", "[particle_mesh]\nkind = \"cut_cells\"\n", "particle_mesh.kind",
      "\"cut_cells\""},
-    {"CutCellWithAFixedEllipse",
+    {"CutCellWithAPrescribedEllipse",
      "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"
      "[[particles]]\ncenter = [0.5, 0.5]\nshape = \"ellipse\"\nsemi_axes = [0.1, 0.05]\n"
-     "motion = \"fixed\"\n",
+     "motion = \"prescribed\"\n",
      "particles.0.shape", "\"ellipse\""},
     {"CutCellWithViscosityInAdvection",
      "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"

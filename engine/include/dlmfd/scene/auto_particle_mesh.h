@@ -1,8 +1,9 @@
 // particle_mesh.kind = "auto", the default since issue 32 / 33: cut cells (particles/
-// cut_cell_step.h) where every particle is a fixed disk, the liquid Newtonian or a polymer they
-// were measured with, and the run long enough for their set-up to pay, collocation points
-// otherwise (docs/evidence/cut_cell_boundary.md, "Should `auto` choose cut cells for fixed
-// bodies?" and "The polymer around fixed bodies"; docs/accuracy.md).
+// cut_cell_step.h) where every particle is a fixed disk (or a fixed ellipse in a Newtonian
+// liquid), the liquid Newtonian or a polymer they were measured with, and the run long enough for
+// their set-up to pay, collocation points otherwise (docs/evidence/cut_cell_boundary.md, "Should
+// `auto` choose cut cells for fixed bodies?" and "The polymer around fixed bodies";
+// docs/accuracy.md).
 //
 // Why: on the same grid a cut-cell step costs 2-7 times the collocation points' one, but its drag
 // is second order and does not depend on where the body sits in the grid (Schaefer-Turek C_D
@@ -14,8 +15,9 @@
 // scene/auto_particle_mesh.cc with its evidence beside it, and one test pins it
 // (tests/unit/auto_particle_mesh_test.cc). The last rule always applies.
 //   1. No particles: "collocation" (nothing to hold; the kind is not used).
-//   2. A particle that is not a disk: "collocation" (the cut cells were measured on disks only;
-//      an ellipse keeps the collocation points its key names).
+//   2. A particle that is not a disk, unless fixed in a Newtonian liquid: "collocation" (the cut
+//      cells were measured on fixed ellipses in a Newtonian liquid only; another ellipse keeps
+//      the collocation points its key names).
 //   3. A particle that is not fixed: "collocation" (cut cells recut every step, 5.5 times a fixed
 //      body's step, and a free body adds three Stokes solves a step).
 //   4. A polymer model other than Oldroyd-B and Giesekus: "collocation" (cut cells carry any
