@@ -59,22 +59,11 @@ std::optional<Pick> CreepingFlow(const CouplingNumbers& n) {
               "flow takes (creeping flow)"};
 }
 
-// 4. A particle whose shape turns with it (an ellipse), free and heavier than the liquid or
-// turned by a prescribed rotation: its collocation points' interior lattice (spacing h, body frame)
-// turns against the grid, puts two points in some cells and none in others, and (37) finds large
-// multipliers of opposite sign at such pairs. Lagged, the pairs act at the next step's positions,
-// where they no longer cancel, and the run blows up as the particle crosses about a cell, at every
-// aspect and density ratio tried (docs/evidence/validation_particles.md, "The lagged multiplier on
-// a turning shape"): so no bound on a / b or rho_p / rho, every such particle. A neutrally buoyant
-// one is not lagged (particles/lagged_multiplier.h), a fixed one does not turn.
-std::optional<Pick> TurningShapes(const CouplingNumbers& n) {
-  if (!n.lagged_turning_particle) return std::nullopt;
-  return Pick{ConstraintCoupling::kPaper,
-              "a particle that turns (an ellipse), where the lagged multiplier blew up"};
-}
-
-// 5. The rest: the lagged multiplier removes the paper's leak at the paper's cost
-// (docs/evidence/constraint_coupling.md, "Coupling the constraint with viscosity").
+// 4. The rest: the lagged multiplier removes the paper's leak at the paper's cost
+// (docs/evidence/constraint_coupling.md, "Coupling the constraint with viscosity"). Particles that
+// turn too: with interior points that cannot pair up in a cell the lagged multiplier completes
+// every run that blew up with the turned lattice and is nearer its dt limit than the paper's
+// coupling (docs/evidence/validation_particles.md, "The lagged multiplier on a turning shape").
 std::optional<Pick> Incremental(const CouplingNumbers& n) {
   return Pick{ConstraintCoupling::kIncremental,
               n.particle_courant > kMaxLaggedParticleCourant
@@ -82,7 +71,7 @@ std::optional<Pick> Incremental(const CouplingNumbers& n) {
                   : "particles slower than 0.3 of a cell a step"};
 }
 
-constexpr Rule kRules[] = {NoParticles, FastParticles, CreepingFlow, TurningShapes, Incremental};
+constexpr Rule kRules[] = {NoParticles, FastParticles, CreepingFlow, Incremental};
 
 }  // namespace
 
@@ -112,12 +101,7 @@ CouplingNumbers ComputeCouplingNumbers(const Params& p) {
   for (const ParticleParams& q : p.particles) {
     diameter = std::max(diameter, q.diameter);
     densest = std::max(densest, q.density);
-    const bool turns = q.shape != ShapeKind::kDisk;
-    if (turns && q.motion == Motion::kPrescribed && q.angular_velocity != 0.0) {
-      n.lagged_turning_particle = true;
-    }
     if (q.motion != Motion::kFree) continue;
-    n.lagged_turning_particle = n.lagged_turning_particle || (turns && q.density != rho);
     const double ratio = q.density / rho;
     n.neutral_free_particle = n.neutral_free_particle || q.density == rho;
     n.min_density_ratio = n.min_density_ratio == 0.0 ? ratio : std::min(n.min_density_ratio, ratio);

@@ -25,12 +25,16 @@
 //   cell (a cell's diagonal), at any angle; taking them from the boundary inward (layers that
 //   follow the boundary, not a lattice that can align with the grid) keeps the interior covered:
 //   7-9 CG iterations at every angle and sub-grid position tried, |nu| <= 1.9, and the lagged
-//   multiplier completes every run of its blow-up study; the price, Jeffery's quarter period up
-//   to 0.6 % further from T / 4 than with the lattice (docs/evidence/validation_particles.md, "An
-//   ellipse's interior points: a set that cannot pair up in a cell"). Thinning the turned lattice
-//   to one point per cell is not enough (33 iterations at 45 degrees): near pairs across a cell
-//   edge are as bad. A disk keeps its lattice (it does not turn; a disk with these points takes 9
-//   iterations at every position against 7-53, not switched: it would change every disk result).
+//   multiplier completes every run of its blow-up study (so scene/auto_coupling.h gives a turning
+//   particle the lagged multiplier, as a disk); the price, Jeffery's quarter period at r = 2 up to
+//   0.6 % further from T / 4 than with the lattice at h = 1/32 and 1/48 (the worst of three
+//   positions: 2.40 against 1.96 %, 1.02 against 0.45 %; nearer at 1/64), and at r = 4, b / h =
+//   2.4, 1.8 % further at the node (docs/evidence/validation_particles.md, "An ellipse's interior
+//   points: a set that cannot pair up in a cell", "Over grids and sub-grid positions"). Thinning
+//   the turned lattice to one point per cell is not enough (33 iterations at 45 degrees): near
+//   pairs across a cell edge are as bad. A disk keeps its lattice (it does not turn; a disk with
+//   these points takes 9 iterations at every position against 7-53, not switched: it would change
+//   every disk result).
 // Points are stored relative to the centre in the body frame, boundary points first; they
 // translate with the particle and turn with it when its shape does (particles/multiplier_points.h).
 // Interpolation (read by the

@@ -14,9 +14,12 @@
 //      is small, nu dt / h^2 <= 0.195: "paper".
 //   3. Creeping flow, nu dt / h^2 > 18.5, unless a free particle is neutrally buoyant: "viscous"
 //      (the lagged multiplier would take more steps to settle than the flow takes).
-//   4. A particle whose shape turns (an ellipse), free and heavier than the liquid or prescribed
-//      to rotate: "paper" (the lagged multiplier blew up on every such particle measured).
-//   5. Otherwise: "incremental".
+//   4. Otherwise: "incremental". A particle that turns (an ellipse) included: until 2026-12-07 a
+//      rule gave a free heavy one "paper", since the lagged multiplier blew up on such particles
+//      when their interior points were a lattice turned against the grid; the points that cannot
+//      pair up in a cell (particles/collocation_points.h) removed the cause, and the lagged
+//      multiplier on them is stable, more accurate in dt and as cheap
+//      (docs/evidence/validation_particles.md, "The lagged multiplier on a turning shape").
 // The choice, the rule and the numbers it read go to the run's log, summary.json (`numerics`),
 // the daemon's job record and `dlmfd show`; the scene as run (scene.toml) names the coupling
 // chosen, so a resume or a rerun of it uses the same one.
@@ -43,9 +46,6 @@ namespace dlmfd {
 struct CouplingNumbers {
   bool particles = false;
   bool neutral_free_particle = false;  // a free particle as dense as the liquid
-  // A particle that turns (not a disk) and whose multiplier the incremental coupling would lag:
-  // free and not neutrally buoyant, or prescribed with an angular velocity.
-  bool lagged_turning_particle = false;
   bool polymer = false;
   double viscous_number = 0.0;     // nu dt / h^2
   double particle_speed = 0.0;     // U_p
