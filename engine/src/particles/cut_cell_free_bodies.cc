@@ -181,6 +181,7 @@ CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(
     for (const FixedBody& body : bodies) k_centres_.push_back(body.centre);
     MakeK(flow, bodies, motions, loose ? unit_tolerance : tolerance, max_iterations, outcome);
   }
+  outcome.made = made;
   outcome.composed = made && !loose;
   // The collision forces at X^{n+1} (Predict's);
   // (M / dt - K) (V - V*) = F_h(V*) + M g + F' + M (V^n - V*) / dt.
@@ -220,11 +221,12 @@ CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(
     }
   }
   has_last_ = false;
-  // The first solve's plus the unit solves' times V - V* (with K made this step): the step's
-  // solution, or where they stopped at unit_tolerance the start of the step's solve at V (else the
-  // step solves again at V from the first solve).
+  // The first solve's plus the unit solves' times V - V*: with K made at the step's tolerance the
+  // step's solution, else the start of the step's solve at V, from this step's unit solutions or,
+  // K kept, from the last K's (made within refresh_ h of here; across a periodic seam the fields
+  // lie about the body too, the box's arrays being periodic).
   const std::size_t n = grid_.NodeCount(), np = grid_.Coarse().NodeCount();
-  for (std::size_t s = 0; made && s < units; ++s) {
+  for (std::size_t s = 0; s < units; ++s) {
     const double w = dv[static_cast<Eigen::Index>(s)];
     for (std::size_t i = 0; i < n; ++i) {
       u[i] += w * unit_u_[s][i];

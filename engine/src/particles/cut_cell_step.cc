@@ -334,6 +334,7 @@ void CutCellStep::Solve(double dt, const BoundaryData& data, std::vector<Particl
       second = again.iterations;
     }
     report.Set("rigid_mode_iterations", o.unit_iterations);
+    report.Set("rigid_modes_made", o.made ? 1 : 0);
     report.Set("free_motion_iterations", second);
     report.Set("collision_contacts", o.contacts);
   }

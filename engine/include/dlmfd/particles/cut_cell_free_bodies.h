@@ -31,11 +31,14 @@
 // step's pressure. Disks only (an ellipse's cut is not measured: the scene refuses it).
 // K kept (particle_mesh.rigid_modes_refresh = r > 0, the default 1): K changes by O(|U| dt / h) a
 // step, so it is made anew only once a body has moved r h since it was made (or dt changed); in
-// between dV comes from the older K and the step solves once more, with g = V (started from the
-// first solve: a few Uzawa iterations), for its solution and the force it reports. Newton's law
-// then holds to (K - K_old) dV, which vanishes at a terminal velocity: 2 solves a step instead of
-// 1 + 3N (docs/evidence/cut_cell_boundary.md, "A free body": Faxen's fall speed moves by 2e-8,
-// the 5.2 pair's first second by 1.1e-4 of its speed, light bodies as stable).
+// between dV comes from the older K and the step solves once more, with g = V, for its solution
+// and the force it reports, started from the first solve plus the last K's unit solutions times
+// V - V* (made within r h of here: 1.2 Uzawa iterations a step on the 5.2 pair against 3.9 from
+// the first solve alone; docs/evidence/cut_cell_boundary.md, "The solve at V started from the
+// kept unit solutions"). Newton's law then holds to (K - K_old) dV, which vanishes at a terminal
+// velocity: 2 solves a step instead of 1 + 3N (docs/evidence/cut_cell_boundary.md, "A free
+// body": Faxen's fall speed moves by 2e-8, the 5.2 pair's first second by 1.1e-4 of its speed,
+// light bodies as stable).
 // The unit solves' tolerance (docs/evidence/cut_cell_boundary.md, "Where a free step's CPU
 // goes"): where a K of this dt was kept before this step (Predict made V*), K is made anew from
 // unit solves that stop at CutCellConstants::unit_tolerance (K's accuracy: it enters the step
@@ -91,6 +94,7 @@ class CutCellFreeBodies {
   };
   struct Outcome {
     int unit_iterations = 0;  // the unit solves' Uzawa iterations, all together
+    bool made = false;        // K was made this step (its unit solves may take 0 iterations)
     int contacts = 0;         // active collision contacts at X^{n+1}
     // K was made this step at the step's tolerance and u, v, p hold the step's solution; else (K
     // kept from an earlier step, particle_mesh.rigid_modes_refresh, or made at unit_tolerance)
