@@ -54,10 +54,12 @@
 // share (CutCellConstants::ghost_velocity_elastic): with the Newtonian one the confined cylinder
 // blew up at Wi = 0.6, R/h = 24. Report columns:
 // stokes_iterations (Uzawa / CG), stokes_residual (the saddle point's relative residual); with
-// free bodies rigid_mode_iterations (the unit solves' Uzawa iterations, all together) and
-// collision_contacts; with any bodies particle_pair_gap, particle_wall_gap and particle_min_gap at
-// X^{n+1}, the true surface gaps of the collocation path (particles/particle_step.h), measured by
-// the collision model (CollisionForces::Gaps; NaN where there is nothing to measure).
+// free bodies rigid_mode_iterations (the unit solves' Uzawa iterations, all together),
+// rigid_modes_made (1 where K was made this step, 0 where kept), free_motion_iterations (the solve
+// at the new velocity; 0 where none) and collision_contacts; with any bodies particle_pair_gap,
+// particle_wall_gap and particle_min_gap at X^{n+1}, the true surface gaps of the collocation path
+// (particles/particle_step.h), measured by the collision model (CollisionForces::Gaps; NaN where
+// there is nothing to measure).
 #pragma once
 
 #include <memory>
