@@ -24,6 +24,7 @@ END=${END:-8}
 ANGLE=${ANGLE:-30}
 SHIFTS=${SHIFTS:-0 1 2 3 4 5 6 7}  # k of s = k h / 4
 OUT=${OUT:-runs/fixed_ellipse_positions}
+read -r -a EXTRA <<< "${SETS:-}"  # more overrides, as words
 mkdir -p "$OUT"
 theta=$(/usr/bin/python3 -c "import math; print(math.radians($ANGLE))")
 # The case's disk (diameter 0.1) as the ellipse of the same area.
@@ -35,7 +36,7 @@ grep -q '^shape = "ellipse"' "$scene" || { echo "the case's disk was not found" 
 for k in $SHIFTS; do
   x=$(/usr/bin/python3 -c "print(0.2 + $k * $H / 4)")
   dir="$OUT/h${H}_a${ANGLE}_k$k"
-  [ -f "$dir/summary.json" ] || nice -n 10 "$SOLVER" "$scene" ${SETS:-} \
+  [ -f "$dir/summary.json" ] || nice -n 10 "$SOLVER" "$scene" "${EXTRA[@]}" \
     --out "$dir" --threads 1 --quiet --set domain.h="$H" --set time.dt="$DT" --set time.end="$END" \
     --set "particles.0.angle=$theta" --set "particles.0.center=[$x, 0.2]" \
     --set output.fields_every=0 --set output.particles_every=0.5
