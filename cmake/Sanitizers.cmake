@@ -1,15 +1,18 @@
-# ASan+UBSan (DLMFD_SANITIZE), TSan (DLMFD_TSAN) or libFuzzer's coverage with ASan+UBSan
-# (DLMFD_FUZZ, clang) for every target of the build.
+# ASan+UBSan (DLMFD_SANITIZE), TSan (DLMFD_TSAN), and libFuzzer's targets (DLMFD_FUZZ, clang, on
+# top of DLMFD_SANITIZE) for every target of the build.
+#
+# DLMFD_FUZZ adds the fuzzer's coverage (-fsanitize=fuzzer-no-link) to the libraries the fuzz
+# targets reach (tests/fuzz/CMakeLists.txt), not to the engine: so one clang tree with
+# DLMFD_SANITIZE and DLMFD_FUZZ serves CI's sanitizer tests and its fuzz targets, and the daemon the
+# sanitizer tests run is the code the fuzzers cover (ASan's runtime answers the coverage hooks when
+# no fuzzer is linked). docs/evidence/service.md, "One clang tree for the sanitizers and the fuzzers".
 if(DLMFD_FUZZ)
   if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
     message(FATAL_ERROR "DLMFD_FUZZ needs clang: -DCMAKE_CXX_COMPILER=clang++ (scripts/fuzz.sh)")
   endif()
-  if(DLMFD_SANITIZE OR DLMFD_TSAN)
-    message(FATAL_ERROR "DLMFD_FUZZ brings its own sanitizers: leave DLMFD_SANITIZE, DLMFD_TSAN off")
+  if(NOT DLMFD_SANITIZE OR DLMFD_TSAN)
+    message(FATAL_ERROR "DLMFD_FUZZ runs under ASan+UBSan: set DLMFD_SANITIZE, leave DLMFD_TSAN off")
   endif()
-  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer
-                      -fno-sanitize-recover=undefined)
-  add_link_options(-fsanitize=address,undefined)
 endif()
 if(DLMFD_SANITIZE AND DLMFD_TSAN)
   message(FATAL_ERROR "DLMFD_SANITIZE and DLMFD_TSAN cannot be combined")
@@ -18,7 +21,10 @@ if(DLMFD_SANITIZE)
   # GCC 12 reports false -Wmaybe-uninitialized inside libstdc++ (std::regex, std::function) once the
   # sanitizers' instrumentation is inlined; the release build keeps the warning.
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
-                      -Wno-maybe-uninitialized)
+                      $<$<CXX_COMPILER_ID:GNU>:-Wno-maybe-uninitialized>)
+  # GCC names ASan by __SANITIZE_ADDRESS__, clang by __has_feature: code that must know (tests of
+  # memory and allocations) asks DLMFD_ASAN_BUILD.
+  add_compile_definitions(DLMFD_ASAN_BUILD=1)
   add_link_options(-fsanitize=address,undefined)
 endif()
 if(DLMFD_TSAN)

@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
-# The libFuzzer targets of tests/fuzz (issue 38 point 1), built with clang in build-fuzz (coverage
-# + ASan + UBSan) and run side by side, each for a bounded time: the scene parser
+# The libFuzzer targets of tests/fuzz (issue 38 point 1), built with clang (the fuzzer's coverage +
+# ASan + UBSan) and run side by side, each for a bounded time: the scene parser
 # (scene_text_fuzz, seeded with the scenes of cases/) and every rpc of dlmfd.v1.Jobs against the
 # real daemon in the process
 # (rpc_request_fuzz, seeded with one readable request per rpc). A crash, a sanitizer report, an
 # answer jobs.proto does not promise, or a stuck input (-timeout) fails the run; libFuzzer leaves
-# the input that did it as build-fuzz/fuzz-artifacts/crash-* (reproduce: TARGET FILE).
+# the input that did it as TREE/fuzz-artifacts/crash-* (reproduce: TARGET FILE).
 # Usage: scripts/fuzz.sh [seconds per target, default 30]
-#        scripts/fuzz.sh --build-only     (builds the targets and stops: CI builds them beforehand)
+#        scripts/fuzz.sh --build-only     (builds the targets and stops)
+# The tree: build-fuzz, configured here at -O1 (the fuzzers' usual optimisation); or
+# $DLMFD_FUZZ_BUILD, a tree configured already with DLMFD_FUZZ, used as it is (CI's sanitizer
+# tree build-asan: clang, DLMFD_SANITIZE and DLMFD_FUZZ; scripts/test.sh).
 # The rpc target runs the daemon's jobs with $DLMFD_SOLVER_BINARY, else build/solver/dlmfd-solve
 # (the release build's), else a Release one built in build-fuzz-solver.
 set -euo pipefail
@@ -15,7 +18,7 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 seconds="${1:-30}"
 build_only=0
 if [[ "$seconds" == --build-only ]]; then build_only=1; fi
-build="$root/build-fuzz"
+build="${DLMFD_FUZZ_BUILD:-$root/build-fuzz}"
 jobs="${JOBS:-$(nproc)}"
 
 solver="${DLMFD_SOLVER_BINARY:-}"
@@ -30,9 +33,14 @@ if [[ -z "$solver" && "$build_only" == 0 ]]; then
 fi
 
 # -O1 -g1: the fuzzers' usual optimisation, with line numbers in the reports.
-cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
-  -DDLMFD_FUZZ=ON -DDLMFD_BUILD_TESTS=OFF -DDLMFD_BUILD_BENCH=OFF > /dev/null
+if [[ -z "${DLMFD_FUZZ_BUILD:-}" ]]; then
+  cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
+    -DDLMFD_SANITIZE=ON -DDLMFD_FUZZ=ON -DDLMFD_BUILD_TESTS=OFF -DDLMFD_BUILD_BENCH=OFF > /dev/null
+elif ! grep -qs '^DLMFD_FUZZ:BOOL=ON$' "$build/CMakeCache.txt"; then
+  echo "fuzz.sh: DLMFD_FUZZ_BUILD=$build is not a tree configured with -DDLMFD_FUZZ=ON" >&2
+  exit 2
+fi
 cmake --build "$build" -j "$jobs" --target scene_text_fuzz rpc_request_fuzz
 if [[ "$build_only" == 1 ]]; then exit 0; fi
 

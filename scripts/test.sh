@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # Sets everything up, builds, and runs the whole test suite in the release build (warnings are
-# errors), then the daemon's and the CLI's tests (labels server and e2e) in an ASan+UBSan build.
-# This is the README's test command and what CI runs. SANITIZE_ALL=1 runs every label under the
-# sanitizers (a longer run, for changes deep in the engine). Last, the fuzz targets run for
-# DLMFD_FUZZ_SECONDS (20) each (scripts/fuzz.sh).
+# errors), then the daemon's and the CLI's tests (labels server and e2e) in an ASan+UBSan build
+# with clang, the same tree that builds the fuzz targets. This is the README's test command and what
+# CI runs. SANITIZE_ALL=1 runs every label under the sanitizers (a longer run, for changes deep in
+# the engine). Last, the fuzz targets run for DLMFD_FUZZ_SECONDS (20) each (scripts/fuzz.sh).
 #
 # The tests mostly wait (daemons, Slurm, browsers: the release tests took 248 s of CPU in 342 s on
-# both cores): the ASan+UBSan build runs at nice 10, and the fuzz build at nice 15 behind it, beside
-# the Slurm tests, clang-tidy and the release tests, on the cores they leave idle
-# (docs/evidence/service.md, "CI's time"). Each phase prints its wall and CPU time.
+# both cores): the ASan+UBSan build runs at nice 10 beside the Slurm tests, clang-tidy and the
+# release tests, on the cores they leave idle (docs/evidence/service.md, "CI's time"). Each phase
+# prints its wall and CPU time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 timed() {  # timed NAME COMMAND...: runs it, then prints its wall time and CPU time (user + sys)
@@ -71,13 +71,18 @@ bg_start slurm_tests_pid build/slurm-tests.log ctest --test-dir build --output-o
   --timeout 900 -L slurm
 
 # The ASan+UBSan tree, built at nice 10 from here on: the steps until its tests take precedence.
-# -g1: line tables, so reports keep file and line. -O0 for the code that waits on clients, gRPC
-# and files (the daemon, the CLI, the dashboard, their tests), -O1 for the computing targets
+# It is clang's, and builds the libFuzzer targets (issue 38) too: DLMFD_FUZZ adds the fuzzer's
+# coverage to the libraries they link (the scene files, the daemon's library, the protocol), which
+# the sanitizer tests run as they are: one build instead of gcc's sanitizer tree and a fuzz tree
+# of its own (docs/evidence/service.md, "One clang tree for the sanitizers and the fuzzers").
+# -g1: line tables, so reports keep file and line. -O0 for the code that only waits on clients,
+# gRPC and files (the CLI, the dashboard, the tests), -O1 for the computing targets
 # (DLMFD_NUMERICS_FLAGS: the engine and dlmfd-solve, which the e2e tests run over the paper's
-# cases): the tree compiles in 58 % of the CPU time it takes at -O1 throughout, and its tests take
-# 16 % more CPU time, much less than the build saves (docs/evidence/service.md, "CI's time").
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O0 -g1 -DNDEBUG" \
-  -DDLMFD_NUMERICS_FLAGS=-O1 -DDLMFD_SANITIZE=ON -DDLMFD_WERROR=ON -DDLMFD_BUILD_BENCH=OFF > /dev/null
+# cases) and for the fuzzed libraries (tests/fuzz/CMakeLists.txt).
+cmake -S . -B build-asan -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O0 -g1 -DNDEBUG" \
+  -DDLMFD_NUMERICS_FLAGS=-O1 -DDLMFD_SANITIZE=ON -DDLMFD_FUZZ=ON -DDLMFD_WERROR=ON \
+  -DDLMFD_BUILD_BENCH=OFF > /dev/null
 # The sanitizers guard the code that meets clients and jobs: the daemon, the CLI, the dashboard
 # (dlmfd-web) and the solver they run (the e2e tests run every paper case's scene through the
 # instrumented dlmfd-solve). The engine's unit and convergence tests run in the release build
@@ -89,7 +94,8 @@ if [ "${SANITIZE_ALL:-0}" = 1 ]; then
   asan_targets=()
   asan_labels=(-LE slurm)
 else
-  asan_targets=(--target dlmfdd dlmfd dlmfd-solve dlmfd-web server_tests e2e_tests)
+  asan_targets=(--target dlmfdd dlmfd dlmfd-solve dlmfd-web server_tests e2e_tests
+                scene_text_fuzz rpc_request_fuzz)
   # The dashboard meets browsers: it is built under the sanitizers (123 s of CPU, 2026-12-04) and
   # its HTTP rules run there (7 s); the Chromium test, which drives the same code through a
   # browser for 37 s more and passes there too, runs in release only (docs/dashboard.md).
@@ -97,14 +103,6 @@ else
 fi
 echo "== ASan+UBSan build, at nice 10 beside the next steps (output follows them)"
 bg_start asan_build_pid build/asan-build.log nice -n 10 cmake --build build-asan -j"$jobs" "${asan_targets[@]}"
-
-# The libFuzzer targets (issue 38): the scene parser and every rpc's request body, built with clang
-# in build-fuzz and run for a bounded time each at the end; the daemon's jobs run the release
-# solver. Built from here on at nice 15, behind the ASan+UBSan build: that build's chain of large
-# units (the generated protocol, then the daemon's library) leaves a core idle for much of its time,
-# which the fuzz build takes; started after it, beside the sanitizer tests, it outlasted them.
-echo "== libFuzzer build, at nice 15 beside the next steps (output follows the ASan+UBSan tests)"
-bg_start fuzz_build_pid build/fuzz-build.log nice -n 15 scripts/fuzz.sh --build-only
 
 echo "== clang-tidy (.clang-tidy) on the C++ files the last commit changed (CONTRIBUTING.md)"
 timed tidy scripts/tidy.py --build build --since HEAD~1 -j "$jobs"
@@ -119,9 +117,11 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
   LSAN_OPTIONS=suppressions="$PWD/scripts/lsan.supp":print_suppressions=0 \
   timed "ASan+UBSan tests" ctest --test-dir build-asan --output-on-failure -j"$jobs" \
   --timeout 1800 "${asan_labels[@]}"
-bg_end "$fuzz_build_pid" build/fuzz-build.log "libFuzzer build"
 
 echo "== libFuzzer targets, ${DLMFD_FUZZ_SECONDS:-20} s each"
-DLMFD_SOLVER_BINARY="$PWD/build/solver/dlmfd-solve" timed fuzz scripts/fuzz.sh "${DLMFD_FUZZ_SECONDS:-20}"
+# The scene parser and every rpc's request body, from the sanitizer tree; the daemon's jobs run the
+# release solver.
+DLMFD_FUZZ_BUILD="$PWD/build-asan" DLMFD_SOLVER_BINARY="$PWD/build/solver/dlmfd-solve" \
+  timed fuzz scripts/fuzz.sh "${DLMFD_FUZZ_SECONDS:-20}"
 echo "== CI: ${SECONDS} s wall"
 times

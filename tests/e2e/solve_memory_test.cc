@@ -98,7 +98,7 @@ void ExpectEstimateHoldsThePeak(const std::string& name, const std::string& scen
 }
 
 TEST(SolveMemory, TheEstimateHoldsACutCellRunsPeak) {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if defined(DLMFD_ASAN_BUILD) || defined(DLMFD_TSAN_BUILD)  // cmake/Sanitizers.cmake
   GTEST_SKIP() << "the sanitizers' shadow memory is not the solver's";
 #endif
   const double process = ProcessAlone();

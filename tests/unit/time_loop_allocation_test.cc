@@ -29,7 +29,7 @@ void CountAllocation() {
 }
 }  // namespace
 
-#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__) && defined(__GLIBC__)
+#if !defined(DLMFD_ASAN_BUILD) && !defined(DLMFD_TSAN_BUILD) && defined(__GLIBC__)
 // glibc allows a program to replace malloc, free, calloc and realloc (the other functions of its
 // allocator then still work on the same heap); these count and forward.
 extern "C" {
