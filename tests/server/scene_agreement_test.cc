@@ -61,8 +61,8 @@ struct SceneCase {
 void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.name; }
 
 // What cut cells do not hold yet (particles/particle_rules.h, RequireCutCellScene: a moving
-// ellipse among them), and the fixed, prescribed and free disks (of any density), the polymer
-// around each of them, and the fixed ellipse, that they do.
+// ellipse in a polymer among them), and the fixed, prescribed and free disks (of any density), the
+// polymer around each of them, and the fixed and moving ellipses, that they do.
 std::vector<SceneCase> CutCellCases() {
   return {
       {"CutCellFixedDisk", Disk(0.5, 0.5, 1.5, "fixed"), {"particle_mesh.kind=cut_cell"}, ""},
@@ -94,6 +94,16 @@ std::vector<SceneCase> CutCellCases() {
        "[[particles]]\ncenter = [0.5, 0.5]\nshape = \"ellipse\"\nsemi_axes = [0.1, 0.05]\n"
        "density = 1.5\nmotion = \"prescribed\"\n",
        {"particle_mesh.kind=cut_cell"},
+       ""},
+      {"CutCellFreeEllipse",
+       "[[particles]]\ncenter = [0.5, 0.5]\nshape = \"ellipse\"\nsemi_axes = [0.1, 0.05]\n"
+       "density = 1.5\n",
+       {"particle_mesh.kind=cut_cell"},
+       ""},
+      {"CutCellWithAPolymerAroundAMovingEllipse",
+       "[[particles]]\ncenter = [0.5, 0.5]\nshape = \"ellipse\"\nsemi_axes = [0.1, 0.05]\n"
+       "density = 1.5\nmotion = \"prescribed\"\n",
+       {"particle_mesh.kind=cut_cell", kOldroydB, kHalfSolvent},
        "particles.0.shape"},
       {"CutCellWithViscosityInTheAdvection",
        Disk(0.5, 0.5, 1.5, "fixed"),

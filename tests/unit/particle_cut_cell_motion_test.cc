@@ -7,8 +7,9 @@
 //   uncovers and the ones it covers change) u = U to round-off and the force is 0; the disk is
 //   where dt U puts it. A wrong sign or weight of the load, a node uncovered with a wrong value or
 //   a geometry not moved gives O(1) errors.
-// - the rules: free and prescribed particles are taken (a free one of any density), and a polymer
-//   around a free one; around a prescribed one it is refused;
+// - the rules: free and prescribed disks and ellipses are taken (a free one of any density), and
+//   a polymer around a moving disk; around a moving ellipse it is refused;
+// - a turned ellipse, prescribed or free, moving with the liquid: the same exact solution;
 // - a free disk (particles/cut_cell_free_bodies.h) moving with the liquid keeps u = U and its
 //   velocity; the first step of a heavy free disk is the solve at its new velocity, and Newton's
 //   law holds with the force the step reports.
@@ -40,15 +41,18 @@
 namespace dlmfd {
 namespace {
 
-std::string TranslatingScene(const std::string& motion) {
+// The disk (D = 0.4), or the ellipse of the same long axis (a = 0.2, b = 0.1) turned by 0.3.
+const char kDiskShape[] = "diameter = 0.4\n";
+const char kEllipseShape[] = "shape = \"ellipse\"\nsemi_axes = [0.2, 0.1]\nangle = 0.3\n";
+std::string TranslatingScene(const std::string& motion, const char* shape = kDiskShape) {
   return "[domain]\nsize = [1.0, 1.0]\nh = 0.0625\n"
          "[domain.boundary]\nleft = { type = \"periodic\" }\nright = { type = \"periodic\" }\n"
          "bottom = { type = \"periodic\" }\ntop = { type = \"periodic\" }\n"
          "[fluid]\ndensity = 1.0\nviscosity = 0.5\n"
          "[time]\ndt = 0.02\nend = 0.1\n"
          "[particle_mesh]\nkind = \"cut_cell\"\n"
-         "[[particles]]\ndiameter = 0.4\ncenter = [0.51, 0.47]\nvelocity = [1.3, -0.7]\n"
-         "motion = \"" +
+         "[[particles]]\n" +
+         std::string(shape) + "center = [0.51, 0.47]\nvelocity = [1.3, -0.7]\nmotion = \"" +
          motion + "\"\n";
 }
 
@@ -59,9 +63,10 @@ struct TranslatingRun {
   double u_error = 0.0, p_range = 0.0, force = 0.0, velocity_error = 0.0;
   ParticleState last;
 };
-TranslatingRun RunWithTheLiquid(const std::string& motion, int steps) {
+TranslatingRun RunWithTheLiquid(const std::string& motion, int steps,
+                                const char* shape = kDiskShape) {
   TranslatingRun run;
-  run.params = ParseScene(TranslatingScene(motion));
+  run.params = ParseScene(TranslatingScene(motion, shape));
   const Params& params = run.params;
   const Grid g = params.domain.VelocityGrid();
   const Vec2 velocity = params.particles[0].velocity;
@@ -100,6 +105,25 @@ TEST(CutCellMotion, DiskTranslatingWithTheLiquidKeepsItUniform) {
   EXPECT_NEAR(run.last.position.x(), moved.x(), 1e-12);
   EXPECT_NEAR(run.last.position.y(), moved.y(), 1e-12);
   EXPECT_EQ(run.last.velocity, velocity);
+}
+
+// The same for a turned ellipse, prescribed and free (taken by cut cells since 2026-12-08; the
+// scene refused them before): its cut moves with it, u = U to round-off, no force or torque, and
+// a free one keeps its velocity and does not turn.
+TEST(CutCellMotion, EllipseMovingWithTheLiquidKeepsItUniform) {
+  const int steps = 10;
+  for (const char* motion : {"prescribed", "free"}) {
+    const TranslatingRun run = RunWithTheLiquid(motion, steps, kEllipseShape);
+    EXPECT_LT(run.u_error, 1e-9) << motion;
+    EXPECT_LT(run.force, 1e-8) << motion;
+    EXPECT_LT(run.velocity_error, 1e-9) << motion;
+    const Params& params = run.params;
+    const Vec2 moved =
+        params.particles[0].center + steps * params.time.dt * params.particles[0].velocity;
+    EXPECT_NEAR(run.last.position.x(), moved.x() - std::floor(moved.x()), 1e-9) << motion;
+    EXPECT_NEAR(run.last.position.y(), moved.y(), 1e-9) << motion;
+    EXPECT_NEAR(run.last.angle, 0.3, 1e-9) << motion;
+  }
 }
 
 // A step of (rho/dt) = 100 with the load M_l (1, 0.5) and the body moving at (1, 0.3), omega 2;
@@ -255,14 +279,18 @@ TEST(CutCellMotion, FreeAndPrescribedTakenAlsoInAPolymer) {
   EXPECT_THROW(ValidateParticles(light, g), InvalidParameter);
   // The polymer around a free body and around a prescribed one is taken (docs/evidence/
   // cut_cell_boundary.md, "The polymer around a free body" and "The polymer around a towed
-  // body"); an ellipse in it is still refused, with its shape named.
+  // body"); a moving ellipse is taken in a Newtonian liquid, refused in a polymer (not measured
+  // there), with its shape named.
   for (const char* motion : {"free", "prescribed"}) {
     Params polymer = ParseScene(TranslatingScene(motion));
     polymer.fluid.relaxation_time = 0.1;
     polymer.fluid.solvent_ratio = 0.5;
     EXPECT_FALSE(polymer.fluid.IsNewtonian());
     EXPECT_NO_THROW(RequireCutCellScene(polymer)) << motion;
-    polymer.particles[0].shape = ShapeKind::kEllipse;
+    EXPECT_NO_THROW(RequireCutCellScene(ParseScene(TranslatingScene(motion, kEllipseShape))));
+    polymer = ParseScene(TranslatingScene(motion, kEllipseShape));
+    polymer.fluid.relaxation_time = 0.1;
+    polymer.fluid.solvent_ratio = 0.5;
     try {
       RequireCutCellScene(polymer);
       ADD_FAILURE() << "an ellipse was taken by cut cells";

@@ -113,12 +113,13 @@ std::optional<InvalidParameter> CutCellObstacle(const Params& params) {
   const std::string with = " with particle_mesh.kind = \"cut_cell\"";
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
     const ParticleParams& q = params.particles[p];
-    if (q.shape == ShapeKind::kDisk || q.motion == Motion::kFixed) continue;
+    if (q.shape == ShapeKind::kDisk || q.motion == Motion::kFixed || params.fluid.IsNewtonian())
+      continue;
     return InvalidParameter("particles." + std::to_string(p) + ".shape",
                             "\"" + std::string(WordOf(q.shape)) + "\"",
                             "\"disk\"" + with +
-                                " for a particle that moves (cut cells were "
-                                "measured on moving disks and fixed ellipses only), or "
+                                " for a particle that moves in a polymer liquid (cut cells were "
+                                "measured on moving ellipses in a Newtonian liquid only), or "
                                 "particle_mesh.kind = \"collocation\"");
   }
   if (params.splitting.beta != 0.0) {

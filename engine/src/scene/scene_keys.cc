@@ -236,7 +236,8 @@ void AddParticleMeshAndCollisions(std::vector<SceneKey<P>>& keys) {
       "particle_mesh.kind", [](auto& p) -> auto& { return p.particle_mesh.kind; },
       "the multiplier points of (37): the paper's ring mesh, collocation points on the true "
       "circle, or no multipliers (cut cells: fixed, prescribed or free disks and fixed ellipses, "
-      "with or without a polymer, any sides); "
+      "with or without a polymer, and prescribed or free ellipses in a Newtonian liquid; any "
+      "sides); "
       "`auto` picks cut cells for fixed disks (in a Newtonian, Oldroyd-B or Giesekus liquid) and "
       "fixed ellipses (in a Newtonian liquid) over a run of at least " +
           std::to_string(kMinCutCellSteps) +

@@ -16,10 +16,11 @@
 //   polymer around a free body" and "The polymer around a towed body"),
 //   with all the viscosity in step (33) (splitting.beta = 0: the advection step (34) does not see
 //   the bodies), and without domain.flow_rate (the cut-cell step has no flux control; a body force
-//   drives a periodic box). Periodic sides and boxes without an outflow side are supported. A fixed
-//   ellipse is cut as a disk is (its exact signed distance; docs/evidence/cut_cell_boundary.md,
-//   "A fixed ellipse"); a moving one is not supported yet (its accuracy with cut cells was never
-//   measured).
+//   drives a periodic box). Periodic sides and boxes without an outflow side are supported. An
+//   ellipse is cut as a disk is (its exact signed distance at its angle): a fixed one in any liquid
+//   (docs/evidence/cut_cell_boundary.md, "A fixed ellipse"), a prescribed or free one in a
+//   Newtonian liquid ("Moving ellipses": Jeffery's orbit); a moving ellipse in a polymer is
+//   refused (not measured).
 // - The velocity grid has at most 2^32 - 1 nodes: E and E^T store 32-bit node indices.
 // - At t = 0 every disk lies inside the domain (crossing periodic sides only) and no two disks
 //   overlap (centre distances by the nearest periodic image).

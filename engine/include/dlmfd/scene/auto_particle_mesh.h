@@ -16,8 +16,9 @@
 // (tests/unit/auto_particle_mesh_test.cc). The last rule always applies.
 //   1. No particles: "collocation" (nothing to hold; the kind is not used).
 //   2. A particle that is not a disk, unless fixed in a Newtonian liquid: "collocation" (the cut
-//      cells were measured on fixed ellipses in a Newtonian liquid only; another ellipse keeps
-//      the collocation points its key names).
+//      cells' forces were measured on fixed ellipses in a Newtonian liquid; a moving ellipse turns
+//      at Jeffery's rate to the box's slowing at every sub-grid position, but at 10 times the
+//      collocation points' CPU a step; one in a polymer was not measured).
 //   3. A particle that is not fixed: "collocation" (cut cells recut every step, 5.5 times a fixed
 //      body's step, and a free body adds three Stokes solves a step).
 //   4. A polymer model other than Oldroyd-B and Giesekus: "collocation" (cut cells carry any
