@@ -63,6 +63,10 @@ bool CutCellFreeBodies::NeedsK(double dt, const std::vector<FixedBody>& bodies) 
     if (periodic_x_) moved.x() -= grid_.Width() * std::round(moved.x() / grid_.Width());
     if (periodic_y_) moved.y() -= grid_.Height() * std::round(moved.y() / grid_.Height());
     if (moved.norm() > reach) return true;
+    const Shape& shape = bodies[b].shape;
+    if (shape.TurnsWithAngle() &&
+        std::abs(bodies[b].angle - k_angles_[b]) * shape.BoundingRadius() > reach)
+      return true;
   }
   return false;
 }
@@ -178,7 +182,11 @@ CutCellFreeBodies::Outcome CutCellFreeBodies::Couple(
   if (made) {
     k_dt_ = dt;
     k_centres_.clear();
-    for (const FixedBody& body : bodies) k_centres_.push_back(body.centre);
+    k_angles_.clear();
+    for (const FixedBody& body : bodies) {
+      k_centres_.push_back(body.centre);
+      k_angles_.push_back(body.angle);
+    }
     MakeK(flow, bodies, motions, loose ? unit_tolerance : tolerance, max_iterations, outcome);
   }
   outcome.made = made;

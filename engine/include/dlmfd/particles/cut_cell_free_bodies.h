@@ -23,16 +23,19 @@
 // velocity update is not (the added-mass instability at rho_p / rho_f near or below 1).
 // F' are the collision forces (14)-(15) of the paper (particles/collision_forces.h) at X^{n+1},
 // on the free bodies only (fixed and prescribed ones do not feel them; they push the free ones).
-// M = rho_p V, I = rho_p V R^2 / 2 (a disk); g the gravity (F_h holds the buoyancy -rho_L V g).
+// M = rho_p V, I the shape's (rho_p V R^2 / 2 a disk, rho_p V (a^2 + b^2) / 4 an ellipse); g the
+// gravity (F_h holds the buoyancy -rho_L V g).
 // The position: X^{n+1} = X^n + dt U^n, theta^{n+1} = theta^n + dt omega^n (the cut at t_{n+1}
 // must be known before the step: first order in the transient, exact at a terminal velocity).
 // Cost: 1 + 3N Stokes solves a step, the 3N sharing the step's operators and factorisations and
 // starting from the step's Galerkin start (particles/pressure_correction_basis.h) from their last
-// step's pressure. Disks only (an ellipse's cut is not measured: the scene refuses it).
+// step's pressure. Disks and ellipses (the cut at the angle theta; docs/evidence/
+// cut_cell_boundary.md, "Moving ellipses"); the collision forces see bounding circles.
 // K kept (particle_mesh.rigid_modes_refresh = r > 0, the default 1): K changes by O(|U| dt / h) a
-// step, so it is made anew only once a body has moved r h since it was made (or dt changed); in
-// between dV comes from the older K and the step solves once more, with g = V, for its solution
-// and the force it reports, started from the first solve plus the last K's unit solutions times
+// step, so it is made anew only once a body has moved r h since it was made (an ellipse also
+// once |theta - theta_K| a > r h: its K turns with it) or dt changed; in between dV comes from
+// the older K and the step solves once more, with g = V, for its solution and the force it
+// reports, started from the first solve plus the last K's unit solutions times
 // V - V* (made within r h of here: 1.2 Uzawa iterations a step on the 5.2 pair against 3.9 from
 // the first solve alone; docs/evidence/cut_cell_boundary.md, "The solve at V started from the
 // kept unit solutions"). Newton's law then holds to (K - K_old) dV, which vanishes at a terminal
@@ -121,7 +124,9 @@ class CutCellFreeBodies {
                std::vector<RigidMotion>& motions);
 
   // Whether K must be made anew this step: never made, another dt, or a body moved more than
-  // refresh_ h since it was (across a periodic seam the shortest way: a wrap is no move).
+  // refresh_ h since it was (across a periodic seam the shortest way: a wrap is no move), or a
+  // shape that turns with its angle (an ellipse) turned so far that its bounding radius's end
+  // moved that much (|theta - theta_K| R > refresh_ h).
   bool NeedsK(double dt, const std::vector<FixedBody>& bodies) const;
   // K (k_) from the 3N unit solves; the flow's body motion is left at `motions`.
   void MakeK(CutCellStokes& flow, const std::vector<FixedBody>& bodies,
@@ -161,6 +166,7 @@ class CutCellFreeBodies {
   Eigen::MatrixXd k_;
   double k_dt_ = 0.0;
   std::vector<Vec2> k_centres_;
+  std::vector<double> k_angles_;
 };
 
 }  // namespace dlmfd
