@@ -41,9 +41,11 @@
 namespace dlmfd {
 namespace {
 
-// The disk (D = 0.4), or the ellipse of the same long axis (a = 0.2, b = 0.1) turned by 0.3.
+// The disk (D = 0.4), or an ellipse of the same long axis (a = 0.2, b = 0.15: its tip's radius of
+// curvature b^2 / a is 1.8 h, above particles/particle_rules.h's kMovingEllipseTipCells) turned by
+// 0.3.
 const char kDiskShape[] = "diameter = 0.4\n";
-const char kEllipseShape[] = "shape = \"ellipse\"\nsemi_axes = [0.2, 0.1]\nangle = 0.3\n";
+const char kEllipseShape[] = "shape = \"ellipse\"\nsemi_axes = [0.2, 0.15]\nangle = 0.3\n";
 std::string TranslatingScene(const std::string& motion, const char* shape = kDiskShape) {
   return "[domain]\nsize = [1.0, 1.0]\nh = 0.0625\n"
          "[domain.boundary]\nleft = { type = \"periodic\" }\nright = { type = \"periodic\" }\n"
@@ -288,6 +290,19 @@ TEST(CutCellMotion, FreeAndPrescribedTakenAlsoInAPolymer) {
     EXPECT_FALSE(polymer.fluid.IsNewtonian());
     EXPECT_NO_THROW(RequireCutCellScene(polymer)) << motion;
     EXPECT_NO_THROW(RequireCutCellScene(ParseScene(TranslatingScene(motion, kEllipseShape))));
+    // A moving ellipse whose tip is thinner than kMovingEllipseTipCells h (b = 0.1: b^2 / a =
+    // 0.8 h) is refused, naming the grid and the h that takes it.
+    Params thin = ParseScene(TranslatingScene(motion, kEllipseShape));
+    thin.particles[0].semi_axes = Vec2(0.2, 0.1);
+    try {
+      RequireCutCellScene(thin);
+      ADD_FAILURE() << "a thin moving ellipse was taken by cut cells";
+    } catch (const InvalidParameter& e) {
+      EXPECT_EQ(e.key(), "domain.h");
+      EXPECT_NE(std::string(e.what()).find("at most 0.0312"), std::string::npos) << e.what();
+    }
+    thin.domain.h = 0.03125;
+    EXPECT_NO_THROW(RequireCutCellScene(thin)) << motion;
     polymer = ParseScene(TranslatingScene(motion, kEllipseShape));
     polymer.fluid.relaxation_time = 0.1;
     polymer.fluid.solvent_ratio = 0.5;

@@ -234,8 +234,14 @@ const BadScene kBadScenes[] = {
     {"ParticleMeshHZero", "[particle_mesh]\nh = 0.0\n", "particle_mesh.h", "0.0"},
     {"ParticleMeshKindUnknown", "[particle_mesh]\nkind = \"cut_cells\"\n", "particle_mesh.kind",
      "\"cut_cells\""},
-    {"CutCellWithAPrescribedEllipse",
+    {"CutCellWithAPrescribedEllipseThinnerThanItsCells",  // b^2 / a = 0.8 h
      "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"
+     "[[particles]]\ncenter = [0.5, 0.5]\nshape = \"ellipse\"\nsemi_axes = [0.1, 0.05]\n"
+     "motion = \"prescribed\"\n",
+     "domain.h", "0.03125"},
+    {"CutCellWithAPrescribedEllipseInAPolymer",
+     "[particle_mesh]\nkind = \"cut_cell\"\n[domain.boundary]\nright = { type = \"outflow\" }\n"
+     "[fluid]\nrelaxation_time = 1.0\nsolvent_ratio = 0.5\n"
      "[[particles]]\ncenter = [0.5, 0.5]\nshape = \"ellipse\"\nsemi_axes = [0.1, 0.05]\n"
      "motion = \"prescribed\"\n",
      "particles.0.shape", "\"ellipse\""},

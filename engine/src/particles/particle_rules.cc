@@ -1,5 +1,6 @@
 #include "dlmfd/particles/particle_rules.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -113,8 +114,22 @@ std::optional<InvalidParameter> CutCellObstacle(const Params& params) {
   const std::string with = " with particle_mesh.kind = \"cut_cell\"";
   for (std::size_t p = 0; p < params.particles.size(); ++p) {
     const ParticleParams& q = params.particles[p];
-    if (q.shape == ShapeKind::kDisk || q.motion == Motion::kFixed || params.fluid.IsNewtonian())
-      continue;
+    if (q.shape == ShapeKind::kDisk || q.motion == Motion::kFixed) continue;
+    if (params.fluid.IsNewtonian()) {
+      // A moving ellipse's tip: its radius of curvature b^2 / a in cells (header).
+      const double a = std::max(q.semi_axes.x(), q.semi_axes.y());
+      const double b = std::min(q.semi_axes.x(), q.semi_axes.y());
+      const double most_h = b * b / (a * kMovingEllipseTipCells);
+      if (params.domain.h <= most_h * (1.0 + 1e-12)) continue;
+      return InvalidParameter("domain.h", ExactText(params.domain.h),
+                              "at most " + ExactText(most_h) + with + " (particles." +
+                                  std::to_string(p) +
+                                  ", a moving ellipse: its tip's radius of curvature b^2 / a at "
+                                  "least " +
+                                  ExactText(kMovingEllipseTipCells) +
+                                  " h; thinner tips made a step fail), or "
+                                  "particle_mesh.kind = \"collocation\"");
+    }
     return InvalidParameter("particles." + std::to_string(p) + ".shape",
                             "\"" + std::string(WordOf(q.shape)) + "\"",
                             "\"disk\"" + with +

@@ -19,8 +19,10 @@
 //   drives a periodic box). Periodic sides and boxes without an outflow side are supported. An
 //   ellipse is cut as a disk is (its exact signed distance at its angle): a fixed one in any liquid
 //   (docs/evidence/cut_cell_boundary.md, "A fixed ellipse"), a prescribed or free one in a
-//   Newtonian liquid ("Moving ellipses": Jeffery's orbit); a moving ellipse in a polymer is
-//   refused (not measured).
+//   Newtonian liquid ("Moving ellipses": Jeffery's orbit) whose tip's radius of curvature b^2 / a
+//   is at least kMovingEllipseTipCells h (a / b = 2 ran at 1.6 h and more; a / b = 4 at 0.6 h and
+//   0.8 h had a step fail, its angular velocity jumping to 20-130 where Jeffery's is below 1); a
+//   moving ellipse in a polymer is refused (not measured).
 // - The velocity grid has at most 2^32 - 1 nodes: E and E^T store 32-bit node indices.
 // - At t = 0 every disk lies inside the domain (crossing periodic sides only) and no two disks
 //   overlap (centre distances by the nearest periodic image).
@@ -46,8 +48,10 @@ void RequireCoupledInStokes(const Params& params, std::size_t p);
 // Throws InvalidParameter (particle_mesh.kind) when particle p's shape is not a disk: the ring
 // mesh of particles/particle_mesh.h is built on disks only.
 void RequireRingMeshShape(const Shape& shape, std::size_t p);
-// Throws InvalidParameter (particles.P.shape, splitting.beta, domain.flow_rate) when the scene
-// breaks a cut-cell rule above (particle_mesh.kind = "cut_cell").
+// A moving ellipse's least tip radius of curvature b^2 / a with cut cells, in cells (header).
+inline constexpr double kMovingEllipseTipCells = 1.6;
+// Throws InvalidParameter (particles.P.shape, domain.h, splitting.beta, domain.flow_rate) when the
+// scene breaks a cut-cell rule above (particle_mesh.kind = "cut_cell").
 void RequireCutCellScene(const Params& params);
 // The first cut-cell rule above that the scene breaks, whatever its particle_mesh.kind, as the
 // error RequireCutCellScene would throw; none where cut cells can run it. particle_mesh.kind =
