@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "dlmfd/core/constants.h"
+#include "dlmfd/core/observer.h"
 #include "dlmfd/core/simulation.h"
 #include "dlmfd/scene/scene_file.h"
 
@@ -42,6 +43,16 @@ namespace {
 struct WallContact {
   double smallest_gap = 1.0, end_gap = 0.0, end_speed = 0.0, lateral = 0.0;
   double rest = 0.0;  // g*
+  int k_made = 0;     // steps that made K (report column rigid_modes_made)
+};
+
+class KMadeCount : public Observer {
+ public:
+  void OnStep(const FlowState& /*state*/, const StepReport& report) override {
+    for (const auto& [name, value] : report.columns)
+      if (name == "rigid_modes_made" && value > 0.0) ++made;
+  }
+  int made = 0;
 };
 
 // The gap g at which the wall force (15) equals the weight less buoyancy (bisection: the force
@@ -61,14 +72,17 @@ double EquilibriumGap(const Params& params) {
   return 0.5 * (lo + hi);
 }
 
-WallContact SettleOntoTheFloor(const std::string& h) {
+// Released with its centre at `height`, to t = `end`; K kept at the default
+// particle_mesh.rigid_modes_refresh.
+WallContact SettleOntoTheFloor(const std::string& h, const std::string& height = "0.13",
+                               const std::string& end = "1.0") {
   const std::vector<SceneOverride> overrides = {{"domain.h", h},
                                                 {"domain.size", "[1.0, 2.0]"},
-                                                {"particles.0.center", "[0.5, 0.13]"},
+                                                {"particles.0.center", "[0.5, " + height + "]"},
                                                 {"fluid.density", "0.01"},
                                                 {"particles.0.density", "0.02"},
                                                 {"time.dt", "0.01"},
-                                                {"time.end", "1.0"},
+                                                {"time.end", end},
                                                 {"output.particles_every", "0"},
                                                 {"output.fields_every", "0"},
                                                 {"particle_mesh.kind", "\"cut_cell\""}};
@@ -78,6 +92,8 @@ WallContact SettleOntoTheFloor(const std::string& h) {
   WallContact w;
   w.rest = EquilibriumGap(params);
   Simulation sim(params);
+  KMadeCount count;
+  sim.AddObserver(&count);
   const long steps = sim.TotalSteps();
   for (long n = 0; n < steps; ++n) {
     sim.Step();
@@ -88,6 +104,7 @@ WallContact SettleOntoTheFloor(const std::string& h) {
   const ParticleState& disk = sim.state().particles[0];
   w.end_gap = disk.position.y() - disk.radius;
   w.end_speed = disk.velocity.norm();
+  w.k_made = count.made;
   return w;
 }
 
@@ -99,6 +116,29 @@ TEST(CutCellWallContact, FreeDiskComesToRestWhereTheWallForceCarriesItsWeight) {
       "%.1e\n",
       rest, w.smallest_gap, w.smallest_gap / rest, w.end_gap, w.end_gap / rest - 1.0, w.end_speed,
       w.lateral);
+  EXPECT_GT(w.smallest_gap, 0.9 * rest);
+  EXPECT_NEAR(w.end_gap / rest, 1.0, 1e-5);
+  EXPECT_LT(w.lateral, 1e-10);
+}
+
+// The approach over many cells with K kept over steps (particle_mesh.rigid_modes_refresh, the
+// default 1): released with its centre at 0.43 (gap 15.8 h at D/h = 10), the disk nears the wall
+// while the liquid's resistance grows (K made anew once it has moved a cell: 16 times in 400
+// steps), enters the force's range at t = 3.15 and is at rest at g* from t = 3.5. Measured
+// (docs/evidence/cut_cell_boundary.md, "K kept over 2 or 4 cells"):
+// smallest gap 0.996 g* (K every step 1.000, K kept 2 cells 0.992), the gap at t = 4 g* to
+// round-off. With K kept 4 cells the update goes unstable near the wall (the kept K too far
+// below the film's resistance): the disk is thrown up at gap 1.5 h (t = 2.64) and the run fails at
+// t = 5.1, the disk reaching the floor; this test then fails on the gap at t = 4. Asserted: K
+// made 4 to 39 times (kept, and made anew over the approach; 2 cells: 8), the smallest gap above
+// 0.9 g*, the gap at t = 4 g* within 1e-5, the lateral motion below 1e-10 (measured 1.0e-13).
+TEST(CutCellWallContact, FreeDiskFallingManyCellsComesToRestWithKKept) {
+  const WallContact w = SettleOntoTheFloor("0.02", "0.43", "4.0");
+  const double rest = w.rest;
+  std::printf("K made %d times; smallest gap %.7f (%.3f g*), at t = 4 %+.1e g*, |v| %.1e\n",
+              w.k_made, w.smallest_gap, w.smallest_gap / rest, w.end_gap / rest - 1.0, w.end_speed);
+  EXPECT_GE(w.k_made, 4);
+  EXPECT_LT(w.k_made, 40);
   EXPECT_GT(w.smallest_gap, 0.9 * rest);
   EXPECT_NEAR(w.end_gap / rest, 1.0, 1e-5);
   EXPECT_LT(w.lateral, 1e-10);
