@@ -94,8 +94,9 @@ if [ "${SANITIZE_ALL:-0}" = 1 ]; then
   asan_targets=()
   asan_labels=(-LE slurm)
 else
-  asan_targets=(--target dlmfdd dlmfd dlmfd-solve dlmfd-web server_tests e2e_tests
-                scene_text_fuzz rpc_request_fuzz)
+  # service_checks (CMakeLists.txt): dlmfdd, dlmfd, dlmfd-solve, dlmfd-web, server_tests,
+  # e2e_tests and the fuzz targets, as one goal so that make builds them side by side.
+  asan_targets=(--target service_checks)
   # The dashboard meets browsers: it is built under the sanitizers (123 s of CPU, 2026-12-04) and
   # its HTTP rules run there (7 s); the Chromium test, which drives the same code through a
   # browser for 37 s more and passes there too, runs in release only (docs/dashboard.md).
